@@ -1,0 +1,3 @@
+//! Host harness for `fixshade`.
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]

@@ -1,0 +1,23 @@
+//! # fixshade
+//!
+//! Flat (Lambert), Gouraud and Phong shading of 3D triangle meshes on small
+//! displays, with integer and fixed-point arithmetic only.
+//!
+//! The crate is `no_std`, allocates nothing and contains no `unsafe` code.
+//! Every buffer (frame, depth, prepared frame) belongs to the caller.
+//!
+//! The pipeline, one module per stage:
+//!
+//! - [`num`]: number formats, conversions that saturate, approximations
+//!   with stated error bounds;
+//! - [`raster`]: screen-space triangles: setup, exact integer DDA edge
+//!   walking with the top-left rule, spans with depth test and shading;
+//! - [`target`]: pixel formats, frame and depth buffers, bands of rows.
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, missing_debug_implementations)]
+#![warn(clippy::cast_possible_wrap)]
+
+pub mod num;
+pub mod raster;
+pub mod target;

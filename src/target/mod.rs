@@ -1,0 +1,1 @@
+//! Pixel formats, frame buffers, depth buffers and bands.
