@@ -16,8 +16,11 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
-#![warn(clippy::cast_possible_wrap)]
 
 pub mod num;
 pub mod raster;
 pub mod target;
+
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -1,1 +1,163 @@
-//! Pixel formats, frame buffers, depth buffers and bands.
+//! Pixel formats, frame buffers, depth buffers and bands of rows.
+//!
+//! A [`Target`] is anything the span stage can write pixels into. It has one
+//! required method, [`Target::write_pixel`], and defaulted fast paths
+//! ([`Target::row_mut`], [`Target::fill_solid`], [`Target::clear`]) that
+//! buffer-backed targets override, in the manner of `embedded-graphics`'
+//! `DrawTarget`.
+//!
+//! Every target holds a *window* of the screen: all of its columns and the
+//! rows `y0..y1`. A full frame is the window `0..height`; a *band* is a
+//! window of a few rows of a taller screen, so that a 240×240 frame can be
+//! rendered 16 rows at a time in a few kilobytes of RAM. The rasterizer
+//! clips every span to the window before it writes: nothing is ever written
+//! outside a buffer, whatever the triangle.
+//!
+//! Buffers never allocate: the caller owns the storage and lends it as a
+//! slice. A slice of the wrong length is an error value
+//! ([`BufferError`]), never a panic.
+
+mod buffer;
+mod depth;
+mod format;
+
+pub use buffer::FrameBuf;
+pub use depth::{Depth16, Depth32, DepthBuffer, DepthFormat};
+pub use format::{Gray8, PixelFormat, Rgb565Be, Rgb565Le, Rgb8, Rgb888};
+
+use core::fmt;
+
+/// The part of a screen a target holds: every column, rows `y0..y1`.
+///
+/// Limits: `width` and the screen height are at most [`MAX_SCREEN`] pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Window {
+    /// Width in pixels (every column of the screen).
+    pub width: u32,
+    /// First row held (inclusive).
+    pub y0: u32,
+    /// Row after the last row held (exclusive).
+    pub y1: u32,
+}
+
+impl Window {
+    /// Number of rows held.
+    pub const fn rows(&self) -> u32 {
+        self.y1.saturating_sub(self.y0)
+    }
+
+    /// Number of pixels held.
+    pub const fn len(&self) -> usize {
+        self.width as usize * self.rows() as usize
+    }
+
+    /// `true` when the window holds no pixel.
+    pub const fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Largest screen width or height, in pixels: 4096.
+///
+/// The rasterizer accepts vertex coordinates within
+/// ±[`crate::raster::COORD_LIMIT_PX`] = ±8192 pixels; a 4096-pixel screen
+/// leaves a guard band of at least 4096 pixels on every side.
+pub const MAX_SCREEN: u32 = 4096;
+
+/// Why a buffer could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BufferError {
+    /// The slice does not hold exactly `width × rows` elements.
+    WrongLength {
+        /// Elements the window needs.
+        expected: usize,
+        /// Elements the slice holds.
+        actual: usize,
+    },
+    /// Width or height above [`MAX_SCREEN`], or `y1 < y0`.
+    BadWindow,
+}
+
+impl fmt::Display for BufferError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::WrongLength { expected, actual } => write!(
+                f,
+                "buffer holds {actual} pixels but the window needs {expected}"
+            ),
+            Self::BadWindow => write!(
+                f,
+                "window rows must satisfy y0 <= y1 <= {MAX_SCREEN} and width <= {MAX_SCREEN}"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for BufferError {}
+
+/// Something the span stage can write pixels of one format into.
+///
+/// Only [`write_pixel`](Target::write_pixel) and
+/// [`window`](Target::window) are required. The rasterizer calls
+/// `write_pixel` only for `x < width` and `y0 <= y < y1`.
+pub trait Target {
+    /// The pixel format stored.
+    type Format: PixelFormat;
+
+    /// The part of the screen this target holds.
+    fn window(&self) -> Window;
+
+    /// Writes one pixel in screen coordinates. Implementations must ignore
+    /// coordinates outside [`window`](Target::window).
+    fn write_pixel(&mut self, x: u32, y: u32, pixel: <Self::Format as PixelFormat>::Raw);
+
+    /// Fast path: the pixels of screen row `y` as a mutable slice of
+    /// `width` pixels, or `None` when the target has no such memory (the
+    /// default) or `y` lies outside the window.
+    fn row_mut(&mut self, y: u32) -> Option<&mut [<Self::Format as PixelFormat>::Raw]> {
+        let _ = y;
+        None
+    }
+
+    /// Fills `len` pixels of row `y` from column `x` with one colour;
+    /// clipped to the window.
+    fn fill_solid(&mut self, x: u32, y: u32, len: u32, pixel: <Self::Format as PixelFormat>::Raw) {
+        let w = self.window();
+        if y < w.y0 || y >= w.y1 || x >= w.width {
+            return;
+        }
+        let end = x.saturating_add(len).min(w.width);
+        if let Some(row) = self.row_mut(y) {
+            if let Some(span) = row.get_mut(x as usize..end as usize) {
+                span.fill(pixel);
+            }
+            return;
+        }
+        for xi in x..end {
+            self.write_pixel(xi, y, pixel);
+        }
+    }
+
+    /// Fills the whole window with one colour.
+    fn clear(&mut self, color: Rgb8) {
+        let w = self.window();
+        let raw = Self::Format::encode(color);
+        for y in w.y0..w.y1 {
+            self.fill_solid(0, y, w.width, raw);
+        }
+    }
+}
+
+/// Checks a window against [`MAX_SCREEN`] and a slice length.
+pub(crate) fn check_window(w: Window, len: usize) -> Result<(), BufferError> {
+    if w.width > MAX_SCREEN || w.y1 > MAX_SCREEN || w.y0 > w.y1 {
+        return Err(BufferError::BadWindow);
+    }
+    if len != w.len() {
+        return Err(BufferError::WrongLength {
+            expected: w.len(),
+            actual: len,
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,193 @@
+//! Spans: depth test, attribute stepping and shading per pixel.
+//!
+//! [`Fill`] is the span stage: it receives spans from
+//! [`draw_triangle`](super::draw_triangle), tests and writes depth (when a
+//! depth buffer is given), asks a [`Shader`] for the colour of each pixel
+//! and stores it in the target's format. Rows come from the target's and
+//! depth buffer's fast paths ([`Target::row_mut`]) when they have them.
+
+use super::{Lerp, RasterError, Span, Spans, LEVEL_FRAC_BITS};
+use crate::target::{DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
+
+/// Computes a pixel's colour from its interpolated attributes.
+pub trait Shader<L: Lerp, const N: usize> {
+    /// The colour for attributes `a`.
+    fn shade(&self, a: &[L; N]) -> Rgb8;
+}
+
+/// One colour for the whole triangle (flat shading); attributes ignored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Flat(pub Rgb8);
+
+impl<L: Lerp, const N: usize> Shader<L, N> for Flat {
+    #[inline(always)]
+    fn shade(&self, _a: &[L; N]) -> Rgb8 {
+        self.0
+    }
+}
+
+#[inline(always)]
+fn level<L: Lerp>(v: L) -> u8 {
+    v.round_int(LEVEL_FRAC_BITS).clamp(0, 255) as u8
+}
+
+/// Gouraud shading of one grey intensity: attribute 0 is a level in
+/// `0..=255` (fixed: `level · 2^16`), rounded to nearest and clamped.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GouraudMono;
+
+impl<L: Lerp> Shader<L, 1> for GouraudMono {
+    #[inline(always)]
+    fn shade(&self, a: &[L; 1]) -> Rgb8 {
+        Rgb8::grey(level(a[0]))
+    }
+}
+
+/// Gouraud shading in colour: attributes 0, 1, 2 are the red, green and
+/// blue levels (fixed: `level · 2^16`), rounded and clamped.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Gouraud;
+
+impl<L: Lerp> Shader<L, 3> for Gouraud {
+    #[inline(always)]
+    fn shade(&self, a: &[L; 3]) -> Rgb8 {
+        Rgb8::new(level(a[0]), level(a[1]), level(a[2]))
+    }
+}
+
+/// The span stage: a target, an optional depth buffer and a shader.
+///
+/// Without a depth buffer every covered pixel is drawn, in triangle order
+/// (enough for one convex object with back-face culling).
+#[derive(Debug)]
+pub struct Fill<'t, 'd, 'b, T, D: DepthFormat, S> {
+    target: &'t mut T,
+    depth: Option<&'d mut DepthBuffer<'b, D>>,
+    /// The shader used for the next spans.
+    pub shader: S,
+}
+
+impl<'t, 'd, 'b, T: Target, D: DepthFormat, S> Fill<'t, 'd, 'b, T, D, S> {
+    /// A span stage writing into `target`, testing against `depth`.
+    ///
+    /// # Errors
+    /// [`RasterError::DepthWindowMismatch`] when the depth buffer holds
+    /// other rows or another width than the target.
+    pub fn new(
+        target: &'t mut T,
+        depth: Option<&'d mut DepthBuffer<'b, D>>,
+        shader: S,
+    ) -> Result<Self, RasterError> {
+        if let Some(d) = &depth {
+            if d.window() != target.window() {
+                return Err(RasterError::DepthWindowMismatch);
+            }
+        }
+        Ok(Self {
+            target,
+            depth,
+            shader,
+        })
+    }
+
+    /// The target's window (for [`draw_triangle`](super::draw_triangle)).
+    pub fn window(&self) -> crate::target::Window {
+        self.target.window()
+    }
+}
+
+#[inline(always)]
+fn step_all<L: Lerp, const N: usize>(a: &mut [L; N], da: &[L; N]) {
+    for (v, d) in a.iter_mut().zip(da.iter()) {
+        *v = v.add(*d);
+    }
+}
+
+impl<L, const N: usize, T, D, S> Spans<L, N> for Fill<'_, '_, '_, T, D, S>
+where
+    L: Lerp,
+    T: Target,
+    D: DepthFormat,
+    S: Shader<L, N>,
+{
+    fn span(&mut self, s: &Span<L, N>) {
+        let Span {
+            y,
+            x0,
+            x1,
+            z,
+            dz,
+            mut a,
+            ref da,
+        } = *s;
+        let range = x0 as usize..x1 as usize;
+        let shader = &self.shader;
+        let depth_row = match self.depth.as_deref_mut() {
+            Some(d) => match d.row_mut(y).and_then(|r| r.get_mut(range.clone())) {
+                Some(r) => Some(r),
+                None => return,
+            },
+            None => None,
+        };
+        match depth_row {
+            Some(drow) => {
+                let mut z = z;
+                if let Some(row) = self.target.row_mut(y).and_then(|r| r.get_mut(range)) {
+                    for (p, zb) in row.iter_mut().zip(drow.iter_mut()) {
+                        let zd = D::from_d30(z.depth30());
+                        if zd < *zb {
+                            *zb = zd;
+                            *p = T::Format::encode(shader.shade(&a));
+                        }
+                        z = z.add(dz);
+                        step_all(&mut a, da);
+                    }
+                } else {
+                    for (x, zb) in (x0..x1).zip(drow.iter_mut()) {
+                        let zd = D::from_d30(z.depth30());
+                        if zd < *zb {
+                            *zb = zd;
+                            let c = T::Format::encode(shader.shade(&a));
+                            self.target.write_pixel(x, y, c);
+                        }
+                        z = z.add(dz);
+                        step_all(&mut a, da);
+                    }
+                }
+            }
+            None => {
+                if let Some(row) = self.target.row_mut(y).and_then(|r| r.get_mut(range)) {
+                    for p in row.iter_mut() {
+                        *p = T::Format::encode(shader.shade(&a));
+                        step_all(&mut a, da);
+                    }
+                } else {
+                    for x in x0..x1 {
+                        let c = T::Format::encode(shader.shade(&a));
+                        self.target.write_pixel(x, y, c);
+                        step_all(&mut a, da);
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
+    /// Rasterizes one triangle into this span stage (see
+    /// [`draw_triangle`](super::draw_triangle)).
+    ///
+    /// # Errors
+    /// As [`draw_triangle`](super::draw_triangle).
+    pub fn draw<L: Lerp, const N: usize>(
+        &mut self,
+        tri: &[super::Vertex<L, N>; 3],
+        sub: super::SubpixelBits,
+    ) -> Result<(), RasterError>
+    where
+        S: Shader<L, N>,
+    {
+        let w = self.window();
+        super::draw_triangle(tri, sub, w, self)
+    }
+}

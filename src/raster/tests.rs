@@ -1,0 +1,629 @@
+//! Pixel-exact tests of the rasterizer against an independent exact
+//! coverage test.
+
+extern crate std;
+use std::{string::String, vec, vec::Vec};
+
+use super::*;
+use crate::target::{
+    Depth16, Depth32, DepthBuffer, FrameBuf, Gray8, PixelFormat, Rgb8, Target, Window,
+};
+
+const SUB: SubpixelBits = SubpixelBits::DEFAULT;
+
+/// A target that counts writes per pixel, to find overdraw and holes.
+struct Counter {
+    w: u32,
+    h: u32,
+    count: Vec<u32>,
+    last: Vec<u8>,
+}
+
+impl Counter {
+    fn new(w: u32, h: u32) -> Self {
+        let n = (w * h) as usize;
+        Self {
+            w,
+            h,
+            count: vec![0; n],
+            last: vec![0; n],
+        }
+    }
+
+    fn ascii(&self) -> String {
+        let mut s = String::new();
+        for y in 0..self.h {
+            for x in 0..self.w {
+                let c = self.count[(y * self.w + x) as usize];
+                s.push(match c {
+                    0 => '.',
+                    1 => '#',
+                    _ => '2',
+                });
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+impl Target for Counter {
+    type Format = Gray8;
+    fn window(&self) -> Window {
+        Window {
+            width: self.w,
+            y0: 0,
+            y1: self.h,
+        }
+    }
+    fn write_pixel(&mut self, x: u32, y: u32, p: [u8; 1]) {
+        assert!(
+            x < self.w && y < self.h,
+            "write outside the target at ({x}, {y})"
+        );
+        let i = (y * self.w + x) as usize;
+        self.count[i] += 1;
+        self.last[i] = p[0];
+    }
+}
+
+fn v(x: i32, y: i32) -> Vertex<i32, 0> {
+    Vertex {
+        x,
+        y,
+        z: 0,
+        attrs: [],
+    }
+}
+
+/// Pixel centre coordinates to subpixels: (i + 1/2) pixels.
+fn c(i: i32) -> i32 {
+    i * 16 + 8
+}
+
+fn draw_flat(t: &mut Counter, tri: &[Vertex<i32, 0>; 3]) -> Result<(), RasterError> {
+    let mut f = Fill::<_, Depth16, _>::new(t, None, Flat(Rgb8::WHITE)).unwrap();
+    f.draw(tri, SUB)
+}
+
+/// Independent exact coverage: edge functions at pixel centres, top-left
+/// rule (y down), any winding.
+fn covers(tri: &[(i64, i64); 3], px: i64, py: i64, s: i64) -> bool {
+    let (a, mut b, mut c) = (tri[0], tri[1], tri[2]);
+    let e = |a: (i64, i64), b: (i64, i64), p: (i64, i64)| {
+        (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0)
+    };
+    let area = e(a, b, c);
+    if area == 0 {
+        return false;
+    }
+    if area < 0 {
+        core::mem::swap(&mut b, &mut c);
+    }
+    let p = (px * s + s / 2, py * s + s / 2);
+    [(a, b), (b, c), (c, a)].iter().all(|&(p0, p1)| {
+        let v = e(p0, p1, p);
+        let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
+        v > 0 || (v == 0 && (dy < 0 || (dy == 0 && dx > 0)))
+    })
+}
+
+/// Deterministic pseudo-random numbers (xorshift64*).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn range(&mut self, lo: i32, hi: i32) -> i32 {
+        lo + (self.next() % (hi - lo) as u64) as i32
+    }
+}
+
+/// Probe recording the intensity (attribute 0) at every pixel.
+struct Probe<L> {
+    spans: Vec<(u32, u32, u32)>,
+    values: Vec<(u32, u32, L)>,
+}
+
+impl<L: Lerp> Spans<L, 1> for Probe<L> {
+    fn span(&mut self, s: &Span<L, 1>) {
+        let Span {
+            y,
+            x0,
+            x1,
+            ref a,
+            ref da,
+            ..
+        } = *s;
+        self.spans.push((y, x0, x1));
+        let mut v = a[0];
+        for x in x0..x1 {
+            self.values.push((x, y, v));
+            v = v.add(da[0]);
+        }
+    }
+}
+
+fn seed_triangle<L: Lerp>(i: [L; 3]) -> [Vertex<L, 1>; 3] {
+    [
+        Vertex {
+            x: c(9),
+            y: c(15),
+            z: i[0],
+            attrs: [i[0]],
+        },
+        Vertex {
+            x: c(3),
+            y: c(3),
+            z: i[0],
+            attrs: [i[1]],
+        },
+        Vertex {
+            x: c(17),
+            y: c(7),
+            z: i[0],
+            attrs: [i[2]],
+        },
+    ]
+}
+
+#[test]
+fn seed_gouraud_example_row_11_is_exact() {
+    // Shading Techniques, seed 000: intensities 0, 24, 4 at (9,15), (3,3),
+    // (17,7); row 11 covers x = 7..=12 with I = 8 - (x - 7).
+    let tri = seed_triangle([0, 24 << 16, 4 << 16]);
+    let win = Window {
+        width: 32,
+        y0: 0,
+        y1: 32,
+    };
+    let mut p = Probe {
+        spans: vec![],
+        values: vec![],
+    };
+    draw_triangle(&tri, SUB, win, &mut p).unwrap();
+    let row11: Vec<_> = p.values.iter().filter(|v| v.1 == 11).collect();
+    assert_eq!(row11.len(), 6);
+    for &&(x, _, raw) in &row11 {
+        assert_eq!(raw, (8 - (x as i32 - 7)) << 16, "x = {x}");
+    }
+    assert_eq!(row11[0].0, 7);
+    assert_eq!(row11[5].0, 12);
+    // Exact everywhere: the plane is I = 31.5 - x - 1.5 y at pixel (x, y).
+    for &(x, y, raw) in &p.values {
+        let want = (63 - 2 * x as i32 - 3 * y as i32) << 15;
+        assert_eq!(raw, want, "pixel ({x}, {y})");
+    }
+
+    // The f64 twin takes the same decisions with the same values.
+    let tri = seed_triangle([0.0f64, 24.0, 4.0]);
+    let mut q = Probe {
+        spans: vec![],
+        values: vec![],
+    };
+    draw_triangle(&tri, SUB, win, &mut q).unwrap();
+    assert_eq!(p.spans, q.spans);
+    for (&(x, y, f), &(_, _, i)) in q.values.iter().zip(p.values.iter()) {
+        assert!((f - i as f64 / 65536.0).abs() < 1e-12, "({x}, {y})");
+    }
+}
+
+#[test]
+fn seed_gouraud_example_into_gray8_pixels() {
+    let tri = seed_triangle([0, 24 << 16, 4 << 16]);
+    let mut buf = vec![[0u8; 1]; 32 * 20];
+    let mut fb = FrameBuf::<Gray8>::new(&mut buf, 32, 20).unwrap();
+    Fill::<_, Depth16, _>::new(&mut fb, None, GouraudMono)
+        .unwrap()
+        .draw(&tri, SUB)
+        .unwrap();
+    let row: Vec<u8> = (0..32).map(|x| fb.get(x, 11).unwrap().r).collect();
+    assert_eq!(&row[5..15], &[0, 0, 8, 7, 6, 5, 4, 3, 0, 0]);
+}
+
+#[test]
+fn tall_edges_are_exact_on_every_row() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let s = 16i64;
+    for k in 0..200 {
+        let x0 = rng.range(-2000 * 16, 2000 * 16);
+        let y0 = rng.range(-100 * 16, 100 * 16);
+        let dy = 4096 * 16 + rng.range(-15, 16);
+        let dx = match k % 4 {
+            0 => rng.range(-1, 2),
+            1 => rng.range(-4096 * 16, 4096 * 16),
+            2 => 7 * 16 + 3,
+            _ => -(dy / 3) - 1,
+        };
+        let (x1, y1) = (x0 + dx, y0 + dy);
+        let j0 = (y0 as i64 - s / 2 + s - 1).div_euclid(s) as i32;
+        let mut e = Edge::new(x0, y0, x1, y1, j0, SUB);
+        for j in j0..j0 + 4097 {
+            // Exact: smallest i with (i + 1/2) S >= x(yc), in i128.
+            let yc = j as i128 * 16 + 8;
+            let num = (x0 as i128 - 8) * dy as i128 + (yc - y0 as i128) * dx as i128;
+            let den = 16 * dy as i128;
+            let want = num.div_euclid(den) + i128::from(num.rem_euclid(den) != 0);
+            assert_eq!(e.x as i128, want, "edge {k}, row {j}");
+            e.step();
+        }
+    }
+}
+
+#[test]
+fn random_triangles_match_exact_coverage() {
+    let mut rng = Rng(12345);
+    let (w, h) = (48u32, 40u32);
+    for n in 0..600 {
+        let span = if n % 3 == 0 { 8 * 16 } else { 70 * 16 };
+        let tri: [(i64, i64); 3] = core::array::from_fn(|_| {
+            (
+                rng.range(-10 * 16, span) as i64,
+                rng.range(-10 * 16, span) as i64,
+            )
+        });
+        let mut t = Counter::new(w, h);
+        draw_flat(&mut t, &tri.map(|(x, y)| v(x as i32, y as i32))).unwrap();
+        for y in 0..h {
+            for x in 0..w {
+                let want = covers(&tri, x as i64, y as i64, 16) as u32;
+                assert_eq!(
+                    t.count[(y * w + x) as usize],
+                    want,
+                    "tri {n} {tri:?} px ({x},{y})"
+                );
+            }
+        }
+    }
+}
+
+/// Draws every triangle into one counter and checks each pixel against the
+/// number of exact covers; returns the counter.
+fn tiling(tris: &[[(i64, i64); 3]], w: u32, h: u32) -> Counter {
+    let mut t = Counter::new(w, h);
+    for tri in tris {
+        draw_flat(&mut t, &tri.map(|(x, y)| v(x as i32, y as i32))).unwrap();
+    }
+    for y in 0..h {
+        for x in 0..w {
+            let want: u32 = tris
+                .iter()
+                .map(|tri| covers(tri, x as i64, y as i64, 16) as u32)
+                .sum();
+            assert!(want <= 1, "the exact reference covers ({x},{y}) twice");
+            assert_eq!(t.count[(y * w + x) as usize], want, "pixel ({x},{y})");
+        }
+    }
+    t
+}
+
+#[test]
+fn jittered_grid_is_watertight() {
+    let mut rng = Rng(777);
+    let n = 24usize; // 2 * 23 * 23 = 1058 triangles
+    let pts: Vec<(i64, i64)> = (0..n * n)
+        .map(|k| {
+            let (i, j) = ((k % n) as i32, (k / n) as i32);
+            let jit = |r: &mut Rng, edge: bool| if edge { 0 } else { r.range(-12, 13) };
+            let ex = i == 0 || i == n as i32 - 1;
+            let ey = j == 0 || j == n as i32 - 1;
+            (
+                (8 + i * 40 + jit(&mut rng, ex)) as i64,
+                (8 + j * 40 + jit(&mut rng, ey)) as i64,
+            )
+        })
+        .collect();
+    let mut tris = vec![];
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let (a, b, c, d) = (
+                pts[j * n + i],
+                pts[j * n + i + 1],
+                pts[(j + 1) * n + i],
+                pts[(j + 1) * n + i + 1],
+            );
+            if (i + j) % 2 == 0 {
+                tris.push([a, b, d]);
+                tris.push([a, d, c]);
+            } else {
+                tris.push([a, b, c]);
+                tris.push([b, d, c]);
+            }
+        }
+    }
+    assert!(tris.len() >= 1000);
+    let t = tiling(&tris, 60, 60);
+    // No holes: the grid spans subpixels 8..=928, i.e. pixel centres 1..=57.
+    for y in 1..57 {
+        for x in 1..57 {
+            assert_eq!(t.count[y * 60 + x], 1, "hole or overdraw at ({x},{y})");
+        }
+    }
+}
+
+#[test]
+fn fans_around_a_point_are_watertight() {
+    let mut rng = Rng(4242);
+    for &(cx, cy, k) in &[(400i64, 400i64, 300usize), (408, 391, 64), (413, 397, 7)] {
+        let ring: Vec<(i64, i64)> = (0..k)
+            .map(|i| {
+                let a = i as f64 / k as f64 * core::f64::consts::TAU;
+                let r = 300.0 + rng.range(0, 60) as f64;
+                (
+                    cx + (r * a.cos()).round() as i64,
+                    cy + (r * a.sin()).round() as i64,
+                )
+            })
+            .collect();
+        let tris: Vec<_> = (0..k)
+            .map(|i| [(cx, cy), ring[i], ring[(i + 1) % k]])
+            .collect();
+        let t = tiling(&tris, 52, 52);
+        // Every pixel within 250 subpixels of the centre is inside the fan.
+        for y in 0..52i64 {
+            for x in 0..52i64 {
+                let (dx, dy) = (x * 16 + 8 - cx, y * 16 + 8 - cy);
+                if dx * dx + dy * dy < 250 * 250 {
+                    assert_eq!(t.count[(y * 52 + x) as usize], 1, "({x},{y})");
+                }
+            }
+        }
+    }
+}
+
+fn picture(tri: [(i32, i32); 3], w: u32, h: u32) -> String {
+    let mut t = Counter::new(w, h);
+    draw_flat(&mut t, &tri.map(|(x, y)| v(x, y))).unwrap();
+    t.ascii()
+}
+
+#[test]
+fn ascii_small_triangles() {
+    // Right triangle with its legs on pixel boundaries.
+    assert_eq!(
+        picture([(0, 0), (6 * 16, 0), (0, 6 * 16)], 7, 7),
+        "#####..\n####...\n###....\n##.....\n#......\n.......\n.......\n"
+    );
+    // Vertices on pixel centres: the top and left edges are in, the
+    // bottom and right out.
+    assert_eq!(
+        picture([(c(1), c(1)), (c(5), c(1)), (c(1), c(5))], 7, 7),
+        ".......\n.####..\n.###...\n.##....\n.#.....\n.......\n.......\n"
+    );
+    // The same triangle mirrored: its vertical edge is now on the right,
+    // so column 5 is out.
+    assert_eq!(
+        picture([(c(5), c(1)), (c(5), c(5)), (c(1), c(1))], 7, 7),
+        ".......\n.####..\n..###..\n...##..\n....#..\n.......\n.......\n"
+    );
+}
+
+#[test]
+fn ascii_thin_and_degenerate_triangles() {
+    // One pixel thin: a sliver 2 subpixels wide around column 3's centres.
+    assert_eq!(
+        picture([(c(3) - 1, 0), (c(3) + 1, 0), (c(3), 6 * 16)], 7, 6),
+        "...#...\n...#...\n...#...\n...#...\n...#...\n...#...\n"
+    );
+    // Zero area: collinear points and a repeated point draw nothing.
+    assert_eq!(
+        picture([(0, 0), (50, 50), (100, 100)], 7, 7),
+        ".......\n".repeat(7)
+    );
+    assert_eq!(
+        picture([(c(2), c(2)), (c(2), c(2)), (c(5), c(1))], 7, 7),
+        ".......\n".repeat(7)
+    );
+    // A thin horizontal sliver between two rows' centres covers nothing.
+    assert_eq!(
+        picture([(0, 17), (100, 17), (50, 23)], 7, 3),
+        ".......\n".repeat(3)
+    );
+}
+
+#[test]
+fn huge_and_offscreen_triangles_clip_exactly() {
+    let lim = SUB.coord_limit() as i64;
+    let cases: [[(i64, i64); 3]; 5] = [
+        [(-lim, -lim), (lim, -lim), (-lim, lim)],
+        [(lim, lim), (-lim, lim), (lim, -lim)],
+        [(-lim, 300), (lim, 200), (0, lim)],
+        [(-5000, -7000), (-100, -100), (-9000, 400)],
+        [(100_000, 5), (120_000, 60), (110_000, 600)],
+    ];
+    for tri in cases {
+        let mut t = Counter::new(40, 30);
+        draw_flat(&mut t, &tri.map(|(x, y)| v(x as i32, y as i32))).unwrap();
+        for y in 0..30 {
+            for x in 0..40 {
+                let want = covers(&tri, x, y, 16) as u32;
+                assert_eq!(t.count[(y * 40 + x) as usize], want, "{tri:?} ({x},{y})");
+            }
+        }
+    }
+    // Beyond the limit: an error, nothing drawn.
+    let mut t = Counter::new(8, 8);
+    let bad = [v(0, 0), v(lim as i32 + 1, 0), v(0, 50)];
+    assert_eq!(draw_flat(&mut t, &bad), Err(RasterError::OutOfRange(1)));
+    let bad = [v(0, 0), v(5, 0), v(0, i32::MIN)];
+    assert_eq!(draw_flat(&mut t, &bad), Err(RasterError::OutOfRange(2)));
+    assert!(t.count.iter().all(|&c| c == 0));
+}
+
+#[test]
+fn attributes_of_a_huge_clipped_triangle_stay_accurate() {
+    // A triangle 16000 pixels wide with depth and intensity ramps: at the
+    // visible pixels the values are those of the exact plane within the
+    // bound of the module docs.
+    let lim = SUB.coord_limit();
+    let tri: [Vertex<i32, 1>; 3] = [
+        Vertex {
+            x: -lim,
+            y: -lim,
+            z: 0,
+            attrs: [0],
+        },
+        Vertex {
+            x: lim,
+            y: -lim + 999,
+            z: DEPTH_ONE,
+            attrs: [255 << 16],
+        },
+        Vertex {
+            x: 3,
+            y: lim,
+            z: DEPTH_ONE / 2,
+            attrs: [77 << 16],
+        },
+    ];
+    let win = Window {
+        width: 64,
+        y0: 0,
+        y1: 64,
+    };
+    let mut p = Probe {
+        spans: vec![],
+        values: vec![],
+    };
+    draw_triangle(&tri, SUB, win, &mut p).unwrap();
+    assert_eq!(p.values.len(), 64 * 64);
+    let f = tri.map(|v| Vertex {
+        x: v.x,
+        y: v.y,
+        z: v.z as f64,
+        attrs: [v.attrs[0] as f64],
+    });
+    let mut q = Probe {
+        spans: vec![],
+        values: vec![],
+    };
+    draw_triangle(&f, SUB, win, &mut q).unwrap();
+    let mut worst = 0.0f64;
+    for (&(x, y, i), &(_, _, e)) in p.values.iter().zip(q.values.iter()) {
+        // n <= 2 * 8192 pixels from the anchor; |g| <= 2^16 * 255 / 8192 per pixel.
+        let bound = (2.0 * 8192.0 + 2.0) * (0.5 + 2040.0 * 65536.0 / (1u64 << 30) as f64);
+        let err = (i as f64 - e).abs();
+        assert!(err <= bound, "({x},{y}): {i} vs {e}");
+        worst = worst.max(err);
+    }
+    // The bound is a quarter of a level (2^14 raw units) at most here.
+    assert!(worst < 16384.0, "worst error {worst} raw units");
+    std::println!(
+        "worst intensity error {worst} raw units = {} levels",
+        worst / 65536.0
+    );
+}
+
+#[test]
+fn depth_test_keeps_the_nearest_and_the_first_of_equals() {
+    fn run<D: crate::target::DepthFormat>(vals: &mut [D::Raw]) -> Vec<u8> {
+        let mut buf = vec![[0u8; 1]; 16];
+        let mut fb = FrameBuf::<Gray8>::new(&mut buf, 4, 4).unwrap();
+        let mut db = DepthBuffer::<D>::new(vals, 4, 0, 4).unwrap();
+        let quad = |z: i32| -> [[Vertex<i32, 0>; 3]; 2] {
+            let p = |x: i32, y: i32| Vertex { x, y, z, attrs: [] };
+            [
+                [p(0, 0), p(64, 0), p(64, 64)],
+                [p(0, 0), p(64, 64), p(0, 64)],
+            ]
+        };
+        for (z, level) in [
+            (DEPTH_ONE / 2, 50u8),
+            (DEPTH_ONE / 4, 100),
+            (DEPTH_ONE / 4, 150),
+            (DEPTH_ONE / 3, 200),
+        ] {
+            let mut f = Fill::new(&mut fb, Some(&mut db), Flat(Rgb8::grey(level))).unwrap();
+            for t in quad(z) {
+                f.draw(&t, SUB).unwrap();
+            }
+        }
+        buf.iter().map(|p| p[0]).collect()
+    }
+    assert_eq!(run::<Depth16>(&mut [0u16; 16]), vec![100; 16]);
+    assert_eq!(run::<Depth32>(&mut [0u32; 16]), vec![100; 16]);
+}
+
+#[test]
+fn depth_buffer_must_match_the_target() {
+    let mut buf = vec![[0u8; 1]; 16];
+    let mut fb = FrameBuf::<Gray8>::new(&mut buf, 4, 4).unwrap();
+    let mut vals = [0u16; 8];
+    let mut db = DepthBuffer::<Depth16>::new(&mut vals, 4, 0, 2).unwrap();
+    assert_eq!(
+        Fill::new(&mut fb, Some(&mut db), Flat(Rgb8::WHITE)).unwrap_err(),
+        RasterError::DepthWindowMismatch
+    );
+}
+
+#[test]
+fn bands_give_the_same_bytes_as_the_full_frame() {
+    let mut rng = Rng(99);
+    let tris: Vec<[Vertex<i32, 1>; 3]> = (0..40)
+        .map(|_| {
+            core::array::from_fn(|_| Vertex {
+                x: rng.range(-200, 60 * 16),
+                y: rng.range(-200, 50 * 16),
+                z: rng.range(0, DEPTH_ONE),
+                attrs: [rng.range(0, 256 << 16)],
+            })
+        })
+        .collect();
+    let (w, h) = (50u32, 45u32);
+    let mut full = vec![[0u8; 1]; (w * h) as usize];
+    {
+        let mut fb = FrameBuf::<Gray8>::new(&mut full, w, h).unwrap();
+        let mut dv = vec![0u16; (w * h) as usize];
+        let mut db = DepthBuffer::<Depth16>::new(&mut dv, w, 0, h).unwrap();
+        let mut f = Fill::new(&mut fb, Some(&mut db), GouraudMono).unwrap();
+        for t in &tris {
+            f.draw(t, SUB).unwrap();
+        }
+    }
+    for rows in [1u32, 7, 16, 45] {
+        let mut out = vec![];
+        let mut band = vec![[0u8; 1]; (w * rows) as usize];
+        let mut dv = vec![0u16; (w * rows) as usize];
+        let mut y0 = 0;
+        while y0 < h {
+            let y1 = (y0 + rows).min(h);
+            let n = ((y1 - y0) * w) as usize;
+            let mut fb = FrameBuf::<Gray8>::band(&mut band[..n], w, y0, y1).unwrap();
+            fb.clear(Rgb8::BLACK);
+            let mut db = DepthBuffer::<Depth16>::new(&mut dv[..n], w, y0, y1).unwrap();
+            let mut f = Fill::new(&mut fb, Some(&mut db), GouraudMono).unwrap();
+            for t in &tris {
+                f.draw(t, SUB).unwrap();
+            }
+            out.extend(fb.bytes());
+            y0 = y1;
+        }
+        assert_eq!(
+            out,
+            full.iter().map(|p| p[0]).collect::<Vec<_>>(),
+            "band height {rows}"
+        );
+    }
+    assert!(full.iter().filter(|p| p[0] != 0).count() > 500);
+}
+
+#[test]
+fn subpixel_bits_are_validated_and_conversions_saturate() {
+    assert_eq!(SubpixelBits::new(0), Err(RasterError::BadSubpixelBits));
+    assert_eq!(SubpixelBits::new(9), Err(RasterError::BadSubpixelBits));
+    let s = SubpixelBits::new(8).unwrap();
+    assert_eq!(s.from_f32(1.5), 384);
+    assert_eq!(s.from_f32(-1.5), -384);
+    assert_eq!(s.from_f32(f32::NAN), 0);
+    assert_eq!(s.from_f32(f32::INFINITY), s.coord_limit() + 1);
+    assert_eq!(s.from_f64(-1e300), -(s.coord_limit() + 1));
+    assert_eq!(s.from_px(i32::MAX), i32::MAX);
+    // Saturated coordinates are rejected, not drawn elsewhere.
+    let mut t = Counter::new(4, 4);
+    let tri = [v(0, 0), v(SUB.from_f32(1e9), 0), v(0, 40)];
+    assert!(draw_flat(&mut t, &tri).is_err());
+    let _ = Gray8::encode(Rgb8::WHITE);
+}

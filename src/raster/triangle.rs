@@ -1,0 +1,204 @@
+//! Triangle setup and the scanline loop.
+
+use super::{Edge, Lerp, RasterError, SubpixelBits, Vertex};
+use crate::target::Window;
+
+/// Receives the spans of a triangle, top to bottom: the span stage
+/// ([`super::Fill`]), or a test probe.
+pub trait Spans<L: Lerp, const N: usize> {
+    /// Receives one span (never empty, clipped to the window).
+    fn span(&mut self, span: &Span<L, N>);
+}
+
+/// Pixels `x0..x1` of row `y`, already clipped to the window (`x0 < x1`),
+/// with the depth and attributes at the centre of pixel `x0` and their
+/// increments per pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Span<L, const N: usize> {
+    /// Row.
+    pub y: u32,
+    /// First column.
+    pub x0: u32,
+    /// Column after the last.
+    pub x1: u32,
+    /// Depth at the first pixel.
+    pub z: L,
+    /// Depth increment per pixel.
+    pub dz: L,
+    /// Attributes at the first pixel.
+    pub a: [L; N],
+    /// Attribute increments per pixel.
+    pub da: [L; N],
+}
+
+/// Depth and attributes together, stepped as one.
+#[derive(Clone, Copy)]
+struct Vals<L, const N: usize> {
+    z: L,
+    a: [L; N],
+}
+
+impl<L: Lerp, const N: usize> Vals<L, N> {
+    #[inline(always)]
+    fn add(&mut self, s: &Self) {
+        self.z = self.z.add(s.z);
+        for (a, d) in self.a.iter_mut().zip(s.a.iter()) {
+            *a = a.add(*d);
+        }
+    }
+
+    #[inline]
+    fn add_n(mut self, s: &Self, n: i32) -> Self {
+        self.z = self.z.add_n(s.z, n);
+        for (a, d) in self.a.iter_mut().zip(s.a.iter()) {
+            *a = a.add_n(*d, n);
+        }
+        self
+    }
+}
+
+/// First row whose centre is at or below subpixel `y`: `ceil((y - S/2)/S)`.
+#[inline]
+fn first_row(y: i32, sub: SubpixelBits) -> i32 {
+    let s = sub.scale();
+    (y - s / 2 + s - 1).div_euclid(s)
+}
+
+/// Rasterizes one triangle into `sink`, clipped to `window`.
+///
+/// Coverage follows the top-left rule at pixel centres; attributes are
+/// interpolated as described in the [module docs](super). A zero-area
+/// triangle draws nothing.
+///
+/// # Errors
+/// [`RasterError::OutOfRange`] when a vertex lies outside
+/// ±[`super::COORD_LIMIT_PX`] pixels; nothing is drawn then.
+pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
+    tri: &[Vertex<L, N>; 3],
+    sub: SubpixelBits,
+    window: Window,
+    sink: &mut S,
+) -> Result<(), RasterError> {
+    let lim = sub.coord_limit();
+    for (i, v) in tri.iter().enumerate() {
+        if v.x < -lim || v.x > lim || v.y < -lim || v.y > lim {
+            return Err(RasterError::OutOfRange(i as u8));
+        }
+    }
+    // Sort by y: v0 top, v2 bottom.
+    let [mut a, mut b, mut c] = [&tri[0], &tri[1], &tri[2]];
+    if b.y < a.y {
+        core::mem::swap(&mut a, &mut b);
+    }
+    if c.y < b.y {
+        core::mem::swap(&mut b, &mut c);
+    }
+    if b.y < a.y {
+        core::mem::swap(&mut a, &mut b);
+    }
+    let d = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
+    let area2 = d[0] as i64 * d[3] as i64 - d[2] as i64 * d[1] as i64;
+    if area2 == 0 {
+        return Ok(());
+    }
+    let (j_top, j_mid, j_bot) = (
+        first_row(a.y, sub),
+        first_row(b.y, sub),
+        first_row(c.y, sub),
+    );
+    let js = j_top.max(window.y0 as i32);
+    let je = j_bot.min(window.y1 as i32);
+    if js >= je {
+        return Ok(());
+    }
+
+    // Gradients once per triangle, anchored at the pixel centre nearest
+    // vertex 0 (within half a pixel in each direction).
+    let setup = L::setup(area2);
+    let s = sub.scale();
+    let (ia, ja) = (a.x.div_euclid(s), a.y.div_euclid(s));
+    let (ox, oy) = (ia * s + s / 2 - a.x, ja * s + s / 2 - a.y);
+    let zero = Vals { z: a.z, a: a.attrs };
+    let (mut anchor, mut sx, mut sy) = (zero, zero, zero);
+    {
+        let (gx, gy) = L::gradients([a.z, b.z, c.z], d, &setup, sub);
+        anchor.z = L::anchor(a.z, gx, gy, ox, oy, sub);
+        sx.z = L::step(gx);
+        sy.z = L::step(gy);
+    }
+    for k in 0..N {
+        let (gx, gy) = L::gradients([a.attrs[k], b.attrs[k], c.attrs[k]], d, &setup, sub);
+        anchor.a[k] = L::anchor(a.attrs[k], gx, gy, ox, oy, sub);
+        sx.a[k] = L::step(gx);
+        sy.a[k] = L::step(gy);
+    }
+
+    // area2 > 0: vertex 1 lies right of the long edge, so the long edge is
+    // the left one.
+    let long_left = area2 > 0;
+    let mut long = Edge::new(a.x, a.y, c.x, c.y, js, sub);
+    let halves = [(a, b, js, j_mid.min(je)), (b, c, j_mid.max(js), je)];
+    let mut left_vals: Option<(Vals<L, N>, Vals<L, N>)> = None;
+    let mut vl = anchor;
+    if long_left {
+        vl = anchor.add_n(&sx, long.x - ia).add_n(&sy, js - ja);
+        left_vals = Some(steps_for(&long, &sx, &sy));
+    }
+    for (top, bot, r0, r1) in halves {
+        if r0 >= r1 {
+            continue;
+        }
+        let mut short = Edge::new(top.x, top.y, bot.x, bot.y, r0, sub);
+        if !long_left {
+            vl = anchor.add_n(&sx, short.x - ia).add_n(&sy, r0 - ja);
+            left_vals = Some(steps_for(&short, &sx, &sy));
+        }
+        let (step_nc, step_c) = match left_vals {
+            Some(v) => v,
+            None => return Ok(()),
+        };
+        for j in r0..r1 {
+            let (xl, xr) = if long_left {
+                (long.x, short.x)
+            } else {
+                (short.x, long.x)
+            };
+            let x0 = xl.max(0);
+            let x1 = xr.min(window.width as i32);
+            if x0 < x1 {
+                let v = if x0 == xl { vl } else { vl.add_n(&sx, x0 - xl) };
+                sink.span(&Span {
+                    y: j as u32,
+                    x0: x0 as u32,
+                    x1: x1 as u32,
+                    z: v.z,
+                    dz: sx.z,
+                    a: v.a,
+                    da: sx.a,
+                });
+            }
+            let carry = if long_left { long.step() } else { short.step() };
+            if long_left {
+                short.step();
+            } else {
+                long.step();
+            }
+            vl.add(if carry { &step_c } else { &step_nc });
+        }
+    }
+    Ok(())
+}
+
+/// The left-edge attribute steps per row: without and with the carry
+/// column.
+fn steps_for<L: Lerp, const N: usize>(
+    e: &Edge,
+    sx: &Vals<L, N>,
+    sy: &Vals<L, N>,
+) -> (Vals<L, N>, Vals<L, N>) {
+    let mut nc = *sy;
+    nc = nc.add_n(sx, e.quotient());
+    let mut c = nc;
+    c.add(sx);
+    (nc, c)
+}

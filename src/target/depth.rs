@@ -1,0 +1,159 @@
+//! Depth buffers, 16 or 32 bits per pixel.
+//!
+//! The rasterizer interpolates a depth `d` in `[0, 1]` that is *affine in
+//! screen space* (the projected `z/w`; see [`crate::raster`]), as a 30-bit
+//! fraction: `d30 = round(d × 2^30)`. A buffer keeps its top 16 or 30 bits.
+//! The test is *less than*: a fragment is drawn when its depth is strictly
+//! smaller than the stored one, so of two fragments at the same depth the
+//! first drawn stays (the z-fighting rule), and a cleared buffer holds the
+//! largest value, which every fragment with `d < 1` passes.
+
+use super::{check_window, BufferError, Window};
+
+/// A depth value format.
+pub trait DepthFormat: Copy + core::fmt::Debug {
+    /// One stored depth.
+    type Raw: Copy + PartialOrd + core::fmt::Debug;
+    /// Value of a cleared buffer (farther than everything).
+    const CLEAR: Self::Raw;
+    /// Converts a 30-bit depth `0..=2^30` (larger values saturate).
+    fn from_d30(d30: u32) -> Self::Raw;
+}
+
+/// 16-bit depth: `d30 >> 14`, steps of 2^-16 of the depth range.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Depth16;
+
+impl DepthFormat for Depth16 {
+    type Raw = u16;
+    const CLEAR: u16 = u16::MAX;
+    #[inline]
+    fn from_d30(d30: u32) -> u16 {
+        let v = d30 >> 14;
+        if v > u16::MAX as u32 {
+            u16::MAX
+        } else {
+            v as u16
+        }
+    }
+}
+
+/// 32-bit depth: the full 30-bit value.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Depth32;
+
+impl DepthFormat for Depth32 {
+    type Raw = u32;
+    const CLEAR: u32 = u32::MAX;
+    #[inline]
+    fn from_d30(d30: u32) -> u32 {
+        d30.min(1 << 30)
+    }
+}
+
+/// A depth buffer for a window (a frame or a band), in caller memory.
+///
+/// Memory: 2 (16-bit) or 4 (32-bit) bytes per pixel of the window; a
+/// 16-row band of a 240-pixel-wide screen in 16 bits is 7 680 bytes.
+#[derive(Debug)]
+pub struct DepthBuffer<'a, D: DepthFormat> {
+    values: &'a mut [D::Raw],
+    window: Window,
+}
+
+impl<'a, D: DepthFormat> DepthBuffer<'a, D> {
+    /// A depth buffer for rows `y0..y1`, `width` wide, cleared.
+    ///
+    /// # Errors
+    /// [`BufferError`] when the slice length is not `width × (y1 - y0)` or
+    /// the window is too big.
+    pub fn new(
+        values: &'a mut [D::Raw],
+        width: u32,
+        y0: u32,
+        y1: u32,
+    ) -> Result<Self, BufferError> {
+        let window = Window { width, y0, y1 };
+        check_window(window, values.len())?;
+        let mut b = Self { values, window };
+        b.clear();
+        Ok(b)
+    }
+
+    /// Sets every value to [`DepthFormat::CLEAR`].
+    pub fn clear(&mut self) {
+        self.values.fill(D::CLEAR);
+    }
+
+    /// The window held.
+    pub fn window(&self) -> Window {
+        self.window
+    }
+
+    /// Moves to rows `y0..y0 + rows` and clears.
+    ///
+    /// # Errors
+    /// [`BufferError::BadWindow`] when the window would end below row
+    /// [`super::MAX_SCREEN`].
+    pub fn move_to(&mut self, y0: u32) -> Result<(), BufferError> {
+        let y1 = y0
+            .checked_add(self.window.rows())
+            .ok_or(BufferError::BadWindow)?;
+        let window = Window {
+            y0,
+            y1,
+            ..self.window
+        };
+        check_window(window, self.values.len())?;
+        self.window = window;
+        self.clear();
+        Ok(())
+    }
+
+    /// The values of screen row `y`, or `None` outside the window.
+    pub fn row_mut(&mut self, y: u32) -> Option<&mut [D::Raw]> {
+        let w = self.window;
+        if y < w.y0 || y >= w.y1 {
+            return None;
+        }
+        let start = (y - w.y0) as usize * w.width as usize;
+        self.values.get_mut(start..start + w.width as usize)
+    }
+
+    /// The stored value at `(x, y)`, or `None` outside the window.
+    pub fn get(&self, x: u32, y: u32) -> Option<D::Raw> {
+        let w = self.window;
+        if x < w.width && y >= w.y0 && y < w.y1 {
+            Some(self.values[(y - w.y0) as usize * w.width as usize + x as usize])
+        } else {
+            None
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn conversions_saturate() {
+        assert_eq!(Depth16::from_d30(0), 0);
+        assert_eq!(Depth16::from_d30(1 << 30), u16::MAX);
+        assert_eq!(Depth16::from_d30((1 << 30) - 1), u16::MAX);
+        assert_eq!(Depth16::from_d30(u32::MAX), u16::MAX);
+        assert_eq!(Depth16::from_d30(1 << 14), 1);
+        assert_eq!(Depth32::from_d30(u32::MAX), 1 << 30);
+    }
+
+    #[test]
+    fn cleared_and_banded() {
+        let mut v = [0u16; 6];
+        let mut d = DepthBuffer::<Depth16>::new(&mut v, 3, 4, 6).unwrap();
+        assert_eq!(d.get(2, 5), Some(u16::MAX));
+        assert_eq!(d.get(2, 6), None);
+        d.row_mut(4).unwrap()[1] = 5;
+        d.move_to(6).unwrap();
+        assert_eq!(d.get(1, 6), Some(u16::MAX));
+        assert!(DepthBuffer::<Depth32>::new(&mut [0u32; 5], 3, 0, 2).is_err());
+    }
+}

@@ -1,0 +1,181 @@
+//! Pixel formats: 8-bit grey, RGB565 in both byte orders, RGB888.
+//!
+//! A format's `Raw` type is the exact bytes of one pixel in memory, so a
+//! frame buffer is a byte-exact image of what goes over the wire: SPI
+//! displays such as the ST7789 and ILI9341 expect RGB565 big-endian
+//! ([`Rgb565Be`]); [`Rgb565Le`] is the little-endian order of a `u16` on a
+//! Cortex-M.
+
+/// A colour with 8 bits per channel, the output of every shader.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Rgb8 {
+    /// Red level, 0..=255.
+    pub r: u8,
+    /// Green level, 0..=255.
+    pub g: u8,
+    /// Blue level, 0..=255.
+    pub b: u8,
+}
+
+impl Rgb8 {
+    /// Black.
+    pub const BLACK: Self = Self::grey(0);
+    /// White.
+    pub const WHITE: Self = Self::grey(255);
+
+    /// A colour from its three levels.
+    pub const fn new(r: u8, g: u8, b: u8) -> Self {
+        Self { r, g, b }
+    }
+
+    /// A grey: all three channels at `level`.
+    pub const fn grey(level: u8) -> Self {
+        Self::new(level, level, level)
+    }
+}
+
+/// How a colour is stored in a buffer.
+pub trait PixelFormat: Copy + core::fmt::Debug {
+    /// The bytes of one pixel.
+    type Raw: Copy + Default + PartialEq + core::fmt::Debug + AsRef<[u8]>;
+    /// Bytes per pixel.
+    const BYTES: usize;
+    /// Converts a colour (exact for `Rgb888`; truncating the low bits for
+    /// `Rgb565`, as displays do; luma for `Gray8`).
+    fn encode(c: Rgb8) -> Self::Raw;
+    /// Converts back, replicating high bits into the low ones for
+    /// `Rgb565` (so 0 and full scale map to 0 and 255).
+    fn decode(raw: Self::Raw) -> Rgb8;
+}
+
+/// 8-bit grey, one byte per pixel.
+///
+/// A colour's grey level is its luma `(77 r + 150 g + 29 b + 128) >> 8`
+/// (ITU-R BT.601 weights in 1/256ths, summing to 256, so a grey stays
+/// exactly the same level).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Gray8;
+
+impl PixelFormat for Gray8 {
+    type Raw = [u8; 1];
+    const BYTES: usize = 1;
+    #[inline]
+    fn encode(c: Rgb8) -> [u8; 1] {
+        let y = (77 * c.r as u32 + 150 * c.g as u32 + 29 * c.b as u32 + 128) >> 8;
+        [y as u8]
+    }
+    #[inline]
+    fn decode(raw: [u8; 1]) -> Rgb8 {
+        Rgb8::grey(raw[0])
+    }
+}
+
+#[inline]
+const fn pack565(c: Rgb8) -> u16 {
+    ((c.r as u16 >> 3) << 11) | ((c.g as u16 >> 2) << 5) | (c.b as u16 >> 3)
+}
+
+#[inline]
+const fn unpack565(v: u16) -> Rgb8 {
+    let r = (v >> 11) as u8 & 0x1f;
+    let g = (v >> 5) as u8 & 0x3f;
+    let b = v as u8 & 0x1f;
+    Rgb8::new(
+        (r << 3) | (r >> 2),
+        (g << 2) | (g >> 4),
+        (b << 3) | (b >> 2),
+    )
+}
+
+/// RGB565, most significant byte first (the order SPI displays expect).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Rgb565Be;
+
+impl PixelFormat for Rgb565Be {
+    type Raw = [u8; 2];
+    const BYTES: usize = 2;
+    #[inline]
+    fn encode(c: Rgb8) -> [u8; 2] {
+        pack565(c).to_be_bytes()
+    }
+    #[inline]
+    fn decode(raw: [u8; 2]) -> Rgb8 {
+        unpack565(u16::from_be_bytes(raw))
+    }
+}
+
+/// RGB565, least significant byte first (a `u16` in Cortex-M memory).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Rgb565Le;
+
+impl PixelFormat for Rgb565Le {
+    type Raw = [u8; 2];
+    const BYTES: usize = 2;
+    #[inline]
+    fn encode(c: Rgb8) -> [u8; 2] {
+        pack565(c).to_le_bytes()
+    }
+    #[inline]
+    fn decode(raw: [u8; 2]) -> Rgb8 {
+        unpack565(u16::from_le_bytes(raw))
+    }
+}
+
+/// RGB888: red, green, blue bytes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Rgb888;
+
+impl PixelFormat for Rgb888 {
+    type Raw = [u8; 3];
+    const BYTES: usize = 3;
+    #[inline]
+    fn encode(c: Rgb8) -> [u8; 3] {
+        [c.r, c.g, c.b]
+    }
+    #[inline]
+    fn decode(raw: [u8; 3]) -> Rgb8 {
+        Rgb8::new(raw[0], raw[1], raw[2])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rgb565_byte_orders() {
+        let c = Rgb8::new(0xff, 0x80, 0x08);
+        // r 11111, g 100000, b 00001 -> 1111_1100 0000_0001
+        assert_eq!(Rgb565Be::encode(c), [0xfc, 0x01]);
+        assert_eq!(Rgb565Le::encode(c), [0x01, 0xfc]);
+        assert_eq!(Rgb565Be::decode([0xfc, 0x01]), Rgb8::new(255, 130, 8));
+    }
+
+    #[test]
+    fn rgb565_grey_matches_bunny_bench_packing() {
+        // g>>3, g>>2, g>>3
+        for g in 0..=255u8 {
+            let v = u16::from_be_bytes(Rgb565Be::encode(Rgb8::grey(g)));
+            let want = ((g as u16 >> 3) << 11) | ((g as u16 >> 2) << 5) | (g as u16 >> 3);
+            assert_eq!(v, want);
+        }
+        assert_eq!(Rgb565Le::decode(Rgb565Le::encode(Rgb8::WHITE)), Rgb8::WHITE);
+        assert_eq!(Rgb565Le::decode(Rgb565Le::encode(Rgb8::BLACK)), Rgb8::BLACK);
+    }
+
+    #[test]
+    fn gray8_keeps_greys_and_weighs_channels() {
+        for g in 0..=255u8 {
+            assert_eq!(Gray8::encode(Rgb8::grey(g)), [g]);
+        }
+        assert_eq!(Gray8::encode(Rgb8::new(255, 0, 0)), [77]);
+        assert_eq!(Gray8::encode(Rgb8::new(0, 255, 0)), [149]);
+        assert_eq!(Gray8::encode(Rgb8::new(0, 0, 255)), [29]);
+    }
+
+    #[test]
+    fn rgb888_is_exact() {
+        let c = Rgb8::new(1, 2, 3);
+        assert_eq!(Rgb888::decode(Rgb888::encode(c)), c);
+    }
+}
