@@ -8,6 +8,7 @@
 //!
 //! The pipeline, one module per stage:
 //!
+//! - [`mesh`]: meshes as constant Q1.14 data, vertex normals, built-in shapes;
 //! - [`num`]: number formats, conversions that saturate, approximations
 //!   with stated error bounds;
 //! - [`raster`]: screen-space triangles: setup, exact integer DDA edge
@@ -18,6 +19,7 @@
 #![deny(missing_docs, missing_debug_implementations)]
 #![warn(clippy::cast_possible_wrap)]
 
+pub mod mesh;
 pub mod num;
 pub mod raster;
 pub mod target;
