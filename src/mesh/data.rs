@@ -57,6 +57,17 @@ impl<'a> Mesh<'a> {
     /// };
     /// assert_eq!(TRI.triangle_count(), 1);
     /// ```
+    ///
+    /// A bad index in such a constant fails the build:
+    ///
+    /// ```compile_fail
+    /// use fixshade::mesh::Mesh;
+    /// const BAD: Mesh = match Mesh::new(&[[0, 0, 0]], &[[0, 0, 1]], None) {
+    ///     Ok(mesh) => mesh,
+    ///     Err(_) => panic!("bad mesh"),
+    /// };
+    /// let _ = BAD;
+    /// ```
     pub const fn new(
         positions: &'a [[i16; 3]],
         triangles: &'a [[u16; 3]],

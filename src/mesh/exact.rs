@@ -75,7 +75,7 @@ pub(crate) const fn unit(v: [i64; 3], frac: u32) -> Option<[i64; 3]> {
 /// Normalises any integer vector to a Q1.14 unit vector; `None` for the
 /// zero vector.
 ///
-/// Each component is within 0.5 + 5·10⁻⁵ ulp (2⁻¹⁴) of the exact unit
+/// Each component is within 0.5 + 7·10⁻⁵ ulp (2⁻¹⁴) of the exact unit
 /// vector's and is in [-16384, 16384].
 pub const fn normalize_q14(v: [i64; 3]) -> Option<[i16; 3]> {
     match unit(v, 14) {
@@ -105,7 +105,7 @@ pub(crate) const fn cross(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i64; 3] {
 }
 
 /// Unit normal of the counter-clockwise triangle `a, b, c` in Q1.14
-/// (within 0.5 + 5·10⁻⁵ ulp per component), or (0, 0, 0) if its area is
+/// (within 0.5 + 7·10⁻⁵ ulp per component), or (0, 0, 0) if its area is
 /// zero.
 pub const fn face_normal(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3] {
     match normalize_q14(cross(a, b, c)) {
@@ -114,7 +114,7 @@ pub const fn face_normal(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3] {
     }
 }
 
-/// Unit face normal in Q1.30 (within 3.3 units of 2⁻³⁰ per component),
+/// Unit face normal in Q1.30 (within 5 units of 2⁻³⁰ per component),
 /// or zero for a zero-area face.
 pub(crate) const fn face_normal_q30(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i32; 3] {
     match unit(cross(a, b, c), 30) {

@@ -46,29 +46,33 @@
 //!
 //! 1. scale `v` by a power of two so that its largest component magnitude
 //!    lies in [2³⁰, 2³¹): exact when scaling up; truncating the magnitudes
-//!    when scaling down moves each component by less than 1, a relative
-//!    error below 2⁻³⁰;
+//!    when scaling down moves the vector by less than √3, i.e. by less than
+//!    √3·2⁻³⁰ of its length;
 //! 2. `S = x² + y² + z² < 3·2⁶²` fits u64; `L = ⌊√S⌋` is an exact integer
 //!    square root, so `L ≤ √S < L + 1` with `L ≥ 2³⁰`;
 //! 3. each component is `round(v·2^F / L)`, rounding half away from zero
 //!    (so `-v` gives exactly the negated result).
 //!
-//! Before the final rounding the result is within `2^F · 2.8·2⁻³⁰` of the
-//! exact `2^F · v/|v|`, so with `F = 14` every component is within
-//! **0.5 + 5·10⁻⁵ ulp** (1 ulp = 2⁻¹⁴) of the exact unit vector, and with
-//! `F = 30` within 3.3 units of 2⁻³⁰.
+//! Step 1 turns the direction by at most `2·√3·2⁻³⁰` and step 2 scales by
+//! at most `1 + 2⁻³⁰`, so before the final rounding each component is
+//! within `2^F · 4.5·2⁻³⁰` of the exact `2^F · v/|v|`. With `F = 14` every
+//! component is within **0.5 + 7·10⁻⁵ ulp** (1 ulp = 2⁻¹⁴) of the exact
+//! unit vector; with `F = 30` within 5 units of 2⁻³⁰.
 //!
 //! A vertex normal sums the Q1.30 face normals of `k` faces exactly in i64,
 //! then normalises the sum to Q1.14 as above. The sum is within
-//! `5.8·k·2⁻³⁰` (Euclidean) of the exact sum `s` of the exact unit face
-//! normals, which moves its direction by at most `2 · 5.8·k·2⁻³⁰ / |s|`.
-//! Hence each component of a produced vertex normal is within
-//! **0.5 + 5·10⁻⁵ + 1.8·10⁻⁴·k/|s| ulp** of the exact
+//! `5k·2⁻³⁰` per component, `8.7k·2⁻³⁰` Euclidean, of the exact sum `s` of
+//! the exact unit face normals, which turns its direction by at most
+//! `2 · 8.7k·2⁻³⁰ / |s|`. Hence each component of a produced vertex normal
+//! is within **0.5 + 7·10⁻⁵ + 2.7·10⁻⁴·k/|s| ulp** of the exact
 //! `normalise(Σ normalise((b - a) × (c - a)))` computed from the same
 //! integer positions. When the crease angle is at most 90° every face in
-//! the sum lies within 90° of the corner's own face, so `|s| ≥ 1`; for a
-//! valence `k ≤ 50` the bound is then **0.51 ulp**. The host tests measure
-//! the error against f64 on the built-in sphere and bunny.
+//! the sum lies within 90° of the corner's own face, so `|s| ≥ 1` (less
+//! the 10⁻⁸ of the Q1.30 dot products); for a valence `k ≤ 36` the bound
+//! is then **0.51 ulp**. Larger creases allow `|s| < 1` and so larger
+//! errors near cancellation. The host tests measure the error against f64:
+//! 0.49987 ulp on the built-in sphere and 0.49986 on the bunny (fully
+//! smooth).
 //!
 //! ## Degenerate cases
 //!
