@@ -8,6 +8,7 @@
 //!
 //! The pipeline, one module per stage:
 //!
+//! - [`mesh`]: meshes as constant Q1.14 data, vertex normals, built-in shapes;
 //! - [`num`]: number formats, conversions that saturate, approximations
 //!   with stated error bounds;
 //! - [`raster`]: screen-space triangles: setup, exact integer DDA edge
@@ -17,6 +18,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 
+pub mod mesh;
 pub mod num;
 pub mod raster;
 pub mod target;

@@ -1,3 +1,4 @@
 //! Host harness for `fixshade`.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
+pub mod bake;
