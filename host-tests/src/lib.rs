@@ -1,3 +1,7 @@
 //! Host harness for `fixshade`.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
+
+pub mod ideal;
+pub mod image;
+pub mod metrics;
