@@ -2,3 +2,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 pub mod bake;
+
+pub mod ideal;
+pub mod image;
+pub mod metrics;
