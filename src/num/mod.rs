@@ -1,1 +1,16 @@
 //! Number formats and conversions.
+
+mod approx16;
+mod approx32;
+mod fixed_point;
+mod float;
+mod real;
+mod tables;
+
+#[cfg(test)]
+mod accuracy;
+#[cfg(test)]
+mod edge_tests;
+
+pub use self::fixed_point::{Q16, Q32};
+pub use self::real::Real;
