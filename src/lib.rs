@@ -8,9 +8,15 @@
 //!
 //! The pipeline, one module per stage:
 //!
+//! - [`num`]: number formats, numeric profiles (fixed `fast` and `precise`,
+//!   the `f32` and `f64` float twins), conversions that saturate,
+//!   approximations with stated error bounds;
+//! - [`geom`]: vectors, matrices, transforms;
 //! - [`mesh`]: meshes as constant Q1.14 data, vertex normals, built-in shapes;
-//! - [`num`]: number formats, conversions that saturate, approximations
-//!   with stated error bounds;
+//! - [`scene`]: camera, objects, lights;
+//! - [`illum`]: the Phong illumination model at one point;
+//! - [`render`]: preparing a frame (transform, light, cull, clip, project)
+//!   and rasterizing it band by band;
 //! - [`raster`]: screen-space triangles: setup, exact integer DDA edge
 //!   walking with the top-left rule, spans with depth test and shading;
 //! - [`target`]: pixel formats, frame and depth buffers, bands of rows.
@@ -18,9 +24,13 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 
+pub mod geom;
+pub mod illum;
 pub mod mesh;
 pub mod num;
 pub mod raster;
+pub mod render;
+pub mod scene;
 pub mod target;
 
 #[doc = include_str!("../README.md")]

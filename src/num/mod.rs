@@ -4,6 +4,7 @@ mod approx16;
 mod approx32;
 mod fixed_point;
 mod float;
+mod profile;
 mod real;
 mod tables;
 
@@ -13,4 +14,7 @@ mod accuracy;
 mod edge_tests;
 
 pub use self::fixed_point::{Q16, Q32};
+pub use self::profile::{
+    Fast, Precise, Profile, COORD_FRAC_BITS, DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
+};
 pub use self::real::Real;

@@ -18,7 +18,7 @@ use core::fmt::Debug;
 
 /// A quantity the rasterizer interpolates: an `i32` fixed-point raw value,
 /// or `f32`/`f64` for the float twins (same algorithm, no quantization).
-pub trait Lerp: Copy + Debug + PartialEq {
+pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// A gradient per pixel, kept at full precision for pre-stepping.
     type Grad: Copy + Debug;
     /// Per-triangle constants: the reciprocal of the doubled area.

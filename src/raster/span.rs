@@ -65,6 +65,7 @@ pub struct Fill<'t, 'd, 'b, T, D: DepthFormat, S> {
     depth: Option<&'d mut DepthBuffer<'b, D>>,
     /// The shader used for the next spans.
     pub shader: S,
+    drawn: u32,
 }
 
 impl<'t, 'd, 'b, T: Target, D: DepthFormat, S> Fill<'t, 'd, 'b, T, D, S> {
@@ -87,7 +88,13 @@ impl<'t, 'd, 'b, T: Target, D: DepthFormat, S> Fill<'t, 'd, 'b, T, D, S> {
             target,
             depth,
             shader,
+            drawn: 0,
         })
+    }
+
+    /// Pixels written so far (those that passed the depth test).
+    pub fn drawn(&self) -> u32 {
+        self.drawn
     }
 
     /// The target's window (for [`draw_triangle`](super::draw_triangle)).
@@ -138,6 +145,7 @@ where
                         if zd < *zb {
                             *zb = zd;
                             *p = T::Format::encode(shader.shade(&a));
+                            self.drawn += 1;
                         }
                         z = z.add(dz);
                         step_all(&mut a, da);
@@ -149,6 +157,7 @@ where
                             *zb = zd;
                             let c = T::Format::encode(shader.shade(&a));
                             self.target.write_pixel(x, y, c);
+                            self.drawn += 1;
                         }
                         z = z.add(dz);
                         step_all(&mut a, da);
@@ -156,6 +165,7 @@ where
                 }
             }
             None => {
+                self.drawn += x1 - x0;
                 if let Some(row) = self.target.row_mut(y).and_then(|r| r.get_mut(range)) {
                     for p in row.iter_mut() {
                         *p = T::Format::encode(shader.shade(&a));

@@ -1,0 +1,263 @@
+//! Vectors, 3×3 matrices and affine transforms over any [`Real`].
+//!
+//! Conventions: right-handed, y up; a transform applies its rotation
+//! about X first, then Y, then Z ([`Affine::from_parts`]). Everything is
+//! generic over the profile's scalar, so a fixed-point firmware builds its
+//! matrices with fixed-point trigonometry ([`Real::sin_cos`]) and no float.
+
+use crate::num::Real;
+use core::ops::{Add, Mul, Neg, Sub};
+
+/// A 3-vector.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Vec3<R> {
+    /// x component.
+    pub x: R,
+    /// y component.
+    pub y: R,
+    /// z component.
+    pub z: R,
+}
+
+impl<R: Real> Vec3<R> {
+    /// The zero vector.
+    pub const ZERO: Self = Self {
+        x: R::ZERO,
+        y: R::ZERO,
+        z: R::ZERO,
+    };
+
+    /// A vector from its components.
+    pub const fn new(x: R, y: R, z: R) -> Self {
+        Self { x, y, z }
+    }
+
+    /// A vector from `f32` components (saturating; NaN maps to zero: check
+    /// finiteness before where that matters).
+    pub fn from_f32(v: [f32; 3]) -> Self {
+        Self::new(R::from_f32(v[0]), R::from_f32(v[1]), R::from_f32(v[2]))
+    }
+
+    /// A vector from Q1.14 components (mesh positions and normals).
+    pub fn from_q14(v: [i16; 3]) -> Self {
+        Self::new(
+            R::from_fixed_i32(v[0] as i32, 14),
+            R::from_fixed_i32(v[1] as i32, 14),
+            R::from_fixed_i32(v[2] as i32, 14),
+        )
+    }
+
+    /// Components as `f64` (for tests and reports).
+    pub fn to_f64(self) -> [f64; 3] {
+        [self.x.to_f64(), self.y.to_f64(), self.z.to_f64()]
+    }
+
+    /// Dot product.
+    #[inline]
+    pub fn dot(self, o: Self) -> R {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// Cross product.
+    #[inline]
+    pub fn cross(self, o: Self) -> Self {
+        Self::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
+    /// Scaled by `k`.
+    #[inline]
+    pub fn scale(self, k: R) -> Self {
+        Self::new(self.x * k, self.y * k, self.z * k)
+    }
+
+    /// Squared length.
+    #[inline]
+    pub fn length_sq(self) -> R {
+        self.dot(self)
+    }
+
+    /// Length.
+    pub fn length(self) -> R {
+        self.length_sq().sqrt()
+    }
+
+    /// The unit vector in the same direction; the zero vector stays zero
+    /// (defined: no NaN, no panic). Error: that of [`Real::rsqrt`] on the
+    /// squared length.
+    #[inline]
+    pub fn normalize(self) -> Self {
+        self.scale(self.length_sq().rsqrt())
+    }
+
+    /// `true` when every component is exactly zero.
+    pub fn is_zero(self) -> bool {
+        self.x == R::ZERO && self.y == R::ZERO && self.z == R::ZERO
+    }
+}
+
+impl<R: Real> Add for Vec3<R> {
+    type Output = Self;
+    #[inline]
+    fn add(self, o: Self) -> Self {
+        Self::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl<R: Real> Sub for Vec3<R> {
+    type Output = Self;
+    #[inline]
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<R: Real> Neg for Vec3<R> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self::new(-self.x, -self.y, -self.z)
+    }
+}
+
+/// A 3×3 matrix, rows first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mat3<R> {
+    /// The rows.
+    pub rows: [Vec3<R>; 3],
+}
+
+impl<R: Real> Mat3<R> {
+    /// The identity.
+    pub const IDENTITY: Self = Self {
+        rows: [
+            Vec3::new(R::ONE, R::ZERO, R::ZERO),
+            Vec3::new(R::ZERO, R::ONE, R::ZERO),
+            Vec3::new(R::ZERO, R::ZERO, R::ONE),
+        ],
+    };
+
+    /// Rotation by `a` radians about X (y towards z).
+    pub fn rotation_x(a: R) -> Self {
+        let (s, c) = a.sin_cos();
+        let (o, z) = (R::ONE, R::ZERO);
+        Self::from_rows([[o, z, z], [z, c, -s], [z, s, c]])
+    }
+
+    /// Rotation by `a` radians about Y (z towards x).
+    pub fn rotation_y(a: R) -> Self {
+        let (s, c) = a.sin_cos();
+        let (o, z) = (R::ONE, R::ZERO);
+        Self::from_rows([[c, z, s], [z, o, z], [-s, z, c]])
+    }
+
+    /// Rotation by `a` radians about Z (x towards y).
+    pub fn rotation_z(a: R) -> Self {
+        let (s, c) = a.sin_cos();
+        let (o, z) = (R::ONE, R::ZERO);
+        Self::from_rows([[c, -s, z], [s, c, z], [z, z, o]])
+    }
+
+    /// A matrix from rows of components.
+    pub fn from_rows(r: [[R; 3]; 3]) -> Self {
+        Self {
+            rows: r.map(|r| Vec3::new(r[0], r[1], r[2])),
+        }
+    }
+
+    /// `self · v`.
+    #[inline]
+    pub fn apply(&self, v: Vec3<R>) -> Vec3<R> {
+        Vec3::new(
+            self.rows[0].dot(v),
+            self.rows[1].dot(v),
+            self.rows[2].dot(v),
+        )
+    }
+
+    /// The transpose (the inverse of a rotation).
+    pub fn transpose(&self) -> Self {
+        let r = &self.rows;
+        Self::from_rows([
+            [r[0].x, r[1].x, r[2].x],
+            [r[0].y, r[1].y, r[2].y],
+            [r[0].z, r[1].z, r[2].z],
+        ])
+    }
+
+    /// The product `self · o`.
+    pub fn compose(&self, o: &Self) -> Self {
+        let t = o.transpose();
+        let r = |i: usize| {
+            [
+                self.rows[i].dot(t.rows[0]),
+                self.rows[i].dot(t.rows[1]),
+                self.rows[i].dot(t.rows[2]),
+            ]
+        };
+        Self::from_rows([r(0), r(1), r(2)])
+    }
+
+    /// Every component scaled by `k`.
+    pub fn scale(&self, k: R) -> Self {
+        Self {
+            rows: self.rows.map(|r| r.scale(k)),
+        }
+    }
+}
+
+/// An affine transform `p -> m·p + t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Affine<R> {
+    /// The linear part.
+    pub m: Mat3<R>,
+    /// The translation.
+    pub t: Vec3<R>,
+}
+
+impl<R: Real> Affine<R> {
+    /// The identity.
+    pub const IDENTITY: Self = Self {
+        m: Mat3::IDENTITY,
+        t: Vec3::ZERO,
+    };
+
+    /// Uniform scale `s`, then rotations about X, Y and Z by `angles`
+    /// (radians, in that order), then the translation `t`.
+    pub fn from_parts(s: R, angles: Vec3<R>, t: Vec3<R>) -> Self {
+        let r = Mat3::rotation_z(angles.z)
+            .compose(&Mat3::rotation_y(angles.y))
+            .compose(&Mat3::rotation_x(angles.x));
+        Self { m: r.scale(s), t }
+    }
+
+    /// Transforms a point.
+    #[inline]
+    pub fn point(&self, p: Vec3<R>) -> Vec3<R> {
+        self.m.apply(p) + self.t
+    }
+
+    /// Transforms a direction (no translation).
+    #[inline]
+    pub fn vector(&self, v: Vec3<R>) -> Vec3<R> {
+        self.m.apply(v)
+    }
+
+    /// `self ∘ o`: `o` first, then `self`.
+    pub fn then_after(&self, o: &Self) -> Self {
+        Self {
+            m: self.m.compose(&o.m),
+            t: self.m.apply(o.t) + self.t,
+        }
+    }
+}
+
+impl<R: Real> Mul<Vec3<R>> for Mat3<R> {
+    type Output = Vec3<R>;
+    fn mul(self, v: Vec3<R>) -> Vec3<R> {
+        self.apply(v)
+    }
+}

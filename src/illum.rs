@@ -1,0 +1,258 @@
+//! The Phong illumination model at one point.
+//!
+//! ```text
+//! I = Ia·ka·C + Σ_lights Ip·Lc·( kd·max(0, N·L)·C + ks·S )
+//! S = max(0, R·V)^n   (Phong, R = 2(N·L)N - L)   or   max(0, N·H)^n   (Blinn, H = (L+V)/|L+V|)
+//! ```
+//!
+//! `C` is the material colour, `Lc` the light colour; the specular term
+//! takes the *light's* colour, so a red object under a white light gets a
+//! white highlight. The specular term is counted only where `N·L > 0`.
+//! Each channel is clamped to `[0, 1]` after the summation. `L` points
+//! from the shaded point to the light (point light) or is the light's
+//! direction (directional light); `V` points to the eye (local viewer) or
+//! is `(0, 0, 1)` in eye space (viewer at infinity).
+//!
+//! Everything is in eye space. [`Shade`] folds material and lights into a
+//! few products once per object, so a pixel costs the dot products, one
+//! normalisation per point light, and a power only when `ks > 0`.
+//!
+//! Degenerate inputs are defined: a zero normal (faces that cancel when
+//! averaged) gives no diffuse or specular light, only ambient; a point
+//! light exactly at the shaded point has `L = 0` and contributes nothing.
+
+use crate::geom::Vec3;
+use crate::num::Real;
+use core::fmt;
+
+/// Which specular model.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Specular {
+    /// Phong: `(R·V)^n`.
+    #[default]
+    Phong,
+    /// Blinn-Phong: `(N·H)^n`, `H` halfway between `L` and `V`.
+    Blinn,
+}
+
+/// Where the viewer is, for the specular term.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Viewer {
+    /// At the eye: `V` varies over the surface (exact; costs a
+    /// normalisation per point and the interpolated position in Phong
+    /// shading).
+    #[default]
+    Local,
+    /// At infinity along +z in eye space: `V` constant (cheaper).
+    Infinite,
+}
+
+/// A surface material. Coefficients are clamped to `[0, 1]` and the
+/// shininess to `[0, MAX_SHININESS]` when a [`Shade`] is built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material<R> {
+    /// Colour `C`, each channel in `[0, 1]`.
+    pub color: Vec3<R>,
+    /// Ambient reflectance.
+    pub ka: R,
+    /// Diffuse reflectance.
+    pub kd: R,
+    /// Specular reflectance.
+    pub ks: R,
+    /// Shininess `n`.
+    pub shininess: R,
+}
+
+/// Largest shininess: 10 000 (a highlight narrower than 1/100 radian).
+pub const MAX_SHININESS: i32 = 10_000;
+
+/// Kind and place of a light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind<R> {
+    /// A point light at a position.
+    Point(Vec3<R>),
+    /// A directional light; the vector points *towards* the light.
+    Directional(Vec3<R>),
+}
+
+/// A light source.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light<R> {
+    /// Where it is.
+    pub kind: LightKind<R>,
+    /// Intensity `Ip` (scales the colour).
+    pub intensity: R,
+    /// Colour `Lc`, each channel in `[0, 1]`.
+    pub color: Vec3<R>,
+}
+
+impl<R: Real> Light<R> {
+    /// A white point light.
+    pub fn point(position: Vec3<R>, intensity: R) -> Self {
+        Self {
+            kind: LightKind::Point(position),
+            intensity,
+            color: Vec3::new(R::ONE, R::ONE, R::ONE),
+        }
+    }
+
+    /// A white directional light; `towards` points to the light.
+    pub fn directional(towards: Vec3<R>, intensity: R) -> Self {
+        Self {
+            kind: LightKind::Directional(towards),
+            intensity,
+            color: Vec3::new(R::ONE, R::ONE, R::ONE),
+        }
+    }
+}
+
+/// Most lights in one [`Shade`].
+pub const MAX_LIGHTS: usize = 8;
+
+/// Why a [`Shade`] could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IllumError {
+    /// More than [`MAX_LIGHTS`] lights.
+    TooManyLights,
+}
+
+impl fmt::Display for IllumError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::TooManyLights => write!(f, "at most {MAX_LIGHTS} lights are supported"),
+        }
+    }
+}
+
+impl core::error::Error for IllumError {}
+
+/// One light folded with one material, in eye space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Term<R> {
+    /// Point light position, or unit direction towards the light.
+    at: Vec3<R>,
+    point: bool,
+    /// `Ip·Lc·kd·C`.
+    diffuse: Vec3<R>,
+    /// `Ip·Lc·ks`.
+    specular: Vec3<R>,
+}
+
+/// Material and lights folded together for fast evaluation at many points.
+#[derive(Clone, Debug)]
+pub struct Shade<R> {
+    ambient: Vec3<R>,
+    terms: heapless::Vec<Term<R>, MAX_LIGHTS>,
+    shininess: R,
+    has_specular: bool,
+    specular: Specular,
+    viewer: Viewer,
+}
+
+fn clamp01<R: Real>(v: R) -> R {
+    v.clamp(R::ZERO, R::ONE)
+}
+
+fn mul3<R: Real>(a: Vec3<R>, b: Vec3<R>) -> Vec3<R> {
+    Vec3::new(a.x * b.x, a.y * b.y, a.z * b.z)
+}
+
+impl<R: Real> Shade<R> {
+    /// Folds a material, the ambient intensity `Ia` and the lights (already
+    /// in eye space) together.
+    ///
+    /// # Errors
+    /// [`IllumError::TooManyLights`] beyond [`MAX_LIGHTS`].
+    pub fn new(
+        material: &Material<R>,
+        ambient: R,
+        lights: &[Light<R>],
+        specular: Specular,
+        viewer: Viewer,
+    ) -> Result<Self, IllumError> {
+        let c = Vec3::new(
+            clamp01(material.color.x),
+            clamp01(material.color.y),
+            clamp01(material.color.z),
+        );
+        let (ka, kd, ks) = (
+            clamp01(material.ka),
+            clamp01(material.kd),
+            clamp01(material.ks),
+        );
+        let shininess = material
+            .shininess
+            .clamp(R::ZERO, R::from_i32(MAX_SHININESS));
+        let mut terms = heapless::Vec::new();
+        for l in lights {
+            let lc = Vec3::new(clamp01(l.color.x), clamp01(l.color.y), clamp01(l.color.z))
+                .scale(l.intensity.max(R::ZERO));
+            let (at, point) = match l.kind {
+                LightKind::Point(p) => (p, true),
+                LightKind::Directional(d) => (d.normalize(), false),
+            };
+            terms
+                .push(Term {
+                    at,
+                    point,
+                    diffuse: mul3(lc, c).scale(kd),
+                    specular: lc.scale(ks),
+                })
+                .map_err(|_| IllumError::TooManyLights)?;
+        }
+        Ok(Self {
+            ambient: c.scale(clamp01(ambient) * ka),
+            terms,
+            shininess,
+            has_specular: ks > R::ZERO,
+            specular,
+            viewer,
+        })
+    }
+
+    /// `true` when some light is a point light (the shaded position is
+    /// needed), or the viewer is local.
+    pub fn needs_position(&self) -> bool {
+        self.viewer == Viewer::Local || self.terms.iter().any(|t| t.point)
+    }
+
+    /// `true` when the specular term is computed (`ks > 0` and a light).
+    pub fn has_specular(&self) -> bool {
+        self.has_specular && !self.terms.is_empty()
+    }
+
+    /// The colour at eye-space point `p` with unit normal `n`, each channel
+    /// clamped to `[0, 1]`.
+    pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
+        let mut sum = self.ambient;
+        let v = match self.viewer {
+            Viewer::Local => (-p).normalize(),
+            Viewer::Infinite => Vec3::new(R::ZERO, R::ZERO, R::ONE),
+        };
+        for t in &self.terms {
+            let l = if t.point {
+                (t.at - p).normalize()
+            } else {
+                t.at
+            };
+            let nl = n.dot(l);
+            if nl <= R::ZERO {
+                continue;
+            }
+            sum = sum + t.diffuse.scale(nl);
+            if self.has_specular {
+                let base = match self.specular {
+                    Specular::Phong => {
+                        // R·V = 2(N·L)(N·V) - L·V, R = 2(N·L)N - L.
+                        (nl + nl) * n.dot(v) - l.dot(v)
+                    }
+                    Specular::Blinn => n.dot((l + v).normalize()),
+                };
+                if base > R::ZERO {
+                    sum = sum + t.specular.scale(base.min(R::ONE).powf(self.shininess));
+                }
+            }
+        }
+        Vec3::new(clamp01(sum.x), clamp01(sum.y), clamp01(sum.z))
+    }
+}

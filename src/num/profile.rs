@@ -1,0 +1,162 @@
+//! Numeric profiles: which number type each quantity uses, and the knobs.
+//!
+//! The whole pipeline is generic over a [`Profile`]. The fixed-point
+//! profiles use no floating point in their per-vertex and per-pixel paths;
+//! the float twins run the very same code with `f32` or `f64`, so comparing
+//! a fixed profile with [`F64`] isolates quantization error.
+//!
+//! | profile     | scalar ([`Real`]) | interpolated ([`Lerp`]) | aimed at           |
+//! |-------------|-------------------|-------------------------|--------------------|
+//! | [`Fast`]    | `Q16` (Q16.16)    | `i32` fixed             | Cortex-M0          |
+//! | [`Precise`] | `Q32` (Q32.32)    | `i32` fixed             | Cortex-M3/M4, host |
+//! | [`F32`]     | `f32`             | `f32`                   | Cortex-M4F         |
+//! | [`F64`]     | `f64`             | `f64`                   | the float twin     |
+//!
+//! Interpolated fixed-point formats (all `i32`, within ±2^30, see
+//! [`crate::raster`]): colour levels `l · 2^16` for `l` in `0..=255`;
+//! depth `d · 2^30` for `d` in `[0, 1]`; unit-vector components `n · 2^30`;
+//! eye-space coordinates `p · 2^16` (±16384 units).
+//!
+//! All profiles snap vertices to the same subpixel grid
+//! ([`SubpixelBits::DEFAULT`], 1/16 pixel), so they cover the same pixels
+//! and differ only in the values they compute.
+
+use super::{Real, Q16, Q32};
+use crate::raster::{Lerp, SubpixelBits, LEVEL_FRAC_BITS};
+use core::fmt::Debug;
+
+/// Fraction bits of an interpolated fixed-point unit-vector component.
+pub const UNIT_FRAC_BITS: u32 = 30;
+/// Fraction bits of an interpolated fixed-point eye-space coordinate.
+pub const COORD_FRAC_BITS: u32 = 16;
+/// Fraction bits of an interpolated fixed-point depth.
+pub const DEPTH_FRAC_BITS: u32 = 30;
+
+/// A numeric profile: the number types and knobs of the whole pipeline.
+pub trait Profile: Copy + Debug + Default + 'static {
+    /// Scalar of geometry, lighting and per-pixel shading.
+    type Real: Real;
+    /// Interpolated attributes (depth, colour, normals, positions).
+    type Lerp: Lerp;
+    /// Short name (`"fast"`, `"precise"`, `"f32"`, `"f64"`).
+    const NAME: &'static str;
+    /// Subpixel precision of screen coordinates.
+    const SUBPIXEL_BITS: SubpixelBits = SubpixelBits::DEFAULT;
+
+    /// A colour level in `[0, 1]` (not clamped) as an interpolated value.
+    fn level(r: Self::Real) -> Self::Lerp;
+    /// A depth in `[0, 1]` as an interpolated value.
+    fn depth(r: Self::Real) -> Self::Lerp;
+    /// A unit-vector component as an interpolated value.
+    fn unit(r: Self::Real) -> Self::Lerp;
+    /// An interpolated unit-vector component back as a scalar.
+    fn unit_back(l: Self::Lerp) -> Self::Real;
+    /// An eye-space coordinate as an interpolated value.
+    fn coord(r: Self::Real) -> Self::Lerp;
+    /// An interpolated eye-space coordinate back as a scalar.
+    fn coord_back(l: Self::Lerp) -> Self::Real;
+}
+
+macro_rules! fixed_profile {
+    ($name:ident, $real:ty, $label:literal, $doc:literal) => {
+        #[doc = $doc]
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        pub struct $name;
+
+        impl Profile for $name {
+            type Real = $real;
+            type Lerp = i32;
+            const NAME: &'static str = $label;
+
+            #[inline]
+            fn level(r: $real) -> i32 {
+                r.mul_i32(255).to_fixed_i32(LEVEL_FRAC_BITS)
+            }
+            #[inline]
+            fn depth(r: $real) -> i32 {
+                r.to_fixed_i32(DEPTH_FRAC_BITS)
+            }
+            #[inline]
+            fn unit(r: $real) -> i32 {
+                r.to_fixed_i32(UNIT_FRAC_BITS)
+            }
+            #[inline]
+            fn unit_back(l: i32) -> $real {
+                <$real>::from_fixed_i32(l, UNIT_FRAC_BITS)
+            }
+            #[inline]
+            fn coord(r: $real) -> i32 {
+                r.to_fixed_i32(COORD_FRAC_BITS)
+            }
+            #[inline]
+            fn coord_back(l: i32) -> $real {
+                <$real>::from_fixed_i32(l, COORD_FRAC_BITS)
+            }
+        }
+    };
+}
+
+fixed_profile!(
+    Fast,
+    Q16,
+    "fast",
+    "Fixed point for the Cortex-M0: Q16.16 scalars, `i32` interpolation."
+);
+fixed_profile!(
+    Precise,
+    Q32,
+    "precise",
+    "Fixed point with more bits: Q32.32 scalars, `i32` interpolation."
+);
+
+macro_rules! float_profile {
+    ($name:ident, $t:ty, $label:literal, $doc:literal) => {
+        #[doc = $doc]
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        pub struct $name;
+
+        impl Profile for $name {
+            type Real = $t;
+            type Lerp = $t;
+            const NAME: &'static str = $label;
+
+            #[inline]
+            fn level(r: $t) -> $t {
+                r * 255.0
+            }
+            #[inline]
+            fn depth(r: $t) -> $t {
+                r
+            }
+            #[inline]
+            fn unit(r: $t) -> $t {
+                r
+            }
+            #[inline]
+            fn unit_back(l: $t) -> $t {
+                l
+            }
+            #[inline]
+            fn coord(r: $t) -> $t {
+                r
+            }
+            #[inline]
+            fn coord_back(l: $t) -> $t {
+                l
+            }
+        }
+    };
+}
+
+float_profile!(
+    F32,
+    f32,
+    "f32",
+    "The `f32` float twin (for FPUs such as the Cortex-M4F's)."
+);
+float_profile!(
+    F64,
+    f64,
+    "f64",
+    "The `f64` float twin: the reference for quantization error."
+);

@@ -1,0 +1,234 @@
+//! Rasterizing a prepared frame into a band (or a whole frame).
+
+use super::prepare::eye_lights;
+use super::{Frame, Layout, PreparedObject, RenderError, Tri};
+use crate::geom::Vec3;
+use crate::illum::Shade;
+use crate::num::{Profile, Real};
+use crate::raster::{draw_triangle, Fill, Flat, Gouraud, GouraudMono, Shader, Vertex};
+use crate::scene::{Scene, SceneError};
+use crate::target::{DepthBuffer, DepthFormat, FrameBuf, PixelFormat, Rgb8, Target};
+
+/// Per-pixel Phong shading: the interpolated normal (and position)
+/// normalised and illuminated.
+#[derive(Debug)]
+pub struct PhongShader<'a, P: Profile> {
+    shade: &'a Shade<P::Real>,
+    back: bool,
+}
+
+impl<P: Profile> PhongShader<'_, P> {
+    #[inline(always)]
+    fn color(&self, a: &[P::Lerp], p: Vec3<P::Real>) -> Rgb8 {
+        let mut n =
+            Vec3::new(P::unit_back(a[0]), P::unit_back(a[1]), P::unit_back(a[2])).normalize();
+        if self.back {
+            n = -n;
+        }
+        let c = self.shade.at(n, p);
+        Rgb8::new(c.x.to_level(), c.y.to_level(), c.z.to_level())
+    }
+}
+
+impl<P: Profile> Shader<P::Lerp, 3> for PhongShader<'_, P> {
+    #[inline]
+    fn shade(&self, a: &[P::Lerp; 3]) -> Rgb8 {
+        self.color(a, Vec3::ZERO)
+    }
+}
+
+impl<P: Profile> Shader<P::Lerp, 6> for PhongShader<'_, P> {
+    #[inline]
+    fn shade(&self, a: &[P::Lerp; 6]) -> Rgb8 {
+        let p = Vec3::new(
+            P::coord_back(a[3]),
+            P::coord_back(a[4]),
+            P::coord_back(a[5]),
+        );
+        self.color(a, p)
+    }
+}
+
+/// What a render call drew.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Triangles set up (a triangle spanning two bands counts twice).
+    pub triangles: u32,
+    /// Pixels written (passing the depth test).
+    pub pixels: u32,
+}
+
+impl<P: Profile> Frame<'_, P> {
+    fn vertex<const N: usize>(&self, po: &PreparedObject, i: u16) -> Option<Vertex<P::Lerp, N>> {
+        let i = i as usize;
+        let [x, y] = *self.ws.xy.get(i)?;
+        let stride = po.layout.stride();
+        let base = po.val_base + i.checked_sub(po.verts.start)? * stride;
+        let vals = self.ws.vals.get(base..base + 1 + N)?;
+        let mut attrs = [vals[0]; N];
+        attrs.copy_from_slice(&vals[1..]);
+        Some(Vertex {
+            x,
+            y,
+            z: vals[0],
+            attrs,
+        })
+    }
+
+    fn draw_object<const N: usize, T, D, S>(
+        &self,
+        po: &PreparedObject,
+        fill: &mut Fill<'_, '_, '_, T, D, S>,
+        stats: &mut RenderStats,
+        mut per_tri: impl FnMut(&mut S, &Tri),
+    ) -> Result<(), RenderError>
+    where
+        T: Target,
+        D: DepthFormat,
+        S: Shader<P::Lerp, N>,
+    {
+        let sub = P::SUBPIXEL_BITS;
+        let win = fill.window();
+        let s = sub.scale();
+        let (top, bot) = (win.y0 as i32 * s - s, win.y1 as i32 * s + s);
+        for tri in self.ws.tris.get(po.tris.clone()).unwrap_or(&[]) {
+            let (Some(a), Some(b), Some(c)) = (
+                self.vertex::<N>(po, tri.v[0]),
+                self.vertex::<N>(po, tri.v[1]),
+                self.vertex::<N>(po, tri.v[2]),
+            ) else {
+                continue;
+            };
+            if a.y.max(b.y).max(c.y) < top || a.y.min(b.y).min(c.y) > bot {
+                continue;
+            }
+            per_tri(&mut fill.shader, tri);
+            stats.triangles += 1;
+            draw_triangle(&[a, b, c], sub, win, fill)?;
+        }
+        Ok(())
+    }
+
+    /// Rasterizes the prepared frame into `target` (any window of rows of
+    /// the screen it was prepared for), depth-testing against `depth` when
+    /// given. Neither is cleared here.
+    ///
+    /// # Errors
+    /// [`RenderError::Window`] when the target's width differs from the
+    /// frame's or its rows extend below it; a depth buffer holding other
+    /// rows than the target; a scene other than the prepared one may give
+    /// [`RenderError::Scene`].
+    pub fn render<T: Target, D: DepthFormat>(
+        &self,
+        scene: &Scene<'_, '_, P::Real>,
+        target: &mut T,
+        depth: Option<&mut DepthBuffer<'_, D>>,
+    ) -> Result<RenderStats, RenderError> {
+        let win = target.window();
+        if win.width != self.width || win.y1 > self.height {
+            return Err(RenderError::Window);
+        }
+        let lights = eye_lights(scene)?;
+        let mut stats = RenderStats::default();
+        let mut depth = depth;
+        for (po, obj) in self.objects.iter().zip(scene.objects.iter()) {
+            let d = depth.as_deref_mut();
+            match po.layout {
+                Layout::Flat => {
+                    let mut f = Fill::new(target, d, Flat(Rgb8::BLACK))?;
+                    self.draw_object::<0, _, _, _>(po, &mut f, &mut stats, |s, t| s.0 = t.color)?;
+                    stats.pixels += f.drawn();
+                }
+                Layout::GouraudMono => {
+                    let mut f = Fill::new(target, d, GouraudMono)?;
+                    self.draw_object::<1, _, _, _>(po, &mut f, &mut stats, |_, _| {})?;
+                    stats.pixels += f.drawn();
+                }
+                Layout::GouraudRgb => {
+                    let mut f = Fill::new(target, d, Gouraud)?;
+                    self.draw_object::<3, _, _, _>(po, &mut f, &mut stats, |_, _| {})?;
+                    stats.pixels += f.drawn();
+                }
+                Layout::PhongNormal | Layout::PhongPosition => {
+                    let shade = Shade::new(
+                        &obj.material,
+                        scene.ambient,
+                        &lights,
+                        scene.specular,
+                        scene.viewer,
+                    )
+                    .map_err(|_| SceneError::TooManyLights)?;
+                    let sh = PhongShader::<P> {
+                        shade: &shade,
+                        back: false,
+                    };
+                    let mut f = Fill::new(target, d, sh)?;
+                    let set = |s: &mut PhongShader<'_, P>, t: &Tri| s.back = t.back;
+                    if po.layout == Layout::PhongNormal {
+                        self.draw_object::<3, _, _, _>(po, &mut f, &mut stats, set)?;
+                    } else {
+                        self.draw_object::<6, _, _, _>(po, &mut f, &mut stats, set)?;
+                    }
+                    stats.pixels += f.drawn();
+                }
+            }
+        }
+        Ok(stats)
+    }
+}
+
+/// Renders a prepared frame band by band: for each band of `rows` rows,
+/// clears the band to the scene's background and the depth band, renders,
+/// and hands the band to `sink` (to send it to a display, or checksum it).
+///
+/// `pixels` holds `width × rows` pixels, `depth` (optional) as many
+/// values; the last band may be shorter.
+///
+/// # Errors
+/// A buffer of the wrong length, a render error, or the sink's error.
+pub fn render_in_bands<P, F, D, E>(
+    frame: &Frame<'_, P>,
+    scene: &Scene<'_, '_, P::Real>,
+    pixels: &mut [F::Raw],
+    mut depth: Option<&mut [D::Raw]>,
+    rows: u32,
+    mut sink: impl FnMut(&FrameBuf<'_, F>) -> Result<(), E>,
+) -> Result<RenderStats, E>
+where
+    P: Profile,
+    F: PixelFormat,
+    D: DepthFormat,
+    E: From<RenderError>,
+{
+    let (w, h) = frame.size();
+    if rows == 0 || pixels.len() != (w * rows) as usize {
+        return Err(
+            RenderError::Buffer(crate::target::BufferError::WrongLength {
+                expected: (w * rows.max(1)) as usize,
+                actual: pixels.len(),
+            })
+            .into(),
+        );
+    }
+    let mut stats = RenderStats::default();
+    let mut y0 = 0;
+    while y0 < h {
+        let y1 = (y0 + rows).min(h);
+        let n = ((y1 - y0) * w) as usize;
+        let mut fb = FrameBuf::<F>::band(&mut pixels[..n], w, y0, y1).map_err(RenderError::from)?;
+        fb.clear(scene.background);
+        let s = match depth.as_deref_mut() {
+            Some(z) => {
+                let zn = z.get_mut(..n).ok_or(RenderError::Window)?;
+                let mut db = DepthBuffer::<D>::new(zn, w, y0, y1).map_err(RenderError::from)?;
+                frame.render(scene, &mut fb, Some(&mut db))?
+            }
+            None => frame.render::<_, D>(scene, &mut fb, None)?,
+        };
+        stats.triangles += s.triangles;
+        stats.pixels += s.pixels;
+        sink(&fb)?;
+        y0 = y1;
+    }
+    Ok(stats)
+}

@@ -1,0 +1,456 @@
+//! Preparing a frame: transform, light, cull, clip, project.
+
+use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
+use super::{Frame, Layout, Link, Part, PreparedObject, RenderError, Tri, Workspace};
+use crate::geom::{Affine, Vec3};
+use crate::illum::{Light, LightKind, Shade, MAX_LIGHTS};
+use crate::mesh::{face_normal, Mesh};
+use crate::num::{Profile, Real};
+use crate::scene::{Object, Scene, SceneError, Shading};
+use crate::target::{Rgb8, MAX_SCREEN};
+
+const NONE: u16 = u16::MAX;
+
+/// The lights of a scene moved to eye space.
+pub(super) fn eye_lights<R: Real>(
+    scene: &Scene<'_, '_, R>,
+) -> Result<heapless::Vec<Light<R>, MAX_LIGHTS>, SceneError> {
+    let view = &scene.camera.view;
+    let mut out = heapless::Vec::new();
+    for l in scene.lights {
+        let kind = match l.kind {
+            LightKind::Point(p) => LightKind::Point(view.point(p)),
+            LightKind::Directional(d) => LightKind::Directional(view.vector(d)),
+        };
+        out.push(Light { kind, ..*l })
+            .map_err(|_| SceneError::TooManyLights)?;
+    }
+    Ok(out)
+}
+
+/// The shading layout an object needs: pay only for what is used.
+pub(super) fn layout_of<R: Real>(
+    obj: &Object<'_, R>,
+    shade: &Shade<R>,
+    lights: &[Light<R>],
+) -> Layout {
+    let grey = |c: Vec3<R>| c.x == c.y && c.y == c.z;
+    match obj.shading {
+        Shading::Flat => Layout::Flat,
+        Shading::Gouraud => {
+            if grey(obj.material.color) && lights.iter().all(|l| grey(l.color)) {
+                Layout::GouraudMono
+            } else {
+                Layout::GouraudRgb
+            }
+        }
+        Shading::Phong => {
+            if shade.needs_position() {
+                Layout::PhongPosition
+            } else {
+                Layout::PhongNormal
+            }
+        }
+    }
+}
+
+/// Projection constants of a frame.
+struct View<R> {
+    planes: Planes<R>,
+    k: R,
+    cx: R,
+    cy: R,
+    depth_scale: Option<R>,
+}
+
+impl<R: Real> View<R> {
+    /// Screen position (pixels) and depth in `[0, 1]` of an eye-space point
+    /// in front of the near plane.
+    fn project(&self, p: Vec3<R>) -> (R, R, R) {
+        let iw = (-p.z).recip();
+        let sx = self.cx + (p.x * iw) * self.k;
+        let sy = self.cy - (p.y * iw) * self.k;
+        let mut d = R::ONE - self.planes.near * iw;
+        if let Some(s) = self.depth_scale {
+            d *= s;
+        }
+        (sx, sy, d.clamp(R::ZERO, R::ONE))
+    }
+}
+
+/// Prepares `scene` for a `width × height` screen into `ws`.
+///
+/// # Errors
+/// [`RenderError`]: an invalid scene or screen size, a mesh without
+/// normals for smooth shading, or a workspace part too small (naming the
+/// part and the object).
+pub fn prepare<'w, P: Profile>(
+    scene: &Scene<'_, '_, P::Real>,
+    width: u32,
+    height: u32,
+    ws: Workspace<'w, P::Lerp>,
+) -> Result<Frame<'w, P>, RenderError> {
+    scene.check()?;
+    if width > MAX_SCREEN || height > MAX_SCREEN {
+        return Err(SceneError::Screen.into());
+    }
+    let cam = &scene.camera;
+    let k = cam.focal.mul_i32(height as i32).half();
+    let view = View {
+        planes: Planes {
+            near: cam.near,
+            far: cam.far,
+            guard: P::Real::from_i32(GUARD_PX).div(k),
+        },
+        k,
+        cx: P::Real::from_i32(width as i32).half(),
+        cy: P::Real::from_i32(height as i32).half(),
+        depth_scale: cam.far.map(|f| f.div(f - cam.near)),
+    };
+    let lights = eye_lights(scene)?;
+    let mut p = Preparer::<P> {
+        ws,
+        view,
+        nv: 0,
+        nval: 0,
+        nt: 0,
+        object: 0,
+    };
+    let mut objects = heapless::Vec::new();
+    for (oi, obj) in scene.objects.iter().enumerate() {
+        p.object = oi;
+        let po = p.object_pass(scene, obj, &lights)?;
+        objects.push(po).map_err(|_| SceneError::TooManyObjects)?;
+    }
+    Ok(Frame {
+        ws: p.ws,
+        objects,
+        width,
+        height,
+    })
+}
+
+struct Preparer<'w, P: Profile> {
+    ws: Workspace<'w, P::Lerp>,
+    view: View<P::Real>,
+    nv: usize,
+    nval: usize,
+    nt: usize,
+    object: usize,
+}
+
+/// Per-object constants while preparing.
+struct ObjCtx<'a, 'm, R> {
+    mesh: Mesh<'m>,
+    mv: Affine<R>,
+    shade: &'a Shade<R>,
+    layout: Layout,
+    cull: bool,
+    val_base: usize,
+    v_start: usize,
+}
+
+impl<P: Profile> Preparer<'_, P> {
+    fn cap(&self, part: Part) -> RenderError {
+        RenderError::Capacity {
+            part,
+            object: self.object,
+        }
+    }
+
+    fn object_pass(
+        &mut self,
+        scene: &Scene<'_, '_, P::Real>,
+        obj: &Object<'_, P::Real>,
+        lights: &[Light<P::Real>],
+    ) -> Result<PreparedObject, RenderError> {
+        let shade = Shade::new(
+            &obj.material,
+            scene.ambient,
+            lights,
+            scene.specular,
+            scene.viewer,
+        )
+        .map_err(|_| SceneError::TooManyLights)?;
+        let layout = layout_of(obj, &shade, lights);
+        let mesh = obj.mesh;
+        if layout != Layout::Flat && !mesh.has_normals() {
+            return Err(RenderError::MissingNormals {
+                object: self.object,
+            });
+        }
+        let heads = self
+            .ws
+            .heads
+            .get_mut(..mesh.vertex_count())
+            .ok_or(RenderError::Capacity {
+                part: Part::Heads,
+                object: self.object,
+            })?;
+        heads.fill(NONE);
+        let ctx = ObjCtx {
+            mesh,
+            mv: scene.camera.view.then_after(&obj.transform),
+            shade: &shade,
+            layout,
+            cull: obj.cull_backfaces,
+            val_base: self.nval,
+            v_start: self.nv,
+        };
+        let t_start = self.nt;
+        for t in 0..mesh.triangle_count() {
+            self.triangle(&ctx, t)?;
+        }
+        Ok(PreparedObject {
+            layout,
+            verts: ctx.v_start..self.nv,
+            val_base: ctx.val_base,
+            tris: t_start..self.nt,
+        })
+    }
+
+    /// Corner `c` of triangle `t`: its position and normal indices.
+    fn corner_keys(ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> ([u16; 3], [u16; 3]) {
+        let pos = ctx.mesh.triangles().get(t).copied().unwrap_or([0; 3]);
+        let nrm = match (ctx.layout, ctx.mesh.normals()) {
+            (Layout::Flat, _) | (_, None) => [0; 3],
+            (_, Some(n)) => n.indices.get(t).copied().unwrap_or([0; 3]),
+        };
+        (pos, nrm)
+    }
+
+    /// The eye-space vertex of a mesh corner, lit or with its normal.
+    fn clip_vert(ctx: &ObjCtx<'_, '_, P::Real>, p: u16, n: u16, flip: bool) -> ClipVert<P::Real> {
+        let pos = ctx
+            .mesh
+            .positions()
+            .get(p as usize)
+            .copied()
+            .unwrap_or([0; 3]);
+        let pos = ctx.mv.point(Vec3::from_q14(pos));
+        let mut attrs = [P::Real::ZERO; CLIP_ATTRS];
+        if ctx.layout != Layout::Flat {
+            let raw = ctx
+                .mesh
+                .normals()
+                .and_then(|c| c.normals.get(n as usize).copied())
+                .unwrap_or([0; 3]);
+            let mut nrm = ctx.mv.vector(Vec3::from_q14(raw)).normalize();
+            if flip {
+                nrm = -nrm;
+            }
+            let v = match ctx.layout {
+                Layout::GouraudMono | Layout::GouraudRgb => ctx.shade.at(nrm, pos),
+                _ => nrm,
+            };
+            attrs = [v.x, v.y, v.z];
+        }
+        ClipVert { pos, attrs }
+    }
+
+    /// Appends a prepared vertex for an eye-space vertex inside the planes.
+    fn emit(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        cv: &ClipVert<P::Real>,
+        link: Link,
+        code: Outcode,
+    ) -> Result<u16, RenderError> {
+        let i = self.nv;
+        if i >= NONE as usize || i >= self.ws.xy.len() || i >= self.ws.links.len() {
+            return Err(self.cap(Part::Vertices));
+        }
+        let stride = ctx.layout.stride();
+        let base = ctx.val_base + (i - ctx.v_start) * stride;
+        let vals = self
+            .ws
+            .vals
+            .get_mut(base..base + stride)
+            .ok_or(RenderError::Capacity {
+                part: Part::Values,
+                object: self.object,
+            })?;
+        self.ws.links[i] = Link { code, ..link };
+        if code != 0 {
+            // Outside: never drawn directly; triangles using it are clipped.
+            self.ws.xy[i] = [0, 0];
+            vals.fill(P::level(P::Real::ZERO));
+        } else {
+            let (sx, sy, d) = self.view.project(cv.pos);
+            let sub = P::SUBPIXEL_BITS.get();
+            self.ws.xy[i] = [sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)];
+            vals[0] = P::depth(d);
+            let a = cv.attrs;
+            match ctx.layout {
+                Layout::Flat => {}
+                Layout::GouraudMono => vals[1] = P::level(a[0]),
+                Layout::GouraudRgb => {
+                    for k in 0..3 {
+                        vals[1 + k] = P::level(a[k]);
+                    }
+                }
+                Layout::PhongNormal | Layout::PhongPosition => {
+                    for k in 0..3 {
+                        vals[1 + k] = P::unit(a[k]);
+                    }
+                    if ctx.layout == Layout::PhongPosition {
+                        let p = [cv.pos.x, cv.pos.y, cv.pos.z];
+                        for k in 0..3 {
+                            vals[4 + k] = P::coord(p[k]);
+                        }
+                    }
+                }
+            }
+        }
+        self.nv += 1;
+        self.nval = base + stride;
+        Ok(i as u16)
+    }
+
+    /// The prepared vertex of a mesh corner, made on first use.
+    fn corner(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        p: u16,
+        n: u16,
+    ) -> Result<u16, RenderError> {
+        let head = self.ws.heads.get(p as usize).copied().unwrap_or(NONE);
+        let mut v = head;
+        while v != NONE {
+            let l = self.ws.links.get(v as usize).copied().unwrap_or_default();
+            if l.normal == n {
+                return Ok(v);
+            }
+            v = if l.next == v { NONE } else { l.next };
+        }
+        let cv = Self::clip_vert(ctx, p, n, false);
+        let code = self.view.planes.outcode(cv.pos);
+        let i = self.emit(
+            ctx,
+            &cv,
+            Link {
+                normal: n,
+                next: head,
+                code: 0,
+            },
+            code,
+        )?;
+        if let Some(h) = self.ws.heads.get_mut(p as usize) {
+            *h = i;
+        }
+        Ok(i)
+    }
+
+    fn push_tri(&mut self, tri: Tri) -> Result<(), RenderError> {
+        let slot = self.ws.tris.get_mut(self.nt).ok_or(RenderError::Capacity {
+            part: Part::Triangles,
+            object: self.object,
+        })?;
+        *slot = tri;
+        self.nt += 1;
+        Ok(())
+    }
+
+    /// Flat colour of triangle `t`: face normal (exact integer cross
+    /// product in model space, then rotated) at the centroid.
+    fn flat_color(&self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize, back: bool) -> Rgb8 {
+        if ctx.layout != Layout::Flat {
+            return Rgb8::BLACK;
+        }
+        let pos = ctx.mesh.triangle_positions(t).unwrap_or([[0; 3]; 3]);
+        let mut n = ctx
+            .mv
+            .vector(Vec3::from_q14(face_normal(pos[0], pos[1], pos[2])))
+            .normalize();
+        if back {
+            n = -n;
+        }
+        let e = pos.map(|q| ctx.mv.point(Vec3::from_q14(q)));
+        let c = (e[0] + e[1] + e[2]).scale(P::Real::from_ratio(1, 3));
+        let col = ctx.shade.at(n, c);
+        Rgb8::new(col.x.to_level(), col.y.to_level(), col.z.to_level())
+    }
+
+    fn triangle(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
+        let (pk, nk) = Self::corner_keys(ctx, t);
+        let mut vs = [0u16; 3];
+        for c in 0..3 {
+            vs[c] = self.corner(ctx, pk[c], nk[c])?;
+        }
+        let codes = vs.map(|v| self.ws.links.get(v as usize).map_or(0, |l| l.code));
+        if codes == [0; 3] {
+            let [a, b, c] = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+            let area2 = (b[0] - a[0]) as i64 * (c[1] - a[1]) as i64
+                - (c[0] - a[0]) as i64 * (b[1] - a[1]) as i64;
+            if area2 == 0 {
+                return Ok(());
+            }
+            // Front faces are counter-clockwise in the y-up world, hence
+            // clockwise (negative area) on the y-down screen.
+            let back = area2 > 0;
+            if back && ctx.cull {
+                return Ok(());
+            }
+            if back && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
+                // Two-sided Gouraud: the back side is lit with reversed
+                // normals, in vertices of its own.
+                for c in 0..3 {
+                    let cv = Self::clip_vert(ctx, pk[c], nk[c], true);
+                    vs[c] = self.emit(
+                        ctx,
+                        &cv,
+                        Link {
+                            normal: NONE,
+                            next: NONE,
+                            code: 0,
+                        },
+                        0,
+                    )?;
+                }
+            }
+            let color = self.flat_color(ctx, t, back);
+            return self.push_tri(Tri { v: vs, color, back });
+        }
+        if codes[0] & codes[1] & codes[2] != 0 {
+            return Ok(());
+        }
+        // Clip in eye space. Facing from the eye-space plane: front when
+        // the normal points towards the eye (at the origin).
+        let mut cvs = [0, 1, 2].map(|c| Self::clip_vert(ctx, pk[c], nk[c], false));
+        let nf = (cvs[1].pos - cvs[0].pos).cross(cvs[2].pos - cvs[0].pos);
+        let facing = nf.dot(cvs[0].pos);
+        if facing == P::Real::ZERO {
+            return Ok(());
+        }
+        let back = facing > P::Real::ZERO;
+        if back && ctx.cull {
+            return Ok(());
+        }
+        if back && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
+            cvs = [0, 1, 2].map(|c| Self::clip_vert(ctx, pk[c], nk[c], true));
+        }
+        let mut poly = [cvs[0]; MAX_POLY];
+        let n = self.view.planes.clip(&cvs, codes, &mut poly);
+        if n < 3 {
+            return Ok(());
+        }
+        let color = self.flat_color(ctx, t, back);
+        let free = Link {
+            normal: NONE,
+            next: NONE,
+            code: 0,
+        };
+        let first = self.emit(ctx, &poly[0], free, 0)?;
+        let mut prev = self.emit(ctx, &poly[1], free, 0)?;
+        for q in poly.iter().take(n).skip(2) {
+            let cur = self.emit(ctx, q, free, 0)?;
+            self.push_tri(Tri {
+                v: [first, prev, cur],
+                color,
+                back,
+            })?;
+            prev = cur;
+        }
+        Ok(())
+    }
+}
