@@ -1,1 +1,611 @@
+//! Pipeline tests: projection, transforms, clipping, culling, bands,
+//! memory figures and bad input.
 
+extern crate std;
+use std::{vec, vec::Vec};
+
+use super::*;
+use crate::geom::{Affine, Vec3};
+use crate::illum::{Light, Material, Specular, Viewer};
+use crate::mesh::{shapes, CornerNormals, Mesh};
+use crate::num::{Fast, Precise, Profile, Real, F32, F64};
+use crate::scene::{Camera, Object, Scene, Shading};
+use crate::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8, Target};
+
+/// Owned workspace memory for tests.
+struct Mem<L> {
+    xy: Vec<[i32; 2]>,
+    vals: Vec<L>,
+    tris: Vec<Tri>,
+    heads: Vec<u16>,
+    links: Vec<Link>,
+}
+
+impl<L: Copy + Default> Mem<L> {
+    fn new(verts: usize, tris: usize) -> Self {
+        Self {
+            xy: vec![[0; 2]; verts],
+            vals: vec![L::default(); verts * 7],
+            tris: vec![Tri::default(); tris],
+            heads: vec![0; 2000],
+            links: vec![Link::default(); verts],
+        }
+    }
+    fn ws(&mut self) -> Workspace<'_, L> {
+        Workspace {
+            xy: &mut self.xy,
+            vals: &mut self.vals,
+            tris: &mut self.tris,
+            heads: &mut self.heads,
+            links: &mut self.links,
+        }
+    }
+}
+
+fn material<R: Real>(ks: f32) -> Material<R> {
+    Material {
+        color: Vec3::from_f32([1.0, 0.3, 0.2]),
+        ka: R::from_f32(0.2),
+        kd: R::from_f32(0.5),
+        ks: R::from_f32(ks),
+        shininess: R::from_f32(100.0),
+    }
+}
+
+fn object<R: Real>(mesh: Mesh<'static>, shading: Shading, angles: [f32; 3]) -> Object<'static, R> {
+    Object {
+        mesh,
+        transform: Affine::from_parts(R::ONE, Vec3::from_f32(angles), Vec3::ZERO),
+        material: material(0.5),
+        shading,
+        cull_backfaces: true,
+    }
+}
+
+fn scene<'s, R: Real>(
+    objects: &'s [Object<'static, R>],
+    lights: &'s [Light<R>],
+    eye: [f32; 3],
+) -> Scene<'s, 'static, R> {
+    Scene {
+        camera: Camera::look_at_f32(eye, [0.0; 3], [0.0, 1.0, 0.0], 40.0, 0.5, None).unwrap(),
+        objects,
+        lights,
+        ambient: R::from_f32(0.2),
+        specular: Specular::Phong,
+        viewer: Viewer::Local,
+        background: Rgb8::new(0, 0, 40),
+    }
+}
+
+fn lights<R: Real>() -> [Light<R>; 2] {
+    [
+        Light::point(Vec3::from_f32([2.0, 2.0, 4.0]), R::ONE),
+        Light::directional(Vec3::from_f32([-1.0, 0.5, 1.0]), R::from_f32(0.5)),
+    ]
+}
+
+/// Renders a whole frame at once; returns the RGB565 bytes.
+fn full<P: Profile>(s: &Scene<'_, 'static, P::Real>, w: u32, h: u32, depth: bool) -> Vec<u8> {
+    let mut mem = Mem::<P::Lerp>::new(12_000, 12_000);
+    let frame = prepare::<P>(s, w, h, mem.ws()).unwrap();
+    let mut px = vec![[0u8; 2]; (w * h) as usize];
+    let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, w, h).unwrap();
+    fb.clear(s.background);
+    let mut z = vec![0u16; (w * h) as usize];
+    let mut db = DepthBuffer::<Depth16>::new(&mut z, w, 0, h).unwrap();
+    frame
+        .render(s, &mut fb, if depth { Some(&mut db) } else { None })
+        .unwrap();
+    fb.bytes().collect()
+}
+
+fn banded<P: Profile>(s: &Scene<'_, 'static, P::Real>, w: u32, h: u32, rows: u32) -> Vec<u8> {
+    let mut mem = Mem::<P::Lerp>::new(12_000, 12_000);
+    let frame = prepare::<P>(s, w, h, mem.ws()).unwrap();
+    let mut px = vec![[0u8; 2]; (w * rows) as usize];
+    let mut z = vec![0u16; (w * rows) as usize];
+    let mut out = vec![];
+    render_in_bands::<P, Rgb565Be, Depth16, RenderError>(
+        &frame,
+        s,
+        &mut px,
+        Some(&mut z),
+        rows,
+        |b| {
+            out.extend(b.bytes());
+            Ok(())
+        },
+    )
+    .unwrap();
+    out
+}
+
+#[test]
+fn projection_matches_the_f64_formula() {
+    fn run<P: Profile>(tol_sub: f64) {
+        // One triangle; its prepared vertices are the projected corners.
+        const POS: [[i16; 3]; 3] = [
+            [-12000, 3000, 1000],
+            [16000, -9000, -16000],
+            [500, 14000, 7000],
+        ];
+        let mesh = Mesh::new(&POS, &[[0, 1, 2]], None).unwrap();
+        let t = Affine::from_parts(
+            P::Real::from_f32(1.5),
+            Vec3::ZERO,
+            Vec3::from_f32([0.25, -0.5, 0.0]),
+        );
+        let objs = [Object {
+            mesh,
+            transform: t,
+            material: material(0.0),
+            shading: Shading::Flat,
+            cull_backfaces: false,
+        }];
+        let ls = lights();
+        let s = scene(&objs, &ls, [1.0, 2.0, 6.0]);
+        let (w, h) = (200u32, 150u32);
+        let mut mem = Mem::<P::Lerp>::new(16, 16);
+        let frame = prepare::<P>(&s, w, h, mem.ws()).unwrap();
+        assert_eq!(frame.vertex_count(), 3);
+        // The f64 formula, from scratch.
+        let (eye, up) = ([1.0f64, 2.0, 6.0], [0.0f64, 1.0, 0.0]);
+        let norm = |v: [f64; 3]| {
+            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            v.map(|c| c / l)
+        };
+        let cross = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let f = norm(eye.map(|c| -c));
+        let sv = norm(cross(f, up));
+        let u = cross(sv, f);
+        let k = h as f64 / 2.0 / (20.0f64.to_radians()).tan();
+        for (i, p) in POS.iter().enumerate() {
+            let wp = [
+                p[0] as f64 / 16384.0 * 1.5 + 0.25,
+                p[1] as f64 / 16384.0 * 1.5 - 0.5,
+                p[2] as f64 / 16384.0 * 1.5,
+            ];
+            let d = [wp[0] - eye[0], wp[1] - eye[1], wp[2] - eye[2]];
+            let (x, y, w) = (dot(sv, d), dot(u, d), dot(f, d));
+            let sx = (200.0 / 2.0 + k * x / w) * 16.0;
+            let sy = (h as f64 / 2.0 - k * y / w) * 16.0;
+            let got = frame.xy(i).unwrap();
+            assert!(
+                (got[0] as f64 - sx).abs() <= tol_sub,
+                "{} vertex {i}: x {} vs {sx}",
+                P::NAME,
+                got[0]
+            );
+            assert!(
+                (got[1] as f64 - sy).abs() <= tol_sub,
+                "{} vertex {i}: y {} vs {sy}",
+                P::NAME,
+                got[1]
+            );
+        }
+    }
+    // Float twins round to the nearest subpixel; fixed profiles are within
+    // one more subpixel (Q16: trigonometry 2^-16, reciprocal and products
+    // within a few ulps of values below 2^9).
+    run::<F64>(0.5 + 1e-9);
+    run::<F32>(0.5 + 1e-3);
+    run::<Precise>(0.5 + 1e-3);
+    run::<Fast>(1.5);
+}
+
+#[test]
+fn a_full_turn_is_the_identity_within_the_trigonometry_error() {
+    fn run<R: Real>(bound: f64) {
+        let tau = R::from_f64(core::f64::consts::TAU);
+        let p = Vec3::from_f32([0.75, -0.5, 1.0]);
+        for axis in 0..3 {
+            let mut a = [R::ZERO; 3];
+            a[axis] = tau;
+            let t = Affine::from_parts(R::ONE, Vec3::new(a[0], a[1], a[2]), Vec3::ZERO);
+            let q = t.point(p).to_f64();
+            let e = p.to_f64();
+            for c in 0..3 {
+                assert!((q[c] - e[c]).abs() <= bound, "axis {axis}: {q:?} vs {e:?}");
+            }
+        }
+    }
+    // |sin|, |cos| errors (2^-16 for Q16, plus the rounding of 2 pi and of
+    // the products) times |p| summed over the three rows: 3 * 2^-15 bounds it.
+    run::<crate::num::Q16>(3.0 / 32768.0);
+    run::<crate::num::Q32>(1e-8);
+    run::<f32>(1e-6);
+    run::<f64>(1e-14);
+}
+
+#[test]
+fn triangles_behind_the_eye_draw_nothing_and_the_camera_may_sit_inside_a_mesh() {
+    // Eye at z = 6 looking at the origin; a triangle at z = 10 is behind it.
+    const POS: [[i16; 3]; 3] = [
+        [-8000, -8000, 16000],
+        [8000, -8000, 16000],
+        [0, 8000, 16000],
+    ];
+    let mesh = Mesh::new(&POS, &[[0, 1, 2]], None).unwrap();
+    let t = Affine::from_parts(
+        Precise::default_one(),
+        Vec3::ZERO,
+        Vec3::from_f32([0.0, 0.0, 9.0]),
+    );
+    let objs = [Object {
+        mesh,
+        transform: t,
+        material: material(0.0),
+        shading: Shading::Flat,
+        cull_backfaces: false,
+    }];
+    let ls = lights();
+    let s = scene(&objs, &ls, [0.0, 0.0, 6.0]);
+    let bytes = full::<Precise>(&s, 64, 48, true);
+    let bg = Rgb565Be::encode_bytes(s.background);
+    assert!(bytes.chunks(2).all(|c| c == bg));
+
+    // Inside the sphere, culling off: every pixel is covered.
+    let mut sphere = object::<crate::num::Q32>(shapes::SPHERE, Shading::Gouraud, [0.0; 3]);
+    sphere.cull_backfaces = false;
+    let objs = [sphere];
+    let s = scene(&objs, &ls, [0.1, 0.2, 0.3]);
+    let bytes = full::<Precise>(&s, 64, 48, true);
+    assert!(bytes.chunks(2).all(|c| c != bg));
+}
+
+trait One {
+    fn default_one() -> crate::num::Q32;
+}
+impl One for Precise {
+    fn default_one() -> crate::num::Q32 {
+        crate::num::Q32::ONE
+    }
+}
+
+trait Encode {
+    fn encode_bytes(c: Rgb8) -> [u8; 2];
+}
+impl Encode for Rgb565Be {
+    fn encode_bytes(c: Rgb8) -> [u8; 2] {
+        <Rgb565Be as crate::target::PixelFormat>::encode(c)
+    }
+}
+
+fn every_shape<R: Real>(shading: Shading) -> Vec<Object<'static, R>> {
+    [
+        shapes::CUBE,
+        shapes::DODECAHEDRON,
+        shapes::SPHERE,
+        shapes::CAN,
+        shapes::GRID,
+        shapes::BUNNY,
+    ]
+    .iter()
+    .enumerate()
+    .map(|(i, m)| {
+        let mut o = object::<R>(*m, shading, [0.3 * i as f32, 0.5 + 0.2 * i as f32, 0.1]);
+        o.transform.t = Vec3::from_f32([
+            (i as f32 - 2.5) * 0.9,
+            (i % 2) as f32 * 0.8 - 0.4,
+            -(i as f32) * 0.3,
+        ]);
+        o.cull_backfaces = i != 4; // the grid is open: two-sided
+        o
+    })
+    .collect()
+}
+
+#[test]
+fn bands_equal_the_full_frame_for_every_shape_mode_and_profile() {
+    fn run<P: Profile>() {
+        for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+            let objs = every_shape::<P::Real>(shading);
+            let ls = lights();
+            let s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
+            let (w, h) = (96, 64);
+            let whole = full::<P>(&s, w, h, true);
+            let bg = Rgb565Be::encode_bytes(s.background);
+            assert!(
+                whole.chunks(2).filter(|c| *c != bg).count() > 1500,
+                "{} {shading:?}",
+                P::NAME
+            );
+            for rows in [1, 7, 16, h] {
+                assert_eq!(
+                    banded::<P>(&s, w, h, rows),
+                    whole,
+                    "{} {shading:?} rows {rows}",
+                    P::NAME
+                );
+            }
+        }
+    }
+    run::<Fast>();
+    run::<Precise>();
+    run::<F32>();
+    run::<F64>();
+}
+
+#[test]
+fn a_convex_object_with_culling_needs_no_depth_buffer() {
+    for m in [shapes::CUBE, shapes::DODECAHEDRON, shapes::SPHERE] {
+        for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+            let objs = [object::<crate::num::Q16>(m, shading, [0.4, 0.7, 0.2])];
+            let ls = lights();
+            let s = scene(&objs, &ls, [0.0, 0.5, 4.0]);
+            assert_eq!(
+                full::<Fast>(&s, 80, 60, true),
+                full::<Fast>(&s, 80, 60, false),
+                "{shading:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn memory_figures_are_as_documented() {
+    assert_eq!(core::mem::size_of::<Tri>(), 10);
+    assert_eq!(core::mem::size_of::<Link>(), 6);
+    let strides = [
+        (Layout::Flat, 1),
+        (Layout::GouraudMono, 2),
+        (Layout::GouraudRgb, 4),
+        (Layout::PhongNormal, 4),
+        (Layout::PhongPosition, 7),
+    ];
+    for (l, s) in strides {
+        assert_eq!(l.stride(), s);
+    }
+    // The bunny in Gouraud under a white light: grey, so one level per
+    // vertex; 1839 vertices (no clipping), 8 + 2 * 4 bytes each.
+    let white = Material {
+        color: Vec3::from_f32([1.0; 3]),
+        ..material::<crate::num::Q16>(0.0)
+    };
+    let objs = [Object {
+        material: white,
+        ..object::<crate::num::Q16>(shapes::BUNNY, Shading::Gouraud, [0.0; 3])
+    }];
+    let ls = [Light::directional(
+        Vec3::from_f32([1.0, 1.0, 1.0]),
+        crate::num::Q16::from_f32(0.8),
+    )];
+    let s = scene(&objs, &ls, [0.0, 0.0, 3.922]);
+    let mut mem = Mem::<i32>::new(4000, 4000);
+    let frame = prepare::<Fast>(&s, 240, 240, mem.ws()).unwrap();
+    assert_eq!(frame.objects()[0].layout, Layout::GouraudMono);
+    assert_eq!(frame.vertex_count(), 1839);
+    let t = frame.triangle_count();
+    assert!((1400..1900).contains(&t), "{t} front faces");
+    assert_eq!(frame.bytes_used(), 1839 * (8 + 2 * 4) + t * 10);
+    // Phong with a point light and a local viewer carries positions.
+    let objs = [object::<crate::num::Q16>(
+        shapes::CUBE,
+        Shading::Phong,
+        [0.0; 3],
+    )];
+    let ls = lights();
+    let s = scene(&objs, &ls, [0.0, 0.0, 5.0]);
+    let mut mem = Mem::<i32>::new(100, 100);
+    let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
+    assert_eq!(frame.objects()[0].layout, Layout::PhongPosition);
+    // Directional light and a viewer at infinity: normals only.
+    let ls = [Light::directional(
+        Vec3::from_f32([0.0, 0.0, 1.0]),
+        crate::num::Q16::ONE,
+    )];
+    let s = Scene {
+        viewer: Viewer::Infinite,
+        ..scene(&objs, &ls, [0.0, 0.0, 5.0])
+    };
+    let mut mem = Mem::<i32>::new(100, 100);
+    let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
+    assert_eq!(frame.objects()[0].layout, Layout::PhongNormal);
+}
+
+#[test]
+fn bad_camera_input_is_an_error() {
+    use crate::scene::SceneError as E;
+    type C = Camera<crate::num::Q16>;
+    let ok = |e: [f32; 3], t: [f32; 3], u: [f32; 3], fov: f32, n: f32, f: Option<f32>| {
+        C::look_at_f32(e, t, u, fov, n, f).map(|_| ())
+    };
+    assert_eq!(
+        ok([1.0; 3], [1.0; 3], [0.0, 1.0, 0.0], 40.0, 0.5, None),
+        Err(E::EyeAtTarget)
+    );
+    assert_eq!(
+        ok([0.0, 5.0, 0.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0, 0.5, None),
+        Err(E::UpParallelToView)
+    );
+    assert_eq!(
+        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 0.0, 0.5, None),
+        Err(E::FieldOfView)
+    );
+    assert_eq!(
+        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 180.0, 0.5, None),
+        Err(E::FieldOfView)
+    );
+    assert_eq!(
+        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0, 0.0, None),
+        Err(E::Near)
+    );
+    assert_eq!(
+        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0, -1.0, None),
+        Err(E::Near)
+    );
+    assert_eq!(
+        ok(
+            [0.0, 0.0, 5.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            40.0,
+            1.0,
+            Some(1.0)
+        ),
+        Err(E::Far)
+    );
+    assert_eq!(
+        ok(
+            [f32::NAN, 0.0, 5.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            40.0,
+            1.0,
+            None
+        ),
+        Err(E::NotFinite("eye"))
+    );
+    assert_eq!(
+        ok(
+            [0.0, 0.0, 5.0],
+            [0.0; 3],
+            [0.0, f32::INFINITY, 0.0],
+            40.0,
+            1.0,
+            None
+        ),
+        Err(E::NotFinite("up"))
+    );
+    assert_eq!(
+        ok(
+            [0.0, 0.0, 5.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            f32::NAN,
+            1.0,
+            None
+        ),
+        Err(E::NotFinite("fov_y_deg"))
+    );
+    assert_eq!(
+        ok(
+            [0.0, 0.0, 5.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            40.0,
+            1.0,
+            Some(f32::NAN)
+        ),
+        Err(E::NotFinite("far"))
+    );
+    // The seed's VRP convention: eye at (0, 0, 6).
+    let q = |v: f32| crate::num::Q16::from_f32(v);
+    let c = C::from_vrp(
+        Vec3::from_f32([0.0, 0.0, 1.0]),
+        Vec3::from_f32([0.0, 0.0, -1.0]),
+        Vec3::from_f32([0.0, 1.0, 0.0]),
+        q(5.0),
+        q(0.7),
+        q(0.5),
+        None,
+    )
+    .unwrap();
+    assert_eq!(c.view.point(Vec3::from_f32([0.0, 0.0, 6.0])), Vec3::ZERO);
+    assert_eq!(
+        C::from_vrp(
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::from_f32([0.0, 1.0, 0.0]),
+            q(5.0),
+            q(0.7),
+            q(0.5),
+            None
+        )
+        .unwrap_err(),
+        E::EyeAtTarget
+    );
+}
+
+#[test]
+fn capacity_and_scene_errors_are_values() {
+    let objs = [object::<crate::num::Q16>(
+        shapes::SPHERE,
+        Shading::Gouraud,
+        [0.0; 3],
+    )];
+    let ls = lights();
+    let s = scene(&objs, &ls, [0.0, 0.0, 5.0]);
+    for (verts, tris, heads, part) in [
+        (10, 1000, 2000, Part::Vertices),
+        (1000, 10, 2000, Part::Triangles),
+        (1000, 1000, 5, Part::Heads),
+    ] {
+        let mut mem = Mem::<i32>::new(verts, tris);
+        mem.heads.truncate(heads);
+        let e = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap_err();
+        assert_eq!(e, RenderError::Capacity { part, object: 0 });
+    }
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    mem.vals.truncate(10);
+    assert_eq!(
+        prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap_err(),
+        RenderError::Capacity {
+            part: Part::Values,
+            object: 0
+        }
+    );
+    // Smooth shading needs normals.
+    const POS: [[i16; 3]; 3] = [[0, 0, 0], [16384, 0, 0], [0, 16384, 0]];
+    let bare = Mesh::new(&POS, &[[0, 1, 2]], None).unwrap();
+    let objs2 = [objs[0], object(bare, Shading::Phong, [0.0; 3])];
+    let s2 = scene(&objs2, &ls, [0.0, 0.0, 5.0]);
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    assert_eq!(
+        prepare::<Fast>(&s2, 64, 64, mem.ws()).unwrap_err(),
+        RenderError::MissingNormals { object: 1 }
+    );
+    // Too many lights, too many objects, too big a screen.
+    let many = [ls[0]; 9];
+    let s3 = scene(&objs, &many, [0.0, 0.0, 5.0]);
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    assert_eq!(
+        prepare::<Fast>(&s3, 64, 64, mem.ws()).unwrap_err(),
+        RenderError::Scene(crate::scene::SceneError::TooManyLights)
+    );
+    let lots = [objs[0]; 33];
+    let s4 = scene(&lots, &ls, [0.0, 0.0, 5.0]);
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    assert_eq!(
+        prepare::<Fast>(&s4, 64, 64, mem.ws()).unwrap_err(),
+        RenderError::Scene(crate::scene::SceneError::TooManyObjects)
+    );
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    assert_eq!(
+        prepare::<Fast>(&s, 4097, 64, mem.ws()).unwrap_err(),
+        RenderError::Scene(crate::scene::SceneError::Screen)
+    );
+    // A target of another width is refused.
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
+    let mut px = vec![[0u8; 2]; 32 * 64];
+    let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, 32, 64).unwrap();
+    assert_eq!(
+        frame.render::<_, Depth16>(&s, &mut fb, None).unwrap_err(),
+        RenderError::Window
+    );
+    // Zero-size frames are fine and empty.
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    let frame = prepare::<Fast>(&s, 0, 0, mem.ws()).unwrap();
+    let mut px: Vec<[u8; 2]> = vec![];
+    let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, 0, 0).unwrap();
+    assert_eq!(
+        frame
+            .render::<_, Depth16>(&s, &mut fb, None)
+            .unwrap()
+            .pixels,
+        0
+    );
+    let _ = CornerNormals {
+        normals: &[],
+        indices: &[],
+    };
+}

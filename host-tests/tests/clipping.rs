@@ -1,0 +1,217 @@
+//! Near-plane clipping: the core's clipped triangles cover the pixels the
+//! independent ideal reference covers, up to the subpixel snapping of the
+//! clipped corners.
+
+use fixshade::geom::{Affine, Vec3};
+use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::mesh::Mesh;
+use fixshade::num::{Precise, Profile, Real, F64};
+use fixshade::render::{prepare, Link, Tri, Workspace};
+use fixshade::scene::{Camera, Object, Scene, Shading};
+use fixshade::target::{FrameBuf, Rgb8, Rgb888, Target};
+use fixshade_host::ideal::{self, IdealScene};
+
+const W: u32 = 96;
+const H: u32 = 72;
+const EYE: [f64; 3] = [0.0, 0.0, 1.5];
+const NEAR: f64 = 0.5;
+
+/// Triangles crossing the near plane (z = 1.0 in the world): one corner,
+/// two corners, and a sliver, in Q1.14.
+const CASES: [[[i16; 3]; 3]; 4] = [
+    [
+        [-16000, -9000, -16000],
+        [16000, -7000, -14000],
+        [2000, 6000, 30000],
+    ],
+    [
+        [-9000, 14000, 30000],
+        [12000, 9000, 29000],
+        [1000, -12000, -20000],
+    ],
+    [
+        [-12000, -2000, 25000],
+        [15000, 1000, -30000],
+        [-11000, 1500, 24000],
+    ],
+    [[-20000, -15000, 0], [20000, -15000, 0], [0, 12000, 32000]],
+];
+
+fn core_mask<P: Profile>(pos: &'static [[i16; 3]; 3]) -> Vec<bool> {
+    let mesh = Mesh::new(pos, &[[0, 1, 2]], None).unwrap();
+    let r = |v: f32| P::Real::from_f32(v);
+    let m = Material {
+        color: Vec3::from_f32([1.0; 3]),
+        ka: r(1.0),
+        kd: r(0.0),
+        ks: r(0.0),
+        shininess: r(1.0),
+    };
+    let objs = [Object {
+        mesh,
+        transform: Affine::IDENTITY,
+        material: m,
+        shading: Shading::Flat,
+        cull_backfaces: false,
+    }];
+    let lights: [Light<P::Real>; 0] = [];
+    let camera = Camera::look_at_f32(
+        [0.0, 0.0, 1.5],
+        [0.0; 3],
+        [0.0, 1.0, 0.0],
+        60.0,
+        NEAR as f32,
+        None,
+    )
+    .unwrap();
+    let scene = Scene {
+        camera,
+        objects: &objs,
+        lights: &lights,
+        ambient: r(1.0),
+        specular: Specular::Phong,
+        viewer: Viewer::Local,
+        background: Rgb8::BLACK,
+    };
+    let (mut xy, mut vals, mut tris) = (
+        vec![[0; 2]; 32],
+        vec![P::Lerp::default(); 32],
+        vec![Tri::default(); 32],
+    );
+    let (mut heads, mut links) = (vec![0u16; 8], vec![Link::default(); 32]);
+    let ws = Workspace {
+        xy: &mut xy,
+        vals: &mut vals,
+        tris: &mut tris,
+        heads: &mut heads,
+        links: &mut links,
+    };
+    let frame = prepare::<P>(&scene, W, H, ws).unwrap();
+    assert!(frame.vertex_count() > 3, "the triangle was clipped");
+    let mut px = vec![[0u8; 3]; (W * H) as usize];
+    let mut fb = FrameBuf::<Rgb888>::new(&mut px, W, H).unwrap();
+    fb.clear(Rgb8::BLACK);
+    frame
+        .render::<_, fixshade::target::Depth16>(&scene, &mut fb, None)
+        .unwrap();
+    px.iter().map(|p| p[0] != 0).collect()
+}
+
+/// Exact screen polygon of the clipped triangle (f64), for distances.
+fn screen_polygon(pos: &[[i16; 3]; 3]) -> Vec<[f64; 2]> {
+    let k = H as f64 / 2.0 / (30.0f64.to_radians()).tan();
+    let eye: Vec<[f64; 3]> = pos
+        .iter()
+        .map(|p| {
+            [
+                p[0] as f64 / 16384.0 - EYE[0],
+                p[1] as f64 / 16384.0 - EYE[1],
+                p[2] as f64 / 16384.0 - EYE[2],
+            ]
+        })
+        .collect();
+    let mut poly = vec![];
+    for i in 0..3 {
+        let (a, b) = (eye[i], eye[(i + 1) % 3]);
+        let (da, db) = (-a[2] - NEAR, -b[2] - NEAR);
+        if da >= 0.0 {
+            poly.push(a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            poly.push([
+                a[0] + (b[0] - a[0]) * t,
+                a[1] + (b[1] - a[1]) * t,
+                a[2] + (b[2] - a[2]) * t,
+            ]);
+        }
+    }
+    poly.iter()
+        .map(|p| {
+            [
+                W as f64 / 2.0 + k * p[0] / -p[2],
+                H as f64 / 2.0 - k * p[1] / -p[2],
+            ]
+        })
+        .collect()
+}
+
+fn distance_to_edges(poly: &[[f64; 2]], q: [f64; 2]) -> f64 {
+    (0..poly.len())
+        .map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let t =
+                (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+            ((a[0] + t * dx - q[0]).powi(2) + (a[1] + t * dy - q[1]).powi(2)).sqrt()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn ideal_mask(pos: &[[i16; 3]; 3]) -> Vec<bool> {
+    let v = |p: [i16; 3]| ideal::Vertex {
+        position: p.map(|c| c as f64 / 16384.0),
+        normal: [0.0, 0.0, 1.0],
+    };
+    let scene = IdealScene {
+        width: W,
+        height: H,
+        background: [0.0; 3],
+        camera: ideal::Camera {
+            eye: EYE,
+            target: [0.0; 3],
+            up: [0.0, 1.0, 0.0],
+            fov_y_deg: 60.0,
+            near: NEAR,
+            far: None,
+        },
+        ambient: 1.0,
+        specular: ideal::SpecularModel::Phong,
+        lights: vec![],
+        objects: vec![ideal::Object {
+            triangles: vec![[v(pos[0]), v(pos[1]), v(pos[2])]],
+            shading: ideal::Shading::Flat,
+            material: ideal::Material {
+                color: [1.0; 3],
+                ka: 1.0,
+                kd: 0.0,
+                ks: 0.0,
+                shininess: 1.0,
+            },
+            cull_backfaces: false,
+        }],
+    };
+    ideal::render(&scene).unwrap().covered
+}
+
+#[test]
+fn clipped_triangles_cover_the_reference_pixels() {
+    for (n, pos) in CASES.iter().enumerate() {
+        let want = ideal_mask(pos);
+        let poly = screen_polygon(pos);
+        assert!(
+            want.iter().filter(|&&c| c).count() > 200,
+            "case {n} covers the screen"
+        );
+        for (name, got) in [
+            ("f64", core_mask::<F64>(pos)),
+            ("precise", core_mask::<Precise>(pos)),
+        ] {
+            let mut mismatches = 0;
+            for (i, (&g, &w)) in got.iter().zip(want.iter()).enumerate() {
+                if g != w {
+                    mismatches += 1;
+                    let q = [(i as u32 % W) as f64 + 0.5, (i as u32 / W) as f64 + 0.5];
+                    // Snapping moves each corner by at most 1/32 pixel per
+                    // axis, an edge by at most sqrt(2)/32 < 0.045 pixel.
+                    let d = distance_to_edges(&poly, q);
+                    assert!(
+                        d < 0.045,
+                        "case {n} {name}: pixel {q:?} differs, {d} px from an edge"
+                    );
+                }
+            }
+            println!("case {n} {name}: {mismatches} pixels differ, all within snapping of an edge");
+        }
+    }
+}
