@@ -12,6 +12,10 @@
 //! | [`F32`]     | `f32`             | `f32`                   | Cortex-M4F         |
 //! | [`F64`]     | `f64`             | `f64`                   | the float twin     |
 //!
+//! Each has a `…Pc` variant ([`FastPc`], [`PrecisePc`], [`F32Pc`],
+//! [`F64Pc`]) that interpolates colours, normals and positions
+//! perspective-correctly ([`Profile::PERSPECTIVE`]).
+//!
 //! Interpolated fixed-point formats (all `i32`, within ±2^30, see
 //! [`crate::raster`]): colour levels `l · 2^16` for `l` in `0..=255`;
 //! depth `d · 2^30` for `d` in `[0, 1]`; unit-vector components `n · 2^30`;
@@ -42,6 +46,11 @@ pub trait Profile: Copy + Debug + Default + 'static {
     const NAME: &'static str;
     /// Subpixel precision of screen coordinates.
     const SUBPIXEL_BITS: SubpixelBits = SubpixelBits::DEFAULT;
+    /// Perspective-correct interpolation of colours, normals and positions
+    /// (one division per pixel) instead of affine (screen-space linear,
+    /// the classic Gouraud and Phong). Depth is affine in screen space
+    /// either way.
+    const PERSPECTIVE: bool = false;
 
     /// A colour level in `[0, 1]` (not clamped) as an interpolated value.
     fn level(r: Self::Real) -> Self::Lerp;
@@ -58,7 +67,7 @@ pub trait Profile: Copy + Debug + Default + 'static {
 }
 
 macro_rules! fixed_profile {
-    ($name:ident, $real:ty, $label:literal, $doc:literal) => {
+    ($name:ident, $real:ty, $label:literal, $pc:literal, $doc:literal) => {
         #[doc = $doc]
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         pub struct $name;
@@ -67,6 +76,7 @@ macro_rules! fixed_profile {
             type Real = $real;
             type Lerp = i32;
             const NAME: &'static str = $label;
+            const PERSPECTIVE: bool = $pc;
 
             #[inline]
             fn level(r: $real) -> i32 {
@@ -100,17 +110,33 @@ fixed_profile!(
     Fast,
     Q16,
     "fast",
+    false,
     "Fixed point for the Cortex-M0: Q16.16 scalars, `i32` interpolation."
 );
 fixed_profile!(
     Precise,
     Q32,
     "precise",
+    false,
     "Fixed point with more bits: Q32.32 scalars, `i32` interpolation."
+);
+fixed_profile!(
+    FastPc,
+    Q16,
+    "fast-pc",
+    true,
+    "[`Fast`] with perspective-correct interpolation."
+);
+fixed_profile!(
+    PrecisePc,
+    Q32,
+    "precise-pc",
+    true,
+    "[`Precise`] with perspective-correct interpolation."
 );
 
 macro_rules! float_profile {
-    ($name:ident, $t:ty, $label:literal, $doc:literal) => {
+    ($name:ident, $t:ty, $label:literal, $pc:literal, $doc:literal) => {
         #[doc = $doc]
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         pub struct $name;
@@ -119,6 +145,7 @@ macro_rules! float_profile {
             type Real = $t;
             type Lerp = $t;
             const NAME: &'static str = $label;
+            const PERSPECTIVE: bool = $pc;
 
             #[inline]
             fn level(r: $t) -> $t {
@@ -152,11 +179,27 @@ float_profile!(
     F32,
     f32,
     "f32",
+    false,
     "The `f32` float twin (for FPUs such as the Cortex-M4F's)."
 );
 float_profile!(
     F64,
     f64,
     "f64",
+    false,
     "The `f64` float twin: the reference for quantization error."
+);
+float_profile!(
+    F32Pc,
+    f32,
+    "f32-pc",
+    true,
+    "[`F32`] with perspective-correct interpolation."
+);
+float_profile!(
+    F64Pc,
+    f64,
+    "f64-pc",
+    true,
+    "[`F64`] with perspective-correct interpolation: the twin of the `-pc` profiles."
 );

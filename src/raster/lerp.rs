@@ -64,6 +64,18 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// Rounded to the nearest integer after removing `frac` fraction bits
     /// (fixed), or rounded (float); saturating.
     fn round_int(self, frac: u32) -> i32;
+
+    /// What undoes a perspective weight `q` in `(0, 1]` (a unit value:
+    /// fixed `q · 2^30`): see [`Lerp::unweight`].
+    type Unweight: Copy;
+
+    /// The factor for `q` (one division per pixel: the price of
+    /// perspective-correct interpolation). Fixed: `q` is clamped to at
+    /// least 2^-20 (`w` at most 2^20 times the near distance).
+    fn unweight_factor(q: Self) -> Self::Unweight;
+
+    /// `self / q`, for an attribute interpolated as `a · q`.
+    fn unweight(self, f: Self::Unweight) -> Self;
 }
 
 /// The reciprocal of a doubled triangle area in fixed point:
@@ -194,6 +206,22 @@ impl Lerp for i32 {
         }
         ((self as i64 + (1i64 << (frac - 1))) >> frac) as i32
     }
+
+    type Unweight = i64;
+
+    #[inline]
+    fn unweight_factor(q: i32) -> i64 {
+        // 2^60 / q, q >= 2^10: at most 2^50.
+        (1i64 << 60) / q.max(1 << 10) as i64
+    }
+
+    #[inline]
+    fn unweight(self, f: i64) -> i32 {
+        // a·q/2^30 · 2^60/q / 2^30 = a; |a·q| <= 2^30·q keeps the product
+        // within 2^60.
+        let v = (self as i64).saturating_mul(f).saturating_add(1 << 29) >> 30;
+        v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+    }
 }
 
 macro_rules! float_lerp {
@@ -241,6 +269,22 @@ macro_rules! float_lerp {
                 // `as` saturates and maps NaN to 0.
                 let v = self * (1u32 << 30) as $t + 0.5;
                 (v as u32).min(1 << 30)
+            }
+
+            type Unweight = $t;
+
+            #[inline]
+            fn unweight_factor(q: $t) -> $t {
+                if q > 0.0 {
+                    1.0 / q
+                } else {
+                    0.0
+                }
+            }
+
+            #[inline]
+            fn unweight(self, f: $t) -> $t {
+                self * f
             }
 
             #[inline]

@@ -68,7 +68,7 @@ mod triangle;
 
 pub use edge::Edge;
 pub use lerp::{Lerp, Recip};
-pub use span::{Fill, Flat, Gouraud, GouraudMono, Shader};
+pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
 pub use triangle::{draw_triangle, Span, Spans};
 
 use core::fmt;

@@ -55,6 +55,33 @@ impl<L: Lerp> Shader<L, 3> for Gouraud {
     }
 }
 
+/// Perspective-correct wrapper: the last attribute is the weight `q =
+/// near/w` (affine in screen space) and the others were interpolated as
+/// `a · q`; each pixel divides them by `q` and hands them to the inner
+/// shader.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Persp<S>(pub S);
+
+macro_rules! persp {
+    ($n:literal, $m:literal) => {
+        impl<L: Lerp, S: Shader<L, $n>> Shader<L, $m> for Persp<S> {
+            #[inline(always)]
+            fn shade(&self, a: &[L; $m]) -> Rgb8 {
+                let f = L::unweight_factor(a[$n]);
+                let mut b = [a[0]; $n];
+                for (o, i) in b.iter_mut().zip(a.iter()) {
+                    *o = i.unweight(f);
+                }
+                self.0.shade(&b)
+            }
+        }
+    };
+}
+
+persp!(1, 2);
+persp!(3, 4);
+persp!(6, 7);
+
 /// The span stage: a target, an optional depth buffer and a shader.
 ///
 /// Without a depth buffer every covered pixel is drawn, in triangle order

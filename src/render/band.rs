@@ -5,7 +5,7 @@ use super::{Frame, Layout, PreparedObject, RenderError, Tri};
 use crate::geom::Vec3;
 use crate::illum::Shade;
 use crate::num::{Profile, Real};
-use crate::raster::{draw_triangle, Fill, Flat, Gouraud, GouraudMono, Shader, Vertex};
+use crate::raster::{draw_triangle, Fill, Flat, Gouraud, GouraudMono, Persp, Shader, Vertex};
 use crate::scene::{Scene, SceneError};
 use crate::target::{DepthBuffer, DepthFormat, FrameBuf, PixelFormat, Rgb8, Target};
 
@@ -62,8 +62,7 @@ impl<P: Profile> Frame<'_, P> {
     fn vertex<const N: usize>(&self, po: &PreparedObject, i: u16) -> Option<Vertex<P::Lerp, N>> {
         let i = i as usize;
         let [x, y] = *self.ws.xy.get(i)?;
-        let stride = po.layout.stride();
-        let base = po.val_base + i.checked_sub(po.verts.start)? * stride;
+        let base = po.val_base + i.checked_sub(po.verts.start)? * po.stride;
         let vals = self.ws.vals.get(base..base + 1 + N)?;
         let mut attrs = [vals[0]; N];
         attrs.copy_from_slice(&vals[1..]);
@@ -139,9 +138,19 @@ impl<P: Profile> Frame<'_, P> {
                     self.draw_object::<0, _, _, _>(po, &mut f, &mut stats, |s, t| s.0 = t.color)?;
                     stats.pixels += f.drawn();
                 }
+                Layout::GouraudMono if P::PERSPECTIVE => {
+                    let mut f = Fill::new(target, d, Persp(GouraudMono))?;
+                    self.draw_object::<2, _, _, _>(po, &mut f, &mut stats, |_, _| {})?;
+                    stats.pixels += f.drawn();
+                }
                 Layout::GouraudMono => {
                     let mut f = Fill::new(target, d, GouraudMono)?;
                     self.draw_object::<1, _, _, _>(po, &mut f, &mut stats, |_, _| {})?;
+                    stats.pixels += f.drawn();
+                }
+                Layout::GouraudRgb if P::PERSPECTIVE => {
+                    let mut f = Fill::new(target, d, Persp(Gouraud))?;
+                    self.draw_object::<4, _, _, _>(po, &mut f, &mut stats, |_, _| {})?;
                     stats.pixels += f.drawn();
                 }
                 Layout::GouraudRgb => {
@@ -162,14 +171,25 @@ impl<P: Profile> Frame<'_, P> {
                         shade: &shade,
                         back: false,
                     };
-                    let mut f = Fill::new(target, d, sh)?;
-                    let set = |s: &mut PhongShader<'_, P>, t: &Tri| s.back = t.back;
-                    if po.layout == Layout::PhongNormal {
-                        self.draw_object::<3, _, _, _>(po, &mut f, &mut stats, set)?;
+                    if P::PERSPECTIVE {
+                        let mut f = Fill::new(target, d, Persp(sh))?;
+                        let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.back = t.back;
+                        if po.layout == Layout::PhongNormal {
+                            self.draw_object::<4, _, _, _>(po, &mut f, &mut stats, set)?;
+                        } else {
+                            self.draw_object::<7, _, _, _>(po, &mut f, &mut stats, set)?;
+                        }
+                        stats.pixels += f.drawn();
                     } else {
-                        self.draw_object::<6, _, _, _>(po, &mut f, &mut stats, set)?;
+                        let mut f = Fill::new(target, d, sh)?;
+                        let set = |s: &mut PhongShader<'_, P>, t: &Tri| s.back = t.back;
+                        if po.layout == Layout::PhongNormal {
+                            self.draw_object::<3, _, _, _>(po, &mut f, &mut stats, set)?;
+                        } else {
+                            self.draw_object::<6, _, _, _>(po, &mut f, &mut stats, set)?;
+                        }
+                        stats.pixels += f.drawn();
                     }
-                    stats.pixels += f.drawn();
                 }
             }
         }

@@ -17,6 +17,7 @@
 //! | stride, flat | 1 (depth) |
 //! | stride, Gouraud | 2 (depth, grey level) or 4 (depth, red, green, blue) |
 //! | stride, Phong | 4 (depth, normal), or 7 (depth, normal, eye position) when a point light or the local viewer needs the position |
+//! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
 //! | per prepared triangle | 10 ([`Tri`]) |
 //! | scratch while preparing | 2 per mesh vertex of the largest mesh ([`Workspace::heads`]) + 6 per prepared vertex ([`Link`]) |
 //!
@@ -92,13 +93,22 @@ pub enum Layout {
 }
 
 impl Layout {
-    /// Interpolated values per prepared vertex.
+    /// Interpolated values per prepared vertex (affine interpolation).
     pub const fn stride(self) -> usize {
         match self {
             Self::Flat => 1,
             Self::GouraudMono => 2,
             Self::GouraudRgb | Self::PhongNormal => 4,
             Self::PhongPosition => 7,
+        }
+    }
+
+    /// Interpolated values per prepared vertex; perspective-correct
+    /// interpolation adds the weight `q = near/w` to every layout but flat.
+    pub const fn stride_for(self, perspective: bool) -> usize {
+        match (self, perspective) {
+            (Self::Flat, _) | (_, false) => self.stride(),
+            (_, true) => self.stride() + 1,
         }
     }
 
@@ -121,6 +131,8 @@ pub struct PreparedObject {
     pub verts: Range<usize>,
     /// Index of its first value in [`Workspace::vals`].
     pub val_base: usize,
+    /// Values per prepared vertex.
+    pub stride: usize,
     /// Its prepared triangles.
     pub tris: Range<usize>,
 }
@@ -156,7 +168,7 @@ impl<P: Profile> Frame<'_, P> {
         let vals = self
             .objects
             .last()
-            .map_or(0, |o| o.val_base + o.verts.len() * o.layout.stride());
+            .map_or(0, |o| o.val_base + o.verts.len() * o.stride);
         self.vertex_count() * 8
             + vals * core::mem::size_of::<P::Lerp>()
             + self.triangle_count() * core::mem::size_of::<Tri>()

@@ -64,17 +64,19 @@ struct View<R> {
 }
 
 impl<R: Real> View<R> {
-    /// Screen position (pixels) and depth in `[0, 1]` of an eye-space point
-    /// in front of the near plane.
-    fn project(&self, p: Vec3<R>) -> (R, R, R) {
+    /// Screen position (pixels), depth in `[0, 1]` and perspective weight
+    /// `q = near/w` in `(0, 1]` of an eye-space point in front of the near
+    /// plane.
+    fn project(&self, p: Vec3<R>) -> (R, R, R, R) {
         let iw = (-p.z).recip();
         let sx = self.cx + (p.x * iw) * self.k;
         let sy = self.cy - (p.y * iw) * self.k;
-        let mut d = R::ONE - self.planes.near * iw;
+        let q = (self.planes.near * iw).clamp(R::ZERO, R::ONE);
+        let mut d = R::ONE - q;
         if let Some(s) = self.depth_scale {
             d *= s;
         }
-        (sx, sy, d.clamp(R::ZERO, R::ONE))
+        (sx, sy, d.clamp(R::ZERO, R::ONE), q)
     }
 }
 
@@ -145,6 +147,7 @@ struct ObjCtx<'a, 'm, R> {
     mv: Affine<R>,
     shade: &'a Shade<R>,
     layout: Layout,
+    stride: usize,
     cull: bool,
     val_base: usize,
     v_start: usize,
@@ -193,6 +196,7 @@ impl<P: Profile> Preparer<'_, P> {
             mv: scene.camera.view.then_after(&obj.transform),
             shade: &shade,
             layout,
+            stride: layout.stride_for(P::PERSPECTIVE),
             cull: obj.cull_backfaces,
             val_base: self.nval,
             v_start: self.nv,
@@ -205,6 +209,7 @@ impl<P: Profile> Preparer<'_, P> {
             layout,
             verts: ctx.v_start..self.nv,
             val_base: ctx.val_base,
+            stride: ctx.stride,
             tris: t_start..self.nt,
         })
     }
@@ -260,7 +265,7 @@ impl<P: Profile> Preparer<'_, P> {
         if i >= NONE as usize || i >= self.ws.xy.len() || i >= self.ws.links.len() {
             return Err(self.cap(Part::Vertices));
         }
-        let stride = ctx.layout.stride();
+        let stride = ctx.stride;
         let base = ctx.val_base + (i - ctx.v_start) * stride;
         let vals = self
             .ws
@@ -276,11 +281,18 @@ impl<P: Profile> Preparer<'_, P> {
             self.ws.xy[i] = [0, 0];
             vals.fill(P::level(P::Real::ZERO));
         } else {
-            let (sx, sy, d) = self.view.project(cv.pos);
+            let (sx, sy, d, q) = self.view.project(cv.pos);
             let sub = P::SUBPIXEL_BITS.get();
             self.ws.xy[i] = [sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)];
             vals[0] = P::depth(d);
-            let a = cv.attrs;
+            let mut a = cv.attrs;
+            let mut pos = cv.pos;
+            if P::PERSPECTIVE && ctx.layout != Layout::Flat {
+                // Interpolate a·q and q, both affine in screen space.
+                a = a.map(|v| v * q);
+                pos = pos.scale(q);
+                vals[stride - 1] = P::unit(q);
+            }
             match ctx.layout {
                 Layout::Flat => {}
                 Layout::GouraudMono => vals[1] = P::level(a[0]),
@@ -294,7 +306,7 @@ impl<P: Profile> Preparer<'_, P> {
                         vals[1 + k] = P::unit(a[k]);
                     }
                     if ctx.layout == Layout::PhongPosition {
-                        let p = [cv.pos.x, cv.pos.y, cv.pos.z];
+                        let p = [pos.x, pos.y, pos.z];
                         for k in 0..3 {
                             vals[4 + k] = P::coord(p[k]);
                         }

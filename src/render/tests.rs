@@ -332,6 +332,9 @@ fn bands_equal_the_full_frame_for_every_shape_mode_and_profile() {
     run::<Precise>();
     run::<F32>();
     run::<F64>();
+    run::<crate::num::FastPc>();
+    run::<crate::num::PrecisePc>();
+    run::<crate::num::F64Pc>();
 }
 
 #[test]
