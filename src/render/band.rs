@@ -90,7 +90,13 @@ impl<P: Profile> Frame<'_, P> {
         let win = fill.window();
         let s = sub.scale();
         let (top, bot) = (win.y0 as i32 * s - s, win.y1 as i32 * s + s);
+        let y = |i: u16| self.ws.xy.get(i as usize).map_or(i32::MIN, |p| p[1]);
         for tri in self.ws.tris.get(po.tris.clone()).unwrap_or(&[]) {
+            // Reject triangles outside the band before fetching attributes.
+            let (ya, yb, yc) = (y(tri.v[0]), y(tri.v[1]), y(tri.v[2]));
+            if ya.max(yb).max(yc) < top || ya.min(yb).min(yc) > bot {
+                continue;
+            }
             let (Some(a), Some(b), Some(c)) = (
                 self.vertex::<N>(po, tri.v[0]),
                 self.vertex::<N>(po, tri.v[1]),
@@ -98,9 +104,6 @@ impl<P: Profile> Frame<'_, P> {
             ) else {
                 continue;
             };
-            if a.y.max(b.y).max(c.y) < top || a.y.min(b.y).min(c.y) > bot {
-                continue;
-            }
             per_tri(&mut fill.shader, tri);
             stats.triangles += 1;
             draw_triangle(&[a, b, c], sub, win, fill)?;

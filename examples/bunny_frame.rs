@@ -1,0 +1,68 @@
+//! One bunny benchmark frame (clear + prepare + render in 16-row bands,
+//! Gouraud, RGB565, 16-bit depth), in a function of its own so that
+//! `valgrind --tool=callgrind --toggle-collect=*one_frame*` counts exactly
+//! one frame's instructions.
+//!
+//! `cargo build --release --example bunny_frame && valgrind --tool=callgrind
+//! --toggle-collect='*one_frame*' target/release/examples/bunny_frame [PROFILE]`
+
+use fixshade::geom::{Affine, Vec3};
+use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::mesh::shapes::BUNNY;
+use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
+use fixshade::render::{prepare, render_in_bands, Link, RenderError, Tri, Workspace};
+use fixshade::scene::{Camera, Object, Scene, Shading};
+use fixshade::target::{Depth16, Rgb565Be, Rgb8};
+use std::hint::black_box;
+
+struct Mem<L> {
+    xy: Vec<[i32; 2]>,
+    vals: Vec<L>,
+    tris: Vec<Tri>,
+    heads: Vec<u16>,
+    links: Vec<Link>,
+    band: Vec<[u8; 2]>,
+    z: Vec<u16>,
+}
+
+#[inline(never)]
+fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -> u32 {
+    let ws = Workspace { xy: &mut m.xy, vals: &mut m.vals, tris: &mut m.tris, heads: &mut m.heads, links: &mut m.links };
+    let frame = prepare::<P>(scene, 240, 240, ws).expect("prepare");
+    let mut crc = 0u32;
+    let stats = render_in_bands::<P, Rgb565Be, Depth16, RenderError>(&frame, scene, &mut m.band, Some(&mut m.z), 16, |b| {
+        crc = crc.wrapping_add(b.pixels().len() as u32);
+        Ok(())
+    })
+    .expect("render");
+    stats.pixels ^ crc
+}
+
+fn run<P: Profile>() {
+    let r = |v: f32| P::Real::from_f32(v);
+    let camera = Camera::look_at_f32([0.0, 0.0, 3.922], [0.0; 3], [0.0, 1.0, 0.0], 45.0, 1.0, Some(10.0)).expect("camera");
+    let material = Material { color: Vec3::new(r(1.0), r(1.0), r(1.0)), ka: r(1.0), kd: r(1.0), ks: r(0.0), shininess: r(1.0) };
+    let objects = [Object { mesh: BUNNY, transform: Affine::IDENTITY, material, shading: Shading::Gouraud, cull_backfaces: true }];
+    let lights = [Light::directional(Vec3::from_f32([1.0, 1.0, 1.0]), r(0.8))];
+    let scene = Scene { camera, objects: &objects, lights: &lights, ambient: r(0.2), specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
+    let mut m = Mem {
+        xy: vec![[0; 2]; 4000],
+        vals: vec![P::Lerp::default(); 16000],
+        tris: vec![Tri::default(); 4000],
+        heads: vec![0; 2000],
+        links: vec![Link::default(); 4000],
+        band: vec![[0; 2]; 240 * 16],
+        z: vec![0; 240 * 16],
+    };
+    println!("{}: {} pixels", P::NAME, black_box(one_frame::<P>(black_box(&scene), &mut m)));
+}
+
+fn main() {
+    match std::env::args().nth(1).as_deref().unwrap_or("fast") {
+        "fast" => run::<Fast>(),
+        "precise" => run::<Precise>(),
+        "f32" => run::<F32>(),
+        "f64" => run::<F64>(),
+        p => eprintln!("unknown profile {p}"),
+    }
+}
