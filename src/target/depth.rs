@@ -6,7 +6,10 @@
 //! The test is *less than*: a fragment is drawn when its depth is strictly
 //! smaller than the stored one, so of two fragments at the same depth the
 //! first drawn stays (the z-fighting rule), and a cleared buffer holds the
-//! largest value, which every fragment with `d < 1` passes.
+//! largest value. A 16-bit buffer stores `d30 >> 14`, so a fragment passes
+//! a cleared pixel when `d < 1 − 2^-16` (the last 2^-16 of the depth range,
+//! at the far plane or at infinity, is never drawn); a 32-bit buffer stores
+//! `d30` itself and every fragment with `d ≤ 1` passes.
 
 use super::{check_window, BufferError, Window};
 
@@ -143,6 +146,10 @@ mod tests {
         assert_eq!(Depth16::from_d30(u32::MAX), u16::MAX);
         assert_eq!(Depth16::from_d30(1 << 14), 1);
         assert_eq!(Depth32::from_d30(u32::MAX), 1 << 30);
+        // The far end: 1 - 2^-16 is the first 16-bit value equal to CLEAR.
+        assert!(Depth16::from_d30((1 << 30) - (1 << 14) - 1) < Depth16::CLEAR);
+        assert_eq!(Depth16::from_d30((1 << 30) - (1 << 14)), Depth16::CLEAR);
+        assert!(Depth32::from_d30(1 << 30) < Depth32::CLEAR);
     }
 
     #[test]
