@@ -8,6 +8,15 @@
 use crate::num::Real;
 use core::ops::{Add, Mul, Neg, Sub};
 
+/// Degrees to radians without floating point: `deg · 71 / 4068` (π/180 as
+/// 355/(113·180), reduced; relative error 8.5·10⁻⁸), one multiplication by
+/// an integer and one rounded division. For `Q16` the product must stay
+/// below 32768, so angles are limited to ±461° (beyond, it saturates:
+/// reduce the angle first).
+pub fn radians<R: Real>(deg: R) -> R {
+    deg.mul_i32(71).div(R::from_i32(4068))
+}
+
 /// A 3-vector.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Vec3<R> {

@@ -226,6 +226,29 @@ fn a_full_turn_is_the_identity_within_the_trigonometry_error() {
 }
 
 #[test]
+fn degrees_convert_to_radians_within_the_stated_error() {
+    use crate::geom::radians;
+    use crate::num::{Q16, Q32};
+    for deg in [-360i32, -90, -1, 0, 1, 30, 45, 90, 180, 270, 360] {
+        let exact = (deg as f64).to_radians();
+        // One rounding (half a Q16 step) plus the constant's error.
+        assert!(
+            (radians(Q16::from_i32(deg)).to_f64() - exact).abs()
+                <= 0.5 / 65536.0 + 8.5e-8 * exact.abs(),
+            "{deg}"
+        );
+        assert!(
+            (radians(Q32::from_i32(deg)).to_f64() - exact).abs() <= 8.5e-8 * exact.abs() + 1e-9,
+            "{deg}"
+        );
+        assert!(
+            (radians(deg as f64) - exact).abs() <= 8.5e-8 * exact.abs() + 1e-15,
+            "{deg}"
+        );
+    }
+}
+
+#[test]
 fn triangles_behind_the_eye_draw_nothing_and_the_camera_may_sit_inside_a_mesh() {
     // Eye at z = 6 looking at the origin; a triangle at z = 10 is behind it.
     const POS: [[i16; 3]; 3] = [
