@@ -225,9 +225,11 @@ impl<R: Real> Shade<R> {
     /// clamped to `[0, 1]`.
     pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
         let mut sum = self.ambient;
-        let v = match self.viewer {
-            Viewer::Local => (-p).normalize(),
-            Viewer::Infinite => Vec3::new(R::ZERO, R::ZERO, R::ONE),
+        // V only matters for the specular term: no normalisation without it.
+        let v = match (self.has_specular, self.viewer) {
+            (false, _) => Vec3::ZERO,
+            (true, Viewer::Local) => (-p).normalize(),
+            (true, Viewer::Infinite) => Vec3::new(R::ZERO, R::ZERO, R::ONE),
         };
         for t in &self.terms {
             let l = if t.point {
