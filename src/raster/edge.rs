@@ -31,11 +31,30 @@ impl Edge {
         let d = s * dy; // <= 2^30
         let yc = j as i64 * s as i64 + (s / 2) as i64;
         let n = (x0 - s / 2) as i64 * dy as i64 + (yc - y0 as i64) * dx as i64;
-        let x = n.div_euclid(d as i64) + i64::from(n.rem_euclid(d as i64) != 0); // ceil
-        let e = x * d as i64 - n; // in [0, d)
+        // ceil(n / d) and the error term; 32-bit division when n fits (the
+        // usual case: a 64-bit division is a long library call on a
+        // Cortex-M0).
+        let (x, e) = match i32::try_from(n) {
+            Ok(n) => {
+                let (q, r) = (n.div_euclid(d), n.rem_euclid(d));
+                if r == 0 {
+                    (q, 0)
+                } else {
+                    (q + 1, d - r)
+                }
+            }
+            Err(_) => {
+                let (q, r) = (n.div_euclid(d as i64), n.rem_euclid(d as i64));
+                if r == 0 {
+                    (q as i32, 0)
+                } else {
+                    (q as i32 + 1, d - r as i32)
+                }
+            }
+        };
         Self {
-            x: x as i32,
-            e: e as i32,
+            x,
+            e,
             q: dx.div_euclid(dy),
             r: s * dx.rem_euclid(dy),
             d,
