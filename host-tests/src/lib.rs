@@ -2,7 +2,10 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 pub mod bake;
+pub mod builtin;
+pub mod cli;
 
 pub mod ideal;
 pub mod image;
 pub mod metrics;
+pub mod scene_file;
