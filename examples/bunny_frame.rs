@@ -27,24 +27,65 @@ struct Mem<L> {
 
 #[inline(never)]
 fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -> u32 {
-    let ws = Workspace { xy: &mut m.xy, vals: &mut m.vals, tris: &mut m.tris, heads: &mut m.heads, links: &mut m.links };
+    let ws = Workspace {
+        xy: &mut m.xy,
+        vals: &mut m.vals,
+        tris: &mut m.tris,
+        heads: &mut m.heads,
+        links: &mut m.links,
+    };
     let frame = prepare::<P>(scene, 240, 240, ws).expect("prepare");
     let mut crc = 0u32;
-    let stats = render_in_bands::<P, Rgb565Be, Depth16, RenderError>(&frame, scene, &mut m.band, Some(&mut m.z), 16, |b| {
-        crc = crc.wrapping_add(b.pixels().len() as u32);
-        Ok(())
-    })
+    let stats = render_in_bands::<P, Rgb565Be, Depth16, RenderError>(
+        &frame,
+        scene,
+        &mut m.band,
+        Some(&mut m.z),
+        16,
+        |b| {
+            crc = crc.wrapping_add(b.pixels().len() as u32);
+            Ok(())
+        },
+    )
     .expect("render");
     stats.pixels ^ crc
 }
 
 fn run<P: Profile>() {
     let r = |v: f32| P::Real::from_f32(v);
-    let camera = Camera::look_at_f32([0.0, 0.0, 3.922], [0.0; 3], [0.0, 1.0, 0.0], 45.0, 1.0, Some(10.0)).expect("camera");
-    let material = Material { color: Vec3::new(r(1.0), r(1.0), r(1.0)), ka: r(1.0), kd: r(1.0), ks: r(0.0), shininess: r(1.0) };
-    let objects = [Object { mesh: BUNNY, transform: Affine::IDENTITY, material, shading: Shading::Gouraud, cull_backfaces: true }];
+    let camera = Camera::look_at_f32(
+        [0.0, 0.0, 3.922],
+        [0.0; 3],
+        [0.0, 1.0, 0.0],
+        45.0,
+        1.0,
+        Some(10.0),
+    )
+    .expect("camera");
+    let material = Material {
+        color: Vec3::new(r(1.0), r(1.0), r(1.0)),
+        ka: r(1.0),
+        kd: r(1.0),
+        ks: r(0.0),
+        shininess: r(1.0),
+    };
+    let objects = [Object {
+        mesh: BUNNY,
+        transform: Affine::IDENTITY,
+        material,
+        shading: Shading::Gouraud,
+        cull_backfaces: true,
+    }];
     let lights = [Light::directional(Vec3::from_f32([1.0, 1.0, 1.0]), r(0.8))];
-    let scene = Scene { camera, objects: &objects, lights: &lights, ambient: r(0.2), specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
+    let scene = Scene {
+        camera,
+        objects: &objects,
+        lights: &lights,
+        ambient: r(0.2),
+        specular: Specular::Phong,
+        viewer: Viewer::Local,
+        background: Rgb8::BLACK,
+    };
     let mut m = Mem {
         xy: vec![[0; 2]; 4000],
         vals: vec![P::Lerp::default(); 16000],
@@ -54,7 +95,11 @@ fn run<P: Profile>() {
         band: vec![[0; 2]; 240 * 16],
         z: vec![0; 240 * 16],
     };
-    println!("{}: {} pixels", P::NAME, black_box(one_frame::<P>(black_box(&scene), &mut m)));
+    println!(
+        "{}: {} pixels",
+        P::NAME,
+        black_box(one_frame::<P>(black_box(&scene), &mut m))
+    );
 }
 
 fn main() {

@@ -4,6 +4,8 @@
 pub mod bake;
 pub mod builtin;
 pub mod cli;
+pub mod compare;
+pub mod core_render;
 
 pub mod ideal;
 pub mod image;

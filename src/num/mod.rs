@@ -15,7 +15,7 @@ mod edge_tests;
 
 pub use self::fixed_point::{Q16, Q32};
 pub use self::profile::{
-    F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, COORD_FRAC_BITS, DEPTH_FRAC_BITS, F32,
-    F64, UNIT_FRAC_BITS,
+    F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, COORD_FRAC_BITS, COORD_FRAC_BITS_PC,
+    DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
 };
 pub use self::real::Real;

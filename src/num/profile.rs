@@ -19,7 +19,8 @@
 //! Interpolated fixed-point formats (all `i32`, within ±2^30, see
 //! [`crate::raster`]): colour levels `l · 2^16` for `l` in `0..=255`;
 //! depth `d · 2^30` for `d` in `[0, 1]`; unit-vector components `n · 2^30`;
-//! eye-space coordinates `p · 2^16` (±16384 units).
+//! eye-space coordinates `p · 2^16` (±16384 units; `p · 2^22`, ±512 units,
+//! in the perspective-correct profiles).
 //!
 //! All profiles snap vertices to the same subpixel grid
 //! ([`SubpixelBits::DEFAULT`], 1/16 pixel), so they cover the same pixels
@@ -31,8 +32,15 @@ use core::fmt::Debug;
 
 /// Fraction bits of an interpolated fixed-point unit-vector component.
 pub const UNIT_FRAC_BITS: u32 = 30;
-/// Fraction bits of an interpolated fixed-point eye-space coordinate.
+/// Fraction bits of an interpolated fixed-point eye-space coordinate
+/// (affine profiles: ±16384 units).
 pub const COORD_FRAC_BITS: u32 = 16;
+/// Fraction bits of an eye-space coordinate in the perspective-correct
+/// fixed profiles (±512 units). Those interpolate `p · near/w`, which far
+/// from the eye is a small fraction of `p`: 16 bits would leave steps of
+/// 2^-16·w/near units (1/1300 unit at w = 50·near), enough to move a
+/// highlight by several levels.
+pub const COORD_FRAC_BITS_PC: u32 = 22;
 /// Fraction bits of an interpolated fixed-point depth.
 pub const DEPTH_FRAC_BITS: u32 = 30;
 
@@ -96,11 +104,22 @@ macro_rules! fixed_profile {
             }
             #[inline]
             fn coord(r: $real) -> i32 {
-                r.to_fixed_i32(COORD_FRAC_BITS)
+                r.to_fixed_i32(if $pc {
+                    COORD_FRAC_BITS_PC
+                } else {
+                    COORD_FRAC_BITS
+                })
             }
             #[inline]
             fn coord_back(l: i32) -> $real {
-                <$real>::from_fixed_i32(l, COORD_FRAC_BITS)
+                <$real>::from_fixed_i32(
+                    l,
+                    if $pc {
+                        COORD_FRAC_BITS_PC
+                    } else {
+                        COORD_FRAC_BITS
+                    },
+                )
             }
         }
     };

@@ -6,7 +6,8 @@
 //! * [`Cli`] is the clap parser; [`Command`] has one variant per
 //!   subcommand, holding that subcommand's argument struct;
 //!   [`Command::run`] dispatches to the subcommand's `run` function.
-//! * One module per subcommand: [`scenes`], [`bake`], [`ideal`], each with
+//! * One module per subcommand: [`scenes`], [`bake`], [`ideal`],
+//!   [`render`], [`compare`], each with
 //!   its `...Args` struct and `pub fn run(&Args) -> Result<(), CliError>`.
 //! * Shared helpers in [`common`]: [`SceneArgs`] (a scene file or
 //!   `--scene NAME`, flattened into a subcommand's arguments, with
@@ -24,8 +25,10 @@
 
 pub mod bake;
 pub mod common;
+pub mod compare;
 mod error;
 pub mod ideal;
+pub mod render;
 pub mod scenes;
 
 use std::ffi::OsString;
@@ -55,6 +58,11 @@ pub enum Command {
     Bake(bake::BakeArgs),
     /// Render a scene with the ideal f64 reference renderer to PNG.
     Ideal(ideal::IdealArgs),
+    /// Render a scene with the fixed-point core to PNG (`--crc` prints the
+    /// frame's CRC-32).
+    Render(render::RenderArgs),
+    /// Compare a profile with its f64 twin and the ideal reference.
+    Compare(compare::CompareArgs),
 }
 
 impl Command {
@@ -64,6 +72,8 @@ impl Command {
             Self::Scenes(args) => scenes::run(args),
             Self::Bake(args) => bake::run(args),
             Self::Ideal(args) => ideal::run(args),
+            Self::Render(args) => render::run(args),
+            Self::Compare(args) => compare::run(args),
         }
     }
 }

@@ -1,0 +1,368 @@
+//! Rendering a scene description with the no_std core, in any profile.
+//!
+//! The host renders exactly as a firmware does: the frame is prepared once,
+//! then rasterized in bands of [`BAND_ROWS`] rows with a band-sized 16-bit
+//! depth buffer, so the bytes (and their CRC-32) are the ones a Cortex-M
+//! produces with the same profile. Coverage is read from the depth band:
+//! a pixel is covered when some fragment passed the depth test there.
+
+use crate::ideal::{LightKind, Shading as IShading, SpecularModel};
+use crate::scene_file::{PixelFormat, SceneDesc};
+use fixshade::geom::{Affine, Vec3};
+use fixshade::illum::{Light, LightKind as CLightKind, Material, Specular, Viewer};
+use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Real, F32, F64};
+use fixshade::render::{prepare, Link, RenderError, Tri, Workspace};
+use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
+use fixshade::target::{
+    Depth16, DepthBuffer, FrameBuf, Gray8, PixelFormat as CorePixelFormat, Rgb565Be, Rgb8, Rgb888,
+};
+use std::fmt;
+
+/// Rows per band, as in the firmware.
+pub const BAND_ROWS: u32 = 16;
+
+/// The core's numeric profiles, by name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CoreProfile {
+    /// Q16.16, affine.
+    Fast,
+    /// Q32.32, affine.
+    Precise,
+    /// `f32`, affine.
+    F32,
+    /// `f64`, affine: the float twin of the affine profiles.
+    F64,
+    /// Q16.16, perspective-correct.
+    FastPc,
+    /// Q32.32, perspective-correct.
+    PrecisePc,
+    /// `f32`, perspective-correct.
+    F32Pc,
+    /// `f64`, perspective-correct: the float twin of the `-pc` profiles.
+    F64Pc,
+}
+
+impl CoreProfile {
+    /// Every profile.
+    pub const ALL: [Self; 8] = [
+        Self::Fast,
+        Self::Precise,
+        Self::F32,
+        Self::F64,
+        Self::FastPc,
+        Self::PrecisePc,
+        Self::F32Pc,
+        Self::F64Pc,
+    ];
+
+    /// Its name (`fast`, `precise-pc`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fast => Fast::NAME,
+            Self::Precise => Precise::NAME,
+            Self::F32 => F32::NAME,
+            Self::F64 => F64::NAME,
+            Self::FastPc => FastPc::NAME,
+            Self::PrecisePc => PrecisePc::NAME,
+            Self::F32Pc => F32Pc::NAME,
+            Self::F64Pc => F64Pc::NAME,
+        }
+    }
+
+    /// The profile called `name`.
+    pub fn parse(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// The float twin that isolates this profile's quantization error.
+    pub fn twin(self) -> Self {
+        if self.perspective() {
+            Self::F64Pc
+        } else {
+            Self::F64
+        }
+    }
+
+    /// Whether it interpolates perspective-correctly.
+    pub fn perspective(self) -> bool {
+        matches!(
+            self,
+            Self::FastPc | Self::PrecisePc | Self::F32Pc | Self::F64Pc
+        )
+    }
+
+    /// Whether it is fixed point.
+    pub fn is_fixed(self) -> bool {
+        matches!(
+            self,
+            Self::Fast | Self::Precise | Self::FastPc | Self::PrecisePc
+        )
+    }
+}
+
+impl From<crate::scene_file::Profile> for CoreProfile {
+    fn from(p: crate::scene_file::Profile) -> Self {
+        use crate::scene_file::Profile as P;
+        match p {
+            P::Fast => Self::Fast,
+            P::Precise => Self::Precise,
+            P::F32 => Self::F32,
+            P::F64 => Self::F64,
+        }
+    }
+}
+
+/// A frame rendered by the core.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CoreFrame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// The frame as 8-bit RGB (decoded from the pixel format).
+    pub rgb: Vec<[u8; 3]>,
+    /// Pixels some fragment was drawn at.
+    pub covered: Vec<bool>,
+    /// The frame buffer's bytes in the scene's pixel format (RGB565
+    /// big-endian), row-major.
+    pub bytes: Vec<u8>,
+    /// Prepared vertices.
+    pub vertices: usize,
+    /// Prepared triangles.
+    pub triangles: usize,
+    /// Bytes of the prepared frame (without scratch).
+    pub prepared_bytes: usize,
+    /// Pixels written (depth-test passes).
+    pub pixels_drawn: u32,
+}
+
+/// Why the core could not render a scene.
+#[derive(Debug)]
+pub enum CoreError {
+    /// The scene does not convert (a camera the core refuses).
+    Scene(SceneError),
+    /// Preparing or rendering failed.
+    Render(RenderError),
+}
+
+impl fmt::Display for CoreError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Scene(e) => write!(f, "{e}"),
+            Self::Render(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for CoreError {}
+
+impl From<RenderError> for CoreError {
+    fn from(e: RenderError) -> Self {
+        Self::Render(e)
+    }
+}
+
+impl From<SceneError> for CoreError {
+    fn from(e: SceneError) -> Self {
+        Self::Scene(e)
+    }
+}
+
+fn v3<R: Real>(v: [f64; 3]) -> Vec3<R> {
+    Vec3::new(R::from_f64(v[0]), R::from_f64(v[1]), R::from_f64(v[2]))
+}
+
+/// Renders `desc` with `profile` (the scene's own when `None`).
+///
+/// # Errors
+/// [`CoreError`] when the core refuses the camera or the workspace (sized
+/// from the scene's meshes) does not suffice.
+pub fn render_core(desc: &SceneDesc, profile: Option<CoreProfile>) -> Result<CoreFrame, CoreError> {
+    match profile.unwrap_or_else(|| desc.profile.into()) {
+        CoreProfile::Fast => render_with::<Fast>(desc),
+        CoreProfile::Precise => render_with::<Precise>(desc),
+        CoreProfile::F32 => render_with::<F32>(desc),
+        CoreProfile::F64 => render_with::<F64>(desc),
+        CoreProfile::FastPc => render_with::<FastPc>(desc),
+        CoreProfile::PrecisePc => render_with::<PrecisePc>(desc),
+        CoreProfile::F32Pc => render_with::<F32Pc>(desc),
+        CoreProfile::F64Pc => render_with::<F64Pc>(desc),
+    }
+}
+
+/// Renders `desc` with profile `P`.
+///
+/// # Errors
+/// As [`render_core`].
+pub fn render_with<P: Profile>(desc: &SceneDesc) -> Result<CoreFrame, CoreError> {
+    match desc.pixel_format {
+        PixelFormat::Gray8 => render_format::<P, Gray8>(desc),
+        PixelFormat::Rgb565 => render_format::<P, Rgb565Be>(desc),
+        PixelFormat::Rgb888 => render_format::<P, Rgb888>(desc),
+    }
+}
+
+fn render_format<P: Profile, F: CorePixelFormat>(desc: &SceneDesc) -> Result<CoreFrame, CoreError> {
+    let c = &desc.camera;
+    let camera = Camera::look_at(
+        v3(c.eye),
+        v3(c.target),
+        v3(c.up),
+        P::Real::from_f64(c.fov_y_deg.to_radians()),
+        P::Real::from_f64(c.near),
+        c.far.map(P::Real::from_f64),
+    )?;
+    let objects: Vec<Object<'_, P::Real>> = desc
+        .objects
+        .iter()
+        .map(|o| Object {
+            mesh: o.mesh.mesh(),
+            transform: Affine::from_parts(
+                P::Real::from_f64(o.transform.scale),
+                v3(o.transform.rotation_rad),
+                v3(o.transform.translation),
+            ),
+            material: Material {
+                color: v3(o.material.color),
+                ka: P::Real::from_f64(o.material.ka),
+                kd: P::Real::from_f64(o.material.kd),
+                ks: P::Real::from_f64(o.material.ks),
+                shininess: P::Real::from_f64(o.material.shininess),
+            },
+            shading: match o.shading {
+                IShading::Flat => Shading::Flat,
+                IShading::Gouraud => Shading::Gouraud,
+                IShading::Phong => Shading::Phong,
+            },
+            cull_backfaces: o.cull_backfaces,
+        })
+        .collect();
+    let lights: Vec<Light<P::Real>> = desc
+        .lights
+        .iter()
+        .map(|l| Light {
+            kind: match l.kind {
+                LightKind::Point { position } => CLightKind::Point(v3(position)),
+                LightKind::Directional { direction } => CLightKind::Directional(v3(direction)),
+            },
+            intensity: P::Real::from_f64(l.intensity),
+            color: v3(l.color),
+        })
+        .collect();
+    let [r, g, b] = desc.background;
+    let scene = Scene {
+        camera,
+        objects: &objects,
+        lights: &lights,
+        ambient: P::Real::from_f64(desc.ambient),
+        specular: match desc.specular {
+            SpecularModel::Phong => Specular::Phong,
+            SpecularModel::Blinn => Specular::Blinn,
+        },
+        viewer: Viewer::Local,
+        background: Rgb8::new(r, g, b),
+    };
+
+    // Workspace sized from the meshes: every corner may make a vertex, and
+    // clipping adds at most 7 vertices and 7 triangles per triangle.
+    let tris: usize = objects.iter().map(|o| o.mesh.triangle_count()).sum();
+    let verts = (tris * 3 + tris * 14).min(u16::MAX as usize - 1);
+    let heads = objects
+        .iter()
+        .map(|o| o.mesh.vertex_count())
+        .max()
+        .unwrap_or(0);
+    let mut xy = vec![[0i32; 2]; verts];
+    let mut vals = vec![P::Lerp::default(); verts * 8];
+    let mut tri_buf = vec![Tri::default(); tris * 8];
+    let mut heads = vec![0u16; heads];
+    let mut links = vec![Link::default(); verts];
+    let ws = Workspace {
+        xy: &mut xy,
+        vals: &mut vals,
+        tris: &mut tri_buf,
+        heads: &mut heads,
+        links: &mut links,
+    };
+    let (w, h) = (desc.width, desc.height);
+    let frame = prepare::<P>(&scene, w, h, ws)?;
+
+    let mut out = CoreFrame {
+        width: w,
+        height: h,
+        rgb: Vec::with_capacity((w * h) as usize),
+        covered: Vec::with_capacity((w * h) as usize),
+        bytes: Vec::with_capacity((w * h) as usize * F::BYTES),
+        vertices: frame.vertex_count(),
+        triangles: frame.triangle_count(),
+        prepared_bytes: frame.bytes_used(),
+        pixels_drawn: 0,
+    };
+    let mut band = vec![F::Raw::default(); (w * BAND_ROWS) as usize];
+    let mut depth = vec![0u16; (w * BAND_ROWS) as usize];
+    let mut y0 = 0;
+    while y0 < h {
+        let y1 = (y0 + BAND_ROWS).min(h);
+        let n = ((y1 - y0) * w) as usize;
+        let mut fb = FrameBuf::<F>::band(&mut band[..n], w, y0, y1).map_err(RenderError::from)?;
+        fixshade::target::Target::clear(&mut fb, scene.background);
+        let mut db =
+            DepthBuffer::<Depth16>::new(&mut depth[..n], w, y0, y1).map_err(RenderError::from)?;
+        let stats = frame.render(&scene, &mut fb, Some(&mut db))?;
+        out.pixels_drawn += stats.pixels;
+        out.bytes.extend(fb.bytes());
+        out.rgb.extend(fb.pixels().iter().map(|&p| {
+            let c = F::decode(p);
+            [c.r, c.g, c.b]
+        }));
+        for y in y0..y1 {
+            for x in 0..w {
+                out.covered
+                    .push(db.get(x, y).is_some_and(|d| d != u16::MAX));
+            }
+        }
+        y0 = y1;
+    }
+    Ok(out)
+}
+
+/// CRC-32 (IEEE 802.3, reflected, as zlib and `crc32fast` compute it).
+pub fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= b as u32;
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xedb8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crc32_of_known_strings() {
+        assert_eq!(crc32(b""), 0);
+        assert_eq!(crc32(b"123456789"), 0xcbf4_3926);
+        assert_eq!(
+            crc32(b"The quick brown fox jumps over the lazy dog"),
+            0x414f_a339
+        );
+    }
+
+    #[test]
+    fn profiles_parse_by_name_and_have_twins() {
+        for p in CoreProfile::ALL {
+            assert_eq!(CoreProfile::parse(p.name()), Some(p));
+            assert_eq!(p.twin().perspective(), p.perspective());
+        }
+        assert_eq!(CoreProfile::parse("fast-pc"), Some(CoreProfile::FastPc));
+        assert_eq!(CoreProfile::parse("slow"), None);
+    }
+}

@@ -1,0 +1,109 @@
+//! Accuracy budgets for every built-in scene and profile.
+//!
+//! Against the float twin (quantization alone): `precise` covers exactly
+//! the twin's pixels and stays within 1 level (Gouraud, flat) or 2 levels
+//! (Phong) on every pixel; `fast` (Q16.16) may snap a few vertices to the
+//! neighbouring subpixel (its projection is within 1.5 subpixels) and so
+//! differ in coverage at a handful of silhouette pixels.
+//!
+//! Against the ideal reference (everything: subpixel snapping, affine
+//! interpolation, quantization), every profile: coverage differs only at a
+//! few pixels whose centres lie within snapping distance of an edge, and
+//! the mean error stays below one level. The bounds below are the measured
+//! figures with a margin; `docs/accuracy.md` lists the measurements.
+
+use fixshade_host::builtin::{builtin_scenes, load_builtin};
+use fixshade_host::compare::compare_scene;
+use fixshade_host::core_render::CoreProfile;
+use fixshade_host::ideal::Shading;
+
+/// Bounds against the ideal reference: (coverage mismatches, mean error in
+/// levels, share of pixels more than one level off). Affine profiles
+/// interpolate linearly in screen space while the ideal is
+/// perspective-correct: up to 31 % of a frame's pixels differ by more than
+/// a level (measured: 0.311 on the hot-spot grid), the mean stays below
+/// 0.6. The perspective-correct profiles measure 0.0072 and 0.125.
+fn ideal_bound(p: CoreProfile) -> (u64, f64, f64) {
+    if p.perspective() {
+        (6, 0.15, 0.01)
+    } else {
+        (6, 0.7, 0.35)
+    }
+}
+
+#[test]
+fn every_scene_meets_its_budgets() {
+    let mut lines = vec![];
+    for &(name, _, _) in builtin_scenes() {
+        let desc = load_builtin(name).unwrap();
+        let phong = desc.objects.iter().any(|o| o.shading == Shading::Phong);
+        for p in CoreProfile::ALL {
+            let c = compare_scene(&desc, p).unwrap();
+            let (f, i) = (&c.metrics.vs_float, &c.metrics.vs_ideal);
+            lines.push(format!(
+                "{name:28} {:10} twin: cov {:2} max {:3} mean {:.4} | ideal: cov {:2} max {:3} mean {:.3} >1: {:.4}",
+                p.name(),
+                f.coverage_mismatch,
+                f.max_abs_error,
+                f.mean_abs_error,
+                i.coverage_mismatch,
+                i.max_abs_error,
+                i.mean_abs_error,
+                i.share_over_1
+            ));
+            if matches!(p, CoreProfile::Fast | CoreProfile::FastPc) {
+                // Q16 projection: a few vertices one subpixel off, a few
+                // silhouette pixels covered differently (measured 3-4).
+                assert!(
+                    f.coverage_mismatch <= 6,
+                    "{name} {}: coverage {}",
+                    p.name(),
+                    f.coverage_mismatch
+                );
+                assert!(
+                    f.mean_abs_error <= 0.05,
+                    "{name} {}: mean {}",
+                    p.name(),
+                    f.mean_abs_error
+                );
+            } else {
+                assert_eq!(
+                    f.coverage_mismatch,
+                    0,
+                    "{name} {}: coverage differs from the twin",
+                    p.name()
+                );
+                let bound = if phong { 2 } else { 1 };
+                assert!(
+                    f.max_abs_error <= bound,
+                    "{name} {}: {} levels from the twin",
+                    p.name(),
+                    f.max_abs_error
+                );
+            }
+            let (cov, mean, share) = ideal_bound(p);
+            if std::env::var("BUDGETS_MEASURE").is_ok() {
+                continue;
+            }
+            assert!(
+                i.coverage_mismatch <= cov,
+                "{name} {}: {} coverage mismatches vs ideal",
+                p.name(),
+                i.coverage_mismatch
+            );
+            assert!(
+                i.mean_abs_error <= mean,
+                "{name} {}: mean {} vs ideal",
+                p.name(),
+                i.mean_abs_error
+            );
+            assert!(
+                i.share_over_1 <= share,
+                "{name} {}: share {} vs ideal",
+                p.name(),
+                i.share_over_1
+            );
+        }
+    }
+    println!("{}", lines.join("\n"));
+}
