@@ -178,31 +178,47 @@ fn v3<R: Real>(v: [f64; 3]) -> Vec3<R> {
 /// [`CoreError`] when the core refuses the camera or the workspace (sized
 /// from the scene's meshes) does not suffice.
 pub fn render_core(desc: &SceneDesc, profile: Option<CoreProfile>) -> Result<CoreFrame, CoreError> {
-    match profile.unwrap_or_else(|| desc.profile.into()) {
-        CoreProfile::Fast => render_with::<Fast>(desc),
-        CoreProfile::Precise => render_with::<Precise>(desc),
-        CoreProfile::F32 => render_with::<F32>(desc),
-        CoreProfile::F64 => render_with::<F64>(desc),
-        CoreProfile::FastPc => render_with::<FastPc>(desc),
-        CoreProfile::PrecisePc => render_with::<PrecisePc>(desc),
-        CoreProfile::F32Pc => render_with::<F32Pc>(desc),
-        CoreProfile::F64Pc => render_with::<F64Pc>(desc),
-    }
+    render_core_rows(desc, profile, BAND_ROWS)
 }
 
-/// Renders `desc` with profile `P`.
+/// Renders `desc` with `profile` in bands of `rows` rows (at least 1).
 ///
 /// # Errors
 /// As [`render_core`].
-pub fn render_with<P: Profile>(desc: &SceneDesc) -> Result<CoreFrame, CoreError> {
-    match desc.pixel_format {
-        PixelFormat::Gray8 => render_format::<P, Gray8>(desc),
-        PixelFormat::Rgb565 => render_format::<P, Rgb565Be>(desc),
-        PixelFormat::Rgb888 => render_format::<P, Rgb888>(desc),
+pub fn render_core_rows(
+    desc: &SceneDesc,
+    profile: Option<CoreProfile>,
+    rows: u32,
+) -> Result<CoreFrame, CoreError> {
+    let rows = rows.max(1);
+    match profile.unwrap_or_else(|| desc.profile.into()) {
+        CoreProfile::Fast => render_with::<Fast>(desc, rows),
+        CoreProfile::Precise => render_with::<Precise>(desc, rows),
+        CoreProfile::F32 => render_with::<F32>(desc, rows),
+        CoreProfile::F64 => render_with::<F64>(desc, rows),
+        CoreProfile::FastPc => render_with::<FastPc>(desc, rows),
+        CoreProfile::PrecisePc => render_with::<PrecisePc>(desc, rows),
+        CoreProfile::F32Pc => render_with::<F32Pc>(desc, rows),
+        CoreProfile::F64Pc => render_with::<F64Pc>(desc, rows),
     }
 }
 
-fn render_format<P: Profile, F: CorePixelFormat>(desc: &SceneDesc) -> Result<CoreFrame, CoreError> {
+/// Renders `desc` with profile `P` in bands of `rows` rows.
+///
+/// # Errors
+/// As [`render_core`].
+pub fn render_with<P: Profile>(desc: &SceneDesc, rows: u32) -> Result<CoreFrame, CoreError> {
+    match desc.pixel_format {
+        PixelFormat::Gray8 => render_format::<P, Gray8>(desc, rows),
+        PixelFormat::Rgb565 => render_format::<P, Rgb565Be>(desc, rows),
+        PixelFormat::Rgb888 => render_format::<P, Rgb888>(desc, rows),
+    }
+}
+
+fn render_format<P: Profile, F: CorePixelFormat>(
+    desc: &SceneDesc,
+    rows: u32,
+) -> Result<CoreFrame, CoreError> {
     let c = &desc.camera;
     let camera = Camera::look_at(
         v3(c.eye),
@@ -298,11 +314,12 @@ fn render_format<P: Profile, F: CorePixelFormat>(desc: &SceneDesc) -> Result<Cor
         prepared_bytes: frame.bytes_used(),
         pixels_drawn: 0,
     };
-    let mut band = vec![F::Raw::default(); (w * BAND_ROWS) as usize];
-    let mut depth = vec![0u16; (w * BAND_ROWS) as usize];
+    let rows = rows.max(1);
+    let mut band = vec![F::Raw::default(); (w * rows.min(h.max(1))) as usize];
+    let mut depth = vec![0u16; band.len()];
     let mut y0 = 0;
     while y0 < h {
-        let y1 = (y0 + BAND_ROWS).min(h);
+        let y1 = (y0 + rows).min(h);
         let n = ((y1 - y0) * w) as usize;
         let mut fb = FrameBuf::<F>::band(&mut band[..n], w, y0, y1).map_err(RenderError::from)?;
         fixshade::target::Target::clear(&mut fb, scene.background);
