@@ -29,36 +29,50 @@ impl Edge {
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
         let d = s * dy; // <= 2^30
-        let yc = j as i64 * s as i64 + (s / 2) as i64;
-        let n = (x0 - s / 2) as i64 * dy as i64 + (yc - y0 as i64) * dx as i64;
-        // ceil(n / d) and the error term; 32-bit division when n fits (the
-        // usual case: a 64-bit division is a long library call on a
-        // Cortex-M0).
-        let (x, e) = match i32::try_from(n) {
-            Ok(n) => {
-                let (q, r) = (n.div_euclid(d), n.rem_euclid(d));
-                if r == 0 {
-                    (q, 0)
-                } else {
-                    (q + 1, d - r)
-                }
+                        // One division per edge: dx = q·dy + rem, 0 <= rem < dy.
+        let (q, rem) = floor_divmod(dx, dy);
+        let r = s * rem;
+        let t = j as i64 * s as i64 + (s / 2) as i64 - y0 as i64; // yc - y0
+        let (x, e) = if (0..s as i64).contains(&t) {
+            // The edge's first row (t < S): with A = x0 - S/2 + t·q = S·a + b
+            // the numerator is d·a + N', N' = b·dy + t·rem in [0, 2d), so
+            // ceil(N'/d) is 0, 1 or 2: no second division, all in 32 bits
+            // (|t·q| <= |dx| < 2^22·2^8; b·dy, t·rem < 2^30).
+            let t = t as i32;
+            let a_full = x0 - s / 2 + t * q;
+            let (a, b) = (a_full >> sub.get(), a_full & (s - 1));
+            let np = b * dy + t * rem;
+            if np == 0 {
+                (a, 0)
+            } else if np <= d {
+                (a + 1, d - np)
+            } else {
+                (a + 2, 2 * d - np)
             }
-            Err(_) => {
-                let (q, r) = (n.div_euclid(d as i64), n.rem_euclid(d as i64));
-                if r == 0 {
-                    (q as i32, 0)
-                } else {
-                    (q as i32 + 1, d - r as i32)
+        } else {
+            // Any other row (a band starting inside the triangle): the
+            // numerator in 64 bits, divided in 32 bits when it fits.
+            let n = (x0 - s / 2) as i64 * dy as i64 + t * dx as i64;
+            match i32::try_from(n) {
+                Ok(n) => {
+                    let (k, m) = floor_divmod(n, d);
+                    if m == 0 {
+                        (k, 0)
+                    } else {
+                        (k + 1, d - m)
+                    }
+                }
+                Err(_) => {
+                    let (k, m) = (n.div_euclid(d as i64), n.rem_euclid(d as i64));
+                    if m == 0 {
+                        (k as i32, 0)
+                    } else {
+                        (k as i32 + 1, d - m as i32)
+                    }
                 }
             }
         };
-        Self {
-            x,
-            e,
-            q: dx.div_euclid(dy),
-            r: s * dx.rem_euclid(dy),
-            d,
-        }
+        Self { x, e, q, r, d }
     }
 
     /// Advances one row; returns `true` when the column moved one further
@@ -79,5 +93,18 @@ impl Edge {
     /// The whole-column part of a step, `⌊DX/DY⌋`.
     pub fn quotient(&self) -> i32 {
         self.q
+    }
+}
+
+/// `(⌊n/d⌋, n mod d)` for `d > 0` with a single division.
+#[inline]
+fn floor_divmod(n: i32, d: i32) -> (i32, i32) {
+    let d = d.max(1);
+    let q = n / d;
+    let m = n - q * d;
+    if m < 0 {
+        (q - 1, m + d)
+    } else {
+        (q, m)
     }
 }

@@ -13,6 +13,13 @@ use crate::target::{DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 pub trait Shader<L: Lerp, const N: usize> {
     /// The colour for attributes `a`.
     fn shade(&self, a: &[L; N]) -> Rgb8;
+
+    /// `Some(colour)` when the colour does not depend on the attributes:
+    /// the span stage then encodes it once per span instead of once per
+    /// pixel.
+    fn constant(&self) -> Option<Rgb8> {
+        None
+    }
 }
 
 /// One colour for the whole triangle (flat shading); attributes ignored.
@@ -23,6 +30,11 @@ impl<L: Lerp, const N: usize> Shader<L, N> for Flat {
     #[inline(always)]
     fn shade(&self, _a: &[L; N]) -> Rgb8 {
         self.0
+    }
+
+    #[inline(always)]
+    fn constant(&self) -> Option<Rgb8> {
+        Some(self.0)
     }
 }
 
@@ -130,6 +142,93 @@ impl<'t, 'd, 'b, T: Target, D: DepthFormat, S> Fill<'t, 'd, 'b, T, D, S> {
     }
 }
 
+impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
+    #[inline(always)]
+    fn fill<L: Lerp, const N: usize>(
+        &mut self,
+        s: &Span<L, N>,
+        color: impl Fn(&[L; N]) -> <T::Format as PixelFormat>::Raw,
+    ) {
+        let (target, depth, drawn) = (
+            &mut *self.target,
+            self.depth.as_deref_mut(),
+            &mut self.drawn,
+        );
+        fill_span::<L, N, T, D>(target, depth, drawn, s, color);
+    }
+}
+
+/// The pixel loop of a span: depth test (when a depth buffer is given),
+/// attribute stepping, `color` per pixel written.
+#[inline(always)]
+fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
+    target: &mut T,
+    depth: Option<&mut DepthBuffer<'_, D>>,
+    drawn: &mut u32,
+    s: &Span<L, N>,
+    color: impl Fn(&[L; N]) -> <T::Format as PixelFormat>::Raw,
+) {
+    let Span {
+        y,
+        x0,
+        x1,
+        z,
+        dz,
+        mut a,
+        ref da,
+    } = *s;
+    let range = x0 as usize..x1 as usize;
+    let depth_row = match depth {
+        Some(d) => match d.row_mut(y).and_then(|r| r.get_mut(range.clone())) {
+            Some(r) => Some(r),
+            None => return,
+        },
+        None => None,
+    };
+    match depth_row {
+        Some(drow) => {
+            let mut z = z;
+            if let Some(row) = target.row_mut(y).and_then(|r| r.get_mut(range)) {
+                for (p, zb) in row.iter_mut().zip(drow.iter_mut()) {
+                    let zd = D::from_d30(z.depth30());
+                    if zd < *zb {
+                        *zb = zd;
+                        *p = color(&a);
+                        *drawn += 1;
+                    }
+                    z = z.add(dz);
+                    step_all(&mut a, da);
+                }
+            } else {
+                for (x, zb) in (x0..x1).zip(drow.iter_mut()) {
+                    let zd = D::from_d30(z.depth30());
+                    if zd < *zb {
+                        *zb = zd;
+                        target.write_pixel(x, y, color(&a));
+                        *drawn += 1;
+                    }
+                    z = z.add(dz);
+                    step_all(&mut a, da);
+                }
+            }
+        }
+        None => {
+            *drawn += x1 - x0;
+            if let Some(row) = target.row_mut(y).and_then(|r| r.get_mut(range)) {
+                for p in row.iter_mut() {
+                    *p = color(&a);
+                    step_all(&mut a, da);
+                }
+            } else {
+                for x in x0..x1 {
+                    target.write_pixel(x, y, color(&a));
+                    step_all(&mut a, da);
+                }
+            }
+        }
+    }
+}
+
 #[inline(always)]
 fn step_all<L: Lerp, const N: usize>(a: &mut [L; N], da: &[L; N]) {
     for (v, d) in a.iter_mut().zip(da.iter()) {
@@ -145,67 +244,19 @@ where
     S: Shader<L, N>,
 {
     fn span(&mut self, s: &Span<L, N>) {
-        let Span {
-            y,
-            x0,
-            x1,
-            z,
-            dz,
-            mut a,
-            ref da,
-        } = *s;
-        let range = x0 as usize..x1 as usize;
-        let shader = &self.shader;
-        let depth_row = match self.depth.as_deref_mut() {
-            Some(d) => match d.row_mut(y).and_then(|r| r.get_mut(range.clone())) {
-                Some(r) => Some(r),
-                None => return,
-            },
-            None => None,
-        };
-        match depth_row {
-            Some(drow) => {
-                let mut z = z;
-                if let Some(row) = self.target.row_mut(y).and_then(|r| r.get_mut(range)) {
-                    for (p, zb) in row.iter_mut().zip(drow.iter_mut()) {
-                        let zd = D::from_d30(z.depth30());
-                        if zd < *zb {
-                            *zb = zd;
-                            *p = T::Format::encode(shader.shade(&a));
-                            self.drawn += 1;
-                        }
-                        z = z.add(dz);
-                        step_all(&mut a, da);
-                    }
-                } else {
-                    for (x, zb) in (x0..x1).zip(drow.iter_mut()) {
-                        let zd = D::from_d30(z.depth30());
-                        if zd < *zb {
-                            *zb = zd;
-                            let c = T::Format::encode(shader.shade(&a));
-                            self.target.write_pixel(x, y, c);
-                            self.drawn += 1;
-                        }
-                        z = z.add(dz);
-                        step_all(&mut a, da);
-                    }
-                }
-            }
-            None => {
-                self.drawn += x1 - x0;
-                if let Some(row) = self.target.row_mut(y).and_then(|r| r.get_mut(range)) {
-                    for p in row.iter_mut() {
-                        *p = T::Format::encode(shader.shade(&a));
-                        step_all(&mut a, da);
-                    }
-                } else {
-                    for x in x0..x1 {
-                        let c = T::Format::encode(shader.shade(&a));
-                        self.target.write_pixel(x, y, c);
-                        step_all(&mut a, da);
-                    }
-                }
-            }
+        if let Some(c) = self.shader.constant() {
+            let raw = T::Format::encode(c);
+            self.fill(s, |_| raw);
+        } else {
+            let shader = &self.shader;
+            // Safe split borrow: the closure only reads the shader.
+            let shade = |a: &[L; N]| T::Format::encode(shader.shade(a));
+            let (target, depth, drawn) = (
+                &mut *self.target,
+                self.depth.as_deref_mut(),
+                &mut self.drawn,
+            );
+            fill_span::<L, N, T, D>(target, depth, drawn, s, shade);
         }
     }
 }
