@@ -61,6 +61,12 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// a fixed raw `d·2^30` or a float `d`.
     fn depth30(self) -> u32;
 
+    /// Depth as stored in a 16-bit buffer: `min(depth30 >> 14, 65535)`.
+    #[inline(always)]
+    fn depth16(self) -> u16 {
+        (self.depth30() >> 14).min(u16::MAX as u32) as u16
+    }
+
     /// Rounded to the nearest integer after removing `frac` fraction bits
     /// (fixed), or rounded (float); saturating.
     fn round_int(self, frac: u32) -> i32;
@@ -197,6 +203,12 @@ impl Lerp for i32 {
     #[inline(always)]
     fn depth30(self) -> u32 {
         self.clamp(0, super::DEPTH_ONE) as u32
+    }
+
+    #[inline(always)]
+    fn depth16(self) -> u16 {
+        // The same value as the default, with one clamp instead of two.
+        (self >> 14).clamp(0, u16::MAX as i32) as u16
     }
 
     #[inline(always)]
@@ -361,6 +373,29 @@ mod tests {
         assert_eq!(Recip::new(3).mul_shift(9, 0), 3);
         assert_eq!(Recip::new(1).mul_shift(-(1 << 40), 8), -(1 << 48));
         assert_eq!(Recip::new(0).mul_shift(5, 0), 5);
+    }
+
+    #[test]
+    fn fast_depth16_equals_the_general_conversion() {
+        use crate::target::{Depth16, DepthFormat};
+        let mut z = i32::MIN;
+        for _ in 0..200_000 {
+            assert_eq!(z.depth16(), Depth16::from_d30(z.depth30()), "{z}");
+            z = z.wrapping_add(21_467 + (z as u32 % 977) as i32);
+        }
+        for z in [
+            -1,
+            0,
+            1,
+            (1 << 14) - 1,
+            1 << 14,
+            (1 << 30) - (1 << 14),
+            (1 << 30) - 1,
+            1 << 30,
+            i32::MAX,
+        ] {
+            assert_eq!(z.depth16(), Depth16::from_d30(z.depth30()), "{z}");
+        }
     }
 
     #[test]

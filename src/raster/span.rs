@@ -185,27 +185,30 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
         },
         None => None,
     };
+    // Counted in a local: a store through `drawn` on every pixel cannot be
+    // kept in a register (it might alias the rows).
+    let mut n = 0u32;
     match depth_row {
         Some(drow) => {
             let mut z = z;
             if let Some(row) = target.row_mut(y).and_then(|r| r.get_mut(range)) {
                 for (p, zb) in row.iter_mut().zip(drow.iter_mut()) {
-                    let zd = D::from_d30(z.depth30());
+                    let zd = D::from_lerp(z);
                     if zd < *zb {
                         *zb = zd;
                         *p = color(&a);
-                        *drawn += 1;
+                        n += 1;
                     }
                     z = z.add(dz);
                     step_all(&mut a, da);
                 }
             } else {
                 for (x, zb) in (x0..x1).zip(drow.iter_mut()) {
-                    let zd = D::from_d30(z.depth30());
+                    let zd = D::from_lerp(z);
                     if zd < *zb {
                         *zb = zd;
                         target.write_pixel(x, y, color(&a));
-                        *drawn += 1;
+                        n += 1;
                     }
                     z = z.add(dz);
                     step_all(&mut a, da);
@@ -213,7 +216,7 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
             }
         }
         None => {
-            *drawn += x1 - x0;
+            n = x1 - x0;
             if let Some(row) = target.row_mut(y).and_then(|r| r.get_mut(range)) {
                 for p in row.iter_mut() {
                     *p = color(&a);
@@ -227,6 +230,7 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
             }
         }
     }
+    *drawn += n;
 }
 
 #[inline(always)]

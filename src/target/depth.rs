@@ -21,6 +21,13 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     const CLEAR: Self::Raw;
     /// Converts a 30-bit depth `0..=2^30` (larger values saturate).
     fn from_d30(d30: u32) -> Self::Raw;
+
+    /// Converts an interpolated depth: `from_d30(z.depth30())`, with a
+    /// faster path where the format allows.
+    #[inline(always)]
+    fn from_lerp<L: crate::raster::Lerp>(z: L) -> Self::Raw {
+        Self::from_d30(z.depth30())
+    }
 }
 
 /// 16-bit depth: `d30 >> 14`, steps of 2^-16 of the depth range.
@@ -38,6 +45,11 @@ impl DepthFormat for Depth16 {
         } else {
             v as u16
         }
+    }
+
+    #[inline(always)]
+    fn from_lerp<L: crate::raster::Lerp>(z: L) -> u16 {
+        z.depth16()
     }
 }
 
