@@ -213,10 +213,13 @@ impl Lerp for i32 {
 
     #[inline(always)]
     fn round_int(self, frac: u32) -> i32 {
-        if frac == 0 {
+        if frac == 0 || frac > 31 {
             return self;
         }
-        ((self as i64 + (1i64 << (frac - 1))) >> frac) as i32
+        // 32-bit: values at covered pixels lie within ±2^30 (plus the
+        // interpolation error), so adding half a unit cannot wrap; a
+        // wrapped value elsewhere is never used (see the module docs).
+        self.wrapping_add(1 << (frac - 1)) >> frac
     }
 
     type Unweight = i64;
