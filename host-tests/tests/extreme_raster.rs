@@ -629,3 +629,48 @@ fn bands_one_row_high_equal_the_full_frame() {
     assert_eq!(counts, full_count);
     assert!(full.iter().filter(|&&p| p != 0).count() > 500);
 }
+
+/// Float-twin attributes beyond the `i32` range (the f32/f64 profiles
+/// interpolate unclamped values) shade to the clamped levels: far below 0
+/// is black, far above 255 white; NaN (and infinite vertex values, whose
+/// gradients are NaN) black.
+///
+/// This found a bug (by fuzzing), fixed in `raster/lerp.rs`: rounding a
+/// float below `i32::MIN` overflowed (`i32::MIN - 1`: a panic in debug
+/// builds, white instead of black in release).
+#[test]
+fn float_attributes_beyond_i32_clamp_to_the_levels() {
+    for (v, want) in [
+        (-1e12, 0u8),
+        (f64::NEG_INFINITY, 0),
+        (-3e9, 0),
+        (1e12, 255),
+        // Infinite vertex values give NaN gradients (inf - inf): NaN
+        // shades as level 0.
+        (f64::INFINITY, 0),
+        (f64::NAN, 0),
+    ] {
+        let tri = [(0, 0), (64, 0), (0, 64)].map(|(x, y)| Vertex::<f64, 1> {
+            x,
+            y,
+            z: 0.5,
+            attrs: [v],
+        });
+        let tri32 = tri.map(|t| Vertex::<f32, 1> {
+            x: t.x,
+            y: t.y,
+            z: 0.5,
+            attrs: [t.attrs[0] as f32],
+        });
+        let mut px = [[7u8; 1]; 16];
+        let mut fb = FrameBuf::<Gray8>::new(&mut px, 4, 4).unwrap();
+        let mut f = Fill::<_, Depth16, _>::new(&mut fb, None, GouraudMono).unwrap();
+        f.draw(&tri, SubpixelBits::DEFAULT).unwrap();
+        assert_eq!(px[4][0], want, "f64 {v}");
+        let mut fb = FrameBuf::<Gray8>::new(&mut px, 4, 4).unwrap();
+        let mut f = Fill::<_, Depth16, _>::new(&mut fb, None, GouraudMono).unwrap();
+        f.draw(&tri32, SubpixelBits::DEFAULT).unwrap();
+        assert_eq!(px[4][0], want, "f32 {v}");
+    }
+    assert_eq!(Lerp::round_int(f64::NEG_INFINITY, 16), i32::MIN);
+}

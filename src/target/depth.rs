@@ -22,7 +22,7 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
 
 /// 16-bit depth: `d30 >> 14`, steps of 2^-16 of the depth range, at most
 /// 65534 so that every depth, 1 included, is nearer than the cleared value
-/// 65535 (the last step `[1 - 2^-16, 1]` is one value).
+/// 65535 (so the last step, `[1 - 2^-15, 1]`, is twice as wide).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Depth16;
 
@@ -144,7 +144,8 @@ mod tests {
         assert_eq!(Depth16::from_d30(1 << 30), u16::MAX - 1);
         assert_eq!(Depth16::from_d30((1 << 30) - 1), u16::MAX - 1);
         assert_eq!(Depth16::from_d30((1 << 30) - (1 << 14)), u16::MAX - 1);
-        assert_eq!(Depth16::from_d30((1 << 30) - (2 << 14)), u16::MAX - 2);
+        assert_eq!(Depth16::from_d30((1 << 30) - (2 << 14)), u16::MAX - 1);
+        assert_eq!(Depth16::from_d30((1 << 30) - (3 << 14)), u16::MAX - 2);
         assert_eq!(Depth16::from_d30(u32::MAX), u16::MAX - 1);
         assert_eq!(Depth16::from_d30(1 << 14), 1);
         assert_eq!(Depth32::from_d30(u32::MAX), 1 << 30);
