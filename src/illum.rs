@@ -252,6 +252,9 @@ impl<R: Real> Shade<R> {
                 };
                 if base > R::ZERO {
                     sum = sum + t.specular.scale(base.min(R::ONE).powf(self.shininess));
+                } else if self.shininess == R::ZERO {
+                    // max(0, base)^0 = 0^0 = 1, as `Real::powf` defines it.
+                    sum = sum + t.specular;
                 }
             }
         }

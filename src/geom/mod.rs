@@ -97,9 +97,21 @@ impl<R: Real> Vec3<R> {
     /// The unit vector in the same direction; the zero vector stays zero
     /// (defined: no NaN, no panic). Error: that of [`Real::rsqrt`] on the
     /// squared length.
+    ///
+    /// A vector whose squared length does not fit the scalar (longer than
+    /// about 181 for `Q16`, 46341 for `Q32`: a point light far away, a
+    /// large model scale; `f32` beyond 1.8e19) is first divided by its
+    /// largest component magnitude, so it still comes out of unit length.
     #[inline]
     pub fn normalize(self) -> Self {
-        self.scale(self.length_sq().rsqrt())
+        let l2 = self.length_sq();
+        if l2 >= R::MAX {
+            // Saturated (fixed) or overflowed (float): the rare slow path.
+            let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
+            let v = Self::new(self.x.div(m), self.y.div(m), self.z.div(m));
+            return v.scale(v.length_sq().rsqrt());
+        }
+        self.scale(l2.rsqrt())
     }
 
     /// `true` when every component is exactly zero.

@@ -304,11 +304,12 @@ macro_rules! float_lerp {
 
             #[inline]
             fn round_int(self, _frac: u32) -> i32 {
-                // Round half up; `as` saturates and maps NaN to 0.
+                // Round half up; `as` saturates and maps NaN to 0 (below
+                // i32::MIN, `t` is already i32::MIN: saturate, no overflow).
                 let v = self + 0.5;
                 let t = v as i32;
                 if (t as $t) > v {
-                    t - 1
+                    t.saturating_sub(1)
                 } else {
                     t
                 }
@@ -407,6 +408,10 @@ mod tests {
         assert_eq!((-2.5f64).round_int(0), -2);
         assert_eq!((-2.6f32).round_int(0), -3);
         assert_eq!(f64::NAN.round_int(0), 0);
+        // Below i32::MIN: saturates (was an overflow, found by fuzzing).
+        assert_eq!(f64::NEG_INFINITY.round_int(0), i32::MIN);
+        assert_eq!((-3.0e9f32).round_int(0), i32::MIN);
+        assert_eq!(f32::INFINITY.round_int(0), i32::MAX);
         assert_eq!(f64::NAN.depth30(), 0);
         assert_eq!(2.0f64.depth30(), 1 << 30);
         assert_eq!((-1.0f32).depth30(), 0);

@@ -224,10 +224,13 @@ where
     E: From<RenderError>,
 {
     let (w, h) = frame.size();
-    if rows == 0 || pixels.len() != (w * rows) as usize {
+    // In u64: `w * rows` overflows u32 for a large `rows` (any u32 is
+    // accepted), and a wrapped product could match a short slice.
+    let need = u64::from(w) * u64::from(rows.max(1));
+    if rows == 0 || pixels.len() as u64 != need {
         return Err(
             RenderError::Buffer(crate::target::BufferError::WrongLength {
-                expected: (w * rows.max(1)) as usize,
+                expected: usize::try_from(need).unwrap_or(usize::MAX),
                 actual: pixels.len(),
             })
             .into(),

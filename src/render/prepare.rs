@@ -6,6 +6,7 @@ use crate::geom::{Affine, Vec3};
 use crate::illum::{Light, LightKind, Shade, MAX_LIGHTS};
 use crate::mesh::{face_normal, Mesh};
 use crate::num::{Profile, Real};
+use crate::raster::COORD_LIMIT_PX;
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
 
@@ -283,6 +284,13 @@ impl<P: Profile> Preparer<'_, P> {
         } else {
             let (sx, sy, d, q) = self.view.project(cv.pos);
             let sub = P::SUBPIXEL_BITS.get();
+            // Clipping keeps a corner within the guard band, but saturated
+            // Q16 arithmetic or float precision lost on huge coordinates
+            // can move a clipped corner out of the rasterizer's range:
+            // clamp to it (NaN to its lower end) rather than have the
+            // rasterizer refuse the whole frame. No-op for in-range corners.
+            let lim = P::Real::from_i32(COORD_LIMIT_PX);
+            let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
             self.ws.xy[i] = [sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)];
             vals[0] = P::depth(d);
             let mut a = cv.attrs;

@@ -30,7 +30,9 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     }
 }
 
-/// 16-bit depth: `d30 >> 14`, steps of 2^-16 of the depth range.
+/// 16-bit depth: `d30 >> 14`, steps of 2^-16 of the depth range, at most
+/// 65534 so that every depth, 1 included, is nearer than the cleared value
+/// 65535 (so the last step, `[1 - 2^-15, 1]`, is twice as wide).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Depth16;
 
@@ -40,8 +42,8 @@ impl DepthFormat for Depth16 {
     #[inline]
     fn from_d30(d30: u32) -> u16 {
         let v = d30 >> 14;
-        if v > u16::MAX as u32 {
-            u16::MAX
+        if v >= u16::MAX as u32 {
+            u16::MAX - 1
         } else {
             v as u16
         }
@@ -153,9 +155,13 @@ mod tests {
     #[test]
     fn conversions_saturate() {
         assert_eq!(Depth16::from_d30(0), 0);
-        assert_eq!(Depth16::from_d30(1 << 30), u16::MAX);
-        assert_eq!(Depth16::from_d30((1 << 30) - 1), u16::MAX);
-        assert_eq!(Depth16::from_d30(u32::MAX), u16::MAX);
+        // Never the cleared value: a depth of 1 still passes the test.
+        assert_eq!(Depth16::from_d30(1 << 30), u16::MAX - 1);
+        assert_eq!(Depth16::from_d30((1 << 30) - 1), u16::MAX - 1);
+        assert_eq!(Depth16::from_d30((1 << 30) - (1 << 14)), u16::MAX - 1);
+        assert_eq!(Depth16::from_d30((1 << 30) - (2 << 14)), u16::MAX - 1);
+        assert_eq!(Depth16::from_d30((1 << 30) - (3 << 14)), u16::MAX - 2);
+        assert_eq!(Depth16::from_d30(u32::MAX), u16::MAX - 1);
         assert_eq!(Depth16::from_d30(1 << 14), 1);
         assert_eq!(Depth32::from_d30(u32::MAX), 1 << 30);
         // The far end: 1 - 2^-16 is the first 16-bit value equal to CLEAR.

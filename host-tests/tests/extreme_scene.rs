@@ -1,0 +1,619 @@
+//! Numerical extremes through the 3D pipeline (`prepare` + `Frame::render`),
+//! each measured against the independent f64 ideal reference
+//! (`fixshade_host::ideal`) and/or the core's own f64 twin ([`F64`]), with
+//! the bound asserted and stated in the test's doc comment.
+//!
+//! Coverage is compared with [`boundary_only`]: the core snaps vertices to
+//! 1/16 pixel, so it may disagree with the ideal only on pixels whose centre
+//! lies within snapping distance of an edge; every such pixel lies on the
+//! boundary of the ideal coverage mask (it has a 4-neighbour of the other
+//! coverage). A disagreement anywhere else is a hole or a spill.
+
+mod support;
+
+use fixshade::mesh::{shapes, CornerNormals, Mesh};
+use fixshade::num::{F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, F32, F64};
+use fixshade::render::{prepare, render_in_bands, RenderError};
+use fixshade::scene::{SceneError, Shading};
+use fixshade::target::{BufferError, Depth16, Rgb565Be};
+use support::*;
+
+const W: u32 = 64;
+const H: u32 = 48;
+
+/// Pixels covered in exactly one of two masks, and whether each of them is
+/// on the boundary of `ideal` (has a 4-neighbour of the other coverage).
+fn boundary_only(core: &[bool], ideal: &[bool], w: u32, h: u32) -> (usize, bool) {
+    let mut n = 0;
+    let mut ok = true;
+    for y in 0..h as i64 {
+        for x in 0..w as i64 {
+            let i = (y * w as i64 + x) as usize;
+            if core[i] == ideal[i] {
+                continue;
+            }
+            n += 1;
+            let edge = [(-1, 0), (1, 0), (0, -1), (0, 1)].iter().any(|(dx, dy)| {
+                let (nx, ny) = (x + dx, y + dy);
+                // Off-screen neighbours count as uncovered.
+                let c = nx >= 0
+                    && ny >= 0
+                    && nx < w as i64
+                    && ny < h as i64
+                    && ideal[(ny * w as i64 + nx) as usize];
+                c != ideal[i]
+            });
+            ok &= edge;
+        }
+    }
+    (n, ok)
+}
+
+/// A big triangle in the z = 0 plane of its model, facing +z.
+const TRI_POS: [[i16; 3]; 3] = [[-16000, -16000, 0], [16000, -16000, 0], [0, 16000, 0]];
+const UP: [[i16; 3]; 1] = [[0, 0, 16384]];
+
+fn big_triangle() -> Mesh<'static> {
+    Mesh::new(
+        &TRI_POS,
+        &[[0, 1, 2]],
+        Some(CornerNormals {
+            normals: &UP,
+            indices: &[[0, 0, 0]],
+        }),
+    )
+    .unwrap()
+}
+
+/// A square in z = 0 with corner normals tilted outwards (a curved patch
+/// for Phong and Gouraud).
+const QUAD: [[i16; 3]; 4] = [
+    [-16000, -16000, 0],
+    [16000, -16000, 0],
+    [16000, 16000, 0],
+    [-16000, 16000, 0],
+];
+const TILTED: [[i16; 3]; 4] = [
+    [-4000, -4000, 15400],
+    [4000, -4000, 15400],
+    [4000, 4000, 15400],
+    [-4000, 4000, 15400],
+];
+static FLAT_UP: [[i16; 3]; 4] = [[0, 0, 16384]; 4];
+const QUAD_TRIS: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+
+fn quad(normals: &'static [[i16; 3]; 4]) -> Mesh<'static> {
+    Mesh::new(
+        &QUAD,
+        &QUAD_TRIS,
+        Some(CornerNormals {
+            normals,
+            indices: &QUAD_TRIS,
+        }),
+    )
+    .unwrap()
+}
+
+/// Scene: the eye on the +z axis looking at a patch facing it, so that
+/// depth is constant over the patch and affine interpolation is exact
+/// (the core's affine profiles and the perspective-correct ideal agree).
+fn facing_patch(mesh: Mesh<'static>, shading: Shading) -> Spec<'static> {
+    let mut s = Spec::new(W, H, [0.0, 0.0, 3.0]);
+    s.ambient = 0.3;
+    let mut o = ObjSpec::new(mesh, shading);
+    o.ka = 0.5;
+    o.kd = 0.5;
+    o.ks = 0.5;
+    o.shininess = 20.0;
+    s.objects.push(o);
+    s
+}
+
+fn diff<P: Profile>(s: &Spec<'_>, reference: &CoreFrame) -> u8 {
+    let f = s.render::<P>().unwrap();
+    assert_eq!(f.covered, reference.covered, "{}: same coverage", P::NAME);
+    max_diff_covered(&f.rgb, &f.covered, &reference.rgb, &reference.covered).0
+}
+
+/// Huge world triangles, far larger than the screen and crossing the
+/// guard band (±4096 px) and the near plane, through the whole pipeline.
+///
+/// Bound: coverage equals the ideal's except on the ideal mask's boundary
+/// (vertex snapping), for F64, F32 and Precise up to a model scale of 10^4
+/// (world coordinates ±9800) and Fast up to a scale of 100.
+///
+/// Fast beyond that (measured at scales 10^4 and 3·10^4): clipping against
+/// the guard band multiplies `w` by the guard slope `4096/k` (98 on this
+/// 48-row screen at 60°), which saturates Q16 once `w > 32768/98 ≈ 333`,
+/// so the clipped polygon is wrong. The result is defined all the same:
+/// `Ok`, nothing written outside the frame. Before the fix in
+/// `render/prepare.rs` (clamping projected corners to the rasterizer's
+/// range), the scale-3·10^4 cases returned `Err(Raster(OutOfRange))`.
+#[test]
+fn huge_world_triangles_cover_what_the_ideal_covers() {
+    let poses: [([f64; 3], f64); 4] = [
+        ([0.0, 0.0, 0.0], 0.0),
+        ([1.4, 0.3, 0.2], 0.0),
+        ([1.5, 0.0, 0.0], -1.0),
+        ([0.0, 1.2, 0.0], 3.0), // crosses the eye's plane: clipped by near
+    ];
+    fn check<P: Profile>(s: &Spec<'_>, ideal: &[bool], label: &str) -> usize {
+        let f = s.render::<P>().unwrap();
+        let (n, ok) = boundary_only(&f.covered, ideal, W, H);
+        assert!(ok, "{label} {}: {n} pixels differ, some inside", P::NAME);
+        n
+    }
+    let mut worst = 0;
+    for scale in [100.0, 1e4] {
+        for (angles, tz) in poses {
+            let mut s = Spec::new(W, H, [0.0, 0.3, 2.0]);
+            let mut o = ObjSpec::new(big_triangle(), Shading::Gouraud);
+            (o.scale, o.angles, o.translation) = (scale, angles, [0.0, 0.0, tz]);
+            s.objects.push(o);
+            s.lights
+                .push((LightSpec::Directional([0.3, 0.4, 1.0]), 1.0, [1.0; 3]));
+            let (_, ideal) = s.render_ideal();
+            let covered = ideal.iter().filter(|&&c| c).count();
+            println!("scale {scale} pose {angles:?}: ideal covers {covered}");
+            assert!(covered > 10);
+            let label = format!("scale {scale} pose {angles:?}");
+            worst = worst.max(check::<F64>(&s, &ideal, &label));
+            worst = worst.max(check::<F32>(&s, &ideal, &label));
+            worst = worst.max(check::<Precise>(&s, &ideal, &label));
+            worst = worst.max(check::<PrecisePc>(&s, &ideal, &label));
+            if scale <= 100.0 {
+                worst = worst.max(check::<Fast>(&s, &ideal, &label));
+                worst = worst.max(check::<FastPc>(&s, &ideal, &label));
+            } else {
+                for scale in [scale, 3e4] {
+                    let mut s = s.clone();
+                    s.objects[0].scale = scale;
+                    let f = s.render::<Fast>().expect("defined result beyond the range");
+                    assert_eq!(f.rgb.len(), (W * H) as usize);
+                }
+            }
+        }
+    }
+    println!("huge triangles: at most {worst} boundary pixels differ from the ideal");
+}
+
+/// Vertices one Q1.14 step (2^-14) in front of, exactly on, and one step
+/// behind the near plane (eye at z = 2, near 0.5: the plane is z = 1.5).
+///
+/// Bound: coverage equals the ideal's except on the mask's boundary, for
+/// every profile; a triangle on the plane is drawn (the plane is inside,
+/// as in the ideal), one a step behind it draws nothing; Precise's
+/// Gouraud colours are within 1 level of F64's.
+#[test]
+fn vertices_in_front_of_on_and_behind_the_near_plane() {
+    const FRONT: i16 = 24575;
+    const ON: i16 = 24576;
+    const BEHIND: i16 = 24577;
+    static CASES: [[[i16; 3]; 3]; 6] = [
+        [
+            [-3000, -2500, FRONT],
+            [3000, -2500, FRONT],
+            [0, 2500, FRONT],
+        ],
+        [[-3000, -2500, ON], [3000, -2500, ON], [0, 2500, ON]],
+        [
+            [-3000, -2500, BEHIND],
+            [3000, -2500, BEHIND],
+            [0, 2500, BEHIND],
+        ],
+        [[-3000, -2500, FRONT], [3000, -2500, ON], [0, 2500, BEHIND]],
+        // One corner at the plane, the others far in front: a spike.
+        [[-9000, -6000, -8000], [9000, -6000, -8000], [100, 50, ON]],
+        // Crossing the plane steeply: two corners behind the eye.
+        [
+            [-9000, -4000, -8000],
+            [9000, -4000, 32000],
+            [0, 9000, 32000],
+        ],
+    ];
+    static NRM: [[i16; 3]; 3] = [[0, 0, 16384], [0, 11585, 11585], [11585, 0, 11585]];
+    let mut drawn = [0usize; 6];
+    for (c, pos) in CASES.iter().enumerate() {
+        let mesh = Mesh::new(
+            pos,
+            &[[0, 1, 2]],
+            Some(CornerNormals {
+                normals: &NRM,
+                indices: &[[0, 1, 2]],
+            }),
+        )
+        .unwrap();
+        for shading in [Shading::Flat, Shading::Gouraud] {
+            let mut s = Spec::new(W, H, [0.0, 0.0, 2.0]);
+            s.objects.push(ObjSpec::new(mesh, shading));
+            s.lights
+                .push((LightSpec::Directional([0.2, 0.5, 1.0]), 0.8, [1.0; 3]));
+            let (_, ideal) = s.render_ideal();
+            let reference = s.render::<F64>().unwrap();
+            for (name, f) in [
+                ("f64", reference.clone()),
+                ("f32", s.render::<F32>().unwrap()),
+                ("precise", s.render::<Precise>().unwrap()),
+                ("fast", s.render::<Fast>().unwrap()),
+                ("f64-pc", s.render::<F64Pc>().unwrap()),
+            ] {
+                let (n, ok) = boundary_only(&f.covered, &ideal, W, H);
+                assert!(ok, "case {c} {shading:?} {name}: {n} pixels differ inside");
+            }
+            drawn[c] = reference.covered_count();
+            if shading == Shading::Gouraud {
+                let p = s.render::<Precise>().unwrap();
+                let (d, _) =
+                    max_diff_covered(&p.rgb, &p.covered, &reference.rgb, &reference.covered);
+                assert!(d <= 1, "case {c}: precise {d} levels from f64");
+            }
+        }
+    }
+    assert!(drawn[0] > 300 && drawn[1] > 300, "{drawn:?}");
+    assert_eq!(
+        drawn[2], 0,
+        "a triangle behind the near plane draws nothing"
+    );
+    assert!(drawn.iter().skip(3).all(|&n| n > 50), "{drawn:?}");
+}
+
+/// Shininess 0, 1, 800, 10^4 (and 10^5, clamped to 10^4), Phong and
+/// Gouraud, Phong and Blinn specular, on a patch facing the eye (where the
+/// core's affine interpolation is exact).
+///
+/// Bounds: F64 within 2 levels of the ideal (measured 2, at n = 800);
+/// Precise within 1 level of F64 (measured 1); Fast within `2 + n/e ·
+/// 2^-16 · 255` levels of F64: one Q16 ulp on the base of the power moves
+/// `x^n` by up to `n/e · 2^-16` near `x = 1` (see `Real::powf`), 3.1
+/// levels at n = 800 and 16.3 at 10^4 (measured 1 and 4); shininess 10^5
+/// renders exactly as 10^4 (clamped).
+///
+/// Shininess 0 found a bug, fixed in `illum.rs`: the specular term
+/// `max(0, R·V)^0` is 1 (0^0 = 1, as `Real::powf` defines it) wherever
+/// `N·L > 0`, but the core skipped it where `R·V <= 0` (153 levels from
+/// the ideal on this patch).
+#[test]
+fn shininess_0_1_800_and_10000() {
+    let mut worst = [0u8; 3];
+    for specular in [
+        fixshade::illum::Specular::Phong,
+        fixshade::illum::Specular::Blinn,
+    ] {
+        for shading in [Shading::Phong, Shading::Gouraud] {
+            for n in [0.0, 1.0, 800.0, 1e4] {
+                let mut s = facing_patch(quad(&TILTED), shading);
+                s.specular = specular;
+                s.objects[0].shininess = n;
+                s.lights
+                    .push((LightSpec::Point([0.3, 0.2, 1.0]), 1.0, [1.0; 3]));
+                let reference = s.render::<F64>().unwrap();
+                let (ideal, icov) = s.render_ideal();
+                let (di, common) =
+                    max_diff_covered(&ideal, &icov, &reference.rgb, &reference.covered);
+                assert!(common > 700);
+                let label = format!("{specular:?} {shading:?} n={n}");
+                assert!(di <= 2, "{label}: f64 {di} levels from the ideal");
+                let dp = diff::<Precise>(&s, &reference);
+                assert!(dp <= 1, "{label}: precise {dp} levels from f64");
+                let df = diff::<Fast>(&s, &reference);
+                // One Q16 ulp on the base of the power moves x^n by up to
+                // n/e · 2^-16 near x = 1 (see `Real::powf`).
+                let bound = 2.0 + n / std::f64::consts::E / 65536.0 * 255.0;
+                assert!(df as f64 <= bound, "{label}: fast {df} levels from f64");
+                println!("{label}: f64-ideal {di}, precise {dp}, fast {df} (bound {bound:.1})");
+                worst = [worst[0].max(di), worst[1].max(dp), worst[2].max(df)];
+                if n == 1e4 {
+                    let mut t = s.clone();
+                    t.objects[0].shininess = 1e5;
+                    assert_eq!(
+                        t.render::<Precise>().unwrap(),
+                        s.render::<Precise>().unwrap()
+                    );
+                }
+            }
+        }
+    }
+    println!("shininess: worst f64-ideal, precise-f64, fast-f64 = {worst:?}");
+}
+
+/// A point light on the shaded surface, very close to it (2^-14 and 10^-3
+/// above), and far away (3·10^4, 10^6, 3.7·10^5).
+///
+/// Bounds: on and close, every profile within 1 level of F64 and F64
+/// within 1 of the ideal (on the surface `N·L = 0`: ambient only; at the
+/// light's own point `L = 0` contributes nothing). Far: Precise within 1
+/// level of F64 and F64 within 2 of the ideal.
+///
+/// Fast beyond its range (10^6 > 32768): the light's position saturates
+/// to the range's edge, (10^6, 0, 5·10^5) becomes (32768, 0, 32768) less
+/// one ulp, so the light comes from 45° instead of 26.6°; the result is
+/// that of F64 with the light at the saturated position, within 1 level.
+///
+/// This found a bug, fixed in `geom/mod.rs` (`Vec3::normalize`): the
+/// squared length of the light vector saturated (beyond 181 units for Q16,
+/// 46341 for Q32), the "unit" vector came out up to 21 long and the
+/// diffuse term clamped to full white: Precise was 214 levels from F64
+/// with the light at 10^6, Fast with the light at 3·10^4.
+#[test]
+fn point_light_on_close_to_and_far_from_the_surface() {
+    let near_cases: [[f64; 3]; 3] = [
+        [0.1, 0.05, 0.0],
+        [0.1, 0.05, 1.0 / 16384.0],
+        [0.1, 0.05, 0.001],
+    ];
+    let far_cases: [[f64; 3]; 3] = [[3e4, 0.0, 1.5e4], [1e6, 0.0, 5e5], [1e5, 2e5, 3e5]];
+    for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+        for (k, pos) in near_cases.iter().chain(far_cases.iter()).enumerate() {
+            let mut s = facing_patch(quad(&TILTED), shading);
+            s.lights.push((LightSpec::Point(*pos), 1.0, [1.0; 3]));
+            let reference = s.render::<F64>().unwrap();
+            let (ideal, icov) = s.render_ideal();
+            let (di, _) = max_diff_covered(&ideal, &icov, &reference.rgb, &reference.covered);
+            let label = format!("{shading:?} light {pos:?}");
+            assert!(di <= 2, "{label}: f64 {di} from the ideal");
+            assert!(diff::<Precise>(&s, &reference) <= 1, "{label}: precise");
+            assert!(diff::<F32>(&s, &reference) <= 1, "{label}: f32");
+            if k < 3 {
+                assert!(di <= 1, "{label}: f64 {di} from the ideal");
+                assert!(diff::<Fast>(&s, &reference) <= 1, "{label}: fast");
+            }
+            if k == 0 {
+                // With the true (flat) normals the light lies in the
+                // surface's plane: N·L = 0 everywhere, ambient only:
+                // 0.5 · 0.3 · 255 = 38.25 -> 38, as in the ideal.
+                let mut flat = s.clone();
+                flat.objects[0].mesh = quad(&FLAT_UP);
+                let (ideal, icov) = flat.render_ideal();
+                assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == [38; 3]));
+                for f in [
+                    flat.render::<F64>().unwrap(),
+                    flat.render::<Precise>().unwrap(),
+                    flat.render::<Fast>().unwrap(),
+                ] {
+                    assert!(f.covered_count() > 700);
+                    assert!(f
+                        .rgb
+                        .iter()
+                        .zip(&f.covered)
+                        .all(|(p, &c)| !c || *p == [38; 3]));
+                }
+            }
+            if k == 3 {
+                // 3·10^4 is within Q16's range: Fast too (was 214 levels off).
+                assert!(diff::<Fast>(&s, &reference) <= 2, "{label}: fast");
+            }
+            if k == 4 {
+                let mut sat = s.clone();
+                let edge = 32768.0 - 1.0 / 65536.0;
+                sat.lights[0].0 = LightSpec::Point([edge, 0.0, edge]);
+                let saturated = sat.render::<F64>().unwrap();
+                let d = diff::<Fast>(&s, &saturated);
+                assert!(
+                    d <= 1,
+                    "{label}: fast {d} from f64 with the saturated light"
+                );
+                let shift = max_diff_covered(
+                    &saturated.rgb,
+                    &saturated.covered,
+                    &reference.rgb,
+                    &reference.covered,
+                )
+                .0;
+                assert!(shift > 20, "saturation is visible: {shift}");
+            }
+        }
+    }
+}
+
+/// Corner normals that average to zero: zero corner normals, and opposite
+/// normals on either side of a patch (the interpolated normal crosses
+/// zero on its middle line).
+///
+/// Bound: zero normals shade as ambient only, exactly (0.3 · 0.5 · 255 =
+/// 38.25 -> 38), in every profile and mode, as in the ideal; opposite
+/// normals: every profile within 1 level of F64, F64 within 1 of the ideal
+/// away from the middle line.
+#[test]
+fn normals_that_average_to_zero() {
+    static ZERO: [[i16; 3]; 4] = [[0; 3]; 4];
+    static OPPOSITE: [[i16; 3]; 4] = [[-16384, 0, 0], [16384, 0, 0], [16384, 0, 0], [-16384, 0, 0]];
+    for shading in [Shading::Gouraud, Shading::Phong] {
+        let mut s = facing_patch(quad(&ZERO), shading);
+        s.lights
+            .push((LightSpec::Directional([0.0, 0.0, 1.0]), 1.0, [1.0; 3]));
+        s.lights
+            .push((LightSpec::Point([0.1, 0.1, 0.5]), 1.0, [1.0; 3]));
+        let (ideal, icov) = s.render_ideal();
+        assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == [38; 3]));
+        for f in [
+            s.render::<F64>().unwrap(),
+            s.render::<F32>().unwrap(),
+            s.render::<Precise>().unwrap(),
+            s.render::<Fast>().unwrap(),
+            s.render::<PrecisePc>().unwrap(),
+        ] {
+            assert!(f.covered_count() > 700);
+            assert!(f
+                .rgb
+                .iter()
+                .zip(&f.covered)
+                .all(|(p, &c)| !c || *p == [38; 3]));
+        }
+
+        let mut s = facing_patch(quad(&OPPOSITE), shading);
+        s.lights
+            .push((LightSpec::Directional([1.0, 0.2, 0.3]), 1.0, [1.0; 3]));
+        let reference = s.render::<F64>().unwrap();
+        for d in [
+            diff::<Precise>(&s, &reference),
+            diff::<Fast>(&s, &reference),
+        ] {
+            assert!(d <= 1, "{shading:?}: {d} levels from f64");
+        }
+        let (ideal, icov) = s.render_ideal();
+        // Away from the middle column (x = 32), where the interpolated
+        // normal passes through zero and flips.
+        let mut worst = 0;
+        for y in 0..H {
+            for x in (0..W).filter(|x| x.abs_diff(32) > 1) {
+                let i = (y * W + x) as usize;
+                if icov[i] && reference.covered[i] {
+                    for (a, b) in ideal[i].iter().zip(&reference.rgb[i]) {
+                        worst = worst.max(a.abs_diff(*b));
+                    }
+                }
+            }
+        }
+        assert!(worst <= 1, "{shading:?}: f64 {worst} from the ideal");
+    }
+}
+
+/// Eight white lights (the most a scene may have) saturate the intensity:
+/// every channel clamps at 255 exactly, in every profile and mode, as in
+/// the ideal; a ninth light is an error, not a panic.
+#[test]
+fn eight_lights_saturate_at_255() {
+    for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+        let mut s = facing_patch(quad(&TILTED), shading);
+        for i in 0..8 {
+            let a = i as f64 * 0.7;
+            s.lights
+                .push((LightSpec::Point([a.cos(), a.sin(), 2.0]), 1.0, [1.0; 3]));
+        }
+        let (ideal, icov) = s.render_ideal();
+        assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == [255; 3]));
+        for f in [
+            s.render::<F64>().unwrap(),
+            s.render::<F32>().unwrap(),
+            s.render::<Precise>().unwrap(),
+            s.render::<Fast>().unwrap(),
+            s.render::<FastPc>().unwrap(),
+        ] {
+            assert!(f.covered_count() > 700);
+            assert!(f
+                .rgb
+                .iter()
+                .zip(&f.covered)
+                .all(|(p, &c)| !c || *p == [255; 3]));
+        }
+        s.lights
+            .push((LightSpec::Directional([0.0, 0.0, 1.0]), 1.0, [1.0; 3]));
+        assert_eq!(
+            s.render::<Fast>().unwrap_err(),
+            RenderError::Scene(SceneError::TooManyLights)
+        );
+    }
+}
+
+/// Two coplanar overlapping faces (z-fighting): the same square drawn as
+/// two objects. The rule is "first drawn wins ties" with the less-than
+/// depth test: the first object's colour everywhere, in every profile, as
+/// in the ideal (which keeps a fragment only if strictly nearer).
+#[test]
+fn coplanar_faces_first_drawn_wins() {
+    let mut s = Spec::new(W, H, [0.3, 0.4, 3.0]);
+    for color in [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]] {
+        let mut o = ObjSpec::new(quad(&TILTED), Shading::Flat);
+        (o.color, o.ka, o.kd) = (color, 1.0, 0.0);
+        o.angles = [0.3, 0.5, 0.1];
+        s.objects.push(o);
+    }
+    for order in 0..2 {
+        if order == 1 {
+            s.objects.swap(0, 1);
+        }
+        let want = if order == 0 { [255, 0, 0] } else { [0, 0, 255] };
+        let (ideal, icov) = s.render_ideal();
+        assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == want));
+        for f in [
+            s.render::<F64>().unwrap(),
+            s.render::<Precise>().unwrap(),
+            s.render::<Fast>().unwrap(),
+            s.render::<FastPc>().unwrap(),
+        ] {
+            assert!(f.covered_count() > 300);
+            assert!(f.rgb.iter().zip(&f.covered).all(|(p, &c)| !c || *p == want));
+        }
+    }
+}
+
+/// Screens of 0×0, 0×N, N×0 and 1×1 pixels through the pipeline, and band
+/// height 1.
+///
+/// Bound: empty screens render nothing and return `Ok`; the single pixel
+/// of a 1×1 screen is covered as in the ideal and within 1 level of it;
+/// 1-row bands give the full frame byte for byte.
+#[test]
+fn tiny_screens_and_one_row_bands() {
+    for (w, h) in [(0, 0), (0, 7), (7, 0), (1, 1)] {
+        let mut s = Spec::new(w, h, [0.2, 0.3, 4.0]);
+        let mut o = ObjSpec::new(shapes::SPHERE, Shading::Phong);
+        o.ks = 0.4;
+        s.objects.push(o);
+        s.lights
+            .push((LightSpec::Point([1.0, 2.0, 3.0]), 1.0, [1.0; 3]));
+        let (ideal, icov) = s.render_ideal();
+        for f in [
+            s.render::<F64>().unwrap(),
+            s.render::<Precise>().unwrap(),
+            s.render::<Fast>().unwrap(),
+        ] {
+            assert_eq!(f.covered, icov);
+            let (d, _) = max_diff_covered(&f.rgb, &f.covered, &ideal, &icov);
+            assert!(d <= 1, "{w}x{h}: {d}");
+            if w * h == 0 {
+                assert_eq!(f.stats.pixels, 0);
+            }
+        }
+        if w * h == 1 {
+            assert!(icov[0], "the sphere covers the centre");
+        }
+    }
+    let mut s = Spec::new(W, H, [0.5, 1.0, 4.0]);
+    s.objects
+        .push(ObjSpec::new(shapes::BUNNY, Shading::Gouraud));
+    s.lights.push((
+        LightSpec::Directional([1.0, 1.0, 1.0]),
+        1.0,
+        [1.0, 0.5, 0.2],
+    ));
+    let whole = s.render::<Fast>().unwrap();
+    println!("bunny covers {}", whole.covered_count());
+    assert!(whole.covered_count() > 100);
+    assert_eq!(s.render_banded::<Fast>(1).unwrap(), whole.rgb);
+    assert_eq!(s.render_banded::<Fast>(H + 5).unwrap(), whole.rgb);
+}
+
+/// Regression (bug fixed in `render/band.rs`): `render_in_bands` computed
+/// the band buffer's size as `width × rows` in `u32`, which overflowed for
+/// a large `rows` (a panic in debug builds; in release the wrapped product
+/// could match an empty slice and the band slicing then panicked). Now any
+/// `rows` is a `WrongLength` error.
+#[test]
+fn band_height_overflow_is_an_error() {
+    let mut s = Spec::new(W, H, [0.0, 0.0, 4.0]);
+    s.objects.push(ObjSpec::new(shapes::CUBE, Shading::Flat));
+    let (camera, lights, objects) = s.core::<f32>();
+    let scene = s.scene(camera, &lights, &objects);
+    let mut mem = Mem::<f32>::new(100, 100);
+    let frame = prepare::<F32>(&scene, W, H, mem.ws()).unwrap();
+    for rows in [1 << 26, 1 << 27, u32::MAX, 0] {
+        let mut px: Vec<[u8; 2]> = vec![];
+        let r = render_in_bands::<F32, Rgb565Be, Depth16, RenderError>(
+            &frame,
+            &scene,
+            &mut px,
+            None,
+            rows,
+            |_| Ok(()),
+        );
+        assert_eq!(
+            r.unwrap_err(),
+            RenderError::Buffer(BufferError::WrongLength {
+                expected: W as usize * rows.max(1) as usize,
+                actual: 0
+            }),
+            "rows {rows}"
+        );
+    }
+}
