@@ -21,6 +21,13 @@ use core::fmt::Debug;
 pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// A gradient per pixel, kept at full precision for pre-stepping.
     type Grad: Copy + Debug;
+
+    /// `true` when `a + n·s` equals `n` additions of `s` exactly (integer
+    /// arithmetic): the scanline loop then steps the left-edge values row
+    /// by row. Floats round differently depending on where the sum
+    /// started, so for them each row's start value is computed afresh from
+    /// the anchor, and a band renders the very bytes of a full frame.
+    const EXACT_STEPS: bool;
     /// Per-triangle constants: the reciprocal of the doubled area.
     type Setup: Copy + Debug;
 
@@ -61,10 +68,11 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// a fixed raw `d·2^30` or a float `d`.
     fn depth30(self) -> u32;
 
-    /// Depth as stored in a 16-bit buffer: `min(depth30 >> 14, 65535)`.
+    /// Depth as stored in a 16-bit buffer: `min(depth30 >> 14, 65534)`
+    /// (65535 is the cleared value, farther than every fragment).
     #[inline(always)]
     fn depth16(self) -> u16 {
-        (self.depth30() >> 14).min(u16::MAX as u32) as u16
+        (self.depth30() >> 14).min(u16::MAX as u32 - 1) as u16
     }
 
     /// Rounded to the nearest integer after removing `frac` fraction bits
@@ -156,6 +164,7 @@ impl Recip {
 }
 
 impl Lerp for i32 {
+    const EXACT_STEPS: bool = true;
     type Grad = i64;
     type Setup = Recip;
 
@@ -208,7 +217,7 @@ impl Lerp for i32 {
     #[inline(always)]
     fn depth16(self) -> u16 {
         // The same value as the default, with one clamp instead of two.
-        (self >> 14).clamp(0, u16::MAX as i32) as u16
+        (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
     }
 
     #[inline(always)]
@@ -242,6 +251,7 @@ impl Lerp for i32 {
 macro_rules! float_lerp {
     ($t:ty) => {
         impl Lerp for $t {
+            const EXACT_STEPS: bool = false;
             type Grad = $t;
             type Setup = $t;
 

@@ -165,6 +165,9 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
             };
             let x0 = xl.max(0);
             let x1 = xr.min(window.width as i32);
+            if !L::EXACT_STEPS {
+                vl = anchor.add_n(&sx, xl - ia).add_n(&sy, j - ja);
+            }
             if x0 < x1 {
                 let v = if x0 == xl { vl } else { vl.add_n(&sx, x0 - xl) };
                 sink.span(&Span {

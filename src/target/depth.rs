@@ -6,10 +6,10 @@
 //! The test is *less than*: a fragment is drawn when its depth is strictly
 //! smaller than the stored one, so of two fragments at the same depth the
 //! first drawn stays (the z-fighting rule), and a cleared buffer holds the
-//! largest value. A 16-bit buffer stores `d30 >> 14`, so a fragment passes
-//! a cleared pixel when `d < 1 − 2^-16` (the last 2^-16 of the depth range,
-//! at the far plane or at infinity, is never drawn); a 32-bit buffer stores
-//! `d30` itself and every fragment with `d ≤ 1` passes.
+//! largest value. A 16-bit buffer stores `min(d30 >> 14, 65534)`, so every
+//! fragment, even at the far plane (`d = 1`), passes a cleared pixel, and
+//! the last 2^-15 of the depth range shares one value; a 32-bit buffer
+//! stores `d30` itself.
 
 use super::{check_window, BufferError, Window};
 
@@ -164,9 +164,9 @@ mod tests {
         assert_eq!(Depth16::from_d30(u32::MAX), u16::MAX - 1);
         assert_eq!(Depth16::from_d30(1 << 14), 1);
         assert_eq!(Depth32::from_d30(u32::MAX), 1 << 30);
-        // The far end: 1 - 2^-16 is the first 16-bit value equal to CLEAR.
-        assert!(Depth16::from_d30((1 << 30) - (1 << 14) - 1) < Depth16::CLEAR);
-        assert_eq!(Depth16::from_d30((1 << 30) - (1 << 14)), Depth16::CLEAR);
+        // The far end: every depth, 1 included, is nearer than CLEAR.
+        assert_eq!(Depth16::from_d30((1 << 30) - (1 << 14) - 1), 65534);
+        assert_eq!(Depth16::from_d30(1 << 30), 65534);
         assert!(Depth32::from_d30(1 << 30) < Depth32::CLEAR);
     }
 
