@@ -2,7 +2,7 @@
 //!
 //! They reproduce the demonstrations of the project's seeds: the
 //! dodecahedron under several shininess values and light positions in
-//! Phong and Gouraud shading, the can of pop flat and smooth, the hot spot
+//! Phong, Gouraud and flat shading, the can of pop flat and smooth, the hot spot
 //! on a bent grid, a light close to a big face, cubes and a sphere, and the
 //! bunny benchmark scene. All are small (at most 240x240) and quick to
 //! render with the ideal reference.
@@ -45,6 +45,11 @@ const SCENES: &[(&str, &str, &str)] = &[
         "dodeca-gouraud-n800",
         "Dodecahedron, smooth normals, Gouraud, shininess 800, point light at (0, 0, 2)",
         include_str!("../scenes/dodeca-gouraud-n800.toml"),
+    ),
+    (
+        "dodeca-flat-n100",
+        "Dodecahedron, flat faces, flat shading, shininess 100, point light at (0, 0, 2)",
+        include_str!("../scenes/dodeca-flat-n100.toml"),
     ),
     (
         "dodeca-phong-light-2-2-2",

@@ -6,6 +6,7 @@ pub mod builtin;
 pub mod cli;
 pub mod compare;
 pub mod core_render;
+pub mod firmware_scenes;
 
 pub mod ideal;
 pub mod image;

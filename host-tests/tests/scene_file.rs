@@ -669,6 +669,7 @@ const MEASURED: &[(&str, usize, (usize, usize), u8)] = &[
     ("dodeca-phong-n800", 6764, (33, 126), 243),
     ("dodeca-gouraud-n100", 6764, (33, 126), 78),
     ("dodeca-gouraud-n800", 6764, (33, 126), 78),
+    ("dodeca-flat-n100", 6764, (33, 126), 186),
     ("dodeca-phong-light-2-2-2", 6764, (33, 126), 240),
     ("dodeca-phong-light-20-0-20", 6764, (33, 126), 252),
     ("dodeca-phong-light-2-0-2", 6764, (33, 126), 246),

@@ -1,25 +1,36 @@
 //! fixshade benchmark firmware for QEMU's MPS2 boards.
 //!
-//! Renders each scene of [`fixshade_scenes::SCENES`] once (240×240 RGB565
-//! big-endian, 15 bands of 16 rows, a band-sized 16-bit depth buffer) and
-//! prints over semihosting, one line per scene:
+//! Renders each scene of [`fixshade_scenes::SCENES`] (built-in 3D scenes of
+//! the host, generated as Q16 constants) once with the core's `Fast`
+//! profile: RGB565 big-endian in bands of 16 rows with a band-sized 16-bit
+//! depth buffer, from a prepared frame in static workspace buffers. Prints
+//! over semihosting a header, one `capacity` line, and one line per scene:
 //!
 //! ```text
-//! scene <name> crc=0x<crc32> covered=<pixels> triangles=<n> stack=<bytes> static_ram=<bytes>
+//! scene <name> crc=0x<crc32> covered=<px> drawn=<px> setups=<n> triangles=<mesh> prepared_vertices=<n> prepared_triangles=<n> prepared_bytes=<bytes> stack=<bytes> static_ram=<bytes>
 //! ```
 //!
-//! The work of each band is bracketed by `yield` instructions and each
-//! frame closed by `sev`: the QEMU plugin in `qemu-plugin/` counts the
-//! instructions between them (one region per scene, in order). Exits
-//! through semihosting with status 0, or 1 on any error or panic.
+//! Before rendering, every scene is prepared once (unmeasured) to check
+//! that it fits the fixed workspace: a scene that does not is a start-up
+//! error. Per scene two regions are measured: the geometry (scene, camera,
+//! `prepare`) bracketed by `yield` and closed by `sev`, then the bands
+//! (each bracketed by `yield`) closed by `sev`: the QEMU plugin in
+//! `qemu-plugin/` counts the instructions in each. Exits through
+//! semihosting with status 0, or 1 on any error or panic.
 #![no_std]
 #![no_main]
 
+use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::ptr::{addr_of, addr_of_mut};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
-use fixshade_scenes::{render_frame, FrameError, Pixel, Probe, BAND_PIXELS, SCENES};
+use fixshade::render::{Link, Tri, Workspace};
+use fixshade::target::Rgb8;
+use fixshade_scenes::{
+    capacity_of, check, render_frame, FrameError, Needs, Pixel, Probe, BAND_PIXELS, BAND_ROWS,
+    MAX_NEEDS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
+};
 
 /// Executes the marker instruction `yield`: a hint that QEMU runs as a
 /// no-op and that rustc never emits, so the counting plugin can toggle on
@@ -33,7 +44,8 @@ fn yield_marker() {
     unsafe { core::arch::asm!("yield", options(nostack, preserves_flags)) }
 }
 
-/// Toggles instruction counting around each band's work.
+/// Toggles instruction counting around the measured work and closes the
+/// plugin's regions.
 struct Markers;
 
 impl Probe for Markers {
@@ -44,6 +56,10 @@ impl Probe for Markers {
     #[inline(always)]
     fn pause(&mut self) {
         yield_marker();
+    }
+    #[inline(always)]
+    fn close(&mut self) {
+        cortex_m::asm::sev();
     }
 }
 
@@ -107,25 +123,109 @@ fn stack_used() -> usize {
     top - p
 }
 
-fn run(pixels: &mut [Pixel], depth: &mut [u16]) -> Result<(), FrameError> {
+/// The workspace's capacities: what the largest scene needs, or, with the
+/// feature `tiny-workspace` (to test the start-up check), half the
+/// vertices.
+const CAP: Needs = if cfg!(feature = "tiny-workspace") {
+    Needs {
+        vertices: MAX_NEEDS.vertices / 2,
+        ..MAX_NEEDS
+    }
+} else {
+    MAX_NEEDS
+};
+
+/// Static memory: the band buffers and the prepared frame's workspace.
+struct Memory {
+    pixels: &'static mut [Pixel; BAND_PIXELS],
+    depth: &'static mut [u16; BAND_PIXELS],
+    xy: &'static mut [[i32; 2]; CAP.vertices],
+    vals: &'static mut [i32; CAP.values],
+    tris: &'static mut [Tri; CAP.triangles],
+    heads: &'static mut [u16; CAP.heads],
+    links: &'static mut [Link; CAP.vertices],
+}
+
+impl Memory {
+    fn workspace(&mut self) -> Workspace<'_, i32> {
+        Workspace {
+            xy: &mut self.xy[..],
+            vals: &mut self.vals[..],
+            tris: &mut self.tris[..],
+            heads: &mut self.heads[..],
+            links: &mut self.links[..],
+        }
+    }
+}
+
+/// Why the firmware stops.
+enum Failure {
+    /// A scene does not fit the workspace (or the core refuses it).
+    Startup(&'static str, FrameError),
+    /// Rendering a scene failed.
+    Frame(&'static str, FrameError),
+}
+
+fn run(mem: &mut Memory) -> Result<(), Failure> {
+    let ws = capacity_of(&mem.workspace());
+    let band_bytes = core::mem::size_of_val(mem.pixels);
+    let depth_bytes = core::mem::size_of_val(mem.depth);
     hprintln!(
-        "fixshade-firmware target={} board={} frame=240x240 rgb565be bands=16 depth16 band_ram={}",
+        "fixshade-firmware target={} board={} profile=fast max_frame={}x{} rgb565be band_rows={} depth16",
         env!("FW_TARGET"),
         env!("FW_BOARD"),
-        core::mem::size_of_val(pixels) + core::mem::size_of_val(depth),
+        WIDTH,
+        WIDTH,
+        BAND_ROWS,
     );
-    for scene in SCENES.iter() {
+    hprintln!(
+        "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} ws_heads={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
+        band_bytes,
+        depth_bytes,
+        ws.vertices,
+        ws.values,
+        ws.triangles,
+        ws.heads,
+        workspace_bytes(mem),
+        MESH_SHAPE_BYTES,
+        MESH_NORMAL_BYTES,
+        static_ram(),
+    );
+    // Start-up check: every scene must fit the fixed workspace.
+    for spec in SCENES.iter() {
+        check(spec, mem.workspace()).map_err(|e| Failure::Startup(spec.name, e))?;
+    }
+    for spec in SCENES.iter() {
         paint_stack();
-        let stats = render_frame(scene, pixels, depth, &mut Markers)?;
+        let ws = Workspace {
+            xy: &mut mem.xy[..],
+            vals: &mut mem.vals[..],
+            tris: &mut mem.tris[..],
+            heads: &mut mem.heads[..],
+            links: &mut mem.links[..],
+        };
+        let stats = render_frame(
+            spec,
+            ws,
+            &mut mem.pixels[..],
+            &mut mem.depth[..],
+            &mut Markers,
+        )
+        .map_err(|e| Failure::Frame(spec.name, e))?;
         let stack = stack_used();
-        // Closes the plugin's region for this scene.
-        cortex_m::asm::sev();
         hprintln!(
-            "scene {} crc=0x{:08x} covered={} triangles={} stack={} static_ram={}",
-            scene.name,
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} stack={} static_ram={}",
+            spec.name,
+            spec.width,
+            spec.height,
             stats.crc,
             stats.covered,
-            scene.triangles,
+            stats.drawn,
+            stats.setups,
+            spec.triangles(),
+            stats.vertices,
+            stats.triangles,
+            stats.prepared_bytes,
             stack,
             static_ram(),
         );
@@ -133,16 +233,64 @@ fn run(pixels: &mut [Pixel], depth: &mut [u16]) -> Result<(), FrameError> {
     Ok(())
 }
 
+/// Bytes of the workspace buffers.
+fn workspace_bytes(mem: &Memory) -> usize {
+    core::mem::size_of_val(mem.xy)
+        + core::mem::size_of_val(mem.vals)
+        + core::mem::size_of_val(mem.tris)
+        + core::mem::size_of_val(mem.heads)
+        + core::mem::size_of_val(mem.links)
+}
+
 #[entry]
 fn main() -> ! {
-    // cortex-m-rt turns these into `&'static mut` (the entry runs once):
-    // the band's colour and depth memory, in .bss.
+    // cortex-m-rt turns these into `&'static mut` (the entry runs once),
+    // in .bss.
     static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
-    let status = match run(PIXELS, DEPTH) {
+    static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
+    static mut VALS: [i32; CAP.values] = [0; CAP.values];
+    static mut TRIS: [Tri; CAP.triangles] = [NO_TRI; CAP.triangles];
+    static mut HEADS: [u16; CAP.heads] = [0; CAP.heads];
+    // `Link` has private fields and no const constructor: initialised
+    // below with `Link::default()`.
+    static mut LINKS: MaybeUninit<[Link; CAP.vertices]> = MaybeUninit::uninit();
+    let links = {
+        let p = LINKS.as_mut_ptr().cast::<Link>();
+        for i in 0..CAP.vertices {
+            // SAFETY: `i` is within the array; writing a value into
+            // uninitialised memory through a raw pointer is sound.
+            unsafe { p.add(i).write(Link::default()) };
+        }
+        // SAFETY: every element was initialised above.
+        unsafe { LINKS.assume_init_mut() }
+    };
+    let mut mem = Memory {
+        pixels: PIXELS,
+        depth: DEPTH,
+        xy: XY,
+        vals: VALS,
+        tris: TRIS,
+        heads: HEADS,
+        links,
+    };
+    let status = match run(&mut mem) {
         Ok(()) => debug::EXIT_SUCCESS,
-        Err(e) => {
-            hprintln!("error: {}", e);
+        Err(Failure::Startup(name, e)) => {
+            hprintln!(
+                "error: scene {} does not fit the firmware's workspace (capacities: {} vertices, {} values, {} triangles, {} heads; it needs {:?}): {}",
+                name,
+                CAP.vertices,
+                CAP.values,
+                CAP.triangles,
+                CAP.heads,
+                SCENES.iter().find(|s| s.name == name).map(|s| s.needs),
+                e
+            );
+            debug::EXIT_FAILURE
+        }
+        Err(Failure::Frame(name, e)) => {
+            hprintln!("error: scene {}: {}", name, e);
             debug::EXIT_FAILURE
         }
     };
@@ -151,6 +299,13 @@ fn main() -> ! {
         cortex_m::asm::wfi();
     }
 }
+
+/// An unused prepared triangle (`Tri::default()` is not `const`).
+const NO_TRI: Tri = Tri {
+    v: [0; 3],
+    color: Rgb8::BLACK,
+    back: false,
+};
 
 #[panic_handler]
 fn panic(info: &PanicInfo) -> ! {

@@ -1,15 +1,49 @@
 //! Renders the firmware's scenes on the host with the same code (the
 //! `fixshade-scenes` crate) and prints one line per scene in the
-//! firmware's format, so `.ci/firmware` can compare the CRCs of the host
-//! and both Cortex-M targets.
+//! firmware's format (without the target-only fields), so `.ci/firmware`
+//! can compare the CRCs of the host and both Cortex-M targets. (The CI
+//! compares them with the host's `fixshade render --profile fast --crc`
+//! too, which renders from the scene files.)
 //!
 //! `cargo run --release -p fixshade-host-check [-- --ppm DIR]`: with
 //! `--ppm`, also writes each frame as `DIR/<scene>.ppm` (binary PPM) to look
 //! at.
 
+use fixshade::render::{Link, Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
-use fixshade_scenes::{render_frame, NoProbe, Pixel, BAND_PIXELS, HEIGHT, SCENES, WIDTH};
+use fixshade_scenes::{render_frame, Crc32, Needs, NoProbe, Pixel, BAND_PIXELS, MAX_NEEDS, SCENES};
 use std::{error::Error, fs, io::Write, path::PathBuf};
+
+/// Workspace memory on the heap.
+struct Owned {
+    xy: Vec<[i32; 2]>,
+    vals: Vec<i32>,
+    tris: Vec<Tri>,
+    heads: Vec<u16>,
+    links: Vec<Link>,
+}
+
+impl Owned {
+    fn new(n: Needs) -> Self {
+        Self {
+            xy: vec![[0; 2]; n.vertices],
+            vals: vec![0; n.values],
+            tris: vec![Tri::default(); n.triangles],
+            heads: vec![0; n.heads],
+            links: vec![Link::default(); n.vertices],
+        }
+    }
+
+    fn ws(&mut self) -> Workspace<'_, i32> {
+        Workspace {
+            xy: &mut self.xy,
+            vals: &mut self.vals,
+            tris: &mut self.tris,
+            heads: &mut self.heads,
+            links: &mut self.links,
+        }
+    }
+}
 
 fn main() -> Result<(), Box<dyn Error>> {
     let mut args = std::env::args().skip(1);
@@ -20,38 +54,71 @@ fn main() -> Result<(), Box<dyn Error>> {
             _ => return Err(format!("unknown argument {a}; usage: [--ppm DIR]").into()),
         }
     }
+    let mut ws = Owned::new(MAX_NEEDS);
     let mut px = vec![[0u8; 2]; BAND_PIXELS];
     let mut z = vec![0u16; BAND_PIXELS];
-    println!("fixshade-host-check target=host frame={WIDTH}x{HEIGHT}");
-    for scene in SCENES.iter() {
-        let s = render_frame(scene, &mut px, &mut z, &mut NoProbe)?;
+    println!("fixshade-host-check target=host profile=fast");
+    for spec in SCENES.iter() {
+        let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut NoProbe)
+            .map_err(|e| format!("scene {}: {e}", spec.name))?;
         println!(
-            "scene {} crc=0x{:08x} covered={} triangles={}",
-            scene.name, s.crc, s.covered, scene.triangles
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
+            spec.name,
+            spec.width,
+            spec.height,
+            s.crc,
+            s.covered,
+            s.drawn,
+            s.setups,
+            spec.triangles(),
+            s.vertices,
+            s.triangles,
+            s.prepared_bytes,
         );
         if let Some(dir) = &ppm {
             fs::create_dir_all(dir)?;
-            write_ppm(&dir.join(format!("{}.ppm", scene.name)), scene)?;
+            let rgb = whole_frame(spec, &mut ws)?;
+            let mut out = fs::File::create(dir.join(format!("{}.ppm", spec.name)))?;
+            write!(out, "P6\n{} {}\n255\n", spec.width, spec.height)?;
+            out.write_all(&rgb)?;
         }
     }
     Ok(())
 }
 
-/// Renders the scene into a whole frame and writes it as binary PPM.
-fn write_ppm(path: &std::path::Path, scene: &fixshade_scenes::Scene) -> Result<(), Box<dyn Error>> {
+/// The frame of `spec` as 8-bit RGB, rendered in one piece (a band as
+/// tall as the frame); fails unless its CRC equals the banded frame's.
+fn whole_frame(
+    spec: &fixshade_scenes::SceneSpec,
+    ws: &mut Owned,
+) -> Result<Vec<u8>, Box<dyn Error>> {
+    use fixshade::num::Fast;
+    use fixshade::render::prepare;
     use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Target};
-    let n = (WIDTH * HEIGHT) as usize;
+    let objects: Vec<_> = spec.objects.iter().map(|o| o.object()).collect();
+    let scene = spec.scene(spec.camera()?, &objects);
+    let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws.ws())?;
+    let n = (spec.width * spec.height) as usize;
     let mut px: Vec<Pixel> = vec![[0; 2]; n];
     let mut z = vec![0u16; n];
-    let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, WIDTH, HEIGHT)?;
-    fb.clear(fixshade_scenes::BACKGROUND);
-    let mut db = DepthBuffer::<Depth16>::new(&mut z, WIDTH, 0, HEIGHT)?;
-    (scene.draw)(&mut fb, &mut db)?;
-    let mut out = fs::File::create(path)?;
-    write!(out, "P6\n{WIDTH} {HEIGHT}\n255\n")?;
-    for &p in fb.pixels() {
-        let c = Rgb565Be::decode(p);
-        out.write_all(&[c.r, c.g, c.b])?;
+    let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, spec.width, spec.height)?;
+    fb.clear(scene.background);
+    let mut db = DepthBuffer::<Depth16>::new(&mut z, spec.width, 0, spec.height)?;
+    frame.render(&scene, &mut fb, Some(&mut db))?;
+    let mut crc = Crc32::new();
+    crc.update(fb.bytes());
+    let mut banded_px = vec![[0u8; 2]; BAND_PIXELS];
+    let mut banded_z = vec![0u16; BAND_PIXELS];
+    let banded = render_frame(spec, ws.ws(), &mut banded_px, &mut banded_z, &mut NoProbe)?;
+    if crc.finish() != banded.crc {
+        return Err(format!("{}: whole frame differs from the bands", spec.name).into());
     }
-    Ok(())
+    Ok(fb
+        .pixels()
+        .iter()
+        .flat_map(|&p| {
+            let c = Rgb565Be::decode(p);
+            [c.r, c.g, c.b]
+        })
+        .collect())
 }

@@ -1,18 +1,24 @@
-//! The firmware's benchmark scenes and frame loop, shared by the firmware
+//! The firmware's scenes and frame loop, shared by the firmware
 //! (`thumbv6m-none-eabi`, `thumbv7em-none-eabihf`) and by `host-check`,
-//! which renders the same scenes on the host so that the three CRCs can be
+//! which renders the same scenes on the host so that the CRCs can be
 //! compared.
 //!
-//! A frame is 240×240 RGB565 (big-endian, as SPI displays take it),
-//! rendered in 15 bands of 16 rows with a band-sized 16-bit depth buffer:
-//! 7 680 + 7 680 bytes of RAM. Per band: move both buffers (clearing the
-//! depth), clear the colour, draw the scene (triangles that miss the band
-//! are skipped by a bounding-row test before setup). That is the measured
-//! work; the CRC-32 of the band's bytes and the count of covered pixels
-//! (depth values no longer clear) are taken outside it.
+//! The scenes ([`SCENES`]) are built-in 3D scenes of the host
+//! (`fixshade scenes`), turned into constant Q16 data by the host's
+//! generator (`fixshade_host::firmware_scenes`, file `generated.rs`): no
+//! floating point here. A frame is rendered with the core's `Fast` profile
+//! (Q16.16) as the host's `fixshade render --profile fast` renders it:
 //!
-//! Scenes are a table ([`SCENES`]) of plain functions that draw into one
-//! band, so that the core's 3D scenes can replace them later.
+//! 1. *geometry*: build the core's `Scene` (camera by `Camera::look_at`,
+//!    model transforms by `Affine::from_parts`, from the Q16 inputs) and
+//!    `prepare::<Fast>` it once into the caller's workspace;
+//! 2. *raster*: per band of [`BAND_ROWS`] rows (RGB565 big-endian, as SPI
+//!    displays take it; a band-sized 16-bit depth buffer): clear the band
+//!    to the background, clear the depth, render the prepared frame.
+//!
+//! Both are measured (a [`Probe`] brackets them); the CRC-32 of the
+//! band's bytes and the count of covered pixels (depth values no longer
+//! clear) are taken outside the brackets.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -21,29 +27,28 @@
 extern crate std;
 
 mod crc;
-mod fan;
-mod grid;
+#[rustfmt::skip]
+mod generated;
+pub mod spec;
 
 pub use crc::Crc32;
+pub use generated::{MAX_NEEDS, MAX_OBJECTS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES};
+pub use spec::{Needs, ObjectSpec, SceneSpec};
 
 use core::fmt;
-use fixshade::raster::{RasterError, SubpixelBits, Vertex};
+use fixshade::num::{Fast, Q16};
+use fixshade::render::{prepare, Frame, RenderError, Workspace};
+use fixshade::scene::Object;
 use fixshade::target::{
-    BufferError, Depth16, DepthBuffer, DepthFormat, FrameBuf, Rgb565Be, Rgb8, Target, Window,
+    BufferError, Depth16, DepthBuffer, DepthFormat, FrameBuf, Rgb565Be, Target,
 };
 
-/// Frame width in pixels.
+/// Widest frame (and height) the band buffers hold.
 pub const WIDTH: u32 = 240;
-/// Frame height in pixels.
-pub const HEIGHT: u32 = 240;
 /// Rows per band.
 pub const BAND_ROWS: u32 = 16;
-/// Pixels (and depth values) per band: 3 840.
+/// Pixels (and depth values) per band buffer: 3 840.
 pub const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
-/// Background colour (black, as in the bunny benchmark).
-pub const BACKGROUND: Rgb8 = Rgb8::BLACK;
-/// Subpixel precision of every scene: 1/16 pixel.
-pub const SUB: SubpixelBits = SubpixelBits::DEFAULT;
 
 /// One stored pixel: RGB565, big-endian.
 pub type Pixel = [u8; 2];
@@ -51,52 +56,17 @@ pub type Pixel = [u8; 2];
 pub type Band<'a> = FrameBuf<'a, Rgb565Be>;
 /// The band's depth buffer.
 pub type BandDepth<'a> = DepthBuffer<'a, Depth16>;
-/// Draws a scene into one band (colour cleared, depth cleared).
-pub type DrawFn = fn(&mut Band<'_>, &mut BandDepth<'_>) -> Result<(), RasterError>;
 
-/// A benchmark scene.
-#[derive(Clone, Copy, Debug)]
-pub struct Scene {
-    /// Short name, printed by the firmware and the host check.
-    pub name: &'static str,
-    /// Triangles submitted per frame (before band culling).
-    pub triangles: u32,
-    /// Draws the scene into a band.
-    pub draw: DrawFn,
-}
-
-/// Every scene, in the order the firmware runs them.
-pub static SCENES: [Scene; 4] = [
-    Scene {
-        name: "fan-gouraud",
-        triangles: fan::TRIANGLES as u32,
-        draw: fan::draw_gouraud,
-    },
-    Scene {
-        name: "fan-flat",
-        triangles: fan::TRIANGLES as u32,
-        draw: fan::draw_flat,
-    },
-    Scene {
-        name: "grid-gouraud",
-        triangles: grid::TRIANGLES as u32,
-        draw: grid::draw_gouraud,
-    },
-    Scene {
-        name: "grid-flat",
-        triangles: grid::TRIANGLES as u32,
-        draw: grid::draw_flat,
-    },
-];
-
-/// Marks the measured work of a frame: the firmware executes a marker
-/// instruction in both methods, which the instruction-counting QEMU plugin
-/// toggles counting on; the host does nothing.
+/// Marks the measured work: the firmware executes marker instructions
+/// that the instruction-counting QEMU plugin toggles counting on (and
+/// closes a region on); the host does nothing.
 pub trait Probe {
-    /// Counting on: the band's work starts.
+    /// Counting on: measured work starts.
     fn resume(&mut self);
-    /// Counting off: the band's work ended.
+    /// Counting off: measured work ended.
     fn pause(&mut self);
+    /// Closes a measured region (geometry, then raster, per frame).
+    fn close(&mut self);
 }
 
 /// A probe that does nothing.
@@ -106,15 +76,26 @@ pub struct NoProbe;
 impl Probe for NoProbe {
     fn resume(&mut self) {}
     fn pause(&mut self) {}
+    fn close(&mut self) {}
 }
 
 /// What a frame produced.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FrameStats {
     /// CRC-32 of the frame's bytes, row-major, top to bottom.
     pub crc: u32,
     /// Pixels covered by at least one fragment (depth no longer clear).
     pub covered: u32,
+    /// Fragments written (depth-test passes, over all bands).
+    pub drawn: u32,
+    /// Triangle setups (a triangle spanning two bands counts twice).
+    pub setups: u32,
+    /// Prepared vertices.
+    pub vertices: u32,
+    /// Prepared triangles.
+    pub triangles: u32,
+    /// `Frame::bytes_used()`: bytes of the prepared frame.
+    pub prepared_bytes: u32,
 }
 
 /// Why a frame failed.
@@ -122,8 +103,8 @@ pub struct FrameStats {
 pub enum FrameError {
     /// A band buffer was refused.
     Buffer(BufferError),
-    /// A triangle was refused.
-    Raster(RasterError),
+    /// The core refused the scene, the workspace or a band.
+    Render(RenderError),
 }
 
 impl From<BufferError> for FrameError {
@@ -132,9 +113,15 @@ impl From<BufferError> for FrameError {
     }
 }
 
-impl From<RasterError> for FrameError {
-    fn from(e: RasterError) -> Self {
-        Self::Raster(e)
+impl From<RenderError> for FrameError {
+    fn from(e: RenderError) -> Self {
+        Self::Render(e)
+    }
+}
+
+impl From<fixshade::scene::SceneError> for FrameError {
+    fn from(e: fixshade::scene::SceneError) -> Self {
+        Self::Render(e.into())
     }
 }
 
@@ -142,168 +129,236 @@ impl fmt::Display for FrameError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Buffer(e) => write!(f, "band buffer: {e}"),
-            Self::Raster(e) => write!(f, "raster: {e}"),
+            Self::Render(e) => write!(f, "{e}"),
         }
     }
 }
 
 impl core::error::Error for FrameError {}
 
-/// Renders one frame of `scene` band by band into the given band memory
-/// (`BAND_PIXELS` pixels and depth values), calling `probe` around the
-/// work of each band.
+/// The lengths of a workspace's parts.
+pub fn capacity_of(ws: &Workspace<'_, i32>) -> Needs {
+    Needs {
+        vertices: ws.xy.len().min(ws.links.len()),
+        values: ws.vals.len(),
+        triangles: ws.tris.len(),
+        heads: ws.heads.len(),
+        prepared_bytes: 0,
+    }
+}
+
+/// The objects of `spec` for the core.
+fn objects(spec: &SceneSpec) -> heapless::Vec<Object<'static, Q16>, MAX_OBJECTS> {
+    spec.objects.iter().map(ObjectSpec::object).collect()
+}
+
+/// Prepares `spec` into `ws` (no probe): for the firmware's start-up
+/// check that every scene fits its workspace.
 ///
 /// # Errors
-/// [`FrameError`] when a buffer has the wrong length or a triangle is
-/// refused.
+/// The core's error, e.g. `RenderError::Capacity` naming the part that
+/// is too small and the object.
+pub fn check(spec: &SceneSpec, ws: Workspace<'_, i32>) -> Result<FrameStats, FrameError> {
+    let objects = objects(spec);
+    let scene = spec.scene(spec.camera()?, &objects);
+    let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws)?;
+    Ok(prepared_stats(&frame))
+}
+
+fn prepared_stats(frame: &Frame<'_, Fast>) -> FrameStats {
+    FrameStats {
+        vertices: frame.vertex_count() as u32,
+        triangles: frame.triangle_count() as u32,
+        prepared_bytes: frame.bytes_used() as u32,
+        ..FrameStats::default()
+    }
+}
+
+/// Renders one frame of `spec`: prepares it into `ws`, then renders it
+/// band by band into the band memory (`BAND_PIXELS` pixels and depth
+/// values), with `probe` around the measured work: one region for the
+/// geometry (scene, camera, transforms, `prepare`), one for the bands.
+///
+/// # Errors
+/// [`FrameError`] when the core refuses the scene, the workspace is too
+/// small or a band buffer is refused.
 pub fn render_frame<P: Probe>(
-    scene: &Scene,
+    spec: &SceneSpec,
+    ws: Workspace<'_, i32>,
     pixels: &mut [Pixel],
     depth: &mut [u16],
     probe: &mut P,
 ) -> Result<FrameStats, FrameError> {
-    let mut fb = Band::band(pixels, WIDTH, 0, BAND_ROWS)?;
-    let mut db = BandDepth::new(depth, WIDTH, 0, BAND_ROWS)?;
+    // Geometry.
+    probe.resume();
+    let objects = objects(spec);
+    let camera = spec.camera();
+    let prepared = match camera {
+        Ok(camera) => {
+            let scene = spec.scene(camera, &objects);
+            prepare::<Fast>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
+        }
+        Err(e) => Err(e.into()),
+    };
+    probe.pause();
+    probe.close();
+    let (scene, frame) = prepared?;
+    let mut stats = prepared_stats(&frame);
+
+    // Raster.
+    let (w, h) = (spec.width, spec.height);
     let mut crc = Crc32::new();
-    let mut covered = 0u32;
     let mut y0 = 0;
-    while y0 < HEIGHT {
+    while y0 < h {
+        let y1 = (y0 + BAND_ROWS).min(h);
+        let n = ((y1 - y0) * w) as usize;
+        let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
+            return Err(BufferError::WrongLength {
+                expected: n,
+                actual: pixels.len().min(depth.len()),
+            }
+            .into());
+        };
         probe.resume();
-        let r = draw_band(scene, &mut fb, &mut db, y0);
+        let r = draw_band(&frame, &scene, px, z, w, y0, y1);
         probe.pause();
-        r?;
+        let s = r?;
+        stats.setups += s.triangles;
+        stats.drawn += s.pixels;
+        let fb = Band::band(px, w, y0, y1)?;
         crc.update(fb.bytes());
-        covered += count_covered(&mut db);
-        y0 += BAND_ROWS;
+        stats.covered += z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
+        y0 = y1;
     }
-    Ok(FrameStats {
-        crc: crc.finish(),
-        covered,
-    })
+    probe.close();
+    stats.crc = crc.finish();
+    Ok(stats)
 }
 
-/// The measured work of one band.
+/// The measured work of one band: clear colour and depth, render.
 #[inline(always)]
 fn draw_band(
-    scene: &Scene,
-    fb: &mut Band<'_>,
-    db: &mut BandDepth<'_>,
+    frame: &Frame<'_, Fast>,
+    scene: &fixshade::scene::Scene<'_, '_, Q16>,
+    px: &mut [Pixel],
+    z: &mut [u16],
+    w: u32,
     y0: u32,
-) -> Result<(), FrameError> {
-    fb.move_to(y0)?;
-    db.move_to(y0)?;
-    fb.clear(BACKGROUND);
-    (scene.draw)(fb, db)?;
-    Ok(())
-}
-
-/// Depth values of the window that are no longer clear.
-fn count_covered(db: &mut BandDepth<'_>) -> u32 {
-    let w = db.window();
-    let mut n = 0;
-    for y in w.y0..w.y1 {
-        if let Some(row) = db.row_mut(y) {
-            n += row.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
-        }
-    }
-    n
-}
-
-/// Whether a triangle can cover a pixel centre in the window's rows
-/// (conservative: compares its vertical extent, in subpixels, with the
-/// rows' extent), so that triangles outside a band skip setup.
-#[inline(always)]
-pub fn meets_rows<const N: usize>(tri: &[Vertex<i32, N>; 3], w: Window) -> bool {
-    let s = SUB.get();
-    let (a, b, c) = (tri[0].y, tri[1].y, tri[2].y);
-    let top = a.min(b).min(c);
-    let bottom = a.max(b).max(c);
-    bottom >= (w.y0 as i32) << s && top < (w.y1 as i32) << s
-}
-
-/// The level `l` (0..=255) as a fixed-point attribute (`l · 2^16`).
-const fn level(l: i32) -> i32 {
-    l << 16
+    y1: u32,
+) -> Result<fixshade::render::RenderStats, FrameError> {
+    let mut fb = Band::band(px, w, y0, y1)?;
+    fb.clear(scene.background);
+    let mut db = BandDepth::new(z, w, y0, y1)?;
+    Ok(frame.render(scene, &mut fb, Some(&mut db))?)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::vec;
+    use fixshade::render::{Link, Part, Tri};
+    use std::{vec, vec::Vec};
 
-    /// Renders a scene into a whole frame at once (no bands).
-    fn whole_frame(scene: &Scene) -> (u32, u32) {
-        let n = (WIDTH * HEIGHT) as usize;
+    struct Owned {
+        xy: Vec<[i32; 2]>,
+        vals: Vec<i32>,
+        tris: Vec<Tri>,
+        heads: Vec<u16>,
+        links: Vec<Link>,
+    }
+
+    impl Owned {
+        fn new(n: Needs) -> Self {
+            Self {
+                xy: vec![[0; 2]; n.vertices],
+                vals: vec![0; n.values],
+                tris: vec![Tri::default(); n.triangles],
+                heads: vec![0; n.heads],
+                links: vec![Link::default(); n.vertices],
+            }
+        }
+        fn ws(&mut self) -> Workspace<'_, i32> {
+            Workspace {
+                xy: &mut self.xy,
+                vals: &mut self.vals,
+                tris: &mut self.tris,
+                heads: &mut self.heads,
+                links: &mut self.links,
+            }
+        }
+    }
+
+    /// Renders a scene into a whole frame at once (no bands): CRC and
+    /// covered pixels.
+    fn whole_frame(spec: &SceneSpec, ws: Workspace<'_, i32>) -> (u32, u32) {
+        let objects = objects(spec);
+        let scene = spec.scene(spec.camera().unwrap(), &objects);
+        let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
+        let n = (spec.width * spec.height) as usize;
         let mut px = vec![[0u8; 2]; n];
         let mut z = vec![0u16; n];
-        let mut fb = Band::new(&mut px, WIDTH, HEIGHT).unwrap();
-        fb.clear(BACKGROUND);
-        let mut db = BandDepth::new(&mut z, WIDTH, 0, HEIGHT).unwrap();
-        (scene.draw)(&mut fb, &mut db).unwrap();
+        let mut fb = Band::new(&mut px, spec.width, spec.height).unwrap();
+        fb.clear(scene.background);
+        let mut db = BandDepth::new(&mut z, spec.width, 0, spec.height).unwrap();
+        frame.render(&scene, &mut fb, Some(&mut db)).unwrap();
         let mut crc = Crc32::new();
         crc.update(fb.bytes());
-        (crc.finish(), count_covered(&mut db))
+        let covered = z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
+        (crc.finish(), covered)
     }
 
     #[test]
     fn bands_equal_the_whole_frame() {
-        let mut px = [[0u8; 2]; BAND_PIXELS];
-        let mut z = [0u16; BAND_PIXELS];
-        for scene in SCENES.iter() {
-            let banded = render_frame(scene, &mut px, &mut z, &mut NoProbe).unwrap();
-            let (crc, covered) = whole_frame(scene);
-            assert_eq!(banded.crc, crc, "{}", scene.name);
-            assert_eq!(banded.covered, covered, "{}", scene.name);
+        let mut ws = Owned::new(MAX_NEEDS);
+        let mut px = vec![[0u8; 2]; BAND_PIXELS];
+        let mut z = vec![0u16; BAND_PIXELS];
+        for spec in SCENES.iter() {
+            let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut NoProbe).unwrap();
+            assert_eq!(
+                (s.crc, s.covered),
+                whole_frame(spec, ws.ws()),
+                "{}",
+                spec.name
+            );
+            assert_eq!(s.prepared_bytes as usize, spec.needs.prepared_bytes);
+            assert!(s.drawn >= s.covered && s.covered > 5000, "{s:?}");
         }
     }
 
     #[test]
-    fn scenes_cover_what_they_should() {
-        let mut px = [[0u8; 2]; BAND_PIXELS];
-        let mut z = [0u16; BAND_PIXELS];
-        for scene in SCENES.iter() {
-            let s = render_frame(scene, &mut px, &mut z, &mut NoProbe).unwrap();
-            let frame = WIDTH * HEIGHT;
+    fn every_scene_fits_its_needs_and_not_less() {
+        for spec in SCENES.iter() {
+            let n = spec.needs;
+            check(spec, Owned::new(n).ws()).unwrap();
+            let short = Needs {
+                vertices: n.vertices - 1,
+                ..n
+            };
+            let e = check(spec, Owned::new(short).ws()).unwrap_err();
+            assert_eq!(
+                e,
+                FrameError::Render(RenderError::Capacity {
+                    part: Part::Vertices,
+                    object: spec.objects.len() - 1
+                })
+                .clone(),
+                "{}",
+                spec.name
+            );
             assert!(
-                s.covered > frame / 10 && s.covered < frame,
-                "{scene:?} {s:?}"
+                std::format!("{e}")
+                    .starts_with("workspace too small (Vertices) while preparing object"),
+                "{e}"
             );
         }
-        // The grid approximates the bunny's ~14 500 covered pixels.
-        let g = render_frame(&SCENES[2], &mut px, &mut z, &mut NoProbe).unwrap();
-        assert!((13_500..15_500).contains(&g.covered), "{g:?}");
     }
 
     #[test]
-    fn culling_by_rows_is_conservative() {
-        // A triangle that fails the row test draws nothing into that band.
-        use fixshade::raster::{Fill, GouraudMono};
-        let mut px = [[0u8; 2]; BAND_PIXELS];
-        let mut z = [0u16; BAND_PIXELS];
-        let mut skipped = 0;
-        let fan = fan::FAN.iter().map(|t| {
-            t.map(|v| Vertex {
-                x: v.x,
-                y: v.y,
-                z: v.z,
-                attrs: [v.attrs[0]],
-            })
-        });
-        for tri in fan.chain(grid::all()) {
-            for y0 in (0..HEIGHT).step_by(BAND_ROWS as usize) {
-                let mut fb = Band::band(&mut px, WIDTH, y0, y0 + BAND_ROWS).unwrap();
-                let mut db = BandDepth::new(&mut z, WIDTH, y0, y0 + BAND_ROWS).unwrap();
-                if meets_rows(&tri, fb.window()) {
-                    continue;
-                }
-                skipped += 1;
-                Fill::new(&mut fb, Some(&mut db), GouraudMono)
-                    .unwrap()
-                    .draw(&tri, SUB)
-                    .unwrap();
-                assert_eq!(count_covered(&mut db), 0, "{tri:?} at {y0}");
-            }
+    fn max_needs_cover_every_scene() {
+        for spec in SCENES.iter() {
+            let (n, m) = (spec.needs, MAX_NEEDS);
+            assert!(n.vertices <= m.vertices && n.values <= m.values);
+            assert!(n.triangles <= m.triangles && n.heads <= m.heads);
+            assert!(spec.width <= WIDTH && spec.objects.len() <= MAX_OBJECTS);
         }
-        assert!(skipped > 20_000);
     }
 }
