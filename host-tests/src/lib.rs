@@ -10,4 +10,5 @@ pub mod core_render;
 pub mod ideal;
 pub mod image;
 pub mod metrics;
+pub mod report;
 pub mod scene_file;
