@@ -11,4 +11,5 @@ pub mod firmware_scenes;
 pub mod ideal;
 pub mod image;
 pub mod metrics;
+pub mod report;
 pub mod scene_file;

@@ -7,7 +7,7 @@
 //!   subcommand, holding that subcommand's argument struct;
 //!   [`Command::run`] dispatches to the subcommand's `run` function.
 //! * One module per subcommand: [`scenes`], [`bake`], [`ideal`],
-//!   [`render`], [`compare`], each with
+//!   [`render`], [`compare`], [`report`], each with
 //!   its `...Args` struct and `pub fn run(&Args) -> Result<(), CliError>`.
 //! * Shared helpers in [`common`]: [`SceneArgs`] (a scene file or
 //!   `--scene NAME`, flattened into a subcommand's arguments, with
@@ -29,6 +29,7 @@ pub mod compare;
 mod error;
 pub mod ideal;
 pub mod render;
+pub mod report;
 pub mod scenes;
 
 use std::ffi::OsString;
@@ -63,6 +64,9 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Compare a profile with its f64 twin and the ideal reference.
     Compare(compare::CompareArgs),
+    /// Sweep scenes × shading modes × profiles and write the
+    /// accuracy-versus-speed report (HTML, Markdown, JSON).
+    Report(report::ReportArgs),
 }
 
 impl Command {
@@ -74,6 +78,7 @@ impl Command {
             Self::Ideal(args) => ideal::run(args),
             Self::Render(args) => render::run(args),
             Self::Compare(args) => compare::run(args),
+            Self::Report(args) => report::run(args),
         }
     }
 }

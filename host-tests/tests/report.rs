@@ -1,0 +1,275 @@
+//! `fixshade report --quick`, run as a real process in a temporary folder:
+//! the three files, a record with finite figures for every scene × mode ×
+//! profile of the quick sweep, the summary and the plots on the page, and
+//! the errors for an unwritable folder and a bad firmware results file
+//! (before any work, leaving existing files untouched). The embedded
+//! figures' effect on the picks is checked on the same records through the
+//! library.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use fixshade_host::core_render::CoreProfile;
+use fixshade_host::report::{
+    parse_firmware_results, CostSource, Mode, ReportData, Summary, Target, QUICK_SCENES,
+};
+
+const EXE: &str = env!("CARGO_BIN_EXE_fixshade");
+
+/// A temporary folder, removed when dropped.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir =
+            std::env::temp_dir().join(format!("fixshade-report-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create temp dir");
+        Self(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(EXE).args(args).output().expect("run fixshade")
+}
+
+fn text(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+#[test]
+fn quick_report_has_every_record_the_summary_and_the_plots() {
+    let tmp = TempDir::new("quick");
+    let out = tmp.0.join("out");
+    let o = run(&["report", "--quick", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    // No progress bar when stderr is not a terminal.
+    assert!(stderr.is_empty(), "{stderr}");
+
+    // results.json: one record per scene × mode × profile, finite figures.
+    let data: ReportData = serde_json::from_str(&text(&out.join("results.json"))).unwrap();
+    assert!(data.meta.quick);
+    assert_eq!(data.meta.debug_build, cfg!(debug_assertions));
+    let scenes: Vec<&str> = data.meta.scenes.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(scenes, QUICK_SCENES);
+    let keys: BTreeSet<(String, Mode, String)> = data
+        .records
+        .iter()
+        .map(|r| (r.scene.clone(), r.mode, r.profile.clone()))
+        .collect();
+    assert_eq!(data.records.len(), keys.len(), "duplicate records");
+    for scene in QUICK_SCENES {
+        for mode in Mode::ALL {
+            for p in CoreProfile::ALL {
+                let key = (scene.to_string(), mode, p.name().to_string());
+                assert!(keys.contains(&key), "missing {key:?}");
+            }
+        }
+    }
+    assert_eq!(data.records.len(), 3 * 3 * 8);
+    for r in &data.records {
+        let at = format!("{} {} {}", r.scene, r.mode.name(), r.profile);
+        for m in [&r.vs_ideal, &r.vs_twin, &r.vs_ideal_phong] {
+            assert!(
+                m.mean_abs_error.is_finite() && m.mean_abs_error >= 0.0,
+                "{at}"
+            );
+            assert!((0.0..=1.0).contains(&m.share_over_1), "{at}");
+        }
+        assert!(
+            r.host.median_ms.is_finite() && r.host.median_ms > 0.0,
+            "{at}"
+        );
+        assert!(r.host.min_ms <= r.host.median_ms && r.host.median_ms <= r.host.max_ms);
+        assert!(
+            r.host.pixels_per_s.is_finite() && r.host.pixels_per_s > 0.0,
+            "{at}"
+        );
+        assert_eq!(r.host.runs, 3, "{at}");
+        // Half-size frames of RGB565 scenes: 16-row bands.
+        assert_eq!(r.memory.band_bytes, r.width as usize * 16 * 2, "{at}");
+        assert_eq!(r.memory.depth_band_bytes, r.width as usize * 16 * 2, "{at}");
+        assert_eq!(
+            r.memory.ram_bytes,
+            r.memory.prepared_bytes + r.memory.band_bytes + r.memory.depth_band_bytes
+        );
+        assert!(
+            r.memory.prepared_bytes > 0 && r.memory.mesh_flash_bytes > 0,
+            "{at}"
+        );
+        assert_eq!(r.memory.triangles_bytes, r.triangles * 6, "{at}");
+        // The twin against itself; the budgets of tests/budgets.rs.
+        if r.profile == r.twin {
+            assert_eq!(r.vs_twin.max_abs_error, 0, "{at}");
+            assert_eq!(r.vs_twin.coverage_mismatch, 0, "{at}");
+            assert!(r.vs_twin.psnr_db.is_infinite(), "{at}");
+        }
+        if r.profile.starts_with("precise") {
+            assert!(r.vs_twin.max_abs_error <= 2, "{at}");
+            assert_eq!(r.vs_twin.coverage_mismatch, 0, "{at}");
+        }
+        assert!(r.vs_ideal.mean_abs_error < 1.0, "{at}");
+        assert!(
+            r.places_vs_twin.at_silhouette + r.places_vs_twin.at_edge <= r.places_vs_twin.pixels
+        );
+    }
+    // Flat shading is one colour per triangle: Phong is further from the
+    // ideal Phong frame; perspective correction brings Phong closer to the
+    // ideal on the bent grid.
+    let get = |scene: &str, mode: Mode, p: &str| {
+        data.records
+            .iter()
+            .find(|r| r.scene == scene && r.mode == mode && r.profile == p)
+            .unwrap()
+    };
+    assert!(
+        get("bunny", Mode::Flat, "fast")
+            .vs_ideal_phong
+            .mean_abs_error
+            > 2.0
+                * get("bunny", Mode::Phong, "fast")
+                    .vs_ideal_phong
+                    .mean_abs_error
+    );
+    assert!(
+        get("grid-hotspot", Mode::Phong, "fast-pc")
+            .vs_ideal
+            .mean_abs_error
+            < get("grid-hotspot", Mode::Phong, "fast")
+                .vs_ideal
+                .mean_abs_error
+    );
+    assert!(!data.embedded_available);
+
+    // index.html: the summary, three plots for the host, the frames.
+    let html = text(&out.join("index.html"));
+    assert!(html.starts_with("<!doctype html>"));
+    assert!(html.trim_end().ends_with("</html>"));
+    assert!(html.contains("<h2 id=\"summary\">Summary</h2>"));
+    for line in &data.summary {
+        assert!(
+            html.contains(&line.replace('&', "&amp;").replace('<', "&lt;")),
+            "{line}"
+        );
+    }
+    assert!(data.summary[0].starts_with("host (every profile): pick "));
+    assert!(data.summary[1].starts_with("Cortex-M0 (no FPU"));
+    assert!(data.summary[2].starts_with("Cortex-M4F"));
+    // M0: a fixed profile; M4F: fixed or f32.
+    let picked = |line: &str| {
+        let rest = line.split(": pick ").nth(1).unwrap();
+        rest.split(' ').next().unwrap().to_string()
+    };
+    let m0 = CoreProfile::parse(&picked(&data.summary[1])).unwrap();
+    assert!(m0.is_fixed(), "{m0:?}");
+    let m4 = CoreProfile::parse(&picked(&data.summary[2])).unwrap();
+    assert!(m4.is_fixed() || matches!(m4, CoreProfile::F32 | CoreProfile::F32Pc));
+    assert!(data
+        .summary
+        .iter()
+        .any(|l| l.starts_with("Largest departures")));
+    assert!(data.summary.iter().any(|l| l.starts_with("Which pixels")));
+    assert_eq!(html.matches("<svg").count(), 3, "host plots only");
+    assert!(html.contains("Pareto front"));
+    assert!(html.contains("Embedded figures are not available"));
+    assert_eq!(html.contains("in a debug build"), cfg!(debug_assertions));
+    assert!(
+        !html.contains("http://")
+            || html.matches("http://").count()
+                == html.matches("xmlns=\"http://www.w3.org/2000/svg\"").count(),
+        "no links out but the SVG namespace"
+    );
+    let images: Vec<&str> = html
+        .split("src=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap())
+        .collect();
+    assert_eq!(images.len(), 3 * 3 * 5);
+    for img in images {
+        assert!(img.starts_with("img/") && out.join(img).is_file(), "{img}");
+    }
+
+    // report.md: the same summary and tables.
+    let md = text(&out.join("report.md"));
+    assert!(md.contains("## Summary"));
+    assert!(md.contains(&data.summary[1]));
+    assert!(md.contains("| Phong | fast-pc |"));
+    // No temporary files left.
+    let leftovers: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+
+    // Embedded figures change the M0 pick's cost (library, same records):
+    // cycles make precise / Gouraud the cheapest and the only measured.
+    let embedded = parse_firmware_results(
+        "RESULT target=m0 scene=bunny-gouraud profile=precise mode=gouraud insns=900 cycles=1000\n",
+        "fw",
+    )
+    .unwrap();
+    let s = Summary::new(&data.records, &embedded);
+    let m0 = &s.picks[1];
+    assert_eq!(m0.target, Some(Target::M0));
+    assert_eq!(m0.source, CostSource::Embedded("est. cycles", 1));
+    assert_eq!(m0.points.len(), 1);
+    let p = &m0.points[m0.chosen.unwrap()];
+    assert_eq!(
+        (p.profile, p.mode, p.cost),
+        (CoreProfile::Precise, Mode::Gouraud, 1000.0)
+    );
+    assert_eq!(s.picks[2].source, CostSource::HostProxy);
+    assert_eq!(s.embedded_points.len(), 1);
+}
+
+#[test]
+fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
+    let tmp = TempDir::new("bad");
+    let file = tmp.0.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let under_file = file.join("out");
+    let start = std::time::Instant::now();
+    let o = run(&["report", "--quick", "--out", under_file.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    assert!(stderr.contains("a-file"), "{stderr}");
+    assert!(stderr.contains("cannot write"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    // Before the sweep (a quick sweep takes seconds even in release).
+    assert!(start.elapsed().as_secs_f64() < 2.0, "{:?}", start.elapsed());
+    assert_eq!(text(&file), "x");
+
+    // A bad firmware results file: bad input, checked first; an existing
+    // page is left untouched.
+    let out = tmp.0.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("index.html"), "old").unwrap();
+    let fw = tmp.0.join("fw.txt");
+    std::fs::write(&fw, "RESULT target=m7 scene=x insns=1\n").unwrap();
+    let o = run(&[
+        "report",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+        "--firmware-results",
+        fw.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("fw.txt: line 1: target: unknown target `m7`"),
+        "{stderr}"
+    );
+    assert_eq!(text(&out.join("index.html")), "old");
+    assert!(!out.join("results.json").exists());
+}
