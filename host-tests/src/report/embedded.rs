@@ -181,9 +181,12 @@ fn json_entries(text: &str, file: &str) -> Result<Vec<Entry>, CliError> {
     let bad = |m: String| CliError::input(format!("{file}: {m}"));
     let value: serde_json::Value =
         serde_json::from_str(text).map_err(|e| bad(format!("not JSON: {e}")))?;
+    // `examples/firmware/target/results.json` (written by `.ci/firmware`)
+    // holds its records under `scenes`, all rendered with the fast profile.
+    let firmware = matches!(&value, serde_json::Value::Object(o) if o.contains_key("scenes"));
     let list = match &value {
         serde_json::Value::Array(a) => a,
-        serde_json::Value::Object(o) => match o.get("results") {
+        serde_json::Value::Object(o) => match o.get("results").or_else(|| o.get("scenes")) {
             Some(serde_json::Value::Array(a)) => a,
             _ => {
                 return Err(bad(
@@ -204,7 +207,7 @@ fn json_entries(text: &str, file: &str) -> Result<Vec<Entry>, CliError> {
             let obj = v
                 .as_object()
                 .ok_or_else(|| bad(format!("{at}: not an object")))?;
-            let map = obj
+            let mut map: BTreeMap<String, String> = obj
                 .iter()
                 .filter_map(|(k, v)| {
                     let s = match v {
@@ -216,6 +219,22 @@ fn json_entries(text: &str, file: &str) -> Result<Vec<Entry>, CliError> {
                     Some((k.to_ascii_lowercase(), s))
                 })
                 .collect();
+            if firmware {
+                // The firmware's key names.
+                for (from, to) in [
+                    ("insns_frame", "insns"),
+                    ("est_m0_cycles_frame", "cycles"),
+                    ("covered_px", "covered"),
+                    ("stack_bytes", "stack"),
+                    ("static_ram_bytes", "static_ram"),
+                ] {
+                    if let Some(v) = map.remove(from) {
+                        map.entry(to.to_string()).or_insert(v);
+                    }
+                }
+                map.entry("profile".to_string())
+                    .or_insert_with(|| "fast".to_string());
+            }
             Ok((at, map))
         })
         .collect()
@@ -338,5 +357,24 @@ mod tests {
             assert!(e.message.starts_with("fw.txt: "), "{}", e.message);
             assert_eq!(e.exit_status(), 2);
         }
+    }
+
+    #[test]
+    fn reads_the_firmware_results_file() {
+        let text = r#"{"commit": "x", "targets": [],
+            "scenes": [
+              {"scene": "bunny-gouraud", "target": "thumbv6m-none-eabi", "insns_frame": 18650000,
+               "est_m0_cycles_frame": 29550000, "covered_px": 14907, "stack_bytes": 7100, "crc": "0x1234"},
+              {"scene": "bunny-gouraud", "target": "thumbv7em-none-eabihf", "insns_frame": 8540000,
+               "est_m0_cycles_frame": null, "covered_px": 14907}
+            ], "crcs_agree": true}"#;
+        let r = parse_firmware_results(text, "results.json").unwrap();
+        assert_eq!(r.len(), 2);
+        assert_eq!(r[0].target, Target::M0);
+        assert_eq!(r[0].insns, Some(18_650_000));
+        assert_eq!(r[0].cycles, Some(29_550_000));
+        assert_eq!(r[0].profile.as_deref(), Some("fast"));
+        assert_eq!(r[1].target, Target::M4f);
+        assert_eq!(r[1].cycles, None);
     }
 }

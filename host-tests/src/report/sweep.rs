@@ -388,7 +388,11 @@ mod tests {
         let find = |n: &str| scenes.iter().find(|s| s.name == n).unwrap();
         assert_eq!(
             find("dodeca-n100").sources,
-            ["dodeca-phong-n100", "dodeca-gouraud-n100"]
+            [
+                "dodeca-phong-n100",
+                "dodeca-gouraud-n100",
+                "dodeca-flat-n100"
+            ]
         );
         assert_eq!(find("bunny").sources, ["bunny-gouraud", "bunny-flat"]);
         assert_eq!(
