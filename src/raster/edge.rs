@@ -28,7 +28,7 @@ impl Edge {
         let s = sub.scale();
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
-        let d = s * dy; // <= 2^30
+        let d = (s * dy).max(1); // in [1, 2^30]
         let yc = j as i64 * s as i64 + (s / 2) as i64;
         let n = (x0 - s / 2) as i64 * dy as i64 + (yc - y0 as i64) * dx as i64;
         // ceil(n / d) and the error term; 32-bit division when n fits (the
