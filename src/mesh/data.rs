@@ -159,11 +159,9 @@ impl<'a> Mesh<'a> {
     /// out of range.
     pub fn triangle_positions(&self, tri: usize) -> Option<[[i16; 3]; 3]> {
         let [a, b, c] = *self.triangles.get(tri)?;
-        Some([
-            self.positions[usize::from(a)],
-            self.positions[usize::from(b)],
-            self.positions[usize::from(c)],
-        ])
+        // Indices were checked by `Mesh::new`: `get` never fails.
+        let p = |i: u16| self.positions.get(usize::from(i)).copied();
+        Some([p(a)?, p(b)?, p(c)?])
     }
 
     /// The Q1.14 normal of corner `corner` (0, 1 or 2) of triangle `tri`;

@@ -59,6 +59,10 @@ pub(crate) const fn unit(v: [i64; 3], frac: u32) -> Option<[i64; 3]> {
     // Each square < 2^62, so the sum < 3 · 2^62 fits.
     let sum = scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2];
     let len = isqrt_u64(sum); // >= 2^30, and >= every scaled[i].
+    if len == 0 {
+        // Unreachable (len >= 2^30); removes the division's panic branch.
+        return None;
+    }
     let mut out = [0i64; 3];
     let mut i = 0;
     while i < 3 {

@@ -119,7 +119,7 @@ impl Recip {
         } else {
             mag << (31 - n)
         }; // in [2^31, 2^32)
-        let m = ((1u64 << 63) + norm / 2) / norm; // in (2^31, 2^32]
+        let m = ((1u64 << 63) + norm / 2) / norm.max(1 << 31); // in (2^31, 2^32]
         Self {
             m,
             k: 32 + n,

@@ -241,7 +241,9 @@ where
     while y0 < h {
         let y1 = (y0 + rows).min(h);
         let n = ((y1 - y0) * w) as usize;
-        let mut fb = FrameBuf::<F>::band(&mut pixels[..n], w, y0, y1).map_err(RenderError::from)?;
+        // n <= w·rows == pixels.len(): `get_mut` never fails (no panic branch).
+        let pn = pixels.get_mut(..n).ok_or(RenderError::Window)?;
+        let mut fb = FrameBuf::<F>::band(pn, w, y0, y1).map_err(RenderError::from)?;
         fb.clear(scene.background);
         let s = match depth.as_deref_mut() {
             Some(z) => {

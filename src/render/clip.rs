@@ -97,7 +97,10 @@ impl<R: Real> Planes<R> {
             }
             let mut m = 0;
             for i in 0..n {
-                let (p, q) = (a[i], a[(i + 1) % n]);
+                // i < n <= MAX_POLY: `get` never fails (no panic branch).
+                let (Some(&p), Some(&q)) = (a.get(i), a.get((i + 1) % n)) else {
+                    break;
+                };
                 let (dp, dq) = (self.dist(bit, p.pos), self.dist(bit, q.pos));
                 if dp >= R::ZERO && m < MAX_POLY {
                     out[m] = p;
@@ -109,12 +112,17 @@ impl<R: Real> Planes<R> {
                 }
             }
             n = m;
-            a[..n].copy_from_slice(&out[..n]);
+            // m <= MAX_POLY; a length-checked copy has no panic branch.
+            for (d, s) in a.iter_mut().zip(out.iter()).take(n) {
+                *d = *s;
+            }
             if n < 3 {
                 return 0;
             }
         }
-        out[..n].copy_from_slice(&a[..n]);
+        for (d, s) in out.iter_mut().zip(a.iter()).take(n) {
+            *d = *s;
+        }
         n
     }
 }

@@ -266,7 +266,8 @@ impl<P: Profile> Preparer<'_, P> {
         if i >= NONE as usize || i >= self.ws.xy.len() || i >= self.ws.links.len() {
             return Err(self.cap(Part::Vertices));
         }
-        let stride = ctx.stride;
+        // `ctx.stride`, recomputed so the optimiser sees `stride >= 1`.
+        let stride = ctx.layout.stride_for(P::PERSPECTIVE);
         let base = ctx.val_base + (i - ctx.v_start) * stride;
         let vals = self
             .ws
@@ -303,20 +304,24 @@ impl<P: Profile> Preparer<'_, P> {
             }
             match ctx.layout {
                 Layout::Flat => {}
-                Layout::GouraudMono => vals[1] = P::level(a[0]),
+                Layout::GouraudMono => {
+                    for (v, x) in vals.iter_mut().skip(1).zip([a[0]]) {
+                        *v = P::level(x);
+                    }
+                }
                 Layout::GouraudRgb => {
-                    for k in 0..3 {
-                        vals[1 + k] = P::level(a[k]);
+                    for (v, x) in vals.iter_mut().skip(1).zip(a) {
+                        *v = P::level(x);
                     }
                 }
                 Layout::PhongNormal | Layout::PhongPosition => {
-                    for k in 0..3 {
-                        vals[1 + k] = P::unit(a[k]);
+                    for (v, x) in vals.iter_mut().skip(1).zip(a) {
+                        *v = P::unit(x);
                     }
                     if ctx.layout == Layout::PhongPosition {
                         let p = [pos.x, pos.y, pos.z];
-                        for k in 0..3 {
-                            vals[4 + k] = P::coord(p[k]);
+                        for (v, x) in vals.iter_mut().skip(4).zip(p) {
+                            *v = P::coord(x);
                         }
                     }
                 }
@@ -436,7 +441,8 @@ impl<P: Profile> Preparer<'_, P> {
         }
         // Clip in eye space. Facing from the eye-space plane: front when
         // the normal points towards the eye (at the origin).
-        let mut cvs = [0, 1, 2].map(|c| Self::clip_vert(ctx, pk[c], nk[c], false));
+        let keys = [(pk[0], nk[0]), (pk[1], nk[1]), (pk[2], nk[2])];
+        let mut cvs = keys.map(|(p, n)| Self::clip_vert(ctx, p, n, false));
         let nf = (cvs[1].pos - cvs[0].pos).cross(cvs[2].pos - cvs[0].pos);
         let facing = nf.dot(cvs[0].pos);
         if facing == P::Real::ZERO {
@@ -447,7 +453,7 @@ impl<P: Profile> Preparer<'_, P> {
             return Ok(());
         }
         if back && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
-            cvs = [0, 1, 2].map(|c| Self::clip_vert(ctx, pk[c], nk[c], true));
+            cvs = keys.map(|(p, n)| Self::clip_vert(ctx, p, n, true));
         }
         let mut poly = [cvs[0]; MAX_POLY];
         let n = self.view.planes.clip(&cvs, codes, &mut poly);

@@ -91,8 +91,10 @@ impl<F: PixelFormat> Target for FrameBuf<'_, F> {
 
     #[inline]
     fn write_pixel(&mut self, x: u32, y: u32, pixel: F::Raw) {
-        if let Some(i) = self.index(x, y) {
-            self.pixels[i] = pixel;
+        // `index` is below `pixels.len()` (checked by `check_window`); `get_mut`
+        // states it without a panic branch.
+        if let Some(p) = self.index(x, y).and_then(|i| self.pixels.get_mut(i)) {
+            *p = pixel;
         }
     }
 
