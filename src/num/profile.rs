@@ -19,7 +19,7 @@
 //! Interpolated fixed-point formats (all `i32`, within ±2^30, see
 //! [`crate::raster`]): colour levels `l · 2^16` for `l` in `0..=255`;
 //! depth `d · 2^30` for `d` in `[0, 1]`; unit-vector components `n · 2^30`;
-//! eye-space coordinates `p · 2^16` (±16384 units; `p · 2^22`, ±512 units,
+//! eye-space coordinates `p · 2^16` (±16384 units; `p · 2^22`, ±256 units,
 //! in the perspective-correct profiles).
 //!
 //! All profiles snap vertices to the same subpixel grid
@@ -36,7 +36,8 @@ pub const UNIT_FRAC_BITS: u32 = 30;
 /// (affine profiles: ±16384 units).
 pub const COORD_FRAC_BITS: u32 = 16;
 /// Fraction bits of an eye-space coordinate in the perspective-correct
-/// fixed profiles (±512 units). Those interpolate `p · near/w`, which far
+/// fixed profiles (±256 units: `2^22 · 256 = 2^30`, the rasterizer's
+/// attribute limit). Those interpolate `p · near/w`, which far
 /// from the eye is a small fraction of `p`: 16 bits would leave steps of
 /// 2^-16·w/near units (1/1300 unit at w = 50·near), enough to move a
 /// highlight by several levels.

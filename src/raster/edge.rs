@@ -29,7 +29,7 @@ impl Edge {
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
         let d = (s * dy).max(1); // in [1, 2^30]
-        // One division per edge: dx = q·dy + rem, 0 <= rem < dy.
+                                 // One division per edge: dx = q·dy + rem, 0 <= rem < dy.
         let (q, rem) = floor_divmod(dx, dy);
         let r = s * rem;
         let t = j as i64 * s as i64 + (s / 2) as i64 - y0 as i64; // yc - y0

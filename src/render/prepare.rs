@@ -99,6 +99,12 @@ pub fn prepare<'w, P: Profile>(
     }
     let cam = &scene.camera;
     let k = cam.focal.mul_i32(height as i32).half();
+    // A saturated projection scale (a field of view too narrow for the
+    // screen in this scalar type, e.g. below 0.84° at 240 rows in Q16)
+    // would place every vertex wrongly: refuse it.
+    if k >= P::Real::MAX.half() {
+        return Err(SceneError::Screen.into());
+    }
     let view = View {
         planes: Planes {
             near: cam.near,

@@ -226,6 +226,37 @@ fn a_full_turn_is_the_identity_within_the_trigonometry_error() {
 }
 
 #[test]
+fn normalize_is_unit_across_the_range_of_lengths() {
+    use crate::num::{Q16, Q32};
+    fn run<R: Real>(lengths: &[f64], tol: f64) {
+        for &len in lengths {
+            let v = Vec3::new(
+                R::from_f64(len * 0.6),
+                R::from_f64(-len * 0.48),
+                R::from_f64(len * 0.64),
+            );
+            let n = v.normalize().to_f64();
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            assert!(
+                (l - 1.0).abs() <= tol,
+                "{}: length {len} normalises to {l}",
+                core::any::type_name::<R>()
+            );
+        }
+    }
+    // Short of, at and beyond the point where the squared length saturates
+    // (181 units for Q16, 46341 for Q32): unit either way.
+    run::<Q16>(
+        &[
+            0.05, 1.0, 100.0, 180.0, 181.0, 182.0, 200.0, 1000.0, 32000.0,
+        ],
+        2e-3,
+    );
+    run::<Q32>(&[1e-3, 1.0, 46340.0, 46342.0, 1e6, 2e9], 1e-5);
+    run::<f32>(&[1e-3, 1.0, 1e6, 1e19, 1e30], 1e-6);
+}
+
+#[test]
 fn degrees_convert_to_radians_within_the_stated_error() {
     use crate::geom::radians;
     use crate::num::{Q16, Q32};
@@ -607,6 +638,17 @@ fn capacity_and_scene_errors_are_values() {
     let mut mem = Mem::<i32>::new(1000, 1000);
     assert_eq!(
         prepare::<Fast>(&s, 4097, 64, mem.ws()).unwrap_err(),
+        RenderError::Scene(crate::scene::SceneError::Screen)
+    );
+    // A field of view too narrow for Q16 at this screen size (k saturates).
+    let narrow = Scene {
+        camera: Camera::look_at_f32([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 0.5, 0.5, None)
+            .unwrap(),
+        ..s
+    };
+    let mut mem = Mem::<i32>::new(1000, 1000);
+    assert_eq!(
+        prepare::<Fast>(&narrow, 240, 240, mem.ws()).unwrap_err(),
         RenderError::Scene(crate::scene::SceneError::Screen)
     );
     // A target of another width is refused.
