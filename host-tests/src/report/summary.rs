@@ -219,7 +219,7 @@ impl Pick {
         match self.source {
             CostSource::HostProxy => s += " Cost: host time as a proxy — embedded figures are not available for this target.",
             CostSource::Embedded(unit, n) => {
-                s += &format!(" Cost: the firmware's {unit}, mean of up to {n} firmware scene(s); errors from the host sweep (the same arithmetic). Only the {} mode × profile combination(s) with embedded figures are candidates.", self.points.len())
+                s += &format!(" Cost: the firmware's {unit}, mean of up to {n} firmware scene(s) measured in every mode; errors from the host sweep (the same arithmetic). Only the {} mode × profile combination(s) with embedded figures are candidates.", self.points.len())
             }
             CostSource::Host => {}
         }
@@ -324,6 +324,27 @@ fn embedded_points(
             e.insns
         }
     };
+    // Compare modes on the same work: only firmware scenes measured in
+    // every mode found for this target (e.g. the dodecahedron in flat,
+    // Gouraud and Phong), unless no scene has them all.
+    let modes: std::collections::BTreeSet<String> = of_target
+        .iter()
+        .filter_map(|e| e.mode.map(|m| format!("{m:?}")))
+        .collect();
+    let complete = |base: &str| {
+        let have: std::collections::BTreeSet<String> = of_target
+            .iter()
+            .filter(|e| super::sweep::base_name(&e.scene) == base)
+            .filter_map(|e| e.mode.map(|m| format!("{m:?}")))
+            .collect();
+        have == modes
+    };
+    let common: Vec<&EmbeddedResult> = of_target
+        .iter()
+        .copied()
+        .filter(|e| complete(&super::sweep::base_name(&e.scene)))
+        .collect();
+    let of_target = if common.is_empty() { of_target } else { common };
     let mut most = 0;
     let points = aggs
         .iter()

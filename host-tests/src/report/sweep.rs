@@ -63,7 +63,7 @@ impl SweepScene {
 }
 
 /// `name` without the words that only name a shading.
-fn base_name(name: &str) -> String {
+pub(crate) fn base_name(name: &str) -> String {
     let kept: Vec<&str> = name
         .split('-')
         .filter(|w| !SHADING_WORDS.contains(w))
