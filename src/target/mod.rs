@@ -19,6 +19,8 @@
 
 mod buffer;
 mod depth;
+#[cfg(feature = "embedded-graphics")]
+pub mod eg;
 mod format;
 
 pub use buffer::FrameBuf;
