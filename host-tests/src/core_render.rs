@@ -172,6 +172,114 @@ fn v3<R: Real>(v: [f64; 3]) -> Vec3<R> {
     Vec3::new(R::from_f64(v[0]), R::from_f64(v[1]), R::from_f64(v[2]))
 }
 
+/// A scene description converted to the core's types for scalar `R`
+/// (values through `R::from_f64`, exactly as the firmware's generated
+/// constants): it owns the objects and lights a [`Scene`] borrows.
+#[derive(Debug)]
+pub struct CoreScene<'d, R> {
+    camera: Camera<R>,
+    objects: Vec<Object<'d, R>>,
+    lights: Vec<Light<R>>,
+    ambient: R,
+    specular: Specular,
+    background: Rgb8,
+}
+
+impl<'d, R: Real> CoreScene<'d, R> {
+    /// Converts `desc`.
+    ///
+    /// # Errors
+    /// [`CoreError::Scene`] for a camera the core refuses.
+    pub fn new(desc: &'d SceneDesc) -> Result<Self, CoreError> {
+        let c = &desc.camera;
+        let camera = Camera::look_at(
+            v3(c.eye),
+            v3(c.target),
+            v3(c.up),
+            R::from_f64(c.fov_y_deg.to_radians()),
+            R::from_f64(c.near),
+            c.far.map(R::from_f64),
+        )?;
+        let objects = desc
+            .objects
+            .iter()
+            .map(|o| Object {
+                mesh: o.mesh.mesh(),
+                transform: Affine::from_parts(
+                    R::from_f64(o.transform.scale),
+                    v3(o.transform.rotation_rad),
+                    v3(o.transform.translation),
+                ),
+                material: Material {
+                    color: v3(o.material.color),
+                    ka: R::from_f64(o.material.ka),
+                    kd: R::from_f64(o.material.kd),
+                    ks: R::from_f64(o.material.ks),
+                    shininess: R::from_f64(o.material.shininess),
+                },
+                shading: match o.shading {
+                    IShading::Flat => Shading::Flat,
+                    IShading::Gouraud => Shading::Gouraud,
+                    IShading::Phong => Shading::Phong,
+                },
+                cull_backfaces: o.cull_backfaces,
+            })
+            .collect();
+        let lights = desc
+            .lights
+            .iter()
+            .map(|l| Light {
+                kind: match l.kind {
+                    LightKind::Point { position } => CLightKind::Point(v3(position)),
+                    LightKind::Directional { direction } => CLightKind::Directional(v3(direction)),
+                },
+                intensity: R::from_f64(l.intensity),
+                color: v3(l.color),
+            })
+            .collect();
+        let [r, g, b] = desc.background;
+        Ok(Self {
+            camera,
+            objects,
+            lights,
+            ambient: R::from_f64(desc.ambient),
+            specular: match desc.specular {
+                SpecularModel::Phong => Specular::Phong,
+                SpecularModel::Blinn => Specular::Blinn,
+            },
+            background: Rgb8::new(r, g, b),
+        })
+    }
+
+    /// The scene, borrowing the objects and lights.
+    pub fn scene(&self) -> Scene<'_, 'd, R> {
+        Scene {
+            camera: self.camera,
+            objects: &self.objects,
+            lights: &self.lights,
+            ambient: self.ambient,
+            specular: self.specular,
+            viewer: Viewer::Local,
+            background: self.background,
+        }
+    }
+
+    /// Workspace that always suffices: (vertices, triangles, heads). Every
+    /// corner may make a vertex, and clipping adds at most 7 vertices and
+    /// 7 triangles per triangle; values are 8 per vertex at most.
+    pub fn workspace_sizes(&self) -> (usize, usize, usize) {
+        let tris: usize = self.objects.iter().map(|o| o.mesh.triangle_count()).sum();
+        let verts = (tris * 3 + tris * 14).min(u16::MAX as usize - 1);
+        let heads = self
+            .objects
+            .iter()
+            .map(|o| o.mesh.vertex_count())
+            .max()
+            .unwrap_or(0);
+        (verts, tris * 8, heads)
+    }
+}
+
 /// Renders `desc` with `profile` (the scene's own when `None`).
 ///
 /// # Errors
@@ -219,78 +327,12 @@ fn render_format<P: Profile, F: CorePixelFormat>(
     desc: &SceneDesc,
     rows: u32,
 ) -> Result<CoreFrame, CoreError> {
-    let c = &desc.camera;
-    let camera = Camera::look_at(
-        v3(c.eye),
-        v3(c.target),
-        v3(c.up),
-        P::Real::from_f64(c.fov_y_deg.to_radians()),
-        P::Real::from_f64(c.near),
-        c.far.map(P::Real::from_f64),
-    )?;
-    let objects: Vec<Object<'_, P::Real>> = desc
-        .objects
-        .iter()
-        .map(|o| Object {
-            mesh: o.mesh.mesh(),
-            transform: Affine::from_parts(
-                P::Real::from_f64(o.transform.scale),
-                v3(o.transform.rotation_rad),
-                v3(o.transform.translation),
-            ),
-            material: Material {
-                color: v3(o.material.color),
-                ka: P::Real::from_f64(o.material.ka),
-                kd: P::Real::from_f64(o.material.kd),
-                ks: P::Real::from_f64(o.material.ks),
-                shininess: P::Real::from_f64(o.material.shininess),
-            },
-            shading: match o.shading {
-                IShading::Flat => Shading::Flat,
-                IShading::Gouraud => Shading::Gouraud,
-                IShading::Phong => Shading::Phong,
-            },
-            cull_backfaces: o.cull_backfaces,
-        })
-        .collect();
-    let lights: Vec<Light<P::Real>> = desc
-        .lights
-        .iter()
-        .map(|l| Light {
-            kind: match l.kind {
-                LightKind::Point { position } => CLightKind::Point(v3(position)),
-                LightKind::Directional { direction } => CLightKind::Directional(v3(direction)),
-            },
-            intensity: P::Real::from_f64(l.intensity),
-            color: v3(l.color),
-        })
-        .collect();
-    let [r, g, b] = desc.background;
-    let scene = Scene {
-        camera,
-        objects: &objects,
-        lights: &lights,
-        ambient: P::Real::from_f64(desc.ambient),
-        specular: match desc.specular {
-            SpecularModel::Phong => Specular::Phong,
-            SpecularModel::Blinn => Specular::Blinn,
-        },
-        viewer: Viewer::Local,
-        background: Rgb8::new(r, g, b),
-    };
-
-    // Workspace sized from the meshes: every corner may make a vertex, and
-    // clipping adds at most 7 vertices and 7 triangles per triangle.
-    let tris: usize = objects.iter().map(|o| o.mesh.triangle_count()).sum();
-    let verts = (tris * 3 + tris * 14).min(u16::MAX as usize - 1);
-    let heads = objects
-        .iter()
-        .map(|o| o.mesh.vertex_count())
-        .max()
-        .unwrap_or(0);
+    let cs = CoreScene::<P::Real>::new(desc)?;
+    let scene = cs.scene();
+    let (verts, tris, heads) = cs.workspace_sizes();
     let mut xy = vec![[0i32; 2]; verts];
     let mut vals = vec![P::Lerp::default(); verts * 8];
-    let mut tri_buf = vec![Tri::default(); tris * 8];
+    let mut tri_buf = vec![Tri::default(); tris];
     let mut heads = vec![0u16; heads];
     let mut links = vec![Link::default(); verts];
     let ws = Workspace {

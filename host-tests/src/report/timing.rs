@@ -9,25 +9,19 @@
 //! of that per call, and its allocation (workspace sized for worst-case
 //! clipping) would dominate a sub-millisecond frame.
 //!
-//! The conversion from [`SceneDesc`] to the core's [`Scene`] repeats the
-//! one in `core_render` (private there); [`time_frames`] checks that the
-//! timed frame's bytes are exactly `render_core`'s, so the two cannot
-//! drift apart unnoticed.
+//! The conversion from [`SceneDesc`] to the core's scene is
+//! `core_render`'s own ([`CoreScene`]); [`time_frames`] also checks that
+//! the timed frame's bytes are exactly `render_core`'s.
 
 use std::time::{Duration, Instant};
 
-use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, LightKind as CLightKind, Material, Specular, Viewer};
-use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Real, F32, F64};
+use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, F32, F64};
 use fixshade::render::{prepare, Link, RenderError, Tri, Workspace};
-use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{
-    Depth16, DepthBuffer, FrameBuf, Gray8, PixelFormat as CorePixelFormat, Rgb565Be, Rgb8, Rgb888,
-    Target,
+    Depth16, DepthBuffer, FrameBuf, Gray8, PixelFormat as CorePixelFormat, Rgb565Be, Rgb888, Target,
 };
 
-use crate::core_render::{CoreError, CoreProfile, BAND_ROWS};
-use crate::ideal::{LightKind, Shading as IShading, SpecularModel};
+use crate::core_render::{CoreError, CoreProfile, CoreScene, BAND_ROWS};
 use crate::scene_file::{PixelFormat, SceneDesc};
 
 /// How many times to render a frame.
@@ -92,85 +86,17 @@ fn time_profile<P: Profile>(desc: &SceneDesc, repeats: Repeats) -> Result<Timing
     }
 }
 
-fn v3<R: Real>(v: [f64; 3]) -> Vec3<R> {
-    Vec3::new(R::from_f64(v[0]), R::from_f64(v[1]), R::from_f64(v[2]))
-}
-
 fn time_format<P: Profile, F: CorePixelFormat>(
     desc: &SceneDesc,
     repeats: Repeats,
 ) -> Result<Timing, CoreError> {
-    let c = &desc.camera;
-    let camera = Camera::look_at(
-        v3(c.eye),
-        v3(c.target),
-        v3(c.up),
-        P::Real::from_f64(c.fov_y_deg.to_radians()),
-        P::Real::from_f64(c.near),
-        c.far.map(P::Real::from_f64),
-    )?;
-    let objects: Vec<Object<'_, P::Real>> = desc
-        .objects
-        .iter()
-        .map(|o| Object {
-            mesh: o.mesh.mesh(),
-            transform: Affine::from_parts(
-                P::Real::from_f64(o.transform.scale),
-                v3(o.transform.rotation_rad),
-                v3(o.transform.translation),
-            ),
-            material: Material {
-                color: v3(o.material.color),
-                ka: P::Real::from_f64(o.material.ka),
-                kd: P::Real::from_f64(o.material.kd),
-                ks: P::Real::from_f64(o.material.ks),
-                shininess: P::Real::from_f64(o.material.shininess),
-            },
-            shading: match o.shading {
-                IShading::Flat => Shading::Flat,
-                IShading::Gouraud => Shading::Gouraud,
-                IShading::Phong => Shading::Phong,
-            },
-            cull_backfaces: o.cull_backfaces,
-        })
-        .collect();
-    let lights: Vec<Light<P::Real>> = desc
-        .lights
-        .iter()
-        .map(|l| Light {
-            kind: match l.kind {
-                LightKind::Point { position } => CLightKind::Point(v3(position)),
-                LightKind::Directional { direction } => CLightKind::Directional(v3(direction)),
-            },
-            intensity: P::Real::from_f64(l.intensity),
-            color: v3(l.color),
-        })
-        .collect();
-    let [r, g, b] = desc.background;
-    let scene = Scene {
-        camera,
-        objects: &objects,
-        lights: &lights,
-        ambient: P::Real::from_f64(desc.ambient),
-        specular: match desc.specular {
-            SpecularModel::Phong => Specular::Phong,
-            SpecularModel::Blinn => Specular::Blinn,
-        },
-        viewer: Viewer::Local,
-        background: Rgb8::new(r, g, b),
-    };
-
+    let cs = CoreScene::<P::Real>::new(desc)?;
+    let scene = cs.scene();
     // The workspace as `core_render` sizes it, allocated once.
-    let tris: usize = objects.iter().map(|o| o.mesh.triangle_count()).sum();
-    let verts = (tris * 3 + tris * 14).min(u16::MAX as usize - 1);
-    let heads = objects
-        .iter()
-        .map(|o| o.mesh.vertex_count())
-        .max()
-        .unwrap_or(0);
+    let (verts, tris, heads) = cs.workspace_sizes();
     let mut xy = vec![[0i32; 2]; verts];
     let mut vals = vec![P::Lerp::default(); verts * 8];
-    let mut tri_buf = vec![Tri::default(); tris * 8];
+    let mut tri_buf = vec![Tri::default(); tris];
     let mut heads = vec![0u16; heads];
     let mut links = vec![Link::default(); verts];
     let (w, h) = (desc.width, desc.height);
