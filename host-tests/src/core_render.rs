@@ -298,28 +298,140 @@ pub fn render_core_rows(
     profile: Option<CoreProfile>,
     rows: u32,
 ) -> Result<CoreFrame, CoreError> {
-    let rows = rows.max(1);
-    match profile.unwrap_or_else(|| desc.profile.into()) {
-        CoreProfile::Fast => render_with::<Fast>(desc, rows),
-        CoreProfile::Precise => render_with::<Precise>(desc, rows),
-        CoreProfile::F32 => render_with::<F32>(desc, rows),
-        CoreProfile::F64 => render_with::<F64>(desc, rows),
-        CoreProfile::FastPc => render_with::<FastPc>(desc, rows),
-        CoreProfile::PrecisePc => render_with::<PrecisePc>(desc, rows),
-        CoreProfile::F32Pc => render_with::<F32Pc>(desc, rows),
-        CoreProfile::F64Pc => render_with::<F64Pc>(desc, rows),
+    struct Job<'d> {
+        desc: &'d SceneDesc,
+        rows: u32,
+    }
+    impl ProfileJob for Job<'_> {
+        type Output = Result<CoreFrame, CoreError>;
+        fn run<P: Profile, F: CorePixelFormat>(self) -> Self::Output {
+            render_format::<P, F>(self.desc, self.rows)
+        }
+    }
+    let profile = profile.unwrap_or_else(|| desc.profile.into());
+    dispatch(profile, desc.pixel_format, Job { desc, rows })
+}
+
+/// Work generic over a profile and a pixel format, both chosen at run
+/// time by [`dispatch`].
+pub trait ProfileJob {
+    /// What the work gives.
+    type Output;
+    /// Does the work with profile `P` and pixel format `F`.
+    fn run<P: Profile, F: CorePixelFormat>(self) -> Self::Output;
+}
+
+/// Runs `job` with the profile and the pixel format named at run time.
+pub fn dispatch<J: ProfileJob>(profile: CoreProfile, format: PixelFormat, job: J) -> J::Output {
+    fn with_format<P: Profile, J: ProfileJob>(format: PixelFormat, job: J) -> J::Output {
+        match format {
+            PixelFormat::Gray8 => job.run::<P, Gray8>(),
+            PixelFormat::Rgb565 => job.run::<P, Rgb565Be>(),
+            PixelFormat::Rgb888 => job.run::<P, Rgb888>(),
+        }
+    }
+    match profile {
+        CoreProfile::Fast => with_format::<Fast, J>(format, job),
+        CoreProfile::Precise => with_format::<Precise, J>(format, job),
+        CoreProfile::F32 => with_format::<F32, J>(format, job),
+        CoreProfile::F64 => with_format::<F64, J>(format, job),
+        CoreProfile::FastPc => with_format::<FastPc, J>(format, job),
+        CoreProfile::PrecisePc => with_format::<PrecisePc, J>(format, job),
+        CoreProfile::F32Pc => with_format::<F32Pc, J>(format, job),
+        CoreProfile::F64Pc => with_format::<F64Pc, J>(format, job),
     }
 }
 
-/// Renders `desc` with profile `P` in bands of `rows` rows.
-///
-/// # Errors
-/// As [`render_core`].
-pub fn render_with<P: Profile>(desc: &SceneDesc, rows: u32) -> Result<CoreFrame, CoreError> {
-    match desc.pixel_format {
-        PixelFormat::Gray8 => render_format::<P, Gray8>(desc, rows),
-        PixelFormat::Rgb565 => render_format::<P, Rgb565Be>(desc, rows),
-        PixelFormat::Rgb888 => render_format::<P, Rgb888>(desc, rows),
+/// What one frame prepared and drew.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    /// Prepared vertices.
+    pub vertices: usize,
+    /// Prepared triangles.
+    pub triangles: usize,
+    /// Bytes of the prepared frame (without scratch).
+    pub prepared_bytes: usize,
+    /// Pixels written (depth-test passes).
+    pub pixels: u32,
+}
+
+/// The memory for rendering one scene again and again, as a firmware
+/// does: the workspace (sized by [`CoreScene::workspace_sizes`]), a colour
+/// band and a 16-bit depth band, allocated once.
+#[derive(Debug)]
+pub struct Renderer<P: Profile, F: CorePixelFormat> {
+    xy: Vec<[i32; 2]>,
+    vals: Vec<P::Lerp>,
+    tris: Vec<Tri>,
+    heads: Vec<u16>,
+    links: Vec<Link>,
+    band: Vec<F::Raw>,
+    depth: Vec<u16>,
+    width: u32,
+    height: u32,
+    rows: u32,
+}
+
+impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
+    /// Memory for `cs` on a `width × height` screen in bands of `rows`.
+    pub fn new(cs: &CoreScene<'_, P::Real>, width: u32, height: u32, rows: u32) -> Self {
+        let (verts, tris, heads) = cs.workspace_sizes();
+        let rows = rows.max(1);
+        let band_len = (width * rows.min(height.max(1))) as usize;
+        Self {
+            xy: vec![[0; 2]; verts],
+            vals: vec![P::Lerp::default(); verts * 8],
+            tris: vec![Tri::default(); tris],
+            heads: vec![0; heads],
+            links: vec![Link::default(); verts],
+            band: vec![F::Raw::default(); band_len],
+            depth: vec![0; band_len],
+            width,
+            height,
+            rows,
+        }
+    }
+
+    /// Prepares `scene` and renders it band by band (each band cleared to
+    /// the background, its depth band cleared), handing every finished
+    /// band and its depth band to `band`.
+    ///
+    /// # Errors
+    /// [`CoreError::Render`] when the core refuses the frame.
+    pub fn frame(
+        &mut self,
+        scene: &Scene<'_, '_, P::Real>,
+        mut band: impl FnMut(&FrameBuf<'_, F>, &DepthBuffer<'_, Depth16>),
+    ) -> Result<FrameStats, CoreError> {
+        let (w, h) = (self.width, self.height);
+        let ws = Workspace {
+            xy: &mut self.xy,
+            vals: &mut self.vals,
+            tris: &mut self.tris,
+            heads: &mut self.heads,
+            links: &mut self.links,
+        };
+        let frame = prepare::<P>(scene, w, h, ws)?;
+        let mut stats = FrameStats {
+            vertices: frame.vertex_count(),
+            triangles: frame.triangle_count(),
+            prepared_bytes: frame.bytes_used(),
+            pixels: 0,
+        };
+        let mut y0 = 0;
+        while y0 < h {
+            let y1 = (y0 + self.rows).min(h);
+            let n = ((y1 - y0) * w) as usize;
+            let mut fb =
+                FrameBuf::<F>::band(&mut self.band[..n], w, y0, y1).map_err(RenderError::from)?;
+            fixshade::target::Target::clear(&mut fb, scene.background);
+            let mut db = DepthBuffer::<Depth16>::new(&mut self.depth[..n], w, y0, y1)
+                .map_err(RenderError::from)?;
+            stats.pixels += frame.render(scene, &mut fb, Some(&mut db))?.pixels;
+            band(&fb, &db);
+            y0 = y1;
+        }
+        Ok(stats)
     }
 }
 
@@ -328,61 +440,38 @@ fn render_format<P: Profile, F: CorePixelFormat>(
     rows: u32,
 ) -> Result<CoreFrame, CoreError> {
     let cs = CoreScene::<P::Real>::new(desc)?;
-    let scene = cs.scene();
-    let (verts, tris, heads) = cs.workspace_sizes();
-    let mut xy = vec![[0i32; 2]; verts];
-    let mut vals = vec![P::Lerp::default(); verts * 8];
-    let mut tri_buf = vec![Tri::default(); tris];
-    let mut heads = vec![0u16; heads];
-    let mut links = vec![Link::default(); verts];
-    let ws = Workspace {
-        xy: &mut xy,
-        vals: &mut vals,
-        tris: &mut tri_buf,
-        heads: &mut heads,
-        links: &mut links,
-    };
     let (w, h) = (desc.width, desc.height);
-    let frame = prepare::<P>(&scene, w, h, ws)?;
-
-    let mut out = CoreFrame {
-        width: w,
-        height: h,
-        rgb: Vec::with_capacity((w * h) as usize),
-        covered: Vec::with_capacity((w * h) as usize),
-        bytes: Vec::with_capacity((w * h) as usize * F::BYTES),
-        vertices: frame.vertex_count(),
-        triangles: frame.triangle_count(),
-        prepared_bytes: frame.bytes_used(),
-        pixels_drawn: 0,
-    };
-    let rows = rows.max(1);
-    let mut band = vec![F::Raw::default(); (w * rows.min(h.max(1))) as usize];
-    let mut depth = vec![0u16; band.len()];
-    let mut y0 = 0;
-    while y0 < h {
-        let y1 = (y0 + rows).min(h);
-        let n = ((y1 - y0) * w) as usize;
-        let mut fb = FrameBuf::<F>::band(&mut band[..n], w, y0, y1).map_err(RenderError::from)?;
-        fixshade::target::Target::clear(&mut fb, scene.background);
-        let mut db =
-            DepthBuffer::<Depth16>::new(&mut depth[..n], w, y0, y1).map_err(RenderError::from)?;
-        let stats = frame.render(&scene, &mut fb, Some(&mut db))?;
-        out.pixels_drawn += stats.pixels;
-        out.bytes.extend(fb.bytes());
-        out.rgb.extend(fb.pixels().iter().map(|&p| {
+    let mut r = Renderer::<P, F>::new(&cs, w, h, rows);
+    let n = (w * h) as usize;
+    let (mut rgb, mut covered, mut bytes) = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n * F::BYTES),
+    );
+    let stats = r.frame(&cs.scene(), |fb, db| {
+        bytes.extend(fb.bytes());
+        rgb.extend(fb.pixels().iter().map(|&p| {
             let c = F::decode(p);
             [c.r, c.g, c.b]
         }));
-        for y in y0..y1 {
+        let win = db.window();
+        for y in win.y0..win.y1 {
             for x in 0..w {
-                out.covered
-                    .push(db.get(x, y).is_some_and(|d| d != u16::MAX));
+                covered.push(db.get(x, y).is_some_and(|d| d != u16::MAX));
             }
         }
-        y0 = y1;
-    }
-    Ok(out)
+    })?;
+    Ok(CoreFrame {
+        width: w,
+        height: h,
+        rgb,
+        covered,
+        bytes,
+        vertices: stats.vertices,
+        triangles: stats.triangles,
+        prepared_bytes: stats.prepared_bytes,
+        pixels_drawn: stats.pixels,
+    })
 }
 
 /// CRC-32 (IEEE 802.3, reflected, as zlib and `crc32fast` compute it).

@@ -9,20 +9,19 @@
 //! of that per call, and its allocation (workspace sized for worst-case
 //! clipping) would dominate a sub-millisecond frame.
 //!
-//! The conversion from [`SceneDesc`] to the core's scene is
-//! `core_render`'s own ([`CoreScene`]); [`time_frames`] also checks that
-//! the timed frame's bytes are exactly `render_core`'s.
+//! The scene conversion and the banded frame are `core_render`'s own
+//! ([`CoreScene`], [`Renderer`]), so the timed frame is byte for byte the
+//! one `render_core` renders (checked by the report's tests).
 
 use std::time::{Duration, Instant};
 
-use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, F32, F64};
-use fixshade::render::{prepare, Link, RenderError, Tri, Workspace};
-use fixshade::target::{
-    Depth16, DepthBuffer, FrameBuf, Gray8, PixelFormat as CorePixelFormat, Rgb565Be, Rgb888, Target,
-};
+use fixshade::num::Profile;
+use fixshade::target::PixelFormat as CorePixelFormat;
 
-use crate::core_render::{CoreError, CoreProfile, CoreScene, BAND_ROWS};
-use crate::scene_file::{PixelFormat, SceneDesc};
+use crate::core_render::{
+    dispatch, CoreError, CoreProfile, CoreScene, ProfileJob, Renderer, BAND_ROWS,
+};
+use crate::scene_file::SceneDesc;
 
 /// How many times to render a frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,24 +65,17 @@ pub fn time_frames(
     profile: CoreProfile,
     repeats: Repeats,
 ) -> Result<Timing, CoreError> {
-    match profile {
-        CoreProfile::Fast => time_profile::<Fast>(desc, repeats),
-        CoreProfile::Precise => time_profile::<Precise>(desc, repeats),
-        CoreProfile::F32 => time_profile::<F32>(desc, repeats),
-        CoreProfile::F64 => time_profile::<F64>(desc, repeats),
-        CoreProfile::FastPc => time_profile::<FastPc>(desc, repeats),
-        CoreProfile::PrecisePc => time_profile::<PrecisePc>(desc, repeats),
-        CoreProfile::F32Pc => time_profile::<F32Pc>(desc, repeats),
-        CoreProfile::F64Pc => time_profile::<F64Pc>(desc, repeats),
+    struct Job<'d> {
+        desc: &'d SceneDesc,
+        repeats: Repeats,
     }
-}
-
-fn time_profile<P: Profile>(desc: &SceneDesc, repeats: Repeats) -> Result<Timing, CoreError> {
-    match desc.pixel_format {
-        PixelFormat::Gray8 => time_format::<P, Gray8>(desc, repeats),
-        PixelFormat::Rgb565 => time_format::<P, Rgb565Be>(desc, repeats),
-        PixelFormat::Rgb888 => time_format::<P, Rgb888>(desc, repeats),
+    impl ProfileJob for Job<'_> {
+        type Output = Result<Timing, CoreError>;
+        fn run<P: Profile, F: CorePixelFormat>(self) -> Self::Output {
+            time_format::<P, F>(self.desc, self.repeats)
+        }
     }
+    dispatch(profile, desc.pixel_format, Job { desc, repeats })
 }
 
 fn time_format<P: Profile, F: CorePixelFormat>(
@@ -92,61 +84,19 @@ fn time_format<P: Profile, F: CorePixelFormat>(
 ) -> Result<Timing, CoreError> {
     let cs = CoreScene::<P::Real>::new(desc)?;
     let scene = cs.scene();
-    // The workspace as `core_render` sizes it, allocated once.
-    let (verts, tris, heads) = cs.workspace_sizes();
-    let mut xy = vec![[0i32; 2]; verts];
-    let mut vals = vec![P::Lerp::default(); verts * 8];
-    let mut tri_buf = vec![Tri::default(); tris];
-    let mut heads = vec![0u16; heads];
-    let mut links = vec![Link::default(); verts];
-    let (w, h) = (desc.width, desc.height);
-    let mut band = vec![F::Raw::default(); (w * BAND_ROWS) as usize];
-    let mut depth = vec![0u16; (w * BAND_ROWS) as usize];
+    let mut r = Renderer::<P, F>::new(&cs, desc.width, desc.height, BAND_ROWS);
 
-    // One frame; `keep` collects the bytes (outside the timed region).
-    let mut frame_once = |keep: Option<&mut Vec<u8>>| -> Result<(Duration, u32), CoreError> {
-        let mut keep = keep;
-        let mut elapsed = Duration::ZERO;
-        let start = Instant::now();
-        let ws = Workspace {
-            xy: &mut xy,
-            vals: &mut vals,
-            tris: &mut tri_buf,
-            heads: &mut heads,
-            links: &mut links,
-        };
-        let frame = prepare::<P>(&scene, w, h, ws)?;
-        let mut pixels = 0;
-        let mut y0 = 0;
-        let mut lap = start;
-        while y0 < h {
-            let y1 = (y0 + BAND_ROWS).min(h);
-            let n = ((y1 - y0) * w) as usize;
-            let mut fb =
-                FrameBuf::<F>::band(&mut band[..n], w, y0, y1).map_err(RenderError::from)?;
-            fb.clear(scene.background);
-            let mut db = DepthBuffer::<Depth16>::new(&mut depth[..n], w, y0, y1)
-                .map_err(RenderError::from)?;
-            pixels += frame.render(&scene, &mut fb, Some(&mut db))?.pixels;
-            if let Some(out) = keep.as_deref_mut() {
-                elapsed += lap.elapsed();
-                out.extend(fb.bytes());
-                lap = Instant::now();
-            }
-            y0 = y1;
-        }
-        elapsed += lap.elapsed();
-        Ok((elapsed, pixels))
-    };
-
-    let mut bytes = Vec::with_capacity((w * h) as usize * F::BYTES);
-    let (_, pixels_drawn) = frame_once(Some(&mut bytes))?;
+    // The bytes of one frame, kept once (untimed) for the check.
+    let mut bytes = Vec::with_capacity((desc.width * desc.height) as usize * F::BYTES);
+    let pixels_drawn = r.frame(&scene, |fb, _| bytes.extend(fb.bytes()))?.pixels;
     let mut runs_ns = Vec::new();
     let mut total = Duration::ZERO;
     while runs_ns.len() < repeats.max_runs.max(1) as usize
         && (runs_ns.len() < repeats.min_runs.max(1) as usize || total < repeats.min_time)
     {
-        let (t, _) = frame_once(None)?;
+        let start = Instant::now();
+        r.frame(&scene, |_, _| {})?;
+        let t = start.elapsed();
         total += t;
         runs_ns.push(u64::try_from(t.as_nanos()).unwrap_or(u64::MAX));
     }
