@@ -69,6 +69,7 @@ mod triangle;
 pub use edge::Edge;
 pub use lerp::{Lerp, Recip};
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
+pub(crate) use triangle::first_row;
 pub use triangle::{draw_triangle, Span, Spans};
 
 use core::fmt;

@@ -59,7 +59,7 @@ impl<L: Lerp, const N: usize> Vals<L, N> {
 
 /// First row whose centre is at or below subpixel `y`: `ceil((y - S/2)/S)`.
 #[inline]
-fn first_row(y: i32, sub: SubpixelBits) -> i32 {
+pub(crate) fn first_row(y: i32, sub: SubpixelBits) -> i32 {
     let s = sub.scale();
     (y - s / 2 + s - 1).div_euclid(s)
 }

@@ -88,13 +88,16 @@ impl<P: Profile> Frame<'_, P> {
     {
         let sub = P::SUBPIXEL_BITS;
         let win = fill.window();
-        let s = sub.scale();
-        let (top, bot) = (win.y0 as i32 * s - s, win.y1 as i32 * s + s);
-        let y = |i: u16| self.ws.xy.get(i as usize).map_or(i32::MIN, |p| p[1]);
+        let (y0, y1) = (
+            win.y0.min(u16::MAX as u32) as u16,
+            win.y1.min(u16::MAX as u32) as u16,
+        );
+        if po.rows[1] <= y0 || po.rows[0] >= y1 {
+            return Ok(());
+        }
         for tri in self.ws.tris.get(po.tris.clone()).unwrap_or(&[]) {
             // Reject triangles outside the band before fetching attributes.
-            let (ya, yb, yc) = (y(tri.v[0]), y(tri.v[1]), y(tri.v[2]));
-            if ya.max(yb).max(yc) < top || ya.min(yb).min(yc) > bot {
+            if tri.rows[1] <= y0 || tri.rows[0] >= y1 {
                 continue;
             }
             let (Some(a), Some(b), Some(c)) = (

@@ -18,7 +18,7 @@
 //! | stride, Gouraud | 2 (depth, grey level) or 4 (depth, red, green, blue) |
 //! | stride, Phong | 4 (depth, normal), or 7 (depth, normal, eye position) when a point light or the local viewer needs the position |
 //! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
-//! | per prepared triangle | 10 ([`Tri`]) |
+//! | per prepared triangle | 14 ([`Tri`]) |
 //! | scratch while preparing | 2 per mesh vertex of the largest mesh ([`Workspace::heads`]) + 6 per prepared vertex ([`Link`]) |
 //!
 //! A prepared vertex is made per distinct (position, normal) corner of a
@@ -41,16 +41,34 @@ use crate::target::{BufferError, Rgb8};
 use core::fmt;
 use core::ops::Range;
 
-/// One prepared triangle: three prepared-vertex indices, the flat colour
-/// (flat shading) and whether it is a back face drawn two-sided.
+/// One prepared triangle: three prepared-vertex indices, the rows whose
+/// pixel centres it can cover, the flat colour (flat shading) and whether
+/// it is a back face drawn two-sided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Tri {
     /// Prepared vertices.
     pub v: [u16; 3],
+    /// Rows `rows[0]..rows[1]` of the screen whose centres lie within the
+    /// triangle's vertical extent (the rows the rasterizer visits), clamped
+    /// to the screen: a band skips the triangle with two comparisons. A
+    /// prepared triangle always has `rows[0] < rows[1]`; triangles that
+    /// cover no pixel centre of the screen are not kept.
+    pub rows: [u16; 2],
     /// Colour of a flat-shaded triangle.
     pub color: Rgb8,
     /// A back face (of an object drawn two-sided): Phong flips its normal.
     pub back: bool,
+}
+
+impl Tri {
+    /// An unused slot (for workspace arrays in `static`s: `Default` is not
+    /// `const`).
+    pub const EMPTY: Self = Self {
+        v: [0; 3],
+        rows: [0; 2],
+        color: Rgb8::BLACK,
+        back: false,
+    };
 }
 
 /// Scratch link of a prepared vertex while preparing: the mesh normal it
@@ -135,6 +153,9 @@ pub struct PreparedObject {
     pub stride: usize,
     /// Its prepared triangles.
     pub tris: Range<usize>,
+    /// Rows `rows[0]..rows[1]` its triangles can cover (empty when it has
+    /// none): a band outside them skips the object.
+    pub rows: [u16; 2],
 }
 
 /// A prepared frame: the workspace filled for one scene.

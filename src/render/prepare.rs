@@ -6,7 +6,7 @@ use crate::geom::{Affine, Vec3};
 use crate::illum::{Light, LightKind, Shade, MAX_LIGHTS};
 use crate::mesh::{face_normal, Mesh};
 use crate::num::{Profile, Real};
-use crate::raster::COORD_LIMIT_PX;
+use crate::raster::{first_row, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
 
@@ -124,6 +124,8 @@ pub fn prepare<'w, P: Profile>(
         nval: 0,
         nt: 0,
         object: 0,
+        width,
+        height,
     };
     let mut objects = heapless::Vec::new();
     for (oi, obj) in scene.objects.iter().enumerate() {
@@ -146,6 +148,8 @@ struct Preparer<'w, P: Profile> {
     nval: usize,
     nt: usize,
     object: usize,
+    width: u32,
+    height: u32,
 }
 
 /// Per-object constants while preparing.
@@ -212,12 +216,23 @@ impl<P: Profile> Preparer<'_, P> {
         for t in 0..mesh.triangle_count() {
             self.triangle(&ctx, t)?;
         }
+        let tris = t_start..self.nt;
+        let rows = self
+            .ws
+            .tris
+            .get(tris.clone())
+            .unwrap_or(&[])
+            .iter()
+            .fold([u16::MAX, 0], |[lo, hi], t| {
+                [lo.min(t.rows[0]), hi.max(t.rows[1])]
+            });
         Ok(PreparedObject {
             layout,
             verts: ctx.v_start..self.nv,
             val_base: ctx.val_base,
             stride: ctx.stride,
-            tris: t_start..self.nt,
+            tris,
+            rows: if rows[0] < rows[1] { rows } else { [0; 2] },
         })
     }
 
@@ -372,7 +387,34 @@ impl<P: Profile> Preparer<'_, P> {
         Ok(i)
     }
 
-    fn push_tri(&mut self, tri: Tri) -> Result<(), RenderError> {
+    /// Keeps `tri` when it can cover a pixel centre of the screen, with
+    /// the rows it can cover (the rows the rasterizer would visit).
+    fn push_tri(&mut self, mut tri: Tri) -> Result<(), RenderError> {
+        let sub = P::SUBPIXEL_BITS;
+        let xy = tri
+            .v
+            .map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+        let span = |k: usize| {
+            let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
+            (a.min(b).min(c), a.max(b).max(c))
+        };
+        let (x_lo, x_hi) = span(0);
+        let (y_lo, y_hi) = span(1);
+        let clamp = |r: i32, n: u32| r.clamp(0, n as i32) as u16;
+        // Rows: the rasterizer's own `first_row(top)..first_row(bottom)`.
+        // Columns, conservatively: a centre on the rightmost x may count.
+        let rows = [
+            clamp(first_row(y_lo, sub), self.height),
+            clamp(first_row(y_hi, sub), self.height),
+        ];
+        let cols = [
+            clamp(first_row(x_lo, sub), self.width),
+            clamp(first_row(x_hi, sub).saturating_add(1), self.width),
+        ];
+        if rows[0] >= rows[1] || cols[0] >= cols[1] {
+            return Ok(());
+        }
+        tri.rows = rows;
         let slot = self.ws.tris.get_mut(self.nt).ok_or(RenderError::Capacity {
             part: Part::Triangles,
             object: self.object,
@@ -440,7 +482,12 @@ impl<P: Profile> Preparer<'_, P> {
                 }
             }
             let color = self.flat_color(ctx, t, back);
-            return self.push_tri(Tri { v: vs, color, back });
+            return self.push_tri(Tri {
+                v: vs,
+                color,
+                back,
+                ..Tri::EMPTY
+            });
         }
         if codes[0] & codes[1] & codes[2] != 0 {
             return Ok(());
@@ -480,6 +527,7 @@ impl<P: Profile> Preparer<'_, P> {
                 v: [first, prev, cur],
                 color,
                 back,
+                ..Tri::EMPTY
             })?;
             prev = cur;
         }

@@ -409,7 +409,7 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 
 #[test]
 fn memory_figures_are_as_documented() {
-    assert_eq!(core::mem::size_of::<Tri>(), 10);
+    assert_eq!(core::mem::size_of::<Tri>(), 14);
     assert_eq!(core::mem::size_of::<Link>(), 6);
     let strides = [
         (Layout::Flat, 1),
@@ -442,7 +442,7 @@ fn memory_figures_are_as_documented() {
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
-    assert_eq!(frame.bytes_used(), 1839 * (8 + 2 * 4) + t * 10);
+    assert_eq!(frame.bytes_used(), 1839 * (8 + 2 * 4) + t * 14);
     // Phong with a point light and a local viewer carries positions.
     let objs = [object::<crate::num::Q16>(
         shapes::CUBE,

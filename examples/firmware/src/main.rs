@@ -301,11 +301,7 @@ fn main() -> ! {
 }
 
 /// An unused prepared triangle (`Tri::default()` is not `const`).
-const NO_TRI: Tri = Tri {
-    v: [0; 3],
-    color: Rgb8::BLACK,
-    back: false,
-};
+const NO_TRI: Tri = Tri::EMPTY;
 
 #[panic_handler]
 fn panic(info: &PanicInfo) -> ! {

@@ -295,11 +295,7 @@ fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references (safe code).
     static mut XY: [[i32; 2]; MAX_VERTS] = [[0; 2]; MAX_VERTS];
     static mut VALS: [L; MAX_VALS] = [0; MAX_VALS];
-    static mut TRIS: [Tri; MAX_TRIS] = [Tri {
-        v: [0; 3],
-        color: Rgb8::BLACK,
-        back: false,
-    }; MAX_TRIS];
+    static mut TRIS: [Tri; MAX_TRIS] = [Tri::EMPTY; MAX_TRIS];
     static mut HEADS: [u16; MAX_MESH_VERTS] = [0; MAX_MESH_VERTS];
     // `Link` has private fields and no constant constructor: filled with
     // `Link::default()` once, at start.
