@@ -10,6 +10,11 @@
  *   SEV   (0xbf40) closes the region: prints its totals and starts the next.
  * The markers themselves are not counted.
  *
+ * With `prof=FILE` it also counts, per instruction address, the executions
+ * inside counted stretches (only of the regions listed by `regions=A:B:..`
+ * when given) and writes `ADDRESS COUNT` lines (both decimal) to FILE at exit: `../profile.sh` turns them into a per-function
+ * table. A per-instruction callback makes this mode several times slower.
+ *
  * Output (QEMU log, enable with `-d plugin`, redirect with `-D FILE`):
  *   region N: insns X est_m0_cycles Y
  * and at exit `total: regions N` (plus a warning line when something looked
@@ -100,6 +105,13 @@ static unsigned warnings;
 static uint64_t unknown_m0; /* instructions without an M0 timing */
 static bool m0_mode;
 
+/* Per-address profile (prof=FILE): counts indexed by address / 2. */
+#define PROF_LIMIT (1u << 24) /* code addresses below 16 MiB */
+static uint64_t *prof;
+static const char *prof_path;
+static uint64_t prof_regions; /* bit r: profile region r; 0 = all */
+static bool prof_on;          /* counting, and in a profiled region */
+
 /* Per translated block, for taken conditional branches. */
 struct tb_info {
     uint64_t vaddr;
@@ -136,6 +148,16 @@ static void on_yield(unsigned int vcpu, void *ud)
         counting = false;
     }
     branch_counted = counting;
+    prof_on = counting && (prof_regions == 0 ||
+                           (region_no < 64 && (prof_regions >> region_no) & 1));
+}
+
+static void on_prof(unsigned int vcpu, void *ud)
+{
+    (void)vcpu;
+    if (prof_on) {
+        prof[(uintptr_t)ud >> 1]++;
+    }
 }
 
 static void on_sev(unsigned int vcpu, void *ud)
@@ -200,6 +222,11 @@ static void on_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
         }
         qemu_plugin_register_vcpu_insn_exec_inline(
             insn, QEMU_PLUGIN_INLINE_ADD_U64, &all_insns, 1);
+        uint64_t va = qemu_plugin_insn_vaddr(insn);
+        if (prof && va < PROF_LIMIT) {
+            qemu_plugin_register_vcpu_insn_exec_cb(
+                insn, on_prof, QEMU_PLUGIN_CB_NO_REGS, (void *)(uintptr_t)va);
+        }
         if (m0_mode) {
             bool cond;
             unsigned c = m0_cycles(p, size, &cond);
@@ -239,6 +266,20 @@ static void on_plugin_exit(qemu_plugin_id_t id, void *ud)
              unknown_m0);
         warnings++;
     }
+    if (prof) {
+        FILE *f = fopen(prof_path, "w");
+        if (!f) {
+            outf("insn_count: warning: cannot write %s\n", prof_path);
+            warnings++;
+        } else {
+            for (uint64_t i = 0; i < PROF_LIMIT / 2; i++) {
+                if (prof[i]) {
+                    fprintf(f, "%" PRIu64 " %" PRIu64 "\n", 2 * i, prof[i]);
+                }
+            }
+            fclose(f);
+        }
+    }
     outf("total: regions %u insns %" PRIu64 " warnings %u\n", region_no,
          all_insns, warnings);
 }
@@ -253,8 +294,28 @@ qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t *info, int argc,
             m0_mode = true;
         } else if (!strcmp(argv[i], "m0=off") || !strcmp(argv[i], "m0=false")) {
             m0_mode = false;
+        } else if (!strncmp(argv[i], "prof=", 5) && argv[i][5]) {
+            prof_path = argv[i] + 5;
+        } else if (!strncmp(argv[i], "regions=", 8)) {
+            for (char *p = argv[i] + 8; *p;) {
+                char *end;
+                unsigned long r = strtoul(p, &end, 10);
+                if (end == p || r >= 64 || (*end && *end != ':')) {
+                    fprintf(stderr, "insn_count: bad regions %s\n", argv[i]);
+                    return -1;
+                }
+                prof_regions |= 1ull << r;
+                p = *end ? end + 1 : end;
+            }
         } else {
             fprintf(stderr, "insn_count: unknown argument %s\n", argv[i]);
+            return -1;
+        }
+    }
+    if (prof_path) {
+        prof = calloc(PROF_LIMIT / 2, sizeof *prof);
+        if (!prof) {
+            fprintf(stderr, "insn_count: out of memory for prof\n");
             return -1;
         }
     }

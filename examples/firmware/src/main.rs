@@ -26,7 +26,6 @@ use core::ptr::{addr_of, addr_of_mut};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::render::{Link, Tri, Workspace};
-use fixshade::target::Rgb8;
 use fixshade_scenes::{
     capacity_of, check, render_frame, FrameError, Needs, Pixel, Probe, BAND_PIXELS, BAND_ROWS,
     MAX_NEEDS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
