@@ -564,7 +564,13 @@ mod tests {
                 let gx = (g as i64) >> (g % 40);
                 let gy = ((g.rotate_left(23)) as i64) >> (g % 50);
                 let a0 = g.rotate_left(7) as i32;
-                for (ox, oy) in [(0, 0), (sc / 2, -sc / 2 + 1), (-sc, sc), (3, -1), (sc + 1, 2)] {
+                for (ox, oy) in [
+                    (0, 0),
+                    (sc / 2, -sc / 2 + 1),
+                    (-sc, sc),
+                    (3, -1),
+                    (sc + 1, 2),
+                ] {
                     let t = gx
                         .wrapping_mul(ox as i64)
                         .wrapping_add(gy.wrapping_mul(oy as i64));

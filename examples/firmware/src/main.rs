@@ -20,12 +20,12 @@
 #![no_std]
 #![no_main]
 
+use core::hint::black_box;
 use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::ptr::{addr_of, addr_of_mut};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
-use core::hint::black_box;
 use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
 use fixshade::num::{Fast, Profile, Real, Q16};
