@@ -182,7 +182,7 @@ static RECIP_SEED: [u16; 128] = {
     let mut i = 0;
     while i < 128 {
         let d = 2 * (128 + i as u32) + 1;
-        t[i] = ((2 * (1u32 << 24) / d + 1) / 2) as u16;
+        t[i] = (2 * (1u32 << 24) / d).div_ceil(2) as u16;
         i += 1;
     }
     t
