@@ -1,5 +1,6 @@
 //! The edge walker: an exact integer DDA (Bresenham's method).
 
+use super::wide::mul_i32;
 use super::SubpixelBits;
 
 /// Walks one triangle edge downwards, one scanline at a time, giving for
@@ -52,7 +53,11 @@ impl Edge {
         } else {
             // Any other row (a band starting inside the triangle): the
             // numerator in 64 bits, divided in 32 bits when it fits.
-            let n = (x0 - s / 2) as i64 * dy as i64 + t * dx as i64;
+            // |t| < 2^22 + 2^8 for rows and vertices within the limits.
+            let n = match i32::try_from(t) {
+                Ok(t) => mul_i32(x0 - s / 2, dy) + mul_i32(t, dx),
+                Err(_) => (x0 - s / 2) as i64 * dy as i64 + t * dx as i64,
+            };
             match i32::try_from(n) {
                 Ok(n) => {
                     let (k, m) = floor_divmod(n, d);

@@ -13,6 +13,7 @@
 //! multiplications, so the Cortex-M0, which has no divide instruction,
 //! pays for one division per triangle, none per scanline or pixel.
 
+use super::wide::{clz64, mul_i32, mul_u32, shl64, shr64, NO_LONG_MUL};
 use super::SubpixelBits;
 use core::fmt::Debug;
 
@@ -110,18 +111,21 @@ pub struct Recip {
 impl Recip {
     /// The reciprocal of `a` (`a != 0`; zero gives a reciprocal of 1/1
     /// rather than a panic, and the rasterizer never asks for it).
+    ///
+    /// No division: `m` comes from a table-seeded Newton iteration and an
+    /// exact remainder correction ([`recip63`]), so it is the very value
+    /// `round(2^63 / norm)` a division would give, on every target.
     pub fn new(a: i64) -> Self {
         let negative = a < 0;
         let mag = a.unsigned_abs().max(1);
-        let n = 63 - mag.leading_zeros(); // 2^n <= mag < 2^(n+1)
+        let n = 63 - clz64(mag); // 2^n <= mag < 2^(n+1)
         let norm = if n >= 31 {
-            mag >> (n - 31)
+            shr64(mag, n - 31)
         } else {
-            mag << (31 - n)
+            shl64(mag, 31 - n)
         }; // in [2^31, 2^32)
-        let m = ((1u64 << 63) + norm / 2) / norm.max(1 << 31); // in (2^31, 2^32]
         Self {
-            m,
+            m: recip63(norm as u32),
             k: 32 + n,
             negative,
         }
@@ -129,29 +133,37 @@ impl Recip {
 
     /// `round(num · 2^s / a)` within the error stated on [`Recip`];
     /// saturates at `i64` bounds.
+    #[inline]
     pub fn mul_shift(&self, num: i64, s: u32) -> i64 {
         if num == 0 {
             return 0;
         }
         let neg = (num < 0) != self.negative;
         let mag = num.unsigned_abs();
-        let bits = 64 - mag.leading_zeros();
+        let bits = 64 - clz64(mag);
         let t = bits.saturating_sub(31);
-        let p = (mag >> t) * self.m; // < 2^31 · 2^32
-                                     // result = p · 2^(t + s - k)
+        let v = shr64(mag, t) as u32; // < 2^31
+        let p = if self.m > u32::MAX as u64 {
+            (v as u64) << 32
+        } else {
+            mul_u32(v, self.m as u32)
+        }; // < 2^31 · 2^32
+           // result = p · 2^(t + s - k)
         let up = t as i32 + s as i32 - self.k as i32;
         let r: u64 = if up >= 0 {
-            if up >= 63 || p.leading_zeros() <= up as u32 {
+            if up >= 63 || clz64(p) <= up as u32 {
                 i64::MAX as u64
             } else {
-                p << up
+                shl64(p, up as u32)
             }
         } else {
             let sh = (-up) as u32;
             if sh >= 64 {
                 0
             } else {
-                (p >> sh) + ((p >> (sh - 1)) & 1)
+                // (p >> sh) rounded half up, with one variable shift.
+                let h = shr64(p, sh - 1);
+                (h >> 1) + (h & 1)
             }
         };
         let r = r.min(i64::MAX as u64) as i64;
@@ -161,6 +173,134 @@ impl Recip {
             r
         }
     }
+}
+
+/// Seeds of the reciprocal: `round(2^23 / (128 + i + ½))` for the top
+/// eight bits `128 + i` of a normalised divisor (relative error < 2^-8).
+static RECIP_SEED: [u16; 128] = {
+    let mut t = [0u16; 128];
+    let mut i = 0;
+    while i < 128 {
+        let d = 2 * (128 + i as u32) + 1;
+        t[i] = (2 * (1u32 << 24) / d).div_ceil(2) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// `floor((2^63 + floor(x/2)) / x)` (that is `2^63 / x` rounded half up) for
+/// `x` in `[2^31, 2^32)`, without a division.
+///
+/// A seed of 8 bits from [`RECIP_SEED`], one Newton step in 32 bits
+/// (`r1 ≈ 2^47 / x`, relative error below 2^-13.5), one third-order step
+/// `q = R·(1 + ε + ε²)` with `R = r1·2^16` and `ε = 1 - x·R/2^63`, then the
+/// exact remainder `2^63 + x/2 - q·x` moves `q` to the quotient. Checked
+/// for every `x` in the range: at most two correction steps, and the
+/// intermediate bounds noted below hold (`|E >> 19| < 6·10^8`).
+fn recip63(x: u32) -> u64 {
+    if cfg!(target_arch = "arm") {
+        recip63_newton(x)
+    } else {
+        // One instruction on the host's 64-bit divider.
+        ((1u64 << 63) + (x / 2) as u64) / (x as u64).max(1 << 31)
+    }
+}
+
+/// [`recip63`] without a division (the Cortex-M0 has no divider, the M4 only
+/// a 32-bit one: a `u64` division is a library call of hundreds of
+/// instructions on both).
+fn recip63_newton(x: u32) -> u64 {
+    if x <= 1 << 31 {
+        return 1 << 32;
+    }
+    let xh = x >> 16;
+    let r0 = RECIP_SEED[((x >> 24) & 127) as usize] as u32;
+    // xh·r0 is within 2^31·(1 ± 2^-8): e0 within ±2^23, r0·(e0 >> 9) < 2^30.
+    let e0 = (1u32 << 31).wrapping_sub(xh.wrapping_mul(r0)) as i32;
+    let r1 = (r0 as i32).wrapping_add((r0 as i32).wrapping_mul(e0 >> 9) >> 22) as u32;
+    // E = 2^63 - x·r1·2^16, |E| < 2^49.2, so E >> 19 fits an i32.
+    let e = (1u64 << 63).wrapping_sub(mul_u32(x, r1) << 16) as i64;
+    let e19 = (e >> 19) as i32;
+    let c = mul_i32(r1 as i32, e19) >> 28; // R·ε, |c| < 2^20
+    let c2 = mul_i32(c as i32, e19) >> 44; // R·ε²
+    let q = (((r1 as i64) << 16) + c + c2).clamp(1 << 31, u32::MAX as i64) as u32;
+    let n = (1u64 << 63) + (x / 2) as u64;
+    // |q - quotient| <= 2: the remainder is small and signed.
+    let mut rem = n.wrapping_sub(mul_u32(q, x)) as i64;
+    let mut q = q as u64;
+    while rem < 0 {
+        q -= 1;
+        rem += x as i64;
+    }
+    while rem >= x as i64 {
+        q += 1;
+        rem -= x as i64;
+    }
+    q
+}
+
+/// The gradient numerators `(d1·dy2 - d2·dy1, d2·dx1 - d1·dx2)` in `i64`.
+#[inline(always)]
+fn numerators64(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
+    let d1 = a[1] as i64 - a[0] as i64;
+    let d2 = a[2] as i64 - a[0] as i64;
+    let [dx1, dy1, dx2, dy2] = d.map(|v| v as i64);
+    (d1 * dy2 - d2 * dy1, d2 * dx1 - d1 * dx2)
+}
+
+/// [`numerators64`] from 32 × 32 → 64-bit products when the differences
+/// fit an `i32` (always, for values within the attribute limit): the same
+/// values.
+#[inline(always)]
+fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
+    let [dx1, dy1, dx2, dy2] = d;
+    let (d1, o1) = a[1].overflowing_sub(a[0]);
+    let (d2, o2) = a[2].overflowing_sub(a[0]);
+    if o1 | o2 {
+        return numerators64(a, d);
+    }
+    // Each product below 2^31·2^22: the differences fit an i64.
+    (
+        mul_i32(d1, dy2) - mul_i32(d2, dy1),
+        mul_i32(d2, dx1) - mul_i32(d1, dx2),
+    )
+}
+
+/// `a0 + round((gx·ox + gy·oy) / S)` from the 64-bit sum, wrapping.
+#[inline(always)]
+fn anchor64(a0: i32, gx: i64, gy: i64, ox: i32, oy: i32, sub: SubpixelBits) -> i32 {
+    // The sum fits i64 (see the module limits); wrapping arithmetic
+    // computes it exactly even when a product alone would not fit.
+    let t = gx
+        .wrapping_mul(ox as i64)
+        .wrapping_add(gy.wrapping_mul(oy as i64));
+    let s = sub.get();
+    a0.wrapping_add((t.wrapping_add(1 << (s - 1)) >> s) as i32)
+}
+
+/// [`anchor64`] in 32-bit arithmetic for offsets within a pixel (`|o| <=
+/// S`; others take [`anchor64`]): with `g = gh·S + gl` (`0 <= gl < S`),
+/// `floor(t / S) = gh·ox + gyh·oy + floor((gl·ox + gyl·oy + S/2) / S)`
+/// exactly, and of it only the low 32 bits are kept, for which the low 32
+/// bits of `gh` (bits `s..s+31` of `g`) suffice. The same value, whatever
+/// the magnitudes.
+#[inline(always)]
+fn anchor32(a0: i32, gx: i64, gy: i64, ox: i32, oy: i32, sub: SubpixelBits) -> i32 {
+    let s = sub.get();
+    let lim = sub.scale().unsigned_abs();
+    if ox.unsigned_abs() > lim || oy.unsigned_abs() > lim {
+        return anchor64(a0, gx, gy, ox, oy, sub);
+    }
+    let mask = (1u32 << s) - 1;
+    let (gxh, gyh) = (
+        shr64(gx as u64, s) as u32 as i32,
+        shr64(gy as u64, s) as u32 as i32,
+    );
+    let (gxl, gyl) = ((gx as u32 & mask) as i32, (gy as u32 & mask) as i32);
+    let low = (gxl * ox + gyl * oy + (1 << (s - 1))) >> s;
+    a0.wrapping_add(gxh.wrapping_mul(ox))
+        .wrapping_add(gyh.wrapping_mul(oy))
+        .wrapping_add(low)
 }
 
 impl Lerp for i32 {
@@ -174,24 +314,21 @@ impl Lerp for i32 {
 
     #[inline]
     fn gradients(a: [i32; 3], d: [i32; 4], r: &Recip, sub: SubpixelBits) -> (i64, i64) {
-        let d1 = a[1] as i64 - a[0] as i64;
-        let d2 = a[2] as i64 - a[0] as i64;
-        let [dx1, dy1, dx2, dy2] = d.map(|v| v as i64);
-        let nx = d1 * dy2 - d2 * dy1;
-        let ny = d2 * dx1 - d1 * dx2;
+        let (nx, ny) = if NO_LONG_MUL {
+            numerators32(a, d)
+        } else {
+            numerators64(a, d)
+        };
         (r.mul_shift(nx, sub.get()), r.mul_shift(ny, sub.get()))
     }
 
     #[inline]
     fn anchor(a0: i32, gx: i64, gy: i64, ox: i32, oy: i32, sub: SubpixelBits) -> i32 {
-        // The sum fits i64 (see the module limits); wrapping arithmetic
-        // computes it exactly even when a product alone would not fit.
-        let t = gx
-            .wrapping_mul(ox as i64)
-            .wrapping_add(gy.wrapping_mul(oy as i64));
-        let s = sub.get();
-        let half = 1i64 << (s - 1);
-        a0.wrapping_add((t.wrapping_add(half) >> s) as i32)
+        if NO_LONG_MUL {
+            anchor32(a0, gx, gy, ox, oy, sub)
+        } else {
+            anchor64(a0, gx, gy, ox, oy, sub)
+        }
     }
 
     #[inline]
@@ -374,6 +511,72 @@ mod tests {
                         (got - exact).abs() <= bound,
                         "a={a} n={n} s={s}: got {got}, exact {exact}"
                     );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn recip63_is_the_rounded_quotient() {
+        // Every x was checked once (2^31 values, a few seconds); here a
+        // stride that visits every seed interval, plus the ends.
+        let check = |x: u32| {
+            let want = ((1u64 << 63) + (x / 2) as u64) / x as u64;
+            assert_eq!(recip63(x), want, "x={x}");
+            assert_eq!(recip63_newton(x), want, "x={x}");
+        };
+        for x in [
+            1u32 << 31,
+            (1 << 31) + 1,
+            (1 << 31) + 2,
+            u32::MAX,
+            u32::MAX - 1,
+            0xc000_0000,
+            0xbfff_ffff,
+        ] {
+            check(x);
+        }
+        let mut x = 1u32 << 31;
+        while let Some(n) = x.checked_add(997) {
+            check(x);
+            x = n;
+        }
+        // Every seed boundary and its neighbours.
+        for top in 128u32..256 {
+            for d in [0u32, 1, 2, 0xffff, 0x10000] {
+                check((top << 24) | d);
+                check(((top << 24) | 0x00ff_ffff) - d);
+            }
+        }
+    }
+
+    #[test]
+    fn anchor_in_32_bits_equals_the_64_bit_sum() {
+        for s in 1..=8u32 {
+            let sub = SubpixelBits::new(s).unwrap();
+            let half = 1i64 << (s - 1);
+            let sc = 1i32 << s;
+            let mut g = 0x1234_5678_9abc_def1u64;
+            for _ in 0..4000 {
+                g ^= g << 13;
+                g ^= g >> 7;
+                g ^= g << 17;
+                let gx = (g as i64) >> (g % 40);
+                let gy = ((g.rotate_left(23)) as i64) >> (g % 50);
+                let a0 = g.rotate_left(7) as i32;
+                for (ox, oy) in [
+                    (0, 0),
+                    (sc / 2, -sc / 2 + 1),
+                    (-sc, sc),
+                    (3, -1),
+                    (sc + 1, 2),
+                ] {
+                    let t = gx
+                        .wrapping_mul(ox as i64)
+                        .wrapping_add(gy.wrapping_mul(oy as i64));
+                    let want = a0.wrapping_add((t.wrapping_add(half) >> s) as i32);
+                    assert_eq!(anchor64(a0, gx, gy, ox, oy, sub), want);
+                    assert_eq!(anchor32(a0, gx, gy, ox, oy, sub), want);
                 }
             }
         }

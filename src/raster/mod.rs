@@ -65,6 +65,7 @@ mod edge;
 mod lerp;
 mod span;
 mod triangle;
+mod wide;
 
 pub use edge::Edge;
 pub use lerp::{Lerp, Recip};

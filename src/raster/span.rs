@@ -14,6 +14,13 @@ pub trait Shader<L: Lerp, const N: usize> {
     /// The colour for attributes `a`.
     fn shade(&self, a: &[L; N]) -> Rgb8;
 
+    /// The colour for attributes `a` stored in format `F`:
+    /// `F::encode(self.shade(a))`, or a faster path giving the same bytes.
+    #[inline(always)]
+    fn shade_raw<F: PixelFormat>(&self, a: &[L; N]) -> F::Raw {
+        F::encode(self.shade(a))
+    }
+
     /// `Some(colour)` when the colour does not depend on the attributes:
     /// the span stage then encodes it once per span instead of once per
     /// pixel.
@@ -53,6 +60,11 @@ impl<L: Lerp> Shader<L, 1> for GouraudMono {
     fn shade(&self, a: &[L; 1]) -> Rgb8 {
         Rgb8::grey(level(a[0]))
     }
+
+    #[inline(always)]
+    fn shade_raw<F: PixelFormat>(&self, a: &[L; 1]) -> F::Raw {
+        F::encode_grey(level(a[0]))
+    }
 }
 
 /// Gouraud shading in colour: attributes 0, 1, 2 are the red, green and
@@ -85,6 +97,16 @@ macro_rules! persp {
                     *o = i.unweight(f);
                 }
                 self.0.shade(&b)
+            }
+
+            #[inline(always)]
+            fn shade_raw<F: PixelFormat>(&self, a: &[L; $m]) -> F::Raw {
+                let f = L::unweight_factor(a[$n]);
+                let mut b = [a[0]; $n];
+                for (o, i) in b.iter_mut().zip(a.iter()) {
+                    *o = i.unweight(f);
+                }
+                self.0.shade_raw::<F>(&b)
             }
         }
     };
@@ -254,7 +276,7 @@ where
         } else {
             let shader = &self.shader;
             // Safe split borrow: the closure only reads the shader.
-            let shade = |a: &[L; N]| T::Format::encode(shader.shade(a));
+            let shade = |a: &[L; N]| shader.shade_raw::<T::Format>(a);
             let (target, depth, drawn) = (
                 &mut *self.target,
                 self.depth.as_deref_mut(),

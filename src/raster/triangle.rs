@@ -1,5 +1,6 @@
 //! Triangle setup and the scanline loop.
 
+use super::wide::mul_i32;
 use super::{Edge, Lerp, RasterError, SubpixelBits, Vertex};
 use crate::target::Window;
 
@@ -61,7 +62,8 @@ impl<L: Lerp, const N: usize> Vals<L, N> {
 #[inline]
 pub(crate) fn first_row(y: i32, sub: SubpixelBits) -> i32 {
     let s = sub.scale();
-    (y - s / 2 + s - 1).div_euclid(s)
+    // An arithmetic shift is the floor division by 2^s (no divide).
+    (y - s / 2 + s - 1) >> sub.get()
 }
 
 /// Rasterizes one triangle into `sink`, clipped to `window`.
@@ -97,7 +99,7 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
         core::mem::swap(&mut a, &mut b);
     }
     let d = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    let area2 = d[0] as i64 * d[3] as i64 - d[2] as i64 * d[1] as i64;
+    let area2 = mul_i32(d[0], d[3]) - mul_i32(d[2], d[1]);
     if area2 == 0 {
         return Ok(());
     }
@@ -116,7 +118,7 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
     // vertex 0 (within half a pixel in each direction).
     let setup = L::setup(area2);
     let s = sub.scale();
-    let (ia, ja) = (a.x.div_euclid(s), a.y.div_euclid(s));
+    let (ia, ja) = (a.x >> sub.get(), a.y >> sub.get());
     let (ox, oy) = (ia * s + s / 2 - a.x, ja * s + s / 2 - a.y);
     let zero = Vals { z: a.z, a: a.attrs };
     let (mut anchor, mut sx, mut sy) = (zero, zero, zero);

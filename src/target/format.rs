@@ -46,7 +46,35 @@ pub trait PixelFormat: Copy + core::fmt::Debug {
     /// Converts back, replicating high bits into the low ones for
     /// `Rgb565` (so 0 and full scale map to 0 and 255).
     fn decode(raw: Self::Raw) -> Rgb8;
+
+    /// `encode(Rgb8::grey(level))`; a table lookup for RGB565 (the
+    /// Gouraud span loop's per-pixel encoding).
+    #[inline(always)]
+    fn encode_grey(level: u8) -> Self::Raw {
+        Self::encode(Rgb8::grey(level))
+    }
 }
+
+/// `pack565(Rgb8::grey(l))` for every level, in the given byte order.
+const fn grey565_table(big_endian: bool) -> [[u8; 2]; 256] {
+    let mut t = [[0u8; 2]; 256];
+    let mut l = 0;
+    while l < 256 {
+        let v = pack565(Rgb8::grey(l as u8));
+        t[l] = if big_endian {
+            v.to_be_bytes()
+        } else {
+            v.to_le_bytes()
+        };
+        l += 1;
+    }
+    t
+}
+
+/// Grey levels in RGB565 big-endian (512 bytes).
+static GREY565_BE: [[u8; 2]; 256] = grey565_table(true);
+/// Grey levels in RGB565 little-endian (512 bytes).
+static GREY565_LE: [[u8; 2]; 256] = grey565_table(false);
 
 /// 8-bit grey, one byte per pixel.
 ///
@@ -98,6 +126,10 @@ impl PixelFormat for Rgb565Be {
     fn encode(c: Rgb8) -> [u8; 2] {
         pack565(c).to_be_bytes()
     }
+    #[inline(always)]
+    fn encode_grey(level: u8) -> [u8; 2] {
+        GREY565_BE[level as usize]
+    }
     #[inline]
     fn decode(raw: [u8; 2]) -> Rgb8 {
         unpack565(u16::from_be_bytes(raw))
@@ -114,6 +146,10 @@ impl PixelFormat for Rgb565Le {
     #[inline]
     fn encode(c: Rgb8) -> [u8; 2] {
         pack565(c).to_le_bytes()
+    }
+    #[inline(always)]
+    fn encode_grey(level: u8) -> [u8; 2] {
+        GREY565_LE[level as usize]
     }
     #[inline]
     fn decode(raw: [u8; 2]) -> Rgb8 {
@@ -158,6 +194,11 @@ mod tests {
             let v = u16::from_be_bytes(Rgb565Be::encode(Rgb8::grey(g)));
             let want = ((g as u16 >> 3) << 11) | ((g as u16 >> 2) << 5) | (g as u16 >> 3);
             assert_eq!(v, want);
+        }
+        for g in 0..=255u8 {
+            assert_eq!(Rgb565Be::encode_grey(g), Rgb565Be::encode(Rgb8::grey(g)));
+            assert_eq!(Rgb565Le::encode_grey(g), Rgb565Le::encode(Rgb8::grey(g)));
+            assert_eq!(Gray8::encode_grey(g), [g]);
         }
         assert_eq!(Rgb565Le::decode(Rgb565Le::encode(Rgb8::WHITE)), Rgb8::WHITE);
         assert_eq!(Rgb565Le::decode(Rgb565Le::encode(Rgb8::BLACK)), Rgb8::BLACK);

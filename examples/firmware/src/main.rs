@@ -20,12 +20,18 @@
 #![no_std]
 #![no_main]
 
+use core::hint::black_box;
 use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::ptr::{addr_of, addr_of_mut};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
+use fixshade::geom::Vec3;
+use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
+use fixshade::num::{Fast, Profile, Real, Q16};
+use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
 use fixshade::render::{Link, Tri, Workspace};
+use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
     capacity_of, check, render_frame, FrameError, Needs, Pixel, Probe, BAND_PIXELS, BAND_ROWS,
     MAX_NEEDS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
@@ -229,6 +235,120 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
             static_ram(),
         );
     }
+    span_loops(mem).map_err(|e| Failure::Frame("span-loops", e))?;
+    Ok(())
+}
+
+/// Rows (spans) per span-loop region.
+const SPAN_ROWS: u32 = 16;
+/// Pixels of a long span (the short one has 1).
+const SPAN_LONG: u32 = 200;
+
+/// Per-pixel Phong shading of an interpolated normal as the core's
+/// `PhongShader` does it for the normal-only layout (front face): the
+/// three unit values back to `Real`, normalised, illuminated, to levels.
+struct PhongNormal<'a> {
+    shade: &'a Shade<Q16>,
+}
+
+impl Shader<i32, 3> for PhongNormal<'_> {
+    #[inline]
+    fn shade(&self, a: &[i32; 3]) -> Rgb8 {
+        let n = Vec3::new(
+            Fast::unit_back(a[0]),
+            Fast::unit_back(a[1]),
+            Fast::unit_back(a[2]),
+        )
+        .normalize();
+        let c = self.shade.at(n, Vec3::ZERO);
+        Rgb8::new(c.x.to_level(), c.y.to_level(), c.z.to_level())
+    }
+}
+
+/// Q16 from a decimal in thousandths.
+const fn q3(milli: i32) -> Q16 {
+    Q16::from_bits(milli * 65536 / 1000)
+}
+
+/// One region: `SPAN_ROWS` spans of `len` pixels into a fresh band and
+/// depth band (cleared outside the region), through `fill`'s span stage.
+fn span_region<const N: usize, S: Shader<i32, N>>(
+    mem: &mut Memory,
+    shader: S,
+    len: u32,
+    z: i32,
+    dz: i32,
+    a: [i32; N],
+    da: [i32; N],
+) -> Result<(), FrameError> {
+    let mut fb = FrameBuf::<Rgb565Be>::band(&mut mem.pixels[..], WIDTH, 0, BAND_ROWS)?;
+    let mut db = DepthBuffer::<Depth16>::new(&mut mem.depth[..], WIDTH, 0, BAND_ROWS)?;
+    let mut fill =
+        Fill::new(&mut fb, Some(&mut db), shader).map_err(|e| FrameError::Render(e.into()))?;
+    let x0 = (WIDTH - SPAN_LONG) / 2;
+    yield_marker();
+    for y in 0..SPAN_ROWS {
+        // Opaque values: the loop is compiled as for spans of a triangle.
+        let s = black_box(Span {
+            y,
+            x0,
+            x1: x0 + len,
+            z,
+            dz,
+            a,
+            da,
+        });
+        fill.span(&s);
+    }
+    yield_marker();
+    cortex_m::asm::sev();
+    if fill.drawn() != SPAN_ROWS * len {
+        return Err(FrameError::Render(fixshade::render::RenderError::Window));
+    }
+    Ok(())
+}
+
+/// Measures the span loops alone (see the crate docs): flat, Gouraud
+/// (one grey level) and Phong (normal only, one directional light with
+/// a specular term), each with a long and a 1-pixel span per row.
+fn span_loops(mem: &mut Memory) -> Result<(), FrameError> {
+    let material = Material {
+        color: Vec3::new(q3(900), q3(700), q3(500)),
+        ka: q3(100),
+        kd: q3(700),
+        ks: q3(500),
+        shininess: q3(20_000),
+    };
+    let light = Light::directional(Vec3::new(q3(300), q3(400), q3(866)), q3(1000));
+    let shade = Shade::new(
+        &material,
+        q3(200),
+        &[light],
+        Specular::Phong,
+        Viewer::Infinite,
+    )
+    .map_err(|_| FrameError::Render(fixshade::render::RenderError::Window))?;
+    let z = 1 << 28;
+    let dz = 1 << 16;
+    for len in [SPAN_LONG, 1] {
+        span_region::<0, _>(mem, Flat(Rgb8::new(200, 100, 50)), len, z, dz, [], [])?;
+    }
+    hprintln!("span flat rows={} long={} short=1", SPAN_ROWS, SPAN_LONG);
+    for len in [SPAN_LONG, 1] {
+        span_region(mem, GouraudMono, len, z, dz, [40 << 16], [1 << 14])?;
+    }
+    hprintln!("span gouraud rows={} long={} short=1", SPAN_ROWS, SPAN_LONG);
+    // A normal sweeping across the highlight along the span.
+    let n = [
+        Fast::unit(q3(-300)),
+        Fast::unit(q3(100)),
+        Fast::unit(q3(950)),
+    ];
+    let dn = [Fast::unit(q3(3)), 0, -Fast::unit(q3(1))];
+    for len in [SPAN_LONG, 1] {
+        span_region(mem, PhongNormal { shade: &shade }, len, z, dz, n, dn)?;
+    }
+    hprintln!("span phong rows={} long={} short=1", SPAN_ROWS, SPAN_LONG);
     Ok(())
 }
 
