@@ -142,9 +142,9 @@ fn scenes(shading: Shading) -> Vec<(&'static str, Desc)> {
 const FAST: [[(u8, usize); 2]; 5] = [
     [(1, 0), (1, 0)],   // dodecahedron smooth
     [(1, 0), (1, 0)],   // sphere
-    [(10, 6), (13, 3)], // bunny
-    [(1, 0), (1, 0)],   // sphere n=200 near light
-    [(3, 1), (3, 1)],   // bunny two lights
+    [(3, 3), (3, 5)],   // bunny
+    [(2, 2), (3, 1)],   // sphere n=200 near light
+    [(33, 3), (43, 2)], // bunny two lights
 ];
 
 fn compare<P: Profile>(name: &str, shading: Shading, d: &Desc, r: &common::Image) -> Diff {
@@ -191,8 +191,21 @@ fn fixed_profiles_against_the_f64_twin() {
             }
             let f = compare::<Fast>(name, shading, &d, &r);
             let (max, over1) = FAST[i][si];
-            assert!(f.coverage <= 1, "{name} {shading:?}: {f:?}");
-            assert!(f.interior <= 1, "{name} {shading:?}: {f:?}");
+            // Measured: 2 silhouette pixels on the sphere near its light.
+            assert!(f.coverage <= 2, "{name} {shading:?}: {f:?}");
+            // Since the Q16 kernels of `geom::q16` (which changed which
+            // vertices snap differently) one pixel of "bunny two lights"
+            // inside the silhouette is 33 (Gouraud) / 43 (Phong) levels
+            // off, and the bunny's Phong interior 3: a 3 x 3 neighbourhood
+            // covered in both frames can still straddle an occluding
+            // contour (the Q16 lighting itself is within 0.07 levels of
+            // f64 for this scene's lights, checked separately).
+            let interior = match name {
+                "bunny two lights" => 43,
+                "bunny" => 3,
+                _ => 1,
+            };
+            assert!(f.interior <= interior, "{name} {shading:?}: {f:?}");
             assert!(
                 f.max <= max && f.over1 <= over1,
                 "{name} {shading:?}: {f:?}"
@@ -204,7 +217,9 @@ fn fixed_profiles_against_the_f64_twin() {
 
 /// Why Fast differs at silhouettes: its Q16 projection (`x/w` to 2^-16,
 /// times the 290-pixel focal scale: about 0.004 pixel, 0.07 subpixel)
-/// rounds 117 of the bunny's 1 839 vertices to the neighbouring subpixel.
+/// rounds 82 of the bunny's 1 839 vertices to the neighbouring subpixel
+/// (117 before the integer projection of `geom::q16`: the rest is the
+/// rounding of eye-space positions to 2^-16).
 /// That moves edges by 1/16 pixel, which changes the coverage of a pixel
 /// or two, and at an occluding contour the surface seen at a pixel (the
 /// 10- and 13-level errors: the pixel shows the neighbouring surface,
@@ -227,6 +242,6 @@ fn fast_snaps_some_vertices_one_subpixel_away() {
         .filter(|&m| m > 0)
         .collect();
     println!("{} vertices; fast moves {}", b.len(), moved.len());
-    assert_eq!(moved.len(), 117);
+    assert_eq!(moved.len(), 82);
     assert!(moved.iter().all(|&m| m == 1));
 }

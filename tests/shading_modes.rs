@@ -468,9 +468,12 @@ fn phong_pixels_follow_the_normalised_interpolated_normal() {
                     let e = (g as f64 - w).abs();
                     worst[m] = worst[m].max(e);
                     // 1/2 level of output rounding, plus (measured) at most
-                    // 0.16 for Fast's quantisation and the 1/16-pixel
-                    // snapping of the corners.
-                    assert!(e <= 0.75, "{} ({i}, {j}): {got:?} vs {want:?}", imgs[m].0);
+                    // 0.34 for Fast's quantisation and the 1/16-pixel
+                    // snapping of the corners (0.16 before the integer
+                    // projection of `geom::q16`, which snaps a corner of
+                    // this square differently; precise and f64: 0.06).
+                    let bound = if m == 0 { 0.85 } else { 0.75 };
+                    assert!(e <= bound, "{} ({i}, {j}): {got:?} vs {want:?}", imgs[m].0);
                 }
             }
             checked += 1;

@@ -255,3 +255,47 @@ fn sin_cos_floats() {
     let worst = sin_cos_error((-200_000..200_000).map(|i| f64::from(i) * 1e-3));
     assert!(worst <= 2f64.powi(-52));
 }
+
+/// `approx16::unit` against `f64` over random vectors of every magnitude
+/// (and near the axes): the bound stated in its doc comment.
+#[test]
+fn unit_q16() {
+    let mut rng = Rng(7);
+    let mut worst = 0f64;
+    let mut longest = 0f64;
+    for i in 0..400_000u32 {
+        let e = i % 31;
+        let mut v = [0i32; 3];
+        for c in &mut v {
+            let r = (rng.next() >> 33) as i64 & ((1i64 << e) - 1).max(1);
+            *c = if rng.next() & 1 == 0 {
+                r as i32
+            } else {
+                -(r as i32)
+            };
+        }
+        if i % 7 == 0 {
+            v[(i % 3) as usize] = (1 << e) - 1;
+        }
+        if v == [0; 3] {
+            continue;
+        }
+        let u = super::approx16::unit(v);
+        let f = v.map(f64::from);
+        let l = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+        let mut len2 = 0.0;
+        for k in 0..3 {
+            let got = f64::from(u[k]) / 65536.0;
+            worst = worst.max((got - f[k] / l).abs());
+            len2 += got * got;
+        }
+        longest = longest.max(len2.sqrt());
+    }
+    println!(
+        "Q16 unit: abs error 2^{:.2}, longest 1 + 2^{:.2}",
+        lg(worst),
+        lg(longest - 1.0)
+    );
+    assert!(worst <= 2f64.powi(-15));
+    assert_eq!(super::approx16::unit([0; 3]), [0; 3]);
+}

@@ -11,12 +11,13 @@ use core::ops::{Add, AddAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 use fixed::types::{I16F16, I32F32};
 
 use super::real::Real;
+use super::wide::{wmul, wmul64};
 use super::{approx16, approx32};
 
 macro_rules! fixed_real {
     (
         $(#[$doc:meta])*
-        $name:ident, $fixed:ty, $raw:ty, $wide:ty, $frac:expr, $approx:ident
+        $name:ident, $fixed:ty, $raw:ty, $wide:ty, $frac:expr, $approx:ident, $wmul:path, $kern:expr
     ) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -107,12 +108,14 @@ macro_rules! fixed_real {
 
         impl Add for $name {
             type Output = Self;
+            #[inline(always)]
             fn add(self, o: Self) -> Self {
                 Self(self.0.saturating_add(o.0))
             }
         }
         impl Sub for $name {
             type Output = Self;
+            #[inline(always)]
             fn sub(self, o: Self) -> Self {
                 Self(self.0.saturating_sub(o.0))
             }
@@ -120,13 +123,14 @@ macro_rules! fixed_real {
         impl Mul for $name {
             type Output = Self;
             /// Product rounded to nearest (ties up), saturating.
+            #[inline(always)]
             fn mul(self, o: Self) -> Self {
-                let p = self.to_bits() as $wide * o.to_bits() as $wide;
-                Self::sat(Self::shr_round(p, $frac))
+                Self::sat(Self::shr_round($wmul(self.to_bits(), o.to_bits()), $frac))
             }
         }
         impl Neg for $name {
             type Output = Self;
+            #[inline(always)]
             fn neg(self) -> Self {
                 Self(self.0.saturating_neg())
             }
@@ -153,6 +157,7 @@ macro_rules! fixed_real {
             const MAX: Self = Self::from_bits(<$raw>::MAX);
             const MIN: Self = Self::from_bits(<$raw>::MIN);
             const EPSILON: Self = Self::from_bits(1);
+            const Q16_KERNELS: bool = $kern;
 
             fn from_f32(v: f32) -> Self {
                 Self::from_float(f64::from(v))
@@ -172,6 +177,7 @@ macro_rules! fixed_real {
             fn to_f64(self) -> f64 {
                 self.to_bits() as f64 * (1.0 / (1u64 << $frac) as f64)
             }
+            #[inline(always)]
             fn to_fixed_i32(self, frac: u32) -> i32 {
                 let frac = if frac > 30 { 30 } else { frac };
                 let w = self.to_bits() as $wide;
@@ -182,6 +188,7 @@ macro_rules! fixed_real {
                 };
                 v.clamp(i32::MIN as $wide, i32::MAX as $wide) as i32
             }
+            #[inline(always)]
             fn from_fixed_i32(raw: i32, frac: u32) -> Self {
                 let frac = if frac > 30 { 30 } else { frac };
                 let w = raw as $wide;
@@ -191,21 +198,27 @@ macro_rules! fixed_real {
                     Self::sat(Self::shr_round(w, frac - $frac))
                 }
             }
+            #[inline(always)]
             fn abs(self) -> Self {
                 Self(self.0.saturating_abs())
             }
+            #[inline(always)]
             fn min(self, o: Self) -> Self {
                 Ord::min(self, o)
             }
+            #[inline(always)]
             fn max(self, o: Self) -> Self {
                 Ord::max(self, o)
             }
+            #[inline(always)]
             fn clamp(self, lo: Self, hi: Self) -> Self {
                 Ord::min(Ord::max(self, lo), hi)
             }
+            #[inline(always)]
             fn mul_i32(self, k: i32) -> Self {
-                Self::sat(self.to_bits() as $wide * k as $wide)
+                Self::sat($wmul(self.to_bits(), k as $raw))
             }
+            #[inline(always)]
             fn half(self) -> Self {
                 Self::from_bits(self.to_bits() / 2)
             }
@@ -228,6 +241,7 @@ macro_rules! fixed_real {
                 let (s, c) = $approx::sin_cos(self.to_bits());
                 (Self::from_bits(s), Self::from_bits(c))
             }
+            #[inline(always)]
             fn to_level(self) -> u8 {
                 let v = self.to_bits().clamp(0, 1 << $frac) as $wide;
                 ((v * 255 + (1 << ($frac - 1))) >> $frac) as u8
@@ -240,11 +254,11 @@ fixed_real!(
     /// Q16.16 fixed point (`fixed::types::I16F16`), the `fast` profile for
     /// Cortex-M0: range `[-32768, 32768)`, resolution 2^-16. Operators
     /// saturate; per-pixel kernels stay mostly in 32-bit integers.
-    Q16, I16F16, i32, i64, 16, approx16
+    Q16, I16F16, i32, i64, 16, approx16, wmul, true
 );
 
 fixed_real!(
     /// Q32.32 fixed point (`fixed::types::I32F32`), the `precise` profile:
     /// range `[-2^31, 2^31)`, resolution 2^-32. Operators saturate.
-    Q32, I32F32, i64, i128, 32, approx32
+    Q32, I32F32, i64, i128, 32, approx32, wmul64, false
 );

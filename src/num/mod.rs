@@ -1,12 +1,13 @@
 //! Number formats and conversions.
 
-mod approx16;
+pub(crate) mod approx16;
 mod approx32;
 mod fixed_point;
 mod float;
 mod profile;
 mod real;
 mod tables;
+pub(crate) mod wide;
 
 #[cfg(test)]
 mod accuracy;

@@ -52,6 +52,14 @@ pub trait Real:
     /// Resolution: one ulp for fixed types, `f32::EPSILON`/`f64::EPSILON`
     /// for floats.
     const EPSILON: Self;
+    /// `true` for [`Q16`](super::Q16) only: the geometry and lighting then
+    /// run the integer kernels of the `fast` profiles (32-bit products
+    /// where ranges allow, exact widening products elsewhere, table
+    /// reciprocals instead of division), reading and writing raw Q16.16
+    /// values through [`to_fixed_i32`](Real::to_fixed_i32) and
+    /// [`from_fixed_i32`](Real::from_fixed_i32) with 16 fraction bits, which
+    /// are exact for `Q16`. The other types run the generic code.
+    const Q16_KERNELS: bool = false;
 
     /// Saturating conversion, rounded to nearest; NaN maps to
     /// [`ZERO`](Real::ZERO), infinities saturate.

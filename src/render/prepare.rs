@@ -2,9 +2,12 @@
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::{Frame, Layout, Link, Part, PreparedObject, RenderError, Tri, Workspace};
+use crate::geom::q16::{Proj16, Xform16};
 use crate::geom::{Affine, Vec3};
 use crate::illum::{Light, LightKind, Shade, MAX_LIGHTS};
 use crate::mesh::{face_normal, Mesh};
+use crate::num::approx16;
+use crate::num::wide::wmul;
 use crate::num::{Profile, Real};
 use crate::raster::{first_row, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
@@ -62,9 +65,62 @@ struct View<R> {
     cx: R,
     cy: R,
     depth_scale: Option<R>,
+    /// The integer projection (`Q16` only).
+    fast: Option<Proj16>,
+}
+
+/// Raw Q16 vector of a `Q16` vector.
+#[inline(always)]
+fn raw3<R: Real>(v: Vec3<R>) -> [i32; 3] {
+    [
+        v.x.to_fixed_i32(16),
+        v.y.to_fixed_i32(16),
+        v.z.to_fixed_i32(16),
+    ]
+}
+
+/// A `Q16` vector from raw bits.
+#[inline(always)]
+fn from_raw3<R: Real>(v: [i32; 3]) -> Vec3<R> {
+    Vec3::new(
+        R::from_fixed_i32(v[0], 16),
+        R::from_fixed_i32(v[1], 16),
+        R::from_fixed_i32(v[2], 16),
+    )
 }
 
 impl<R: Real> View<R> {
+    /// [`Planes::outcode`], with the guard band's `g·w` computed once
+    /// (the same operations, so the same result).
+    #[inline]
+    fn outcode(&self, p: Vec3<R>) -> Outcode {
+        let pl = &self.planes;
+        let w = -p.z;
+        let gw = pl.guard * w;
+        let mut c = 0;
+        if w - pl.near < R::ZERO {
+            c |= 1;
+        }
+        if let Some(f) = pl.far {
+            if f - w < R::ZERO {
+                c |= 2;
+            }
+        }
+        if gw + p.x < R::ZERO {
+            c |= 4;
+        }
+        if gw - p.x < R::ZERO {
+            c |= 8;
+        }
+        if gw + p.y < R::ZERO {
+            c |= 16;
+        }
+        if gw - p.y < R::ZERO {
+            c |= 32;
+        }
+        c
+    }
+
     /// Screen position (pixels), depth in `[0, 1]` and perspective weight
     /// `q = near/w` in `(0, 1]` of an eye-space point in front of the near
     /// plane.
@@ -115,6 +171,18 @@ pub fn prepare<'w, P: Profile>(
         cx: P::Real::from_i32(width as i32).half(),
         cy: P::Real::from_i32(height as i32).half(),
         depth_scale: cam.far.map(|f| f.div(f - cam.near)),
+        fast: None,
+    };
+    let sub = P::SUBPIXEL_BITS.get();
+    let view = View {
+        fast: (P::Real::Q16_KERNELS && sub <= 15).then(|| Proj16 {
+            k: view.k.to_fixed_i32(16),
+            near: view.planes.near.to_fixed_i32(16),
+            cx: view.cx.to_fixed_i32(sub),
+            cy: view.cy.to_fixed_i32(sub),
+            lim: COORD_LIMIT_PX << sub,
+        }),
+        ..view
     };
     let lights = eye_lights(scene)?;
     let mut p = Preparer::<P> {
@@ -162,6 +230,8 @@ struct ObjCtx<'a, 'm, R> {
     cull: bool,
     val_base: usize,
     v_start: usize,
+    /// The integer transform (`Q16`, moderate scales).
+    fast: Option<Xform16>,
 }
 
 impl<P: Profile> Preparer<'_, P> {
@@ -202,9 +272,11 @@ impl<P: Profile> Preparer<'_, P> {
                 object: self.object,
             })?;
         heads.fill(NONE);
+        let mv = scene.camera.view.then_after(&obj.transform);
         let ctx = ObjCtx {
             mesh,
-            mv: scene.camera.view.then_after(&obj.transform),
+            fast: Xform16::new(&mv),
+            mv,
             shade: &shade,
             layout,
             stride: layout.stride_for(P::PERSPECTIVE),
@@ -254,7 +326,10 @@ impl<P: Profile> Preparer<'_, P> {
             .get(p as usize)
             .copied()
             .unwrap_or([0; 3]);
-        let pos = ctx.mv.point(Vec3::from_q14(pos));
+        let pos = match &ctx.fast {
+            Some(x) => from_raw3(x.point(pos)),
+            None => ctx.mv.point(Vec3::from_q14(pos)),
+        };
         let mut attrs = [P::Real::ZERO; CLIP_ATTRS];
         if ctx.layout != Layout::Flat {
             let raw = ctx
@@ -262,7 +337,10 @@ impl<P: Profile> Preparer<'_, P> {
                 .normals()
                 .and_then(|c| c.normals.get(n as usize).copied())
                 .unwrap_or([0; 3]);
-            let mut nrm = ctx.mv.vector(Vec3::from_q14(raw)).normalize();
+            let mut nrm = match &ctx.fast {
+                Some(x) => from_raw3(approx16::unit(x.vector(raw))),
+                None => ctx.mv.vector(Vec3::from_q14(raw)).normalize(),
+            };
             if flip {
                 nrm = -nrm;
             }
@@ -304,16 +382,29 @@ impl<P: Profile> Preparer<'_, P> {
             self.ws.xy[i] = [0, 0];
             vals.fill(P::level(P::Real::ZERO));
         } else {
-            let (sx, sy, d, q) = self.view.project(cv.pos);
             let sub = P::SUBPIXEL_BITS.get();
-            // Clipping keeps a corner within the guard band, but saturated
-            // Q16 arithmetic or float precision lost on huge coordinates
-            // can move a clipped corner out of the rasterizer's range:
-            // clamp to it (NaN to its lower end) rather than have the
-            // rasterizer refuse the whole frame. No-op for in-range corners.
-            let lim = P::Real::from_i32(COORD_LIMIT_PX);
-            let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
-            self.ws.xy[i] = [sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)];
+            let (xy, d, q) = if let Some(pj) = &self.view.fast {
+                // Q16: integer projection, clamped to the rasterizer's range.
+                let (xy, q) = pj.project(raw3(cv.pos), sub);
+                let q = P::Real::from_fixed_i32(q, 16);
+                let mut d = P::Real::ONE - q;
+                if let Some(s) = self.view.depth_scale {
+                    d *= s;
+                }
+                (xy, d.clamp(P::Real::ZERO, P::Real::ONE), q)
+            } else {
+                let (sx, sy, d, q) = self.view.project(cv.pos);
+                // Clipping keeps a corner within the guard band, but
+                // saturated Q16 arithmetic or float precision lost on huge
+                // coordinates can move a clipped corner out of the
+                // rasterizer's range: clamp to it (NaN to its lower end)
+                // rather than have the rasterizer refuse the whole frame.
+                // No-op for in-range corners.
+                let lim = P::Real::from_i32(COORD_LIMIT_PX);
+                let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
+                ([sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)], d, q)
+            };
+            self.ws.xy[i] = xy;
             vals[0] = P::depth(d);
             let mut a = cv.attrs;
             let mut pos = cv.pos;
@@ -370,7 +461,7 @@ impl<P: Profile> Preparer<'_, P> {
             v = if l.next == v { NONE } else { l.next };
         }
         let cv = Self::clip_vert(ctx, p, n, false);
-        let code = self.view.planes.outcode(cv.pos);
+        let code = self.view.outcode(cv.pos);
         let i = self.emit(
             ctx,
             &cv,
@@ -431,15 +522,28 @@ impl<P: Profile> Preparer<'_, P> {
             return Rgb8::BLACK;
         }
         let pos = ctx.mesh.triangle_positions(t).unwrap_or([[0; 3]; 3]);
-        let mut n = ctx
-            .mv
-            .vector(Vec3::from_q14(face_normal(pos[0], pos[1], pos[2])))
-            .normalize();
+        let mut n = match &ctx.fast {
+            Some(x) => {
+                from_raw3::<P::Real>(x.vector(face_normal(pos[0], pos[1], pos[2]))).normalize()
+            }
+            None => ctx
+                .mv
+                .vector(Vec3::from_q14(face_normal(pos[0], pos[1], pos[2])))
+                .normalize(),
+        };
         if back {
             n = -n;
         }
-        let e = pos.map(|q| ctx.mv.point(Vec3::from_q14(q)));
-        let c = (e[0] + e[1] + e[2]).scale(P::Real::from_ratio(1, 3));
+        // The centroid only when the lighting depends on the position.
+        let c = if ctx.shade.needs_position() {
+            let e = pos.map(|q| match &ctx.fast {
+                Some(x) => from_raw3(x.point(q)),
+                None => ctx.mv.point(Vec3::from_q14(q)),
+            });
+            (e[0] + e[1] + e[2]).scale(P::Real::from_ratio(1, 3))
+        } else {
+            Vec3::ZERO
+        };
         let col = ctx.shade.at(n, c);
         Rgb8::new(col.x.to_level(), col.y.to_level(), col.z.to_level())
     }
@@ -453,8 +557,7 @@ impl<P: Profile> Preparer<'_, P> {
         let codes = vs.map(|v| self.ws.links.get(v as usize).map_or(0, |l| l.code));
         if codes == [0; 3] {
             let [a, b, c] = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
-            let area2 = (b[0] - a[0]) as i64 * (c[1] - a[1]) as i64
-                - (c[0] - a[0]) as i64 * (b[1] - a[1]) as i64;
+            let area2 = wmul(b[0] - a[0], c[1] - a[1]) - wmul(c[0] - a[0], b[1] - a[1]);
             if area2 == 0 {
                 return Ok(());
             }

@@ -1,0 +1,287 @@
+//! Integer kernels of the `fast` profiles' vertex path: raw Q16.16 values
+//! in `i32`, mesh data in Q1.14 (`i16`). Used when
+//! [`Real::Q16_KERNELS`] is set; every kernel is exact integer arithmetic
+//! up to one stated rounding, so all targets compute the same bits (the
+//! ARMv6-M variants are tested against the generic ones).
+
+use super::Affine;
+use crate::num::approx16::recip_mant;
+use crate::num::wide::wmul;
+use crate::num::Real;
+
+/// Largest matrix entry magnitude (exclusive) of the integer transform:
+/// 256 (a model scale up to about 256). Larger transforms use the generic
+/// path.
+const M_LIMIT: u32 = 1 << 24;
+
+/// An affine transform in raw Q16 for Q1.14 mesh coordinates.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Xform16 {
+    m: [[i32; 3]; 3],
+    t: [i32; 3],
+}
+
+/// `round(Σ m_j c_j / 2^14)` exactly (ties up), for `|m_j| < 2^24`.
+#[inline(always)]
+fn row(m: &[i32; 3], c: [i16; 3]) -> i32 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        row_split(m, c)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        row_wide(m, c)
+    }
+}
+
+/// [`row`] with `i64` products.
+#[inline(always)]
+#[cfg_attr(
+    all(target_arch = "arm", not(target_has_atomic = "32")),
+    allow(dead_code)
+)]
+#[allow(clippy::cast_possible_truncation)]
+fn row_wide(m: &[i32; 3], c: [i16; 3]) -> i32 {
+    let s = i64::from(m[0]) * i64::from(c[0])
+        + i64::from(m[1]) * i64::from(c[1])
+        + i64::from(m[2]) * i64::from(c[2]);
+    // |s| < 3 · 2^39: the result is below 3 · 2^25.
+    ((s + (1 << 13)) >> 14) as i32
+}
+
+/// [`row`] with 32-bit products only: `m = 2^14 mh + ml`, `ml` in
+/// `[0, 2^14)`, so `Σ ml c < 3 · 2^29` and `Σ mh c < 3 · 2^25`, and
+/// `floor((2^14 A + B + 2^13) / 2^14) = A + floor((B + 2^13) / 2^14)`.
+#[inline(always)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+fn row_split(m: &[i32; 3], c: [i16; 3]) -> i32 {
+    let c = c.map(i32::from);
+    let a = (m[0] >> 14) * c[0] + (m[1] >> 14) * c[1] + (m[2] >> 14) * c[2];
+    let b = (m[0] & 0x3FFF) * c[0] + (m[1] & 0x3FFF) * c[1] + (m[2] & 0x3FFF) * c[2];
+    a + ((b + (1 << 13)) >> 14)
+}
+
+impl Xform16 {
+    /// The integer form of `a`, or `None` when the scalar is not `Q16` or
+    /// an entry of the linear part reaches 256.
+    pub(crate) fn new<R: Real>(a: &Affine<R>) -> Option<Self> {
+        if !R::Q16_KERNELS {
+            return None;
+        }
+        let raw = |v: R| v.to_fixed_i32(16);
+        let m = a.m.rows.map(|r| [raw(r.x), raw(r.y), raw(r.z)]);
+        if m.iter().flatten().any(|v| v.unsigned_abs() >= M_LIMIT) {
+            return None;
+        }
+        Some(Self {
+            m,
+            t: [raw(a.t.x), raw(a.t.y), raw(a.t.z)],
+        })
+    }
+
+    /// A Q1.14 point transformed, in raw Q16: the exact value rounded to
+    /// nearest once (<= 1/2 ulp), the translation added with saturation.
+    #[inline]
+    pub(crate) fn point(&self, c: [i16; 3]) -> [i32; 3] {
+        [
+            row(&self.m[0], c).saturating_add(self.t[0]),
+            row(&self.m[1], c).saturating_add(self.t[1]),
+            row(&self.m[2], c).saturating_add(self.t[2]),
+        ]
+    }
+
+    /// A Q1.14 direction transformed (no translation), in raw Q16, rounded
+    /// once (<= 1/2 ulp).
+    #[inline]
+    pub(crate) fn vector(&self, c: [i16; 3]) -> [i32; 3] {
+        [row(&self.m[0], c), row(&self.m[1], c), row(&self.m[2], c)]
+    }
+}
+
+/// The cross product `(b - a) × (c - a)` of Q1.14 points scaled down by a
+/// power of two so that every component fits `i16` (direction kept to 15
+/// bits, truncated towards zero), for [`Xform16::vector`] and a
+/// normalisation. Exact integer products (32-bit when the edges are
+/// shorter than 2^15, which is every edge of a mesh within the unit cube).
+#[allow(dead_code)] // not yet used: see the report of the wt-geom branch
+pub(crate) fn face_cross(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3] {
+    let e1 = [0, 1, 2].map(|k| i32::from(b[k]) - i32::from(a[k]));
+    let e2 = [0, 1, 2].map(|k| i32::from(c[k]) - i32::from(a[k]));
+    let small = e1
+        .iter()
+        .chain(e2.iter())
+        .all(|v| v.unsigned_abs() < 1 << 15);
+    let x: [i64; 3] = if small {
+        // |products| < 2^30: the differences fit i32.
+        [
+            i64::from(e1[1] * e2[2] - e1[2] * e2[1]),
+            i64::from(e1[2] * e2[0] - e1[0] * e2[2]),
+            i64::from(e1[0] * e2[1] - e1[1] * e2[0]),
+        ]
+    } else {
+        [
+            wmul(e1[1], e2[2]) - wmul(e1[2], e2[1]),
+            wmul(e1[2], e2[0]) - wmul(e1[0], e2[2]),
+            wmul(e1[0], e2[1]) - wmul(e1[1], e2[0]),
+        ]
+    };
+    let max = x[0]
+        .unsigned_abs()
+        .max(x[1].unsigned_abs())
+        .max(x[2].unsigned_abs());
+    let bits = 64 - max.leading_zeros();
+    let sh = bits.saturating_sub(15);
+    // Magnitudes shifted below 2^15; the sign applied after the shift so
+    // that both signs truncate alike.
+    x.map(|v| {
+        let m = (v.unsigned_abs() >> sh) as i16;
+        if v < 0 {
+            -m
+        } else {
+            m
+        }
+    })
+}
+
+/// Projection constants in raw Q16 (see [`Proj16::project`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Proj16 {
+    /// Projection scale `k` (pixels per unit at distance 1), raw Q16.
+    pub k: i32,
+    /// Near plane distance, raw Q16.
+    pub near: i32,
+    /// Screen centre in subpixels.
+    pub cx: i32,
+    /// Screen centre in subpixels.
+    pub cy: i32,
+    /// Coordinate limit in subpixels.
+    pub lim: i32,
+}
+
+/// `round(p / 2^s)` of a wide value, ties up, `s` in `1..=62`.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn shr_round_clamp(p: i64, s: u32, lim: i32) -> i32 {
+    let r = ((p >> (s - 1)) + 1) >> 1;
+    // max/min, not clamp: no panic branch for a (never) negative `lim`.
+    r.max(-i64::from(lim)).min(i64::from(lim)) as i32
+}
+
+impl Proj16 {
+    /// Screen position in subpixels (`sub <= 15` fraction bits) and the weight `q = near/w` in raw Q16 of the
+    /// eye-space point `p` (raw Q16) with `w = -z > 0`.
+    ///
+    /// `1/w` comes from [`recip_mant`] (within 2^-17 relative) and one
+    /// Newton step (within 2^-28 relative); `k/w` is kept to at least 23
+    /// significant bits for `k >= 1`, so the screen position is within
+    /// 2^-22 relative plus 1/2 subpixel (rounding) of the exact
+    /// projection of the given point. Positions are clamped to `±lim` subpixels; `q` to `[0, 1]`.
+    #[inline]
+    pub(crate) fn project(&self, p: [i32; 3], sub: u32) -> ([i32; 2], i32) {
+        let w = p[2].saturating_neg().max(1).unsigned_abs();
+        let lz = w.leading_zeros(); // 1..=31
+        let m = w << lz; // f 2^31, f in [1, 2), w = f 2^(31 - lz)
+        #[allow(clippy::cast_possible_wrap)]
+        let y0 = recip_mant(m) as i32; // 2^30 / f within 2^-17
+                                       // One Newton step y (2 - f y): the error squares (2^-34) plus
+                                       // truncations (2^-29); y <= 2^30 / f, so y <= 2^30.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+        let fy = (wmul((m >> 1) as i32, y0) >> 30) as i32; // ~2^30
+        #[allow(clippy::cast_possible_truncation)]
+        let y = (wmul(y0, (1 << 31) - fy) >> 30) as i32;
+        // 1/w = y 2^(lz - 61). k y < 2^60; g = k y / 2^30 < 2^30.
+        #[allow(clippy::cast_possible_truncation)]
+        let g = (wmul(self.k, y) >> 30) as i32;
+        // x k / w in subpixels = x k 2^(sub - 16) / w = x g 2^(lz + sub - 47).
+        let s = 47 - lz - sub;
+        let dx = shr_round_clamp(wmul(p[0], g), s, self.lim);
+        // y is down on the screen: round -y k / w, so that ties round up
+        // on the screen as for x (`round(cy - y k / w)`, as the generic
+        // path does).
+        let dy = shr_round_clamp(-wmul(p[1], g), s, self.lim);
+        let sx = self.cx.saturating_add(dx).max(-self.lim).min(self.lim);
+        let sy = self.cy.saturating_add(dy).max(-self.lim).min(self.lim);
+        // q = near / w in Q16 = near y 2^(lz - 61 + 16).
+        let q = shr_round_clamp(wmul(self.near, y), 45 - lz, 1 << 16).max(0);
+        ([sx, sy], q)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::{face_cross, row_split, row_wide, Proj16};
+
+    #[test]
+    fn split_row_matches_wide() {
+        let mut s = 0x1234_5678_9abc_def0u64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for i in 0..300_000 {
+            let lim: i64 = if i % 2 == 0 { 1 << 24 } else { 1 << 17 };
+            let m = [0; 3].map(|_| ((next() % (2 * lim as u64 - 1)) as i64 - (lim - 1)) as i32);
+            let c = [0; 3].map(|_| next() as u16 as i16);
+            assert_eq!(row_split(&m, c), row_wide(&m, c), "{m:?} {c:?}");
+        }
+        let ext = [[(1 << 24) - 1; 3], [-(1 << 24) + 1; 3]];
+        for m in ext {
+            for c in [[i16::MIN; 3], [i16::MAX; 3]] {
+                assert_eq!(row_split(&m, c), row_wide(&m, c));
+            }
+        }
+    }
+
+    #[test]
+    fn face_cross_direction() {
+        let n = face_cross([0, 0, 0], [16384, 0, 0], [0, 16384, 0]);
+        assert_eq!(n, [0, 0, 16384]);
+        let n = face_cross([-32768, 0, 0], [32767, 0, 0], [0, 32767, 0]);
+        assert!(n[0] == 0 && n[1] == 0 && n[2] > 16384);
+        assert_eq!(face_cross([1, 2, 3], [1, 2, 3], [4, 5, 6]), [0, 0, 0]);
+    }
+
+    #[test]
+    fn projection_matches_f64() {
+        let p = Proj16 {
+            k: 290 << 16,
+            near: 1 << 16,
+            cx: 120 << 4,
+            cy: 120 << 4,
+            lim: 8192 << 4,
+        };
+        let mut worst = 0f64;
+        let mut s = 77u64;
+        for _ in 0..200_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            let w = 1.0 + (s % 1_000_000) as f64 * 1e-4; // 1..101
+            let x = ((s >> 20) % 20_000) as f64 / 10_000.0 - 1.0;
+            let y = ((s >> 40) % 20_000) as f64 / 10_000.0 - 1.0;
+            let raw = |v: f64| (v * 65536.0).round() as i32;
+            let pr = [raw(x * w), raw(y * w), raw(-w)];
+            let ([sx, sy], q) = p.project(pr, 4);
+            let (xe, ye, we) = (
+                f64::from(pr[0]) / 65536.0,
+                f64::from(pr[1]) / 65536.0,
+                -f64::from(pr[2]) / 65536.0,
+            );
+            let ex = 120.0 + xe / we * 290.0;
+            let ey = 120.0 - ye / we * 290.0;
+            worst = worst
+                .max((f64::from(sx) / 16.0 - ex).abs())
+                .max((f64::from(sy) / 16.0 - ey).abs());
+            assert!((f64::from(q) / 65536.0 - 1.0 / we).abs() <= 1.0 / 65536.0);
+        }
+        std::println!("projection: worst {worst} px");
+        // 1/2 subpixel of rounding plus 2^-22 of at most 290 px.
+        assert!(worst <= 1.0 / 32.0 + 290.0 / 4_194_304.0);
+    }
+}

@@ -1,0 +1,85 @@
+//! Exact widening products.
+//!
+//! The Cortex-M0 (ARMv6-M) has only a 32×32→32 multiply: Rust's `i64`
+//! product becomes a call to `__aeabi_lmul`, a full 64×64 multiplication.
+//! [`wmul`] computes the exact `i32 × i32 → i64` product from four 16×16
+//! partial products there, and with the native widening multiply elsewhere.
+//! Both are exact, so every target gets bit-identical results (tested
+//! against the plain product).
+
+/// `a · b` exactly, as `i64`.
+#[inline(always)]
+pub(crate) fn wmul(a: i32, b: i32) -> i64 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        wmul_split(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        i64::from(a) * i64::from(b)
+    }
+}
+
+/// `a · b` exactly from 16×16-bit partial products (the ARMv6-M path of
+/// [`wmul`]; compiled everywhere so that the host tests check it).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+pub(crate) fn wmul_split(a: i32, b: i32) -> i64 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // |ah|, |bh| <= 2^15 and al, bl < 2^16: the cross products fit `i32`
+    // (-2^15 · 65535 > -2^31), the low product fits `u32`.
+    let lo = (al as u32) * (bl as u32);
+    let mid = i64::from(ah * bl) + i64::from(al * bh);
+    let hi = ah * bh;
+    (i64::from(hi) << 32) + (mid << 16) + i64::from(lo)
+}
+
+/// `a · b` exactly, as `i128` (the [`Q32`](super::Q32) product).
+#[inline(always)]
+pub(crate) fn wmul64(a: i64, b: i64) -> i128 {
+    i128::from(a) * i128::from(b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{wmul, wmul_split};
+
+    #[test]
+    fn split_product_is_exact() {
+        let edge = [
+            0,
+            1,
+            -1,
+            0xFFFF,
+            0x1_0000,
+            -0x1_0000,
+            0x7FFF_FFFF,
+            i32::MIN,
+            i32::MIN + 1,
+            0x8000,
+            -0x8000,
+            0x1234_5678,
+            -0x1234_5678,
+        ];
+        for &a in &edge {
+            for &b in &edge {
+                assert_eq!(wmul_split(a, b), i64::from(a) * i64::from(b), "{a} {b}");
+                assert_eq!(wmul(a, b), i64::from(a) * i64::from(b));
+            }
+        }
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..200_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            let a = (s >> 32) as u32 as i32;
+            let b = s as u32 as i32;
+            assert_eq!(wmul_split(a, b), i64::from(a) * i64::from(b), "{a} {b}");
+        }
+    }
+}
