@@ -188,10 +188,11 @@ impl Proj16 {
         let y0 = recip_mant(m) as i32; // 2^30 / f within 2^-17
                                        // One Newton step y (2 - f y): the error squares (2^-34) plus
                                        // truncations (2^-29); y <= 2^30 / f, so y <= 2^30.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
-        let fy = (wmul((m >> 1) as i32, y0) >> 30) as i32; // ~2^30
+        let fy = wmul((m >> 1) as i32, y0) >> 30; // ~2^30
         #[allow(clippy::cast_possible_truncation)]
-        let y = (wmul(y0, (1 << 31) - fy) >> 30) as i32;
+        let e = ((1i64 << 31) - fy) as i32; // ~2^30
+        #[allow(clippy::cast_possible_truncation)]
+        let y = (wmul(y0, e) >> 30) as i32;
         // 1/w = y 2^(lz - 61). k y < 2^60; g = k y / 2^30 < 2^30.
         #[allow(clippy::cast_possible_truncation)]
         let g = (wmul(self.k, y) >> 30) as i32;
