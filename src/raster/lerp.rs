@@ -266,7 +266,7 @@ fn numerators64(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
 
 /// [`numerators64`] from 32 × 32 → 64-bit products when the differences
 /// fit an `i32` (always, for values within the attribute limit): the same
-/// values.
+/// values, on every target.
 #[inline(always)]
 fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
     let [dx1, dy1, dx2, dy2] = d;
@@ -330,11 +330,9 @@ impl Lerp for i32 {
 
     #[inline]
     fn gradients(a: [i32; 3], d: [i32; 4], r: &Recip, sub: SubpixelBits) -> (i64, i64) {
-        let (nx, ny) = if NO_LONG_MUL {
-            numerators32(a, d)
-        } else {
-            numerators64(a, d)
-        };
+        // 32 × 32 → 64-bit products (one `smull` each on ARMv7-M, the
+        // exact 16-bit helper on ARMv6-M): the same values as in 64 bits.
+        let (nx, ny) = numerators32(a, d);
         (r.mul_shift(nx, sub.get()), r.mul_shift(ny, sub.get()))
     }
 
