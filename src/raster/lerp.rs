@@ -330,9 +330,14 @@ impl Lerp for i32 {
 
     #[inline]
     fn gradients(a: [i32; 3], d: [i32; 4], r: &Recip, sub: SubpixelBits) -> (i64, i64) {
-        // 32 × 32 → 64-bit products (one `smull` each on ARMv7-M, the
-        // exact 16-bit helper on ARMv6-M): the same values as in 64 bits.
-        let (nx, ny) = numerators32(a, d);
+        // On ARM 32 × 32 → 64-bit products (one `smull` each on ARMv7-M,
+        // the exact 16-bit helper on ARMv6-M); 64-bit products on 64-bit
+        // hosts. The same values.
+        let (nx, ny) = if cfg!(target_arch = "arm") {
+            numerators32(a, d)
+        } else {
+            numerators64(a, d)
+        };
         (r.mul_shift(nx, sub.get()), r.mul_shift(ny, sub.get()))
     }
 
