@@ -13,7 +13,7 @@
 //! multiplications, so the Cortex-M0, which has no divide instruction,
 //! pays for one division per triangle, none per scanline or pixel.
 
-use super::wide::{clz64, mul_i32, mul_u32, shl64, shr64, NO_LONG_MUL};
+use super::wide::{clz32, clz64, mul_i32, mul_u32, shl64, shr64, NO_LONG_MUL};
 use super::SubpixelBits;
 use core::fmt::Debug;
 
@@ -103,7 +103,10 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
 /// final rounding.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Recip {
-    m: u64,
+    /// `round(2^63 / norm)` for the normalised magnitude, in `[2^31,
+    /// 2^32)` (a power-of-two magnitude, whose reciprocal would be 2^32,
+    /// is kept as `2^31` with `k` one less: the same value).
+    m: u32,
     k: u32,
     negative: bool,
 }
@@ -124,15 +127,25 @@ impl Recip {
         } else {
             shl64(mag, 31 - n)
         }; // in [2^31, 2^32)
-        Self {
-            m: recip63(norm as u32),
-            k: 32 + n,
-            negative,
-        }
+        let m = recip63(norm as u32);
+        // m <= 2^32; m == 2^32 only for norm == 2^31: halve it exactly.
+        let (m, k) = if m > u32::MAX as u64 {
+            ((m >> 1) as u32, 31 + n)
+        } else {
+            (m as u32, 32 + n)
+        };
+        Self { m, k, negative }
     }
 
     /// `round(num · 2^s / a)` within the error stated on [`Recip`];
     /// saturates at `i64` bounds.
+    ///
+    /// The numerator is normalised to its top 31 bits `v` (one leading-zero
+    /// count over the 64-bit value; exact when it has at most 31
+    /// significant bits), multiplied once (`v·m`, 32 × 32 → 64 bits) and
+    /// shifted right with rounding; when the quotient is below 2^31, only
+    /// the high word of the product takes part (the usual case in the
+    /// rasterizer).
     #[inline]
     pub fn mul_shift(&self, num: i64, s: u32) -> i64 {
         if num == 0 {
@@ -140,30 +153,33 @@ impl Recip {
         }
         let neg = (num < 0) != self.negative;
         let mag = num.unsigned_abs();
-        let bits = 64 - clz64(mag);
-        let t = bits.saturating_sub(31);
-        let v = shr64(mag, t) as u32; // < 2^31
-        let p = if self.m > u32::MAX as u64 {
-            (v as u64) << 32
+        let (hi, lo) = ((mag >> 32) as u32, mag as u32);
+        // top: mag shifted left by z leading zeros (its bit 31 set).
+        let (top, z) = if hi != 0 {
+            let c = clz32(hi);
+            ((hi << c) | ((lo >> 1) >> (31 - c)), c)
         } else {
-            mul_u32(v, self.m as u32)
-        }; // < 2^31 · 2^32
-           // result = p · 2^(t + s - k)
-        let up = t as i32 + s as i32 - self.k as i32;
-        let r: u64 = if up >= 0 {
-            if up >= 63 || clz64(p) <= up as u32 {
+            let c = clz32(lo);
+            (lo << c, 32 + c)
+        };
+        let v = top >> 1; // top 31 bits: mag ≈ v · 2^(33 - z)
+        let p = mul_u32(v, self.m); // < 2^63
+                                    // result = p · 2^(33 - z + s - k) = p >> sh, rounded half up
+        let sh = (self.k + z) as i32 - 33 - s as i32;
+        let r: u64 = if sh >= 33 {
+            // (p >> (sh - 1)) from the high word only.
+            let e = (sh - 33) as u32;
+            let h = if e >= 32 { 0 } else { (p >> 32) as u32 >> e };
+            ((h >> 1) + (h & 1)) as u64
+        } else if sh >= 1 {
+            let h = shr64(p, (sh - 1) as u32);
+            (h >> 1) + (h & 1)
+        } else {
+            let up = (-sh) as u32;
+            if up >= 63 || clz64(p) <= up {
                 i64::MAX as u64
             } else {
-                shl64(p, up as u32)
-            }
-        } else {
-            let sh = (-up) as u32;
-            if sh >= 64 {
-                0
-            } else {
-                // (p >> sh) rounded half up, with one variable shift.
-                let h = shr64(p, sh - 1);
-                (h >> 1) + (h & 1)
+                shl64(p, up)
             }
         };
         let r = r.min(i64::MAX as u64) as i64;
@@ -250,7 +266,7 @@ fn numerators64(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
 
 /// [`numerators64`] from 32 × 32 → 64-bit products when the differences
 /// fit an `i32` (always, for values within the attribute limit): the same
-/// values.
+/// values, on every target.
 #[inline(always)]
 fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
     let [dx1, dy1, dx2, dy2] = d;
@@ -314,7 +330,10 @@ impl Lerp for i32 {
 
     #[inline]
     fn gradients(a: [i32; 3], d: [i32; 4], r: &Recip, sub: SubpixelBits) -> (i64, i64) {
-        let (nx, ny) = if NO_LONG_MUL {
+        // On ARM 32 × 32 → 64-bit products (one `smull` each on ARMv7-M,
+        // the exact 16-bit helper on ARMv6-M); 64-bit products on 64-bit
+        // hosts. The same values.
+        let (nx, ny) = if cfg!(target_arch = "arm") {
             numerators32(a, d)
         } else {
             numerators64(a, d)
@@ -512,6 +531,103 @@ mod tests {
                         "a={a} n={n} s={s}: got {got}, exact {exact}"
                     );
                 }
+            }
+        }
+    }
+
+    /// The previous `mul_shift` (64-bit shifts, `m` up to 2^32), kept as
+    /// the reference the lean version must equal bit for bit.
+    fn mul_shift_reference(a: i64, num: i64, s: u32) -> i64 {
+        if num == 0 {
+            return 0;
+        }
+        let negative = a < 0;
+        let amag = a.unsigned_abs().max(1);
+        let n = 63 - amag.leading_zeros();
+        let norm = if n >= 31 {
+            amag >> (n - 31)
+        } else {
+            amag << (31 - n)
+        };
+        let m = ((1u64 << 63) + norm / 2) / norm;
+        let k = 32 + n;
+        let neg = (num < 0) != negative;
+        let mag = num.unsigned_abs();
+        let bits = 64 - mag.leading_zeros();
+        let t = bits.saturating_sub(31);
+        let v = (mag >> t) as u32;
+        let p = if m > u32::MAX as u64 {
+            (v as u64) << 32
+        } else {
+            v as u64 * m
+        };
+        let up = t as i32 + s as i32 - k as i32;
+        let r: u64 = if up >= 0 {
+            if up >= 63 || p.leading_zeros() <= up as u32 {
+                i64::MAX as u64
+            } else {
+                p << up
+            }
+        } else {
+            let sh = (-up) as u32;
+            if sh >= 64 {
+                0
+            } else {
+                let h = p >> (sh - 1);
+                (h >> 1) + (h & 1)
+            }
+        };
+        let r = r.min(i64::MAX as u64) as i64;
+        if neg {
+            -r
+        } else {
+            r
+        }
+    }
+
+    #[test]
+    fn lean_mul_shift_equals_the_reference() {
+        let mut g = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let specials = [
+            1i64,
+            -1,
+            2,
+            3,
+            1 << 20,
+            -(1 << 31),
+            1 << 45,
+            (1 << 45) - 1,
+            i64::MAX,
+            i64::MIN + 1,
+        ];
+        for i in 0..200_000u32 {
+            let (x, y) = (next(), next());
+            let a = if i % 50 == 0 {
+                specials[(x % specials.len() as u64) as usize]
+            } else {
+                ((x as i64) >> (x % 63)).max(i64::MIN + 1)
+            };
+            let num = if i % 37 == 0 {
+                specials[(y % specials.len() as u64) as usize]
+            } else {
+                ((y as i64) >> (y % 64)).max(i64::MIN + 1)
+            };
+            if a == 0 {
+                continue;
+            }
+            let r = Recip::new(a);
+            for s in [0u32, 1, 4, 8] {
+                assert_eq!(
+                    r.mul_shift(num, s),
+                    mul_shift_reference(a, num, s),
+                    "a={a} num={num} s={s}"
+                );
             }
         }
     }
