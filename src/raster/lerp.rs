@@ -116,7 +116,7 @@ impl Recip {
     /// rather than a panic, and the rasterizer never asks for it).
     ///
     /// No division: `m` comes from a table-seeded Newton iteration and an
-    /// exact remainder correction ([`recip63`]), so it is the very value
+    /// exact remainder correction (`recip63`), so it is the very value
     /// `round(2^63 / norm)` a division would give, on every target.
     pub fn new(a: i64) -> Self {
         let negative = a < 0;

@@ -491,7 +491,9 @@ impl<P: Profile> Preparer<'_, P> {
         };
         let (x_lo, x_hi) = span(0);
         let (y_lo, y_hi) = span(1);
-        let clamp = |r: i32, n: u32| r.clamp(0, n as i32) as u16;
+        // `max`/`min` rather than `clamp`, whose bound check is a panic
+        // branch the optimiser cannot remove for a runtime bound.
+        let clamp = |r: i32, n: u32| r.max(0).min(n.min(u32::from(u16::MAX)) as i32) as u16;
         // Rows: the rasterizer's own `first_row(top)..first_row(bottom)`.
         // Columns, conservatively: a centre on the rightmost x may count.
         let rows = [
