@@ -5,7 +5,7 @@
 //! ARMv6-M variants are tested against the generic ones).
 
 use super::Affine;
-use crate::num::approx16::recip_mant;
+use crate::num::approx16::{recip_mant, rsqrt_newton};
 use crate::num::wide::wmul;
 use crate::num::Real;
 
@@ -17,24 +17,43 @@ const M_LIMIT: u32 = 1 << 24;
 /// An affine transform in raw Q16 for Q1.14 mesh coordinates.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Xform16 {
+    /// The linear part (read by [`row_wide`]: every target but ARMv6-M).
+    #[cfg_attr(
+        all(target_arch = "arm", not(target_has_atomic = "32")),
+        allow(dead_code)
+    )]
     m: [[i32; 3]; 3],
+    /// `m >> 14` and `m & 0x3FFF`, the halves of [`row_split_pre`] (the
+    /// ARMv6-M path), split once per transform rather than per product.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        allow(dead_code)
+    )]
+    mh: [[i32; 3]; 3],
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        allow(dead_code)
+    )]
+    ml: [[i32; 3]; 3],
     t: [i32; 3],
 }
 
-/// `round(Σ m_j c_j / 2^14)` exactly (ties up), for `|m_j| < 2^24`.
-#[inline(always)]
-fn row(m: &[i32; 3], c: [i16; 3]) -> i32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
-    {
-        row_split(m, c)
-    }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-    {
-        row_wide(m, c)
+impl Xform16 {
+    /// `round(Σ m_kj c_j / 2^14)` exactly (ties up), for `|m_kj| < 2^24`.
+    #[inline(always)]
+    fn row(&self, k: usize, c: [i16; 3]) -> i32 {
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        {
+            row_split_pre(&self.mh[k], &self.ml[k], c)
+        }
+        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        {
+            row_wide(&self.m[k], c)
+        }
     }
 }
 
-/// [`row`] with `i64` products.
+/// [`Xform16::row`] with `i64` products.
 #[inline(always)]
 #[cfg_attr(
     all(target_arch = "arm", not(target_has_atomic = "32")),
@@ -49,18 +68,24 @@ fn row_wide(m: &[i32; 3], c: [i16; 3]) -> i32 {
     ((s + (1 << 13)) >> 14) as i32
 }
 
-/// [`row`] with 32-bit products only: `m = 2^14 mh + ml`, `ml` in
+/// [`Xform16::row`] with 32-bit products only: `m = 2^14 mh + ml`, `ml` in
 /// `[0, 2^14)`, so `Σ ml c < 3 · 2^29` and `Σ mh c < 3 · 2^25`, and
 /// `floor((2^14 A + B + 2^13) / 2^14) = A + floor((B + 2^13) / 2^14)`.
+#[cfg(test)]
+fn row_split(m: &[i32; 3], c: [i16; 3]) -> i32 {
+    row_split_pre(&m.map(|v| v >> 14), &m.map(|v| v & 0x3FFF), c)
+}
+
+/// [`row_split`] with the halves `mh = m >> 14`, `ml = m & 0x3FFF` given.
 #[inline(always)]
 #[cfg_attr(
     not(all(target_arch = "arm", not(target_has_atomic = "32"))),
     allow(dead_code)
 )]
-fn row_split(m: &[i32; 3], c: [i16; 3]) -> i32 {
+fn row_split_pre(mh: &[i32; 3], ml: &[i32; 3], c: [i16; 3]) -> i32 {
     let c = c.map(i32::from);
-    let a = (m[0] >> 14) * c[0] + (m[1] >> 14) * c[1] + (m[2] >> 14) * c[2];
-    let b = (m[0] & 0x3FFF) * c[0] + (m[1] & 0x3FFF) * c[1] + (m[2] & 0x3FFF) * c[2];
+    let a = mh[0] * c[0] + mh[1] * c[1] + mh[2] * c[2];
+    let b = ml[0] * c[0] + ml[1] * c[1] + ml[2] * c[2];
     a + ((b + (1 << 13)) >> 14)
 }
 
@@ -78,6 +103,8 @@ impl Xform16 {
         }
         Some(Self {
             m,
+            mh: m.map(|r| r.map(|v| v >> 14)),
+            ml: m.map(|r| r.map(|v| v & 0x3FFF)),
             t: [raw(a.t.x), raw(a.t.y), raw(a.t.z)],
         })
     }
@@ -87,9 +114,9 @@ impl Xform16 {
     #[inline]
     pub(crate) fn point(&self, c: [i16; 3]) -> [i32; 3] {
         [
-            row(&self.m[0], c).saturating_add(self.t[0]),
-            row(&self.m[1], c).saturating_add(self.t[1]),
-            row(&self.m[2], c).saturating_add(self.t[2]),
+            self.row(0, c).saturating_add(self.t[0]),
+            self.row(1, c).saturating_add(self.t[1]),
+            self.row(2, c).saturating_add(self.t[2]),
         ]
     }
 
@@ -97,7 +124,7 @@ impl Xform16 {
     /// once (<= 1/2 ulp).
     #[inline]
     pub(crate) fn vector(&self, c: [i16; 3]) -> [i32; 3] {
-        [row(&self.m[0], c), row(&self.m[1], c), row(&self.m[2], c)]
+        [self.row(0, c), self.row(1, c), self.row(2, c)]
     }
 }
 
@@ -144,6 +171,125 @@ pub(crate) fn face_cross(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3] {
             m
         }
     })
+}
+
+/// `x²` exactly for `x < 2^32`, from 16-bit halves (no 64-bit multiply
+/// on the Cortex-M0).
+#[inline(always)]
+fn sq_u32(x: u32) -> u64 {
+    let (h, l) = (x >> 16, x & 0xFFFF);
+    // h·l < 2^32; h², l² < 2^32.
+    (u64::from(h * h) << 32) + (u64::from(h * l) << 17) + u64::from(l * l)
+}
+
+/// `a · b` exactly, from 16-bit halves (no 64-bit multiply on the
+/// Cortex-M0).
+#[inline(always)]
+fn mul_u32(a: u32, b: u32) -> u64 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    (u64::from(ah * bh) << 32)
+        + ((u64::from(ah * bl) + u64::from(al * bh)) << 16)
+        + u64::from(al * bl)
+}
+
+/// `q · x` exactly for `q < 2^16`, `x < 2^32` (two 32-bit products).
+#[inline(always)]
+fn mul_u16_u32(q: u32, x: u32) -> u64 {
+    (u64::from(q * (x >> 16)) << 16) + u64::from(q * (x & 0xFFFF))
+}
+
+/// [`face_normal`](crate::mesh::face_normal), bit for bit, without its
+/// 64-bit square root and divisions when every edge is shorter than
+/// 2^15 (every mesh within the unit cube; longer edges call it).
+///
+/// Same steps and the same integers: the exact cross product (32-bit),
+/// its largest magnitude scaled into `[2^30, 2^31)`, `L = ⌊√S⌋` of the
+/// exact sum of squares `S`, and `round(s · 2^14 / L)` per component
+/// (halves away from zero). `L` and the quotients are first estimated
+/// ([`rsqrt_newton`](crate::num::approx16::rsqrt_newton): a few units of
+/// `L`; [`recip_mant`]: within one of the quotient) and then corrected
+/// with exact 64-bit comparisons, so the result is exact (no
+/// approximation error; tested against the reference).
+pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3] {
+    let e1 = [0, 1, 2].map(|k| i32::from(b[k]) - i32::from(a[k]));
+    let e2 = [0, 1, 2].map(|k| i32::from(c[k]) - i32::from(a[k]));
+    let or = [e1[0], e1[1], e1[2], e2[0], e2[1], e2[2]]
+        .iter()
+        .fold(0, |o, v| o | v.unsigned_abs());
+    if or >= 1 << 15 {
+        return crate::mesh::face_normal(a, b, c);
+    }
+    // |products| < 2^30: the differences fit i32.
+    let x = [
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ];
+    let mag = x.map(i32::unsigned_abs);
+    let max = mag[0].max(mag[1]).max(mag[2]);
+    if max == 0 {
+        return [0; 3];
+    }
+    // max < 2^31: scaling up (exact), the largest into [2^30, 2^31).
+    let sh = max.leading_zeros() - 1;
+    let s = mag.map(|m| m << sh);
+    // S < 3 · 2^62.
+    let sum = sq_u32(s[0]) + sq_u32(s[1]) + sq_u32(s[2]);
+    // Estimate √S from the top 32 bits: S ≈ f · 2^60 (m = 4 hi) or
+    // f · 2^62 (m = hi), f = m / 2^30 in [1, 4); √S = √f · 2^30 or 2^31
+    // and √f · 2^30 = m · rsqrt / 2^31.
+    #[allow(clippy::cast_possible_truncation)]
+    let hi = (sum >> 32) as u32; // >= 2^28
+    let (m, up) = if hi < 1 << 30 {
+        (hi << 2, false)
+    } else {
+        (hi, true)
+    };
+    let y = rsqrt_newton(m); // <= 2^31
+    #[allow(clippy::cast_possible_truncation)]
+    let my = mul_u32(m, y);
+    #[allow(clippy::cast_possible_truncation)]
+    let mut len = if up { my >> 30 } else { my >> 31 } as u32;
+    // Within a few units (2^-29 relative of at most 2^32, and the dropped
+    // low bits of S): step to the exact floor root. (len + 1)² < 2^64.
+    while sq_u32(len) > sum {
+        len = len.saturating_sub(1);
+    }
+    while len < u32::MAX && sq_u32(len + 1) <= sum {
+        len += 1;
+    }
+    // len in [2^30, 2^32): 1/len = 2^lz / m2 with m2 = f 2^31, f in [1, 2).
+    let lz = len.leading_zeros(); // 0 or 1
+    let r = recip_mant(len << lz); // 2^30 / f within 2^-17 relative
+    let half = u64::from(len >> 1);
+    let q = |sk: u32| -> u32 {
+        // s 2^14 / len = s r 2^lz / 2^47 (s < 2^31, r <= 2^30).
+        let p = mul_u32(sk, r);
+        let est = if lz == 0 { p >> 46 } else { p >> 45 };
+        #[allow(clippy::cast_possible_truncation)]
+        let mut q = (((est + 1) >> 1) as u32).min(1 << 15);
+        // num = s 2^14 + len/2; exact: q = floor(num / len).
+        let num = (u64::from(sk) << 14) + half;
+        while q > 0 && mul_u16_u32(q, len) > num {
+            q -= 1;
+        }
+        while mul_u16_u32(q + 1, len) <= num {
+            q += 1;
+        }
+        q
+    };
+    // q <= 2^14: the casts are exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    let out = |k: usize| {
+        let v = q(s[k]) as i16;
+        if x[k] < 0 {
+            -v
+        } else {
+            v
+        }
+    };
+    [out(0), out(1), out(2)]
 }
 
 /// Projection constants in raw Q16 (see [`Proj16::project`]).
@@ -214,7 +360,58 @@ impl Proj16 {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::{face_cross, row_split, row_wide, Proj16};
+    use super::{face_cross, face_normal_q14, row_split, row_wide, Proj16};
+
+    #[test]
+    fn face_normal_q14_is_exact() {
+        use crate::mesh::face_normal;
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for i in 0..400_000u32 {
+            // Edges of every length class: tiny (degenerate-ish), mesh
+            // sized, up to the full i16 range (the fallback).
+            let span: u64 = match i % 5 {
+                0 => 4,
+                1 => 64,
+                2 => 2048,
+                3 => 16384,
+                _ => 65536,
+            };
+            let base = [0; 3].map(|_| (next() % 65536) as i64 - 32768);
+            let p = [0; 3].map(|_| {
+                [0, 1, 2].map(|k| {
+                    (base[k] + (next() % span) as i64 - (span / 2) as i64).clamp(-32768, 32767)
+                        as i16
+                })
+            });
+            assert_eq!(
+                face_normal_q14(p[0], p[1], p[2]),
+                face_normal(p[0], p[1], p[2]),
+                "{p:?}"
+            );
+        }
+        let ext = [i16::MIN, -16384, -1, 0, 1, 16383, 16384, i16::MAX];
+        for &a in &ext {
+            for &b in &ext {
+                for &c in &ext {
+                    let p = [[a, b, c], [b, c, a], [c, a, b]];
+                    let q = [[0, 0, 0], [a, 0, b], [0, c, a]];
+                    for t in [p, q] {
+                        assert_eq!(
+                            face_normal_q14(t[0], t[1], t[2]),
+                            face_normal(t[0], t[1], t[2]),
+                            "{t:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn split_row_matches_wide() {

@@ -2,7 +2,7 @@
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::{Frame, Layout, Link, Part, PreparedObject, RenderError, Tri, Workspace};
-use crate::geom::q16::{Proj16, Xform16};
+use crate::geom::q16::{face_normal_q14, Proj16, Xform16};
 use crate::geom::{Affine, Vec3};
 use crate::illum::{Light, LightKind, Shade, MAX_LIGHTS};
 use crate::mesh::{face_normal, Mesh};
@@ -526,7 +526,7 @@ impl<P: Profile> Preparer<'_, P> {
         let pos = ctx.mesh.triangle_positions(t).unwrap_or([[0; 3]; 3]);
         let mut n = match &ctx.fast {
             Some(x) => {
-                from_raw3::<P::Real>(x.vector(face_normal(pos[0], pos[1], pos[2]))).normalize()
+                from_raw3::<P::Real>(x.vector(face_normal_q14(pos[0], pos[1], pos[2]))).normalize()
             }
             None => ctx
                 .mv
