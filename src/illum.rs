@@ -63,6 +63,26 @@ fn dot16(a: [i32; 3], b: [i32; 3]) -> i32 {
     p.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
+/// Largest operand magnitude of [`mul16_small`]'s second factor: 2.
+const SMALL: u32 = 1 << 17;
+
+/// [`mul16`] in 32-bit arithmetic for `|a| < 2^24` and `|b| <= 2^17`
+/// (`|b| <= 2`): the same result, exactly (no saturation is reachable).
+///
+/// With `a = 2^16 ah + al`, `b = 2^16 bh + bl` (`al`, `bl` in
+/// `[0, 2^16)`): `floor((a b + 2^15) / 2^16) = 2^16 ah bh + ah bl + al bh
+/// + floor((al bl + 2^15) / 2^16)`, every term within `i32`
+/// (`|ah| <= 2^8`, `|bh| <= 2`).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
+fn mul16_small(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // al bl + 2^15 <= (2^16 - 1)^2 + 2^15 < 2^32.
+    let lo = (((al as u32) * (bl as u32) + (1 << 15)) >> 16) as i32;
+    ((ah * bh) << 16) + ah * bl + al * bh + lo
+}
+
 #[inline(always)]
 fn add3(a: [i32; 3], b: [i32; 3]) -> [i32; 3] {
     [
@@ -276,6 +296,64 @@ impl<R: Real> Shade<R> {
     /// where the generic path rounds each product), normalisations by
     /// `approx16::unit` (within 2^-14.4 per component).
     pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
+        if R::Q16_KERNELS && !self.has_specular {
+            if let Some(c) = self.diffuse_q16(raw3(n), p) {
+                return Vec3::new(
+                    R::from_fixed_i32(c[0], 16),
+                    R::from_fixed_i32(c[1], 16),
+                    R::from_fixed_i32(c[2], 16),
+                );
+            }
+        }
+        self.at_generic(n, p)
+    }
+
+    /// [`Shade::at`] without a specular term, for `Q16` on raw values
+    /// with 32-bit products ([`mul16_small`]): bit for bit the generic
+    /// path's result (the same products, rounded alike, and sums too small
+    /// to saturate), or `None` (the generic path then runs) when an
+    /// operand is out of [`mul16_small`]'s range: a component of `n`, of a
+    /// light direction or of `N·L` above 2, or a diffuse product
+    /// `Ip·Lc·kd·C` of 256 or more.
+    #[inline]
+    fn diffuse_q16(&self, n: [i32; 3], p: Vec3<R>) -> Option<[i32; 3]> {
+        let big = |v: [i32; 3], lim: u32| v.iter().any(|c| c.unsigned_abs() > lim);
+        if big(n, SMALL) {
+            return None;
+        }
+        let mut sum = raw3(self.ambient);
+        for t in &self.terms {
+            let l = raw3(if t.point {
+                (t.at - p).normalize()
+            } else {
+                t.at
+            });
+            if big(l, SMALL) {
+                return None;
+            }
+            // Each product below 2^18: the sum cannot saturate.
+            let nl = mul16_small(n[0], l[0]) + mul16_small(n[1], l[1]) + mul16_small(n[2], l[2]);
+            if nl <= 0 {
+                continue;
+            }
+            let d = raw3(t.diffuse);
+            if nl.unsigned_abs() > SMALL || big(d, (1 << 24) - 1) {
+                return None;
+            }
+            sum = add3(
+                sum,
+                [
+                    mul16_small(d[0], nl),
+                    mul16_small(d[1], nl),
+                    mul16_small(d[2], nl),
+                ],
+            );
+        }
+        Some(sum.map(|c| c.clamp(0, ONE16)))
+    }
+
+    /// [`Shade::at`] by the generic scalar code.
+    fn at_generic(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
         if R::Q16_KERNELS && USE_Q16_SHADE {
             let c = self.at_q16(raw3(n), raw3(p));
             return Vec3::new(
@@ -364,5 +442,92 @@ impl<R: Real> Shade<R> {
             }
         }
         sum.map(|c| c.clamp(0, ONE16))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{mul16, mul16_small, Light, Material, Shade, Specular, Viewer, SMALL};
+    use crate::geom::Vec3;
+    use crate::num::{Real, Q16};
+
+    fn xorshift(s: &mut u64) -> u64 {
+        *s ^= *s << 13;
+        *s ^= *s >> 7;
+        *s ^= *s << 17;
+        *s
+    }
+
+    #[test]
+    fn mul16_small_matches_mul16() {
+        let mut s = 0x1357_9bdf_2468_ace0u64;
+        let a_lim = (1i64 << 24) - 1;
+        let b_lim = i64::from(SMALL);
+        let edges_a = [0, 1, -1, 0xFFFF, -0xFFFF, 0x8000, -0x8000, a_lim, -a_lim];
+        let edges_b = [0, 1, -1, 0xFFFF, 0x1_0000, -0x1_0000, b_lim, -b_lim, 0x8000];
+        for &a in &edges_a {
+            for &b in &edges_b {
+                let (a, b) = (a as i32, b as i32);
+                assert_eq!(mul16_small(a, b), mul16(a, b), "{a} {b}");
+            }
+        }
+        for _ in 0..1_000_000 {
+            let r = xorshift(&mut s);
+            let a = ((r >> 32) % (2 * a_lim as u64 + 1)) as i64 - a_lim;
+            let b = ((r & 0xFFFF_FFFF) % (2 * b_lim as u64 + 1)) as i64 - b_lim;
+            let (a, b) = (a as i32, b as i32);
+            assert_eq!(mul16_small(a, b), mul16(a, b), "{a} {b}");
+        }
+    }
+
+    /// The 32-bit diffuse path gives the generic path's bits.
+    #[test]
+    fn diffuse_q16_matches_generic() {
+        let mut s = 0xdead_beef_1234_5678u64;
+        let mut f = |lo: f64, hi: f64| {
+            lo + (hi - lo) * ((xorshift(&mut s) >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        for i in 0..3000 {
+            let v3 = |f: &mut dyn FnMut(f64, f64) -> f64, lo: f64, hi: f64| {
+                Vec3::<Q16>::new(
+                    Q16::from_f64(f(lo, hi)),
+                    Q16::from_f64(f(lo, hi)),
+                    Q16::from_f64(f(lo, hi)),
+                )
+            };
+            let mat = Material {
+                color: v3(&mut f, 0.0, 1.0),
+                ka: Q16::from_f64(f(0.0, 1.0)),
+                kd: Q16::from_f64(f(0.0, 1.0)),
+                ks: Q16::ZERO,
+                shininess: Q16::from_f64(f(0.0, 100.0)),
+            };
+            let mut lights = [Light::directional(v3(&mut f, -1.0, 1.0), Q16::ONE); 3];
+            for l in &mut lights {
+                if f(0.0, 1.0) < 0.5 {
+                    *l = Light::point(v3(&mut f, -50.0, 50.0), Q16::ONE);
+                }
+                // Intensities up to 400: some diffuse products out of range.
+                l.intensity = Q16::from_f64(f(0.0, if i % 10 == 0 { 400.0 } else { 3.0 }));
+                l.color = v3(&mut f, 0.0, 1.0);
+            }
+            let nl = 1 + i % 3;
+            let shade = Shade::new(
+                &mat,
+                Q16::from_f64(f(0.0, 1.0)),
+                &lights[..nl],
+                Specular::Phong,
+                Viewer::Local,
+            )
+            .unwrap();
+            for _ in 0..20 {
+                // Unit normals, and a few beyond the fast path's range.
+                let span = if i % 7 == 0 { 3.0 } else { 1.0 };
+                let n = v3(&mut f, -span, span);
+                let n = if span == 1.0 { n.normalize() } else { n };
+                let p = v3(&mut f, -20.0, 20.0);
+                assert_eq!(shade.at(n, p), shade.at_generic(n, p), "{n:?} {p:?}");
+            }
+        }
     }
 }
