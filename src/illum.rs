@@ -63,25 +63,7 @@ fn dot16(a: [i32; 3], b: [i32; 3]) -> i32 {
     p.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
-/// Largest operand magnitude of [`mul16_small`]'s second factor: 2.
-const SMALL: u32 = 1 << 17;
-
-/// [`mul16`] in 32-bit arithmetic for `|a| < 2^24` and `|b| <= 2^17`
-/// (`|b| <= 2`): the same result, exactly (no saturation is reachable).
-///
-/// With `a = 2^16 ah + al`, `b = 2^16 bh + bl` (`al`, `bl` in
-/// `[0, 2^16)`): `floor((a b + 2^15) / 2^16) = 2^16 ah bh + ah bl + al bh
-/// + floor((al bl + 2^15) / 2^16)`, every term within `i32`
-/// (`|ah| <= 2^8`, `|bh| <= 2`).
-#[inline(always)]
-#[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
-fn mul16_small(a: i32, b: i32) -> i32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    // al bl + 2^15 <= (2^16 - 1)^2 + 2^15 < 2^32.
-    let lo = (((al as u32) * (bl as u32) + (1 << 15)) >> 16) as i32;
-    ((ah * bh) << 16) + ah * bl + al * bh + lo
-}
+use crate::num::wide::{mul16_small, SMALL};
 
 #[inline(always)]
 fn add3(a: [i32; 3], b: [i32; 3]) -> [i32; 3] {
@@ -324,7 +306,7 @@ impl<R: Real> Shade<R> {
         let mut sum = raw3(self.ambient);
         for t in &self.terms {
             let l = raw3(if t.point {
-                (t.at - p).normalize()
+                (t.at - p).normalize_geom()
             } else {
                 t.at
             });

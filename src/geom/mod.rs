@@ -24,6 +24,35 @@ pub fn radians<R: Real>(deg: R) -> R {
 /// above its 0.08 budget: face levels one step from the twin's).
 const Q16_UNIT_NORMALIZE: bool = false;
 
+/// [`Vec3::normalize`] for `Q16` in 32-bit arithmetic, bit for bit: the
+/// same rounded products ([`mul16_small`](crate::num::wide::mul16_small))
+/// and the same `rsqrt` (the zero vector stays zero); `None` (the generic code runs) unless every
+/// component and `1/|v|` are at most 2 in magnitude (vectors of length
+/// 1/2 to 2: normals, light directions).
+#[inline]
+fn unit_q16_small<R: Real>(v: Vec3<R>) -> Option<Vec3<R>> {
+    use crate::num::wide::{mul16_small, SMALL};
+    let r = [
+        v.x.to_fixed_i32(16),
+        v.y.to_fixed_i32(16),
+        v.z.to_fixed_i32(16),
+    ];
+    if r.iter().any(|c| c.unsigned_abs() > SMALL) {
+        return None;
+    }
+    // Each square <= 2^18: the sum neither saturates nor reaches `MAX`.
+    let l2 = mul16_small(r[0], r[0]) + mul16_small(r[1], r[1]) + mul16_small(r[2], r[2]);
+    let k = crate::num::approx16::rsqrt(l2);
+    if k.unsigned_abs() > SMALL {
+        return None;
+    }
+    Some(Vec3::new(
+        R::from_fixed_i32(mul16_small(r[0], k), 16),
+        R::from_fixed_i32(mul16_small(r[1], k), 16),
+        R::from_fixed_i32(mul16_small(r[2], k), 16),
+    ))
+}
+
 /// A 3-vector.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Vec3<R> {
@@ -131,6 +160,20 @@ impl<R: Real> Vec3<R> {
             return v.scale(v.length_sq().rsqrt());
         }
         self.scale(l2.rsqrt())
+    }
+
+    /// [`normalize`](Self::normalize), bit for bit, by 32-bit products
+    /// for `Q16` vectors with components up to 2 and lengths from 1/2
+    /// (per-vertex and per-face code of the geometry; kept apart from
+    /// `normalize` so that the rasterizer's code is not changed).
+    #[inline]
+    pub(crate) fn normalize_geom(self) -> Self {
+        if R::Q16_KERNELS {
+            if let Some(u) = unit_q16_small(self) {
+                return u;
+            }
+        }
+        self.normalize()
     }
 
     /// `true` when every component is exactly zero.
@@ -299,5 +342,42 @@ impl<R: Real> Mul<Vec3<R>> for Mat3<R> {
     type Output = Vec3<R>;
     fn mul(self, v: Vec3<R>) -> Vec3<R> {
         self.apply(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{unit_q16_small, Vec3};
+    use crate::num::{Real, Q16};
+
+    /// The 32-bit normalisation gives the generic code's bits, and takes
+    /// every vector of components up to 2 with a length from 1/2.
+    #[test]
+    fn unit_q16_small_matches_generic() {
+        let mut s = 0x0123_4567_89ab_cdefu64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        let mut taken = 0;
+        for i in 0..500_000 {
+            let lim: u64 = if i % 3 == 0 { 1 << 18 } else { 1 << 17 };
+            let c = [0; 3].map(|_| Q16::from_bits((next() % (2 * lim + 1)) as i32 - lim as i32));
+            let v = Vec3::new(c[0], c[1], c[2]);
+            let generic = v.scale(v.length_sq().rsqrt());
+            if let Some(u) = unit_q16_small(v) {
+                assert_eq!(u, generic, "{v:?}");
+                taken += 1;
+            } else {
+                let m = c.iter().map(|x| x.to_bits().unsigned_abs()).max().unwrap();
+                let len = v.to_f64().iter().map(|x| x * x).sum::<f64>().sqrt();
+                assert!(m > 1 << 17 || len < 0.5 + 1e-3, "{v:?}");
+            }
+        }
+        assert!(taken > 200_000);
+        let z = Vec3::<Q16>::ZERO;
+        assert_eq!(unit_q16_small(z), Some(z));
     }
 }

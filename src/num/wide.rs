@@ -39,6 +39,26 @@ pub(crate) fn wmul_split(a: i32, b: i32) -> i64 {
     (i64::from(hi) << 32) + (mid << 16) + i64::from(lo)
 }
 
+/// Largest operand magnitude of [`mul16_small`]'s second factor: 2.
+pub(crate) const SMALL: u32 = 1 << 17;
+
+/// The `Q16` product `round(a · b / 2^16)` (ties up, as `Q16`'s `*`) in 32-bit arithmetic for `|a| < 2^24` and `|b| <= 2^17`
+/// (`|b| <= 2`): the same result, exactly (no saturation is reachable).
+///
+/// With `a = 2^16 ah + al`, `b = 2^16 bh + bl` (`al`, `bl` in
+/// `[0, 2^16)`): `floor((a b + 2^15) / 2^16) = 2^16 ah bh + ah bl + al bh
+/// + floor((al bl + 2^15) / 2^16)`, every term within `i32`
+/// (`|ah| <= 2^8`, `|bh| <= 2`).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
+pub(crate) fn mul16_small(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // al bl + 2^15 <= (2^16 - 1)^2 + 2^15 < 2^32.
+    let lo = (((al as u32) * (bl as u32) + (1 << 15)) >> 16) as i32;
+    ((ah * bh) << 16) + ah * bl + al * bh + lo
+}
+
 /// `a · b` exactly, as `i128` (the [`Q32`](super::Q32) product).
 #[inline(always)]
 pub(crate) fn wmul64(a: i64, b: i64) -> i128 {

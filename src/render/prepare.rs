@@ -525,9 +525,8 @@ impl<P: Profile> Preparer<'_, P> {
         }
         let pos = ctx.mesh.triangle_positions(t).unwrap_or([[0; 3]; 3]);
         let mut n = match &ctx.fast {
-            Some(x) => {
-                from_raw3::<P::Real>(x.vector(face_normal_q14(pos[0], pos[1], pos[2]))).normalize()
-            }
+            Some(x) => from_raw3::<P::Real>(x.vector(face_normal_q14(pos[0], pos[1], pos[2])))
+                .normalize_geom(),
             None => ctx
                 .mv
                 .vector(Vec3::from_q14(face_normal(pos[0], pos[1], pos[2])))
