@@ -265,6 +265,14 @@ impl<R: Real> Shade<R> {
         self.viewer == Viewer::Local || self.terms.iter().any(|t| t.point)
     }
 
+    /// `true` when [`Shade::at`]'s result depends on the shaded position:
+    /// a point light, or a specular term with a local viewer (unlike
+    /// [`Shade::needs_position`], a local viewer without a specular term
+    /// does not count).
+    pub(crate) fn uses_position(&self) -> bool {
+        (self.has_specular && self.viewer == Viewer::Local) || self.terms.iter().any(|t| t.point)
+    }
+
     /// `true` when the specular term is computed (`ks > 0` and a light).
     pub fn has_specular(&self) -> bool {
         self.has_specular && !self.terms.is_empty()

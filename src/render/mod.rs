@@ -72,12 +72,16 @@ impl Tri {
 }
 
 /// Scratch link of a prepared vertex while preparing: the mesh normal it
-/// was made with and the next prepared vertex of the same position.
+/// was made with, the next prepared vertex of the same position, its
+/// outcode and whether its Gouraud colour is still to be computed (it is
+/// computed when a kept triangle first uses the vertex, so vertices of
+/// culled triangles only are never lit).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Link {
     normal: u16,
     next: u16,
     code: u8,
+    unlit: bool,
 }
 
 /// Caller-provided memory for a prepared frame.

@@ -242,6 +242,10 @@ impl<P: Profile> Preparer<'_, P> {
         }
     }
 
+    // Not inlined (one call per object): kept out of the caller, the
+    // triangle loop does not change how the caller's own code (e.g. a
+    // firmware's band loop) is optimised.
+    #[inline(never)]
     fn object_pass(
         &mut self,
         scene: &Scene<'_, '_, P::Real>,
@@ -318,39 +322,97 @@ impl<P: Profile> Preparer<'_, P> {
         (pos, nrm)
     }
 
-    /// The eye-space vertex of a mesh corner, lit or with its normal.
-    fn clip_vert(ctx: &ObjCtx<'_, '_, P::Real>, p: u16, n: u16, flip: bool) -> ClipVert<P::Real> {
+    /// The eye-space position of mesh position `p`.
+    #[inline]
+    fn eye_pos(ctx: &ObjCtx<'_, '_, P::Real>, p: u16) -> Vec3<P::Real> {
         let pos = ctx
             .mesh
             .positions()
             .get(p as usize)
             .copied()
             .unwrap_or([0; 3]);
-        let pos = match &ctx.fast {
+        match &ctx.fast {
             Some(x) => from_raw3(x.point(pos)),
             None => ctx.mv.point(Vec3::from_q14(pos)),
-        };
-        let mut attrs = [P::Real::ZERO; CLIP_ATTRS];
-        if ctx.layout != Layout::Flat {
-            let raw = ctx
-                .mesh
-                .normals()
-                .and_then(|c| c.normals.get(n as usize).copied())
-                .unwrap_or([0; 3]);
-            let mut nrm = match &ctx.fast {
-                Some(x) => from_raw3(approx16::unit(x.vector(raw))),
-                None => ctx.mv.vector(Vec3::from_q14(raw)).normalize(),
-            };
-            if flip {
-                nrm = -nrm;
-            }
-            let v = match ctx.layout {
-                Layout::GouraudMono | Layout::GouraudRgb => ctx.shade.at(nrm, pos),
-                _ => nrm,
-            };
-            attrs = [v.x, v.y, v.z];
         }
-        ClipVert { pos, attrs }
+    }
+
+    /// The attributes of a corner at eye-space `pos` with mesh normal `n`:
+    /// its colour (Gouraud) or its normal (Phong); zero for flat.
+    fn attrs(
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        pos: Vec3<P::Real>,
+        n: u16,
+        flip: bool,
+    ) -> [P::Real; CLIP_ATTRS] {
+        if ctx.layout == Layout::Flat {
+            return [P::Real::ZERO; CLIP_ATTRS];
+        }
+        let raw = ctx
+            .mesh
+            .normals()
+            .and_then(|c| c.normals.get(n as usize).copied())
+            .unwrap_or([0; 3]);
+        let mut nrm = match &ctx.fast {
+            Some(x) => from_raw3(approx16::unit(x.vector(raw))),
+            None => ctx.mv.vector(Vec3::from_q14(raw)).normalize(),
+        };
+        if flip {
+            nrm = -nrm;
+        }
+        let v = match ctx.layout {
+            Layout::GouraudMono | Layout::GouraudRgb => ctx.shade.at(nrm, pos),
+            _ => nrm,
+        };
+        [v.x, v.y, v.z]
+    }
+
+    /// The eye-space vertex of a mesh corner, lit or with its normal.
+    fn clip_vert(ctx: &ObjCtx<'_, '_, P::Real>, p: u16, n: u16, flip: bool) -> ClipVert<P::Real> {
+        let pos = Self::eye_pos(ctx, p);
+        ClipVert {
+            pos,
+            attrs: Self::attrs(ctx, pos, n, flip),
+        }
+    }
+
+    /// Whether the corners of this object are lit on first use by a kept
+    /// triangle rather than when made (Gouraud, affine profiles: the
+    /// colours are stored as computed).
+    #[inline(always)]
+    fn lazy(ctx: &ObjCtx<'_, '_, P::Real>) -> bool {
+        !P::PERSPECTIVE && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb)
+    }
+
+    /// Computes and stores the colour of prepared vertex `v` (made unlit
+    /// from mesh position `p` and normal `n`): the values
+    /// [`Preparer::emit`] would have stored.
+    fn light(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, v: u16, p: u16, n: u16) {
+        let Some(link) = self.ws.links.get_mut(v as usize) else {
+            return;
+        };
+        if !link.unlit {
+            return;
+        }
+        link.unlit = false;
+        let pos = if ctx.shade.uses_position() {
+            Self::eye_pos(ctx, p)
+        } else {
+            Vec3::ZERO
+        };
+        let a = Self::attrs(ctx, pos, n, false);
+        let stride = ctx.layout.stride_for(P::PERSPECTIVE);
+        let base = ctx.val_base + (v as usize).wrapping_sub(ctx.v_start) * stride;
+        let count = if ctx.layout == Layout::GouraudMono {
+            1
+        } else {
+            3
+        };
+        if let Some(vals) = self.ws.vals.get_mut(base + 1..base + 1 + count) {
+            for (d, x) in vals.iter_mut().zip(a) {
+                *d = P::level(x);
+            }
+        }
     }
 
     /// Appends a prepared vertex for an eye-space vertex inside the planes.
@@ -416,6 +478,7 @@ impl<P: Profile> Preparer<'_, P> {
             }
             match ctx.layout {
                 Layout::Flat => {}
+                Layout::GouraudMono | Layout::GouraudRgb if link.unlit => {}
                 Layout::GouraudMono => {
                     for (v, x) in vals.iter_mut().skip(1).zip([a[0]]) {
                         *v = P::level(x);
@@ -460,7 +523,15 @@ impl<P: Profile> Preparer<'_, P> {
             }
             v = if l.next == v { NONE } else { l.next };
         }
-        let cv = Self::clip_vert(ctx, p, n, false);
+        let lazy = Self::lazy(ctx);
+        let cv = if lazy {
+            ClipVert {
+                pos: Self::eye_pos(ctx, p),
+                attrs: [P::Real::ZERO; CLIP_ATTRS],
+            }
+        } else {
+            Self::clip_vert(ctx, p, n, false)
+        };
         let code = self.view.outcode(cv.pos);
         let i = self.emit(
             ctx,
@@ -469,6 +540,7 @@ impl<P: Profile> Preparer<'_, P> {
                 normal: n,
                 next: head,
                 code: 0,
+                unlit: lazy,
             },
             code,
         )?;
@@ -580,18 +652,26 @@ impl<P: Profile> Preparer<'_, P> {
                             normal: NONE,
                             next: NONE,
                             code: 0,
+                            unlit: false,
                         },
                         0,
                     )?;
                 }
             }
             let color = self.flat_color(ctx, t, back);
-            return self.push_tri(Tri {
+            let kept = self.nt;
+            self.push_tri(Tri {
                 v: vs,
                 color,
                 back,
                 ..Tri::EMPTY
-            });
+            })?;
+            if self.nt > kept && !back && Self::lazy(ctx) {
+                for c in 0..3 {
+                    self.light(ctx, vs[c], pk[c], nk[c]);
+                }
+            }
+            return Ok(());
         }
         if codes[0] & codes[1] & codes[2] != 0 {
             return Ok(());
@@ -622,6 +702,7 @@ impl<P: Profile> Preparer<'_, P> {
             normal: NONE,
             next: NONE,
             code: 0,
+            unlit: false,
         };
         let first = self.emit(ctx, &poly[0], free, 0)?;
         let mut prev = self.emit(ctx, &poly[1], free, 0)?;
