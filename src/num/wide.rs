@@ -59,6 +59,36 @@ pub(crate) fn mul16_small(a: i32, b: i32) -> i32 {
     ((ah * bh) << 16) + ah * bl + al * bh + lo
 }
 
+/// The sign (-1, 0, 1) of `a·b - c·d`, exactly. On the Cortex-M0, when
+/// every operand is below 2^15 in magnitude (e.g. the edges of an
+/// on-screen triangle in subpixels), from 32-bit products (|products| <
+/// 2^30, difference < 2^31); else from [`wmul`].
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+pub(crate) fn det_sign(a: i32, b: i32, c: i32, d: i32) -> i32 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        if let Some(s) = det_sign_small(a, b, c, d) {
+            return s;
+        }
+    }
+    (wmul(a, b) - wmul(c, d)).signum() as i32
+}
+
+/// [`det_sign`]'s 32-bit path; `None` when an operand reaches 2^15.
+#[inline(always)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+pub(crate) fn det_sign_small(a: i32, b: i32, c: i32, d: i32) -> Option<i32> {
+    if [a, b, c, d].iter().all(|v| v.unsigned_abs() < 1 << 15) {
+        Some((a * b - c * d).signum())
+    } else {
+        None
+    }
+}
+
 /// `a · b` exactly, as `i128` (the [`Q32`](super::Q32) product).
 #[inline(always)]
 pub(crate) fn wmul64(a: i64, b: i64) -> i128 {
@@ -67,7 +97,47 @@ pub(crate) fn wmul64(a: i64, b: i64) -> i128 {
 
 #[cfg(test)]
 mod tests {
-    use super::{wmul, wmul_split};
+    use super::{det_sign, det_sign_small, wmul, wmul_split};
+
+    #[test]
+    fn det_sign_is_exact() {
+        let mut s = 0x7777_1234_abcd_0001u64;
+        let ext = [
+            0,
+            1,
+            -1,
+            0x7FFF,
+            -0x7FFF,
+            0x8000,
+            -0x8000,
+            0x1_FFFF,
+            i32::MAX,
+            i32::MIN + 1,
+        ];
+        let check = |a: i32, b: i32, c: i32, d: i32| {
+            let exact = (i128::from(a) * i128::from(b) - i128::from(c) * i128::from(d)).signum();
+            assert_eq!(i128::from(det_sign(a, b, c, d)), exact, "{a} {b} {c} {d}");
+            if let Some(v) = det_sign_small(a, b, c, d) {
+                assert_eq!(i128::from(v), exact, "{a} {b} {c} {d}");
+            }
+        };
+        for &a in &ext {
+            for &b in &ext {
+                check(a, b, b, a);
+                check(a, b, a, b);
+                check(a, b, 0x7FFF, -0x7FFF);
+            }
+        }
+        for i in 0..400_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            let m: u64 = if i % 2 == 0 { 1 << 16 } else { 1 << 12 };
+            let v = [0, 16, 32, 48].map(|k| ((s >> k) % m) as i32 - (m / 2) as i32);
+            check(v[0], v[1], v[2], v[3]);
+            check(v[0], v[1], v[1], v[0]);
+        }
+    }
 
     #[test]
     fn split_product_is_exact() {

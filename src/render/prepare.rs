@@ -7,7 +7,7 @@ use crate::geom::{Affine, Vec3};
 use crate::illum::{Light, LightKind, Shade, MAX_LIGHTS};
 use crate::mesh::{face_normal, Mesh};
 use crate::num::approx16;
-use crate::num::wide::wmul;
+use crate::num::wide::det_sign;
 use crate::num::{Profile, Real};
 use crate::raster::{first_row, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
@@ -630,13 +630,14 @@ impl<P: Profile> Preparer<'_, P> {
         let codes = vs.map(|v| self.ws.links.get(v as usize).map_or(0, |l| l.code));
         if codes == [0; 3] {
             let [a, b, c] = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
-            let area2 = wmul(b[0] - a[0], c[1] - a[1]) - wmul(c[0] - a[0], b[1] - a[1]);
-            if area2 == 0 {
+            // Twice the signed area; only its sign is used.
+            let sign = det_sign(b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
+            if sign == 0 {
                 return Ok(());
             }
             // Front faces are counter-clockwise in the y-up world, hence
             // clockwise (negative area) on the y-down screen.
-            let back = area2 > 0;
+            let back = sign > 0;
             if back && ctx.cull {
                 return Ok(());
             }
