@@ -608,7 +608,7 @@ impl<P: Profile> Preparer<'_, P> {
             n = -n;
         }
         // The centroid only when the lighting depends on the position.
-        let c = if ctx.shade.needs_position() {
+        let c = if ctx.shade.uses_position() {
             let e = pos.map(|q| match &ctx.fast {
                 Some(x) => from_raw3(x.point(q)),
                 None => ctx.mv.point(Vec3::from_q14(q)),
