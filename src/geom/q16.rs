@@ -253,10 +253,14 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
     let mut len = if up { my >> 30 } else { my >> 31 } as u32;
     // Within a few units (2^-29 relative of at most 2^32, and the dropped
     // low bits of S): step to the exact floor root. (len + 1)² < 2^64.
-    while sq_u32(len) > sum {
-        len = len.saturating_sub(1);
+    // One square, then steps of (len ± 1)² = len² ± (2 len ∓ 1).
+    let mut sq = sq_u32(len);
+    while sq > sum && len > 0 {
+        sq -= 2 * u64::from(len) - 1;
+        len -= 1;
     }
-    while len < u32::MAX && sq_u32(len + 1) <= sum {
+    while len < u32::MAX && sum - sq > 2 * u64::from(len) {
+        sq += 2 * u64::from(len) + 1;
         len += 1;
     }
     // len in [2^30, 2^32): 1/len = 2^lz / m2 with m2 = f 2^31, f in [1, 2).
@@ -271,10 +275,14 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
         let mut q = (((est + 1) >> 1) as u32).min(1 << 15);
         // num = s 2^14 + len/2; exact: q = floor(num / len).
         let num = (u64::from(sk) << 14) + half;
-        while q > 0 && mul_u16_u32(q, len) > num {
+        // One product, then steps of len.
+        let mut prod = mul_u16_u32(q, len);
+        while prod > num && q > 0 {
+            prod -= u64::from(len);
             q -= 1;
         }
-        while mul_u16_u32(q + 1, len) <= num {
+        while num - prod >= u64::from(len) {
+            prod += u64::from(len);
             q += 1;
         }
         q
