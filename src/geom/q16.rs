@@ -264,7 +264,9 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
         len += 1;
     }
     // len in [2^30, 2^32): 1/len = 2^lz / m2 with m2 = f 2^31, f in [1, 2).
-    let lz = len.leading_zeros(); // 0 or 1
+    // len >= 2^30 (the largest scaled component is >= 2^30): lz is 0 or
+    // 1 (a comparison, not a `__clzsi2` call on the M0).
+    let lz = u32::from(len < 1 << 31);
     let r = recip_mant(len << lz); // 2^30 / f within 2^-17 relative
     let half = u64::from(len >> 1);
     let q = |sk: u32| -> u32 {

@@ -449,10 +449,9 @@ impl<P: Profile> Preparer<'_, P> {
                 // Q16: integer projection, clamped to the rasterizer's range.
                 let (xy, q) = pj.project(raw3(cv.pos), sub);
                 let q = P::Real::from_fixed_i32(q, 16);
-                let mut d = P::Real::ONE - q;
-                if let Some(s) = self.view.depth_scale {
-                    d *= s;
-                }
+                let d = P::Real::ONE - q;
+                // `*`, inlined (`*=` measured as a call on the M0).
+                let d = self.view.depth_scale.map_or(d, |s| d * s);
                 (xy, d.clamp(P::Real::ZERO, P::Real::ONE), q)
             } else {
                 let (sx, sy, d, q) = self.view.project(cv.pos);
