@@ -223,6 +223,12 @@ struct Preparer<'w, P: Profile> {
 /// Per-object constants while preparing.
 struct ObjCtx<'a, 'm, R> {
     mesh: Mesh<'m>,
+    /// The mesh's triangles, normal indices (empty for flat shading or
+    /// without normals) and normals (empty without normals), taken out
+    /// of the mesh once per object.
+    tris: &'m [[u16; 3]],
+    nidx: &'m [[u16; 3]],
+    normals: &'m [[i16; 3]],
     mv: Affine<R>,
     shade: &'a Shade<R>,
     layout: Layout,
@@ -277,8 +283,15 @@ impl<P: Profile> Preparer<'_, P> {
             })?;
         heads.fill(NONE);
         let mv = scene.camera.view.then_after(&obj.transform);
+        let corner_normals = mesh.normals();
         let ctx = ObjCtx {
             mesh,
+            tris: mesh.triangles(),
+            nidx: match (layout, corner_normals) {
+                (Layout::Flat, _) | (_, None) => &[],
+                (_, Some(n)) => n.indices,
+            },
+            normals: corner_normals.map_or(&[], |n| n.normals),
             fast: Xform16::new(&mv),
             mv,
             shade: &shade,
@@ -314,11 +327,8 @@ impl<P: Profile> Preparer<'_, P> {
 
     /// Corner `c` of triangle `t`: its position and normal indices.
     fn corner_keys(ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> ([u16; 3], [u16; 3]) {
-        let pos = ctx.mesh.triangles().get(t).copied().unwrap_or([0; 3]);
-        let nrm = match (ctx.layout, ctx.mesh.normals()) {
-            (Layout::Flat, _) | (_, None) => [0; 3],
-            (_, Some(n)) => n.indices.get(t).copied().unwrap_or([0; 3]),
-        };
+        let pos = ctx.tris.get(t).copied().unwrap_or([0; 3]);
+        let nrm = ctx.nidx.get(t).copied().unwrap_or([0; 3]);
         (pos, nrm)
     }
 
@@ -348,11 +358,7 @@ impl<P: Profile> Preparer<'_, P> {
         if ctx.layout == Layout::Flat {
             return [P::Real::ZERO; CLIP_ATTRS];
         }
-        let raw = ctx
-            .mesh
-            .normals()
-            .and_then(|c| c.normals.get(n as usize).copied())
-            .unwrap_or([0; 3]);
+        let raw = ctx.normals.get(n as usize).copied().unwrap_or([0; 3]);
         let mut nrm = match &ctx.fast {
             Some(x) => from_raw3(approx16::unit(x.vector(raw))),
             None => ctx.mv.vector(Vec3::from_q14(raw)).normalize(),
