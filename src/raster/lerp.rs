@@ -76,6 +76,25 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
         (self.depth30() >> 14).min(u16::MAX as u32 - 1) as u16
     }
 
+    /// `true` when every value `self + k·step`, `0 <= k < n`, lies within
+    /// `[0, 65535·2^14)` (fixed; exactly, without wrapping), so that
+    /// [`Lerp::depth16_unclamped`] equals [`Lerp::depth16`] at each of them
+    /// and the wrapping additions of the span loop give the exact values.
+    /// A conservative test: `false` (the default, and always for floats)
+    /// only selects the clamping loop.
+    #[inline(always)]
+    fn depth16_span_in_range(self, step: Self, n: u32) -> bool {
+        let _ = (step, n);
+        false
+    }
+
+    /// [`Lerp::depth16`] without the clamp (in a `u32`), for values for
+    /// which [`Lerp::depth16_span_in_range`] holds.
+    #[inline(always)]
+    fn depth16_unclamped(self) -> u32 {
+        self.depth16() as u32
+    }
+
     /// Rounded to the nearest integer after removing `frac` fraction bits
     /// (fixed), or rounded (float); saturating.
     fn round_int(self, frac: u32) -> i32;
@@ -374,6 +393,32 @@ impl Lerp for i32 {
     fn depth16(self) -> u16 {
         // The same value as the default, with one clamp instead of two.
         (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
+    }
+
+    #[inline(always)]
+    fn depth16_span_in_range(self, step: i32, n: u32) -> bool {
+        // All in 32 bits: the offset of the last value, |step|·(n - 1), is
+        // computed only when it is below 2^31 (both factor bounds below),
+        // and the first value lies in [0, 2^30), so the last one is exact
+        // in a u32. Values between the two ends lie between them
+        // (affine), hence in range too, and no partial sum wraps.
+        const LIM: u32 = 65535 << 14;
+        let (z, m, s) = (self as u32, n.wrapping_sub(1), step.unsigned_abs());
+        let small = (m < 1 << 13 && s < 1 << 18) || (m < 1 << 4 && s < 1 << 27);
+        if z >= LIM || n == 0 || !small {
+            return false;
+        }
+        let off = s * m;
+        if step >= 0 {
+            z + off < LIM
+        } else {
+            off <= z
+        }
+    }
+
+    #[inline(always)]
+    fn depth16_unclamped(self) -> u32 {
+        self as u32 >> 14
     }
 
     #[inline(always)]
