@@ -13,7 +13,9 @@
 //! multiplications, so the Cortex-M0, which has no divide instruction,
 //! pays for one division per triangle, none per scanline or pixel.
 
-use super::wide::{clz32, clz64, mul_i32, mul_u32, shl64, shr64, NO_LONG_MUL};
+use super::wide::{
+    clz32, clz64, fits_i16, mul_i32, mul_i32_i16, mul_u32, shl64, shr64, NO_LONG_MUL,
+};
 use super::SubpixelBits;
 use core::fmt::Debug;
 
@@ -294,7 +296,16 @@ fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
     if o1 | o2 {
         return numerators64(a, d);
     }
-    // Each product below 2^31·2^22: the differences fit an i64.
+    // Each product below 2^31·2^22: the differences fit an i64. Offsets
+    // within an i16 (triangles under 2048 pixels at 4 subpixel bits) take
+    // the cheaper exact product on ARMv6-M (elsewhere a long multiply is
+    // one instruction: no check).
+    if NO_LONG_MUL && fits_i16(dx1) && fits_i16(dy1) && fits_i16(dx2) && fits_i16(dy2) {
+        return (
+            mul_i32_i16(d1, dy2) - mul_i32_i16(d2, dy1),
+            mul_i32_i16(d2, dx1) - mul_i32_i16(d1, dx2),
+        );
+    }
     (
         mul_i32(d1, dy2) - mul_i32(d2, dy1),
         mul_i32(d2, dx1) - mul_i32(d1, dx2),

@@ -64,6 +64,40 @@ pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
     }
 }
 
+/// `a · b` for `b` within `i16` (`-2^15 <= b < 2^15`), exact: on ARMv6-M
+/// two 32-bit `MULS` (`a = hi·2^16 + lo`, `|hi·b| <= 2^30`, `|lo·b| <
+/// 2^31`) instead of [`mul_i32_soft`]'s four and its carries; elsewhere
+/// the plain product. Callers check the range of `b`.
+#[inline(always)]
+pub(crate) fn mul_i32_i16(a: i32, b: i32) -> i64 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        mul_i32_i16_soft(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        a as i64 * b as i64
+    }
+}
+
+/// [`mul_i32_i16`] from two 32-bit products.
+#[inline(always)]
+#[cfg_attr(
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
+    allow(dead_code)
+)]
+pub(crate) fn mul_i32_i16_soft(a: i32, b: i32) -> i64 {
+    let hi = (a >> 16) * b;
+    let lo = (a & 0xffff) * b;
+    ((hi as i64) << 16) + lo as i64
+}
+
+/// `true` when `v` fits an `i16` (`-2^15 <= v < 2^15`).
+#[inline(always)]
+pub(crate) fn fits_i16(v: i32) -> bool {
+    (v as u32).wrapping_add(1 << 15) < 1 << 16
+}
+
 /// Signed product from the unsigned one: `a·b = ua·ub - 2^32·(ub·[a<0] +
 /// ua·[b<0])` (mod 2^64), with `ua`, `ub` the two's-complement bit patterns.
 #[inline(always)]
@@ -254,9 +288,33 @@ mod tests {
                 assert_eq!(shr64_soft(x, s), x >> s, "{x} >> {s}");
                 assert_eq!(shl64_soft(x, s), x << s, "{x} << {s}");
             }
+            let b16 = (y as u16 as i16) as i32;
+            assert!(fits_i16(b16));
+            assert_eq!(mul_i32_i16_soft(sa, b16), sa as i64 * b16 as i64);
+            assert_eq!(mul_i32_i16(sa, b16), sa as i64 * b16 as i64);
+            for b in [-(1 << 15), (1 << 15) - 1, 0, -1] {
+                assert_eq!(mul_i32_i16_soft(sa, b), sa as i64 * b as i64);
+            }
             let s = (y % 64) as u32;
             assert_eq!(shr64_soft(x, s), x >> s);
             assert_eq!(shl64_soft(x, s), x << s);
+        }
+    }
+
+    #[test]
+    fn fits_i16_bounds() {
+        assert!(fits_i16(-(1 << 15)));
+        assert!(fits_i16((1 << 15) - 1));
+        assert!(!fits_i16(1 << 15));
+        assert!(!fits_i16(-(1 << 15) - 1));
+        assert!(!fits_i16(i32::MIN));
+        assert!(!fits_i16(i32::MAX));
+        for a in [i32::MIN, i32::MAX, -1, 0, 0x7fff_0000, -0x7fff_0001] {
+            assert_eq!(mul_i32_i16_soft(a, -(1 << 15)), a as i64 * -(1i64 << 15));
+            assert_eq!(
+                mul_i32_i16_soft(a, (1 << 15) - 1),
+                a as i64 * ((1i64 << 15) - 1)
+            );
         }
     }
 }
