@@ -1,6 +1,6 @@
 //! The edge walker: an exact integer DDA (Bresenham's method).
 
-use super::wide::mul_i32;
+use super::wide::{mul_i32, small_floor_divmod, NO_DIVIDE};
 use super::SubpixelBits;
 
 /// Walks one triangle edge downwards, one scanline at a time, giving for
@@ -31,7 +31,17 @@ impl Edge {
         let dy = (y1 - y0).max(1);
         let d = (s * dy).max(1); // in [1, 2^30]
                                  // One division per edge: dx = q·dy + rem, 0 <= rem < dy.
-        let (q, rem) = floor_divmod(dx, dy);
+                                 // On ARMv6-M (no divider) the usual slopes, |dx/dy| below 4, take
+                                 // a few subtractions instead of a library division.
+        let small = if NO_DIVIDE {
+            small_floor_divmod(dx, dy)
+        } else {
+            None
+        };
+        let (q, rem) = match small {
+            Some(qr) => qr,
+            None => floor_divmod(dx, dy),
+        };
         let r = s * rem;
         let t = j as i64 * s as i64 + (s / 2) as i64 - y0 as i64; // yc - y0
         let (x, e) = if (0..s as i64).contains(&t) {

@@ -18,6 +18,59 @@
 /// of 64-bit formulas there (same values).
 pub(crate) const NO_LONG_MUL: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
+/// `true` on ARMv6-M, which has no divide instruction either: a 32-bit
+/// division is a library call of some fifty instructions there.
+pub(crate) const NO_DIVIDE: bool = NO_LONG_MUL;
+
+/// `(⌊n/d⌋, n mod d)` for `d > 0` by at most four subtractions or
+/// additions, when the quotient lies in `-4..=4`; `None` otherwise (the
+/// caller divides). Exact, and nothing overflows (`m + d` only for `m < 0`,
+/// `m - d` only for `m >= d`). Written out rather than as a loop: LLVM
+/// turns such a loop back into a division.
+#[inline(always)]
+pub(crate) fn small_floor_divmod(n: i32, d: i32) -> Option<(i32, i32)> {
+    let mut m = n;
+    let mut q = 0;
+    if m < 0 {
+        m += d;
+        q = -1;
+        if m < 0 {
+            m += d;
+            q = -2;
+            if m < 0 {
+                m += d;
+                q = -3;
+                if m < 0 {
+                    m += d;
+                    q = -4;
+                    if m < 0 {
+                        return None;
+                    }
+                }
+            }
+        }
+    } else if m >= d {
+        m -= d;
+        q = 1;
+        if m >= d {
+            m -= d;
+            q = 2;
+            if m >= d {
+                m -= d;
+                q = 3;
+                if m >= d {
+                    m -= d;
+                    q = 4;
+                    if m >= d {
+                        return None;
+                    }
+                }
+            }
+        }
+    }
+    Some((q, m))
+}
+
 /// `a · b`, exact.
 #[inline(always)]
 pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
@@ -315,6 +368,32 @@ mod tests {
                 mul_i32_i16_soft(a, (1 << 15) - 1),
                 a as i64 * ((1i64 << 15) - 1)
             );
+        }
+    }
+
+    #[test]
+    fn small_floor_divmod_is_exact_or_declines() {
+        for d in [1i32, 2, 3, 7, 16, 255, 1 << 20, 1 << 30, i32::MAX] {
+            for n in [
+                0i32,
+                1,
+                -1,
+                d - 1,
+                d,
+                -d,
+                4 * (d / 8),
+                -5 * (d / 8),
+                i32::MIN,
+                i32::MAX,
+                12345,
+                -98765,
+            ] {
+                let want = (n.div_euclid(d), n.rem_euclid(d));
+                match small_floor_divmod(n, d) {
+                    Some(got) => assert_eq!(got, want, "{n} / {d}"),
+                    None => assert!(!(-4..=4).contains(&want.0), "{n} / {d}"),
+                }
+            }
         }
     }
 }
