@@ -312,6 +312,40 @@ fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
     )
 }
 
+/// Upper end (excluded) of the depths whose 16-bit value needs no clamp:
+/// `65535·2^14`.
+const DEPTH16_LIM: u32 = 65535 << 14;
+
+/// [`Lerp::depth16_span_in_range`] for `i32` in 64 bits (a long
+/// multiply-accumulate is one instruction where there is one): the last
+/// value exactly. Values between the two ends lie between them (affine),
+/// hence in range too, and no partial sum of the span loop wraps.
+#[inline(always)]
+fn depth16_span_in_range64(z: i32, step: i32, n: u32) -> bool {
+    let last = z as i64 + step as i64 * (n as i64 - 1);
+    n != 0 && (z as u32) < DEPTH16_LIM && (0..DEPTH16_LIM as i64).contains(&last)
+}
+
+/// [`depth16_span_in_range64`] in 32 bits (ARMv6-M): the offset of the
+/// last value, `|step|·(n - 1)`, is computed only when it is below 2^31
+/// (either factor bound below), and the first value lies in `[0, 2^30)`,
+/// so the last one is exact in a `u32`. Conservative: `false` for the
+/// rare spans beyond both bounds.
+#[inline(always)]
+fn depth16_span_in_range32(z: i32, step: i32, n: u32) -> bool {
+    let (z, m, s) = (z as u32, n.wrapping_sub(1), step.unsigned_abs());
+    let small = (m < 1 << 13 && s < 1 << 18) || (m < 1 << 4 && s < 1 << 27);
+    if z >= DEPTH16_LIM || n == 0 || !small {
+        return false;
+    }
+    let off = s * m;
+    if step >= 0 {
+        z + off < DEPTH16_LIM
+    } else {
+        off <= z
+    }
+}
+
 /// `a0 + round((gx·ox + gy·oy) / S)` from the 64-bit sum, wrapping.
 #[inline(always)]
 fn anchor64(a0: i32, gx: i64, gy: i64, ox: i32, oy: i32, sub: SubpixelBits) -> i32 {
@@ -408,22 +442,10 @@ impl Lerp for i32 {
 
     #[inline(always)]
     fn depth16_span_in_range(self, step: i32, n: u32) -> bool {
-        // All in 32 bits: the offset of the last value, |step|·(n - 1), is
-        // computed only when it is below 2^31 (both factor bounds below),
-        // and the first value lies in [0, 2^30), so the last one is exact
-        // in a u32. Values between the two ends lie between them
-        // (affine), hence in range too, and no partial sum wraps.
-        const LIM: u32 = 65535 << 14;
-        let (z, m, s) = (self as u32, n.wrapping_sub(1), step.unsigned_abs());
-        let small = (m < 1 << 13 && s < 1 << 18) || (m < 1 << 4 && s < 1 << 27);
-        if z >= LIM || n == 0 || !small {
-            return false;
-        }
-        let off = s * m;
-        if step >= 0 {
-            z + off < LIM
+        if NO_LONG_MUL {
+            depth16_span_in_range32(self, step, n)
         } else {
-            off <= z
+            depth16_span_in_range64(self, step, n)
         }
     }
 
@@ -762,6 +784,48 @@ mod tests {
         assert_eq!(Recip::new(3).mul_shift(9, 0), 3);
         assert_eq!(Recip::new(1).mul_shift(-(1 << 40), 8), -(1 << 48));
         assert_eq!(Recip::new(0).mul_shift(5, 0), 5);
+    }
+
+    #[test]
+    fn depth16_span_range_checks_are_sound() {
+        // When a check says "in range", every value of the span converts
+        // without the clamp to the clamped value, and no step wraps.
+        let lim = DEPTH16_LIM as i32;
+        let zs = [0, 1, 1 << 14, 1 << 28, lim - 1, lim, -1, i32::MIN, i32::MAX];
+        let steps = [
+            0,
+            1,
+            -1,
+            1 << 16,
+            -(1 << 16),
+            1 << 20,
+            -(1 << 20),
+            1 << 27,
+            i32::MIN,
+        ];
+        for &z in &zs {
+            for &dz in &steps {
+                for n in [0u32, 1, 2, 15, 16, 17, 240, 4096] {
+                    let r64 = depth16_span_in_range64(z, dz, n);
+                    let r32 = depth16_span_in_range32(z, dz, n);
+                    assert!(!r32 || r64, "{z} {dz} {n}");
+                    if r64 {
+                        let mut v = z;
+                        for k in 0..n {
+                            let exact = z as i64 + dz as i64 * k as i64;
+                            assert_eq!(v as i64, exact, "{z} {dz} {n}");
+                            assert_eq!(v.depth16_unclamped(), v.depth16() as u32);
+                            v = v.wrapping_add(dz);
+                        }
+                    }
+                }
+            }
+        }
+        assert!(depth16_span_in_range32(1 << 28, 1 << 16, 200));
+        assert!(depth16_span_in_range32(lim - 1, -(1 << 20), 16));
+        assert!(!depth16_span_in_range32(lim - 1, 1, 2));
+        assert!(!depth16_span_in_range64(0, -1, 2));
+        assert!(depth16_span_in_range64(0, -1, 1));
     }
 
     #[test]
