@@ -189,37 +189,37 @@ pub(crate) fn clz32(x: u32) -> u32 {
     }
 }
 
-/// Leading zeros by binary search.
+/// Leading zeros of a byte (8 for 0): 256 bytes of flash.
+static CLZ8: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = (i as u8).leading_zeros() as u8;
+        i += 1;
+    }
+    t
+};
+
+/// Leading zeros from the top non-zero byte and a 256-entry table (two
+/// comparisons and one load, instead of a five-step binary search).
 #[inline(always)]
 #[cfg_attr(
     not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
     allow(dead_code)
 )]
-pub(crate) fn clz32_soft(mut x: u32) -> u32 {
-    if x == 0 {
-        return 32;
+pub(crate) fn clz32_soft(x: u32) -> u32 {
+    let byte = |v: u32| CLZ8[(v as u8) as usize] as u32;
+    if x >= 1 << 16 {
+        if x >= 1 << 24 {
+            byte(x >> 24)
+        } else {
+            8 + byte(x >> 16)
+        }
+    } else if x >= 1 << 8 {
+        16 + byte(x >> 8)
+    } else {
+        24 + byte(x)
     }
-    let mut n = 0;
-    if x < 1 << 16 {
-        n += 16;
-        x <<= 16;
-    }
-    if x < 1 << 24 {
-        n += 8;
-        x <<= 8;
-    }
-    if x < 1 << 28 {
-        n += 4;
-        x <<= 4;
-    }
-    if x < 1 << 30 {
-        n += 2;
-        x <<= 2;
-    }
-    if x < 1 << 31 {
-        n += 1;
-    }
-    n
 }
 
 /// Leading zeros of a `u64` (64 for 0).
@@ -351,6 +351,22 @@ mod tests {
             let s = (y % 64) as u32;
             assert_eq!(shr64_soft(x, s), x >> s);
             assert_eq!(shl64_soft(x, s), x << s);
+        }
+    }
+
+    #[test]
+    fn table_clz_at_every_bit_boundary() {
+        assert_eq!(clz32_soft(0), 32);
+        for k in 0..32 {
+            for x in [1u32 << k, (1u32 << k) - 1, (1u32 << k) | 1, u32::MAX >> k] {
+                assert_eq!(clz32_soft(x), x.leading_zeros(), "{x:#x}");
+            }
+        }
+        for b in 0..=255u32 {
+            for shift in [0, 8, 16, 24] {
+                let x = b << shift;
+                assert_eq!(clz32_soft(x), x.leading_zeros(), "{x:#x}");
+            }
         }
     }
 
