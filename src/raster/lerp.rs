@@ -256,8 +256,11 @@ fn recip63_newton(x: u32) -> u64 {
     let e0 = (1u32 << 31).wrapping_sub(xh.wrapping_mul(r0)) as i32;
     let r1 = (r0 as i32).wrapping_add((r0 as i32).wrapping_mul(e0 >> 9) >> 22) as u32;
     // E = 2^63 - x·r1·2^16, |E| < 2^49.2, so E >> 19 fits an i32.
-    let e = (1u64 << 63).wrapping_sub(mul_u32(x, r1) << 16) as i64;
-    let e19 = (e >> 19) as i32;
+    let e19 = if NO_LONG_MUL {
+        e19_halves(mul_u32(x, r1))
+    } else {
+        e19_wide(mul_u32(x, r1))
+    };
     let c = mul_i32(r1 as i32, e19) >> 28; // R·ε, |c| < 2^20
     let c2 = mul_i32(c as i32, e19) >> 44; // R·ε²
     let q = (((r1 as i64) << 16) + c + c2).clamp(1 << 31, u32::MAX as i64) as u32;
@@ -274,6 +277,25 @@ fn recip63_newton(x: u32) -> u64 {
         rem -= x as i64;
     }
     q
+}
+
+/// `((2^63 - p·2^16) as i64 >> 19) as i32` (bits 19..50 of the wrapping
+/// difference), as written.
+#[inline(always)]
+fn e19_wide(p: u64) -> i32 {
+    ((1u64 << 63).wrapping_sub(p << 16) as i64 >> 19) as i32
+}
+
+/// [`e19_wide`] on 32-bit halves, the same bits: LLVM turns the 64-bit
+/// form into a call of `__aeabi_lmul` by a constant on ARMv6-M.
+#[inline(always)]
+fn e19_halves(p: u64) -> i32 {
+    let (ph, pl) = ((p >> 32) as u32, p as u32);
+    // v = p << 16 (mod 2^64); e = 2^63 - v (mod 2^64).
+    let (vh, vl) = ((ph << 16) | (pl >> 16), pl << 16);
+    let el = 0u32.wrapping_sub(vl);
+    let eh = (1u32 << 31).wrapping_sub(vh).wrapping_sub((vl != 0) as u32);
+    ((el >> 19) | (eh << 13)) as i32
 }
 
 /// The gradient numerators `(d1·dy2 - d2·dy1, d2·dx1 - d1·dx2)` in `i64`.
@@ -707,6 +729,30 @@ mod tests {
                     "a={a} num={num} s={s}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn e19_on_halves_equals_the_wide_form() {
+        let mut g = 0x9e37_79b9_7f4a_7c15u64;
+        for i in 0..100_000u32 {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            let p = g >> (i % 64);
+            assert_eq!(e19_halves(p), e19_wide(p), "{p:#x}");
+        }
+        for p in [
+            0u64,
+            1,
+            0xffff,
+            0x1_0000,
+            u64::MAX,
+            1 << 47,
+            (1 << 48) - 1,
+            1 << 63,
+        ] {
+            assert_eq!(e19_halves(p), e19_wide(p), "{p:#x}");
         }
     }
 
