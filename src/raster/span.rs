@@ -7,7 +7,7 @@
 //! depth buffer's fast paths ([`Target::row_mut`]) when they have them.
 
 use super::{Lerp, RasterError, Span, Spans, LEVEL_FRAC_BITS};
-use crate::target::{DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
+use crate::target::{span_range, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 
 /// Computes a pixel's colour from its interpolated attributes.
 pub trait Shader<L: Lerp, const N: usize> {
@@ -208,10 +208,20 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
     let len = x1.saturating_sub(x0);
     let n = match depth {
         Some(d) => {
-            let Some(drow) = d.span_mut(y, x0, x1) else {
+            // One window check for both buffers (Fill::new checked that
+            // they hold the same window).
+            let Some(r) = span_range(d.window(), y, x0, x1) else {
                 return;
             };
-            if let Some(row) = target.span_mut(y, x0, x1) {
+            let Some(drow) = d.values_mut().get_mut(r.clone()) else {
+                return;
+            };
+            let row = if target.pixels_mut().is_some() {
+                target.pixels_mut().and_then(|p| p.get_mut(r))
+            } else {
+                target.span_mut(y, x0, x1)
+            };
+            if let Some(row) = row {
                 let fails = if D::span_in_range(z, dz, len) {
                     depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
                         let k = D::from_lerp_in_range(z);

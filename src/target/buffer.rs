@@ -109,6 +109,11 @@ impl<F: PixelFormat> Target for FrameBuf<'_, F> {
     }
 
     #[inline]
+    fn pixels_mut(&mut self) -> Option<&mut [F::Raw]> {
+        Some(self.pixels)
+    }
+
+    #[inline]
     fn span_mut(&mut self, y: u32, x0: u32, x1: u32) -> Option<&mut [F::Raw]> {
         span_range(self.window, y, x0, x1).and_then(|r| self.pixels.get_mut(r))
     }

@@ -193,6 +193,13 @@ impl<'a, D: DepthFormat> DepthBuffer<'a, D> {
         self.values.get_mut(start..start + w.width as usize)
     }
 
+    /// All values, row-major (for the span stage, which computes the index
+    /// range of a span once for the depth buffer and the target).
+    #[inline]
+    pub(crate) fn values_mut(&mut self) -> &mut [D::Raw] {
+        self.values
+    }
+
     /// The values of columns `x0..x1` of screen row `y`, or `None` outside
     /// the window.
     #[inline]

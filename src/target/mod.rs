@@ -136,6 +136,16 @@ pub trait Target {
             .and_then(|r| r.get_mut(x0 as usize..x1 as usize))
     }
 
+    /// Fast path: every pixel of the window as one mutable slice, row-major,
+    /// [`Window::width`] pixels per row from row `y0`, or `None` (the
+    /// default) when the target has no such memory. The span stage then
+    /// finds a span's pixels from the index range it computed for the
+    /// depth buffer (same window), with no second window check.
+    #[inline]
+    fn pixels_mut(&mut self) -> Option<&mut [<Self::Format as PixelFormat>::Raw]> {
+        None
+    }
+
     /// Fills `len` pixels of row `y` from column `x` with one colour;
     /// clipped to the window.
     fn fill_solid(&mut self, x: u32, y: u32, len: u32, pixel: <Self::Format as PixelFormat>::Raw) {
