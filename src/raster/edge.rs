@@ -29,10 +29,12 @@ impl Edge {
         let s = sub.scale();
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
-        let d = (s * dy).max(1); // in [1, 2^30]
-                                 // One division per edge: dx = q·dy + rem, 0 <= rem < dy.
-                                 // On ARMv6-M (no divider) the usual slopes, |dx/dy| below 4, take
-                                 // a few subtractions instead of a library division.
+        // In [1, 2^30].
+        let d = (s * dy).max(1);
+        // One division per edge: dx = q·dy + rem, 0 <= rem < dy. On
+        // ARMv6-M (no divider) the usual slopes, |dx/dy| up to 4, take a
+        // few subtractions instead of a library division (also in test
+        // builds, so that the host tests check the division-free paths).
         let small = if NO_DIVIDE || cfg!(test) {
             small_floor_divmod(dx, dy)
         } else {
