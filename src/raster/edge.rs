@@ -1,6 +1,6 @@
 //! The edge walker: an exact integer DDA (Bresenham's method).
 
-use super::wide::mul_i32;
+use super::wide::{mul_i32, small_floor_divmod, NO_DIVIDE};
 use super::SubpixelBits;
 
 /// Walks one triangle edge downwards, one scanline at a time, giving for
@@ -29,9 +29,21 @@ impl Edge {
         let s = sub.scale();
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
-        let d = (s * dy).max(1); // in [1, 2^30]
-                                 // One division per edge: dx = q·dy + rem, 0 <= rem < dy.
-        let (q, rem) = floor_divmod(dx, dy);
+        // In [1, 2^30].
+        let d = (s * dy).max(1);
+        // One division per edge: dx = q·dy + rem, 0 <= rem < dy. On
+        // ARMv6-M (no divider) the usual slopes, |dx/dy| up to 4, take a
+        // few subtractions instead of a library division (also in test
+        // builds, so that the host tests check the division-free paths).
+        let small = if NO_DIVIDE || cfg!(test) {
+            small_floor_divmod(dx, dy)
+        } else {
+            None
+        };
+        let (q, rem) = match small {
+            Some(qr) => qr,
+            None => floor_divmod(dx, dy),
+        };
         let r = s * rem;
         let t = j as i64 * s as i64 + (s / 2) as i64 - y0 as i64; // yc - y0
         let (x, e) = if (0..s as i64).contains(&t) {
@@ -50,6 +62,11 @@ impl Edge {
             } else {
                 (a + 2, 2 * d - np)
             }
+        } else if let Some(xe) = (NO_DIVIDE || cfg!(test))
+            .then(|| later_row_small(x0, t, q, rem, dy, d, sub))
+            .flatten()
+        {
+            xe
         } else {
             // Any other row (a band starting inside the triangle): the
             // numerator in 64 bits, divided in 32 bits when it fits.
@@ -99,6 +116,38 @@ impl Edge {
     pub fn quotient(&self) -> i32 {
         self.q
     }
+}
+
+/// The column and error term at a row `t` subpixels below the first
+/// vertex (`t >= 0`) of a short edge, without a division (for ARMv6-M, a
+/// band starting a few rows into a triangle): as on the first row, with
+/// `A = x0 - S/2 + t·q = S·a + b` the numerator is `d·a + N'` with
+/// `N' = b·dy + t·rem >= 0`, whose quotient by `d` is below `2 + t/S`, taken by at
+/// most four subtractions. `None` (the caller divides) beyond that or
+/// outside the bounds that keep it all in 32 bits: `t < 2^12`, `dy <
+/// 2^16`, `|q| < 2^16` (then `|t·q| < 2^28`, `N' < 2^29`).
+#[inline]
+fn later_row_small(
+    x0: i32,
+    t: i64,
+    q: i32,
+    rem: i32,
+    dy: i32,
+    d: i32,
+    sub: SubpixelBits,
+) -> Option<(i32, i32)> {
+    if !(0..1 << 12).contains(&t) || dy >= 1 << 16 || q.unsigned_abs() >= 1 << 16 {
+        return None;
+    }
+    let (t, s) = (t as i32, sub.scale());
+    let a_full = x0 - s / 2 + t * q;
+    let (a, b) = (a_full >> sub.get(), a_full & (s - 1));
+    let (k, m) = small_floor_divmod(b * dy + t * rem, d)?;
+    Some(if m == 0 {
+        (a + k, 0)
+    } else {
+        (a + k + 1, d - m)
+    })
 }
 
 /// `(⌊n/d⌋, n mod d)` for `d > 0` with a single division.

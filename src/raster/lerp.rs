@@ -13,7 +13,9 @@
 //! multiplications, so the Cortex-M0, which has no divide instruction,
 //! pays for one division per triangle, none per scanline or pixel.
 
-use super::wide::{clz32, clz64, mul_i32, mul_u32, shl64, shr64, NO_LONG_MUL};
+use super::wide::{
+    clz32, clz64, fits_i16, mul_i32, mul_i32_i16, mul_u32, shl64, shr64, NO_LONG_MUL,
+};
 use super::SubpixelBits;
 use core::fmt::Debug;
 
@@ -74,6 +76,25 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     #[inline(always)]
     fn depth16(self) -> u16 {
         (self.depth30() >> 14).min(u16::MAX as u32 - 1) as u16
+    }
+
+    /// `true` when every value `self + k·step`, `0 <= k < n`, lies within
+    /// `[0, 65535·2^14)` (fixed; exactly, without wrapping), so that
+    /// [`Lerp::depth16_unclamped`] equals [`Lerp::depth16`] at each of them
+    /// and the wrapping additions of the span loop give the exact values.
+    /// A conservative test: `false` (the default, and always for floats)
+    /// only selects the clamping loop.
+    #[inline(always)]
+    fn depth16_span_in_range(self, step: Self, n: u32) -> bool {
+        let _ = (step, n);
+        false
+    }
+
+    /// [`Lerp::depth16`] without the clamp (in a `u32`), for values for
+    /// which [`Lerp::depth16_span_in_range`] holds.
+    #[inline(always)]
+    fn depth16_unclamped(self) -> u32 {
+        self.depth16() as u32
     }
 
     /// Rounded to the nearest integer after removing `frac` fraction bits
@@ -235,8 +256,11 @@ fn recip63_newton(x: u32) -> u64 {
     let e0 = (1u32 << 31).wrapping_sub(xh.wrapping_mul(r0)) as i32;
     let r1 = (r0 as i32).wrapping_add((r0 as i32).wrapping_mul(e0 >> 9) >> 22) as u32;
     // E = 2^63 - x·r1·2^16, |E| < 2^49.2, so E >> 19 fits an i32.
-    let e = (1u64 << 63).wrapping_sub(mul_u32(x, r1) << 16) as i64;
-    let e19 = (e >> 19) as i32;
+    let e19 = if NO_LONG_MUL {
+        e19_halves(mul_u32(x, r1))
+    } else {
+        e19_wide(mul_u32(x, r1))
+    };
     let c = mul_i32(r1 as i32, e19) >> 28; // R·ε, |c| < 2^20
     let c2 = mul_i32(c as i32, e19) >> 44; // R·ε²
     let q = (((r1 as i64) << 16) + c + c2).clamp(1 << 31, u32::MAX as i64) as u32;
@@ -253,6 +277,25 @@ fn recip63_newton(x: u32) -> u64 {
         rem -= x as i64;
     }
     q
+}
+
+/// `((2^63 - p·2^16) as i64 >> 19) as i32` (bits 19..50 of the wrapping
+/// difference), as written.
+#[inline(always)]
+fn e19_wide(p: u64) -> i32 {
+    ((1u64 << 63).wrapping_sub(p << 16) as i64 >> 19) as i32
+}
+
+/// [`e19_wide`] on 32-bit halves, the same bits: LLVM turns the 64-bit
+/// form into a call of `__aeabi_lmul` by a constant on ARMv6-M.
+#[inline(always)]
+fn e19_halves(p: u64) -> i32 {
+    let (ph, pl) = ((p >> 32) as u32, p as u32);
+    // v = p << 16 (mod 2^64); e = 2^63 - v (mod 2^64).
+    let (vh, vl) = ((ph << 16) | (pl >> 16), pl << 16);
+    let el = 0u32.wrapping_sub(vl);
+    let eh = (1u32 << 31).wrapping_sub(vh).wrapping_sub((vl != 0) as u32);
+    ((el >> 19) | (eh << 13)) as i32
 }
 
 /// The gradient numerators `(d1·dy2 - d2·dy1, d2·dx1 - d1·dx2)` in `i64`.
@@ -275,11 +318,54 @@ fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
     if o1 | o2 {
         return numerators64(a, d);
     }
-    // Each product below 2^31·2^22: the differences fit an i64.
+    // Each product below 2^31·2^22: the differences fit an i64. Offsets
+    // within an i16 (triangles under 2048 pixels at 4 subpixel bits) take
+    // the cheaper exact product on ARMv6-M (elsewhere a long multiply is
+    // one instruction: no check).
+    if NO_LONG_MUL && fits_i16(dx1) && fits_i16(dy1) && fits_i16(dx2) && fits_i16(dy2) {
+        return (
+            mul_i32_i16(d1, dy2) - mul_i32_i16(d2, dy1),
+            mul_i32_i16(d2, dx1) - mul_i32_i16(d1, dx2),
+        );
+    }
     (
         mul_i32(d1, dy2) - mul_i32(d2, dy1),
         mul_i32(d2, dx1) - mul_i32(d1, dx2),
     )
+}
+
+/// Upper end (excluded) of the depths whose 16-bit value needs no clamp:
+/// `65535·2^14`.
+const DEPTH16_LIM: u32 = 65535 << 14;
+
+/// [`Lerp::depth16_span_in_range`] for `i32` in 64 bits (a long
+/// multiply-accumulate is one instruction where there is one): the last
+/// value exactly. Values between the two ends lie between them (affine),
+/// hence in range too, and no partial sum of the span loop wraps.
+#[inline(always)]
+fn depth16_span_in_range64(z: i32, step: i32, n: u32) -> bool {
+    let last = z as i64 + step as i64 * (n as i64 - 1);
+    n != 0 && (z as u32) < DEPTH16_LIM && (0..DEPTH16_LIM as i64).contains(&last)
+}
+
+/// [`depth16_span_in_range64`] in 32 bits (ARMv6-M): the offset of the
+/// last value, `|step|·(n - 1)`, is computed only when it is below 2^31
+/// (either factor bound below), and the first value lies in `[0, 2^30)`,
+/// so the last one is exact in a `u32`. Conservative: `false` for the
+/// rare spans beyond both bounds.
+#[inline(always)]
+fn depth16_span_in_range32(z: i32, step: i32, n: u32) -> bool {
+    let (z, m, s) = (z as u32, n.wrapping_sub(1), step.unsigned_abs());
+    let small = (m < 1 << 13 && s < 1 << 18) || (m < 1 << 4 && s < 1 << 27);
+    if z >= DEPTH16_LIM || n == 0 || !small {
+        return false;
+    }
+    let off = s * m;
+    if step >= 0 {
+        z + off < DEPTH16_LIM
+    } else {
+        off <= z
+    }
 }
 
 /// `a0 + round((gx·ox + gy·oy) / S)` from the 64-bit sum, wrapping.
@@ -374,6 +460,20 @@ impl Lerp for i32 {
     fn depth16(self) -> u16 {
         // The same value as the default, with one clamp instead of two.
         (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
+    }
+
+    #[inline(always)]
+    fn depth16_span_in_range(self, step: i32, n: u32) -> bool {
+        if NO_LONG_MUL {
+            depth16_span_in_range32(self, step, n)
+        } else {
+            depth16_span_in_range64(self, step, n)
+        }
+    }
+
+    #[inline(always)]
+    fn depth16_unclamped(self) -> u32 {
+        self as u32 >> 14
     }
 
     #[inline(always)]
@@ -633,6 +733,30 @@ mod tests {
     }
 
     #[test]
+    fn e19_on_halves_equals_the_wide_form() {
+        let mut g = 0x9e37_79b9_7f4a_7c15u64;
+        for i in 0..100_000u32 {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            let p = g >> (i % 64);
+            assert_eq!(e19_halves(p), e19_wide(p), "{p:#x}");
+        }
+        for p in [
+            0u64,
+            1,
+            0xffff,
+            0x1_0000,
+            u64::MAX,
+            1 << 47,
+            (1 << 48) - 1,
+            1 << 63,
+        ] {
+            assert_eq!(e19_halves(p), e19_wide(p), "{p:#x}");
+        }
+    }
+
+    #[test]
     fn recip63_is_the_rounded_quotient() {
         // Every x was checked once (2^31 values, a few seconds); here a
         // stride that visits every seed interval, plus the ends.
@@ -706,6 +830,48 @@ mod tests {
         assert_eq!(Recip::new(3).mul_shift(9, 0), 3);
         assert_eq!(Recip::new(1).mul_shift(-(1 << 40), 8), -(1 << 48));
         assert_eq!(Recip::new(0).mul_shift(5, 0), 5);
+    }
+
+    #[test]
+    fn depth16_span_range_checks_are_sound() {
+        // When a check says "in range", every value of the span converts
+        // without the clamp to the clamped value, and no step wraps.
+        let lim = DEPTH16_LIM as i32;
+        let zs = [0, 1, 1 << 14, 1 << 28, lim - 1, lim, -1, i32::MIN, i32::MAX];
+        let steps = [
+            0,
+            1,
+            -1,
+            1 << 16,
+            -(1 << 16),
+            1 << 20,
+            -(1 << 20),
+            1 << 27,
+            i32::MIN,
+        ];
+        for &z in &zs {
+            for &dz in &steps {
+                for n in [0u32, 1, 2, 15, 16, 17, 240, 4096] {
+                    let r64 = depth16_span_in_range64(z, dz, n);
+                    let r32 = depth16_span_in_range32(z, dz, n);
+                    assert!(!r32 || r64, "{z} {dz} {n}");
+                    if r64 {
+                        let mut v = z;
+                        for k in 0..n {
+                            let exact = z as i64 + dz as i64 * k as i64;
+                            assert_eq!(v as i64, exact, "{z} {dz} {n}");
+                            assert_eq!(v.depth16_unclamped(), v.depth16() as u32);
+                            v = v.wrapping_add(dz);
+                        }
+                    }
+                }
+            }
+        }
+        assert!(depth16_span_in_range32(1 << 28, 1 << 16, 200));
+        assert!(depth16_span_in_range32(lim - 1, -(1 << 20), 16));
+        assert!(!depth16_span_in_range32(lim - 1, 1, 2));
+        assert!(!depth16_span_in_range64(0, -1, 2));
+        assert!(depth16_span_in_range64(0, -1, 1));
     }
 
     #[test]

@@ -256,6 +256,36 @@ fn tall_edges_are_exact_on_every_row() {
 }
 
 #[test]
+fn short_edges_started_at_any_row_are_exact() {
+    // Short edges entered a few rows below their top, as bands do (the
+    // division-free path for small quotients), and steep and flat ones.
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    for k in 0..3000 {
+        let x0 = rng.range(-300 * 16, 300 * 16);
+        let y0 = rng.range(-50 * 16, 50 * 16);
+        let dy = rng.range(1, [16 * 6, 16 * 40, 3][k % 3]);
+        let dx = rng.range(-dy * [1, 5, 300][k % 3], dy * [1, 5, 300][k % 3] + 1);
+        let (x1, y1) = (x0 + dx, y0 + dy);
+        let j0 = (y0 as i64 + 7).div_euclid(16) as i32;
+        let j_end = (y1 as i64 + 7).div_euclid(16) as i32;
+        for start in j0..j_end {
+            let e = Edge::new(x0, y0, x1, y1, start, SUB);
+            let yc = start as i128 * 16 + 8;
+            let num = (x0 as i128 - 8) * dy as i128 + (yc - y0 as i128) * dx as i128;
+            let den = 16 * dy as i128;
+            let want = num.div_euclid(den) + i128::from(num.rem_euclid(den) != 0);
+            assert_eq!(e.x as i128, want, "edge {k}, start {start}");
+            // The same walker state as stepping from the first row.
+            let mut w = Edge::new(x0, y0, x1, y1, j0, SUB);
+            for _ in j0..start {
+                w.step();
+            }
+            assert_eq!(w, e, "edge {k}, start {start}");
+        }
+    }
+}
+
+#[test]
 fn random_triangles_match_exact_coverage() {
     let mut rng = Rng(12345);
     let (w, h) = (48u32, 40u32);

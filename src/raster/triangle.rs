@@ -1,6 +1,6 @@
 //! Triangle setup and the scanline loop.
 
-use super::wide::mul_i32;
+use super::wide::{fits_i16, mul_i32, NO_LONG_MUL};
 use super::{Edge, Lerp, RasterError, SubpixelBits, Vertex};
 use crate::target::Window;
 
@@ -99,7 +99,15 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
         core::mem::swap(&mut a, &mut b);
     }
     let d = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    let area2 = mul_i32(d[0], d[3]) - mul_i32(d[2], d[1]);
+    // Offsets within an i16: each product is within ±2^30 and their
+    // difference within ±(2^31 - 2^15), exact in 32 bits (two `MULS` on
+    // ARMv6-M instead of two 64-bit products; elsewhere the check would
+    // cost more than the long multiplies it saves).
+    let area2 = if NO_LONG_MUL && d.iter().all(|&v| fits_i16(v)) {
+        (d[0] * d[3] - d[2] * d[1]) as i64
+    } else {
+        mul_i32(d[0], d[3]) - mul_i32(d[2], d[1])
+    };
     if area2 == 0 {
         return Ok(());
     }

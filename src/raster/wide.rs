@@ -18,6 +18,59 @@
 /// of 64-bit formulas there (same values).
 pub(crate) const NO_LONG_MUL: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
+/// `true` on ARMv6-M, which has no divide instruction either: a 32-bit
+/// division is a library call of some fifty instructions there.
+pub(crate) const NO_DIVIDE: bool = NO_LONG_MUL;
+
+/// `(⌊n/d⌋, n mod d)` for `d > 0` by at most four subtractions or
+/// additions, when the quotient lies in `-4..=4`; `None` otherwise (the
+/// caller divides). Exact, and nothing overflows (`m + d` only for `m < 0`,
+/// `m - d` only for `m >= d`). Written out rather than as a loop: LLVM
+/// turns such a loop back into a division.
+#[inline(always)]
+pub(crate) fn small_floor_divmod(n: i32, d: i32) -> Option<(i32, i32)> {
+    let mut m = n;
+    let mut q = 0;
+    if m < 0 {
+        m += d;
+        q = -1;
+        if m < 0 {
+            m += d;
+            q = -2;
+            if m < 0 {
+                m += d;
+                q = -3;
+                if m < 0 {
+                    m += d;
+                    q = -4;
+                    if m < 0 {
+                        return None;
+                    }
+                }
+            }
+        }
+    } else if m >= d {
+        m -= d;
+        q = 1;
+        if m >= d {
+            m -= d;
+            q = 2;
+            if m >= d {
+                m -= d;
+                q = 3;
+                if m >= d {
+                    m -= d;
+                    q = 4;
+                    if m >= d {
+                        return None;
+                    }
+                }
+            }
+        }
+    }
+    Some((q, m))
+}
+
 /// `a · b`, exact.
 #[inline(always)]
 pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
@@ -64,6 +117,40 @@ pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
     }
 }
 
+/// `a · b` for `b` within `i16` (`-2^15 <= b < 2^15`), exact: on ARMv6-M
+/// two 32-bit `MULS` (`a = hi·2^16 + lo`, `|hi·b| <= 2^30`, `|lo·b| <
+/// 2^31`) instead of [`mul_i32_soft`]'s four and its carries; elsewhere
+/// the plain product. Callers check the range of `b`.
+#[inline(always)]
+pub(crate) fn mul_i32_i16(a: i32, b: i32) -> i64 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        mul_i32_i16_soft(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        a as i64 * b as i64
+    }
+}
+
+/// [`mul_i32_i16`] from two 32-bit products.
+#[inline(always)]
+#[cfg_attr(
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
+    allow(dead_code)
+)]
+pub(crate) fn mul_i32_i16_soft(a: i32, b: i32) -> i64 {
+    let hi = (a >> 16) * b;
+    let lo = (a & 0xffff) * b;
+    ((hi as i64) << 16) + lo as i64
+}
+
+/// `true` when `v` fits an `i16` (`-2^15 <= v < 2^15`).
+#[inline(always)]
+pub(crate) fn fits_i16(v: i32) -> bool {
+    (v as u32).wrapping_add(1 << 15) < 1 << 16
+}
+
 /// Signed product from the unsigned one: `a·b = ua·ub - 2^32·(ub·[a<0] +
 /// ua·[b<0])` (mod 2^64), with `ua`, `ub` the two's-complement bit patterns.
 #[inline(always)]
@@ -102,37 +189,37 @@ pub(crate) fn clz32(x: u32) -> u32 {
     }
 }
 
-/// Leading zeros by binary search.
+/// Leading zeros of a byte (8 for 0): 256 bytes of flash.
+static CLZ8: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = (i as u8).leading_zeros() as u8;
+        i += 1;
+    }
+    t
+};
+
+/// Leading zeros from the top non-zero byte and a 256-entry table (two
+/// comparisons and one load, instead of a five-step binary search).
 #[inline(always)]
 #[cfg_attr(
     not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
     allow(dead_code)
 )]
-pub(crate) fn clz32_soft(mut x: u32) -> u32 {
-    if x == 0 {
-        return 32;
+pub(crate) fn clz32_soft(x: u32) -> u32 {
+    let byte = |v: u32| CLZ8[(v as u8) as usize] as u32;
+    if x >= 1 << 16 {
+        if x >= 1 << 24 {
+            byte(x >> 24)
+        } else {
+            8 + byte(x >> 16)
+        }
+    } else if x >= 1 << 8 {
+        16 + byte(x >> 8)
+    } else {
+        24 + byte(x)
     }
-    let mut n = 0;
-    if x < 1 << 16 {
-        n += 16;
-        x <<= 16;
-    }
-    if x < 1 << 24 {
-        n += 8;
-        x <<= 8;
-    }
-    if x < 1 << 28 {
-        n += 4;
-        x <<= 4;
-    }
-    if x < 1 << 30 {
-        n += 2;
-        x <<= 2;
-    }
-    if x < 1 << 31 {
-        n += 1;
-    }
-    n
 }
 
 /// Leading zeros of a `u64` (64 for 0).
@@ -254,9 +341,75 @@ mod tests {
                 assert_eq!(shr64_soft(x, s), x >> s, "{x} >> {s}");
                 assert_eq!(shl64_soft(x, s), x << s, "{x} << {s}");
             }
+            let b16 = (y as u16 as i16) as i32;
+            assert!(fits_i16(b16));
+            assert_eq!(mul_i32_i16_soft(sa, b16), sa as i64 * b16 as i64);
+            assert_eq!(mul_i32_i16(sa, b16), sa as i64 * b16 as i64);
+            for b in [-(1 << 15), (1 << 15) - 1, 0, -1] {
+                assert_eq!(mul_i32_i16_soft(sa, b), sa as i64 * b as i64);
+            }
             let s = (y % 64) as u32;
             assert_eq!(shr64_soft(x, s), x >> s);
             assert_eq!(shl64_soft(x, s), x << s);
+        }
+    }
+
+    #[test]
+    fn table_clz_at_every_bit_boundary() {
+        assert_eq!(clz32_soft(0), 32);
+        for k in 0..32 {
+            for x in [1u32 << k, (1u32 << k) - 1, (1u32 << k) | 1, u32::MAX >> k] {
+                assert_eq!(clz32_soft(x), x.leading_zeros(), "{x:#x}");
+            }
+        }
+        for b in 0..=255u32 {
+            for shift in [0, 8, 16, 24] {
+                let x = b << shift;
+                assert_eq!(clz32_soft(x), x.leading_zeros(), "{x:#x}");
+            }
+        }
+    }
+
+    #[test]
+    fn fits_i16_bounds() {
+        assert!(fits_i16(-(1 << 15)));
+        assert!(fits_i16((1 << 15) - 1));
+        assert!(!fits_i16(1 << 15));
+        assert!(!fits_i16(-(1 << 15) - 1));
+        assert!(!fits_i16(i32::MIN));
+        assert!(!fits_i16(i32::MAX));
+        for a in [i32::MIN, i32::MAX, -1, 0, 0x7fff_0000, -0x7fff_0001] {
+            assert_eq!(mul_i32_i16_soft(a, -(1 << 15)), a as i64 * -(1i64 << 15));
+            assert_eq!(
+                mul_i32_i16_soft(a, (1 << 15) - 1),
+                a as i64 * ((1i64 << 15) - 1)
+            );
+        }
+    }
+
+    #[test]
+    fn small_floor_divmod_is_exact_or_declines() {
+        for d in [1i32, 2, 3, 7, 16, 255, 1 << 20, 1 << 30, i32::MAX] {
+            for n in [
+                0i32,
+                1,
+                -1,
+                d - 1,
+                d,
+                -d,
+                4 * (d / 8),
+                -5 * (d / 8),
+                i32::MIN,
+                i32::MAX,
+                12345,
+                -98765,
+            ] {
+                let want = (n.div_euclid(d), n.rem_euclid(d));
+                match small_floor_divmod(n, d) {
+                    Some(got) => assert_eq!(got, want, "{n} / {d}"),
+                    None => assert!(!(-4..=4).contains(&want.0), "{n} / {d}"),
+                }
+            }
         }
     }
 }

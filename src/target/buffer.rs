@@ -1,6 +1,6 @@
 //! Frame buffers and bands in caller-owned memory.
 
-use super::{check_window, BufferError, PixelFormat, Rgb8, Target, Window};
+use super::{check_window, span_range, BufferError, PixelFormat, Rgb8, Target, Window};
 
 /// A window of a screen (a whole frame, or a band of rows) in a
 /// caller-provided slice, row-major, `width` pixels per row.
@@ -106,6 +106,16 @@ impl<F: PixelFormat> Target for FrameBuf<'_, F> {
         }
         let start = (y - w.y0) as usize * w.width as usize;
         self.pixels.get_mut(start..start + w.width as usize)
+    }
+
+    #[inline]
+    fn pixels_mut(&mut self) -> Option<&mut [F::Raw]> {
+        Some(self.pixels)
+    }
+
+    #[inline]
+    fn span_mut(&mut self, y: u32, x0: u32, x1: u32) -> Option<&mut [F::Raw]> {
+        span_range(self.window, y, x0, x1).and_then(|r| self.pixels.get_mut(r))
     }
 }
 

@@ -11,7 +11,7 @@
 //! the last 2^-15 of the depth range shares one value; a 32-bit buffer
 //! stores `d30` itself.
 
-use super::{check_window, BufferError, Window};
+use super::{check_window, span_range, BufferError, Window};
 
 /// A depth value format.
 pub trait DepthFormat: Copy + core::fmt::Debug {
@@ -27,6 +27,41 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     #[inline(always)]
     fn from_lerp<L: crate::raster::Lerp>(z: L) -> Self::Raw {
         Self::from_d30(z.depth30())
+    }
+
+    /// `true` when [`DepthFormat::from_lerp_in_range`] equals
+    /// [`DepthFormat::from_lerp`] for every depth `z + k·dz`, `k < n`, of
+    /// a span (and the span loop's additions do not wrap): the span stage
+    /// then converts without saturating. `false` by default.
+    #[inline(always)]
+    fn span_in_range<L: crate::raster::Lerp>(z: L, dz: L, n: u32) -> bool {
+        let _ = (z, dz, n);
+        false
+    }
+
+    /// The conversion for a span for which [`DepthFormat::span_in_range`]
+    /// holds, as a `u32` key ordered as the stored values: the span stage
+    /// compares `key < to_key(stored)` and stores `from_key(key)`.
+    /// Defaults: unused (`span_in_range` is `false`), so they only need to
+    /// be consistent.
+    #[inline(always)]
+    fn from_lerp_in_range<L: crate::raster::Lerp>(z: L) -> u32 {
+        let _ = z;
+        0
+    }
+
+    /// A stored value as a key (see [`DepthFormat::from_lerp_in_range`]).
+    #[inline(always)]
+    fn to_key(raw: Self::Raw) -> u32 {
+        let _ = raw;
+        0
+    }
+
+    /// A key back to the stored value.
+    #[inline(always)]
+    fn from_key(key: u32) -> Self::Raw {
+        let _ = key;
+        Self::CLEAR
     }
 }
 
@@ -52,6 +87,27 @@ impl DepthFormat for Depth16 {
     #[inline(always)]
     fn from_lerp<L: crate::raster::Lerp>(z: L) -> u16 {
         z.depth16()
+    }
+
+    #[inline(always)]
+    fn span_in_range<L: crate::raster::Lerp>(z: L, dz: L, n: u32) -> bool {
+        z.depth16_span_in_range(dz, n)
+    }
+
+    #[inline(always)]
+    fn from_lerp_in_range<L: crate::raster::Lerp>(z: L) -> u32 {
+        // At most 65534 in range: the key is the stored value.
+        z.depth16_unclamped()
+    }
+
+    #[inline(always)]
+    fn to_key(raw: u16) -> u32 {
+        raw as u32
+    }
+
+    #[inline(always)]
+    fn from_key(key: u32) -> u16 {
+        key as u16
     }
 }
 
@@ -135,6 +191,20 @@ impl<'a, D: DepthFormat> DepthBuffer<'a, D> {
         }
         let start = (y - w.y0) as usize * w.width as usize;
         self.values.get_mut(start..start + w.width as usize)
+    }
+
+    /// All values, row-major (for the span stage, which computes the index
+    /// range of a span once for the depth buffer and the target).
+    #[inline]
+    pub(crate) fn values_mut(&mut self) -> &mut [D::Raw] {
+        self.values
+    }
+
+    /// The values of columns `x0..x1` of screen row `y`, or `None` outside
+    /// the window.
+    #[inline]
+    pub fn span_mut(&mut self, y: u32, x0: u32, x1: u32) -> Option<&mut [D::Raw]> {
+        span_range(self.window, y, x0, x1).and_then(|r| self.values.get_mut(r))
     }
 
     /// The stored value at `(x, y)`, or `None` outside the window.

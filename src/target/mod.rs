@@ -121,6 +121,31 @@ pub trait Target {
         None
     }
 
+    /// Fast path: pixels `x0..x1` of screen row `y` as a mutable slice, or
+    /// `None` when the target has no such memory or they lie outside the
+    /// window. Defaults to a slice of [`Target::row_mut`]; the span stage
+    /// calls it once per span.
+    #[inline]
+    fn span_mut(
+        &mut self,
+        y: u32,
+        x0: u32,
+        x1: u32,
+    ) -> Option<&mut [<Self::Format as PixelFormat>::Raw]> {
+        self.row_mut(y)
+            .and_then(|r| r.get_mut(x0 as usize..x1 as usize))
+    }
+
+    /// Fast path: every pixel of the window as one mutable slice, row-major,
+    /// [`Window::width`] pixels per row from row `y0`, or `None` (the
+    /// default) when the target has no such memory. The span stage then
+    /// finds a span's pixels from the index range it computed for the
+    /// depth buffer (same window), with no second window check.
+    #[inline]
+    fn pixels_mut(&mut self) -> Option<&mut [<Self::Format as PixelFormat>::Raw]> {
+        None
+    }
+
     /// Fills `len` pixels of row `y` from column `x` with one colour;
     /// clipped to the window.
     fn fill_solid(&mut self, x: u32, y: u32, len: u32, pixel: <Self::Format as PixelFormat>::Raw) {
@@ -148,6 +173,20 @@ pub trait Target {
             self.fill_solid(0, y, w.width, raw);
         }
     }
+}
+
+/// The index range of pixels `x0..x1` of screen row `y` in a row-major
+/// buffer holding window `w`, or `None` outside the window (`x0 > x1`
+/// included). With the sides at most [`MAX_SCREEN`] nothing overflows.
+#[inline(always)]
+pub(crate) fn span_range(w: Window, y: u32, x0: u32, x1: u32) -> Option<core::ops::Range<usize>> {
+    // One comparison for both row bounds: rows above y0 wrap to large.
+    let row = y.wrapping_sub(w.y0);
+    if row >= w.y1.wrapping_sub(w.y0) || x1 > w.width || x0 > x1 {
+        return None;
+    }
+    let start = row as usize * w.width as usize;
+    Some(start + x0 as usize..start + x1 as usize)
 }
 
 /// Checks a window against [`MAX_SCREEN`] and a slice length.
