@@ -512,19 +512,20 @@ impl<P: Profile> Preparer<'_, P> {
         Ok(i as u16)
     }
 
-    /// The prepared vertex of a mesh corner, made on first use.
+    /// The prepared vertex of a mesh corner, made on first use, with its
+    /// outcode (the one stored in its link).
     fn corner(
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
         p: u16,
         n: u16,
-    ) -> Result<u16, RenderError> {
+    ) -> Result<(u16, Outcode), RenderError> {
         let head = self.ws.heads.get(p as usize).copied().unwrap_or(NONE);
         let mut v = head;
         while v != NONE {
             let l = self.ws.links.get(v as usize).copied().unwrap_or_default();
             if l.normal == n {
-                return Ok(v);
+                return Ok((v, l.code));
             }
             v = if l.next == v { NONE } else { l.next };
         }
@@ -552,7 +553,7 @@ impl<P: Profile> Preparer<'_, P> {
         if let Some(h) = self.ws.heads.get_mut(p as usize) {
             *h = i;
         }
-        Ok(i)
+        Ok((i, code))
     }
 
     /// Keeps `tri` when it can cover a pixel centre of the screen, with
@@ -629,10 +630,10 @@ impl<P: Profile> Preparer<'_, P> {
     fn triangle(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
         let (pk, nk) = Self::corner_keys(ctx, t);
         let mut vs = [0u16; 3];
+        let mut codes: [Outcode; 3] = [0; 3];
         for c in 0..3 {
-            vs[c] = self.corner(ctx, pk[c], nk[c])?;
+            (vs[c], codes[c]) = self.corner(ctx, pk[c], nk[c])?;
         }
-        let codes = vs.map(|v| self.ws.links.get(v as usize).map_or(0, |l| l.code));
         if codes == [0; 3] {
             let [a, b, c] = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
             // Twice the signed area; only its sign is used.
