@@ -317,12 +317,55 @@ pub(crate) struct Proj16 {
     pub lim: i32,
 }
 
-/// `round(p / 2^s)` of a wide value, ties up, `s` in `1..=62`.
+/// `round(p / 2^s)` of a wide value, ties up, `s` in `1..=62`, clamped
+/// to `±lim` (`lim >= 0`), for `|p| < 2^62`.
+///
+/// In 32-bit halves: no variable 64-bit shift (a call of `__aeabi_lasr`
+/// on the Cortex-M0) and no 64-bit comparisons. The same result as
+/// [`shr_round_clamp_wide`], exactly (tested).
 #[inline(always)]
-#[allow(clippy::cast_possible_truncation)]
+#[allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    clippy::cast_possible_wrap
+)]
 fn shr_round_clamp(p: i64, s: u32, lim: i32) -> i32 {
+    // round(p / 2^s) ties up = floor((p + 2^(s-1)) / 2^s); |p| < 2^62,
+    // so the sum fits.
+    let (mut hi, mut lo) = ((p >> 32) as i32, p as u32);
+    let k = s.wrapping_sub(1) & 63;
+    if k < 32 {
+        let (l, carry) = lo.overflowing_add(1 << k);
+        lo = l;
+        hi = hi.wrapping_add(i32::from(carry));
+    } else {
+        hi = hi.wrapping_add(1 << (k & 31));
+    }
+    let s = s & 63;
+    let (rhi, rlo) = if s < 32 {
+        let up = ((hi as u32) << 1) << (31 - (s & 31));
+        (hi >> (s & 31), (lo >> (s & 31)) | up)
+    } else {
+        (hi >> 31, (hi >> ((s - 32) & 31)) as u32)
+    };
+    let r = rlo as i32;
+    // The value fits `i32` iff the high half is the sign of the low.
+    let v = if rhi == r >> 31 {
+        r
+    } else if rhi < 0 {
+        i32::MIN
+    } else {
+        i32::MAX
+    };
+    v.max(lim.wrapping_neg()).min(lim)
+}
+
+/// The plain 64-bit [`shr_round_clamp`] it replaces (the reference of its
+/// test).
+#[cfg(test)]
+#[allow(clippy::cast_possible_truncation)]
+fn shr_round_clamp_wide(p: i64, s: u32, lim: i32) -> i32 {
     let r = ((p >> (s - 1)) + 1) >> 1;
-    // max/min, not clamp: no panic branch for a (never) negative `lim`.
     r.max(-i64::from(lim)).min(i64::from(lim)) as i32
 }
 
@@ -370,7 +413,10 @@ impl Proj16 {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::{face_cross, face_normal_q14, row_split, row_wide, Proj16};
+    use super::{
+        face_cross, face_normal_q14, row_split, row_wide, shr_round_clamp, shr_round_clamp_wide,
+        Proj16,
+    };
 
     #[test]
     fn face_normal_q14_is_exact() {
@@ -453,6 +499,54 @@ mod tests {
         let n = face_cross([-32768, 0, 0], [32767, 0, 0], [0, 32767, 0]);
         assert!(n[0] == 0 && n[1] == 0 && n[2] > 16384);
         assert_eq!(face_cross([1, 2, 3], [1, 2, 3], [4, 5, 6]), [0, 0, 0]);
+    }
+
+    #[test]
+    fn shr_round_clamp_matches_wide() {
+        let mut st = 0x0bad_cafe_1234_5678u64;
+        let mut next = || {
+            st ^= st << 13;
+            st ^= st >> 7;
+            st ^= st << 17;
+            st
+        };
+        let lims = [0, 1, 1 << 16, 8192 << 4, 8192 << 8, i32::MAX];
+        for i in 0..2_000_000u32 {
+            let s = 1 + (next() % 62) as u32;
+            // Every magnitude class below 2^62.
+            let bits = next() % 63;
+            let mag = (next() >> 1) >> (63 - bits);
+            let p = if next() & 1 == 0 {
+                mag as i64
+            } else {
+                -(mag as i64)
+            };
+            let lim = lims[(i % 6) as usize];
+            assert_eq!(
+                shr_round_clamp(p, s, lim),
+                shr_round_clamp_wide(p, s, lim),
+                "{p} {s} {lim}"
+            );
+        }
+        let edge = (1i64 << 62) - 1;
+        for s in 1..=62u32 {
+            for base in [0, 1i64 << (s - 1), 1i64 << s, 1i64 << 31, 1i64 << 32, edge] {
+                for d in -3i64..=3 {
+                    for p in [base + d, -base + d] {
+                        if p.unsigned_abs() >= 1 << 62 {
+                            continue;
+                        }
+                        for lim in lims {
+                            assert_eq!(
+                                shr_round_clamp(p, s, lim),
+                                shr_round_clamp_wide(p, s, lim),
+                                "{p} {s} {lim}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

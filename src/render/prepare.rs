@@ -512,19 +512,20 @@ impl<P: Profile> Preparer<'_, P> {
         Ok(i as u16)
     }
 
-    /// The prepared vertex of a mesh corner, made on first use.
+    /// The prepared vertex of a mesh corner, made on first use, with its
+    /// outcode (the one stored in its link).
     fn corner(
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
         p: u16,
         n: u16,
-    ) -> Result<u16, RenderError> {
+    ) -> Result<(u16, Outcode), RenderError> {
         let head = self.ws.heads.get(p as usize).copied().unwrap_or(NONE);
         let mut v = head;
         while v != NONE {
             let l = self.ws.links.get(v as usize).copied().unwrap_or_default();
             if l.normal == n {
-                return Ok(v);
+                return Ok((v, l.code));
             }
             v = if l.next == v { NONE } else { l.next };
         }
@@ -552,16 +553,22 @@ impl<P: Profile> Preparer<'_, P> {
         if let Some(h) = self.ws.heads.get_mut(p as usize) {
             *h = i;
         }
-        Ok(i)
+        Ok((i, code))
     }
 
     /// Keeps `tri` when it can cover a pixel centre of the screen, with
     /// the rows it can cover (the rows the rasterizer would visit).
-    fn push_tri(&mut self, mut tri: Tri) -> Result<(), RenderError> {
-        let sub = P::SUBPIXEL_BITS;
+    fn push_tri(&mut self, tri: Tri) -> Result<(), RenderError> {
         let xy = tri
             .v
             .map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+        self.push_tri_at(tri, xy)
+    }
+
+    /// [`Preparer::push_tri`] with the screen positions `xy` of the
+    /// corners already read.
+    fn push_tri_at(&mut self, mut tri: Tri, xy: [[i32; 2]; 3]) -> Result<(), RenderError> {
+        let sub = P::SUBPIXEL_BITS;
         let span = |k: usize| {
             let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
             (a.min(b).min(c), a.max(b).max(c))
@@ -629,12 +636,13 @@ impl<P: Profile> Preparer<'_, P> {
     fn triangle(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
         let (pk, nk) = Self::corner_keys(ctx, t);
         let mut vs = [0u16; 3];
+        let mut codes: [Outcode; 3] = [0; 3];
         for c in 0..3 {
-            vs[c] = self.corner(ctx, pk[c], nk[c])?;
+            (vs[c], codes[c]) = self.corner(ctx, pk[c], nk[c])?;
         }
-        let codes = vs.map(|v| self.ws.links.get(v as usize).map_or(0, |l| l.code));
         if codes == [0; 3] {
-            let [a, b, c] = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+            let xy = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+            let [a, b, c] = xy;
             // Twice the signed area; only its sign is used.
             let sign = det_sign(b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
             if sign == 0 {
@@ -666,12 +674,18 @@ impl<P: Profile> Preparer<'_, P> {
             }
             let color = self.flat_color(ctx, t, back);
             let kept = self.nt;
-            self.push_tri(Tri {
+            let tri = Tri {
                 v: vs,
                 color,
                 back,
                 ..Tri::EMPTY
-            })?;
+            };
+            if back && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
+                // New vertices: read their positions.
+                self.push_tri(tri)?;
+            } else {
+                self.push_tri_at(tri, xy)?;
+            }
             if self.nt > kept && !back && Self::lazy(ctx) {
                 for c in 0..3 {
                     self.light(ctx, vs[c], pk[c], nk[c]);
