@@ -81,23 +81,56 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
     window: Window,
     sink: &mut S,
 ) -> Result<(), RasterError> {
-    let lim = sub.coord_limit();
     for (i, v) in tri.iter().enumerate() {
-        if v.x < -lim || v.x > lim || v.y < -lim || v.y > lim {
+        if !in_limits(v.x, v.y, sub) {
             return Err(RasterError::OutOfRange(i as u8));
         }
     }
-    // Sort by y: v0 top, v2 bottom.
-    let [mut a, mut b, mut c] = [&tri[0], &tri[1], &tri[2]];
-    if b.y < a.y {
+    let [a, b, c] = sort3([&tri[0], &tri[1], &tri[2]], |v| v.y);
+    draw_sorted(a, b, c, sub, window, sink);
+    Ok(())
+}
+
+/// `true` when subpixel `(x, y)` lies within ±[`super::COORD_LIMIT_PX`]
+/// pixels, as [`draw_triangle`] requires of each vertex.
+#[inline(always)]
+pub(crate) fn in_limits(x: i32, y: i32, sub: SubpixelBits) -> bool {
+    let lim = sub.coord_limit();
+    !(x < -lim || x > lim || y < -lim || y > lim)
+}
+
+/// The three items sorted by `key`, top first, by the sorting network
+/// [`draw_triangle`] uses (the same order for equal keys): a caller that
+/// sorts vertex indices by it and passes the vertices to [`draw_sorted`]
+/// draws what [`draw_triangle`] draws.
+#[inline(always)]
+pub(crate) fn sort3<T: Copy>(v: [T; 3], key: impl Fn(T) -> i32) -> [T; 3] {
+    let [mut a, mut b, mut c] = v;
+    if key(b) < key(a) {
         core::mem::swap(&mut a, &mut b);
     }
-    if c.y < b.y {
+    if key(c) < key(b) {
         core::mem::swap(&mut b, &mut c);
     }
-    if b.y < a.y {
+    if key(b) < key(a) {
         core::mem::swap(&mut a, &mut b);
     }
+    [a, b, c]
+}
+
+/// [`draw_triangle`] of vertices already sorted by [`sort3`] on `y` and
+/// within the limits ([`in_limits`]): the band loop sorts vertex indices
+/// before fetching the vertices, so that each vertex here has a fixed
+/// place instead of being selected (a chain of conditional moves per
+/// field on ARM).
+pub(crate) fn draw_sorted<L: Lerp, const N: usize, S: Spans<L, N>>(
+    a: &Vertex<L, N>,
+    b: &Vertex<L, N>,
+    c: &Vertex<L, N>,
+    sub: SubpixelBits,
+    window: Window,
+    sink: &mut S,
+) {
     let d = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
     // Offsets within an i16: each product is within ±2^30 and their
     // difference within ±(2^31 - 2^15), exact in 32 bits (two `MULS` on
@@ -109,7 +142,7 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
         mul_i32(d[0], d[3]) - mul_i32(d[2], d[1])
     };
     if area2 == 0 {
-        return Ok(());
+        return;
     }
     let (j_top, j_mid, j_bot) = (
         first_row(a.y, sub),
@@ -119,7 +152,7 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
     let js = j_top.max(window.y0 as i32);
     let je = j_bot.min(window.y1 as i32);
     if js >= je {
-        return Ok(());
+        return;
     }
 
     // Gradients once per triangle, anchored at the pixel centre nearest
@@ -165,7 +198,7 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
         }
         let (step_nc, step_c) = match left_vals {
             Some(v) => v,
-            None => return Ok(()),
+            None => return,
         };
         for j in r0..r1 {
             let (xl, xr) = if long_left {
@@ -199,7 +232,6 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
             vl.add(if carry { &step_c } else { &step_nc });
         }
     }
-    Ok(())
 }
 
 /// The left-edge attribute steps per row: without and with the carry
