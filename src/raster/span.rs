@@ -186,8 +186,8 @@ impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
 /// With row slices from both buffers (the usual case) the depth loop is
 /// [`depth_loop`]; when the span's depths provably stay within the depth
 /// format's range ([`DepthFormat::span_in_range`], checked once per span at
-/// its two ends) the per-pixel conversion skips its clamp. The same bytes
-/// either way.
+/// its two ends, on spans of at least [`SHORT_SPAN`] pixels) the per-pixel
+/// conversion skips its clamp. The same bytes either way.
 #[inline(always)]
 fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
     target: &mut T,
@@ -222,7 +222,7 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
                 target.span_mut(y, x0, x1)
             };
             if let Some(row) = row {
-                let fails = if D::span_in_range(z, dz, len) {
+                let fails = if len >= SHORT_SPAN && D::span_in_range(z, dz, len) {
                     depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
                         let k = D::from_lerp_in_range(z);
                         let pass = k < D::to_key(*zb);
@@ -373,3 +373,10 @@ impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
         super::draw_triangle(tri, sub, w, self)
     }
 }
+
+/// Spans shorter than this take the clamping depth loop without the
+/// per-span range check: on a few pixels the check costs more than the
+/// clamps it saves (the same bytes either way). bunny-gouraud raster
+/// (about 2.5 pixels per span): M4 3.171 -> 3.132 M instructions, M0
+/// 5.149 -> 5.108 M; 4 to 6 are within 0.1 % of each other.
+const SHORT_SPAN: u32 = 5;
