@@ -459,7 +459,15 @@ impl Lerp for i32 {
     #[inline(always)]
     fn depth16(self) -> u16 {
         // The same value as the default, with one clamp instead of two.
-        (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
+        if NO_LONG_MUL {
+            (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
+        } else {
+            // ARMv7-M: the clamp to 0..=65535 is one `USAT`; 65535 then
+            // becomes 65534 by subtracting `(u + 1) >> 16` (two ALU
+            // operations instead of a compare and a conditional move).
+            let u = (self >> 14).clamp(0, u16::MAX as i32) as u32;
+            (u - ((u + 1) >> 16)) as u16
+        }
     }
 
     #[inline(always)]
@@ -888,6 +896,9 @@ mod tests {
             1,
             (1 << 14) - 1,
             1 << 14,
+            (65534 << 14) - 1,
+            65534 << 14,
+            (1 << 30) - (1 << 14) - 1,
             (1 << 30) - (1 << 14),
             (1 << 30) - 1,
             1 << 30,
