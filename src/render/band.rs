@@ -62,9 +62,15 @@ pub struct RenderStats {
 }
 
 impl<P: Profile> Frame<'_, P> {
-    fn vertex<const N: usize>(&self, po: &PreparedObject, i: u16) -> Option<Vertex<P::Lerp, N>> {
+    /// Vertex `i` of `po`, whose screen position `[x, y]` the caller
+    /// fetched.
+    fn vertex<const N: usize>(
+        &self,
+        po: &PreparedObject,
+        i: u16,
+        [x, y]: [i32; 2],
+    ) -> Option<Vertex<P::Lerp, N>> {
         let i = i as usize;
-        let [x, y] = *self.ws.xy.get(i)?;
         let base = po.val_base + i.checked_sub(po.verts.start)? * po.stride;
         let vals = self.ws.vals.get(base..base + 1 + N)?;
         let mut attrs = [vals[0]; N];
@@ -114,14 +120,12 @@ impl<P: Profile> Frame<'_, P> {
             let out = [p0, p1, p2]
                 .iter()
                 .position(|&[x, y]| !in_limits(x, y, sub));
-            let [(i0, _), (i1, _), (i2, _)] = sort3(
-                [(tri.v[0], p0[1]), (tri.v[1], p1[1]), (tri.v[2], p2[1])],
-                |v| v.1,
-            );
+            let [(i0, q0), (i1, q1), (i2, q2)] =
+                sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
             let (Some(a), Some(b), Some(c)) = (
-                self.vertex::<N>(po, i0),
-                self.vertex::<N>(po, i1),
-                self.vertex::<N>(po, i2),
+                self.vertex::<N>(po, i0, q0),
+                self.vertex::<N>(po, i1, q1),
+                self.vertex::<N>(po, i2, q2),
             ) else {
                 continue;
             };
