@@ -26,8 +26,8 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     type Grad: Copy + Debug;
 
     /// `true` when `a + n·s` equals `n` additions of `s` exactly (integer
-    /// arithmetic): the scanline loop then steps the left-edge values row
-    /// by row. Floats round differently depending on where the sum
+    /// arithmetic): the scanline loop then steps the values at column 0
+    /// row by row and starts each span one multiply-add from them. Floats round differently depending on where the sum
     /// started, so for them each row's start value is computed afresh from
     /// the anchor, and a band renders the very bytes of a full frame.
     const EXACT_STEPS: bool;

@@ -181,25 +181,19 @@ pub(crate) fn draw_sorted<L: Lerp, const N: usize, S: Spans<L, N>>(
     let long_left = area2 > 0;
     let mut long = Edge::new(a.x, a.y, c.x, c.y, js, sub);
     let halves = [(a, b, js, j_mid.min(je)), (b, c, j_mid.max(js), je)];
-    let mut left_vals: Option<(Vals<L, N>, Vals<L, N>)> = None;
-    let mut vl = anchor;
-    if long_left {
-        vl = anchor.add_n(&sx, long.x - ia).add_n(&sy, js - ja);
-        left_vals = Some(steps_for(&long, &sx, &sy));
-    }
+    // Exact steps (integers, wrapping): the values at column 0 of the row,
+    // stepped by `sy` per row; a span's start is then one multiply-add
+    // away, `row + sx·x0`, the very value `anchor + sx·(x0 - ia) +
+    // sy·(j - ja)` modulo 2^32, however the left edge moved. (Stepping
+    // the left-edge value instead needed a carry-selected step per row
+    // and four more live values in the scanline loop.)
+    let col0 = anchor.add_n(&sx, ia.wrapping_neg());
     for (top, bot, r0, r1) in halves {
         if r0 >= r1 {
             continue;
         }
         let mut short = Edge::new(top.x, top.y, bot.x, bot.y, r0, sub);
-        if !long_left {
-            vl = anchor.add_n(&sx, short.x - ia).add_n(&sy, r0 - ja);
-            left_vals = Some(steps_for(&short, &sx, &sy));
-        }
-        let (step_nc, step_c) = match left_vals {
-            Some(v) => v,
-            None => return,
-        };
+        let mut row = col0.add_n(&sy, r0 - ja);
         for j in r0..r1 {
             let (xl, xr) = if long_left {
                 (long.x, short.x)
@@ -208,11 +202,19 @@ pub(crate) fn draw_sorted<L: Lerp, const N: usize, S: Spans<L, N>>(
             };
             let x0 = xl.max(0);
             let x1 = xr.min(window.width as i32);
-            if !L::EXACT_STEPS {
-                vl = anchor.add_n(&sx, xl - ia).add_n(&sy, j - ja);
-            }
             if x0 < x1 {
-                let v = if x0 == xl { vl } else { vl.add_n(&sx, x0 - xl) };
+                let v = if L::EXACT_STEPS {
+                    row.add_n(&sx, x0)
+                } else {
+                    // Floats: afresh from the anchor on every row (see
+                    // `Lerp::EXACT_STEPS`).
+                    let vl = anchor.add_n(&sx, xl - ia).add_n(&sy, j - ja);
+                    if x0 == xl {
+                        vl
+                    } else {
+                        vl.add_n(&sx, x0 - xl)
+                    }
+                };
                 sink.span(&Span {
                     y: j as u32,
                     x0: x0 as u32,
@@ -223,27 +225,11 @@ pub(crate) fn draw_sorted<L: Lerp, const N: usize, S: Spans<L, N>>(
                     da: sx.a,
                 });
             }
-            let carry = if long_left { long.step() } else { short.step() };
-            if long_left {
-                short.step();
-            } else {
-                long.step();
+            long.step();
+            short.step();
+            if L::EXACT_STEPS {
+                row.add(&sy);
             }
-            vl.add(if carry { &step_c } else { &step_nc });
         }
     }
-}
-
-/// The left-edge attribute steps per row: without and with the carry
-/// column.
-fn steps_for<L: Lerp, const N: usize>(
-    e: &Edge,
-    sx: &Vals<L, N>,
-    sy: &Vals<L, N>,
-) -> (Vals<L, N>, Vals<L, N>) {
-    let mut nc = *sy;
-    nc = nc.add_n(sx, e.quotient());
-    let mut c = nc;
-    c.add(sx);
-    (nc, c)
 }
