@@ -224,7 +224,7 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
             };
             if let Some(row) = row {
                 let fails = if len >= SHORT_SPAN && D::span_in_range(z, dz, len) {
-                    if NO_LONG_MUL {
+                    if NO_LONG_MUL || N > 1 {
                         depth_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
                     } else {
                         in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, &color)
@@ -319,7 +319,9 @@ fn depth_loop<L: Lerp, const N: usize, R, Z>(
 /// a stack reload on ARMv7-M (span loops flat 11 -> 12, Gouraud 14 -> 15
 /// instructions per pixel); the call costs bunny-gouraud raster 0.6 %.
 /// ARMv6-M, whose span stage is inlined into the scanline loop, inlines
-/// the loop instead (a call cost 1.2 % there).
+/// the loop instead (a call cost 1.2 % there), and so do spans of more
+/// than one attribute (their outlined loop spilled its steps:
+/// dodeca-gouraud raster +11 % on the M4).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn in_range_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
