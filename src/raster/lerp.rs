@@ -26,8 +26,8 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     type Grad: Copy + Debug;
 
     /// `true` when `a + n·s` equals `n` additions of `s` exactly (integer
-    /// arithmetic): the scanline loop then steps the left-edge values row
-    /// by row. Floats round differently depending on where the sum
+    /// arithmetic): the scanline loop then steps the values at column 0
+    /// row by row and starts each span one multiply-add from them. Floats round differently depending on where the sum
     /// started, so for them each row's start value is computed afresh from
     /// the anchor, and a band renders the very bytes of a full frame.
     const EXACT_STEPS: bool;
@@ -459,7 +459,15 @@ impl Lerp for i32 {
     #[inline(always)]
     fn depth16(self) -> u16 {
         // The same value as the default, with one clamp instead of two.
-        (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
+        if NO_LONG_MUL {
+            (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
+        } else {
+            // ARMv7-M: the clamp to 0..=65535 is one `USAT`; 65535 then
+            // becomes 65534 by subtracting `(u + 1) >> 16` (two ALU
+            // operations instead of a compare and a conditional move).
+            let u = (self >> 14).clamp(0, u16::MAX as i32) as u32;
+            (u - ((u + 1) >> 16)) as u16
+        }
     }
 
     #[inline(always)]
@@ -888,6 +896,9 @@ mod tests {
             1,
             (1 << 14) - 1,
             1 << 14,
+            (65534 << 14) - 1,
+            65534 << 14,
+            (1 << 30) - (1 << 14) - 1,
             (1 << 30) - (1 << 14),
             (1 << 30) - 1,
             1 << 30,

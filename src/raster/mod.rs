@@ -70,7 +70,7 @@ mod wide;
 pub use edge::Edge;
 pub use lerp::{Lerp, Recip};
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
-pub(crate) use triangle::first_row;
+pub(crate) use triangle::{draw_sorted, first_row, in_limits, sort3};
 pub use triangle::{draw_triangle, Span, Spans};
 
 use core::fmt;

@@ -81,23 +81,56 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
     window: Window,
     sink: &mut S,
 ) -> Result<(), RasterError> {
-    let lim = sub.coord_limit();
     for (i, v) in tri.iter().enumerate() {
-        if v.x < -lim || v.x > lim || v.y < -lim || v.y > lim {
+        if !in_limits(v.x, v.y, sub) {
             return Err(RasterError::OutOfRange(i as u8));
         }
     }
-    // Sort by y: v0 top, v2 bottom.
-    let [mut a, mut b, mut c] = [&tri[0], &tri[1], &tri[2]];
-    if b.y < a.y {
+    let [a, b, c] = sort3([&tri[0], &tri[1], &tri[2]], |v| v.y);
+    draw_sorted(a, b, c, sub, window, sink);
+    Ok(())
+}
+
+/// `true` when subpixel `(x, y)` lies within ±[`super::COORD_LIMIT_PX`]
+/// pixels, as [`draw_triangle`] requires of each vertex.
+#[inline(always)]
+pub(crate) fn in_limits(x: i32, y: i32, sub: SubpixelBits) -> bool {
+    let lim = sub.coord_limit();
+    !(x < -lim || x > lim || y < -lim || y > lim)
+}
+
+/// The three items sorted by `key`, top first, by the sorting network
+/// [`draw_triangle`] uses (the same order for equal keys): a caller that
+/// sorts vertex indices by it and passes the vertices to [`draw_sorted`]
+/// draws what [`draw_triangle`] draws.
+#[inline(always)]
+pub(crate) fn sort3<T: Copy>(v: [T; 3], key: impl Fn(T) -> i32) -> [T; 3] {
+    let [mut a, mut b, mut c] = v;
+    if key(b) < key(a) {
         core::mem::swap(&mut a, &mut b);
     }
-    if c.y < b.y {
+    if key(c) < key(b) {
         core::mem::swap(&mut b, &mut c);
     }
-    if b.y < a.y {
+    if key(b) < key(a) {
         core::mem::swap(&mut a, &mut b);
     }
+    [a, b, c]
+}
+
+/// [`draw_triangle`] of vertices already sorted by [`sort3`] on `y` and
+/// within the limits ([`in_limits`]): the band loop sorts vertex indices
+/// before fetching the vertices, so that each vertex here has a fixed
+/// place instead of being selected (a chain of conditional moves per
+/// field on ARM).
+pub(crate) fn draw_sorted<L: Lerp, const N: usize, S: Spans<L, N>>(
+    a: &Vertex<L, N>,
+    b: &Vertex<L, N>,
+    c: &Vertex<L, N>,
+    sub: SubpixelBits,
+    window: Window,
+    sink: &mut S,
+) {
     let d = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
     // Offsets within an i16: each product is within ±2^30 and their
     // difference within ±(2^31 - 2^15), exact in 32 bits (two `MULS` on
@@ -109,7 +142,7 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
         mul_i32(d[0], d[3]) - mul_i32(d[2], d[1])
     };
     if area2 == 0 {
-        return Ok(());
+        return;
     }
     let (j_top, j_mid, j_bot) = (
         first_row(a.y, sub),
@@ -119,7 +152,7 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
     let js = j_top.max(window.y0 as i32);
     let je = j_bot.min(window.y1 as i32);
     if js >= je {
-        return Ok(());
+        return;
     }
 
     // Gradients once per triangle, anchored at the pixel centre nearest
@@ -148,25 +181,19 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
     let long_left = area2 > 0;
     let mut long = Edge::new(a.x, a.y, c.x, c.y, js, sub);
     let halves = [(a, b, js, j_mid.min(je)), (b, c, j_mid.max(js), je)];
-    let mut left_vals: Option<(Vals<L, N>, Vals<L, N>)> = None;
-    let mut vl = anchor;
-    if long_left {
-        vl = anchor.add_n(&sx, long.x - ia).add_n(&sy, js - ja);
-        left_vals = Some(steps_for(&long, &sx, &sy));
-    }
+    // Exact steps (integers, wrapping): the values at column 0 of the row,
+    // stepped by `sy` per row; a span's start is then one multiply-add
+    // away, `row + sx·x0`, the very value `anchor + sx·(x0 - ia) +
+    // sy·(j - ja)` modulo 2^32, however the left edge moved. (Stepping
+    // the left-edge value instead needed a carry-selected step per row
+    // and four more live values in the scanline loop.)
+    let col0 = anchor.add_n(&sx, ia.wrapping_neg());
     for (top, bot, r0, r1) in halves {
         if r0 >= r1 {
             continue;
         }
         let mut short = Edge::new(top.x, top.y, bot.x, bot.y, r0, sub);
-        if !long_left {
-            vl = anchor.add_n(&sx, short.x - ia).add_n(&sy, r0 - ja);
-            left_vals = Some(steps_for(&short, &sx, &sy));
-        }
-        let (step_nc, step_c) = match left_vals {
-            Some(v) => v,
-            None => return Ok(()),
-        };
+        let mut row = col0.add_n(&sy, r0 - ja);
         for j in r0..r1 {
             let (xl, xr) = if long_left {
                 (long.x, short.x)
@@ -175,11 +202,19 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
             };
             let x0 = xl.max(0);
             let x1 = xr.min(window.width as i32);
-            if !L::EXACT_STEPS {
-                vl = anchor.add_n(&sx, xl - ia).add_n(&sy, j - ja);
-            }
             if x0 < x1 {
-                let v = if x0 == xl { vl } else { vl.add_n(&sx, x0 - xl) };
+                let v = if L::EXACT_STEPS {
+                    row.add_n(&sx, x0)
+                } else {
+                    // Floats: afresh from the anchor on every row (see
+                    // `Lerp::EXACT_STEPS`).
+                    let vl = anchor.add_n(&sx, xl - ia).add_n(&sy, j - ja);
+                    if x0 == xl {
+                        vl
+                    } else {
+                        vl.add_n(&sx, x0 - xl)
+                    }
+                };
                 sink.span(&Span {
                     y: j as u32,
                     x0: x0 as u32,
@@ -190,28 +225,11 @@ pub fn draw_triangle<L: Lerp, const N: usize, S: Spans<L, N>>(
                     da: sx.a,
                 });
             }
-            let carry = if long_left { long.step() } else { short.step() };
-            if long_left {
-                short.step();
-            } else {
-                long.step();
+            long.step();
+            short.step();
+            if L::EXACT_STEPS {
+                row.add(&sy);
             }
-            vl.add(if carry { &step_c } else { &step_nc });
         }
     }
-    Ok(())
-}
-
-/// The left-edge attribute steps per row: without and with the carry
-/// column.
-fn steps_for<L: Lerp, const N: usize>(
-    e: &Edge,
-    sx: &Vals<L, N>,
-    sy: &Vals<L, N>,
-) -> (Vals<L, N>, Vals<L, N>) {
-    let mut nc = *sy;
-    nc = nc.add_n(sx, e.quotient());
-    let mut c = nc;
-    c.add(sx);
-    (nc, c)
 }

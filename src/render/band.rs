@@ -5,7 +5,10 @@ use super::{Frame, Layout, PreparedObject, RenderError, Tri};
 use crate::geom::Vec3;
 use crate::illum::Shade;
 use crate::num::{Profile, Real};
-use crate::raster::{draw_triangle, Fill, Flat, Gouraud, GouraudMono, Persp, Shader, Vertex};
+use crate::raster::{
+    draw_sorted, in_limits, sort3, Fill, Flat, Gouraud, GouraudMono, Persp, RasterError, Shader,
+    Vertex,
+};
 use crate::scene::{Scene, SceneError};
 use crate::target::{DepthBuffer, DepthFormat, FrameBuf, PixelFormat, Rgb8, Target};
 
@@ -59,9 +62,15 @@ pub struct RenderStats {
 }
 
 impl<P: Profile> Frame<'_, P> {
-    fn vertex<const N: usize>(&self, po: &PreparedObject, i: u16) -> Option<Vertex<P::Lerp, N>> {
+    /// Vertex `i` of `po`, whose screen position `[x, y]` the caller
+    /// fetched.
+    fn vertex<const N: usize>(
+        &self,
+        po: &PreparedObject,
+        i: u16,
+        [x, y]: [i32; 2],
+    ) -> Option<Vertex<P::Lerp, N>> {
         let i = i as usize;
-        let [x, y] = *self.ws.xy.get(i)?;
         let base = po.val_base + i.checked_sub(po.verts.start)? * po.stride;
         let vals = self.ws.vals.get(base..base + 1 + N)?;
         let mut attrs = [vals[0]; N];
@@ -100,16 +109,32 @@ impl<P: Profile> Frame<'_, P> {
             if tri.rows[1] <= y0 || tri.rows[0] >= y1 {
                 continue;
             }
+            // The vertex indices sorted by y (as `draw_triangle` sorts its
+            // vertices) before the vertices are fetched; the coordinate
+            // limits checked in the triangle's own order (the error names
+            // the vertex).
+            let xy = |i: u16| self.ws.xy.get(i as usize).copied();
+            let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
+                continue;
+            };
+            let out = [p0, p1, p2]
+                .iter()
+                .position(|&[x, y]| !in_limits(x, y, sub));
+            let [(i0, q0), (i1, q1), (i2, q2)] =
+                sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
             let (Some(a), Some(b), Some(c)) = (
-                self.vertex::<N>(po, tri.v[0]),
-                self.vertex::<N>(po, tri.v[1]),
-                self.vertex::<N>(po, tri.v[2]),
+                self.vertex::<N>(po, i0, q0),
+                self.vertex::<N>(po, i1, q1),
+                self.vertex::<N>(po, i2, q2),
             ) else {
                 continue;
             };
             per_tri(&mut fill.shader, tri);
             stats.triangles += 1;
-            draw_triangle(&[a, b, c], sub, win, fill)?;
+            if let Some(i) = out {
+                return Err(RasterError::OutOfRange(i as u8).into());
+            }
+            draw_sorted(&a, &b, &c, sub, win, fill);
         }
         Ok(())
     }

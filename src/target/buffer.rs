@@ -117,6 +117,11 @@ impl<F: PixelFormat> Target for FrameBuf<'_, F> {
     fn span_mut(&mut self, y: u32, x0: u32, x1: u32) -> Option<&mut [F::Raw]> {
         span_range(self.window, y, x0, x1).and_then(|r| self.pixels.get_mut(r))
     }
+    /// The whole buffer at once (it holds exactly the window's pixels):
+    /// [`PixelFormat::fill_slice`], a `memset` for black or white.
+    fn clear(&mut self, color: Rgb8) {
+        F::fill_slice(self.pixels, F::encode(color));
+    }
 }
 
 #[cfg(test)]
@@ -163,6 +168,32 @@ mod tests {
         );
         assert_eq!(band.get(0, 11), None);
         assert!(band.move_to(4095).is_err());
+    }
+
+    /// `clear` (a whole-slice fill, bytewise for uniform bytes) stores
+    /// what encoding the colour into each pixel stores.
+    fn clear_equals_encode<F: PixelFormat<Raw = [u8; N]>, const N: usize>() {
+        let colors = [
+            Rgb8::BLACK,
+            Rgb8::WHITE,
+            Rgb8::new(12, 200, 7),
+            Rgb8::grey(0x84),
+            Rgb8::new(255, 0, 255),
+        ];
+        for c in colors {
+            let mut buf = [[0x5a; N]; 12];
+            FrameBuf::<F>::band(&mut buf, 4, 3, 6).unwrap().clear(c);
+            assert!(buf.iter().all(|&p| p == F::encode(c)), "{c:?}");
+        }
+    }
+
+    #[test]
+    fn clear_fills_every_pixel_in_every_format() {
+        use crate::target::{Rgb565Le, Rgb888};
+        clear_equals_encode::<Gray8, 1>();
+        clear_equals_encode::<Rgb565Be, 2>();
+        clear_equals_encode::<Rgb565Le, 2>();
+        clear_equals_encode::<Rgb888, 3>();
     }
 
     #[test]

@@ -53,6 +53,25 @@ pub trait PixelFormat: Copy + core::fmt::Debug {
     fn encode_grey(level: u8) -> Self::Raw {
         Self::encode(Rgb8::grey(level))
     }
+
+    /// Sets every pixel of `pixels` to `raw`: `pixels.fill(raw)`, or a
+    /// faster path storing the same bytes (the byte-array formats fill
+    /// bytewise, a `memset`, when all bytes of `raw` are equal, as for
+    /// black and white).
+    #[inline]
+    fn fill_slice(pixels: &mut [Self::Raw], raw: Self::Raw) {
+        pixels.fill(raw);
+    }
+}
+
+/// [`PixelFormat::fill_slice`] for a byte-array format: one byte fill
+/// (`memset`) when all bytes of `raw` are equal.
+#[inline]
+fn fill_bytes<const N: usize>(pixels: &mut [[u8; N]], raw: [u8; N]) {
+    match raw.first() {
+        Some(&b) if raw.iter().all(|&v| v == b) => pixels.as_flattened_mut().fill(b),
+        _ => pixels.fill(raw),
+    }
 }
 
 /// `pack565(Rgb8::grey(l))` for every level, in the given byte order.
@@ -86,6 +105,10 @@ pub struct Gray8;
 
 impl PixelFormat for Gray8 {
     type Raw = [u8; 1];
+    #[inline]
+    fn fill_slice(pixels: &mut [[u8; 1]], raw: [u8; 1]) {
+        fill_bytes(pixels, raw);
+    }
     const BYTES: usize = 1;
     #[inline]
     fn encode(c: Rgb8) -> [u8; 1] {
@@ -121,6 +144,10 @@ pub struct Rgb565Be;
 
 impl PixelFormat for Rgb565Be {
     type Raw = [u8; 2];
+    #[inline]
+    fn fill_slice(pixels: &mut [[u8; 2]], raw: [u8; 2]) {
+        fill_bytes(pixels, raw);
+    }
     const BYTES: usize = 2;
     #[inline]
     fn encode(c: Rgb8) -> [u8; 2] {
@@ -142,6 +169,10 @@ pub struct Rgb565Le;
 
 impl PixelFormat for Rgb565Le {
     type Raw = [u8; 2];
+    #[inline]
+    fn fill_slice(pixels: &mut [[u8; 2]], raw: [u8; 2]) {
+        fill_bytes(pixels, raw);
+    }
     const BYTES: usize = 2;
     #[inline]
     fn encode(c: Rgb8) -> [u8; 2] {
@@ -163,6 +194,10 @@ pub struct Rgb888;
 
 impl PixelFormat for Rgb888 {
     type Raw = [u8; 3];
+    #[inline]
+    fn fill_slice(pixels: &mut [[u8; 3]], raw: [u8; 3]) {
+        fill_bytes(pixels, raw);
+    }
     const BYTES: usize = 3;
     #[inline]
     fn encode(c: Rgb8) -> [u8; 3] {
