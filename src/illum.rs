@@ -284,7 +284,7 @@ impl<R: Real> Shade<R> {
     /// For `Q16` ([`Real::Q16_KERNELS`]) the same model runs on raw
     /// integers: dot products summed exactly and rounded once (<= 1/2 ulp,
     /// where the generic path rounds each product), normalisations by
-    /// `approx16::unit` (within 2^-14.4 per component).
+    /// `approx16::unit` (within 2^-15 per component).
     pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
         if R::Q16_KERNELS && !self.has_specular {
             if let Some(c) = self.diffuse_q16(raw3(n), p) {

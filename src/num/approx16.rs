@@ -231,9 +231,9 @@ pub(crate) fn rsqrt_newton(m: u32) -> u32 {
 /// from three 32-bit squares, its reciprocal square root from
 /// [`rsqrt_newton`] (within `2^-29` relative), and the products are split in 16-bit halves
 /// (exact floor) before the final rounding. Error per component, tested
-/// over random and axis-near vectors of every magnitude: within `2^-14.4`
-/// absolute of the exact unit vector (see `accuracy::unit_q16`), and no
-/// component above `1 + 2^-15`.
+/// over random and axis-near vectors of every magnitude: within `2^-15`
+/// absolute of the exact unit vector (measured `2^-15.4`, see
+/// `accuracy::unit_q16`), hence no component above `1 + 2^-15`.
 pub(crate) fn unit(v: [i32; 3]) -> [i32; 3] {
     let mag = v.map(i32::unsigned_abs);
     let max = mag[0].max(mag[1]).max(mag[2]);
