@@ -392,7 +392,9 @@ impl<P: Profile> Preparer<'_, P> {
 
     /// Computes and stores the colour of prepared vertex `v` (made unlit
     /// from mesh position `p` and normal `n`): the values
-    /// [`Preparer::emit`] would have stored.
+    /// [`Preparer::emit`] would have stored. Once per lit vertex: kept
+    /// out of the triangle loop.
+    #[inline(never)]
     fn light(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, v: u16, p: u16, n: u16) {
         let Some(link) = self.ws.links.get_mut(v as usize) else {
             return;
@@ -512,23 +514,46 @@ impl<P: Profile> Preparer<'_, P> {
         Ok(i as u16)
     }
 
+    /// The prepared vertex of a mesh corner if it was made already, with
+    /// its outcode (the one stored in its link).
+    #[inline(always)]
+    fn find(&self, p: u16, n: u16) -> Option<(u16, Outcode)> {
+        let mut v = *self.ws.heads.get(p as usize)?;
+        while v != NONE {
+            let l = self.ws.links.get(v as usize)?;
+            if l.normal == n {
+                return Some((v, l.code));
+            }
+            v = if l.next == v { NONE } else { l.next };
+        }
+        None
+    }
+
     /// The prepared vertex of a mesh corner, made on first use, with its
     /// outcode (the one stored in its link).
+    #[inline(always)]
     fn corner(
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
         p: u16,
         n: u16,
     ) -> Result<(u16, Outcode), RenderError> {
-        let head = self.ws.heads.get(p as usize).copied().unwrap_or(NONE);
-        let mut v = head;
-        while v != NONE {
-            let l = self.ws.links.get(v as usize).copied().unwrap_or_default();
-            if l.normal == n {
-                return Ok((v, l.code));
-            }
-            v = if l.next == v { NONE } else { l.next };
+        match self.find(p, n) {
+            Some(found) => Ok(found),
+            None => self.new_corner(ctx, p, n),
         }
+    }
+
+    /// Makes the prepared vertex of a mesh corner used for the first time
+    /// (once per vertex: kept out of the triangle loop).
+    #[inline(never)]
+    fn new_corner(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        p: u16,
+        n: u16,
+    ) -> Result<(u16, Outcode), RenderError> {
+        let head = self.ws.heads.get(p as usize).copied().unwrap_or(NONE);
         let lazy = Self::lazy(ctx);
         let cv = if lazy {
             ClipVert {
@@ -567,7 +592,18 @@ impl<P: Profile> Preparer<'_, P> {
 
     /// [`Preparer::push_tri`] with the screen positions `xy` of the
     /// corners already read.
-    fn push_tri_at(&mut self, mut tri: Tri, xy: [[i32; 2]; 3]) -> Result<(), RenderError> {
+    fn push_tri_at(&mut self, tri: Tri, xy: [[i32; 2]; 3]) -> Result<(), RenderError> {
+        match self.rows_of(xy) {
+            Some(rows) => self.store_tri(tri.v, rows, tri.color, tri.back),
+            None => Ok(()),
+        }
+    }
+
+    /// The rows a triangle with corners at `xy` can cover (the rows the
+    /// rasterizer would visit), or `None` when it covers no pixel centre
+    /// of the screen.
+    #[inline(always)]
+    fn rows_of(&self, xy: [[i32; 2]; 3]) -> Option<[u16; 2]> {
         let sub = P::SUBPIXEL_BITS;
         let span = |k: usize| {
             let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
@@ -589,14 +625,28 @@ impl<P: Profile> Preparer<'_, P> {
             clamp(first_row(x_hi, sub).saturating_add(1), self.width),
         ];
         if rows[0] >= rows[1] || cols[0] >= cols[1] {
-            return Ok(());
+            return None;
         }
-        tri.rows = rows;
-        let slot = self.ws.tris.get_mut(self.nt).ok_or(RenderError::Capacity {
-            part: Part::Triangles,
-            object: self.object,
-        })?;
-        *slot = tri;
+        Some(rows)
+    }
+
+    /// Appends a kept triangle. Field by field: the 14-byte `Tri` built
+    /// and copied whole was a `memcpy` call on the M0 (64 instructions).
+    #[inline(always)]
+    fn store_tri(
+        &mut self,
+        v: [u16; 3],
+        rows: [u16; 2],
+        color: Rgb8,
+        back: bool,
+    ) -> Result<(), RenderError> {
+        let Some(slot) = self.ws.tris.get_mut(self.nt) else {
+            return Err(self.cap(Part::Triangles));
+        };
+        slot.v = v;
+        slot.rows = rows;
+        slot.color = color;
+        slot.back = back;
         self.nt += 1;
         Ok(())
     }
@@ -633,6 +683,7 @@ impl<P: Profile> Preparer<'_, P> {
         Rgb8::new(col.x.to_level(), col.y.to_level(), col.z.to_level())
     }
 
+    #[inline(always)]
     fn triangle(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
         let (pk, nk) = Self::corner_keys(ctx, t);
         let mut vs = [0u16; 3];
@@ -640,59 +691,94 @@ impl<P: Profile> Preparer<'_, P> {
         for c in 0..3 {
             (vs[c], codes[c]) = self.corner(ctx, pk[c], nk[c])?;
         }
-        if codes == [0; 3] {
-            let xy = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
-            let [a, b, c] = xy;
-            // Twice the signed area; only its sign is used.
-            let sign = det_sign(b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
-            if sign == 0 {
+        if codes != [0; 3] {
+            return self.clipped(ctx, t, pk, nk, codes);
+        }
+        let xy = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+        let [a, b, c] = xy;
+        // Twice the signed area; only its sign is used.
+        let sign = det_sign(b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
+        if sign == 0 {
+            return Ok(());
+        }
+        // Front faces are counter-clockwise in the y-up world, hence
+        // clockwise (negative area) on the y-down screen.
+        let back = sign > 0;
+        if back {
+            if ctx.cull {
                 return Ok(());
             }
-            // Front faces are counter-clockwise in the y-up world, hence
-            // clockwise (negative area) on the y-down screen.
-            let back = sign > 0;
-            if back && ctx.cull {
-                return Ok(());
+            if matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
+                return self.back_gouraud(ctx, t, pk, nk);
             }
-            if back && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
-                // Two-sided Gouraud: the back side is lit with reversed
-                // normals, in vertices of its own.
-                for c in 0..3 {
-                    let cv = Self::clip_vert(ctx, pk[c], nk[c], true);
-                    vs[c] = self.emit(
-                        ctx,
-                        &cv,
-                        Link {
-                            normal: NONE,
-                            next: NONE,
-                            code: 0,
-                            unlit: false,
-                        },
-                        0,
-                    )?;
-                }
-            }
-            let color = self.flat_color(ctx, t, back);
-            let kept = self.nt;
-            let tri = Tri {
-                v: vs,
-                color,
-                back,
-                ..Tri::EMPTY
-            };
-            if back && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
-                // New vertices: read their positions.
-                self.push_tri(tri)?;
-            } else {
-                self.push_tri_at(tri, xy)?;
-            }
-            if self.nt > kept && !back && Self::lazy(ctx) {
-                for c in 0..3 {
+        }
+        let Some(rows) = self.rows_of(xy) else {
+            return Ok(());
+        };
+        // Only kept triangles need their colour (flat) or lit corners
+        // (lazy Gouraud).
+        let color = if ctx.layout == Layout::Flat {
+            self.flat_color(ctx, t, back)
+        } else {
+            Rgb8::BLACK
+        };
+        self.store_tri(vs, rows, color, back)?;
+        if !back && Self::lazy(ctx) {
+            for c in 0..3 {
+                if self.ws.links.get(vs[c] as usize).is_some_and(|l| l.unlit) {
                     self.light(ctx, vs[c], pk[c], nk[c]);
                 }
             }
-            return Ok(());
         }
+        Ok(())
+    }
+
+    /// A back face of a two-sided Gouraud object: lit with reversed
+    /// normals, in vertices of its own.
+    #[inline(never)]
+    fn back_gouraud(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        t: usize,
+        pk: [u16; 3],
+        nk: [u16; 3],
+    ) -> Result<(), RenderError> {
+        let mut vs = [0u16; 3];
+        for c in 0..3 {
+            let cv = Self::clip_vert(ctx, pk[c], nk[c], true);
+            vs[c] = self.emit(
+                ctx,
+                &cv,
+                Link {
+                    normal: NONE,
+                    next: NONE,
+                    code: 0,
+                    unlit: false,
+                },
+                0,
+            )?;
+        }
+        let color = self.flat_color(ctx, t, true);
+        // New vertices: read their positions.
+        self.push_tri(Tri {
+            v: vs,
+            color,
+            back: true,
+            ..Tri::EMPTY
+        })
+    }
+
+    /// A triangle with a corner outside the planes: dropped when all are
+    /// outside one plane, else clipped in eye space.
+    #[inline(never)]
+    fn clipped(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        t: usize,
+        pk: [u16; 3],
+        nk: [u16; 3],
+        codes: [Outcode; 3],
+    ) -> Result<(), RenderError> {
         if codes[0] & codes[1] & codes[2] != 0 {
             return Ok(());
         }
