@@ -6,7 +6,7 @@
 
 use super::Affine;
 use crate::num::approx16::{recip_mant, rsqrt_newton};
-use crate::num::wide::wmul;
+use crate::num::wide::{clz32, wmul};
 use crate::num::Real;
 
 /// Largest matrix entry magnitude (exclusive) of the integer transform:
@@ -232,7 +232,8 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
         return [0; 3];
     }
     // max < 2^31: scaling up (exact), the largest into [2^30, 2^31).
-    let sh = max.leading_zeros() - 1;
+    // `clz32`: a table lookup on the M0 rather than a `__clzsi2` call.
+    let sh = clz32(max) - 1;
     let s = mag.map(|m| m << sh);
     // S < 3 · 2^62.
     let sum = sq_u32(s[0]) + sq_u32(s[1]) + sq_u32(s[2]);
@@ -381,7 +382,8 @@ impl Proj16 {
     #[inline]
     pub(crate) fn project(&self, p: [i32; 3], sub: u32) -> ([i32; 2], i32) {
         let w = p[2].saturating_neg().max(1).unsigned_abs();
-        let lz = w.leading_zeros(); // 1..=31
+        // `clz32`: a table lookup on the M0 rather than a `__clzsi2` call.
+        let lz = clz32(w); // 1..=31
         let m = w << lz; // f 2^31, f in [1, 2), w = f 2^(31 - lz)
         #[allow(clippy::cast_possible_wrap)]
         let y0 = recip_mant(m) as i32; // 2^30 / f within 2^-17

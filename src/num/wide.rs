@@ -1,4 +1,4 @@
-//! Exact widening products.
+//! Exact widening products, and the table-based count of leading zeros.
 //!
 //! The Cortex-M0 (ARMv6-M) has only a 32×32→32 multiply: Rust's `i64`
 //! product becomes a call to `__aeabi_lmul`, a full 64×64 multiplication.
@@ -93,6 +93,52 @@ pub(crate) fn det_sign_small(a: i32, b: i32, c: i32, d: i32) -> Option<i32> {
 #[inline(always)]
 pub(crate) fn wmul64(a: i64, b: i64) -> i128 {
     i128::from(a) * i128::from(b)
+}
+
+/// Leading zeros of a `u32` (32 for 0).
+#[inline(always)]
+pub(crate) fn clz32(x: u32) -> u32 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        clz32_soft(x)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        x.leading_zeros()
+    }
+}
+
+/// Leading zeros of a byte (8 for 0): 256 bytes of flash.
+static CLZ8: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = (i as u8).leading_zeros() as u8;
+        i += 1;
+    }
+    t
+};
+
+/// Leading zeros from the top non-zero byte and a 256-entry table (two
+/// comparisons and one load, instead of a five-step binary search).
+#[inline(always)]
+#[cfg_attr(
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
+    allow(dead_code)
+)]
+pub(crate) fn clz32_soft(x: u32) -> u32 {
+    let byte = |v: u32| CLZ8[(v as u8) as usize] as u32;
+    if x >= 1 << 16 {
+        if x >= 1 << 24 {
+            byte(x >> 24)
+        } else {
+            8 + byte(x >> 16)
+        }
+    } else if x >= 1 << 8 {
+        16 + byte(x >> 8)
+    } else {
+        24 + byte(x)
+    }
 }
 
 #[cfg(test)]
