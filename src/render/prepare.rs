@@ -391,11 +391,13 @@ impl<P: Profile> Preparer<'_, P> {
     }
 
     /// Computes and stores the colour of prepared vertex `v` (made unlit
-    /// from mesh position `p` and normal `n`): the values
+    /// from corner `c` of triangle `t`): the values
     /// [`Preparer::emit`] would have stored. Once per lit vertex: kept
     /// out of the triangle loop.
     #[inline(never)]
-    fn light(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, v: u16, p: u16, n: u16) {
+    fn light(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, v: u16, t: usize, c: usize) {
+        let (pk, nk) = Self::corner_keys(ctx, t);
+        let (p, n) = (pk[c % 3], nk[c % 3]);
         let Some(link) = self.ws.links.get_mut(v as usize) else {
             return;
         };
@@ -686,13 +688,14 @@ impl<P: Profile> Preparer<'_, P> {
     #[inline(always)]
     fn triangle(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
         let (pk, nk) = Self::corner_keys(ctx, t);
-        let mut vs = [0u16; 3];
-        let mut codes: [Outcode; 3] = [0; 3];
-        for c in 0..3 {
-            (vs[c], codes[c]) = self.corner(ctx, pk[c], nk[c])?;
-        }
-        if codes != [0; 3] {
-            return self.clipped(ctx, t, pk, nk, codes);
+        let (v0, c0) = self.corner(ctx, pk[0], nk[0])?;
+        let (v1, c1) = self.corner(ctx, pk[1], nk[1])?;
+        let (v2, c2) = self.corner(ctx, pk[2], nk[2])?;
+        let vs = [v0, v1, v2];
+        if c0 | c1 | c2 != 0 {
+            // The cold paths read the keys again rather than keep them
+            // live (spilled) across the hot one.
+            return self.clipped(ctx, t, [c0, c1, c2]);
         }
         let xy = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
         let [a, b, c] = xy;
@@ -709,7 +712,7 @@ impl<P: Profile> Preparer<'_, P> {
                 return Ok(());
             }
             if matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
-                return self.back_gouraud(ctx, t, pk, nk);
+                return self.back_gouraud(ctx, t);
             }
         }
         let Some(rows) = self.rows_of(xy) else {
@@ -724,9 +727,9 @@ impl<P: Profile> Preparer<'_, P> {
         };
         self.store_tri(vs, rows, color, back)?;
         if !back && Self::lazy(ctx) {
-            for c in 0..3 {
-                if self.ws.links.get(vs[c] as usize).is_some_and(|l| l.unlit) {
-                    self.light(ctx, vs[c], pk[c], nk[c]);
+            for (c, v) in vs.into_iter().enumerate() {
+                if self.ws.links.get(v as usize).is_some_and(|l| l.unlit) {
+                    self.light(ctx, v, t, c);
                 }
             }
         }
@@ -736,13 +739,8 @@ impl<P: Profile> Preparer<'_, P> {
     /// A back face of a two-sided Gouraud object: lit with reversed
     /// normals, in vertices of its own.
     #[inline(never)]
-    fn back_gouraud(
-        &mut self,
-        ctx: &ObjCtx<'_, '_, P::Real>,
-        t: usize,
-        pk: [u16; 3],
-        nk: [u16; 3],
-    ) -> Result<(), RenderError> {
+    fn back_gouraud(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
+        let (pk, nk) = Self::corner_keys(ctx, t);
         let mut vs = [0u16; 3];
         for c in 0..3 {
             let cv = Self::clip_vert(ctx, pk[c], nk[c], true);
@@ -775,10 +773,9 @@ impl<P: Profile> Preparer<'_, P> {
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
         t: usize,
-        pk: [u16; 3],
-        nk: [u16; 3],
         codes: [Outcode; 3],
     ) -> Result<(), RenderError> {
+        let (pk, nk) = Self::corner_keys(ctx, t);
         if codes[0] & codes[1] & codes[2] != 0 {
             return Ok(());
         }
