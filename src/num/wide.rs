@@ -75,14 +75,23 @@ pub(crate) fn det_sign(a: i32, b: i32, c: i32, d: i32) -> i32 {
     (wmul(a, b) - wmul(c, d)).signum() as i32
 }
 
-/// [`det_sign`]'s 32-bit path; `None` when an operand reaches 2^15.
+/// [`det_sign`]'s 32-bit path; `None` unless every operand lies in
+/// `[-2^15, 2^15)`.
+///
+/// In that range `a·b` lies in `[-2^30 + 2^15, 2^30]` and `c·d` too, so
+/// the difference lies strictly within `(-2^31, 2^31)`: no overflow. The
+/// range test is one offset per operand and one comparison for all four
+/// (`v + 2^15` in `[0, 2^16)` for every `v` iff their `OR` is below
+/// 2^16), rather than an absolute value and a comparison per operand.
 #[inline(always)]
+#[allow(clippy::cast_sign_loss)]
 #[cfg_attr(
     not(all(target_arch = "arm", not(target_has_atomic = "32"))),
     allow(dead_code)
 )]
 pub(crate) fn det_sign_small(a: i32, b: i32, c: i32, d: i32) -> Option<i32> {
-    if [a, b, c, d].iter().all(|v| v.unsigned_abs() < 1 << 15) {
+    let off = |v: i32| v.wrapping_add(1 << 15) as u32;
+    if off(a) | off(b) | off(c) | off(d) < 1 << 16 {
         Some((a * b - c * d).signum())
     } else {
         None
@@ -182,6 +191,31 @@ mod tests {
             let v = [0, 16, 32, 48].map(|k| ((s >> k) % m) as i32 - (m / 2) as i32);
             check(v[0], v[1], v[2], v[3]);
             check(v[0], v[1], v[1], v[0]);
+        }
+    }
+
+    #[test]
+    fn det_sign_small_range_edges() {
+        // Every combination of the range's edges (the extreme products,
+        // checked for overflow by the debug build) and just beyond them.
+        let vals = [-0x8001, -0x8000, -0x7FFF, -1, 0, 1, 0x7FFE, 0x7FFF, 0x8000];
+        let inside = |v: i32| (-0x8000..0x8000).contains(&v);
+        for &a in &vals {
+            for &b in &vals {
+                for &c in &vals {
+                    for &d in &vals {
+                        let exact =
+                            (i64::from(a) * i64::from(b) - i64::from(c) * i64::from(d)).signum();
+                        let small = det_sign_small(a, b, c, d);
+                        let all_in = inside(a) && inside(b) && inside(c) && inside(d);
+                        assert_eq!(small.is_some(), all_in, "{a} {b} {c} {d}");
+                        if let Some(v) = small {
+                            assert_eq!(i64::from(v), exact, "{a} {b} {c} {d}");
+                        }
+                        assert_eq!(i64::from(det_sign(a, b, c, d)), exact);
+                    }
+                }
+            }
         }
     }
 
