@@ -273,9 +273,13 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
     let q = |sk: u32| -> u32 {
         // s 2^14 / len = s r 2^lz / 2^47 (s < 2^31, r <= 2^30).
         let p = mul_u32(sk, r);
-        let est = if lz == 0 { p >> 46 } else { p >> 45 };
+        // The shift from the high half (p < 2^61): `p >> 46` or `p >> 45`
+        // written on `u64` were merged into one variable 64-bit shift, an
+        // `__aeabi_llsr` call on the M0.
         #[allow(clippy::cast_possible_truncation)]
-        let mut q = (((est + 1) >> 1) as u32).min(1 << 15);
+        let p_hi = (p >> 32) as u32;
+        let est = if lz == 0 { p_hi >> 14 } else { p_hi >> 13 };
+        let mut q = ((est + 1) >> 1).min(1 << 15);
         // num = s 2^14 + len/2; exact: q = floor(num / len).
         let num = (u64::from(sk) << 14) + half;
         // One product, then steps of len.
