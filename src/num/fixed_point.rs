@@ -86,6 +86,27 @@ macro_rules! fixed_real {
                 Self::div_round((num as $wide) << $frac, den as $wide)
             }
 
+            /// A product `w` of two raw values rounded to nearest (ties up)
+            /// and saturated: `sat(shr_round(w, FRAC_BITS))`, decided from
+            /// the top bits. With `w' = w + 2^(FRAC-1)` (no overflow: `|w| <=
+            /// 2^(2 BITS - 2)`), `floor(w' / 2^FRAC)` fits the raw type
+            /// exactly when `w' >> (FRAC + BITS - 1)` is 0 or -1 (`w'` in
+            /// `[-2^(BITS-1+FRAC), 2^(BITS-1+FRAC))`); one arithmetic shift
+            /// of the high word instead of two wide comparisons.
+            #[inline(always)]
+            #[allow(clippy::cast_possible_truncation)] // |top| <= 2^(BITS/2 - 1)
+            fn round_product(w: $wide) -> Self {
+                let w = w + (1 << ($frac - 1));
+                let top = (w >> ($frac + <$raw>::BITS - 1)) as $raw;
+                if top == 0 || top == -1 {
+                    Self::from_bits((w >> $frac) as $raw)
+                } else if w < 0 {
+                    Self::from_bits(<$raw>::MIN)
+                } else {
+                    Self::from_bits(<$raw>::MAX)
+                }
+            }
+
             /// Round-to-nearest right shift of a wide value (`s` in 1..=62).
             const fn shr_round(w: $wide, s: u32) -> $wide {
                 ((w >> (s - 1)) + 1) >> 1
@@ -125,7 +146,7 @@ macro_rules! fixed_real {
             /// Product rounded to nearest (ties up), saturating.
             #[inline(always)]
             fn mul(self, o: Self) -> Self {
-                Self::sat(Self::shr_round($wmul(self.to_bits(), o.to_bits()), $frac))
+                Self::round_product($wmul(self.to_bits(), o.to_bits()))
             }
         }
         impl Neg for $name {
@@ -262,3 +283,98 @@ fixed_real!(
     /// range `[-2^31, 2^31)`, resolution 2^-32. Operators saturate.
     Q32, I32F32, i64, i128, 32, approx32, wmul64, false
 );
+
+#[cfg(test)]
+mod tests {
+    use super::{Q16, Q32};
+
+    fn check16(a: i32, b: i32) {
+        let w = i64::from(a) * i64::from(b);
+        let want = Q16::sat(Q16::shr_round(w, 16));
+        assert_eq!(Q16::round_product(w), want, "{a} * {b}");
+        assert_eq!(Q16::from_bits(a) * Q16::from_bits(b), want, "{a} * {b}");
+    }
+
+    fn check32(a: i64, b: i64) {
+        let w = i128::from(a) * i128::from(b);
+        let want = Q32::sat(Q32::shr_round(w, 32));
+        assert_eq!(Q32::round_product(w), want, "{a} * {b}");
+        assert_eq!(Q32::from_bits(a) * Q32::from_bits(b), want, "{a} * {b}");
+    }
+
+    /// `round_product` (the operator `*`) equals the two-step
+    /// `sat(shr_round(w))` on edge and random products, for both widths:
+    /// around the rounding ties, the saturation thresholds (`|a b|` near
+    /// `2^47` resp. `2^95`) and the extreme operands.
+    #[test]
+    fn round_product_matches_shift_then_saturate() {
+        let edges32 = [
+            0,
+            1,
+            -1,
+            2,
+            0x7FFF,
+            0x8000,
+            -0x8000,
+            0xFFFF,
+            0x1_0000,
+            -0x1_0000,
+            0x7FFF_FFFF,
+            i32::MIN,
+            i32::MIN + 1,
+            0x00B5_04F3,
+            0x00B5_04F4,
+            -0x00B5_04F4,
+            0x0080_0000,
+            -0x0080_0000,
+        ];
+        for &a in &edges32 {
+            for &b in &edges32 {
+                check16(a, b);
+            }
+        }
+        let edges64 = [
+            0,
+            1,
+            -1,
+            0x7FFF_FFFF,
+            0x8000_0000,
+            0xFFFF_FFFF,
+            0x1_0000_0000,
+            -0x1_0000_0000,
+            i64::MAX,
+            i64::MIN,
+            i64::MIN + 1,
+            0xB504_F333_F9DE,
+            -0xB504_F333_F9DF,
+        ];
+        for &a in &edges64 {
+            for &b in &edges64 {
+                check32(a, b);
+            }
+        }
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for _ in 0..200_000 {
+            // Shifted by 0..=31 (resp. 63): small and large magnitudes.
+            let (r, t) = (next(), next());
+            check16(
+                (r as i32) >> (t % 32),
+                ((r >> 32) as i32) >> ((t >> 8) % 32),
+            );
+            check32(
+                (r as i64) >> ((t >> 16) % 64),
+                (t as i64) >> ((r >> 58) % 64),
+            );
+            // Products straddling the Q16 saturation threshold 2^47.
+            let a = 0x00B5_0000 + (r % 0x2_0000) as i32;
+            check16(a, a);
+            check16(a, -a);
+        }
+    }
+}
