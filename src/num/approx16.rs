@@ -23,7 +23,7 @@
 //!   Measured 2^-16.44 absolute.
 
 use super::tables::{EXP2, LOG_INV, LOG_T, RSQRT, SIN};
-use super::wide::wmul;
+use super::wide::{clz32, wmul};
 
 /// Q16 one.
 const ONE: i32 = 1 << 16;
@@ -49,7 +49,7 @@ pub(crate) fn rsqrt(b: i32) -> i32 {
         return 0;
     }
     let u = b.unsigned_abs();
-    let lz = u.leading_zeros(); // 1..=31
+    let lz = clz32(u); // 1..=31
                                 // Shift so the MSB lands on bit 30 or 31 with an even shift: then
                                 // x = f * 4^((14 - sh) / 2) with f = m / 2^30 in [1, 4).
     let sh = if (lz - 1) % 2 == 0 { lz - 1 } else { lz };
@@ -91,7 +91,7 @@ pub(crate) fn sqrt(b: i32) -> i32 {
 
 /// `-log2(x)` for Q16 bits `xb` in `[1, 2^16)`, as Q5.27.
 fn neg_log2(xb: i32) -> i64 {
-    let lz = xb.leading_zeros(); // 16..=31
+    let lz = clz32(xb.unsigned_abs()); // 16..=31 (xb > 0)
     let k = i64::from(lz) - 15; // x = m * 2^-k, m in [1, 2)
     let m = xb << (lz - 16); // Q1.15
     let j = (((m - (1 << 15) + (1 << 8)) >> 9) as usize).min(64);
@@ -240,7 +240,7 @@ pub(crate) fn unit(v: [i32; 3]) -> [i32; 3] {
     if max == 0 {
         return [0; 3];
     }
-    let bits = 32 - max.leading_zeros(); // 1..=32
+    let bits = 32 - clz32(max); // 1..=32
     let u = if bits > 16 {
         // Rounded to nearest, at most 2^16 - 1 (keeps the squares in u32).
         let sh = bits - 16;
