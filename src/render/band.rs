@@ -4,7 +4,7 @@ use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, RenderError, Tri};
 use crate::geom::Vec3;
 use crate::illum::Shade;
-use crate::num::{Profile, Real};
+use crate::num::{approx16, Profile, Real};
 use crate::raster::{
     draw_sorted, in_limits, sort3, Fill, Flat, Gouraud, GouraudMono, Persp, RasterError, Shader,
     Vertex,
@@ -14,17 +14,43 @@ use crate::target::{DepthBuffer, DepthFormat, FrameBuf, PixelFormat, Rgb8, Targe
 
 /// Per-pixel Phong shading: the interpolated normal (and position)
 /// normalised and illuminated.
+///
+/// For `Q16` ([`Real::Q16_KERNELS`], the `Fast` profiles) the pixel runs
+/// on raw integers: the normal normalised by 32-bit arithmetic (within
+/// `2^-15` per component of the exact unit vector), the light and view
+/// vectors likewise, dot products summed exactly and rounded once (see
+/// `Shade::at`'s integer path). The other scalars run the generic code.
 #[derive(Debug)]
 pub struct PhongShader<'a, P: Profile> {
     shade: &'a Shade<P::Real>,
     back: bool,
 }
 
-impl<P: Profile> PhongShader<'_, P> {
+impl<'a, P: Profile> PhongShader<'a, P> {
+    /// A shader lighting by `shade`; `back` flips the normal (the back
+    /// face of a two-sided object). Its attributes are the interpolated
+    /// normal in [`Profile::unit`] form (layout
+    /// [`PhongNormal`](super::Layout::PhongNormal), 3 values) or the
+    /// normal and the eye-space position in [`Profile::coord`] form (6
+    /// values).
+    pub fn new(shade: &'a Shade<P::Real>, back: bool) -> Self {
+        Self { shade, back }
+    }
+
     #[inline(always)]
     fn color(&self, a: &[P::Lerp], p: Vec3<P::Real>) -> Rgb8 {
-        let mut n =
-            Vec3::new(P::unit_back(a[0]), P::unit_back(a[1]), P::unit_back(a[2])).normalize();
+        let n = Vec3::new(P::unit_back(a[0]), P::unit_back(a[1]), P::unit_back(a[2]));
+        if <P::Real as Real>::Q16_KERNELS {
+            let raw = |v: P::Real| v.to_fixed_i32(16);
+            let mut u = approx16::unit([raw(n.x), raw(n.y), raw(n.z)]);
+            if self.back {
+                u = u.map(i32::saturating_neg);
+            }
+            let c = self.shade.at_q16(u, [raw(p.x), raw(p.y), raw(p.z)]);
+            let level = |c: i32| P::Real::from_fixed_i32(c, 16).to_level();
+            return Rgb8::new(level(c[0]), level(c[1]), level(c[2]));
+        }
+        let mut n = n.normalize();
         if self.back {
             n = -n;
         }
@@ -148,6 +174,9 @@ impl<P: Profile> Frame<'_, P> {
     /// frame's or its rows extend below it; a depth buffer holding other
     /// rows than the target; a scene other than the prepared one may give
     /// [`RenderError::Scene`].
+    // Not inlined into the caller: merged with a caller's frame (e.g. a
+    // firmware's band loop) its locals grew that frame by 1.8 KB of stack.
+    #[inline(never)]
     pub fn render<T: Target, D: DepthFormat>(
         &self,
         scene: &Scene<'_, '_, P::Real>,

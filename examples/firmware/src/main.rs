@@ -28,9 +28,9 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
-use fixshade::num::{Fast, Profile, Real, Q16};
+use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
-use fixshade::render::{Link, Tri, Workspace};
+use fixshade::render::{Link, PhongShader, Tri, Workspace};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
     capacity_of, check, render_frame, FrameError, Needs, Pixel, Probe, BAND_PIXELS, BAND_ROWS,
@@ -244,27 +244,6 @@ const SPAN_ROWS: u32 = 16;
 /// Pixels of a long span (the short one has 1).
 const SPAN_LONG: u32 = 200;
 
-/// Per-pixel Phong shading of an interpolated normal as the core's
-/// `PhongShader` does it for the normal-only layout (front face): the
-/// three unit values back to `Real`, normalised, illuminated, to levels.
-struct PhongNormal<'a> {
-    shade: &'a Shade<Q16>,
-}
-
-impl Shader<i32, 3> for PhongNormal<'_> {
-    #[inline]
-    fn shade(&self, a: &[i32; 3]) -> Rgb8 {
-        let n = Vec3::new(
-            Fast::unit_back(a[0]),
-            Fast::unit_back(a[1]),
-            Fast::unit_back(a[2]),
-        )
-        .normalize();
-        let c = self.shade.at(n, Vec3::ZERO);
-        Rgb8::new(c.x.to_level(), c.y.to_level(), c.z.to_level())
-    }
-}
-
 /// Q16 from a decimal in thousandths.
 const fn q3(milli: i32) -> Q16 {
     Q16::from_bits(milli * 65536 / 1000)
@@ -346,7 +325,7 @@ fn span_loops(mem: &mut Memory) -> Result<(), FrameError> {
     ];
     let dn = [Fast::unit(q3(3)), 0, -Fast::unit(q3(1))];
     for len in [SPAN_LONG, 1] {
-        span_region(mem, PhongNormal { shade: &shade }, len, z, dz, n, dn)?;
+        span_region(mem, PhongShader::<Fast>::new(&shade, false), len, z, dz, n, dn)?;
     }
     hprintln!("span phong rows={} long={} short=1", SPAN_ROWS, SPAN_LONG);
     Ok(())
