@@ -325,7 +325,15 @@ fn span_loops(mem: &mut Memory) -> Result<(), FrameError> {
     ];
     let dn = [Fast::unit(q3(3)), 0, -Fast::unit(q3(1))];
     for len in [SPAN_LONG, 1] {
-        span_region(mem, PhongShader::<Fast>::new(&shade, false), len, z, dz, n, dn)?;
+        span_region(
+            mem,
+            PhongShader::<Fast>::new(&shade, false),
+            len,
+            z,
+            dz,
+            n,
+            dn,
+        )?;
     }
     hprintln!("span phong rows={} long={} short=1", SPAN_ROWS, SPAN_LONG);
     Ok(())
