@@ -12,12 +12,10 @@
 use fixshade::geom::{Affine, Mat3, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::{shapes, Mesh};
-use fixshade::num::{
-    Fast, FastPc, Precise, PrecisePc, Profile, Real, F32Pc, F64Pc, F32, F64,
-};
+use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Real, F32, F64};
 use fixshade::raster::{
-    draw_triangle, Fill, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, Shader, Span,
-    Spans, SubpixelBits, Vertex,
+    draw_triangle, Fill, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, Shader, Span, Spans,
+    SubpixelBits, Vertex,
 };
 use fixshade::render::{prepare, render_in_bands, Link, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
@@ -57,7 +55,16 @@ impl Bytes<'_> {
     fn f32(&mut self) -> f32 {
         match self.u8() % 4 {
             0 => f32::from_bits(self.u32()),
-            1 => [0.0, -0.0, 1.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 1e30, 1e-30][self.u8() as usize % 8],
+            1 => [
+                0.0,
+                -0.0,
+                1.0,
+                f32::NAN,
+                f32::INFINITY,
+                f32::NEG_INFINITY,
+                1e30,
+                1e-30,
+            ][self.u8() as usize % 8],
             _ => (self.i32() >> 16) as f32 / 4096.0,
         }
     }
@@ -159,21 +166,49 @@ fn screen(b: &mut Bytes<'_>) {
             0 => {
                 let t = fixed::<0>(&xy, &zs, &attrs);
                 assert_eq!(draw_triangle(&t, sub, window, &mut SpanCheck(window)), want);
-                let mut f = Fill::<_, Depth16, _>::new(&mut checked, None, Flat(Rgb8::WHITE)).unwrap();
+                let mut f =
+                    Fill::<_, Depth16, _>::new(&mut checked, None, Flat(Rgb8::WHITE)).unwrap();
                 assert_eq!(f.draw(&t, sub), want);
-                draw::<Rgb565Be, _, 0, _>(&mut fb, &mut d16, &mut d32, depth_kind, Flat(Rgb8::WHITE), &t, sub, want);
+                draw::<Rgb565Be, _, 0, _>(
+                    &mut fb,
+                    &mut d16,
+                    &mut d32,
+                    depth_kind,
+                    Flat(Rgb8::WHITE),
+                    &t,
+                    sub,
+                    want,
+                );
             }
             1 => {
                 let t = fixed::<1>(&xy, &zs, &attrs);
                 assert_eq!(draw_triangle(&t, sub, window, &mut SpanCheck(window)), want);
                 let mut f = Fill::<_, Depth16, _>::new(&mut checked, None, GouraudMono).unwrap();
                 assert_eq!(f.draw(&t, sub), want);
-                draw::<Rgb565Be, _, 1, _>(&mut fb, &mut d16, &mut d32, depth_kind, GouraudMono, &t, sub, want);
+                draw::<Rgb565Be, _, 1, _>(
+                    &mut fb,
+                    &mut d16,
+                    &mut d32,
+                    depth_kind,
+                    GouraudMono,
+                    &t,
+                    sub,
+                    want,
+                );
             }
             2 => {
                 let t = fixed::<4>(&xy, &zs, &attrs);
                 assert_eq!(draw_triangle(&t, sub, window, &mut SpanCheck(window)), want);
-                draw::<Rgb565Be, _, 4, _>(&mut fb, &mut d16, &mut d32, depth_kind, Persp(Gouraud), &t, sub, want);
+                draw::<Rgb565Be, _, 4, _>(
+                    &mut fb,
+                    &mut d16,
+                    &mut d32,
+                    depth_kind,
+                    Persp(Gouraud),
+                    &t,
+                    sub,
+                    want,
+                );
             }
             _ => {
                 // The float twins with arbitrary bit patterns (NaN, inf).
@@ -181,10 +216,14 @@ fn screen(b: &mut Bytes<'_>) {
                     x: xy[i].0,
                     y: xy[i].1,
                     z: f32::from_bits(zs[i] as u32),
-                    attrs: attrs[i].map(|a| f32::from_bits(a as u32))[..3].try_into().unwrap(),
+                    attrs: attrs[i].map(|a| f32::from_bits(a as u32))[..3]
+                        .try_into()
+                        .unwrap(),
                 });
                 assert_eq!(draw_triangle(&t, sub, window, &mut SpanCheck(window)), want);
-                draw::<Rgb565Be, _, 3, _>(&mut fb, &mut d16, &mut d32, depth_kind, Gouraud, &t, sub, want);
+                draw::<Rgb565Be, _, 3, _>(
+                    &mut fb, &mut d16, &mut d32, depth_kind, Gouraud, &t, sub, want,
+                );
                 let t64 = t.map(|v| Vertex {
                     x: v.x,
                     y: v.y,
@@ -199,7 +238,11 @@ fn screen(b: &mut Bytes<'_>) {
     assert!(checked.writes <= u64::from(ntris) * n as u64);
 }
 
-fn fixed<const N: usize>(xy: &[(i32, i32); 3], z: &[i32; 3], a: &[[i32; 4]; 3]) -> [Vertex<i32, N>; 3] {
+fn fixed<const N: usize>(
+    xy: &[(i32, i32); 3],
+    z: &[i32; 3],
+    a: &[[i32; 4]; 3],
+) -> [Vertex<i32, N>; 3] {
     core::array::from_fn(|i| Vertex {
         x: xy[i].0,
         y: xy[i].1,
@@ -220,7 +263,9 @@ fn draw<F: PixelFormat, L: Lerp, const N: usize, S: Shader<L, N>>(
     want: Result<(), RasterError>,
 ) {
     let got = match kind {
-        0 => Fill::<_, Depth16, _>::new(fb, None, shader).unwrap().draw(t, sub),
+        0 => Fill::<_, Depth16, _>::new(fb, None, shader)
+            .unwrap()
+            .draw(t, sub),
         1 => Fill::new(fb, Some(d16), shader).unwrap().draw(t, sub),
         _ => Fill::new(fb, Some(d32), shader).unwrap().draw(t, sub),
     };
@@ -253,14 +298,18 @@ fn scene(b: &mut Bytes<'_>) {
 }
 
 fn v3<R: Real>(b: &mut Bytes<'_>) -> Vec3<R> {
-    Vec3::new(R::from_f32(b.f32()), R::from_f32(b.f32()), R::from_f32(b.f32()))
+    Vec3::new(
+        R::from_f32(b.f32()),
+        R::from_f32(b.f32()),
+        R::from_f32(b.f32()),
+    )
 }
 
 fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     let r = |b: &mut Bytes<'_>| P::Real::from_f32(b.f32());
     let (w, h) = (u32::from(b.u8() % 65), u32::from(b.u8() % 65));
     // Camera: through the checked constructor, or any fields at all.
-    let camera = if b.u8() % 4 != 0 {
+    let camera = if !b.u8().is_multiple_of(4) {
         let eye = [b.f32(), b.f32(), b.f32()];
         let target = [b.f32(), b.f32(), b.f32()];
         let up = [b.f32(), b.f32(), b.f32()];
@@ -328,12 +377,20 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
         objects: &objects,
         lights: &lights,
         ambient: r(b),
-        specular: if b.bool() { Specular::Phong } else { Specular::Blinn },
-        viewer: if b.bool() { Viewer::Local } else { Viewer::Infinite },
+        specular: if b.bool() {
+            Specular::Phong
+        } else {
+            Specular::Blinn
+        },
+        viewer: if b.bool() {
+            Viewer::Local
+        } else {
+            Viewer::Infinite
+        },
         background: Rgb8::new(b.u8(), b.u8(), b.u8()),
     };
     // Workspace: usually big enough, sometimes not.
-    let small = b.u8() % 8 == 0;
+    let small = b.u8().is_multiple_of(8);
     let cap = |b: &mut Bytes<'_>, big: usize| if small { b.u16() as usize % 64 } else { big };
     let verts = cap(b, 6000);
     let mut xy = vec![[0i32; 2]; verts];
@@ -351,7 +408,10 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     let frame = match prepare::<P>(&scene, w, h, ws) {
         Ok(f) => f,
         Err(e) => {
-            assert!(!matches!(e, RenderError::Raster(_) | RenderError::Buffer(_)), "{e:?}");
+            assert!(
+                !matches!(e, RenderError::Raster(_) | RenderError::Buffer(_)),
+                "{e:?}"
+            );
             return;
         }
     };
@@ -386,7 +446,10 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
         }
     };
     if let Err(e) = r {
-        assert!(!matches!(e, RenderError::Raster(RasterError::OutOfRange(_))), "{e:?}");
+        assert!(
+            !matches!(e, RenderError::Raster(RasterError::OutOfRange(_))),
+            "{e:?}"
+        );
     }
     // Bands of any height (any u32): the buffer must match, or an error.
     let rows = match b.u8() % 3 {

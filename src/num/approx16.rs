@@ -49,10 +49,14 @@ pub(crate) fn rsqrt(b: i32) -> i32 {
         return 0;
     }
     let u = b.unsigned_abs();
-    let lz = clz32(u); // 1..=31
-                       // Shift so the MSB lands on bit 30 or 31 with an even shift: then
-                       // x = f * 4^((14 - sh) / 2) with f = m / 2^30 in [1, 4).
-    let sh = if (lz - 1).is_multiple_of(2) { lz - 1 } else { lz };
+    // lz in 1..=31. Shift so the MSB lands on bit 30 or 31 with an even
+    // shift: then x = f * 4^((14 - sh) / 2) with f = m / 2^30 in [1, 4).
+    let lz = clz32(u);
+    let sh = if (lz - 1).is_multiple_of(2) {
+        lz - 1
+    } else {
+        lz
+    };
     let y = rsqrt_mant(u << sh);
     let s = 22 - sh / 2; // 7..=22
     let r = (y + (1 << (s - 1))) >> s;
