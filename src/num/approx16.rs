@@ -49,14 +49,10 @@ pub(crate) fn rsqrt(b: i32) -> i32 {
         return 0;
     }
     let u = b.unsigned_abs();
-    // lz in 1..=31. Shift so the MSB lands on bit 30 or 31 with an even
-    // shift: then x = f * 4^((14 - sh) / 2) with f = m / 2^30 in [1, 4).
-    let lz = clz32(u);
-    let sh = if (lz - 1).is_multiple_of(2) {
-        lz - 1
-    } else {
-        lz
-    };
+    // Shift so the MSB lands on bit 30 or 31 with an even shift (the
+    // leading-zero count, 1..=31, rounded down to even): then
+    // x = f * 4^((14 - sh) / 2) with f = m / 2^30 in [1, 4).
+    let sh = clz32(u) & !1;
     let y = rsqrt_mant(u << sh);
     let s = 22 - sh / 2; // 7..=22
     let r = (y + (1 << (s - 1))) >> s;

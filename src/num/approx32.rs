@@ -51,12 +51,9 @@ pub(crate) fn rsqrt(b: i64) -> i64 {
         return 0;
     }
     let u = b.unsigned_abs();
-    let lz = u.leading_zeros(); // 1..=63
-    let sh = if (lz - 1).is_multiple_of(2) {
-        lz - 1
-    } else {
-        lz
-    };
+    // The leading-zero count (1..=63) rounded down to even: the MSB lands
+    // on bit 62 or 63.
+    let sh = u.leading_zeros() & !1;
     let m = u << sh; // f = m / 2^62 in [1, 4), x = f * 4^((30 - sh) / 2)
     let y0 = u64::from(rsqrt_mant((m >> 32) as u32)); // Q1.31
     let fy2 = (u128::from(m) * u128::from(y0 * y0)) >> 62; // ~1, Q.62
