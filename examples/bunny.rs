@@ -7,9 +7,9 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::BUNNY;
 use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
-use fixshade::render::{prepare, render_in_bands, Link, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{Depth16, PixelFormat, Rgb565Be, Rgb8};
+use fixshade::target::{BandBuf, PixelFormat, Rgb565Be, Rgb8};
 use std::{error::Error, fs::File, io::BufWriter};
 
 const W: u32 = 240;
@@ -65,20 +65,17 @@ fn run<P: Profile>(out: &str, shading: Shading) -> Result<(), Box<dyn Error>> {
     let mut band = vec![[0u8; 2]; (W * 16) as usize];
     let mut z = vec![0u16; (W * 16) as usize];
     let mut rgb = Vec::new();
-    let stats = render_in_bands::<P, Rgb565Be, Depth16, RenderError>(
-        &frame,
-        &scene,
-        &mut band,
-        Some(&mut z),
-        16,
-        |b| {
-            rgb.extend(b.pixels().iter().flat_map(|&p| {
-                let c = Rgb565Be::decode(p);
-                [c.r, c.g, c.b]
-            }));
-            Ok(())
-        },
-    )?;
+    let mut buf = BandBuf::<Rgb565Be>::new(&mut band, Some(&mut z), W, 16)?;
+    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut pool = Box::new(Pool::<P::Lerp, 64, 8>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
+    let stats = frame.render_bands(&scene, &mut state, &mut buf, |b| {
+        rgb.extend(b.pixels().iter().flat_map(|&p| {
+            let c = Rgb565Be::decode(p);
+            [c.r, c.g, c.b]
+        }));
+        Ok::<(), RenderError>(())
+    })?;
     let mut enc = png::Encoder::new(BufWriter::new(File::create(out)?), W, W);
     enc.set_color(png::ColorType::Rgb);
     enc.set_depth(png::BitDepth::Eight);

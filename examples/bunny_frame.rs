@@ -10,9 +10,9 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::BUNNY;
 use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
-use fixshade::render::{prepare, render_in_bands, Link, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{Depth16, Rgb565Be, Rgb8};
+use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 use std::hint::black_box;
 
 struct Mem<L> {
@@ -23,6 +23,8 @@ struct Mem<L> {
     links: Vec<Link>,
     band: Vec<[u8; 2]>,
     z: Vec<u16>,
+    order: Vec<u16>,
+    pool: Box<Pool<L, 64, 8>>,
 }
 
 #[inline(never)]
@@ -36,18 +38,14 @@ fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -
     };
     let frame = prepare::<P>(scene, 240, 240, ws).expect("prepare");
     let mut crc = 0u32;
-    let stats = render_in_bands::<P, Rgb565Be, Depth16, RenderError>(
-        &frame,
-        scene,
-        &mut m.band,
-        Some(&mut m.z),
-        16,
-        |b| {
+    let mut band = BandBuf::<Rgb565Be>::new(&mut m.band, Some(&mut m.z), 240, 16).expect("band");
+    let mut state = BandState::new(&mut m.order, &mut m.pool);
+    let stats = frame
+        .render_bands(scene, &mut state, &mut band, |b| {
             crc = crc.wrapping_add(b.pixels().len() as u32);
-            Ok(())
-        },
-    )
-    .expect("render");
+            Ok::<(), RenderError>(())
+        })
+        .expect("render");
     stats.pixels ^ crc
 }
 
@@ -94,6 +92,8 @@ fn run<P: Profile>() {
         links: vec![Link::default(); 4000],
         band: vec![[0; 2]; 240 * 16],
         z: vec![0; 240 * 16],
+        order: vec![0; 8000],
+        pool: Box::new(Pool::new()),
     };
     println!(
         "{}: {} pixels",

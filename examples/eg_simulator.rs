@@ -13,10 +13,10 @@ use fixshade::geom::{radians, Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::DODECAHEDRON;
 use fixshade::num::{Fast, Real, Q16};
-use fixshade::render::{prepare, render_in_bands, Link, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::eg::{draw_band, FromShaded};
-use fixshade::target::{Depth16, Rgb565Be, Rgb8};
+use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 use std::error::Error;
 
 fn render_to<C: PixelColor + FromShaded>(
@@ -73,20 +73,16 @@ fn render_to<C: PixelColor + FromShaded>(
         links: &mut links,
     };
     let frame = prepare::<Fast>(&scene, w, h, ws)?;
-    let mut band = vec![[0u8; 2]; (w * 16) as usize];
+    let mut pixels = vec![[0u8; 2]; (w * 16) as usize];
     let mut depth = vec![0u16; (w * 16) as usize];
-    let stats = render_in_bands::<Fast, Rgb565Be, Depth16, RenderError>(
-        &frame,
-        &scene,
-        &mut band,
-        Some(&mut depth),
-        16,
-        |b| {
-            // The simulator's DrawTarget never fails.
-            let _ = draw_band(b, display);
-            Ok(())
-        },
-    )?;
+    let mut band = BandBuf::<Rgb565Be>::new(&mut pixels, Some(&mut depth), w, 16)?;
+    let (mut order, mut pool) = ([0u16; 128], Pool::<i32, 32, 8>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
+    let stats = frame.render_bands(&scene, &mut state, &mut band, |b| {
+        // The simulator's DrawTarget never fails.
+        let _ = draw_band(b, display);
+        Ok::<(), RenderError>(())
+    })?;
     Ok(stats.pixels)
 }
 

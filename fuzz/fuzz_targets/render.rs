@@ -17,10 +17,10 @@ use fixshade::raster::{
     draw_triangle, Fill, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, Shader, Span, Spans,
     SubpixelBits, Vertex,
 };
-use fixshade::render::{prepare, render_in_bands, Link, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{
-    Depth16, Depth32, DepthBuffer, DepthFormat, FrameBuf, Gray8, PixelFormat, Rgb565Be, Rgb8,
+    BandBuf, Depth16, Depth32, DepthBuffer, DepthFormat, FrameBuf, Gray8, PixelFormat, Rgb565Be, Rgb8,
     Target, Window,
 };
 use libfuzzer_sys::fuzz_target;
@@ -463,17 +463,19 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     };
     let mut band = vec![[0u8; 2]; len];
     let mut zb = vec![0u16; len];
-    let r = render_in_bands::<P, Rgb565Be, Depth16, RenderError>(
-        &frame,
-        &scene,
-        &mut band,
-        if b.bool() { Some(&mut zb) } else { None },
-        rows,
-        |fb| {
-            assert!(fb.pixels().len() <= len);
-            Ok(())
-        },
-    );
+    let depth = if b.bool() { Some(&mut zb[..]) } else { None };
+    let Ok(mut buf) = BandBuf::<Rgb565Be>::new(&mut band, depth, w, rows) else {
+        return;
+    };
+    // Any order scratch (too short: an error) and a tiny pool (full: the
+    // triangles are set up again in each band, the same bytes).
+    let mut order = vec![0u16; cap(b, 2 * frame.triangle_count() + 2)];
+    let mut pool = Pool::<P::Lerp, 3, 4>::new();
+    let mut state = BandState::new(&mut order, &mut pool);
+    let r = frame.render_bands(&scene, &mut state, &mut buf, |fb| {
+        assert!(fb.pixels().len() <= len);
+        Ok::<(), RenderError>(())
+    });
     if let Err(e) = r {
         assert!(!matches!(e, RenderError::Raster(_)), "{e:?}");
     }

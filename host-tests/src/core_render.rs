@@ -11,11 +11,9 @@ use crate::scene_file::{PixelFormat, SceneDesc};
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind as CLightKind, Material, Specular, Viewer};
 use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Real, F32, F64};
-use fixshade::render::{prepare, Link, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
-use fixshade::target::{
-    Depth16, DepthBuffer, FrameBuf, Gray8, PixelFormat as CorePixelFormat, Rgb565Be, Rgb8, Rgb888,
-};
+use fixshade::target::{BandBuf, Gray8, PixelFormat as CorePixelFormat, Rgb565Be, Rgb8, Rgb888};
 use std::fmt;
 
 /// Rows per band, as in the firmware.
@@ -355,6 +353,10 @@ pub struct FrameStats {
     pub pixels: u32,
 }
 
+/// Active triangles the host renderer keeps from band to band (every
+/// layout: 8 values a slot); more at a band border are set up afresh.
+const POOL: usize = 512;
+
 /// The memory for rendering one scene again and again, as a firmware
 /// does: the workspace (sized by [`CoreScene::workspace_sizes`]), a colour
 /// band and a 16-bit depth band, allocated once.
@@ -367,6 +369,8 @@ pub struct Renderer<P: Profile, F: CorePixelFormat> {
     links: Vec<Link>,
     band: Vec<F::Raw>,
     depth: Vec<u16>,
+    order: Vec<u16>,
+    pool: Box<Pool<P::Lerp, POOL, 8>>,
     width: u32,
     height: u32,
     rows: u32,
@@ -386,6 +390,8 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
             links: vec![Link::default(); verts],
             band: vec![F::Raw::default(); band_len],
             depth: vec![0; band_len],
+            order: vec![0; 2 * tris],
+            pool: Box::new(Pool::new()),
             width,
             height,
             rows,
@@ -401,7 +407,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
     pub fn frame(
         &mut self,
         scene: &Scene<'_, '_, P::Real>,
-        mut band: impl FnMut(&FrameBuf<'_, F>, &DepthBuffer<'_, Depth16>),
+        mut band: impl FnMut(&BandBuf<'_, F>),
     ) -> Result<FrameStats, CoreError> {
         let (w, h) = (self.width, self.height);
         let ws = Workspace {
@@ -418,19 +424,14 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
             prepared_bytes: frame.bytes_used(),
             pixels: 0,
         };
-        let mut y0 = 0;
-        while y0 < h {
-            let y1 = (y0 + self.rows).min(h);
-            let n = ((y1 - y0) * w) as usize;
-            let mut fb =
-                FrameBuf::<F>::band(&mut self.band[..n], w, y0, y1).map_err(RenderError::from)?;
-            fixshade::target::Target::clear(&mut fb, scene.background);
-            let mut db = DepthBuffer::<Depth16>::new(&mut self.depth[..n], w, y0, y1)
-                .map_err(RenderError::from)?;
-            stats.pixels += frame.render(scene, &mut fb, Some(&mut db))?.pixels;
-            band(&fb, &db);
-            y0 = y1;
-        }
+        let mut buf = BandBuf::<F>::new(&mut self.band, Some(&mut self.depth), w, self.rows)
+            .map_err(RenderError::from)?;
+        let mut state = BandState::new(&mut self.order, &mut self.pool);
+        let drawn = frame.render_bands(scene, &mut state, &mut buf, |b| {
+            band(b);
+            Ok::<(), RenderError>(())
+        })?;
+        stats.pixels = drawn.pixels;
         Ok(stats)
     }
 }
@@ -448,18 +449,13 @@ fn render_format<P: Profile, F: CorePixelFormat>(
         Vec::with_capacity(n),
         Vec::with_capacity(n * F::BYTES),
     );
-    let stats = r.frame(&cs.scene(), |fb, db| {
-        bytes.extend(fb.bytes());
-        rgb.extend(fb.pixels().iter().map(|&p| {
+    let stats = r.frame(&cs.scene(), |b| {
+        bytes.extend(b.bytes());
+        rgb.extend(b.pixels().iter().map(|&p| {
             let c = F::decode(p);
             [c.r, c.g, c.b]
         }));
-        let win = db.window();
-        for y in win.y0..win.y1 {
-            for x in 0..w {
-                covered.push(db.get(x, y).is_some_and(|d| d != u16::MAX));
-            }
-        }
+        covered.extend(b.depth().unwrap_or(&[]).iter().map(|&d| d != u16::MAX));
     })?;
     Ok(CoreFrame {
         width: w,

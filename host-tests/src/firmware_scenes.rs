@@ -25,9 +25,9 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::{CornerNormals, Mesh};
 use fixshade::num::{Fast, Real, Q16};
-use fixshade::render::{prepare, Link, Part, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Part, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8, Target};
+use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 
 use crate::builtin::load_builtin;
 use crate::core_render::{crc32, BAND_ROWS};
@@ -264,6 +264,8 @@ fn needs(scene: &Scene<'_, '_, Q16>, w: u32, h: u32) -> Result<Needs, String> {
                 Part::Values => n.values += 1,
                 Part::Triangles => n.triangles += 1,
                 Part::Heads => n.heads += 1,
+                // Not a part `prepare` fills.
+                Part::Order => return Err("order scratch".into()),
             },
             Err(e) => return Err(e.to_string()),
         }
@@ -295,20 +297,22 @@ fn render_crc(
     let frame = prepare::<Fast>(scene, w, h, ws)?;
     let mut band = vec![[0u8; 2]; (w * BAND_ROWS) as usize];
     let mut depth = vec![0u16; (w * BAND_ROWS) as usize];
+    let mut buf = BandBuf::<Rgb565Be>::new(&mut band, Some(&mut depth), w, BAND_ROWS)?;
+    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut pool = Box::new(Pool::<i32, 256, 8>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
     let mut bytes = Vec::with_capacity((w * h * 2) as usize);
     let mut covered = 0;
-    let mut y0 = 0;
-    while y0 < h {
-        let y1 = (y0 + BAND_ROWS).min(h);
-        let k = ((y1 - y0) * w) as usize;
-        let mut fb = FrameBuf::<Rgb565Be>::band(&mut band[..k], w, y0, y1)?;
-        fb.clear(scene.background);
-        let mut db = DepthBuffer::<Depth16>::new(&mut depth[..k], w, y0, y1)?;
-        frame.render(scene, &mut fb, Some(&mut db))?;
-        bytes.extend(fb.bytes());
-        covered += depth[..k].iter().filter(|&&d| d != u16::MAX).count() as u32;
-        y0 = y1;
-    }
+    frame.render_bands(scene, &mut state, &mut buf, |b| {
+        bytes.extend(b.bytes());
+        covered += b
+            .depth()
+            .unwrap_or(&[])
+            .iter()
+            .filter(|&&d| d != u16::MAX)
+            .count() as u32;
+        Ok::<(), RenderError>(())
+    })?;
     Ok((crc32(&bytes), covered))
 }
 

@@ -13,9 +13,9 @@ mod support;
 
 use fixshade::mesh::{shapes, CornerNormals, Mesh};
 use fixshade::num::{F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, F32, F64};
-use fixshade::render::{prepare, render_in_bands, RenderError};
+use fixshade::render::RenderError;
 use fixshade::scene::{SceneError, Shading};
-use fixshade::target::{BufferError, Depth16, Rgb565Be};
+use fixshade::target::{BandBuf, BufferError, Rgb565Be};
 use support::*;
 
 const W: u32 = 64;
@@ -584,36 +584,24 @@ fn tiny_screens_and_one_row_bands() {
     assert_eq!(s.render_banded::<Fast>(H + 5).unwrap(), whole.rgb);
 }
 
-/// Regression (bug fixed in `render/band.rs`): `render_in_bands` computed
-/// the band buffer's size as `width × rows` in `u32`, which overflowed for
-/// a large `rows` (a panic in debug builds; in release the wrapped product
-/// could match an empty slice and the band slicing then panicked). Now any
-/// `rows` is a `WrongLength` error.
+/// Regression (bug fixed in `render/band.rs`): the band loop computed the
+/// band buffer's size as `width × rows` in `u32`, which overflowed for a
+/// large `rows`. Now a band buffer of any `rows` is checked: 0 or more
+/// than the largest screen is a `BadWindow` error, a short slice a
+/// `WrongLength` error.
 #[test]
 fn band_height_overflow_is_an_error() {
-    let mut s = Spec::new(W, H, [0.0, 0.0, 4.0]);
-    s.objects.push(ObjSpec::new(shapes::CUBE, Shading::Flat));
-    let (camera, lights, objects) = s.core::<f32>();
-    let scene = s.scene(camera, &lights, &objects);
-    let mut mem = Mem::<f32>::new(100, 100);
-    let frame = prepare::<F32>(&scene, W, H, mem.ws()).unwrap();
     for rows in [1 << 26, 1 << 27, u32::MAX, 0] {
         let mut px: Vec<[u8; 2]> = vec![];
-        let r = render_in_bands::<F32, Rgb565Be, Depth16, RenderError>(
-            &frame,
-            &scene,
-            &mut px,
-            None,
-            rows,
-            |_| Ok(()),
-        );
-        assert_eq!(
-            r.unwrap_err(),
-            RenderError::Buffer(BufferError::WrongLength {
-                expected: W as usize * rows.max(1) as usize,
-                actual: 0
-            }),
-            "rows {rows}"
-        );
+        let r = BandBuf::<Rgb565Be>::new(&mut px, None, W, rows);
+        assert_eq!(r.unwrap_err(), BufferError::BadWindow, "rows {rows}");
     }
+    let mut px: Vec<[u8; 2]> = vec![];
+    assert_eq!(
+        BandBuf::<Rgb565Be>::new(&mut px, None, W, 16).unwrap_err(),
+        BufferError::WrongLength {
+            expected: W as usize * 16,
+            actual: 0
+        }
+    );
 }

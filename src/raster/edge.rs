@@ -22,6 +22,15 @@ pub struct Edge {
 }
 
 impl Edge {
+    /// An edge that never moves (a placeholder).
+    pub(crate) const EMPTY: Self = Self {
+        x: 0,
+        e: 0,
+        q: 0,
+        r: 0,
+        d: 1,
+    };
+
     /// The edge from `(x0, y0)` down to `(x1, y1)` (subpixels, `y1 > y0`,
     /// coordinates within the limits of the [module](super)), positioned at
     /// row `j`.

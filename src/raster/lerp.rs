@@ -31,6 +31,8 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// started, so for them each row's start value is computed afresh from
     /// the anchor, and a band renders the very bytes of a full frame.
     const EXACT_STEPS: bool;
+    /// Zero (for pools of values in `static`s: `Default` is not `const`).
+    const ZERO: Self;
     /// Per-triangle constants: the reciprocal of the doubled area.
     type Setup: Copy + Debug;
 
@@ -407,6 +409,7 @@ fn anchor32(a0: i32, gx: i64, gy: i64, ox: i32, oy: i32, sub: SubpixelBits) -> i
 
 impl Lerp for i32 {
     const EXACT_STEPS: bool = true;
+    const ZERO: i32 = 0;
     type Grad = i64;
     type Setup = Recip;
 
@@ -516,6 +519,7 @@ macro_rules! float_lerp {
     ($t:ty) => {
         impl Lerp for $t {
             const EXACT_STEPS: bool = false;
+            const ZERO: $t = 0.0;
             type Grad = $t;
             type Setup = $t;
 

@@ -65,13 +65,16 @@ mod edge;
 mod lerp;
 mod span;
 mod triangle;
+mod walk;
 mod wide;
 
 pub use edge::Edge;
 pub use lerp::{Lerp, Recip};
+pub(crate) use span::span_pixels;
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
 pub(crate) use triangle::{draw_sorted, first_row, in_limits, sort3};
 pub use triangle::{draw_triangle, Span, Spans};
+pub(crate) use walk::{setup, RowSpans, Vals, Walk};
 
 use core::fmt;
 

@@ -7,7 +7,7 @@
 //! depth buffer's fast paths ([`Target::row_mut`]) when they have them.
 
 use super::wide::NO_LONG_MUL;
-use super::{Lerp, RasterError, Span, Spans, LEVEL_FRAC_BITS};
+use super::{Lerp, RasterError, Span, Spans, Vals, LEVEL_FRAC_BITS};
 use crate::target::{span_range, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 
 /// Computes a pixel's colour from its interpolated attributes.
@@ -272,6 +272,74 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
         }
     };
     *drawn += n;
+}
+
+/// The pixels of one span of the band renderer's row kernel: `row` and
+/// `drow` (the same length, `x1 - x0`) are the span's colour and depth
+/// slices, `v` the values at its first pixel and `sx` their steps. The
+/// same loops, hence the same bytes, as [`Fill`]'s. Returns the pixels
+/// written.
+#[inline(always)]
+pub(crate) fn span_pixels<L, const N: usize, F, D, S>(
+    row: &mut [F::Raw],
+    drow: Option<&mut [D::Raw]>,
+    v: &Vals<L, N>,
+    sx: &Vals<L, N>,
+    shader: &S,
+) -> u32
+where
+    L: Lerp,
+    F: PixelFormat,
+    D: DepthFormat,
+    S: Shader<L, N>,
+{
+    if let Some(c) = shader.constant() {
+        let raw = F::encode(c);
+        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |_| raw)
+    } else {
+        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |a| shader.shade_raw::<F>(a))
+    }
+}
+
+#[inline(always)]
+fn row_pixels<L: Lerp, const N: usize, R, D: DepthFormat>(
+    row: &mut [R],
+    drow: Option<&mut [D::Raw]>,
+    v: &Vals<L, N>,
+    sx: &Vals<L, N>,
+    color: impl Fn(&[L; N]) -> R,
+) -> u32 {
+    let (z, dz, a, da) = (v.z, sx.z, v.a, &sx.a);
+    let len = row.len() as u32;
+    match drow {
+        Some(drow) => {
+            let fails = if len >= SHORT_SPAN && D::span_in_range(z, dz, len) {
+                if NO_LONG_MUL || N > 1 {
+                    depth_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
+                } else {
+                    in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, &color)
+                }
+            } else {
+                depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
+                    let zd = D::from_lerp(z);
+                    let pass = zd < *zb;
+                    if pass {
+                        *zb = zd;
+                    }
+                    pass
+                })
+            };
+            len - fails
+        }
+        None => {
+            let mut a = a;
+            for p in row.iter_mut() {
+                *p = color(&a);
+                step_all(&mut a, da);
+            }
+            len
+        }
+    }
 }
 
 /// The depth-tested pixel loop over a row slice and its depth slice (the

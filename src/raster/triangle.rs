@@ -1,7 +1,7 @@
 //! Triangle setup and the scanline loop.
 
-use super::wide::{fits_i16, mul_i32, NO_LONG_MUL};
-use super::{Edge, Lerp, RasterError, SubpixelBits, Vertex};
+use super::walk::{setup, RowSpans, Vals};
+use super::{Lerp, RasterError, SubpixelBits, Vertex};
 use crate::target::Window;
 
 /// Receives the spans of a triangle, top to bottom: the span stage
@@ -30,32 +30,6 @@ pub struct Span<L, const N: usize> {
     pub a: [L; N],
     /// Attribute increments per pixel.
     pub da: [L; N],
-}
-
-/// Depth and attributes together, stepped as one.
-#[derive(Clone, Copy)]
-struct Vals<L, const N: usize> {
-    z: L,
-    a: [L; N],
-}
-
-impl<L: Lerp, const N: usize> Vals<L, N> {
-    #[inline(always)]
-    fn add(&mut self, s: &Self) {
-        self.z = self.z.add(s.z);
-        for (a, d) in self.a.iter_mut().zip(s.a.iter()) {
-            *a = a.add(*d);
-        }
-    }
-
-    #[inline]
-    fn add_n(mut self, s: &Self, n: i32) -> Self {
-        self.z = self.z.add_n(s.z, n);
-        for (a, d) in self.a.iter_mut().zip(s.a.iter()) {
-            *a = a.add_n(*d, n);
-        }
-        self
-    }
 }
 
 /// First row whose centre is at or below subpixel `y`: `ceil((y - S/2)/S)`.
@@ -131,105 +105,33 @@ pub(crate) fn draw_sorted<L: Lerp, const N: usize, S: Spans<L, N>>(
     window: Window,
     sink: &mut S,
 ) {
-    let d = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    // Offsets within an i16: each product is within ±2^30 and their
-    // difference within ±(2^31 - 2^15), exact in 32 bits (two `MULS` on
-    // ARMv6-M instead of two 64-bit products; elsewhere the check would
-    // cost more than the long multiplies it saves).
-    let area2 = if NO_LONG_MUL && d.iter().all(|&v| fits_i16(v)) {
-        (d[0] * d[3] - d[2] * d[1]) as i64
-    } else {
-        mul_i32(d[0], d[3]) - mul_i32(d[2], d[1])
-    };
-    if area2 == 0 {
-        return;
+    let width = window.width as i32;
+    if let Some((mut walk, mut row, sx, sy)) = setup(a, b, c, sub, window.y0 as i32, width) {
+        walk.rows(
+            &mut row,
+            &sx,
+            &sy,
+            window.y1 as i32,
+            width,
+            &mut ToSpans(sink),
+        );
     }
-    let (j_top, j_mid, j_bot) = (
-        first_row(a.y, sub),
-        first_row(b.y, sub),
-        first_row(c.y, sub),
-    );
-    let js = j_top.max(window.y0 as i32);
-    let je = j_bot.min(window.y1 as i32);
-    if js >= je {
-        return;
-    }
+}
 
-    // Gradients once per triangle, anchored at the pixel centre nearest
-    // vertex 0 (within half a pixel in each direction).
-    let setup = L::setup(area2);
-    let s = sub.scale();
-    let (ia, ja) = (a.x >> sub.get(), a.y >> sub.get());
-    let (ox, oy) = (ia * s + s / 2 - a.x, ja * s + s / 2 - a.y);
-    let zero = Vals { z: a.z, a: a.attrs };
-    let (mut anchor, mut sx, mut sy) = (zero, zero, zero);
-    {
-        let (gx, gy) = L::gradients([a.z, b.z, c.z], d, &setup, sub);
-        anchor.z = L::anchor(a.z, gx, gy, ox, oy, sub);
-        sx.z = L::step(gx);
-        sy.z = L::step(gy);
-    }
-    for k in 0..N {
-        let (gx, gy) = L::gradients([a.attrs[k], b.attrs[k], c.attrs[k]], d, &setup, sub);
-        anchor.a[k] = L::anchor(a.attrs[k], gx, gy, ox, oy, sub);
-        sx.a[k] = L::step(gx);
-        sy.a[k] = L::step(gy);
-    }
+/// A [`Spans`] sink as the walker's row sink: each span as a [`Span`].
+struct ToSpans<'s, S>(&'s mut S);
 
-    // area2 > 0: vertex 1 lies right of the long edge, so the long edge is
-    // the left one.
-    let long_left = area2 > 0;
-    let mut long = Edge::new(a.x, a.y, c.x, c.y, js, sub);
-    let halves = [(a, b, js, j_mid.min(je)), (b, c, j_mid.max(js), je)];
-    // Exact steps (integers, wrapping): the values at column 0 of the row,
-    // stepped by `sy` per row; a span's start is then one multiply-add
-    // away, `row + sx·x0`, the very value `anchor + sx·(x0 - ia) +
-    // sy·(j - ja)` modulo 2^32, however the left edge moved. (Stepping
-    // the left-edge value instead needed a carry-selected step per row
-    // and four more live values in the scanline loop.)
-    let col0 = anchor.add_n(&sx, ia.wrapping_neg());
-    for (top, bot, r0, r1) in halves {
-        if r0 >= r1 {
-            continue;
-        }
-        let mut short = Edge::new(top.x, top.y, bot.x, bot.y, r0, sub);
-        let mut row = col0.add_n(&sy, r0 - ja);
-        for j in r0..r1 {
-            let (xl, xr) = if long_left {
-                (long.x, short.x)
-            } else {
-                (short.x, long.x)
-            };
-            let x0 = xl.max(0);
-            let x1 = xr.min(window.width as i32);
-            if x0 < x1 {
-                let v = if L::EXACT_STEPS {
-                    row.add_n(&sx, x0)
-                } else {
-                    // Floats: afresh from the anchor on every row (see
-                    // `Lerp::EXACT_STEPS`).
-                    let vl = anchor.add_n(&sx, xl - ia).add_n(&sy, j - ja);
-                    if x0 == xl {
-                        vl
-                    } else {
-                        vl.add_n(&sx, x0 - xl)
-                    }
-                };
-                sink.span(&Span {
-                    y: j as u32,
-                    x0: x0 as u32,
-                    x1: x1 as u32,
-                    z: v.z,
-                    dz: sx.z,
-                    a: v.a,
-                    da: sx.a,
-                });
-            }
-            long.step();
-            short.step();
-            if L::EXACT_STEPS {
-                row.add(&sy);
-            }
-        }
+impl<L: Lerp, const N: usize, S: Spans<L, N>> RowSpans<L, N> for ToSpans<'_, S> {
+    #[inline(always)]
+    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>) {
+        self.0.span(&Span {
+            y: j as u32,
+            x0: x0 as u32,
+            x1: x1 as u32,
+            z: v.z,
+            dz: sx.z,
+            a: v.a,
+            da: sx.a,
+        });
     }
 }

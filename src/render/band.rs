@@ -10,7 +10,7 @@ use crate::raster::{
     Vertex,
 };
 use crate::scene::{Scene, SceneError};
-use crate::target::{DepthBuffer, DepthFormat, FrameBuf, PixelFormat, Rgb8, Target};
+use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
 
 /// Per-pixel Phong shading: the interpolated normal (and position)
 /// normalised and illuminated.
@@ -35,6 +35,12 @@ impl<'a, P: Profile> PhongShader<'a, P> {
     /// values).
     pub fn new(shade: &'a Shade<P::Real>, back: bool) -> Self {
         Self { shade, back }
+    }
+
+    /// Draws back faces (flipped normal) or front faces.
+    #[inline(always)]
+    pub fn set_back(&mut self, back: bool) {
+        self.back = back;
     }
 
     #[inline(always)]
@@ -81,7 +87,9 @@ impl<P: Profile> Shader<P::Lerp, 6> for PhongShader<'_, P> {
 /// What a render call drew.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RenderStats {
-    /// Triangles set up (a triangle spanning two bands counts twice).
+    /// Triangle setups: by the band renderer ([`super::Bands`]) each
+    /// prepared triangle once (more only when its pool was full); by
+    /// [`Frame::render`] each triangle reaching the target's window.
     pub triangles: u32,
     /// Pixels written (passing the depth test).
     pub pixels: u32,
@@ -90,7 +98,7 @@ pub struct RenderStats {
 impl<P: Profile> Frame<'_, P> {
     /// Vertex `i` of `po`, whose screen position `[x, y]` the caller
     /// fetched.
-    fn vertex<const N: usize>(
+    pub(super) fn vertex<const N: usize>(
         &self,
         po: &PreparedObject,
         i: u16,
@@ -255,65 +263,4 @@ impl<P: Profile> Frame<'_, P> {
         }
         Ok(stats)
     }
-}
-
-/// Renders a prepared frame band by band: for each band of `rows` rows,
-/// clears the band to the scene's background and the depth band, renders,
-/// and hands the band to `sink` (to send it to a display, or checksum it).
-///
-/// `pixels` holds `width × rows` pixels, `depth` (optional) as many
-/// values; the last band may be shorter.
-///
-/// # Errors
-/// A buffer of the wrong length, a render error, or the sink's error.
-pub fn render_in_bands<P, F, D, E>(
-    frame: &Frame<'_, P>,
-    scene: &Scene<'_, '_, P::Real>,
-    pixels: &mut [F::Raw],
-    mut depth: Option<&mut [D::Raw]>,
-    rows: u32,
-    mut sink: impl FnMut(&FrameBuf<'_, F>) -> Result<(), E>,
-) -> Result<RenderStats, E>
-where
-    P: Profile,
-    F: PixelFormat,
-    D: DepthFormat,
-    E: From<RenderError>,
-{
-    let (w, h) = frame.size();
-    // In u64: `w * rows` overflows u32 for a large `rows` (any u32 is
-    // accepted), and a wrapped product could match a short slice.
-    let need = u64::from(w) * u64::from(rows.max(1));
-    if rows == 0 || pixels.len() as u64 != need {
-        return Err(
-            RenderError::Buffer(crate::target::BufferError::WrongLength {
-                expected: usize::try_from(need).unwrap_or(usize::MAX),
-                actual: pixels.len(),
-            })
-            .into(),
-        );
-    }
-    let mut stats = RenderStats::default();
-    let mut y0 = 0;
-    while y0 < h {
-        let y1 = (y0 + rows).min(h);
-        let n = ((y1 - y0) * w) as usize;
-        // n <= w·rows == pixels.len(): `get_mut` never fails (no panic branch).
-        let pn = pixels.get_mut(..n).ok_or(RenderError::Window)?;
-        let mut fb = FrameBuf::<F>::band(pn, w, y0, y1).map_err(RenderError::from)?;
-        fb.clear(scene.background);
-        let s = match depth.as_deref_mut() {
-            Some(z) => {
-                let zn = z.get_mut(..n).ok_or(RenderError::Window)?;
-                let mut db = DepthBuffer::<D>::new(zn, w, y0, y1).map_err(RenderError::from)?;
-                frame.render(scene, &mut fb, Some(&mut db))?
-            }
-            None => frame.render::<_, D>(scene, &mut fb, None)?,
-        };
-        stats.triangles += s.triangles;
-        stats.pixels += s.pixels;
-        sink(&fb)?;
-        y0 = y1;
-    }
-    Ok(stats)
 }

@@ -26,12 +26,13 @@
 //! back sides of two-sided objects add vertices. Figures are checked by
 //! tests (`size_of`).
 
+mod active;
 mod band;
 pub mod clip;
 mod prepare;
 
-pub use band::PhongShader;
-pub use band::{render_in_bands, RenderStats};
+pub use active::{BandState, Bands, Pool, Slot};
+pub use band::{PhongShader, RenderStats};
 pub use prepare::prepare;
 
 use crate::num::Profile;
@@ -226,6 +227,9 @@ pub enum Part {
     Triangles,
     /// [`Workspace::heads`] (shorter than a mesh's vertex count).
     Heads,
+    /// The order scratch of a [`BandState`] (shorter than two entries per
+    /// prepared triangle).
+    Order,
 }
 
 /// Why a frame could not be prepared or rendered.

@@ -10,7 +10,8 @@ use crate::illum::{Light, Material, Specular, Viewer};
 use crate::mesh::{shapes, CornerNormals, Mesh};
 use crate::num::{Fast, Precise, Profile, Real, F32, F64};
 use crate::scene::{Camera, Object, Scene, Shading};
-use crate::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8, Target};
+use crate::target::{BandBuf, Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8, Target};
+use std::boxed::Box;
 
 /// Owned workspace memory for tests.
 struct Mem<L> {
@@ -101,24 +102,43 @@ fn full<P: Profile>(s: &Scene<'_, 'static, P::Real>, w: u32, h: u32, depth: bool
 }
 
 fn banded<P: Profile>(s: &Scene<'_, 'static, P::Real>, w: u32, h: u32, rows: u32) -> Vec<u8> {
+    let (out, stats, n) = banded_with::<P, 256, 8>(s, w, h, rows, true);
+    // A pool large enough: every prepared triangle set up exactly once.
+    assert_eq!(stats.triangles as usize, n, "rows {rows}");
+    // A pool of two slots of two values: the same bytes, more setups.
+    let (tiny, tiny_stats, _) = banded_with::<P, 2, 2>(s, w, h, rows, true);
+    assert_eq!(tiny, out, "tiny pool, rows {rows}");
+    if rows < h && n > 20 {
+        assert!(tiny_stats.triangles as usize > n, "rows {rows}");
+    }
+    out
+}
+
+/// Renders band by band through [`Frame::render_bands`]: the bytes, the
+/// statistics and the number of prepared triangles.
+fn banded_with<P: Profile, const CAP: usize, const V: usize>(
+    s: &Scene<'_, 'static, P::Real>,
+    w: u32,
+    h: u32,
+    rows: u32,
+    depth: bool,
+) -> (Vec<u8>, RenderStats, usize) {
     let mut mem = Mem::<P::Lerp>::new(12_000, 12_000);
     let frame = prepare::<P>(s, w, h, mem.ws()).unwrap();
     let mut px = vec![[0u8; 2]; (w * rows) as usize];
     let mut z = vec![0u16; (w * rows) as usize];
+    let mut band = BandBuf::<Rgb565Be>::new(&mut px, depth.then_some(&mut z[..]), w, rows).unwrap();
+    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut pool = Box::new(Pool::<P::Lerp, CAP, V>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
     let mut out = vec![];
-    render_in_bands::<P, Rgb565Be, Depth16, RenderError>(
-        &frame,
-        s,
-        &mut px,
-        Some(&mut z),
-        rows,
-        |b| {
+    let stats = frame
+        .render_bands(s, &mut state, &mut band, |b| {
             out.extend(b.bytes());
-            Ok(())
-        },
-    )
-    .unwrap();
-    out
+            Ok::<(), RenderError>(())
+        })
+        .unwrap();
+    (out, stats, frame.triangle_count())
 }
 
 #[test]
@@ -398,11 +418,12 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
             let objs = [object::<crate::num::Q16>(m, shading, [0.4, 0.7, 0.2])];
             let ls = lights();
             let s = scene(&objs, &ls, [0.0, 0.5, 4.0]);
-            assert_eq!(
-                full::<Fast>(&s, 80, 60, true),
-                full::<Fast>(&s, 80, 60, false),
-                "{shading:?}"
-            );
+            let whole = full::<Fast>(&s, 80, 60, true);
+            assert_eq!(whole, full::<Fast>(&s, 80, 60, false), "{shading:?}");
+            for rows in [1, 7, 60] {
+                let (b, ..) = banded_with::<Fast, 64, 8>(&s, 80, 60, rows, false);
+                assert_eq!(b, whole, "{shading:?} rows {rows}");
+            }
         }
     }
 }
@@ -676,4 +697,83 @@ fn capacity_and_scene_errors_are_values() {
         normals: &[],
         indices: &[],
     };
+}
+
+#[test]
+fn double_buffered_bands_equal_the_full_frame() {
+    let objs = every_shape::<crate::num::Q16>(Shading::Gouraud);
+    let ls = lights();
+    let s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
+    let (w, h, rows) = (96u32, 64u32, 10u32);
+    let whole = full::<Fast>(&s, w, h, true);
+    let mut mem = Mem::<i32>::new(12_000, 12_000);
+    let frame = prepare::<Fast>(&s, w, h, mem.ws()).unwrap();
+    let n = (w * rows) as usize;
+    let (mut p0, mut z0, mut p1, mut z1) = (
+        vec![[0u8; 2]; n],
+        vec![0u16; n],
+        vec![[0u8; 2]; n],
+        vec![0u16; n],
+    );
+    let mut bufs = [
+        BandBuf::<Rgb565Be>::new(&mut p0, Some(&mut z0), w, rows).unwrap(),
+        BandBuf::<Rgb565Be>::new(&mut p1, Some(&mut z1), w, rows).unwrap(),
+    ];
+    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut pool = Box::new(Pool::<i32, 64, 4>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
+    let mut bands = frame.bands(&s, &mut state, rows).unwrap();
+    let (mut out, mut i, mut sent) = (vec![], 0, None::<usize>);
+    while let Some(win) = bands.next_band(&mut bufs[i]).unwrap() {
+        assert_eq!(
+            win.y0,
+            out.len() as u32 / (2 * w) + sent.map_or(0, |_| rows)
+        );
+        // "Send" the buffer rendered before this one, while this one holds
+        // the next band.
+        if let Some(j) = sent {
+            out.extend(bufs[j].bytes());
+        }
+        sent = Some(i);
+        i ^= 1;
+    }
+    if let Some(j) = sent {
+        out.extend(bufs[j].bytes());
+    }
+    assert_eq!(out, whole);
+    assert_eq!(bands.stats().triangles as usize, frame.triangle_count());
+    // Bad band buffers and scratch are errors.
+    let mut small = vec![0u16; 3];
+    let mut pool = Pool::<i32, 4, 2>::new();
+    let mut st = BandState::new(&mut small, &mut pool);
+    assert_eq!(
+        frame.bands(&s, &mut st, rows).unwrap_err(),
+        RenderError::Capacity {
+            part: Part::Order,
+            object: 0
+        }
+    );
+    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut pool = Pool::<i32, 4, 2>::new();
+    let mut st = BandState::new(&mut order, &mut pool);
+    assert_eq!(
+        frame.bands(&s, &mut st, 0).unwrap_err(),
+        RenderError::Window
+    );
+    let mut b = frame.bands(&s, &mut st, rows + 1).unwrap();
+    assert_eq!(b.next_band(&mut bufs[0]).unwrap_err(), RenderError::Window);
+}
+
+#[test]
+fn band_of_equals_the_division() {
+    for rows in 1..=300u32 {
+        let (shift, m) = super::active::band_consts(rows);
+        for r in 0..4096 {
+            assert_eq!(
+                super::active::band_of(r, rows, shift, m),
+                r / rows,
+                "{r} / {rows}"
+            );
+        }
+    }
 }

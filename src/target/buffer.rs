@@ -38,6 +38,12 @@ impl<'a, F: PixelFormat> FrameBuf<'a, F> {
         Ok(Self { pixels, window })
     }
 
+    /// A buffer of a window already checked against the slice (by
+    /// [`check_window`]).
+    pub(crate) fn from_parts(pixels: &'a mut [F::Raw], window: Window) -> Self {
+        Self { pixels, window }
+    }
+
     /// Moves the band so that it holds rows `y0..y0 + rows` (same memory,
     /// same number of rows): the way to walk a screen band by band.
     ///

@@ -1,16 +1,17 @@
 //! Sending bands to an `embedded-graphics` display (feature
 //! `embedded-graphics`).
 //!
-//! Render into a [`FrameBuf`] band, then hand the band to any
+//! Render into a [`BandBuf`], then hand the band to any
 //! `DrawTarget` whose colour is `Rgb565`, `Rgb888`, `Gray8` or
-//! `BinaryColor` with [`draw_band`]: one `fill_contiguous` call over the
-//! band's rectangle, which display drivers such as `mipidsi` turn into one
-//! address window and one burst of pixels over SPI. With
-//! [`render_in_bands`](crate::render::render_in_bands) a whole frame goes
-//! out band by band:
+//! `BinaryColor` with [`draw_band`] ([`draw_frame_buf`] for a
+//! [`FrameBuf`]): one `fill_contiguous` call over the band's rectangle,
+//! which display drivers such as `mipidsi` turn into one address window
+//! and one burst of pixels over SPI. With
+//! [`Frame::render_bands`](crate::render::Frame::render_bands) a whole
+//! frame goes out band by band:
 //!
 //! ```text
-//! render_in_bands::<Fast, Rgb565Be, Depth16, _>(&frame, &scene, &mut band, Some(&mut depth), 16,
+//! frame.render_bands(&scene, &mut state, &mut band,
 //!     |b| draw_band(b, &mut display).map_err(MyError::Display))?;
 //! ```
 //!
@@ -20,7 +21,7 @@
 //! Bayer index 0..=15, so a uniform grey `g` lights exactly `⌈16·g/255 − ½⌉`
 //! of every 4×4 block (tested for all 256 levels): 0 lights none, 255 all.
 
-use super::{FrameBuf, Gray8 as Gray8Format, PixelFormat, Rgb8};
+use super::{BandBuf, DepthFormat, FrameBuf, Gray8 as Gray8Format, PixelFormat, Rgb8};
 use embedded_graphics_core::{
     draw_target::DrawTarget,
     geometry::{Point, Size},
@@ -78,19 +79,41 @@ impl FromShaded for BinaryColor {
 ///
 /// # Errors
 /// The display's error.
-pub fn draw_band<F, D>(band: &FrameBuf<'_, F>, display: &mut D) -> Result<(), D::Error>
+pub fn draw_band<F, Z, D>(band: &BandBuf<'_, F, Z>, display: &mut D) -> Result<(), D::Error>
+where
+    F: PixelFormat,
+    Z: DepthFormat,
+    D: DrawTarget,
+    D::Color: FromShaded,
+{
+    draw_pixels::<F, D>(band.pixels(), band.window(), display)
+}
+
+/// [`draw_band`] for a [`FrameBuf`] (a band or a whole frame).
+///
+/// # Errors
+/// The display's error.
+pub fn draw_frame_buf<F, D>(band: &FrameBuf<'_, F>, display: &mut D) -> Result<(), D::Error>
 where
     F: PixelFormat,
     D: DrawTarget,
     D::Color: FromShaded,
 {
-    let w = super::Target::window(band);
+    draw_pixels::<F, D>(band.pixels(), super::Target::window(band), display)
+}
+
+fn draw_pixels<F, D>(pixels: &[F::Raw], w: super::Window, display: &mut D) -> Result<(), D::Error>
+where
+    F: PixelFormat,
+    D: DrawTarget,
+    D::Color: FromShaded,
+{
     if w.is_empty() {
         return Ok(());
     }
     let area = Rectangle::new(Point::new(0, w.y0 as i32), Size::new(w.width, w.rows()));
     let width = w.width.max(1);
-    let colors = band.pixels().iter().enumerate().map(|(i, &p)| {
+    let colors = pixels.iter().enumerate().map(|(i, &p)| {
         let (x, y) = (i as u32 % width, w.y0 + i as u32 / width);
         D::Color::from_shaded(F::decode(p), x, y)
     });
@@ -167,7 +190,7 @@ mod tests {
         band.clear(Rgb8::new(255, 128, 8));
         band.write_pixel(2, 6, Rgb565Be::encode(Rgb8::new(0, 255, 0)));
         let mut d = mock::<Rgb565>(8, 10);
-        draw_band(&band, &mut d).unwrap();
+        draw_frame_buf(&band, &mut d).unwrap();
         assert_eq!(d.fills, 1);
         assert!(
             d.px[..40].iter().all(|p| p.is_none()),
@@ -180,7 +203,7 @@ mod tests {
         assert_eq!(d.px[5 * 8], Some(Rgb565::new(31, 32, 1)));
         assert_eq!(d.px[6 * 8 + 2], Some(Rgb565::new(0, 63, 0)));
         let mut g = mock::<Gray8>(8, 10);
-        draw_band(&band, &mut g).unwrap();
+        draw_frame_buf(&band, &mut g).unwrap();
         assert_eq!(g.px[6 * 8 + 2], Some(Gray8::new(149)));
     }
 
@@ -193,7 +216,7 @@ mod tests {
             let mut band = FrameBuf::<crate::target::Rgb888>::new(&mut buf, 4, 4).unwrap();
             band.clear(Rgb8::grey(level));
             let mut d = mock::<BinaryColor>(4, 4);
-            draw_band(&band, &mut d).unwrap();
+            draw_frame_buf(&band, &mut d).unwrap();
             let lit = d.px.iter().filter(|p| **p == Some(BinaryColor::On)).count();
             assert_eq!(lit, on, "level {level}");
         }

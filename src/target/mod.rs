@@ -17,12 +17,14 @@
 //! slice. A slice of the wrong length is an error value
 //! ([`BufferError`]), never a panic.
 
+mod band;
 mod buffer;
 mod depth;
 #[cfg(feature = "embedded-graphics")]
 pub mod eg;
 mod format;
 
+pub use band::BandBuf;
 pub use buffer::FrameBuf;
 pub use depth::{Depth16, Depth32, DepthBuffer, DepthFormat};
 pub use format::{Gray8, PixelFormat, Rgb565Be, Rgb565Le, Rgb8, Rgb888};

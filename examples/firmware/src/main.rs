@@ -33,7 +33,7 @@ use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
 use fixshade::render::{Link, PhongShader, Tri, Workspace};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
-    capacity_of, check, render_frame, FrameError, Needs, Pixel, Probe, BAND_PIXELS, BAND_ROWS,
+    capacity_of, check, render_frame, BandPool, FrameError, Needs, Pixel, Probe, BAND_PIXELS, BAND_ROWS,
     MAX_NEEDS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
 };
 
@@ -149,6 +149,8 @@ struct Memory {
     tris: &'static mut [Tri; CAP.triangles],
     heads: &'static mut [u16; CAP.heads],
     links: &'static mut [Link; CAP.vertices],
+    order: &'static mut [u16; 2 * CAP.triangles],
+    pool: &'static mut BandPool,
 }
 
 impl Memory {
@@ -214,6 +216,8 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
             ws,
             &mut mem.pixels[..],
             &mut mem.depth[..],
+            &mut mem.order[..],
+            mem.pool,
             &mut Markers,
         )
         .map_err(|e| Failure::Frame(spec.name, e))?;
@@ -358,6 +362,8 @@ fn main() -> ! {
     static mut VALS: [i32; CAP.values] = [0; CAP.values];
     static mut TRIS: [Tri; CAP.triangles] = [NO_TRI; CAP.triangles];
     static mut HEADS: [u16; CAP.heads] = [0; CAP.heads];
+    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut POOL: BandPool = BandPool::new();
     // `Link` has private fields and no const constructor: initialised
     // below with `Link::default()`.
     static mut LINKS: MaybeUninit<[Link; CAP.vertices]> = MaybeUninit::uninit();
@@ -379,6 +385,8 @@ fn main() -> ! {
         tris: TRIS,
         heads: HEADS,
         links,
+        order: ORDER,
+        pool: POOL,
     };
     let status = match run(&mut mem) {
         Ok(()) => debug::EXIT_SUCCESS,

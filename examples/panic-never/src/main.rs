@@ -35,9 +35,9 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::{BUNNY, DODECAHEDRON};
 use fixshade::num::{Profile, Real};
-use fixshade::render::{prepare, render_in_bands, Link, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{Depth16, Rgb565Be, Rgb8};
+use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 
 #[cfg(not(feature = "precise"))]
 type P = fixshade::num::Fast;
@@ -51,6 +51,8 @@ const WIDTH: u32 = 240;
 const HEIGHT: u32 = 240;
 const BAND_ROWS: u32 = 16;
 const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
+/// Active triangles kept from band to band.
+const POOL: usize = 32;
 
 /// Workspace capacities (the scene below uses about half of each; the
 /// frame lines printed under QEMU give the figures).
@@ -178,6 +180,8 @@ fn frame(
     ws: Workspace<'_, L>,
     band: &mut [[u8; 2]],
     depth: &mut [u16],
+    order: &mut [u16],
+    pool: &mut Pool<L, POOL, 8>,
 ) -> Result<Stats, RenderError> {
     // The eye at (0, 1/2, 4) looking at the origin, vertical field of view
     // 0.785 rad (45°), near plane 1, far plane 10.
@@ -270,17 +274,12 @@ fn frame(
     let (w, h, rows) = black_box((WIDTH, HEIGHT, BAND_ROWS));
     let frame = prepare::<P>(&scene, w, h, ws)?;
     let mut checksum = 0x811c_9dc5;
-    let stats = render_in_bands::<P, Rgb565Be, Depth16, RenderError>(
-        &frame,
-        &scene,
-        band,
-        Some(depth),
-        rows,
-        |fb| {
-            checksum = fnv1a(checksum, fb.pixels());
-            Ok(())
-        },
-    )?;
+    let mut band = BandBuf::<Rgb565Be>::new(band, Some(depth), w, rows)?;
+    let mut state = BandState::new(order, pool);
+    let stats = frame.render_bands(&scene, &mut state, &mut band, |fb| {
+        checksum = fnv1a(checksum, fb.pixels());
+        Ok::<(), RenderError>(())
+    })?;
     Ok(Stats {
         checksum,
         pixels: stats.pixels,
@@ -302,6 +301,8 @@ fn main() -> ! {
     static mut LINKS: Option<[Link; MAX_VERTS]> = None;
     static mut BAND: [[u8; 2]; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
+    static mut ORDER: [u16; 2 * MAX_TRIS] = [0; 2 * MAX_TRIS];
+    static mut POOL_SLOTS: Pool<L, POOL, 8> = Pool::new();
 
     let links = LINKS.get_or_insert_with(|| [Link::default(); MAX_VERTS]);
     let mut line = Line::new();
@@ -323,7 +324,7 @@ fn main() -> ! {
             heads: &mut HEADS[..],
             links: &mut links[..],
         };
-        match frame(f, ws, &mut BAND[..], &mut DEPTH[..]) {
+        match frame(f, ws, &mut BAND[..], &mut DEPTH[..], &mut ORDER[..], POOL_SLOTS) {
             Ok(s) => {
                 line.text("frame ")
                     .dec(f as u32)

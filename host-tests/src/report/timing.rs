@@ -88,14 +88,14 @@ fn time_format<P: Profile, F: CorePixelFormat>(
 
     // The bytes of one frame, kept once (untimed) for the check.
     let mut bytes = Vec::with_capacity((desc.width * desc.height) as usize * F::BYTES);
-    let pixels_drawn = r.frame(&scene, |fb, _| bytes.extend(fb.bytes()))?.pixels;
+    let pixels_drawn = r.frame(&scene, |b| bytes.extend(b.bytes()))?.pixels;
     let mut runs_ns = Vec::new();
     let mut total = Duration::ZERO;
     while runs_ns.len() < repeats.max_runs.max(1) as usize
         && (runs_ns.len() < repeats.min_runs.max(1) as usize || total < repeats.min_time)
     {
         let start = Instant::now();
-        r.frame(&scene, |_, _| {})?;
+        r.frame(&scene, |_| {})?;
         let t = start.elapsed();
         total += t;
         runs_ns.push(u64::try_from(t.as_nanos()).unwrap_or(u64::MAX));

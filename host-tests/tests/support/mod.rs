@@ -8,10 +8,10 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
 use fixshade::num::{Profile, Real};
-use fixshade::render::{prepare, render_in_bands, Link, RenderError, RenderStats, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Link, Pool, RenderError, RenderStats, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
 use fixshade::target::{
-    Depth32, DepthBuffer, FrameBuf, Gray8, PixelFormat, Rgb8, Rgb888, Target, Window,
+    BandBuf, Depth32, DepthBuffer, FrameBuf, Gray8, PixelFormat, Rgb8, Rgb888, Target, Window,
 };
 use fixshade_host::ideal::{self, IdealScene};
 
@@ -96,7 +96,7 @@ pub fn render_full<P: Profile>(
     })
 }
 
-/// As [`render_full`], band by band through [`render_in_bands`]; returns
+/// As [`render_full`], band by band through `Frame::render_bands`; returns
 /// the concatenated RGB888 bytes of the bands.
 pub fn render_banded<P: Profile>(
     scene: &Scene<'_, '_, P::Real>,
@@ -109,17 +109,16 @@ pub fn render_banded<P: Profile>(
     let mut px = vec![[0u8; 3]; (w * rows) as usize];
     let mut z = vec![0u32; (w * rows) as usize];
     let mut out = Vec::with_capacity((w * h) as usize);
-    render_in_bands::<P, Rgb888, Depth32, RenderError>(
-        &frame,
-        scene,
-        &mut px,
-        Some(&mut z),
-        rows,
-        |b| {
-            out.extend_from_slice(b.pixels());
-            Ok(())
-        },
-    )?;
+    let mut band = BandBuf::<Rgb888, Depth32>::with_depth(&mut px, Some(&mut z), w, rows)?;
+    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut pool = Box::new(Pool::<P::Lerp, 512, 8>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
+    let stats = frame.render_bands(scene, &mut state, &mut band, |b| {
+        out.extend_from_slice(b.pixels());
+        Ok::<(), RenderError>(())
+    })?;
+    // Every prepared triangle set up once (the pool holds them all).
+    assert_eq!(stats.triangles as usize, frame.triangle_count());
     Ok(out)
 }
 

@@ -11,7 +11,9 @@
 
 use fixshade::render::{Link, Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
-use fixshade_scenes::{render_frame, Crc32, Needs, NoProbe, Pixel, BAND_PIXELS, MAX_NEEDS, SCENES};
+use fixshade_scenes::{
+    render_frame, BandPool, Crc32, Needs, NoProbe, Pixel, BAND_PIXELS, MAX_NEEDS, SCENES,
+};
 use std::{error::Error, fs, io::Write, path::PathBuf};
 
 /// Workspace memory on the heap.
@@ -57,9 +59,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut ws = Owned::new(MAX_NEEDS);
     let mut px = vec![[0u8; 2]; BAND_PIXELS];
     let mut z = vec![0u16; BAND_PIXELS];
+    let mut order = vec![0u16; 2 * MAX_NEEDS.triangles];
+    let mut pool = Box::new(BandPool::new());
     println!("fixshade-host-check target=host profile=fast");
     for spec in SCENES.iter() {
-        let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut NoProbe)
+        let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut order, &mut pool, &mut NoProbe)
             .map_err(|e| format!("scene {}: {e}", spec.name))?;
         println!(
             "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
@@ -109,7 +113,17 @@ fn whole_frame(
     crc.update(fb.bytes());
     let mut banded_px = vec![[0u8; 2]; BAND_PIXELS];
     let mut banded_z = vec![0u16; BAND_PIXELS];
-    let banded = render_frame(spec, ws.ws(), &mut banded_px, &mut banded_z, &mut NoProbe)?;
+    let mut order = vec![0u16; 2 * MAX_NEEDS.triangles];
+    let mut pool = Box::new(BandPool::new());
+    let banded = render_frame(
+        spec,
+        ws.ws(),
+        &mut banded_px,
+        &mut banded_z,
+        &mut order,
+        &mut pool,
+        &mut NoProbe,
+    )?;
     if crc.finish() != banded.crc {
         return Err(format!("{}: whole frame differs from the bands", spec.name).into());
     }

@@ -37,11 +37,9 @@ pub use spec::{Needs, ObjectSpec, SceneSpec};
 
 use core::fmt;
 use fixshade::num::{Fast, Q16};
-use fixshade::render::{prepare, Frame, RenderError, Workspace};
+use fixshade::render::{prepare, BandState, Frame, Pool, RenderError, Workspace};
 use fixshade::scene::Object;
-use fixshade::target::{
-    BufferError, Depth16, DepthBuffer, DepthFormat, FrameBuf, Rgb565Be, Target,
-};
+use fixshade::target::{BandBuf, BufferError, Depth16, DepthFormat, Rgb565Be};
 
 /// Widest frame (and height) the band buffers hold.
 pub const WIDTH: u32 = 240;
@@ -52,10 +50,18 @@ pub const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
 
 /// One stored pixel: RGB565, big-endian.
 pub type Pixel = [u8; 2];
-/// A band of the frame.
-pub type Band<'a> = FrameBuf<'a, Rgb565Be>;
-/// The band's depth buffer.
-pub type BandDepth<'a> = DepthBuffer<'a, Depth16>;
+/// A band of the frame, with its 16-bit depth band.
+pub type Band<'a> = BandBuf<'a, Rgb565Be>;
+
+/// Active triangles the firmware keeps from band to band (the scene tests
+/// check that every built-in scene sets each triangle up once with it:
+/// the bunny keeps at most 55).
+pub const POOL_SLOTS: usize = 64;
+/// Values a pool slot holds: 8, every layout (dodeca-phong-n100 has 7:
+/// depth, normal, eye position).
+pub const POOL_VALUES: usize = 8;
+/// The firmware's pool of active triangles.
+pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
 
 /// Marks the measured work: the firmware executes marker instructions
 /// that the instruction-counting QEMU plugin toggles counting on (and
@@ -90,6 +96,9 @@ pub struct FrameStats {
     pub drawn: u32,
     /// Triangle setups (a triangle spanning two bands counts twice).
     pub setups: u32,
+    /// Most triangles carried across a band border (the pool slots that
+    /// set every triangle up once).
+    pub active_peak: u32,
     /// Prepared vertices.
     pub vertices: u32,
     /// Prepared triangles.
@@ -187,6 +196,8 @@ pub fn render_frame<P: Probe>(
     ws: Workspace<'_, i32>,
     pixels: &mut [Pixel],
     depth: &mut [u16],
+    order: &mut [u16],
+    pool: &mut BandPool,
     probe: &mut P,
 ) -> Result<FrameStats, FrameError> {
     // Geometry.
@@ -205,57 +216,47 @@ pub fn render_frame<P: Probe>(
     let (scene, frame) = prepared?;
     let mut stats = prepared_stats(&frame);
 
-    // Raster.
-    let (w, h) = (spec.width, spec.height);
+    // Raster: the triangle order, then band by band (clear, render).
+    let w = spec.width;
     let mut crc = Crc32::new();
-    let mut y0 = 0;
-    while y0 < h {
-        let y1 = (y0 + BAND_ROWS).min(h);
-        let n = ((y1 - y0) * w) as usize;
-        let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
-            return Err(BufferError::WrongLength {
-                expected: n,
-                actual: pixels.len().min(depth.len()),
-            }
-            .into());
-        };
+    let n = (w * BAND_ROWS) as usize;
+    let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
+        return Err(BufferError::WrongLength {
+            expected: n,
+            actual: pixels.len().min(depth.len()),
+        }
+        .into());
+    };
+    let mut band = Band::new(px, Some(z), w, BAND_ROWS)?;
+    let mut state = BandState::new(order, pool);
+    probe.resume();
+    let bands = frame.bands(&scene, &mut state, BAND_ROWS);
+    probe.pause();
+    let mut bands = bands?;
+    loop {
         probe.resume();
-        let r = draw_band(&frame, &scene, px, z, w, y0, y1);
+        let r = bands.next_band(&mut band);
         probe.pause();
-        let s = r?;
-        stats.setups += s.triangles;
-        stats.drawn += s.pixels;
-        let fb = Band::band(px, w, y0, y1)?;
-        crc.update(fb.bytes());
+        if r?.is_none() {
+            break;
+        }
+        crc.update(band.bytes());
+        let z = band.depth().unwrap_or(&[]);
         stats.covered += z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
-        y0 = y1;
     }
+    stats.setups = bands.stats().triangles;
+    stats.active_peak = bands.active_peak() as u32;
+    stats.drawn = bands.stats().pixels;
     probe.close();
     stats.crc = crc.finish();
     Ok(stats)
-}
-
-/// The measured work of one band: clear colour and depth, render.
-#[inline(always)]
-fn draw_band(
-    frame: &Frame<'_, Fast>,
-    scene: &fixshade::scene::Scene<'_, '_, Q16>,
-    px: &mut [Pixel],
-    z: &mut [u16],
-    w: u32,
-    y0: u32,
-    y1: u32,
-) -> Result<fixshade::render::RenderStats, FrameError> {
-    let mut fb = Band::band(px, w, y0, y1)?;
-    fb.clear(scene.background);
-    let mut db = BandDepth::new(z, w, y0, y1)?;
-    Ok(frame.render(scene, &mut fb, Some(&mut db))?)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use fixshade::render::{Link, Part, Tri};
+    use fixshade::target::{DepthBuffer, FrameBuf, Target};
     use std::{vec, vec::Vec};
 
     struct Owned {
@@ -296,9 +297,9 @@ mod tests {
         let n = (spec.width * spec.height) as usize;
         let mut px = vec![[0u8; 2]; n];
         let mut z = vec![0u16; n];
-        let mut fb = Band::new(&mut px, spec.width, spec.height).unwrap();
+        let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, spec.width, spec.height).unwrap();
         fb.clear(scene.background);
-        let mut db = BandDepth::new(&mut z, spec.width, 0, spec.height).unwrap();
+        let mut db = DepthBuffer::<Depth16>::new(&mut z, spec.width, 0, spec.height).unwrap();
         frame.render(&scene, &mut fb, Some(&mut db)).unwrap();
         let mut crc = Crc32::new();
         crc.update(fb.bytes());
@@ -311,8 +312,15 @@ mod tests {
         let mut ws = Owned::new(MAX_NEEDS);
         let mut px = vec![[0u8; 2]; BAND_PIXELS];
         let mut z = vec![0u16; BAND_PIXELS];
+        let mut order = vec![0u16; 2 * MAX_NEEDS.triangles];
+        let mut pool = std::boxed::Box::new(BandPool::new());
         for spec in SCENES.iter() {
-            let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut NoProbe).unwrap();
+            let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut order, &mut pool, &mut NoProbe)
+                .unwrap();
+            // The pool holds every active triangle: each set up once.
+            std::println!("{} active peak {}", spec.name, s.active_peak);
+            assert!(s.active_peak as usize <= POOL_SLOTS, "{}", spec.name);
+            assert_eq!(s.setups, s.triangles, "{}", spec.name);
             assert_eq!(
                 (s.crc, s.covered),
                 whole_frame(spec, ws.ws()),

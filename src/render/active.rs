@@ -1,0 +1,776 @@
+//! The band renderer: an active triangle list walked band to band.
+//!
+//! [`Frame::bands`] orders the prepared triangles by the band of their
+//! first row (a stable counting sort of their indices, about 10
+//! instructions per triangle, into the caller's [`BandState`]). Each band
+//! then draws, in triangle order (so that ties of equal depth resolve as
+//! in a full frame), the merge of three ordered streams:
+//!
+//! - the *active* triangles, set up in an earlier band and kept in the
+//!   [`Pool`] with their edge walkers and row values: resumed where they
+//!   stopped, no setup;
+//! - the triangles starting in this band (the next run of the order):
+//!   set up once, walked down to the band's last row, and kept in the pool
+//!   when they continue below it;
+//! - the triangles that continue from the band above but found the pool
+//!   full (or have more values than a slot holds): set up afresh at this
+//!   band's first row, exactly (the edge walkers' exact start at any row),
+//!   so the bytes are the same, only slower.
+//!
+//! No band scans the triangles of other bands, and with a pool large
+//! enough every triangle is set up exactly once per frame. A triangle
+//! walked in pieces gives the very columns and values of one walked at
+//! once (integer DDA, exact wrapping steps), so a banded frame equals the
+//! full frame byte for byte.
+//!
+//! # Memory
+//! | part | bytes |
+//! |------|-------|
+//! | order scratch ([`BandState`]) | 4 per prepared triangle (`2 ×` [`Frame::triangle_count`] `u16`: the order, and the queue of triangles that found the pool full) |
+//! | pool slot ([`Pool::SLOT_BYTES`]) | 84 (edge walkers and rows) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's lists |
+//!
+//! With `i32` values: 112 bytes per active triangle for `V = 2` (depth
+//! and a grey level), 136 for `V = 4`, 184 for `V = 8` (any layout). The
+//! bunny at 240×240 in 16-row bands keeps at most about 40 triangles
+//! active at a band border.
+
+use super::band::PhongShader;
+use super::prepare::eye_lights;
+use super::{Frame, Layout, Part, PreparedObject, RenderError, RenderStats, Tri};
+use crate::illum::{Light, Shade, MAX_LIGHTS};
+use crate::num::Profile;
+use crate::raster::{
+    in_limits, setup, sort3, span_pixels, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError,
+    RowSpans, Shader, Vals, Walk,
+};
+use crate::scene::{Scene, SceneError};
+use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
+
+/// One active triangle: its index, walk and values.
+#[derive(Clone, Copy, Debug)]
+pub struct Slot<L, const V: usize> {
+    tri: u16,
+    walk: Walk,
+    /// Per value (depth first): the value at column 0 of the next row
+    /// (floats: at the anchor), its step per pixel along x, along y.
+    vals: [[L; 3]; V],
+}
+
+/// The active triangles' storage: `CAP` slots of `V` values each (depth
+/// and attributes: 2 for grey Gouraud, 4 for colour Gouraud or Phong with
+/// a normal, 8 for every layout), sized by the compiler.
+///
+/// A triangle with more values than `V`, or arriving when every slot is
+/// taken, is set up afresh in each band it reaches instead (the same
+/// bytes, more setups: see [`RenderStats::triangles`]).
+#[derive(Clone, Debug)]
+pub struct Pool<L, const CAP: usize, const V: usize = 8> {
+    slots: [Slot<L, V>; CAP],
+    /// Ring of the slots in use, in triangle order.
+    ring: [u16; CAP],
+    /// Free slots (a stack).
+    free: [u16; CAP],
+}
+
+impl<L: Lerp, const CAP: usize, const V: usize> Pool<L, CAP, V> {
+    /// Bytes of one slot (the RAM per active triangle, without the 4 bytes
+    /// of the two lists).
+    pub const SLOT_BYTES: usize = core::mem::size_of::<Slot<L, V>>();
+
+    /// An empty pool (`const`: it may live in a `static`).
+    pub const fn new() -> Self {
+        Self {
+            slots: [Slot {
+                tri: 0,
+                walk: Walk::EMPTY,
+                vals: [[L::ZERO; 3]; V],
+            }; CAP],
+            ring: [0; CAP],
+            free: [0; CAP],
+        }
+    }
+}
+
+impl<L: Lerp, const CAP: usize, const V: usize> Default for Pool<L, CAP, V> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The band renderer's memory besides the band buffer: the triangle order
+/// (`2 ×` [`Frame::triangle_count`] `u16`) and the active pool.
+#[derive(Debug)]
+pub struct BandState<'a, L, const CAP: usize, const V: usize = 8> {
+    /// Scratch for the order of the triangles.
+    pub order: &'a mut [u16],
+    /// The active triangles.
+    pub pool: &'a mut Pool<L, CAP, V>,
+}
+
+impl<'a, L: Lerp, const CAP: usize, const V: usize> BandState<'a, L, CAP, V> {
+    /// The state in `order` (at least two entries per prepared triangle)
+    /// and `pool`.
+    pub fn new(order: &'a mut [u16], pool: &'a mut Pool<L, CAP, V>) -> Self {
+        Self { order, pool }
+    }
+}
+
+/// No triangle (an exhausted stream).
+const NONE: u32 = u32::MAX;
+
+/// Buckets of one counting-sort pass.
+const RADIX_BITS: u32 = 6;
+
+/// A frame being rendered band by band (see the [module docs](self)):
+/// [`Bands::next_band`] renders the next band into a band buffer.
+///
+/// ```
+/// use fixshade::geom::{Affine, Vec3};
+/// use fixshade::illum::{Light, Material, Specular, Viewer};
+/// use fixshade::mesh::shapes::DODECAHEDRON;
+/// use fixshade::num::{Fast, Real, Q16};
+/// use fixshade::render::{prepare, BandState, Link, Pool, Tri, Workspace};
+/// use fixshade::scene::{Camera, Object, Scene, Shading};
+/// use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
+///
+/// let q = |n: i32, d: i32| Q16::from_ratio(n, d);
+/// let camera = Camera::look_at(
+///     Vec3::new(q(0, 1), q(0, 1), q(6, 1)), Vec3::ZERO, Vec3::new(q(0, 1), q(1, 1), q(0, 1)),
+///     fixshade::geom::radians(q(40, 1)), q(1, 2), None,
+/// )?;
+/// let material = Material { color: Vec3::new(q(1, 1), q(3, 10), q(2, 10)), ka: q(2, 10), kd: q(5, 10), ks: q(0, 1), shininess: q(1, 1) };
+/// let objects = [Object { mesh: DODECAHEDRON, transform: Affine::IDENTITY, material, shading: Shading::Gouraud, cull_backfaces: true }];
+/// let lights = [Light::point(Vec3::new(q(0, 1), q(0, 1), q(2, 1)), q(1, 1))];
+/// let scene = Scene { camera, objects: &objects, lights: &lights, ambient: q(1, 1),
+///                     specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
+/// let (mut xy, mut vals, mut tris) = ([[0; 2]; 64], [0i32; 64 * 7], [Tri::default(); 64]);
+/// let (mut heads, mut links) = ([0u16; 20], [Link::default(); 64]);
+/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris, heads: &mut heads, links: &mut links };
+/// let frame = prepare::<Fast>(&scene, 96, 96, ws)?;
+///
+/// // Two band buffers of 8 rows: one is rendered while the other is sent.
+/// let (mut p0, mut z0) = ([[0u8; 2]; 96 * 8], [0u16; 96 * 8]);
+/// let (mut p1, mut z1) = ([[0u8; 2]; 96 * 8], [0u16; 96 * 8]);
+/// let mut bufs = [
+///     BandBuf::<Rgb565Be>::new(&mut p0, Some(&mut z0), 96, 8)?,
+///     BandBuf::<Rgb565Be>::new(&mut p1, Some(&mut z1), 96, 8)?,
+/// ];
+/// let (mut order, mut pool) = ([0u16; 128], Pool::<i32, 16, 4>::new());
+/// let mut state = BandState::new(&mut order, &mut pool);
+/// let mut bands = frame.bands(&scene, &mut state, 8)?;
+/// let mut i = 0;
+/// while let Some(win) = bands.next_band(&mut bufs[i])? {
+///     // Start sending bufs[i] (rows win.y0..win.y1) by DMA here; the
+///     // next band is rendered into the other buffer meanwhile.
+///     assert_eq!(bufs[i].pixels().len(), (96 * win.rows()) as usize);
+///     i ^= 1;
+/// }
+/// // Each prepared triangle set up once.
+/// assert_eq!(bands.stats().triangles as usize, frame.triangle_count());
+/// # Ok::<(), Box<dyn core::error::Error>>(())
+/// ```
+#[derive(Debug)]
+pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
+    frame: &'a Frame<'w, P>,
+    scene: &'a Scene<'a, 'a, P::Real>,
+    lights: heapless::Vec<Light<P::Real>, MAX_LIGHTS>,
+    order: &'a mut [u16],
+    pool: &'a mut Pool<P::Lerp, CAP, V>,
+    rows: u32,
+    /// First row of the next band.
+    y: u32,
+    /// Prepared triangles.
+    n: usize,
+    /// Next entry of the order.
+    cursor: usize,
+    /// Pool ring: first entry, entries of the band above still to resume,
+    /// entries in all.
+    ring_head: usize,
+    ring_cur: usize,
+    ring_len: usize,
+    free_len: usize,
+    /// Queue of triangles that found the pool full (in `order[n..2n]`):
+    /// first entry, entries of the band above, entries in all.
+    def_head: usize,
+    def_cur: usize,
+    def_len: usize,
+    /// Most triangles kept at once so far (in the pool, or queued when it
+    /// was full).
+    peak: usize,
+    stats: RenderStats,
+}
+
+impl<'w, P: Profile> Frame<'w, P> {
+    /// Starts rendering the frame in bands of `rows` rows (see [`Bands`]):
+    /// orders the triangles into `state`.
+    ///
+    /// # Errors
+    /// [`RenderError::Capacity`] ([`Part::Order`]) when the order scratch
+    /// holds fewer than two entries per prepared triangle;
+    /// [`RenderError::Window`] for `rows == 0`; a scene with too many
+    /// lights gives [`RenderError::Scene`].
+    pub fn bands<'a, const CAP: usize, const V: usize>(
+        &'a self,
+        scene: &'a Scene<'_, '_, P::Real>,
+        state: &'a mut BandState<'_, P::Lerp, CAP, V>,
+        rows: u32,
+    ) -> Result<Bands<'a, 'w, P, CAP, V>, RenderError> {
+        let n = self.triangle_count();
+        let order = &mut *state.order;
+        if order.len() < 2 * n || n > u16::MAX as usize {
+            return Err(RenderError::Capacity {
+                part: Part::Order,
+                object: 0,
+            });
+        }
+        if rows == 0 {
+            return Err(RenderError::Window);
+        }
+        let lights = eye_lights(scene)?;
+        let pool = &mut *state.pool;
+        for (i, f) in pool.free.iter_mut().enumerate() {
+            *f = (CAP - 1 - i) as u16;
+        }
+        sort_by_band(self.tris(), order, rows, self.height);
+        Ok(Bands {
+            frame: self,
+            scene,
+            lights,
+            order,
+            pool,
+            rows,
+            y: 0,
+            n,
+            cursor: 0,
+            ring_head: 0,
+            ring_cur: 0,
+            ring_len: 0,
+            free_len: CAP,
+            def_head: 0,
+            def_cur: 0,
+            def_len: 0,
+            peak: 0,
+            stats: RenderStats::default(),
+        })
+    }
+
+    /// Renders the whole frame band by band into `band` (cleared to the
+    /// scene's background before each band), handing each finished band to
+    /// `sink` (to send it to a display, or checksum it).
+    ///
+    /// # Errors
+    /// As [`Frame::bands`] and [`Bands::next_band`], or the sink's error.
+    pub fn render_bands<F, D, E, const CAP: usize, const V: usize>(
+        &self,
+        scene: &Scene<'_, '_, P::Real>,
+        state: &mut BandState<'_, P::Lerp, CAP, V>,
+        band: &mut BandBuf<'_, F, D>,
+        mut sink: impl FnMut(&BandBuf<'_, F, D>) -> Result<(), E>,
+    ) -> Result<RenderStats, E>
+    where
+        F: PixelFormat,
+        D: DepthFormat,
+        E: From<RenderError>,
+    {
+        let mut bands = self.bands(scene, state, band.rows())?;
+        while bands.next_band(band)?.is_some() {
+            sink(band)?;
+        }
+        Ok(bands.stats())
+    }
+}
+
+/// Band of a row: `r / rows`, without a division for the usual heights
+/// (a power of two: a shift; below 256: a multiply by `ceil(2^20 /
+/// rows)`, exact for `r < 2^12`: the product stays below `2^12 · 2^19`
+/// and its excess over `r / rows` below `r / 2^20 < 2^-8 <= 1 / rows`).
+#[inline(always)]
+pub(super) fn band_of(r: u32, rows: u32, shift: Option<u32>, m: u32) -> u32 {
+    match shift {
+        Some(s) => r >> s,
+        None if m != 0 => (r * m) >> 20,
+        None => r / rows.max(1),
+    }
+}
+
+/// The divisor constants of [`band_of`] for `rows`.
+pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
+    if rows.is_power_of_two() {
+        (Some(rows.trailing_zeros()), 0)
+    } else if rows < 256 {
+        (None, (1u32 << 20).div_ceil(rows))
+    } else {
+        (None, 0)
+    }
+}
+
+/// Orders the indices of `tris` by the band of their first row, stably,
+/// into `order[..n]` (`order[n..2n]` is scratch): one counting-sort pass
+/// for up to 64 bands, two (by the low and the high 6 bits) for more.
+fn sort_by_band(tris: &[Tri], order: &mut [u16], rows: u32, height: u32) {
+    let n = tris.len();
+    let (shift, m) = band_consts(rows);
+    let last = height.div_ceil(rows).saturating_sub(1);
+    // Rows lie within the screen (at most 4096): keys below 2^12.
+    let key = |t: &Tri| band_of((t.rows[0] as u32).min(4095), rows, shift, m).min(last);
+    let (lo, hi) = order.split_at_mut(n);
+    let Some(hi) = hi.get_mut(..n) else {
+        return;
+    };
+    if last < 1 << RADIX_BITS {
+        counting_pass(tris, 0..n as u16, lo, |t| key(t));
+    } else {
+        let mask = (1 << RADIX_BITS) - 1;
+        counting_pass(tris, 0..n as u16, hi, |t| key(t) & mask);
+        let src: &[u16] = hi;
+        counting_pass(tris, src.iter().copied(), lo, |t| key(t) >> RADIX_BITS);
+    }
+}
+
+/// One stable counting-sort pass of the indices `src` by `key` (below
+/// 64) into `dst`.
+#[inline(always)]
+fn counting_pass(
+    tris: &[Tri],
+    src: impl Iterator<Item = u16> + Clone,
+    dst: &mut [u16],
+    key: impl Fn(&Tri) -> u32,
+) {
+    let mut count = [0u16; (1 << RADIX_BITS) + 1];
+    let k = |i: u16| tris.get(i as usize).map_or(0, |t| key(t) as usize & 63);
+    for i in src.clone() {
+        if let Some(c) = count.get_mut(k(i) + 1) {
+            *c += 1;
+        }
+    }
+    for b in 1..count.len() {
+        count[b] += count[b - 1];
+    }
+    for i in src {
+        if let Some(c) = count.get_mut(k(i)) {
+            if let Some(d) = dst.get_mut(*c as usize) {
+                *d = i;
+            }
+            *c += 1;
+        }
+    }
+}
+
+/// The row kernel's sink: a band's colour and depth slices and a shader.
+struct Kernel<'k, 'b, F: PixelFormat, D: DepthFormat, S> {
+    px: &'k mut &'b mut [F::Raw],
+    z: &'k mut Option<&'b mut [D::Raw]>,
+    y0: i32,
+    width: usize,
+    shader: &'k S,
+    drawn: u32,
+}
+
+impl<L: Lerp, const N: usize, F: PixelFormat, D: DepthFormat, S: Shader<L, N>> RowSpans<L, N>
+    for Kernel<'_, '_, F, D, S>
+{
+    #[inline(always)]
+    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>) {
+        // The walker gives rows of the band and columns within the width.
+        let base = (j - self.y0) as usize * self.width;
+        let r = base + x0 as usize..base + x1 as usize;
+        let Some(row) = self.px.get_mut(r.clone()) else {
+            return;
+        };
+        let drow = match self.z.as_deref_mut() {
+            Some(z) => match z.get_mut(r) {
+                Some(d) => Some(d),
+                None => return,
+            },
+            None => None,
+        };
+        self.drawn += span_pixels::<L, N, F, D, S>(row, drow, v, sx, self.shader);
+    }
+}
+
+/// A band's buffers as the kernels see them.
+struct Target<'b, F: PixelFormat, D: DepthFormat> {
+    px: &'b mut [F::Raw],
+    z: Option<&'b mut [D::Raw]>,
+    y0: u32,
+    y1: u32,
+    width: u32,
+}
+
+impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> {
+    /// What has been drawn so far: triangle setups (every prepared triangle
+    /// once, when the pool holds every active triangle) and pixels.
+    pub fn stats(&self) -> RenderStats {
+        self.stats
+    }
+
+    /// The most triangles kept for a later band at once so far (in the
+    /// pool, or queued when it was full; a band resumes and admits them in
+    /// triangle order, so this can exceed the count at a band border): a
+    /// pool of this many slots sets every triangle up once.
+    pub fn active_peak(&self) -> usize {
+        self.peak
+    }
+
+    /// Renders the next band into `band` (moved to the band's rows and
+    /// cleared to the scene's background first): `Some(window)` with the
+    /// rows drawn, `None` after the last band.
+    ///
+    /// # Errors
+    /// [`RenderError::Window`] when the band buffer's width differs from
+    /// the frame's or its rows from those the bands were ordered for;
+    /// [`RenderError::Raster`] for a vertex outside the rasterizer's
+    /// limits (not after [`super::prepare`]).
+    pub fn next_band<F: PixelFormat, D: DepthFormat>(
+        &mut self,
+        band: &mut BandBuf<'_, F, D>,
+    ) -> Result<Option<Window>, RenderError> {
+        let (w, h) = self.frame.size();
+        if self.y >= h {
+            return Ok(None);
+        }
+        if band.window().width != w || band.rows() != self.rows {
+            return Err(RenderError::Window);
+        }
+        let y0 = self.y;
+        let y1 = y0.saturating_add(self.rows).min(h);
+        let (px, z) = band
+            .start(y0, y1, self.scene.background)
+            .ok_or(RenderError::Window)?;
+        let mut t = Target::<F, D> {
+            px,
+            z,
+            y0,
+            y1,
+            width: w,
+        };
+        self.ring_cur = self.ring_len;
+        self.def_cur = self.def_len;
+        let band_index = y0 / self.rows;
+        let frame = self.frame;
+        for (po, obj) in frame.objects.iter().zip(self.scene.objects.iter()) {
+            if po.tris.is_empty() || self.peek(band_index) >= po.tris.end as u32 {
+                continue;
+            }
+            match po.layout {
+                Layout::Flat => {
+                    self.run::<0, _, _, _>(po, &mut t, Flat(Rgb8::BLACK), |s, t| s.0 = t.color)?
+                }
+                Layout::GouraudMono if P::PERSPECTIVE => {
+                    self.run::<2, _, _, _>(po, &mut t, Persp(GouraudMono), |_, _| {})?
+                }
+                Layout::GouraudMono => {
+                    self.run::<1, _, _, _>(po, &mut t, GouraudMono, |_, _| {})?
+                }
+                Layout::GouraudRgb if P::PERSPECTIVE => {
+                    self.run::<4, _, _, _>(po, &mut t, Persp(Gouraud), |_, _| {})?
+                }
+                Layout::GouraudRgb => self.run::<3, _, _, _>(po, &mut t, Gouraud, |_, _| {})?,
+                Layout::PhongNormal | Layout::PhongPosition => {
+                    let sc = self.scene;
+                    let shade = Shade::new(
+                        &obj.material,
+                        sc.ambient,
+                        &self.lights,
+                        sc.specular,
+                        sc.viewer,
+                    )
+                    .map_err(|_| SceneError::TooManyLights)?;
+                    let sh = PhongShader::<P>::new(&shade, false);
+                    let normal = po.layout == Layout::PhongNormal;
+                    if P::PERSPECTIVE {
+                        let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.set_back(t.back);
+                        if normal {
+                            self.run::<4, _, _, _>(po, &mut t, Persp(sh), set)?;
+                        } else {
+                            self.run::<7, _, _, _>(po, &mut t, Persp(sh), set)?;
+                        }
+                    } else {
+                        let set = |s: &mut PhongShader<'_, P>, t: &Tri| s.set_back(t.back);
+                        if normal {
+                            self.run::<3, _, _, _>(po, &mut t, sh, set)?;
+                        } else {
+                            self.run::<6, _, _, _>(po, &mut t, sh, set)?;
+                        }
+                    }
+                }
+            }
+        }
+        self.y = y1;
+        Ok(Some(Window { width: w, y0, y1 }))
+    }
+
+    /// The smallest triangle index the three streams offer this band.
+    #[inline(always)]
+    fn peek(&self, band: u32) -> u32 {
+        let a = if self.ring_cur > 0 {
+            self.pool
+                .ring
+                .get(self.ring_head)
+                .and_then(|&s| self.pool.slots.get(s as usize))
+                .map_or(NONE, |s| s.tri as u32)
+        } else {
+            NONE
+        };
+        let b = if self.def_cur > 0 {
+            self.order
+                .get(self.n + self.def_head)
+                .map_or(NONE, |&t| t as u32)
+        } else {
+            NONE
+        };
+        a.min(b).min(self.bucket_head(band))
+    }
+
+    /// The next triangle of the order when it starts in band `band`.
+    #[inline(always)]
+    fn bucket_head(&self, band: u32) -> u32 {
+        if self.cursor >= self.n {
+            return NONE;
+        }
+        let Some(&i) = self.order.get(self.cursor) else {
+            return NONE;
+        };
+        let tris = self.frame.tris();
+        let (shift, m) = band_consts(self.rows);
+        let last = self.frame.height.div_ceil(self.rows).saturating_sub(1);
+        match tris.get(i as usize) {
+            Some(t)
+                if band_of((t.rows[0] as u32).min(4095), self.rows, shift, m).min(last) <= band =>
+            {
+                i as u32
+            }
+            _ => NONE,
+        }
+    }
+
+    /// Draws this band's part of object `po`: the merge, in triangle order,
+    /// of its active triangles, those that found the pool full and those
+    /// starting in the band.
+    #[inline(never)]
+    fn run<const N: usize, S, F, D>(
+        &mut self,
+        po: &PreparedObject,
+        t: &mut Target<'_, F, D>,
+        mut shader: S,
+        per_tri: impl Fn(&mut S, &Tri),
+    ) -> Result<(), RenderError>
+    where
+        S: Shader<P::Lerp, N>,
+        F: PixelFormat,
+        D: DepthFormat,
+    {
+        let end = po.tris.end as u32;
+        let band = t.y0 / self.rows;
+        let (shift, m) = band_consts(self.rows);
+        let last = self.frame.height.div_ceil(self.rows).saturating_sub(1);
+        let tris = self.frame.tris();
+        let (y1, width) = (t.y1 as i32, t.width as i32);
+        loop {
+            let ta = if self.ring_cur > 0 {
+                let s = self.pool.ring.get(self.ring_head).copied().unwrap_or(0);
+                self.pool
+                    .slots
+                    .get(s as usize)
+                    .map_or(NONE, |s| s.tri as u32)
+            } else {
+                NONE
+            };
+            let tb = if self.def_cur > 0 {
+                self.order
+                    .get(self.n + self.def_head)
+                    .map_or(NONE, |&t| t as u32)
+            } else {
+                NONE
+            };
+            let tc = match self.order.get(self.cursor) {
+                Some(&i) if self.cursor < self.n => match tris.get(i as usize) {
+                    Some(tr)
+                        if band_of((tr.rows[0] as u32).min(4095), self.rows, shift, m)
+                            .min(last)
+                            <= band =>
+                    {
+                        i as u32
+                    }
+                    _ => NONE,
+                },
+                _ => NONE,
+            };
+            let ti = ta.min(tb).min(tc);
+            if ti >= end {
+                return Ok(());
+            }
+            let Some(tri) = tris.get(ti as usize) else {
+                return Ok(());
+            };
+            per_tri(&mut shader, tri);
+            let mut k = Kernel::<F, D, S> {
+                px: &mut t.px,
+                z: &mut t.z,
+                y0: t.y0 as i32,
+                width: t.width as usize,
+                shader: &shader,
+                drawn: 0,
+            };
+            if ti == ta {
+                // Resume an active triangle.
+                let si = self.pool.ring.get(self.ring_head).copied().unwrap_or(0) as usize;
+                self.ring_head = (self.ring_head + 1) % CAP.max(1);
+                self.ring_cur -= 1;
+                self.ring_len -= 1;
+                let Some(slot) = self.pool.slots.get_mut(si) else {
+                    return Ok(());
+                };
+                let (mut row, sx, sy) = unpack::<_, N, V>(&slot.vals);
+                slot.walk.rows(&mut row, &sx, &sy, y1, width, &mut k);
+                if slot.walk.done() {
+                    if let Some(f) = self.pool.free.get_mut(self.free_len) {
+                        *f = si as u16;
+                        self.free_len += 1;
+                    }
+                } else {
+                    pack_row(&mut slot.vals, &row);
+                    let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                    if let Some(r) = self.pool.ring.get_mut(tail) {
+                        *r = si as u16;
+                        self.ring_len += 1;
+                    }
+                }
+            } else {
+                if ti == tb {
+                    self.def_head = (self.def_head + 1) % self.n.max(1);
+                    self.def_cur -= 1;
+                    self.def_len -= 1;
+                } else {
+                    self.cursor += 1;
+                }
+                let fresh = self.fresh::<N>(po, tri, t.y0 as i32, width)?;
+                let Some((mut walk, mut row, sx, sy)) = fresh else {
+                    self.stats.pixels += k.drawn;
+                    continue;
+                };
+                walk.rows(&mut row, &sx, &sy, y1, width, &mut k);
+                if !walk.done() {
+                    self.keep::<N>(ti as u16, walk, &row, &sx, &sy);
+                }
+            }
+            self.stats.pixels += k.drawn;
+        }
+    }
+
+    /// Sets up triangle `tri` of object `po` from row `max(first row,
+    /// j0)`; `None` when it draws nothing from there (or a vertex is
+    /// missing).
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn fresh<const N: usize>(
+        &mut self,
+        po: &PreparedObject,
+        tri: &Tri,
+        j0: i32,
+        width: i32,
+    ) -> Result<Option<(Walk, Vals<P::Lerp, N>, Vals<P::Lerp, N>, Vals<P::Lerp, N>)>, RenderError>
+    {
+        let sub = P::SUBPIXEL_BITS;
+        let ws = &self.frame.ws;
+        let xy = |i: u16| ws.xy.get(i as usize).copied();
+        let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
+            return Ok(None);
+        };
+        let out = [p0, p1, p2]
+            .iter()
+            .position(|&[x, y]| !in_limits(x, y, sub));
+        let [(i0, q0), (i1, q1), (i2, q2)] =
+            sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
+        let (Some(a), Some(b), Some(c)) = (
+            self.frame.vertex::<N>(po, i0, q0),
+            self.frame.vertex::<N>(po, i1, q1),
+            self.frame.vertex::<N>(po, i2, q2),
+        ) else {
+            return Ok(None);
+        };
+        self.stats.triangles += 1;
+        if let Some(i) = out {
+            return Err(RasterError::OutOfRange(i as u8).into());
+        }
+        Ok(setup::<P::Lerp, N>(&a, &b, &c, sub, j0, width))
+    }
+
+    /// Keeps a triangle that continues below the band: in a free slot, or
+    /// in the queue of those set up afresh in the next band.
+    #[inline(always)]
+    fn keep<const N: usize>(
+        &mut self,
+        ti: u16,
+        walk: Walk,
+        row: &Vals<P::Lerp, N>,
+        sx: &Vals<P::Lerp, N>,
+        sy: &Vals<P::Lerp, N>,
+    ) {
+        if N < V && self.free_len > 0 {
+            self.free_len -= 1;
+            let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
+            if let Some(slot) = self.pool.slots.get_mut(si as usize) {
+                slot.tri = ti;
+                slot.walk = walk;
+                pack::<_, N, V>(&mut slot.vals, row, sx, sy);
+                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                if let Some(r) = self.pool.ring.get_mut(tail) {
+                    *r = si;
+                    self.ring_len += 1;
+                }
+            }
+        } else {
+            let tail = (self.def_head + self.def_len) % self.n.max(1);
+            if let Some(q) = self.order.get_mut(self.n + tail) {
+                *q = ti;
+                self.def_len += 1;
+            }
+        }
+        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+    }
+}
+
+/// A slot's values as the walker's row values and steps.
+#[inline(always)]
+fn unpack<L: Lerp, const N: usize, const V: usize>(
+    v: &[[L; 3]; V],
+) -> (Vals<L, N>, Vals<L, N>, Vals<L, N>) {
+    let get = |k: usize, c: usize| v.get(k).map_or(L::ZERO, |x| x[c]);
+    let f = |c: usize| Vals {
+        z: get(0, c),
+        a: core::array::from_fn(|k| get(k + 1, c)),
+    };
+    (f(0), f(1), f(2))
+}
+
+/// Stores the row values and steps in a slot.
+#[inline(always)]
+fn pack<L: Lerp, const N: usize, const V: usize>(
+    v: &mut [[L; 3]; V],
+    row: &Vals<L, N>,
+    sx: &Vals<L, N>,
+    sy: &Vals<L, N>,
+) {
+    if let Some(x) = v.get_mut(0) {
+        *x = [row.z, sx.z, sy.z];
+    }
+    for k in 0..N {
+        if let Some(x) = v.get_mut(k + 1) {
+            *x = [row.a[k], sx.a[k], sy.a[k]];
+        }
+    }
+}
+
+/// Stores the row values (the steps do not change).
+#[inline(always)]
+fn pack_row<L: Lerp, const N: usize, const V: usize>(v: &mut [[L; 3]; V], row: &Vals<L, N>) {
+    if let Some(x) = v.get_mut(0) {
+        x[0] = row.z;
+    }
+    for k in 0..N {
+        if let Some(x) = v.get_mut(k + 1) {
+            x[0] = row.a[k];
+        }
+    }
+}
