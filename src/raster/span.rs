@@ -22,6 +22,18 @@ pub trait Shader<L: Lerp, const N: usize> {
         F::encode(self.shade(a))
     }
 
+    /// Called once per span before its pixels are shaded, with the
+    /// attributes at its first pixel, their steps per pixel and its length
+    /// in pixels: the place for per-span set-up (e.g. the forward
+    /// differences of `n·L`, `n·H` and `|n|²` of per-pixel Phong shading),
+    /// so that [`Shader::shade`] only steps them. Not called for
+    /// [`Shader::constant`] shaders. [`Persp`] does not forward it (its
+    /// inner shader sees attributes divided per pixel). Default: nothing.
+    #[inline(always)]
+    fn begin_span(&mut self, a: &[L; N], da: &[L; N], len: u32) {
+        let _ = (a, da, len);
+    }
+
     /// `Some(colour)` when the colour does not depend on the attributes:
     /// the span stage then encodes it once per span instead of once per
     /// pixel.
@@ -285,7 +297,7 @@ pub(crate) fn span_pixels<L, const N: usize, F, D, S>(
     drow: Option<&mut [D::Raw]>,
     v: &Vals<L, N>,
     sx: &Vals<L, N>,
-    shader: &S,
+    shader: &mut S,
 ) -> u32
 where
     L: Lerp,
@@ -297,6 +309,8 @@ where
         let raw = F::encode(c);
         row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |_| raw)
     } else {
+        shader.begin_span(&v.a, &sx.a, row.len() as u32);
+        let shader = &*shader;
         row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |a| shader.shade_raw::<F>(a))
     }
 }
@@ -443,6 +457,8 @@ where
             let raw = T::Format::encode(c);
             self.fill(s, |_| raw);
         } else {
+            self.shader
+                .begin_span(&s.a, &s.da, s.x1.saturating_sub(s.x0));
             let shader = &self.shader;
             // Safe split borrow: the closure only reads the shader.
             let shade = |a: &[L; N]| shader.shade_raw::<T::Format>(a);

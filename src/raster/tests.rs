@@ -659,3 +659,76 @@ fn subpixel_bits_are_validated_and_conversions_saturate() {
     assert!(draw_flat(&mut t, &tri).is_err());
     let _ = Gray8::encode(Rgb8::WHITE);
 }
+
+/// A shader that checks the per-span hook: every span announces its
+/// start values, steps and length before its pixels, and each pixel's
+/// attribute is the announced start plus whole steps.
+struct SpanProbe {
+    start: i32,
+    step: i32,
+    len: u32,
+    shaded: std::cell::Cell<u32>,
+    spans: u32,
+    pixels: u32,
+}
+
+impl Shader<i32, 1> for SpanProbe {
+    fn shade(&self, a: &[i32; 1]) -> Rgb8 {
+        let k = self.shaded.get();
+        assert!(k < self.len, "more pixels than the span announced");
+        assert_eq!(
+            a[0],
+            self.start.wrapping_add(self.step.wrapping_mul(k as i32))
+        );
+        self.shaded.set(k + 1);
+        Rgb8::grey(level(a[0]))
+    }
+
+    fn begin_span(&mut self, a: &[i32; 1], da: &[i32; 1], len: u32) {
+        // Without a depth buffer every pixel of the span above was shaded.
+        assert_eq!(self.shaded.get(), self.len);
+        self.start = a[0];
+        self.step = da[0];
+        self.len = len;
+        self.shaded.set(0);
+        self.spans += 1;
+        self.pixels += len;
+    }
+}
+
+fn level(v: i32) -> u8 {
+    (v >> 16).clamp(0, 255) as u8
+}
+
+#[test]
+fn shaders_see_each_span_before_its_pixels() {
+    let (w, h) = (40u32, 30u32);
+    let mut buf = vec![[0u8; 1]; (w * h) as usize];
+    let mut fb = FrameBuf::<Gray8>::new(&mut buf, w, h).unwrap();
+    let probe = SpanProbe {
+        start: 0,
+        step: 0,
+        len: 0,
+        shaded: std::cell::Cell::new(0),
+        spans: 0,
+        pixels: 0,
+    };
+    let mut f = Fill::<_, Depth16, _>::new(&mut fb, None, probe).unwrap();
+    let v = |x: i32, y: i32, l: i32| Vertex {
+        x: SUB.from_px(x),
+        y: SUB.from_px(y),
+        z: 0,
+        attrs: [l << 16],
+    };
+    f.draw(&[v(-5, 2, 10), v(33, 9, 250), v(12, 28, 90)], SUB)
+        .unwrap();
+    let drawn = f.drawn();
+    let p = &f.shader;
+    assert_eq!(p.shaded.get(), p.len);
+    assert_eq!(p.pixels, drawn);
+    assert!(
+        p.spans >= 25 && drawn > 300,
+        "{} spans, {drawn} pixels",
+        p.spans
+    );
+}

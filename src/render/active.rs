@@ -362,7 +362,7 @@ struct Kernel<'k, 'b, F: PixelFormat, D: DepthFormat, S> {
     z: &'k mut Option<&'b mut [D::Raw]>,
     y0: i32,
     width: usize,
-    shader: &'k S,
+    shader: &'k mut S,
     drawn: u32,
 }
 
@@ -609,7 +609,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 z: &mut t.z,
                 y0: t.y0 as i32,
                 width: t.width as usize,
-                shader: &shader,
+                shader: &mut shader,
                 drawn: 0,
             };
             if ti == ta {
