@@ -20,8 +20,8 @@ use fixshade::raster::{
 use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{
-    BandBuf, Depth16, Depth32, DepthBuffer, DepthFormat, FrameBuf, Gray8, PixelFormat, Rgb565Be, Rgb8,
-    Target, Window,
+    BandBuf, Depth16, Depth32, DepthBuffer, DepthFormat, FrameBuf, Gray8, PixelFormat, Rgb565Be,
+    Rgb8, Target, Window,
 };
 use libfuzzer_sys::fuzz_target;
 

@@ -298,7 +298,7 @@ pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
     if rows.is_power_of_two() {
         (Some(rows.trailing_zeros()), 0)
     } else if rows < 256 {
-        (None, (1u32 << 20).div_ceil(rows))
+        (None, (1u32 << 20).div_ceil(rows.max(1)))
     } else {
         (None, 0)
     }
@@ -310,10 +310,12 @@ pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
 fn sort_by_band(tris: &[Tri], order: &mut [u16], rows: u32, height: u32) {
     let n = tris.len();
     let (shift, m) = band_consts(rows);
-    let last = height.div_ceil(rows).saturating_sub(1);
+    let last = height.div_ceil(rows.max(1)).saturating_sub(1);
     // Rows lie within the screen (at most 4096): keys below 2^12.
     let key = |t: &Tri| band_of((t.rows[0] as u32).min(4095), rows, shift, m).min(last);
-    let (lo, hi) = order.split_at_mut(n);
+    let Some((lo, hi)) = order.split_at_mut_checked(n) else {
+        return;
+    };
     let Some(hi) = hi.get_mut(..n) else {
         return;
     };
@@ -343,8 +345,10 @@ fn counting_pass(
             *c += 1;
         }
     }
-    for b in 1..count.len() {
-        count[b] += count[b - 1];
+    let mut sum = 0;
+    for c in count.iter_mut() {
+        sum += *c;
+        *c = sum;
     }
     for i in src {
         if let Some(c) = count.get_mut(k(i)) {
@@ -446,7 +450,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         self.ring_cur = self.ring_len;
         self.def_cur = self.def_len;
-        let band_index = y0 / self.rows;
+        let band_index = y0 / self.rows.max(1);
         let frame = self.frame;
         for (po, obj) in frame.objects.iter().zip(self.scene.objects.iter()) {
             if po.tris.is_empty() || self.peek(band_index) >= po.tris.end as u32 {
@@ -533,7 +537,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         let tris = self.frame.tris();
         let (shift, m) = band_consts(self.rows);
-        let last = self.frame.height.div_ceil(self.rows).saturating_sub(1);
+        let last = self
+            .frame
+            .height
+            .div_ceil(self.rows.max(1))
+            .saturating_sub(1);
         match tris.get(i as usize) {
             Some(t)
                 if band_of((t.rows[0] as u32).min(4095), self.rows, shift, m).min(last) <= band =>
@@ -561,9 +569,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         D: DepthFormat,
     {
         let end = po.tris.end as u32;
-        let band = t.y0 / self.rows;
+        let band = t.y0 / self.rows.max(1);
         let (shift, m) = band_consts(self.rows);
-        let last = self.frame.height.div_ceil(self.rows).saturating_sub(1);
+        let last = self
+            .frame
+            .height
+            .div_ceil(self.rows.max(1))
+            .saturating_sub(1);
         let tris = self.frame.tris();
         let (y1, width) = (t.y1 as i32, t.width as i32);
         loop {

@@ -207,7 +207,8 @@ impl<P: Profile> Frame<'_, P> {
 
     /// The prepared triangles.
     pub fn tris(&self) -> &[Tri] {
-        &self.ws.tris[..self.triangle_count()]
+        // Never short (prepare filled them); no panic branch.
+        self.ws.tris.get(..self.triangle_count()).unwrap_or(&[])
     }
 
     /// Screen position of a prepared vertex (subpixels).

@@ -84,8 +84,8 @@ impl<'a, F: PixelFormat, D: DepthFormat> BandBuf<'a, F, D> {
 
     /// The band's pixels, row-major (`width × window rows`).
     pub fn pixels(&self) -> &[F::Raw] {
-        let n = self.window.len().min(self.pixels.len());
-        &self.pixels[..n]
+        let n = self.window.len();
+        self.pixels.get(..n).unwrap_or(&[])
     }
 
     /// The band's bytes, row-major, exactly as stored (for a display).
@@ -116,9 +116,11 @@ impl<'a, F: PixelFormat, D: DepthFormat> BandBuf<'a, F, D> {
     /// code that takes a target).
     pub fn frame_buf(&mut self) -> FrameBuf<'_, F> {
         let w = self.window;
-        let n = w.len().min(self.pixels.len());
         // The window was checked against the slice when it was set.
-        FrameBuf::from_parts(&mut self.pixels[..n], w)
+        match self.pixels.get_mut(..w.len()) {
+            Some(p) => FrameBuf::from_parts(p, w),
+            None => FrameBuf::from_parts(&mut [], Window { y1: w.y0, ..w }),
+        }
     }
 
     /// Moves the band to rows `y0..y1` (`y1 - y0 <= rows`) and clears its

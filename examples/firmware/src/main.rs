@@ -33,8 +33,8 @@ use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
 use fixshade::render::{Link, PhongShader, Tri, Workspace};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
-    capacity_of, check, render_frame, BandPool, FrameError, Needs, Pixel, Probe, BAND_PIXELS, BAND_ROWS,
-    MAX_NEEDS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
+    capacity_of, check, render_frame, BandPool, FrameError, Needs, Pixel, Probe, BAND_PIXELS,
+    BAND_ROWS, MAX_NEEDS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
 };
 
 /// Executes the marker instruction `yield`: a hint that QEMU runs as a

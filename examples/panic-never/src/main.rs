@@ -289,6 +289,8 @@ fn frame(
     })
 }
 
+// cortex-m-rt passes each `static mut` below as an argument.
+#[allow(clippy::too_many_arguments)]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references (safe code).
@@ -301,8 +303,9 @@ fn main() -> ! {
     static mut LINKS: Option<[Link; MAX_VERTS]> = None;
     static mut BAND: [[u8; 2]; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
-    static mut ORDER: [u16; 2 * MAX_TRIS] = [0; 2 * MAX_TRIS];
-    static mut POOL_SLOTS: Pool<L, POOL, 8> = Pool::new();
+    // The band state: triangle order and active pool.
+    static mut BAND_STATE: ([u16; 2 * MAX_TRIS], Pool<L, POOL, 8>) =
+        ([0; 2 * MAX_TRIS], Pool::new());
 
     let links = LINKS.get_or_insert_with(|| [Link::default(); MAX_VERTS]);
     let mut line = Line::new();
@@ -324,7 +327,14 @@ fn main() -> ! {
             heads: &mut HEADS[..],
             links: &mut links[..],
         };
-        match frame(f, ws, &mut BAND[..], &mut DEPTH[..], &mut ORDER[..], POOL_SLOTS) {
+        match frame(
+            f,
+            ws,
+            &mut BAND[..],
+            &mut DEPTH[..],
+            &mut BAND_STATE.0[..],
+            &mut BAND_STATE.1,
+        ) {
             Ok(s) => {
                 line.text("frame ")
                     .dec(f as u32)

@@ -63,8 +63,16 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut pool = Box::new(BandPool::new());
     println!("fixshade-host-check target=host profile=fast");
     for spec in SCENES.iter() {
-        let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut order, &mut pool, &mut NoProbe)
-            .map_err(|e| format!("scene {}: {e}", spec.name))?;
+        let s = render_frame(
+            spec,
+            ws.ws(),
+            &mut px,
+            &mut z,
+            &mut order,
+            &mut pool,
+            &mut NoProbe,
+        )
+        .map_err(|e| format!("scene {}: {e}", spec.name))?;
         println!(
             "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
             spec.name,

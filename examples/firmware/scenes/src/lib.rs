@@ -315,8 +315,16 @@ mod tests {
         let mut order = vec![0u16; 2 * MAX_NEEDS.triangles];
         let mut pool = std::boxed::Box::new(BandPool::new());
         for spec in SCENES.iter() {
-            let s = render_frame(spec, ws.ws(), &mut px, &mut z, &mut order, &mut pool, &mut NoProbe)
-                .unwrap();
+            let s = render_frame(
+                spec,
+                ws.ws(),
+                &mut px,
+                &mut z,
+                &mut order,
+                &mut pool,
+                &mut NoProbe,
+            )
+            .unwrap();
             // The pool holds every active triangle: each set up once.
             std::println!("{} active peak {}", spec.name, s.active_peak);
             assert!(s.active_peak as usize <= POOL_SLOTS, "{}", spec.name);
