@@ -4,11 +4,19 @@
 //! (flat, Gouraud) or keeps their normals and positions (Phong), culls back
 //! faces, clips against the near plane (and the far plane and guard band),
 //! projects and snaps them to the subpixel grid, all into a caller-provided
-//! [`Workspace`]. [`Frame::render`] then rasterizes the prepared triangles
-//! into a target holding any window of rows, with a depth buffer of the same
-//! window or none. Rendering a 240×240 frame in 16-row bands needs a band
-//! buffer of 7 680 bytes (RGB565) and a depth band of 7 680 bytes (16-bit),
-//! and gives byte for byte the frame a full-screen render gives.
+//! [`Workspace`]. [`Frame::bands`] / [`Frame::render_bands`] then
+//! rasterize the prepared triangles band by band into a
+//! [`BandBuf`](crate::target::BandBuf), each triangle set up once per
+//! frame and kept in an active list while it crosses band borders (see
+//! [`Bands`]); [`Frame::render`] rasterizes them into any [`Target`]
+//! holding a window of rows (setting up each triangle reaching the
+//! window), with a depth buffer of the same window or none. Rendering a
+//! 240×240 frame in 16-row bands needs a band buffer of 7 680 bytes
+//! (RGB565) and a depth band of 7 680 bytes (16-bit), plus the band state
+//! (4 bytes per prepared triangle and the pool of active triangles), and
+//! gives byte for byte the frame a full-screen render gives.
+//!
+//! [`Target`]: crate::target::Target
 //!
 //! # Memory (what a prepared frame costs)
 //! | part | bytes |
@@ -20,6 +28,7 @@
 //! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
 //! | per prepared triangle | 14 ([`Tri`]) |
 //! | scratch while preparing | 2 per mesh vertex of the largest mesh ([`Workspace::heads`]) + 6 per prepared vertex ([`Link`]) |
+//! | band state ([`BandState`]) | 4 per prepared triangle (order scratch) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
 //!
 //! A prepared vertex is made per distinct (position, normal) corner of a
 //! mesh, so shared vertices are transformed and lit once; clipping and the

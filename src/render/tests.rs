@@ -777,3 +777,15 @@ fn band_of_equals_the_division() {
         }
     }
 }
+
+#[test]
+fn band_state_memory_is_as_documented() {
+    use core::mem::size_of;
+    // Walk: three edge walkers of 20 bytes, 5 words and 2 flags = 82; with
+    // the triangle index 84, 88 aligned; then 12 bytes per value.
+    assert_eq!(Pool::<i32, 1, 2>::SLOT_BYTES, 88 + 24);
+    assert_eq!(Pool::<i32, 1, 4>::SLOT_BYTES, 88 + 48);
+    assert_eq!(Pool::<i32, 1, 8>::SLOT_BYTES, 88 + 96);
+    // The pool adds two u16 list entries per slot.
+    assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (88 + 96 + 4));
+}
