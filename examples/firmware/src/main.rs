@@ -352,6 +352,8 @@ fn workspace_bytes(mem: &Memory) -> usize {
         + core::mem::size_of_val(mem.links)
 }
 
+// cortex-m-rt passes each `static mut` below as an argument.
+#[allow(clippy::too_many_arguments)]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once),
