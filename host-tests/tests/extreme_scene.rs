@@ -11,7 +11,7 @@
 
 mod support;
 
-use fixshade::mesh::{shapes, CornerNormals, Mesh};
+use fixshade::mesh::{shapes, Mesh};
 use fixshade::num::{F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, F32, F64};
 use fixshade::render::{prepare, render_in_bands, RenderError};
 use fixshade::scene::{SceneError, Shading};
@@ -51,18 +51,10 @@ fn boundary_only(core: &[bool], ideal: &[bool], w: u32, h: u32) -> (usize, bool)
 
 /// A big triangle in the z = 0 plane of its model, facing +z.
 const TRI_POS: [[i16; 3]; 3] = [[-16000, -16000, 0], [16000, -16000, 0], [0, 16000, 0]];
-const UP: [[i16; 3]; 1] = [[0, 0, 16384]];
+const UP: [[i16; 3]; 3] = [[0, 0, 16384]; 3];
 
 fn big_triangle() -> Mesh<'static> {
-    Mesh::new(
-        &TRI_POS,
-        &[[0, 1, 2]],
-        Some(CornerNormals {
-            normals: &UP,
-            indices: &[[0, 0, 0]],
-        }),
-    )
-    .unwrap()
+    Mesh::new(&TRI_POS, &[[0, 1, 2]], Some(&UP)).unwrap()
 }
 
 /// A square in z = 0 with corner normals tilted outwards (a curved patch
@@ -83,15 +75,7 @@ static FLAT_UP: [[i16; 3]; 4] = [[0, 0, 16384]; 4];
 const QUAD_TRIS: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
 
 fn quad(normals: &'static [[i16; 3]; 4]) -> Mesh<'static> {
-    Mesh::new(
-        &QUAD,
-        &QUAD_TRIS,
-        Some(CornerNormals {
-            normals,
-            indices: &QUAD_TRIS,
-        }),
-    )
-    .unwrap()
+    Mesh::new(&QUAD, &QUAD_TRIS, Some(normals)).unwrap()
 }
 
 /// Scene: the eye on the +z axis looking at a patch facing it, so that
@@ -214,15 +198,7 @@ fn vertices_in_front_of_on_and_behind_the_near_plane() {
     static NRM: [[i16; 3]; 3] = [[0, 0, 16384], [0, 11585, 11585], [11585, 0, 11585]];
     let mut drawn = [0usize; 6];
     for (c, pos) in CASES.iter().enumerate() {
-        let mesh = Mesh::new(
-            pos,
-            &[[0, 1, 2]],
-            Some(CornerNormals {
-                normals: &NRM,
-                indices: &[[0, 1, 2]],
-            }),
-        )
-        .unwrap();
+        let mesh = Mesh::new(pos, &[[0, 1, 2]], Some(&NRM)).unwrap();
         for shading in [Shading::Flat, Shading::Gouraud] {
             let mut s = Spec::new(W, H, [0.0, 0.0, 2.0]);
             s.objects.push(ObjSpec::new(mesh, shading));

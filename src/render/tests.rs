@@ -17,8 +17,6 @@ struct Mem<L> {
     xy: Vec<[i32; 2]>,
     vals: Vec<L>,
     tris: Vec<Tri>,
-    heads: Vec<u16>,
-    links: Vec<Link>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -27,8 +25,6 @@ impl<L: Copy + Default> Mem<L> {
             xy: vec![[0; 2]; verts],
             vals: vec![L::default(); verts * 7],
             tris: vec![Tri::default(); tris],
-            heads: vec![0; 2000],
-            links: vec![Link::default(); verts],
         }
     }
     fn ws(&mut self) -> Workspace<'_, L> {
@@ -36,8 +32,6 @@ impl<L: Copy + Default> Mem<L> {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
-            heads: &mut self.heads,
-            links: &mut self.links,
         }
     }
 }
@@ -410,7 +404,6 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 #[test]
 fn memory_figures_are_as_documented() {
     assert_eq!(core::mem::size_of::<Tri>(), 14);
-    assert_eq!(core::mem::size_of::<Link>(), 6);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
@@ -591,13 +584,8 @@ fn capacity_and_scene_errors_are_values() {
     )];
     let ls = lights();
     let s = scene(&objs, &ls, [0.0, 0.0, 5.0]);
-    for (verts, tris, heads, part) in [
-        (10, 1000, 2000, Part::Vertices),
-        (1000, 10, 2000, Part::Triangles),
-        (1000, 1000, 5, Part::Heads),
-    ] {
+    for (verts, tris, part) in [(10, 1000, Part::Vertices), (1000, 10, Part::Triangles)] {
         let mut mem = Mem::<i32>::new(verts, tris);
-        mem.heads.truncate(heads);
         let e = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap_err();
         assert_eq!(e, RenderError::Capacity { part, object: 0 });
     }
@@ -676,4 +664,46 @@ fn capacity_and_scene_errors_are_values() {
         normals: &[],
         indices: &[],
     };
+}
+
+/// The bounding sphere decides once per object: wholly inside (no
+/// outcodes), wholly outside one plane (nothing prepared), or across.
+#[test]
+fn bounding_sphere_accepts_and_rejects_whole_objects() {
+    use super::clip::Planes;
+    use super::prepare::{sphere, Sphere};
+    fn place<R: Real>(z: f32, scale: f32) -> Sphere {
+        let cam = Camera::look_at_f32(
+            [0.0, 0.0, 4.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            45.0,
+            1.0,
+            Some(20.0),
+        )
+        .unwrap();
+        let planes = Planes {
+            near: cam.near,
+            far: cam.far,
+            guard: R::from_f32(4096.0 / 290.0),
+        };
+        let t = Affine::from_parts(
+            R::from_f32(scale),
+            Vec3::ZERO,
+            Vec3::from_f32([0.0, 0.0, z]),
+        );
+        let mv = cam.view.then_after(&t);
+        sphere(&planes, &shapes::BUNNY, &mv)
+    }
+    for (z, scale, want) in [
+        (0.0, 1.0, Sphere::Inside),
+        (2.5, 1.0, Sphere::Across),   // crosses the near plane (w = 1)
+        (5.5, 1.0, Sphere::Outside),  // behind the near plane
+        (-15.5, 1.0, Sphere::Across), // crosses the far plane (w = 20)
+        (-30.0, 1.0, Sphere::Outside),
+        (0.0, 0.01, Sphere::Inside),
+    ] {
+        assert_eq!(place::<crate::num::Q16>(z, scale), want, "Q16 {z} {scale}");
+        assert_eq!(place::<f64>(z, scale), want, "f64 {z} {scale}");
+    }
 }
