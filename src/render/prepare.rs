@@ -373,7 +373,11 @@ impl<P: Profile> Preparer<'_, P> {
         let t_start = self.nt;
         let place = sphere(&self.view.planes, &mesh, &ctx.mv);
         if place != Sphere::Outside {
-            self.vertex_pass(&ctx, place == Sphere::Inside)?;
+            if place == Sphere::Inside && !P::PERSPECTIVE {
+                self.vertex_pass_fast(&ctx)?;
+            } else {
+                self.vertex_pass(&ctx, place == Sphere::Inside)?;
+            }
             if place == Sphere::Inside {
                 self.triangle_pass::<true>(&ctx)?;
             } else {
@@ -502,6 +506,77 @@ impl<P: Profile> Preparer<'_, P> {
         }
         self.nv = end;
         self.nval = ctx.val_base + n * stride;
+        Ok(())
+    }
+
+    /// [`Preparer::vertex_pass`] for an object wholly inside the planes,
+    /// affine: the `Q16` kernels for flat and object-space-lit Gouraud
+    /// objects in a loop per layout (no per-vertex dispatch, no bounds
+    /// check but the slices'), the generic pass otherwise. The same
+    /// values as the generic pass, bit for bit.
+    fn vertex_pass_fast(&mut self, ctx: &ObjCtx<'_, '_, P::Real>) -> Result<(), RenderError> {
+        let (Some(x), Some(pj)) = (&ctx.fast, &self.view.fast) else {
+            return self.vertex_pass(ctx, true);
+        };
+        let (x, pj) = (*x, *pj);
+        match (ctx.layout, &ctx.olight) {
+            (Layout::Flat, _) => self.kernel_q16::<1>(ctx, &x, &pj, None),
+            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, &x, &pj, Some(ol)),
+            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, &x, &pj, Some(ol)),
+            _ => self.vertex_pass(ctx, true),
+        }
+    }
+
+    /// The vertex loop of [`Preparer::vertex_pass_fast`] for a layout of
+    /// `S` values per vertex (1 flat, 2 grey, 4 RGB).
+    #[inline(never)]
+    fn kernel_q16<const S: usize>(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        x: &Xform16,
+        pj: &Proj16,
+        ol: Option<&ObjectLight<P::Real>>,
+    ) -> Result<(), RenderError> {
+        type R<P> = <P as Profile>::Real;
+        let n = ctx.positions.len();
+        let end = ctx.v_start + n;
+        if end >= usize::from(u16::MAX) {
+            return Err(self.cap(Part::Vertices));
+        }
+        let Some(xy) = self.ws.xy.get_mut(ctx.v_start..end) else {
+            return Err(self.cap(Part::Vertices));
+        };
+        let Some(vals) = self.ws.vals.get_mut(ctx.val_base..ctx.val_base + n * S) else {
+            return Err(RenderError::Capacity {
+                part: Part::Values,
+                object: self.object,
+            });
+        };
+        let sub = P::SUBPIXEL_BITS.get();
+        let scale = self.view.depth_scale;
+        let normals = ctx.normals;
+        for (i, ((p, out), v)) in ctx
+            .positions
+            .iter()
+            .zip(xy.iter_mut())
+            .zip(vals.chunks_exact_mut(S))
+            .enumerate()
+        {
+            let (s, q) = pj.project(x.point(*p), sub);
+            *out = s;
+            let d = R::<P>::ONE - R::<P>::from_fixed_i32(q, 16);
+            let d = scale.map_or(d, |s| d * s);
+            v[0] = P::depth(d.clamp(R::<P>::ZERO, R::<P>::ONE));
+            if let Some(ol) = ol {
+                let nrm = normals.get(i).copied().unwrap_or([0; 3]);
+                let c = ol.at(nrm, false, S == 2);
+                for (d, c) in v.iter_mut().skip(1).zip([c.x, c.y, c.z]) {
+                    *d = P::level(c);
+                }
+            }
+        }
+        self.nv = end;
+        self.nval = ctx.val_base + n * S;
         Ok(())
     }
 
