@@ -294,7 +294,7 @@ impl<R: Real> Mat3<R> {
 
 impl<R: Real> Mat3<R> {
     /// Largest entry magnitude.
-    fn max_abs(&self) -> R {
+    pub(crate) fn max_abs(&self) -> R {
         let r = &self.rows;
         [r[0], r[1], r[2]]
             .iter()

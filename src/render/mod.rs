@@ -245,6 +245,21 @@ pub enum RenderError {
         /// Index of the object.
         object: usize,
     },
+    /// An object exceeds the profile's scalar: a coordinate of its
+    /// bounding sphere in eye space (or a partial sum of its transform)
+    /// reaches `limit` units, half the scalar's range (16384 for `Q16`,
+    /// 2^31 for `Q32`), where saturation would move it silently; or the
+    /// clipping planes cut it and it is `limit` units across or more, where
+    /// the scalar's resolution could move clipped vertices by more than a
+    /// pixel (`2·near / (ε·k)` units, `ε` the resolution, `k` the
+    /// projection scale in pixels: 452 units for `Q16` at 240 rows, 45°,
+    /// near 1).
+    OutOfRange {
+        /// Index of the object.
+        object: usize,
+        /// The limit, in eye-space units.
+        limit: i64,
+    },
     /// The scene is invalid.
     Scene(SceneError),
     /// A buffer is invalid.
@@ -268,6 +283,11 @@ impl fmt::Display for RenderError {
             Self::MissingNormals { object } => write!(
                 f,
                 "object {object} is shaded Gouraud or Phong but its mesh has no normals"
+            ),
+            Self::OutOfRange { object, limit } => write!(
+                f,
+                "object {object} exceeds the {limit}-unit limit of this profile's number format \
+                 (eye-space reach, or size of an object the clipping planes cut)"
             ),
             Self::Scene(e) => write!(f, "{e}"),
             Self::Buffer(e) => write!(f, "{e}"),

@@ -232,13 +232,29 @@ const OUTSIDE: i32 = i32::MIN;
 /// rounding of the vertices' own transform: a vertex of an `Inside`
 /// object passes every outcode test, and no vertex of an `Outside`
 /// object passes the plane it is outside of.
+#[cfg(test)]
 pub(super) fn sphere<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R>) -> Sphere {
+    placement(planes, mesh, mv).0
+}
+
+/// [`sphere`], with the reach: the largest magnitude an eye-space
+/// coordinate of the sphere can take (`R::MAX` when it does not fit).
+fn placement<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R>) -> (Sphere, R, R) {
     let b = mesh.bound();
     let c = mv.point(Vec3::from_q14(b.center));
+    // The stretch of the largest entry's multiple (no saturation: `MᵀM`
+    // of a matrix with entries up to 1).
+    let m = mv.m.max_abs();
+    if m == R::ZERO {
+        return (Sphere::Across, R::MAX, R::MAX);
+    }
     let t = mv.m.transpose();
-    let g = |i: usize, j: usize| t.rows[i].dot(t.rows[j]).abs();
+    let t = t
+        .rows
+        .map(|r| Vec3::new(r.x.div(m), r.y.div(m), r.z.div(m)));
+    let g = |i: usize, j: usize| t[i].dot(t[j]).abs();
     let row = |i: usize| g(i, 0) + g(i, 1) + g(i, 2);
-    let stretch = row(0).max(row(1)).max(row(2)).sqrt();
+    let stretch = m * row(0).max(row(1)).max(row(2)).sqrt();
     let r0 = R::from_fixed_i32(b.radius.min(1 << 16) as i32, 14) * stretch;
     let r = r0 + r0.mul_i32(1).div(R::from_i32(64)) + R::from_ratio(1, 64);
     if r >= R::MAX.half()
@@ -246,7 +262,7 @@ pub(super) fn sphere<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R
         || c.y.abs() >= R::MAX.half()
         || c.z.abs() >= R::MAX.half()
     {
-        return Sphere::Across;
+        return (Sphere::Across, R::MAX, R::MAX);
     }
     let pl = planes;
     let w = -c.z;
@@ -256,13 +272,55 @@ pub(super) fn sphere<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R
     let gw = pl.guard * w;
     let d = [w - pl.near, pl.far.map_or(R::MAX.half(), |f| f - w)];
     let dg = [gw + c.x, gw - c.x, gw + c.y, gw - c.y];
+    // The reach: the sphere's coordinates, and every partial sum of the
+    // transform of a vertex (`Σ |m_kj|·max|p| + |t_k|`), which a
+    // saturating scalar would clip before the later terms bring it back.
+    let pmax = R::from_fixed_i32(
+        i32::from(b.center.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0))
+            + b.radius.min(1 << 17) as i32,
+        14,
+    );
+    let rows = &mv.m.rows;
+    let t = [mv.t.x, mv.t.y, mv.t.z];
+    let partial = (0..3).fold(R::ZERO, |acc, k| {
+        let r = rows[k];
+        acc.max((r.x.abs() + r.y.abs() + r.z.abs()) * pmax + t[k].abs())
+    });
+    let m = (c.x.abs().max(c.y.abs()).max(c.z.abs()) + r).max(partial);
     if d.iter().any(|&v| v < -r) || dg.iter().any(|&v| v < -gr) {
-        return Sphere::Outside;
+        return (Sphere::Outside, m, r);
     }
     if d.iter().all(|&v| v > r) && dg.iter().all(|&v| v > gr) {
-        return Sphere::Inside;
+        return (Sphere::Inside, m, r);
     }
-    Sphere::Across
+    // Clipped: `g·w` may saturate where `w` is far beyond the screen's
+    // guard band (`g·w > MAX`), but only at points whose `|x|, |y| <= m <
+    // MAX/2` keep the outcode's sign, and a clipped vertex interpolated
+    // with a saturated distance stays on the clipped edge, inside the
+    // guard band: the drawn pixels are those of the exact clip.
+    (Sphere::Across, m, r)
+}
+
+/// The sign of `((b - a) × (c - a)) · a`: positive when the triangle
+/// faces away from the eye. The edges and `a` are first divided by their
+/// largest component magnitude when it exceeds 1 (a positive factor: the
+/// same sign), so that no product saturates a fixed-point scalar for any
+/// coordinates within half its range.
+fn facing<R: Real>(a: Vec3<R>, b: Vec3<R>, c: Vec3<R>) -> R {
+    let big = |v: Vec3<R>| v.x.abs().max(v.y.abs()).max(v.z.abs());
+    let down = |v: Vec3<R>, m: R| {
+        if m > R::ONE {
+            Vec3::new(v.x.div(m), v.y.div(m), v.z.div(m))
+        } else {
+            v
+        }
+    };
+    let (e1, e2) = (b - a, c - a);
+    let m = big(e1).max(big(e2));
+    let (e1, e2) = (down(e1, m), down(e2, m));
+    let n = e1.cross(e2);
+    let n = down(n, big(n));
+    n.dot(down(a, big(a)))
 }
 
 /// Where an object's bounding sphere lies against the clipping planes.
@@ -371,7 +429,37 @@ impl<P: Profile> Preparer<'_, P> {
             v_start: self.nv,
         };
         let t_start = self.nt;
-        let place = sphere(&self.view.planes, &mesh, &ctx.mv);
+        let (place, reach, radius) = placement(&self.view.planes, &mesh, &ctx.mv);
+        // Beyond half the scalar's range, an eye-space coordinate or a
+        // difference of two (clipping) could saturate and silently move
+        // the object: refuse it.
+        let limit = P::Real::MAX.half();
+        // (An empty screen draws nothing: its guard band is unbounded.)
+        let place = if self.width == 0 || self.height == 0 {
+            Sphere::Outside
+        } else {
+            place
+        };
+        if place != Sphere::Outside && reach >= limit {
+            return Err(RenderError::OutOfRange {
+                object: self.object,
+                limit: (limit.to_f64() + 0.5) as i64,
+            });
+        }
+        // A clipped vertex lies on an edge at a parameter rounded to the
+        // scalar's resolution `ε`: off by up to `|edge|·ε/2` units, which
+        // next to the near plane is `|edge|·ε·k / (2·near)` pixels. Keep
+        // it within a pixel: objects the planes cut may be at most
+        // `2·near / (ε·k)` units across (`Q16`, 240 rows at 45°, near 1:
+        // 452 units; `f32`: 2.8·10^7·near / k).
+        let across =
+            (self.view.planes.near + self.view.planes.near).div(P::Real::EPSILON * self.view.k);
+        if place == Sphere::Across && radius + radius >= across {
+            return Err(RenderError::OutOfRange {
+                object: self.object,
+                limit: (across.to_f64() + 0.5) as i64,
+            });
+        }
         if place != Sphere::Outside {
             if place == Sphere::Inside && !P::PERSPECTIVE {
                 self.vertex_pass_fast(&ctx)?;
@@ -765,7 +853,17 @@ impl<P: Profile> Preparer<'_, P> {
                 let c = if ctx.shade.uses_position() {
                     let vs = ctx.tris.get(t).copied().unwrap_or([0; 3]);
                     let e = vs.map(|v| Self::eye_pos(ctx, usize::from(v)));
-                    (e[0] + e[1] + e[2]).scale(P::Real::from_ratio(1, 3))
+                    let third = P::Real::from_ratio(1, 3);
+                    let big = e.iter().any(|p| {
+                        p.x.abs().max(p.y.abs()).max(p.z.abs())
+                            >= P::Real::MAX.div(P::Real::from_i32(4))
+                    });
+                    if big {
+                        // A sum that could saturate: scaled term by term.
+                        e[0].scale(third) + e[1].scale(third) + e[2].scale(third)
+                    } else {
+                        (e[0] + e[1] + e[2]).scale(third)
+                    }
                 } else {
                     Vec3::ZERO
                 };
@@ -865,8 +963,7 @@ impl<P: Profile> Preparer<'_, P> {
         // Clip in eye space. Facing from the eye-space plane: front when
         // the normal points towards the eye (at the origin).
         let mut cvs = vi.map(|i| Self::clip_vert(ctx, i, false));
-        let nf = (cvs[1].pos - cvs[0].pos).cross(cvs[2].pos - cvs[0].pos);
-        let facing = nf.dot(cvs[0].pos);
+        let facing = facing(cvs[0].pos, cvs[1].pos, cvs[2].pos);
         if facing == P::Real::ZERO {
             return Ok(());
         }
