@@ -37,9 +37,12 @@
 //!    renormalised inverse-transpose normal), so a vertex costs three
 //!    multiply-adds per light. Every vertex is lit, also those used only
 //!    by culled triangles: on the bunny (1839 vertices, 3674 triangles,
-//!    1498 kept) lighting the ~340 vertices used only by culled triangles
-//!    costs less than testing and marking the 4494 corners of the kept
-//!    ones. Outside vertices are marked in `xy` (never read by the
+//!    1498 kept, whose corners use 906 vertices) lighting on first use by
+//!    a kept triangle was measured on the Cortex-M4 at 1.059 M geometry
+//!    instructions against 0.966 M for lighting all 1839 in the linear
+//!    pass: the 933 lightings saved (63 K instructions) cost less than
+//!    testing the 4494 corners of the kept triangles in the triangle loop
+//!    (+120 K). Outside vertices are marked in `xy` (never read by the
 //!    rasterizer: no kept triangle uses them).
 //! 3. One pass over the triangles: back-face sign from the projected
 //!    subpixel coordinates (32-bit products for edges below 2^15

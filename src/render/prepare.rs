@@ -9,7 +9,7 @@ use crate::mesh::Mesh;
 use crate::num::approx16;
 use crate::num::wide::{det_sign, det_sign_small};
 use crate::num::{Profile, Real};
-use crate::raster::{first_row, COORD_LIMIT_PX};
+use crate::raster::{first_row, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
 
@@ -323,6 +323,81 @@ fn facing<R: Real>(a: Vec3<R>, b: Vec3<R>, c: Vec3<R>) -> R {
     n.dot(down(a, big(a)))
 }
 
+/// The rows a triangle with corners at `xy` can cover on a `width ×
+/// height` screen (the rows the rasterizer would visit), or `None` when it
+/// covers no pixel centre of the screen.
+#[inline(always)]
+fn rows_in(xy: [[i32; 2]; 3], width: u32, height: u32, sub: SubpixelBits) -> Option<[u16; 2]> {
+    let span = |k: usize| {
+        let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
+        (a.min(b).min(c), a.max(b).max(c))
+    };
+    let (x_lo, x_hi) = span(0);
+    let (y_lo, y_hi) = span(1);
+    // `max`/`min` rather than `clamp`, whose bound check is a panic
+    // branch the optimiser cannot remove for a runtime bound.
+    let clamp = |r: i32, n: u32| r.max(0).min(n.min(u32::from(u16::MAX)) as i32) as u16;
+    // Rows: the rasterizer's own `first_row(top)..first_row(bottom)`.
+    // Columns, conservatively: a centre on the rightmost x may count.
+    let rows = [
+        clamp(first_row(y_lo, sub), height),
+        clamp(first_row(y_hi, sub), height),
+    ];
+    let cols = [
+        clamp(first_row(x_lo, sub), width),
+        clamp(first_row(x_hi, sub).saturating_add(1), width),
+    ];
+    if rows[0] >= rows[1] || cols[0] >= cols[1] {
+        return None;
+    }
+    Some(rows)
+}
+
+/// The triangle loop of an object wholly inside the planes whose back
+/// faces are culled or drawn with its own vertices (every layout but
+/// two-sided Gouraud): the kept triangles appended to `out` from `nt` on,
+/// `color(t, back)` giving a flat colour. Bit for bit what the general
+/// loop keeps; a free function over slices, so that its state stays in
+/// registers. Returns the new count, or `None` when `out` is full.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn triangles_inside(
+    tris: &[[u16; 3]],
+    base: usize,
+    xy: &[[i32; 2]],
+    out: &mut [Tri],
+    mut nt: usize,
+    (width, height): (u32, u32),
+    sub: SubpixelBits,
+    cull: bool,
+    mut color: impl FnMut(usize, bool) -> Rgb8,
+) -> Option<usize> {
+    for (t, tri) in tris.iter().enumerate() {
+        let p = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or([0; 2]));
+        let [a, b, c] = p;
+        let (e0, e1, e2, e3) = (b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
+        let sign = det_sign_small(e0, e1, e2, e3).unwrap_or_else(|| det_sign(e0, e1, e2, e3));
+        if sign == 0 {
+            continue;
+        }
+        let back = sign > 0;
+        if back && cull {
+            continue;
+        }
+        let Some(rows) = rows_in(p, width, height, sub) else {
+            continue;
+        };
+        let slot = out.get_mut(nt)?;
+        // base + index < u16::MAX (checked by the vertex pass).
+        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
+        slot.rows = rows;
+        slot.color = color(t, back);
+        slot.back = back;
+        nt += 1;
+    }
+    Some(nt)
+}
+
 /// Where an object's bounding sphere lies against the clipping planes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Sphere {
@@ -443,7 +518,7 @@ impl<P: Profile> Preparer<'_, P> {
         if place != Sphere::Outside && reach >= limit {
             return Err(RenderError::OutOfRange {
                 object: self.object,
-                limit: (limit.to_f64() + 0.5) as i64,
+                limit: i64::from(limit.to_fixed_i32(0)),
             });
         }
         // A clipped vertex lies on an edge at a parameter rounded to the
@@ -457,7 +532,7 @@ impl<P: Profile> Preparer<'_, P> {
         if place == Sphere::Across && radius + radius >= across {
             return Err(RenderError::OutOfRange {
                 object: self.object,
-                limit: (across.to_f64() + 0.5) as i64,
+                limit: i64::from(across.to_fixed_i32(0)),
             });
         }
         if place != Sphere::Outside {
@@ -782,30 +857,7 @@ impl<P: Profile> Preparer<'_, P> {
     /// of the screen.
     #[inline(always)]
     fn rows_of(&self, xy: [[i32; 2]; 3]) -> Option<[u16; 2]> {
-        let sub = P::SUBPIXEL_BITS;
-        let span = |k: usize| {
-            let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
-            (a.min(b).min(c), a.max(b).max(c))
-        };
-        let (x_lo, x_hi) = span(0);
-        let (y_lo, y_hi) = span(1);
-        // `max`/`min` rather than `clamp`, whose bound check is a panic
-        // branch the optimiser cannot remove for a runtime bound.
-        let clamp = |r: i32, n: u32| r.max(0).min(n.min(u32::from(u16::MAX)) as i32) as u16;
-        // Rows: the rasterizer's own `first_row(top)..first_row(bottom)`.
-        // Columns, conservatively: a centre on the rightmost x may count.
-        let rows = [
-            clamp(first_row(y_lo, sub), self.height),
-            clamp(first_row(y_hi, sub), self.height),
-        ];
-        let cols = [
-            clamp(first_row(x_lo, sub), self.width),
-            clamp(first_row(x_hi, sub).saturating_add(1), self.width),
-        ];
-        if rows[0] >= rows[1] || cols[0] >= cols[1] {
-            return None;
-        }
-        Some(rows)
+        rows_in(xy, self.width, self.height, P::SUBPIXEL_BITS)
     }
 
     /// Appends a kept triangle. Field by field: the 14-byte `Tri` built
@@ -834,7 +886,7 @@ impl<P: Profile> Preparer<'_, P> {
     /// object space for directional lights, else in eye space at the
     /// centroid.
     #[inline]
-    fn flat_color(&self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize, back: bool) -> Rgb8 {
+    fn flat_color(ctx: &ObjCtx<'_, '_, P::Real>, t: usize, back: bool) -> Rgb8 {
         if ctx.layout != Layout::Flat {
             return Rgb8::BLACK;
         }
@@ -886,6 +938,35 @@ impl<P: Profile> Preparer<'_, P> {
         ctx: &ObjCtx<'_, '_, P::Real>,
     ) -> Result<(), RenderError> {
         let base = ctx.v_start;
+        let gouraud = matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb);
+        if INSIDE && (ctx.cull || !gouraud) {
+            let flat = ctx.layout == Layout::Flat;
+            let xy = self.ws.xy.get(base..self.nv).unwrap_or(&[]);
+            let nt = triangles_inside(
+                ctx.tris,
+                base,
+                xy,
+                self.ws.tris,
+                self.nt,
+                (self.width, self.height),
+                P::SUBPIXEL_BITS,
+                ctx.cull,
+                |t, back| {
+                    if flat {
+                        Self::flat_color(ctx, t, back)
+                    } else {
+                        Rgb8::BLACK
+                    }
+                },
+            );
+            return match nt {
+                Some(nt) => {
+                    self.nt = nt;
+                    Ok(())
+                }
+                None => Err(self.cap(Part::Triangles)),
+            };
+        }
         for (t, tri) in ctx.tris.iter().enumerate() {
             // base + index < u16::MAX (checked by the vertex pass).
             let vs = tri.map(|i| (base + usize::from(i)) as u16);
@@ -919,7 +1000,7 @@ impl<P: Profile> Preparer<'_, P> {
                 continue;
             };
             let color = if ctx.layout == Layout::Flat {
-                self.flat_color(ctx, t, back)
+                Self::flat_color(ctx, t, back)
             } else {
                 Rgb8::BLACK
             };
@@ -938,7 +1019,7 @@ impl<P: Profile> Preparer<'_, P> {
             let cv = Self::clip_vert(ctx, usize::from(vi[c]), true);
             vs[c] = self.emit(ctx, &cv)?;
         }
-        let color = self.flat_color(ctx, t, true);
+        let color = Self::flat_color(ctx, t, true);
         self.push_tri(Tri {
             v: vs,
             color,
@@ -979,7 +1060,7 @@ impl<P: Profile> Preparer<'_, P> {
         if n < 3 {
             return Ok(());
         }
-        let color = self.flat_color(ctx, t, back);
+        let color = Self::flat_color(ctx, t, back);
         let first = self.emit(ctx, &poly[0])?;
         let mut prev = self.emit(ctx, &poly[1])?;
         for q in poly.iter().take(n).skip(2) {
