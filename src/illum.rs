@@ -462,6 +462,11 @@ pub(crate) struct ObjectLight<R> {
     terms: heapless::Vec<ObjTerm<R>, MAX_LIGHTS>,
 }
 
+/// Whether a component of `v` (raw Q16) exceeds `lim` in magnitude.
+fn big3<R: Real>(v: Vec3<R>, lim: u32) -> bool {
+    raw3(v).iter().any(|c| c.unsigned_abs() > lim)
+}
+
 #[derive(Clone, Copy, Debug)]
 struct ObjTerm<R> {
     /// `L'` (generic path).
@@ -485,6 +490,11 @@ impl<R: Real> Shade<R> {
         let kt = k.transpose();
         let mut terms = heapless::Vec::new();
         for t in &self.terms {
+            // The Q16 products `diffuse · N·L` by `mul16_small`: diffuse
+            // below 256 (else the eye-space path lights the object).
+            if R::Q16_KERNELS && big3(t.diffuse, (1 << 24) - 1) {
+                return None;
+            }
             let l = kt.apply(t.at);
             let l = Vec3::new(l.x.div(s), l.y.div(s), l.z.div(s));
             // |L'| ≈ 1: the Q1.14 components fit easily.
@@ -535,6 +545,21 @@ impl<R: Real> ObjectLight<R> {
             let nl = Self::nl(t, n, flip);
             if nl <= R::ZERO {
                 continue;
+            }
+            if R::Q16_KERNELS {
+                // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| <
+                // 2^24 checked when built, |N·L| <= 2^17 for unit vectors).
+                let nlr = raw(nl);
+                if nlr.unsigned_abs() <= SMALL {
+                    let d = raw3(t.diffuse);
+                    let p = |c: i32| R::from_fixed_i32(mul16_small(c, nlr), 16);
+                    if mono {
+                        sum.x += p(d[0]);
+                    } else {
+                        sum = sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
+                    }
+                    continue;
+                }
             }
             if mono {
                 sum.x += t.diffuse.x * nl;

@@ -424,6 +424,8 @@ struct ObjCtx<'a, 'm, R> {
     /// Directional lights in object space (Gouraud and flat without
     /// point lights or specular term, uniform scale).
     olight: Option<ObjectLight<R>>,
+    /// Grey material under white lights: one colour channel computed.
+    grey: bool,
     layout: Layout,
     stride: usize,
     cull: bool,
@@ -497,6 +499,10 @@ impl<P: Profile> Preparer<'_, P> {
             nm,
             shade: &shade,
             olight,
+            grey: {
+                let grey = |c: Vec3<P::Real>| c.x == c.y && c.y == c.z;
+                grey(obj.material.color) && lights.iter().all(|l| grey(l.color))
+            },
             layout,
             stride: layout.stride_for(P::PERSPECTIVE),
             cull: obj.cull_backfaces,
@@ -898,7 +904,7 @@ impl<P: Profile> Preparer<'_, P> {
             }
         };
         let col = match &ctx.olight {
-            Some(ol) => ol.at(n, back, false),
+            Some(ol) => ol.at(n, back, ctx.grey),
             None => {
                 // The centroid only when the lighting depends on the
                 // position.
