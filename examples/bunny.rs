@@ -7,7 +7,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::BUNNY;
 use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
-use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{BandBuf, PixelFormat, Rgb565Be, Rgb8};
 use std::{error::Error, fs::File, io::BufWriter};
@@ -53,13 +53,10 @@ fn run<P: Profile>(out: &str, shading: Shading) -> Result<(), Box<dyn Error>> {
         vec![P::Lerp::default(); 32000],
         vec![Tri::default(); 8000],
     );
-    let (mut heads, mut links) = (vec![0u16; 2000], vec![Link::default(); 8000]);
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = prepare::<P>(&scene, W, W, ws)?;
     let mut band = vec![[0u8; 2]; (W * 16) as usize];

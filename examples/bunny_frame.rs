@@ -10,7 +10,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::BUNNY;
 use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
-use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 use std::hint::black_box;
@@ -19,8 +19,6 @@ struct Mem<L> {
     xy: Vec<[i32; 2]>,
     vals: Vec<L>,
     tris: Vec<Tri>,
-    heads: Vec<u16>,
-    links: Vec<Link>,
     band: Vec<[u8; 2]>,
     z: Vec<u16>,
     order: Vec<u16>,
@@ -33,8 +31,6 @@ fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -
         xy: &mut m.xy,
         vals: &mut m.vals,
         tris: &mut m.tris,
-        heads: &mut m.heads,
-        links: &mut m.links,
     };
     let frame = prepare::<P>(scene, 240, 240, ws).expect("prepare");
     let mut crc = 0u32;
@@ -88,8 +84,6 @@ fn run<P: Profile>() {
         xy: vec![[0; 2]; 4000],
         vals: vec![P::Lerp::default(); 16000],
         tris: vec![Tri::default(); 4000],
-        heads: vec![0; 2000],
-        links: vec![Link::default(); 4000],
         band: vec![[0; 2]; 240 * 16],
         z: vec![0; 240 * 16],
         order: vec![0; 8000],

@@ -13,7 +13,7 @@ use fixshade::geom::{radians, Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::DODECAHEDRON;
 use fixshade::num::{Fast, Real, Q16};
-use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::eg::{draw_band, FromShaded};
 use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
@@ -64,13 +64,10 @@ fn render_to<C: PixelColor + FromShaded>(
         background: Rgb8::BLACK,
     };
     let (mut xy, mut vals, mut tris) = ([[0; 2]; 64], [0i32; 64 * 7], [Tri::default(); 64]);
-    let (mut heads, mut links) = ([0u16; 20], [Link::default(); 64]);
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = prepare::<Fast>(&scene, w, h, ws)?;
     let mut pixels = vec![[0u8; 2]; (w * 16) as usize];

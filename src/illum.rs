@@ -445,6 +445,137 @@ impl<R: Real> Shade<R> {
     }
 }
 
+/// Directional lights without a specular term, moved into one object's
+/// space once per object ([`Shade::object_light`]): a vertex or face
+/// colour is then `ambient + Σ diffuse · max(0, n·L')` with `n` the stored
+/// Q1.14 unit normal, three multiply-adds per light and no normalisation.
+///
+/// For a model-view linear part `M = s·Q` (uniform scale `s`, `Q`
+/// orthogonal), the eye-space unit normal is `Q n` and `Q n · L = n · Qᵀ L`,
+/// so `L' = Mᵀ L / s`. For `Q16` `L'` is kept in Q1.14 (`l14`, within
+/// `2^-15` per component) and `n · L'` summed exactly in 32 bits (three
+/// products below `2^29`), rounded once to Q16: `N·L` within `2^-13.4` of
+/// the eye-space product of the same normal (0.024 of a level).
+#[derive(Clone, Debug)]
+pub(crate) struct ObjectLight<R> {
+    ambient: Vec3<R>,
+    terms: heapless::Vec<ObjTerm<R>, MAX_LIGHTS>,
+}
+
+/// Whether a component of `v` (raw Q16) exceeds `lim` in magnitude.
+fn big3<R: Real>(v: Vec3<R>, lim: u32) -> bool {
+    raw3(v).iter().any(|c| c.unsigned_abs() > lim)
+}
+
+#[derive(Clone, Copy, Debug)]
+struct ObjTerm<R> {
+    /// `L'` (generic path).
+    l: Vec3<R>,
+    /// `L'` in Q1.14 (`Q16` path).
+    l14: [i32; 3],
+    /// `Ip·Lc·kd·C`.
+    diffuse: Vec3<R>,
+}
+
+impl<R: Real> Shade<R> {
+    /// The object-space form of these lights for an object whose
+    /// model-view linear part is `k · s` with `k` of orthogonal columns of
+    /// length `s` (see [`Mat3::normal_matrix`](crate::geom::Mat3)), or
+    /// `None` when a point light or a specular term needs eye-space
+    /// positions (the caller then lights in eye space).
+    pub(crate) fn object_light(&self, k: &crate::geom::Mat3<R>, s: R) -> Option<ObjectLight<R>> {
+        if self.has_specular || self.terms.iter().any(|t| t.point) || s <= R::ZERO {
+            return None;
+        }
+        let kt = k.transpose();
+        let mut terms = heapless::Vec::new();
+        for t in &self.terms {
+            // The Q16 products `diffuse · N·L` by `mul16_small`: diffuse
+            // below 256 (else the eye-space path lights the object).
+            if R::Q16_KERNELS && big3(t.diffuse, (1 << 24) - 1) {
+                return None;
+            }
+            let l = kt.apply(t.at);
+            let l = Vec3::new(l.x.div(s), l.y.div(s), l.z.div(s));
+            // |L'| ≈ 1: the Q1.14 components fit easily.
+            let l14 = [l.x, l.y, l.z].map(|c| c.to_fixed_i32(14).clamp(-(1 << 15), 1 << 15));
+            terms
+                .push(ObjTerm {
+                    l,
+                    l14,
+                    diffuse: t.diffuse,
+                })
+                .ok()?;
+        }
+        Some(ObjectLight {
+            ambient: self.ambient,
+            terms,
+        })
+    }
+}
+
+impl<R: Real> ObjectLight<R> {
+    /// `N·L'` of Q1.14 normal `n` (reversed when `flip`).
+    #[inline(always)]
+    fn nl(t: &ObjTerm<R>, n: [i16; 3], flip: bool) -> R {
+        let nl = if R::Q16_KERNELS {
+            // |n_k| <= 2^15, |l14_k| <= 2^14 (unit L'): each product
+            // below 2^29 and the sum below 3 · 2^29 (no overflow).
+            let l = t.l14;
+            let s = i32::from(n[0]) * l[0] + i32::from(n[1]) * l[1] + i32::from(n[2]) * l[2];
+            // Q28 to Q16, rounded (ties up).
+            R::from_fixed_i32((s + (1 << 11)) >> 12, 16)
+        } else {
+            Vec3::from_q14(n).dot(t.l)
+        };
+        if flip {
+            -nl
+        } else {
+            nl
+        }
+    }
+
+    /// The colour, each channel clamped to `[0, 1]`, of a surface with
+    /// object-space Q1.14 unit normal `n` (reversed when `flip`); only the
+    /// first channel when `mono` (the others are then copies of it).
+    #[inline]
+    pub(crate) fn at(&self, n: [i16; 3], flip: bool, mono: bool) -> Vec3<R> {
+        let mut sum = self.ambient;
+        for t in &self.terms {
+            let nl = Self::nl(t, n, flip);
+            if nl <= R::ZERO {
+                continue;
+            }
+            if R::Q16_KERNELS {
+                // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| <
+                // 2^24 checked when built, |N·L| <= 2^17 for unit vectors).
+                let nlr = raw(nl);
+                if nlr.unsigned_abs() <= SMALL {
+                    let d = raw3(t.diffuse);
+                    let p = |c: i32| R::from_fixed_i32(mul16_small(c, nlr), 16);
+                    if mono {
+                        sum.x += p(d[0]);
+                    } else {
+                        sum = sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
+                    }
+                    continue;
+                }
+            }
+            if mono {
+                sum.x += t.diffuse.x * nl;
+            } else {
+                sum = sum + t.diffuse.scale(nl);
+            }
+        }
+        if mono {
+            let x = clamp01(sum.x);
+            Vec3::new(x, x, x)
+        } else {
+            Vec3::new(clamp01(sum.x), clamp01(sum.y), clamp01(sum.z))
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;

@@ -17,7 +17,7 @@ use fixshade::raster::{
     draw_triangle, Fill, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, Shader, Span, Spans,
     SubpixelBits, Vertex,
 };
-use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{
     BandBuf, Depth16, Depth32, DepthBuffer, DepthFormat, FrameBuf, Gray8, PixelFormat, Rgb565Be,
@@ -394,16 +394,12 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     let cap = |b: &mut Bytes<'_>, big: usize| if small { b.u16() as usize % 64 } else { big };
     let verts = cap(b, 6000);
     let mut xy = vec![[0i32; 2]; verts];
-    let mut links = vec![Link::default(); verts];
     let mut vals = vec![P::Lerp::default(); cap(b, 6000 * 8)];
     let mut tris = vec![Tri::default(); cap(b, 8000)];
-    let mut heads = vec![0u16; cap(b, 2000)];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = match prepare::<P>(&scene, w, h, ws) {
         Ok(f) => f,

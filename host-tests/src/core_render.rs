@@ -11,7 +11,7 @@ use crate::scene_file::{PixelFormat, SceneDesc};
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind as CLightKind, Material, Specular, Viewer};
 use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Real, F32, F64};
-use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
 use fixshade::target::{BandBuf, Gray8, PixelFormat as CorePixelFormat, Rgb565Be, Rgb8, Rgb888};
 use std::fmt;
@@ -262,19 +262,15 @@ impl<'d, R: Real> CoreScene<'d, R> {
         }
     }
 
-    /// Workspace that always suffices: (vertices, triangles, heads). Every
-    /// corner may make a vertex, and clipping adds at most 7 vertices and
-    /// 7 triangles per triangle; values are 8 per vertex at most.
-    pub fn workspace_sizes(&self) -> (usize, usize, usize) {
+    /// Workspace that always suffices: (vertices, triangles). Every mesh
+    /// vertex makes a prepared vertex, and clipping and two-sided back
+    /// faces add at most 14 vertices and 7 triangles per triangle; values
+    /// are 8 per vertex at most.
+    pub fn workspace_sizes(&self) -> (usize, usize) {
         let tris: usize = self.objects.iter().map(|o| o.mesh.triangle_count()).sum();
-        let verts = (tris * 3 + tris * 14).min(u16::MAX as usize - 1);
-        let heads = self
-            .objects
-            .iter()
-            .map(|o| o.mesh.vertex_count())
-            .max()
-            .unwrap_or(0);
-        (verts, tris * 8, heads)
+        let mesh_verts: usize = self.objects.iter().map(|o| o.mesh.vertex_count()).sum();
+        let verts = (mesh_verts + tris * 14).min(u16::MAX as usize - 1);
+        (verts, tris * 8)
     }
 }
 
@@ -365,8 +361,6 @@ pub struct Renderer<P: Profile, F: CorePixelFormat> {
     xy: Vec<[i32; 2]>,
     vals: Vec<P::Lerp>,
     tris: Vec<Tri>,
-    heads: Vec<u16>,
-    links: Vec<Link>,
     band: Vec<F::Raw>,
     depth: Vec<u16>,
     order: Vec<u16>,
@@ -379,15 +373,13 @@ pub struct Renderer<P: Profile, F: CorePixelFormat> {
 impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
     /// Memory for `cs` on a `width × height` screen in bands of `rows`.
     pub fn new(cs: &CoreScene<'_, P::Real>, width: u32, height: u32, rows: u32) -> Self {
-        let (verts, tris, heads) = cs.workspace_sizes();
+        let (verts, tris) = cs.workspace_sizes();
         let rows = rows.max(1);
         let band_len = (width * rows.min(height.max(1))) as usize;
         Self {
             xy: vec![[0; 2]; verts],
             vals: vec![P::Lerp::default(); verts * 8],
             tris: vec![Tri::default(); tris],
-            heads: vec![0; heads],
-            links: vec![Link::default(); verts],
             band: vec![F::Raw::default(); band_len],
             depth: vec![0; band_len],
             order: vec![0; 2 * tris],
@@ -414,8 +406,6 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
-            heads: &mut self.heads,
-            links: &mut self.links,
         };
         let frame = prepare::<P>(scene, w, h, ws)?;
         let mut stats = FrameStats {

@@ -10,7 +10,7 @@
 //! scene regenerates normals (`crease_angle_deg`), the built-in positions
 //! and triangles with the regenerated normals and indices as constant
 //! arrays. Each scene also records the workspace it needs (prepared
-//! vertices, values, triangles and scratch heads: the smallest workspace
+//! vertices, values and triangles: the smallest workspace
 //! `prepare::<Fast>` accepts), so the firmware can size its static buffers.
 //!
 //! The test `tests/firmware_scenes.rs` regenerates the file and compares it
@@ -23,16 +23,16 @@ use std::path::{Path, PathBuf};
 
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
-use fixshade::mesh::{CornerNormals, Mesh};
+use fixshade::mesh::Mesh;
 use fixshade::num::{Fast, Real, Q16};
-use fixshade::render::{prepare, BandState, Link, Part, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Part, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 
 use crate::builtin::load_builtin;
 use crate::core_render::{crc32, BAND_ROWS};
 use crate::ideal::{LightKind as ILightKind, Shading as IShading, SpecularModel};
-use crate::scene_file::{builtin_mesh, PixelFormat, SceneDesc, SceneMesh, BUILTIN_MESHES};
+use crate::scene_file::{PixelFormat, SceneDesc, SceneMesh, BUILTIN_MESHES};
 
 /// The built-in scenes the firmware renders, in order.
 pub const FIRMWARE_SCENES: [&str; 6] = [
@@ -59,14 +59,12 @@ pub fn generated_path(root: &Path) -> PathBuf {
 /// [`Workspace`] with which `prepare::<Fast>` succeeds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Needs {
-    /// `xy` and `links`: prepared vertices.
+    /// `xy`: prepared vertices.
     pub vertices: usize,
     /// `vals`: interpolated values.
     pub values: usize,
     /// `tris`: prepared triangles.
     pub triangles: usize,
-    /// `heads`: vertices of the largest mesh.
-    pub heads: usize,
     /// `Frame::bytes_used()` of the prepared frame.
     pub prepared_bytes: usize,
 }
@@ -78,7 +76,6 @@ impl Needs {
             vertices: self.vertices.max(o.vertices),
             values: self.values.max(o.values),
             triangles: self.triangles.max(o.triangles),
-            heads: self.heads.max(o.heads),
             prepared_bytes: self.prepared_bytes.max(o.prepared_bytes),
         }
     }
@@ -86,10 +83,7 @@ impl Needs {
     /// Bytes of a workspace of these lengths (fixed profiles: 4-byte
     /// values), scratch included.
     pub fn workspace_bytes(&self) -> usize {
-        self.vertices * (8 + core::mem::size_of::<Link>())
-            + self.values * 4
-            + self.triangles * core::mem::size_of::<Tri>()
-            + self.heads * 2
+        self.vertices * 8 + self.values * 4 + self.triangles * core::mem::size_of::<Tri>()
     }
 }
 
@@ -209,14 +203,10 @@ fn try_prepare(scene: &Scene<'_, '_, Q16>, w: u32, h: u32, n: Needs) -> Result<N
     let mut xy = vec![[0i32; 2]; n.vertices];
     let mut vals = vec![0i32; n.values];
     let mut tris = vec![Tri::default(); n.triangles];
-    let mut heads = vec![0u16; n.heads];
-    let mut links = vec![Link::default(); n.vertices];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = prepare::<Fast>(scene, w, h, ws)?;
     let values = frame
@@ -227,7 +217,6 @@ fn try_prepare(scene: &Scene<'_, '_, Q16>, w: u32, h: u32, n: Needs) -> Result<N
         vertices: frame.vertex_count(),
         values,
         triangles: frame.triangle_count(),
-        heads: n.heads,
         prepared_bytes: frame.bytes_used(),
     })
 }
@@ -237,17 +226,16 @@ fn try_prepare(scene: &Scene<'_, '_, Q16>, w: u32, h: u32, n: Needs) -> Result<N
 /// reports it too small.
 fn needs(scene: &Scene<'_, '_, Q16>, w: u32, h: u32) -> Result<Needs, String> {
     let tris: usize = scene.objects.iter().map(|o| o.mesh.triangle_count()).sum();
-    let heads = scene
-        .objects
-        .iter()
-        .map(|o| o.mesh.vertex_count())
-        .max()
-        .unwrap_or(0);
     let big = Needs {
-        vertices: (tris * 17).min(u16::MAX as usize - 1),
-        values: (tris * 17).min(u16::MAX as usize - 1) * 8,
+        vertices: (scene
+            .objects
+            .iter()
+            .map(|o| o.mesh.vertex_count())
+            .sum::<usize>()
+            + tris * 14)
+            .min(u16::MAX as usize - 1),
+        values: (u16::MAX as usize - 1) * 8,
         triangles: tris * 8,
-        heads,
         prepared_bytes: 0,
     };
     let mut n = try_prepare(scene, w, h, big).map_err(|e| e.to_string())?;
@@ -263,7 +251,6 @@ fn needs(scene: &Scene<'_, '_, Q16>, w: u32, h: u32) -> Result<Needs, String> {
                 Part::Vertices => n.vertices += 1,
                 Part::Values => n.values += 1,
                 Part::Triangles => n.triangles += 1,
-                Part::Heads => n.heads += 1,
                 // Not a part `prepare` fills.
                 Part::Order => return Err("order scratch".into()),
             },
@@ -285,14 +272,10 @@ fn render_crc(
     let mut xy = vec![[0i32; 2]; n.vertices];
     let mut vals = vec![0i32; n.values];
     let mut tris = vec![Tri::default(); n.triangles];
-    let mut heads = vec![0u16; n.heads];
-    let mut links = vec![Link::default(); n.vertices];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = prepare::<Fast>(scene, w, h, ws)?;
     let mut band = vec![[0u8; 2]; (w * BAND_ROWS) as usize];
@@ -373,12 +356,11 @@ fn builtin_const(name: &str) -> String {
     name.to_ascii_uppercase()
 }
 
-/// The built-in mesh whose positions and triangles `mesh` has.
-fn builtin_base(mesh: &Mesh<'_>) -> Option<&'static str> {
-    BUILTIN_MESHES.into_iter().find(|n| {
-        builtin_mesh(n)
-            .is_some_and(|b| b.positions() == mesh.positions() && b.triangles() == mesh.triangles())
-    })
+/// The built-in mesh an owned mesh was made from (its origin reads
+/// `NAME (crease ...)`).
+fn builtin_base(origin: &str) -> Option<&'static str> {
+    let name = origin.split(" (crease").next()?;
+    BUILTIN_MESHES.into_iter().find(|n| *n == name)
 }
 
 /// Distinct constant tables, by content (the compiler merges identical
@@ -406,12 +388,11 @@ impl Tables {
     }
 
     /// Bytes of the mesh's shape (positions, triangles) and of its normals
-    /// (normals, corner indices) not counted yet.
+    /// (vertex and face normals) not counted yet.
     fn add_mesh(&mut self, m: &Mesh<'_>) -> (usize, usize) {
         let shape = self.add_i16(m.positions()) + self.add_u16(m.triangles());
-        let normals = m.normals().map_or(0, |CornerNormals { normals, indices }| {
-            self.add_i16(normals) + self.add_u16(indices)
-        });
+        let normals = m.vertex_normals().map_or(0, |n| self.add_i16(n))
+            + m.face_normals().map_or(0, |n| self.add_i16(n));
         (shape, normals)
     }
 }
@@ -490,7 +471,7 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
                 }
                 SceneMesh::Owned(owned) => {
                     let m = owned.mesh();
-                    let base = builtin_base(&m)
+                    let base = builtin_base(owned.origin())
                         .ok_or_else(|| format!("{}: only built-in meshes are supported", s.name))?;
                     let crease = o
                         .crease_angle_deg
@@ -512,27 +493,33 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
                         writeln!(
                             meshes,
                             "\n/// `{bc}` with normals regenerated by the core's `generate_normals`\n\
-                             /// with a crease angle of {crease}°: {} normals.\n\
-                             const {c}: Mesh<'static> = match Mesh::new(\n    \
-                             fixshade::mesh::{bc}.positions(),\n    \
-                             fixshade::mesh::{bc}.triangles(),\n    \
-                             Some(CornerNormals {{\n        \
-                             normals: {c}_NORMALS,\n        \
-                             indices: {c}_INDICES,\n    \
-                             }}),\n\
-                             ) {{\n    \
-                             Ok(mesh) => mesh,\n    \
-                             Err(_) => panic!(\"invalid regenerated normals {c}\"),\n\
+                             /// with a crease angle of {crease}°, welded: {} vertices.\n\
+                             const {c}: Mesh<'static> =\n    \
+                             match Mesh::new({c}_POSITIONS, {c}_TRIANGLES, Some({c}_NORMALS)) {{\n        \
+                             Ok(mesh) => match mesh.with_face_normals({c}_FACE_NORMALS) {{\n            \
+                             Ok(mesh) => mesh,\n            \
+                             Err(_) => panic!(\"invalid face normals {c}\"),\n        \
+                             }},\n        \
+                             Err(_) => panic!(\"invalid regenerated normals {c}\"),\n    \
                              }};",
-                            owned.normals().len()
+                            owned.positions().len()
                         )
                         .unwrap();
-                        writeln!(meshes, "\nconst {c}_NORMALS: &[[i16; 3]] = &[").unwrap();
-                        triples(&mut meshes, owned.normals());
-                        writeln!(meshes, "];").unwrap();
-                        writeln!(meshes, "\nconst {c}_INDICES: &[[u16; 3]] = &[").unwrap();
-                        triples(&mut meshes, owned.normal_indices());
-                        writeln!(meshes, "];").unwrap();
+                        for (suffix, ty, i16s, u16s) in [
+                            ("POSITIONS", "i16", Some(owned.positions()), None),
+                            ("TRIANGLES", "u16", None, Some(owned.triangles())),
+                            ("NORMALS", "i16", Some(owned.normals()), None),
+                            ("FACE_NORMALS", "i16", Some(owned.face_normals()), None),
+                        ] {
+                            writeln!(meshes, "\nconst {c}_{suffix}: &[[{ty}; 3]] = &[").unwrap();
+                            if let Some(t) = i16s {
+                                triples(&mut meshes, t);
+                            }
+                            if let Some(t) = u16s {
+                                triples(&mut meshes, t);
+                            }
+                            writeln!(meshes, "];").unwrap();
+                        }
                     }
                     c
                 }
@@ -590,8 +577,8 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
         let n = s.needs;
         writeln!(
             body,
-            "        needs: Needs {{ vertices: {}, values: {}, triangles: {}, heads: {}, prepared_bytes: {} }},",
-            n.vertices, n.values, n.triangles, n.heads, n.prepared_bytes
+            "        needs: Needs {{ vertices: {}, values: {}, triangles: {}, prepared_bytes: {} }},",
+            n.vertices, n.values, n.triangles, n.prepared_bytes
         )
         .unwrap();
         writeln!(body, "    }},").unwrap();
@@ -613,7 +600,7 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
     )
     .unwrap();
     if !regenerated.is_empty() {
-        writeln!(out, "use fixshade::mesh::{{CornerNormals, Mesh}};").unwrap();
+        writeln!(out, "use fixshade::mesh::Mesh;").unwrap();
     }
     write!(
         out,
@@ -628,7 +615,6 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
          vertices: {},\n    \
          values: {},\n    \
          triangles: {},\n    \
-         heads: {},\n    \
          prepared_bytes: {},\n\
          }};\n\
          \n\
@@ -646,7 +632,6 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
         max.vertices,
         max.values,
         max.triangles,
-        max.heads,
         max.prepared_bytes,
         shapes.join(", "),
     )

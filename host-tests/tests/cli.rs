@@ -259,13 +259,14 @@ fn bake_writes_the_counts() {
     );
     let text = std::fs::read_to_string(dir.path("cube.rs")).unwrap();
     assert!(text.starts_with("//! Mesh `MY_CUBE`, baked by `fixshade bake` from `my cube.obj`"));
-    assert!(text.contains("use fixshade::mesh::{CornerNormals, Mesh};"));
+    assert!(text.contains("use fixshade::mesh::Mesh;"));
     assert!(text.contains("pub const MY_CUBE: Mesh<'static>"));
     assert!(text.contains("/// Baked from `my cube.obj`: 8 vertices, 12 triangles, 8 normals."));
     assert!(text.contains("/// Positions centred on (1, 2, 3) and scaled by 0.5"));
     assert_eq!(table_rows(&text, "POSITIONS"), 8);
     assert_eq!(table_rows(&text, "TRIANGLES"), 12);
     assert_eq!(table_rows(&text, "NORMALS"), 8);
+    assert_eq!(table_rows(&text, "FACE_NORMALS"), 12);
     // Corners at (±1, ±1, ±1) in Q1.14; smooth normals along the diagonals.
     assert!(text.contains("[-16384, -16384, -16384], [-16384, 16384, -16384],"));
     assert!(text.contains("[-9459, -9459, -9459],"));
@@ -290,9 +291,12 @@ fn bake_writes_the_counts() {
     let text = std::fs::read_to_string(dir.path("flat.rs")).unwrap();
     assert!(text.contains("pub const FLAT_CUBE: Mesh<'static>"));
     assert!(text.contains("8 vertices, 12 triangles, 24 normals"));
-    assert!(text.contains("[-8192, -8192, -8192], [-8192, 8192, -8192],"));
+    // Welded: a vertex per corner of each face (8 positions × 3 normals).
+    assert!(text.contains("[-8192, -8192, -8192],"));
+    assert_eq!(table_rows(&text, "POSITIONS"), 24);
     assert_eq!(table_rows(&text, "NORMALS"), 24);
-    assert_eq!(table_rows(&text, "NORMAL_INDICES"), 12);
+    assert_eq!(table_rows(&text, "FACE_NORMALS"), 12);
+    assert!(!text.contains("NORMAL_INDICES"));
 
     // Bad input: exit 2, named, nothing written.
     let old = dir.write("old.rs", "old");

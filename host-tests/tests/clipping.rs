@@ -6,7 +6,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
 use fixshade::num::{Precise, Profile, Real, F64};
-use fixshade::render::{prepare, Link, Tri, Workspace};
+use fixshade::render::{prepare, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{FrameBuf, Rgb8, Rgb888, Target};
 use fixshade_host::ideal::{self, IdealScene};
@@ -78,13 +78,10 @@ fn core_mask<P: Profile>(pos: &'static [[i16; 3]; 3]) -> Vec<bool> {
         vec![P::Lerp::default(); 32],
         vec![Tri::default(); 32],
     );
-    let (mut heads, mut links) = (vec![0u16; 8], vec![Link::default(); 32]);
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = prepare::<P>(&scene, W, H, ws).unwrap();
     assert!(frame.vertex_count() > 3, "the triangle was clipped");

@@ -11,7 +11,7 @@
 
 mod support;
 
-use fixshade::mesh::{shapes, CornerNormals, Mesh};
+use fixshade::mesh::{shapes, Mesh};
 use fixshade::num::{F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, F32, F64};
 use fixshade::render::RenderError;
 use fixshade::scene::{SceneError, Shading};
@@ -51,18 +51,10 @@ fn boundary_only(core: &[bool], ideal: &[bool], w: u32, h: u32) -> (usize, bool)
 
 /// A big triangle in the z = 0 plane of its model, facing +z.
 const TRI_POS: [[i16; 3]; 3] = [[-16000, -16000, 0], [16000, -16000, 0], [0, 16000, 0]];
-const UP: [[i16; 3]; 1] = [[0, 0, 16384]];
+const UP: [[i16; 3]; 3] = [[0, 0, 16384]; 3];
 
 fn big_triangle() -> Mesh<'static> {
-    Mesh::new(
-        &TRI_POS,
-        &[[0, 1, 2]],
-        Some(CornerNormals {
-            normals: &UP,
-            indices: &[[0, 0, 0]],
-        }),
-    )
-    .unwrap()
+    Mesh::new(&TRI_POS, &[[0, 1, 2]], Some(&UP)).unwrap()
 }
 
 /// A square in z = 0 with corner normals tilted outwards (a curved patch
@@ -83,15 +75,7 @@ static FLAT_UP: [[i16; 3]; 4] = [[0, 0, 16384]; 4];
 const QUAD_TRIS: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
 
 fn quad(normals: &'static [[i16; 3]; 4]) -> Mesh<'static> {
-    Mesh::new(
-        &QUAD,
-        &QUAD_TRIS,
-        Some(CornerNormals {
-            normals,
-            indices: &QUAD_TRIS,
-        }),
-    )
-    .unwrap()
+    Mesh::new(&QUAD, &QUAD_TRIS, Some(normals)).unwrap()
 }
 
 /// Scene: the eye on the +z axis looking at a patch facing it, so that
@@ -144,6 +128,7 @@ fn huge_world_triangles_cover_what_the_ideal_covers() {
         n
     }
     let mut worst = 0;
+    let (mut drawn, mut refused) = (0, 0);
     for scale in [100.0, 1e4] {
         for (angles, tz) in poses {
             let mut s = Spec::new(W, H, [0.0, 0.3, 2.0]);
@@ -161,20 +146,131 @@ fn huge_world_triangles_cover_what_the_ideal_covers() {
             worst = worst.max(check::<F32>(&s, &ideal, &label));
             worst = worst.max(check::<Precise>(&s, &ideal, &label));
             worst = worst.max(check::<PrecisePc>(&s, &ideal, &label));
-            if scale <= 100.0 {
-                worst = worst.max(check::<Fast>(&s, &ideal, &label));
-                worst = worst.max(check::<FastPc>(&s, &ideal, &label));
-            } else {
-                for scale in [scale, 3e4] {
-                    let mut s = s.clone();
-                    s.objects[0].scale = scale;
-                    let f = s.render::<Fast>().expect("defined result beyond the range");
-                    assert_eq!(f.rgb.len(), (W * H) as usize);
+            // Q16: drawn as the ideal where its eye-space range allows
+            // (scale 100), an error naming the limit where a coordinate or
+            // a partial sum of the transform could reach 16384 units
+            // (some poses at 10^4, all at 3·10^4), never a silently wrong
+            // frame.
+            for scale in [scale, 3e4] {
+                let mut s = s.clone();
+                s.objects[0].scale = scale;
+                for fast_pc in [false, true] {
+                    let r = if fast_pc {
+                        s.render::<FastPc>()
+                    } else {
+                        s.render::<Fast>()
+                    };
+                    match r {
+                        Ok(_) if scale < 2e4 => {
+                            drawn += 1;
+                            let (_, ideal) = s.render_ideal();
+                            let n = if fast_pc {
+                                check::<FastPc>(&s, &ideal, &label)
+                            } else {
+                                check::<Fast>(&s, &ideal, &label)
+                            };
+                            worst = worst.max(n);
+                        }
+                        Err(RenderError::OutOfRange { object: 0, .. }) if scale > 100.0 => {
+                            refused += 1;
+                        }
+                        other => panic!("{label} scale {scale}: {:?}", other.map(|_| ())),
+                    }
                 }
             }
         }
     }
     println!("huge triangles: at most {worst} boundary pixels differ from the ideal");
+    println!("fast, fast-pc: {drawn} frames drawn, {refused} refused (out of range)");
+    assert!(drawn >= 8 && refused >= 16, "{drawn} {refused}");
+}
+
+/// Large ground planes and far objects, in every profile: each frame is
+/// either drawn with the ideal's coverage up to boundary pixels, or
+/// refused with [`RenderError::OutOfRange`] naming the profile's
+/// eye-space limit (16384 units for `Q16`); never a silently wrong frame.
+///
+/// Measured (printed): `fast` and `fast-pc` draw ground planes of 20 and
+/// 1000 units and objects 1000 units away, and refuse the 40 000-unit
+/// plane (cut by the near plane, larger than the 1577 units their
+/// resolution allows here) and objects 20 000 units away (beyond 16384
+/// units); the other profiles draw them all.
+#[test]
+fn ground_planes_and_far_objects_are_drawn_or_refused() {
+    fn run<P: Profile>(s: &Spec<'_>, ideal: &[bool], label: &str) -> String {
+        match s.render::<P>() {
+            Ok(f) => {
+                let (n, ok) = boundary_only(&f.covered, ideal, W, H);
+                assert!(
+                    ok && n <= 12,
+                    "{label} {}: {n} pixels, boundary {ok}",
+                    P::NAME
+                );
+                format!("{}: drawn ({n} boundary px)", P::NAME)
+            }
+            Err(RenderError::OutOfRange { object: 0, limit }) => {
+                // Q16's eye-space range, or the size of a clipped object
+                // its resolution allows here (2·0.5 / (2^-16 · 41.57)).
+                assert!(
+                    limit == 16384 || limit == 1577,
+                    "{label} {}: {limit}",
+                    P::NAME
+                );
+                format!("{}: refused (limit {limit})", P::NAME)
+            }
+            Err(e) => panic!("{label} {}: {e}", P::NAME),
+        }
+    }
+    // The quad spans [-0.98, 0.98]²: `size` units across at scale size/2.
+    let mut lines = vec![];
+    let mut refused = vec![];
+    for (label, size, at) in [
+        ("ground 20", 20.0, [0.0, -1.0, 0.0]),
+        ("ground 1000", 1000.0, [0.0, -1.0, 0.0]),
+        ("ground 40000", 40_000.0, [0.0, -1.0, 0.0]),
+        ("object at 1000", 200.0, [0.0, 0.0, -1000.0]),
+        ("object at 20000", 4000.0, [0.0, 0.0, -20_000.0]),
+    ] {
+        let mut s = Spec::new(W, H, [0.0, 0.3, 2.0]);
+        s.far = None;
+        let mut o = ObjSpec::new(quad(&FLAT_UP), Shading::Gouraud);
+        o.scale = size / 2.0 / 0.9765625;
+        o.translation = at;
+        if at[1] < 0.0 {
+            // Lying on the ground, facing up.
+            o.angles = [-std::f64::consts::FRAC_PI_2, 0.0, 0.0];
+        }
+        s.objects.push(o);
+        s.lights
+            .push((LightSpec::Directional([0.3, 0.4, 1.0]), 1.0, [1.0; 3]));
+        let (_, ideal) = s.render_ideal();
+        assert!(ideal.iter().filter(|&&c| c).count() > 4, "{label}");
+        let row = [
+            run::<F64>(&s, &ideal, label),
+            run::<F64Pc>(&s, &ideal, label),
+            run::<F32>(&s, &ideal, label),
+            run::<Precise>(&s, &ideal, label),
+            run::<PrecisePc>(&s, &ideal, label),
+            run::<Fast>(&s, &ideal, label),
+            run::<FastPc>(&s, &ideal, label),
+        ];
+        for r in &row {
+            if r.contains("refused") {
+                refused.push(format!("{label} {}", r.split(':').next().unwrap_or("")));
+            }
+        }
+        lines.push(format!("{label:16} {}", row.join(" | ")));
+    }
+    println!("{}", lines.join("\n"));
+    assert_eq!(
+        refused,
+        [
+            "ground 40000 fast",
+            "ground 40000 fast-pc",
+            "object at 20000 fast",
+            "object at 20000 fast-pc"
+        ]
+    );
 }
 
 /// Vertices one Q1.14 step (2^-14) in front of, exactly on, and one step
@@ -214,15 +310,7 @@ fn vertices_in_front_of_on_and_behind_the_near_plane() {
     static NRM: [[i16; 3]; 3] = [[0, 0, 16384], [0, 11585, 11585], [11585, 0, 11585]];
     let mut drawn = [0usize; 6];
     for (c, pos) in CASES.iter().enumerate() {
-        let mesh = Mesh::new(
-            pos,
-            &[[0, 1, 2]],
-            Some(CornerNormals {
-                normals: &NRM,
-                indices: &[[0, 1, 2]],
-            }),
-        )
-        .unwrap();
+        let mesh = Mesh::new(pos, &[[0, 1, 2]], Some(&NRM)).unwrap();
         for shading in [Shading::Flat, Shading::Gouraud] {
             let mut s = Spec::new(W, H, [0.0, 0.0, 2.0]);
             s.objects.push(ObjSpec::new(mesh, shading));

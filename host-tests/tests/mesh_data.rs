@@ -68,10 +68,13 @@ fn counts() {
     assert_eq!(
         counts,
         [
-            (8, 12, 6),
-            (20, 36, 12),
+            // One vertex per distinct (position, normal) pair: the flat
+            // solids have one per face corner, the can's ring positions
+            // one per side and cap normal.
+            (24, 12, 24),
+            (60, 36, 60),
             (212, 420, 212),
-            (14, 24, 8),
+            (26, 24, 26),
             (81, 128, 81),
             (1839, 3674, 1839),
         ]
@@ -201,9 +204,24 @@ fn bake_rs_writes_quantised_tables() {
         &[[0, 2, 1]],
         None,
     );
-    assert!(text.contains("pub const TRI: Mesh<'static> = match Mesh::new(\n    POSITIONS,\n    TRIANGLES,\n    None,\n)"));
+    assert!(text
+        .contains("pub const TRI: Mesh<'static> = match Mesh::new(POSITIONS, TRIANGLES, None) {"));
+    assert!(text.contains("Ok(mesh) => match mesh.with_face_normals(FACE_NORMALS) {"));
+    // The exact face normal of (0, 0, 0), (0, -1/4, 1), (1/2, 0, 0).
+    assert!(text.contains("const FACE_NORMALS: &[[i16; 3]] = &[\n    [0, 15895, 3974],\n"));
     assert!(text.contains("    [0, 0, 0], [8192, 0, 0], [0, -4096, 16384],\n"));
     assert!(text.contains("    [0, 2, 1],\n"));
     assert_eq!(bake::quantize_q14(-0.5 / 16384.0), -1);
     assert_eq!(bake::quantize_q14(3.0), i16::MAX);
+}
+
+#[test]
+fn baked_face_normals_are_the_exact_ones() {
+    for (name, mesh) in ALL {
+        let f = mesh.face_normals().expect("built-ins bake face normals");
+        for (t, &n) in f.iter().enumerate() {
+            let [a, b, c] = mesh.triangle_positions(t).unwrap();
+            assert_eq!(n, fixshade::mesh::face_normal(a, b, c), "{name} {t}");
+        }
+    }
 }

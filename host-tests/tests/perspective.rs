@@ -4,9 +4,9 @@
 
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
-use fixshade::mesh::{CornerNormals, Mesh};
+use fixshade::mesh::Mesh;
 use fixshade::num::{F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Real, F64};
-use fixshade::render::{prepare, Link, Tri, Workspace};
+use fixshade::render::{prepare, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{Depth16, FrameBuf, Rgb8, Rgb888, Target};
 use fixshade_host::ideal::{self, IdealScene};
@@ -21,20 +21,12 @@ const POS: [[i16; 3]; 4] = [
     [16000, -8000, -31000],
     [-16000, -8000, -31000],
 ];
-const NRM: [[i16; 3]; 2] = [[0, 16384, 0], [0, 0, 16384]];
+/// One normal per vertex: up at the near edge, towards +z at the far one.
+const NRM: [[i16; 3]; 4] = [[0, 16384, 0], [0, 16384, 0], [0, 0, 16384], [0, 0, 16384]];
 const TRIS: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
-const NIDX: [[u16; 3]; 2] = [[0, 0, 1], [0, 1, 1]];
 
 fn core_frame<P: Profile>(shading: Shading) -> Vec<[u8; 3]> {
-    let mesh = Mesh::new(
-        &POS,
-        &TRIS,
-        Some(CornerNormals {
-            normals: &NRM,
-            indices: &NIDX,
-        }),
-    )
-    .unwrap();
+    let mesh = Mesh::new(&POS, &TRIS, Some(&NRM)).unwrap();
     let r = |v: f32| P::Real::from_f32(v);
     let m = Material {
         color: Vec3::from_f32([1.0; 3]),
@@ -74,13 +66,10 @@ fn core_frame<P: Profile>(shading: Shading) -> Vec<[u8; 3]> {
         vec![P::Lerp::default(); 512],
         vec![Tri::default(); 64],
     );
-    let (mut heads, mut links) = (vec![0u16; 8], vec![Link::default(); 64]);
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = prepare::<P>(&scene, W, H, ws).unwrap();
     let mut px = vec![[0u8; 3]; (W * H) as usize];
@@ -95,7 +84,7 @@ fn ideal_frame(shading: ideal::Shading) -> Vec<[u8; 3]> {
         position: POS[i].map(|c| c as f64 / 16384.0),
         normal: NRM[n].map(|c| c as f64 / 16384.0),
     };
-    let tri = |t: usize| [0, 1, 2].map(|c| v(TRIS[t][c] as usize, NIDX[t][c] as usize));
+    let tri = |t: usize| [0, 1, 2].map(|c| v(TRIS[t][c] as usize, TRIS[t][c] as usize));
     let scene = IdealScene {
         width: W,
         height: H,

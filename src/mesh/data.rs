@@ -26,8 +26,16 @@ pub struct CornerNormals<'a> {
     pub indices: &'a [[u16; 3]],
 }
 
-/// A triangle mesh: references to checked position, triangle and optional
-/// normal tables (see the [module docs](super) for the formats).
+/// A triangle mesh: references to checked tables (see the
+/// [module docs](super) for the formats).
+///
+/// One entry per distinct (position, normal) pair: `positions[i]` and
+/// `normals[i]` describe vertex `i`, and triangles index them, so the
+/// geometry stage transforms, projects and lights each vertex once in one
+/// pass over the arrays. A vertex on a crease appears once per normal.
+/// Optional face normals (one unit normal per triangle, the exact
+/// [`face_normal`](super::face_normal) of its corners) spare flat shading
+/// the per-face cross product and square root.
 ///
 /// Once made by [`Mesh::new`], every index is in range, so lookups through
 /// the accessors never fail for in-range triangle numbers.
@@ -36,7 +44,68 @@ pub struct Mesh<'a> {
     positions: &'a [[i16; 3]],
     triangles: &'a [[u16; 3]],
     normals: &'a [[i16; 3]],
-    normal_indices: &'a [[u16; 3]],
+    face_normals: &'a [[i16; 3]],
+    bound: Bound,
+}
+
+/// A sphere holding every position of a mesh, in Q1.14 (computed by
+/// [`Mesh::new`]): the centre of the positions' bounding box and the
+/// distance to the farthest position, rounded up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bound {
+    /// Centre, Q1.14.
+    pub center: [i16; 3],
+    /// Radius, Q1.14 (at most `2^15 · √3 < 56756`).
+    pub radius: u32,
+}
+
+impl Bound {
+    /// The bounding sphere of `positions` (non-empty).
+    const fn of(positions: &[[i16; 3]]) -> Self {
+        let mut lo = [i16::MAX; 3];
+        let mut hi = [i16::MIN; 3];
+        let mut i = 0;
+        while i < positions.len() {
+            let mut k = 0;
+            while k < 3 {
+                let c = positions[i][k];
+                if c < lo[k] {
+                    lo[k] = c;
+                }
+                if c > hi[k] {
+                    hi[k] = c;
+                }
+                k += 1;
+            }
+            i += 1;
+        }
+        // (lo + hi) / 2 lies within [lo, hi]: fits i16.
+        let center = [
+            ((lo[0] as i32 + hi[0] as i32) >> 1) as i16,
+            ((lo[1] as i32 + hi[1] as i32) >> 1) as i16,
+            ((lo[2] as i32 + hi[2] as i32) >> 1) as i16,
+        ];
+        let mut r2: u64 = 0;
+        let mut i = 0;
+        while i < positions.len() {
+            let mut d2: u64 = 0;
+            let mut k = 0;
+            while k < 3 {
+                // |d| < 2^16: d^2 < 2^32, the sum < 3 · 2^32.
+                let d = (positions[i][k] as i32 - center[k] as i32).unsigned_abs() as u64;
+                d2 += d * d;
+                k += 1;
+            }
+            if d2 > r2 {
+                r2 = d2;
+            }
+            i += 1;
+        }
+        // ⌈√r2⌉: the floor root, plus one unless exact.
+        let r = r2.isqrt();
+        let radius = if r * r == r2 { r } else { r + 1 } as u32;
+        Self { center, radius }
+    }
 }
 
 impl<'a> Mesh<'a> {
@@ -44,8 +113,8 @@ impl<'a> Mesh<'a> {
     ///
     /// Checks, in this order: at least one vertex and one triangle, at most
     /// [`MAX_VERTICES`] vertices, every vertex index in range, then, with
-    /// normals, one normal index triple per triangle and every normal index
-    /// in range. Normal vectors are not checked for unit length.
+    /// normals, one normal per vertex. Normal vectors are not checked for
+    /// unit length. Computes the bounding sphere ([`Mesh::bound`]).
     ///
     /// Usable in a `const` item, where an error can become a compile error:
     ///
@@ -71,7 +140,7 @@ impl<'a> Mesh<'a> {
     pub const fn new(
         positions: &'a [[i16; 3]],
         triangles: &'a [[u16; 3]],
-        normals: Option<CornerNormals<'a>>,
+        normals: Option<&'a [[i16; 3]]>,
     ) -> Result<Self, MeshError> {
         if positions.is_empty() || triangles.is_empty() {
             return Err(MeshError::Empty);
@@ -87,29 +156,44 @@ impl<'a> Mesh<'a> {
                 index: largest(triangles[triangle]),
             });
         }
-        let (normals, normal_indices): (&'a [[i16; 3]], &'a [[u16; 3]]) = match normals {
-            None => (&[], &[]),
-            Some(corner) => {
-                if corner.indices.len() != triangles.len() {
+        let normals: &'a [[i16; 3]] = match normals {
+            None => &[],
+            Some(n) => {
+                if n.len() != positions.len() {
                     return Err(MeshError::NormalCountMismatch {
-                        triangles: triangles.len(),
-                        normal_indices: corner.indices.len(),
+                        vertices: positions.len(),
+                        normals: n.len(),
                     });
                 }
-                if let Some(triangle) = first_out_of_range(corner.indices, corner.normals.len()) {
-                    return Err(MeshError::NormalIndexOutOfRange {
-                        triangle,
-                        index: largest(corner.indices[triangle]),
-                    });
-                }
-                (corner.normals, corner.indices)
+                n
             }
         };
         Ok(Mesh {
             positions,
             triangles,
             normals,
-            normal_indices,
+            face_normals: &[],
+            bound: Bound::of(positions),
+        })
+    }
+
+    /// The mesh with baked face normals: one unit normal per triangle,
+    /// Q1.14 (what [`face_normal`](super::face_normal) gives for its
+    /// corners: flat shading then reads it instead of computing it).
+    ///
+    /// # Errors
+    /// [`MeshError::FaceNormalCountMismatch`] unless there is one per
+    /// triangle.
+    pub const fn with_face_normals(self, face_normals: &'a [[i16; 3]]) -> Result<Self, MeshError> {
+        if face_normals.len() != self.triangles.len() {
+            return Err(MeshError::FaceNormalCountMismatch {
+                triangles: self.triangles.len(),
+                face_normals: face_normals.len(),
+            });
+        }
+        Ok(Self {
+            face_normals,
+            ..self
         })
     }
 
@@ -123,21 +207,40 @@ impl<'a> Mesh<'a> {
         self.triangles
     }
 
-    /// The per-corner normals, if the mesh has them.
+    /// The vertex normals (one per position), if the mesh has them.
+    pub const fn vertex_normals(&self) -> Option<&'a [[i16; 3]]> {
+        if self.normals.is_empty() {
+            None
+        } else {
+            Some(self.normals)
+        }
+    }
+
+    /// The baked face normals (one per triangle), if the mesh has them.
+    pub const fn face_normals(&self) -> Option<&'a [[i16; 3]]> {
+        if self.face_normals.is_empty() {
+            None
+        } else {
+            Some(self.face_normals)
+        }
+    }
+
+    /// The normals seen per corner, OBJ style: the vertex normals, indexed
+    /// by the triangles.
     pub const fn normals(&self) -> Option<CornerNormals<'a>> {
-        if self.normal_indices.is_empty() {
+        if self.normals.is_empty() {
             None
         } else {
             Some(CornerNormals {
                 normals: self.normals,
-                indices: self.normal_indices,
+                indices: self.triangles,
             })
         }
     }
 
-    /// Whether the mesh has per-corner normals.
+    /// Whether the mesh has vertex normals.
     pub const fn has_normals(&self) -> bool {
-        !self.normal_indices.is_empty()
+        !self.normals.is_empty()
     }
 
     /// Number of vertices (positions), at least 1.
@@ -150,9 +253,15 @@ impl<'a> Mesh<'a> {
         self.triangles.len()
     }
 
-    /// Number of stored normals, 0 without normals.
+    /// Number of stored vertex normals: the vertex count, or 0 without
+    /// normals.
     pub const fn normal_count(&self) -> usize {
         self.normals.len()
+    }
+
+    /// The bounding sphere of the positions.
+    pub const fn bound(&self) -> Bound {
+        self.bound
     }
 
     /// The three corner positions of triangle `tri`, or `None` if `tri` is
@@ -167,9 +276,95 @@ impl<'a> Mesh<'a> {
     /// The Q1.14 normal of corner `corner` (0, 1 or 2) of triangle `tri`;
     /// `None` without normals or if `tri` or `corner` is out of range.
     pub fn corner_normal(&self, tri: usize, corner: usize) -> Option<[i16; 3]> {
-        let index = *self.normal_indices.get(tri)?.get(corner)?;
+        let index = *self.triangles.get(tri)?.get(corner)?;
         self.normals.get(usize::from(index)).copied()
     }
+}
+
+/// Welds OBJ-style per-corner normals into a [`Mesh`]'s form: one vertex
+/// per distinct (position, normal) pair, numbered in order of first use by
+/// the triangles (corner by corner). Writes the vertices' positions and
+/// normals and the renumbered triangles; returns the vertex count.
+///
+/// `scratch` needs one entry per position plus one per output vertex:
+/// the vertices made from each position are chained through it, so each
+/// corner is looked up among the vertices of its own position only.
+///
+/// # Errors
+/// [`MeshError::NormalCountMismatch`] when `corner.indices` does not have
+/// one triple per triangle (its fields name triangles and triples),
+/// [`MeshError::NormalIndexOutOfRange`] and
+/// [`MeshError::VertexIndexOutOfRange`] for bad indices,
+/// [`MeshError::OutputTooSmall`] when an output or `scratch` is too short,
+/// [`MeshError::TooManyVertices`] beyond [`MAX_VERTICES`] pairs.
+pub fn weld(
+    positions: &[[i16; 3]],
+    triangles: &[[u16; 3]],
+    corner: CornerNormals<'_>,
+    out_positions: &mut [[i16; 3]],
+    out_normals: &mut [[i16; 3]],
+    out_triangles: &mut [[u16; 3]],
+    scratch: &mut [u16],
+) -> Result<usize, MeshError> {
+    const NONE: u16 = u16::MAX;
+    if corner.indices.len() != triangles.len() {
+        return Err(MeshError::NormalCountMismatch {
+            vertices: triangles.len(),
+            normals: corner.indices.len(),
+        });
+    }
+    if let Some(triangle) = first_out_of_range(triangles, positions.len()) {
+        return Err(MeshError::VertexIndexOutOfRange {
+            triangle,
+            index: largest(triangles[triangle]),
+        });
+    }
+    if let Some(triangle) = first_out_of_range(corner.indices, corner.normals.len()) {
+        return Err(MeshError::NormalIndexOutOfRange {
+            triangle,
+            index: largest(corner.indices[triangle]),
+        });
+    }
+    if out_triangles.len() < triangles.len() || scratch.len() < positions.len() {
+        return Err(MeshError::OutputTooSmall);
+    }
+    let (heads, next) = scratch.split_at_mut(positions.len());
+    heads.fill(NONE);
+    let cap = out_positions.len().min(out_normals.len()).min(next.len());
+    let mut count = 0usize;
+    for ((tri, nidx), out) in triangles
+        .iter()
+        .zip(corner.indices)
+        .zip(out_triangles.iter_mut())
+    {
+        for c in 0..3 {
+            let (p, n) = (usize::from(tri[c]), usize::from(nidx[c]));
+            let normal = corner.normals.get(n).copied().unwrap_or([0; 3]);
+            let mut v = heads.get(p).copied().unwrap_or(NONE);
+            while v != NONE && out_normals.get(usize::from(v)) != Some(&normal) {
+                v = next.get(usize::from(v)).copied().unwrap_or(NONE);
+            }
+            if v == NONE {
+                if count >= MAX_VERTICES {
+                    return Err(MeshError::TooManyVertices { count: count + 1 });
+                }
+                if count >= cap {
+                    return Err(MeshError::OutputTooSmall);
+                }
+                out_positions[count] = positions.get(p).copied().unwrap_or([0; 3]);
+                out_normals[count] = normal;
+                next[count] = heads.get(p).copied().unwrap_or(NONE);
+                if let Some(h) = heads.get_mut(p) {
+                    // count < MAX_VERTICES = u16::MAX: fits, and differs from NONE.
+                    *h = count as u16;
+                }
+                v = count as u16;
+                count += 1;
+            }
+            out[c] = v;
+        }
+    }
+    Ok(count)
 }
 
 /// Index of the first triple with an entry `>= len`.

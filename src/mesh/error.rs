@@ -19,13 +19,22 @@ pub enum MeshError {
         /// The out-of-range vertex index (the largest of the triangle).
         index: u16,
     },
-    /// The normal index table does not have one entry per triangle.
+    /// The vertex normal table does not have one entry per vertex.
     NormalCountMismatch {
+        /// The number of vertices (positions).
+        vertices: usize,
+        /// The number of normals.
+        normals: usize,
+    },
+    /// The face normal table does not have one entry per triangle.
+    FaceNormalCountMismatch {
         /// The number of triangles.
         triangles: usize,
-        /// The number of normal index triples.
-        normal_indices: usize,
+        /// The number of face normals.
+        face_normals: usize,
     },
+    /// [`weld`](super::weld): an output or scratch table is too short.
+    OutputTooSmall,
     /// A triangle corner names a normal that does not exist.
     NormalIndexOutOfRange {
         /// The offending triangle's index.
@@ -48,13 +57,14 @@ impl fmt::Display for MeshError {
                     "triangle {triangle} uses vertex {index}, which is out of range"
                 )
             }
-            Self::NormalCountMismatch {
+            Self::NormalCountMismatch { vertices, normals } => {
+                write!(f, "{normals} vertex normals for {vertices} vertices")
+            }
+            Self::FaceNormalCountMismatch {
                 triangles,
-                normal_indices,
-            } => write!(
-                f,
-                "{normal_indices} normal index triples for {triangles} triangles"
-            ),
+                face_normals,
+            } => write!(f, "{face_normals} face normals for {triangles} triangles"),
+            Self::OutputTooSmall => f.write_str("an output or scratch table is too short"),
             Self::NormalIndexOutOfRange { triangle, index } => {
                 write!(
                     f,

@@ -13,11 +13,17 @@
 //!   counter-clockwise when seen from their front, in a right-handed, y-up
 //!   frame, so the face normal `(b - a) × (c - a)` points out of the front.
 //!   A mesh has at most 65535 vertices ([`MAX_VERTICES`]).
-//! - **Normals** (optional, per corner, OBJ style): unit `[i16; 3]` vectors
-//!   in Q1.14 ([`NORMAL_FRAC_BITS`], 16384 = 1.0) and one `[u16; 3]` of
-//!   normal indices per triangle, naming the normal of each of its corners.
-//!   A flat face points its three corners at one normal; a smooth vertex
-//!   shares one normal between all its corners.
+//! - **Normals** (optional, per vertex): unit `[i16; 3]` vectors in Q1.14
+//!   ([`NORMAL_FRAC_BITS`], 16384 = 1.0), parallel to the positions: a
+//!   vertex is one distinct (position, normal) pair, so a position on a
+//!   crease is stored once per normal and the geometry stage runs one
+//!   linear pass over the vertices. [`weld`] turns OBJ-style per-corner
+//!   normals ([`CornerNormals`], as [`generate_normals`] makes them) into
+//!   this form.
+//! - **Face normals** (optional, one per triangle): unit Q1.14 vectors,
+//!   the exact [`face_normal`] of the corners, baked with the built-in
+//!   shapes so that flat shading reads them (6 bytes a triangle of flash)
+//!   instead of computing them per frame.
 //!
 //! [`Mesh::new`] is a `const fn` that checks these rules, so a table built
 //! with it in a `const` item is checked at compile time. The built-in
@@ -96,7 +102,8 @@ mod tests;
 
 pub use crease::Crease;
 pub use data::{
-    CornerNormals, Mesh, MAX_VERTICES, NORMAL_FRAC_BITS, NORMAL_ONE, POSITION_FRAC_BITS,
+    weld, Bound, CornerNormals, Mesh, MAX_VERTICES, NORMAL_FRAC_BITS, NORMAL_ONE,
+    POSITION_FRAC_BITS,
 };
 pub use error::{MeshError, NormalsError};
 pub use exact::{face_normal, isqrt_u64, normalize_q14};

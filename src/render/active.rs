@@ -145,7 +145,7 @@ const RADIX_BITS: u32 = 6;
 /// use fixshade::illum::{Light, Material, Specular, Viewer};
 /// use fixshade::mesh::shapes::DODECAHEDRON;
 /// use fixshade::num::{Fast, Real, Q16};
-/// use fixshade::render::{prepare, BandState, Link, Pool, Tri, Workspace};
+/// use fixshade::render::{prepare, BandState, Pool, Tri, Workspace};
 /// use fixshade::scene::{Camera, Object, Scene, Shading};
 /// use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 ///
@@ -160,8 +160,7 @@ const RADIX_BITS: u32 = 6;
 /// let scene = Scene { camera, objects: &objects, lights: &lights, ambient: q(1, 1),
 ///                     specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
 /// let (mut xy, mut vals, mut tris) = ([[0; 2]; 64], [0i32; 64 * 7], [Tri::default(); 64]);
-/// let (mut heads, mut links) = ([0u16; 20], [Link::default(); 64]);
-/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris, heads: &mut heads, links: &mut links };
+/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris };
 /// let frame = prepare::<Fast>(&scene, 96, 96, ws)?;
 ///
 /// // Two band buffers of 8 rows: one is rendered while the other is sent.

@@ -1,19 +1,17 @@
 //! Preparing a frame: transform, light, cull, clip, project.
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
-use super::{Frame, Layout, Link, Part, PreparedObject, RenderError, Tri, Workspace};
+use super::{Frame, Layout, Part, PreparedObject, RenderError, Tri, Workspace};
 use crate::geom::q16::{face_normal_q14, Proj16, Xform16};
 use crate::geom::{Affine, Vec3};
-use crate::illum::{Light, LightKind, Shade, MAX_LIGHTS};
-use crate::mesh::{face_normal, Mesh};
+use crate::illum::{Light, LightKind, ObjectLight, Shade, MAX_LIGHTS};
+use crate::mesh::Mesh;
 use crate::num::approx16;
-use crate::num::wide::det_sign;
+use crate::num::wide::{det_sign, det_sign_small};
 use crate::num::{Profile, Real};
-use crate::raster::{first_row, COORD_LIMIT_PX};
+use crate::raster::{first_row, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
-
-const NONE: u16 = u16::MAX;
 
 /// The lights of a scene moved to eye space.
 pub(super) fn eye_lights<R: Real>(
@@ -220,17 +218,214 @@ struct Preparer<'w, P: Profile> {
     height: u32,
 }
 
+/// `xy[0]` of a prepared vertex outside the clipping planes: never drawn
+/// (its triangles are clipped or dropped), `xy[1]` holds its outcode. No
+/// vertex inside the planes has it: they are clamped to ±`COORD_LIMIT_PX`
+/// pixels.
+const OUTSIDE: i32 = i32::MIN;
+
+/// Where the bounding sphere of `mesh` placed by `mv` lies against
+/// the planes. The sphere's eye-space radius is the mesh radius times
+/// a bound of the largest stretch of `mv` (the largest row sum of
+/// magnitudes of `MᵀM`, at least the largest eigenvalue, square
+/// rooted), plus a margin of 1/64 unit and 1/64 relative for the
+/// rounding of the vertices' own transform: a vertex of an `Inside`
+/// object passes every outcode test, and no vertex of an `Outside`
+/// object passes the plane it is outside of.
+#[cfg(test)]
+pub(super) fn sphere<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R>) -> Sphere {
+    placement(planes, mesh, mv).0
+}
+
+/// [`sphere`], with the reach: the largest magnitude an eye-space
+/// coordinate of the sphere can take (`R::MAX` when it does not fit).
+fn placement<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R>) -> (Sphere, R, R) {
+    let b = mesh.bound();
+    let c = mv.point(Vec3::from_q14(b.center));
+    // The stretch of the largest entry's multiple (no saturation: `MᵀM`
+    // of a matrix with entries up to 1).
+    let m = mv.m.max_abs();
+    if m == R::ZERO {
+        return (Sphere::Across, R::MAX, R::MAX);
+    }
+    let t = mv.m.transpose();
+    let t = t
+        .rows
+        .map(|r| Vec3::new(r.x.div(m), r.y.div(m), r.z.div(m)));
+    let g = |i: usize, j: usize| t[i].dot(t[j]).abs();
+    let row = |i: usize| g(i, 0) + g(i, 1) + g(i, 2);
+    let stretch = m * row(0).max(row(1)).max(row(2)).sqrt();
+    let r0 = R::from_fixed_i32(b.radius.min(1 << 16) as i32, 14) * stretch;
+    let r = r0 + r0.mul_i32(1).div(R::from_i32(64)) + R::from_ratio(1, 64);
+    if r >= R::MAX.half()
+        || c.x.abs() >= R::MAX.half()
+        || c.y.abs() >= R::MAX.half()
+        || c.z.abs() >= R::MAX.half()
+    {
+        return (Sphere::Across, R::MAX, R::MAX);
+    }
+    let pl = planes;
+    let w = -c.z;
+    // Distances to the guard planes |x| = g·w, scaled by
+    // √(1 + g²) (compared with r·√(1 + g²) <= r·(1 + g)).
+    let gr = r + r * pl.guard;
+    let gw = pl.guard * w;
+    let d = [w - pl.near, pl.far.map_or(R::MAX.half(), |f| f - w)];
+    let dg = [gw + c.x, gw - c.x, gw + c.y, gw - c.y];
+    // The reach: the sphere's coordinates, and every partial sum of the
+    // transform of a vertex (`Σ |m_kj|·max|p| + |t_k|`), which a
+    // saturating scalar would clip before the later terms bring it back.
+    let pmax = R::from_fixed_i32(
+        i32::from(b.center.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0))
+            + b.radius.min(1 << 17) as i32,
+        14,
+    );
+    let rows = &mv.m.rows;
+    let t = [mv.t.x, mv.t.y, mv.t.z];
+    let partial = (0..3).fold(R::ZERO, |acc, k| {
+        let r = rows[k];
+        acc.max((r.x.abs() + r.y.abs() + r.z.abs()) * pmax + t[k].abs())
+    });
+    let m = (c.x.abs().max(c.y.abs()).max(c.z.abs()) + r).max(partial);
+    if d.iter().any(|&v| v < -r) || dg.iter().any(|&v| v < -gr) {
+        return (Sphere::Outside, m, r);
+    }
+    if d.iter().all(|&v| v > r) && dg.iter().all(|&v| v > gr) {
+        return (Sphere::Inside, m, r);
+    }
+    // Clipped: `g·w` may saturate where `w` is far beyond the screen's
+    // guard band (`g·w > MAX`), but only at points whose `|x|, |y| <= m <
+    // MAX/2` keep the outcode's sign, and a clipped vertex interpolated
+    // with a saturated distance stays on the clipped edge, inside the
+    // guard band: the drawn pixels are those of the exact clip.
+    (Sphere::Across, m, r)
+}
+
+/// The sign of `((b - a) × (c - a)) · a`: positive when the triangle
+/// faces away from the eye. The edges and `a` are first divided by their
+/// largest component magnitude when it exceeds 1 (a positive factor: the
+/// same sign), so that no product saturates a fixed-point scalar for any
+/// coordinates within half its range.
+fn facing<R: Real>(a: Vec3<R>, b: Vec3<R>, c: Vec3<R>) -> R {
+    let big = |v: Vec3<R>| v.x.abs().max(v.y.abs()).max(v.z.abs());
+    let down = |v: Vec3<R>, m: R| {
+        if m > R::ONE {
+            Vec3::new(v.x.div(m), v.y.div(m), v.z.div(m))
+        } else {
+            v
+        }
+    };
+    let (e1, e2) = (b - a, c - a);
+    let m = big(e1).max(big(e2));
+    let (e1, e2) = (down(e1, m), down(e2, m));
+    let n = e1.cross(e2);
+    let n = down(n, big(n));
+    n.dot(down(a, big(a)))
+}
+
+/// The rows a triangle with corners at `xy` can cover on a `width ×
+/// height` screen (the rows the rasterizer would visit), or `None` when it
+/// covers no pixel centre of the screen.
+#[inline(always)]
+fn rows_in(xy: [[i32; 2]; 3], width: u32, height: u32, sub: SubpixelBits) -> Option<[u16; 2]> {
+    let span = |k: usize| {
+        let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
+        (a.min(b).min(c), a.max(b).max(c))
+    };
+    let (x_lo, x_hi) = span(0);
+    let (y_lo, y_hi) = span(1);
+    // `max`/`min` rather than `clamp`, whose bound check is a panic
+    // branch the optimiser cannot remove for a runtime bound.
+    let clamp = |r: i32, n: u32| r.max(0).min(n.min(u32::from(u16::MAX)) as i32) as u16;
+    // Rows: the rasterizer's own `first_row(top)..first_row(bottom)`.
+    // Columns, conservatively: a centre on the rightmost x may count.
+    let rows = [
+        clamp(first_row(y_lo, sub), height),
+        clamp(first_row(y_hi, sub), height),
+    ];
+    let cols = [
+        clamp(first_row(x_lo, sub), width),
+        clamp(first_row(x_hi, sub).saturating_add(1), width),
+    ];
+    if rows[0] >= rows[1] || cols[0] >= cols[1] {
+        return None;
+    }
+    Some(rows)
+}
+
+/// The triangle loop of an object wholly inside the planes whose back
+/// faces are culled or drawn with its own vertices (every layout but
+/// two-sided Gouraud): the kept triangles appended to `out` from `nt` on,
+/// `color(t, back)` giving a flat colour. Bit for bit what the general
+/// loop keeps; a free function over slices, so that its state stays in
+/// registers. Returns the new count, or `None` when `out` is full.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn triangles_inside(
+    tris: &[[u16; 3]],
+    base: usize,
+    xy: &[[i32; 2]],
+    out: &mut [Tri],
+    mut nt: usize,
+    (width, height): (u32, u32),
+    sub: SubpixelBits,
+    cull: bool,
+    mut color: impl FnMut(usize, bool) -> Rgb8,
+) -> Option<usize> {
+    for (t, tri) in tris.iter().enumerate() {
+        let p = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or([0; 2]));
+        let [a, b, c] = p;
+        let (e0, e1, e2, e3) = (b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
+        let sign = det_sign_small(e0, e1, e2, e3).unwrap_or_else(|| det_sign(e0, e1, e2, e3));
+        if sign == 0 {
+            continue;
+        }
+        let back = sign > 0;
+        if back && cull {
+            continue;
+        }
+        let Some(rows) = rows_in(p, width, height, sub) else {
+            continue;
+        };
+        let slot = out.get_mut(nt)?;
+        // base + index < u16::MAX (checked by the vertex pass).
+        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
+        slot.rows = rows;
+        slot.color = color(t, back);
+        slot.back = back;
+        nt += 1;
+    }
+    Some(nt)
+}
+
+/// Where an object's bounding sphere lies against the clipping planes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Sphere {
+    /// Wholly inside every plane: no outcode, no clipping.
+    Inside,
+    /// Wholly outside one plane: nothing to draw.
+    Outside,
+    /// Across a plane (or undecided): outcodes per vertex.
+    Across,
+}
+
 /// Per-object constants while preparing.
 struct ObjCtx<'a, 'm, R> {
     mesh: Mesh<'m>,
-    /// The mesh's triangles, normal indices (empty for flat shading or
-    /// without normals) and normals (empty without normals), taken out
-    /// of the mesh once per object.
+    /// The mesh's triangles, positions and vertex normals (empty without
+    /// normals, or for flat shading).
     tris: &'m [[u16; 3]],
-    nidx: &'m [[u16; 3]],
+    positions: &'m [[i16; 3]],
     normals: &'m [[i16; 3]],
     mv: Affine<R>,
+    /// The normal matrix ([`crate::geom::Mat3::normal_matrix`]).
+    nm: Affine<R>,
     shade: &'a Shade<R>,
+    /// Directional lights in object space (Gouraud and flat without
+    /// point lights or specular term, uniform scale).
+    olight: Option<ObjectLight<R>>,
+    /// Grey material under white lights: one colour channel computed.
+    grey: bool,
     layout: Layout,
     stride: usize,
     cull: bool,
@@ -238,6 +433,8 @@ struct ObjCtx<'a, 'm, R> {
     v_start: usize,
     /// The integer transform (`Q16`, moderate scales).
     fast: Option<Xform16>,
+    /// The integer normal transform (`Q16`).
+    fast_n: Option<Xform16>,
 }
 
 impl<P: Profile> Preparer<'_, P> {
@@ -249,8 +446,8 @@ impl<P: Profile> Preparer<'_, P> {
     }
 
     // Not inlined (one call per object): kept out of the caller, the
-    // triangle loop does not change how the caller's own code (e.g. a
-    // firmware's band loop) is optimised.
+    // loops do not change how the caller's own code (e.g. a firmware's
+    // band loop) is optimised.
     #[inline(never)]
     fn object_pass(
         &mut self,
@@ -273,28 +470,39 @@ impl<P: Profile> Preparer<'_, P> {
                 object: self.object,
             });
         }
-        let heads = self
-            .ws
-            .heads
-            .get_mut(..mesh.vertex_count())
-            .ok_or(RenderError::Capacity {
-                part: Part::Heads,
-                object: self.object,
-            })?;
-        heads.fill(NONE);
         let mv = scene.camera.view.then_after(&obj.transform);
-        let corner_normals = mesh.normals();
+        let (nm, s, uniform) = mv.m.normal_matrix();
+        let nm = Affine {
+            m: nm,
+            t: Vec3::ZERO,
+        };
+        let olight = if uniform
+            && matches!(
+                layout,
+                Layout::Flat | Layout::GouraudMono | Layout::GouraudRgb
+            ) {
+            shade.object_light(&nm.m, s)
+        } else {
+            None
+        };
         let ctx = ObjCtx {
             mesh,
             tris: mesh.triangles(),
-            nidx: match (layout, corner_normals) {
-                (Layout::Flat, _) | (_, None) => &[],
-                (_, Some(n)) => n.indices,
+            positions: mesh.positions(),
+            normals: match layout {
+                Layout::Flat => &[],
+                _ => mesh.vertex_normals().unwrap_or(&[]),
             },
-            normals: corner_normals.map_or(&[], |n| n.normals),
             fast: Xform16::new(&mv),
+            fast_n: Xform16::new(&nm),
             mv,
+            nm,
             shade: &shade,
+            olight,
+            grey: {
+                let grey = |c: Vec3<P::Real>| c.x == c.y && c.y == c.z;
+                grey(obj.material.color) && lights.iter().all(|l| grey(l.color))
+            },
             layout,
             stride: layout.stride_for(P::PERSPECTIVE),
             cull: obj.cull_backfaces,
@@ -302,8 +510,48 @@ impl<P: Profile> Preparer<'_, P> {
             v_start: self.nv,
         };
         let t_start = self.nt;
-        for t in 0..mesh.triangle_count() {
-            self.triangle(&ctx, t)?;
+        let (place, reach, radius) = placement(&self.view.planes, &mesh, &ctx.mv);
+        // Beyond half the scalar's range, an eye-space coordinate or a
+        // difference of two (clipping) could saturate and silently move
+        // the object: refuse it.
+        let limit = P::Real::MAX.half();
+        // (An empty screen draws nothing: its guard band is unbounded.)
+        let place = if self.width == 0 || self.height == 0 {
+            Sphere::Outside
+        } else {
+            place
+        };
+        if place != Sphere::Outside && reach >= limit {
+            return Err(RenderError::OutOfRange {
+                object: self.object,
+                limit: i64::from(limit.to_fixed_i32(0)),
+            });
+        }
+        // A clipped vertex lies on an edge at a parameter rounded to the
+        // scalar's resolution `ε`: off by up to `|edge|·ε/2` units, which
+        // next to the near plane is `|edge|·ε·k / (2·near)` pixels. Keep
+        // it within a pixel: objects the planes cut may be at most
+        // `2·near / (ε·k)` units across (`Q16`, 240 rows at 45°, near 1:
+        // 452 units; `f32`: 2.8·10^7·near / k).
+        let across =
+            (self.view.planes.near + self.view.planes.near).div(P::Real::EPSILON * self.view.k);
+        if place == Sphere::Across && radius + radius >= across {
+            return Err(RenderError::OutOfRange {
+                object: self.object,
+                limit: i64::from(across.to_fixed_i32(0)),
+            });
+        }
+        if place != Sphere::Outside {
+            if place == Sphere::Inside && !P::PERSPECTIVE {
+                self.vertex_pass_fast(&ctx)?;
+            } else {
+                self.vertex_pass(&ctx, place == Sphere::Inside)?;
+            }
+            if place == Sphere::Inside {
+                self.triangle_pass::<true>(&ctx)?;
+            } else {
+                self.triangle_pass::<false>(&ctx)?;
+            }
         }
         let tris = t_start..self.nt;
         let rows = self
@@ -325,262 +573,277 @@ impl<P: Profile> Preparer<'_, P> {
         })
     }
 
-    /// Corner `c` of triangle `t`: its position and normal indices.
-    fn corner_keys(ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> ([u16; 3], [u16; 3]) {
-        let pos = ctx.tris.get(t).copied().unwrap_or([0; 3]);
-        let nrm = ctx.nidx.get(t).copied().unwrap_or([0; 3]);
-        (pos, nrm)
-    }
-
-    /// The eye-space position of mesh position `p`.
-    #[inline]
-    fn eye_pos(ctx: &ObjCtx<'_, '_, P::Real>, p: u16) -> Vec3<P::Real> {
-        let pos = ctx
-            .mesh
-            .positions()
-            .get(p as usize)
-            .copied()
-            .unwrap_or([0; 3]);
+    /// The eye-space position of mesh vertex `i`.
+    #[inline(always)]
+    fn eye_pos(ctx: &ObjCtx<'_, '_, P::Real>, i: usize) -> Vec3<P::Real> {
+        let pos = ctx.positions.get(i).copied().unwrap_or([0; 3]);
         match &ctx.fast {
             Some(x) => from_raw3(x.point(pos)),
             None => ctx.mv.point(Vec3::from_q14(pos)),
         }
     }
 
-    /// The attributes of a corner at eye-space `pos` with mesh normal `n`:
-    /// its colour (Gouraud) or its normal (Phong); zero for flat.
+    /// The eye-space unit normal of Q1.14 object normal `raw`, by the
+    /// normal matrix.
+    #[inline]
+    fn eye_normal(ctx: &ObjCtx<'_, '_, P::Real>, raw: [i16; 3], flip: bool) -> Vec3<P::Real> {
+        let n = match &ctx.fast_n {
+            Some(x) => from_raw3(approx16::unit(x.vector(raw))),
+            None => ctx.nm.vector(Vec3::from_q14(raw)).normalize(),
+        };
+        if flip {
+            -n
+        } else {
+            n
+        }
+    }
+
+    /// The attributes of mesh vertex `i` at eye-space `pos`: its colour
+    /// (Gouraud) or its eye-space normal (Phong); zero for flat.
+    #[inline]
     fn attrs(
         ctx: &ObjCtx<'_, '_, P::Real>,
+        i: usize,
         pos: Vec3<P::Real>,
-        n: u16,
         flip: bool,
     ) -> [P::Real; CLIP_ATTRS] {
         if ctx.layout == Layout::Flat {
             return [P::Real::ZERO; CLIP_ATTRS];
         }
-        let raw = ctx.normals.get(n as usize).copied().unwrap_or([0; 3]);
-        let mut nrm = match &ctx.fast {
-            Some(x) => from_raw3(approx16::unit(x.vector(raw))),
-            None => ctx.mv.vector(Vec3::from_q14(raw)).normalize(),
-        };
-        if flip {
-            nrm = -nrm;
-        }
+        let raw = ctx.normals.get(i).copied().unwrap_or([0; 3]);
         let v = match ctx.layout {
-            Layout::GouraudMono | Layout::GouraudRgb => ctx.shade.at(nrm, pos),
-            _ => nrm,
+            Layout::GouraudMono | Layout::GouraudRgb => match &ctx.olight {
+                Some(ol) => ol.at(raw, flip, ctx.layout == Layout::GouraudMono),
+                None => ctx.shade.at(Self::eye_normal(ctx, raw, flip), pos),
+            },
+            _ => Self::eye_normal(ctx, raw, flip),
         };
         [v.x, v.y, v.z]
     }
 
-    /// The eye-space vertex of a mesh corner, lit or with its normal.
-    fn clip_vert(ctx: &ObjCtx<'_, '_, P::Real>, p: u16, n: u16, flip: bool) -> ClipVert<P::Real> {
-        let pos = Self::eye_pos(ctx, p);
+    /// The eye-space vertex of mesh vertex `i`, lit or with its normal.
+    fn clip_vert(ctx: &ObjCtx<'_, '_, P::Real>, i: usize, flip: bool) -> ClipVert<P::Real> {
+        let pos = Self::eye_pos(ctx, i);
         ClipVert {
             pos,
-            attrs: Self::attrs(ctx, pos, n, flip),
+            attrs: Self::attrs(ctx, i, pos, flip),
         }
     }
 
-    /// Whether the corners of this object are lit on first use by a kept
-    /// triangle rather than when made (Gouraud, affine profiles: the
-    /// colours are stored as computed).
-    #[inline(always)]
-    fn lazy(ctx: &ObjCtx<'_, '_, P::Real>) -> bool {
-        !P::PERSPECTIVE && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb)
-    }
-
-    /// Computes and stores the colour of prepared vertex `v` (made unlit
-    /// from corner `c` of triangle `t`): the values
-    /// [`Preparer::emit`] would have stored. Once per lit vertex: kept
-    /// out of the triangle loop.
+    /// One linear pass over the mesh's vertices: transform, outcode
+    /// (unless the whole object is `inside`), project, light. Prepared
+    /// vertex `v_start + i` is mesh vertex `i`. Every vertex is lit, also
+    /// those only culled triangles use: in object space a directional
+    /// light costs three multiply-adds per vertex, less than marking and
+    /// testing the corners of the kept triangles (see the module docs).
     #[inline(never)]
-    fn light(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, v: u16, t: usize, c: usize) {
-        let (pk, nk) = Self::corner_keys(ctx, t);
-        let (p, n) = (pk[c % 3], nk[c % 3]);
-        let Some(link) = self.ws.links.get_mut(v as usize) else {
-            return;
-        };
-        if !link.unlit {
-            return;
-        }
-        link.unlit = false;
-        let pos = if ctx.shade.uses_position() {
-            Self::eye_pos(ctx, p)
-        } else {
-            Vec3::ZERO
-        };
-        let a = Self::attrs(ctx, pos, n, false);
+    fn vertex_pass(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        inside: bool,
+    ) -> Result<(), RenderError> {
+        let n = ctx.positions.len();
         let stride = ctx.layout.stride_for(P::PERSPECTIVE);
-        let base = ctx.val_base + (v as usize).wrapping_sub(ctx.v_start) * stride;
-        let count = if ctx.layout == Layout::GouraudMono {
-            1
-        } else {
-            3
+        let end = ctx.v_start + n;
+        if end >= usize::from(u16::MAX) || end > self.ws.xy.len() {
+            return Err(self.cap(Part::Vertices));
+        }
+        if ctx.val_base + n * stride > self.ws.vals.len() {
+            return Err(self.cap(Part::Values));
+        }
+        for i in 0..n {
+            let pos = Self::eye_pos(ctx, i);
+            let code = if inside { 0 } else { self.view.outcode(pos) };
+            let base = ctx.val_base + i * stride;
+            let v = ctx.v_start + i;
+            if code != 0 {
+                // Outside: never drawn directly; triangles using it are
+                // clipped.
+                if let Some(xy) = self.ws.xy.get_mut(v) {
+                    *xy = [OUTSIDE, i32::from(code)];
+                }
+                if let Some(vals) = self.ws.vals.get_mut(base..base + stride) {
+                    vals.fill(P::level(P::Real::ZERO));
+                }
+                continue;
+            }
+            let cv = ClipVert {
+                pos,
+                attrs: Self::attrs(ctx, i, pos, false),
+            };
+            self.store(ctx, v, base, &cv);
+        }
+        self.nv = end;
+        self.nval = ctx.val_base + n * stride;
+        Ok(())
+    }
+
+    /// [`Preparer::vertex_pass`] for an object wholly inside the planes,
+    /// affine: the `Q16` kernels for flat and object-space-lit Gouraud
+    /// objects in a loop per layout (no per-vertex dispatch, no bounds
+    /// check but the slices'), the generic pass otherwise. The same
+    /// values as the generic pass, bit for bit.
+    fn vertex_pass_fast(&mut self, ctx: &ObjCtx<'_, '_, P::Real>) -> Result<(), RenderError> {
+        let (Some(x), Some(pj)) = (&ctx.fast, &self.view.fast) else {
+            return self.vertex_pass(ctx, true);
         };
-        if let Some(vals) = self.ws.vals.get_mut(base + 1..base + 1 + count) {
-            for (d, x) in vals.iter_mut().zip(a) {
-                *d = P::level(x);
+        let (x, pj) = (*x, *pj);
+        match (ctx.layout, &ctx.olight) {
+            (Layout::Flat, _) => self.kernel_q16::<1>(ctx, &x, &pj, None),
+            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, &x, &pj, Some(ol)),
+            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, &x, &pj, Some(ol)),
+            _ => self.vertex_pass(ctx, true),
+        }
+    }
+
+    /// The vertex loop of [`Preparer::vertex_pass_fast`] for a layout of
+    /// `S` values per vertex (1 flat, 2 grey, 4 RGB).
+    #[inline(never)]
+    fn kernel_q16<const S: usize>(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        x: &Xform16,
+        pj: &Proj16,
+        ol: Option<&ObjectLight<P::Real>>,
+    ) -> Result<(), RenderError> {
+        type R<P> = <P as Profile>::Real;
+        let n = ctx.positions.len();
+        let end = ctx.v_start + n;
+        if end >= usize::from(u16::MAX) {
+            return Err(self.cap(Part::Vertices));
+        }
+        let Some(xy) = self.ws.xy.get_mut(ctx.v_start..end) else {
+            return Err(self.cap(Part::Vertices));
+        };
+        let Some(vals) = self.ws.vals.get_mut(ctx.val_base..ctx.val_base + n * S) else {
+            return Err(RenderError::Capacity {
+                part: Part::Values,
+                object: self.object,
+            });
+        };
+        let sub = P::SUBPIXEL_BITS.get();
+        let scale = self.view.depth_scale;
+        let normals = ctx.normals;
+        for (i, ((p, out), v)) in ctx
+            .positions
+            .iter()
+            .zip(xy.iter_mut())
+            .zip(vals.chunks_exact_mut(S))
+            .enumerate()
+        {
+            let (s, q) = pj.project(x.point(*p), sub);
+            *out = s;
+            let d = R::<P>::ONE - R::<P>::from_fixed_i32(q, 16);
+            let d = scale.map_or(d, |s| d * s);
+            v[0] = P::depth(d.clamp(R::<P>::ZERO, R::<P>::ONE));
+            if let Some(ol) = ol {
+                let nrm = normals.get(i).copied().unwrap_or([0; 3]);
+                let c = ol.at(nrm, false, S == 2);
+                for (d, c) in v.iter_mut().skip(1).zip([c.x, c.y, c.z]) {
+                    *d = P::level(c);
+                }
+            }
+        }
+        self.nv = end;
+        self.nval = ctx.val_base + n * S;
+        Ok(())
+    }
+
+    /// Projects and stores an eye-space vertex inside the planes as
+    /// prepared vertex `v` with values at `base` (both in range).
+    #[inline(always)]
+    fn store(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        v: usize,
+        base: usize,
+        cv: &ClipVert<P::Real>,
+    ) {
+        // `ctx.stride`, recomputed so the optimiser sees `stride >= 1`.
+        let stride = ctx.layout.stride_for(P::PERSPECTIVE);
+        let sub = P::SUBPIXEL_BITS.get();
+        let (xy, d, q) = if let Some(pj) = &self.view.fast {
+            // Q16: integer projection, clamped to the rasterizer's range.
+            let (xy, q) = pj.project(raw3(cv.pos), sub);
+            let q = P::Real::from_fixed_i32(q, 16);
+            let d = P::Real::ONE - q;
+            // `*`, inlined (`*=` measured as a call on the M0).
+            let d = self.view.depth_scale.map_or(d, |s| d * s);
+            (xy, d.clamp(P::Real::ZERO, P::Real::ONE), q)
+        } else {
+            let (sx, sy, d, q) = self.view.project(cv.pos);
+            // Clipping keeps a corner within the guard band, but
+            // saturated Q16 arithmetic or float precision lost on huge
+            // coordinates can move a clipped corner out of the
+            // rasterizer's range: clamp to it (NaN to its lower end)
+            // rather than have the rasterizer refuse the whole frame.
+            // No-op for in-range corners.
+            let lim = P::Real::from_i32(COORD_LIMIT_PX);
+            let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
+            ([sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)], d, q)
+        };
+        if let Some(slot) = self.ws.xy.get_mut(v) {
+            *slot = xy;
+        }
+        let Some(vals) = self.ws.vals.get_mut(base..base + stride) else {
+            return;
+        };
+        vals[0] = P::depth(d);
+        let mut a = cv.attrs;
+        let mut pos = cv.pos;
+        if P::PERSPECTIVE && ctx.layout != Layout::Flat {
+            // Interpolate a·q and q, both affine in screen space.
+            a = a.map(|v| v * q);
+            pos = pos.scale(q);
+            vals[stride - 1] = P::unit(q);
+        }
+        match ctx.layout {
+            Layout::Flat => {}
+            Layout::GouraudMono => {
+                for (v, x) in vals.iter_mut().skip(1).zip([a[0]]) {
+                    *v = P::level(x);
+                }
+            }
+            Layout::GouraudRgb => {
+                for (v, x) in vals.iter_mut().skip(1).zip(a) {
+                    *v = P::level(x);
+                }
+            }
+            Layout::PhongNormal | Layout::PhongPosition => {
+                for (v, x) in vals.iter_mut().skip(1).zip(a) {
+                    *v = P::unit(x);
+                }
+                if ctx.layout == Layout::PhongPosition {
+                    let p = [pos.x, pos.y, pos.z];
+                    for (v, x) in vals.iter_mut().skip(4).zip(p) {
+                        *v = P::coord(x);
+                    }
+                }
             }
         }
     }
 
-    /// Appends a prepared vertex for an eye-space vertex inside the planes.
+    /// Appends a prepared vertex for an eye-space vertex inside the planes
+    /// (clipping and two-sided back faces).
     fn emit(
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
         cv: &ClipVert<P::Real>,
-        link: Link,
-        code: Outcode,
     ) -> Result<u16, RenderError> {
         let i = self.nv;
-        if i >= NONE as usize || i >= self.ws.xy.len() || i >= self.ws.links.len() {
+        if i >= usize::from(u16::MAX) || i >= self.ws.xy.len() {
             return Err(self.cap(Part::Vertices));
         }
-        // `ctx.stride`, recomputed so the optimiser sees `stride >= 1`.
         let stride = ctx.layout.stride_for(P::PERSPECTIVE);
         let base = ctx.val_base + (i - ctx.v_start) * stride;
-        let vals = self
-            .ws
-            .vals
-            .get_mut(base..base + stride)
-            .ok_or(RenderError::Capacity {
-                part: Part::Values,
-                object: self.object,
-            })?;
-        self.ws.links[i] = Link { code, ..link };
-        if code != 0 {
-            // Outside: never drawn directly; triangles using it are clipped.
-            self.ws.xy[i] = [0, 0];
-            vals.fill(P::level(P::Real::ZERO));
-        } else {
-            let sub = P::SUBPIXEL_BITS.get();
-            let (xy, d, q) = if let Some(pj) = &self.view.fast {
-                // Q16: integer projection, clamped to the rasterizer's range.
-                let (xy, q) = pj.project(raw3(cv.pos), sub);
-                let q = P::Real::from_fixed_i32(q, 16);
-                let d = P::Real::ONE - q;
-                // `*`, inlined (`*=` measured as a call on the M0).
-                let d = self.view.depth_scale.map_or(d, |s| d * s);
-                (xy, d.clamp(P::Real::ZERO, P::Real::ONE), q)
-            } else {
-                let (sx, sy, d, q) = self.view.project(cv.pos);
-                // Clipping keeps a corner within the guard band, but
-                // saturated Q16 arithmetic or float precision lost on huge
-                // coordinates can move a clipped corner out of the
-                // rasterizer's range: clamp to it (NaN to its lower end)
-                // rather than have the rasterizer refuse the whole frame.
-                // No-op for in-range corners.
-                let lim = P::Real::from_i32(COORD_LIMIT_PX);
-                let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
-                ([sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)], d, q)
-            };
-            self.ws.xy[i] = xy;
-            vals[0] = P::depth(d);
-            let mut a = cv.attrs;
-            let mut pos = cv.pos;
-            if P::PERSPECTIVE && ctx.layout != Layout::Flat {
-                // Interpolate a·q and q, both affine in screen space.
-                a = a.map(|v| v * q);
-                pos = pos.scale(q);
-                vals[stride - 1] = P::unit(q);
-            }
-            match ctx.layout {
-                Layout::Flat => {}
-                Layout::GouraudMono | Layout::GouraudRgb if link.unlit => {}
-                Layout::GouraudMono => {
-                    for (v, x) in vals.iter_mut().skip(1).zip([a[0]]) {
-                        *v = P::level(x);
-                    }
-                }
-                Layout::GouraudRgb => {
-                    for (v, x) in vals.iter_mut().skip(1).zip(a) {
-                        *v = P::level(x);
-                    }
-                }
-                Layout::PhongNormal | Layout::PhongPosition => {
-                    for (v, x) in vals.iter_mut().skip(1).zip(a) {
-                        *v = P::unit(x);
-                    }
-                    if ctx.layout == Layout::PhongPosition {
-                        let p = [pos.x, pos.y, pos.z];
-                        for (v, x) in vals.iter_mut().skip(4).zip(p) {
-                            *v = P::coord(x);
-                        }
-                    }
-                }
-            }
+        if base + stride > self.ws.vals.len() {
+            return Err(self.cap(Part::Values));
         }
+        self.store(ctx, i, base, cv);
         self.nv += 1;
         self.nval = base + stride;
+        // i < u16::MAX: fits.
         Ok(i as u16)
-    }
-
-    /// The prepared vertex of a mesh corner if it was made already, with
-    /// its outcode (the one stored in its link).
-    #[inline(always)]
-    fn find(&self, p: u16, n: u16) -> Option<(u16, Outcode)> {
-        let mut v = *self.ws.heads.get(p as usize)?;
-        while v != NONE {
-            let l = self.ws.links.get(v as usize)?;
-            if l.normal == n {
-                return Some((v, l.code));
-            }
-            v = if l.next == v { NONE } else { l.next };
-        }
-        None
-    }
-
-    /// The prepared vertex of a mesh corner, made on first use, with its
-    /// outcode (the one stored in its link).
-    #[inline(always)]
-    fn corner(
-        &mut self,
-        ctx: &ObjCtx<'_, '_, P::Real>,
-        p: u16,
-        n: u16,
-    ) -> Result<(u16, Outcode), RenderError> {
-        match self.find(p, n) {
-            Some(found) => Ok(found),
-            None => self.new_corner(ctx, p, n),
-        }
-    }
-
-    /// Makes the prepared vertex of a mesh corner used for the first time
-    /// (once per vertex: kept out of the triangle loop).
-    #[inline(never)]
-    fn new_corner(
-        &mut self,
-        ctx: &ObjCtx<'_, '_, P::Real>,
-        p: u16,
-        n: u16,
-    ) -> Result<(u16, Outcode), RenderError> {
-        let head = self.ws.heads.get(p as usize).copied().unwrap_or(NONE);
-        let lazy = Self::lazy(ctx);
-        let cv = if lazy {
-            ClipVert {
-                pos: Self::eye_pos(ctx, p),
-                attrs: [P::Real::ZERO; CLIP_ATTRS],
-            }
-        } else {
-            Self::clip_vert(ctx, p, n, false)
-        };
-        let code = self.view.outcode(cv.pos);
-        let i = self.emit(
-            ctx,
-            &cv,
-            Link {
-                normal: n,
-                next: head,
-                code: 0,
-                unlit: lazy,
-            },
-            code,
-        )?;
-        if let Some(h) = self.ws.heads.get_mut(p as usize) {
-            *h = i;
-        }
-        Ok((i, code))
     }
 
     /// Keeps `tri` when it can cover a pixel centre of the screen, with
@@ -589,12 +852,6 @@ impl<P: Profile> Preparer<'_, P> {
         let xy = tri
             .v
             .map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
-        self.push_tri_at(tri, xy)
-    }
-
-    /// [`Preparer::push_tri`] with the screen positions `xy` of the
-    /// corners already read.
-    fn push_tri_at(&mut self, tri: Tri, xy: [[i32; 2]; 3]) -> Result<(), RenderError> {
         match self.rows_of(xy) {
             Some(rows) => self.store_tri(tri.v, rows, tri.color, tri.back),
             None => Ok(()),
@@ -606,30 +863,7 @@ impl<P: Profile> Preparer<'_, P> {
     /// of the screen.
     #[inline(always)]
     fn rows_of(&self, xy: [[i32; 2]; 3]) -> Option<[u16; 2]> {
-        let sub = P::SUBPIXEL_BITS;
-        let span = |k: usize| {
-            let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
-            (a.min(b).min(c), a.max(b).max(c))
-        };
-        let (x_lo, x_hi) = span(0);
-        let (y_lo, y_hi) = span(1);
-        // `max`/`min` rather than `clamp`, whose bound check is a panic
-        // branch the optimiser cannot remove for a runtime bound.
-        let clamp = |r: i32, n: u32| r.max(0).min(n.min(u32::from(u16::MAX)) as i32) as u16;
-        // Rows: the rasterizer's own `first_row(top)..first_row(bottom)`.
-        // Columns, conservatively: a centre on the rightmost x may count.
-        let rows = [
-            clamp(first_row(y_lo, sub), self.height),
-            clamp(first_row(y_hi, sub), self.height),
-        ];
-        let cols = [
-            clamp(first_row(x_lo, sub), self.width),
-            clamp(first_row(x_hi, sub).saturating_add(1), self.width),
-        ];
-        if rows[0] >= rows[1] || cols[0] >= cols[1] {
-            return None;
-        }
-        Some(rows)
+        rows_in(xy, self.width, self.height, P::SUBPIXEL_BITS)
     }
 
     /// Appends a kept triangle. Field by field: the 14-byte `Tri` built
@@ -653,85 +887,130 @@ impl<P: Profile> Preparer<'_, P> {
         Ok(())
     }
 
-    /// Flat colour of triangle `t`: face normal (exact integer cross
-    /// product in model space, then rotated) at the centroid.
-    fn flat_color(&self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize, back: bool) -> Rgb8 {
+    /// Flat colour of triangle `t`: its face normal (baked with the mesh,
+    /// or the exact integer cross product in model space) lit once, in
+    /// object space for directional lights, else in eye space at the
+    /// centroid.
+    #[inline]
+    fn flat_color(ctx: &ObjCtx<'_, '_, P::Real>, t: usize, back: bool) -> Rgb8 {
         if ctx.layout != Layout::Flat {
             return Rgb8::BLACK;
         }
-        let pos = ctx.mesh.triangle_positions(t).unwrap_or([[0; 3]; 3]);
-        let mut n = match &ctx.fast {
-            Some(x) => from_raw3::<P::Real>(x.vector(face_normal_q14(pos[0], pos[1], pos[2])))
-                .normalize_geom(),
-            None => ctx
-                .mv
-                .vector(Vec3::from_q14(face_normal(pos[0], pos[1], pos[2])))
-                .normalize(),
+        let n = match ctx.mesh.face_normals() {
+            Some(f) => f.get(t).copied().unwrap_or([0; 3]),
+            None => {
+                let pos = ctx.mesh.triangle_positions(t).unwrap_or([[0; 3]; 3]);
+                face_normal_q14(pos[0], pos[1], pos[2])
+            }
         };
-        if back {
-            n = -n;
-        }
-        // The centroid only when the lighting depends on the position.
-        let c = if ctx.shade.uses_position() {
-            let e = pos.map(|q| match &ctx.fast {
-                Some(x) => from_raw3(x.point(q)),
-                None => ctx.mv.point(Vec3::from_q14(q)),
-            });
-            (e[0] + e[1] + e[2]).scale(P::Real::from_ratio(1, 3))
-        } else {
-            Vec3::ZERO
+        let col = match &ctx.olight {
+            Some(ol) => ol.at(n, back, ctx.grey),
+            None => {
+                // The centroid only when the lighting depends on the
+                // position.
+                let c = if ctx.shade.uses_position() {
+                    let vs = ctx.tris.get(t).copied().unwrap_or([0; 3]);
+                    let e = vs.map(|v| Self::eye_pos(ctx, usize::from(v)));
+                    let third = P::Real::from_ratio(1, 3);
+                    let big = e.iter().any(|p| {
+                        p.x.abs().max(p.y.abs()).max(p.z.abs())
+                            >= P::Real::MAX.div(P::Real::from_i32(4))
+                    });
+                    if big {
+                        // A sum that could saturate: scaled term by term.
+                        e[0].scale(third) + e[1].scale(third) + e[2].scale(third)
+                    } else {
+                        (e[0] + e[1] + e[2]).scale(third)
+                    }
+                } else {
+                    Vec3::ZERO
+                };
+                let n = match &ctx.fast_n {
+                    Some(x) => from_raw3::<P::Real>(x.vector(n)).normalize_geom(),
+                    None => ctx.nm.vector(Vec3::from_q14(n)).normalize(),
+                };
+                ctx.shade.at(if back { -n } else { n }, c)
+            }
         };
-        let col = ctx.shade.at(n, c);
         Rgb8::new(col.x.to_level(), col.y.to_level(), col.z.to_level())
     }
 
-    #[inline(always)]
-    fn triangle(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
-        let (pk, nk) = Self::corner_keys(ctx, t);
-        let (v0, c0) = self.corner(ctx, pk[0], nk[0])?;
-        let (v1, c1) = self.corner(ctx, pk[1], nk[1])?;
-        let (v2, c2) = self.corner(ctx, pk[2], nk[2])?;
-        let vs = [v0, v1, v2];
-        if c0 | c1 | c2 != 0 {
-            // The cold paths read the keys again rather than keep them
-            // live (spilled) across the hot one.
-            return self.clipped(ctx, t, [c0, c1, c2]);
+    /// The triangles of the object, over the prepared vertices of the
+    /// vertex pass. `INSIDE`: every vertex is inside the planes (no
+    /// outcode to test).
+    #[inline(never)]
+    fn triangle_pass<const INSIDE: bool>(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+    ) -> Result<(), RenderError> {
+        let base = ctx.v_start;
+        let gouraud = matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb);
+        if INSIDE && (ctx.cull || !gouraud) {
+            let flat = ctx.layout == Layout::Flat;
+            let xy = self.ws.xy.get(base..self.nv).unwrap_or(&[]);
+            let nt = triangles_inside(
+                ctx.tris,
+                base,
+                xy,
+                self.ws.tris,
+                self.nt,
+                (self.width, self.height),
+                P::SUBPIXEL_BITS,
+                ctx.cull,
+                |t, back| {
+                    if flat {
+                        Self::flat_color(ctx, t, back)
+                    } else {
+                        Rgb8::BLACK
+                    }
+                },
+            );
+            return match nt {
+                Some(nt) => {
+                    self.nt = nt;
+                    Ok(())
+                }
+                None => Err(self.cap(Part::Triangles)),
+            };
         }
-        let xy = vs.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
-        let [a, b, c] = xy;
-        // Twice the signed area; only its sign is used.
-        let sign = det_sign(b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
-        if sign == 0 {
-            return Ok(());
-        }
-        // Front faces are counter-clockwise in the y-up world, hence
-        // clockwise (negative area) on the y-down screen.
-        let back = sign > 0;
-        if back {
-            if ctx.cull {
-                return Ok(());
+        for (t, tri) in ctx.tris.iter().enumerate() {
+            // base + index < u16::MAX (checked by the vertex pass).
+            let vs = tri.map(|i| (base + usize::from(i)) as u16);
+            let xy = vs.map(|v| self.ws.xy.get(usize::from(v)).copied().unwrap_or([0; 2]));
+            if !INSIDE && (xy[0][0] == OUTSIDE || xy[1][0] == OUTSIDE || xy[2][0] == OUTSIDE) {
+                let code = |p: [i32; 2]| if p[0] == OUTSIDE { p[1] as Outcode } else { 0 };
+                self.clipped(ctx, t, [code(xy[0]), code(xy[1]), code(xy[2])])?;
+                continue;
             }
-            if matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
-                return self.back_gouraud(ctx, t);
+            let [a, b, c] = xy;
+            // Twice the signed area; only its sign is used: 32-bit
+            // products when every edge is shorter than 2^15 subpixels.
+            let (e0, e1, e2, e3) = (b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
+            let sign = det_sign_small(e0, e1, e2, e3).unwrap_or_else(|| det_sign(e0, e1, e2, e3));
+            if sign == 0 {
+                continue;
             }
-        }
-        let Some(rows) = self.rows_of(xy) else {
-            return Ok(());
-        };
-        // Only kept triangles need their colour (flat) or lit corners
-        // (lazy Gouraud).
-        let color = if ctx.layout == Layout::Flat {
-            self.flat_color(ctx, t, back)
-        } else {
-            Rgb8::BLACK
-        };
-        self.store_tri(vs, rows, color, back)?;
-        if !back && Self::lazy(ctx) {
-            for (c, v) in vs.into_iter().enumerate() {
-                if self.ws.links.get(v as usize).is_some_and(|l| l.unlit) {
-                    self.light(ctx, v, t, c);
+            // Front faces are counter-clockwise in the y-up world, hence
+            // clockwise (negative area) on the y-down screen.
+            let back = sign > 0;
+            if back {
+                if ctx.cull {
+                    continue;
+                }
+                if matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
+                    self.back_gouraud(ctx, t)?;
+                    continue;
                 }
             }
+            let Some(rows) = self.rows_of(xy) else {
+                continue;
+            };
+            let color = if ctx.layout == Layout::Flat {
+                Self::flat_color(ctx, t, back)
+            } else {
+                Rgb8::BLACK
+            };
+            self.store_tri(vs, rows, color, back)?;
         }
         Ok(())
     }
@@ -740,24 +1019,13 @@ impl<P: Profile> Preparer<'_, P> {
     /// normals, in vertices of its own.
     #[inline(never)]
     fn back_gouraud(&mut self, ctx: &ObjCtx<'_, '_, P::Real>, t: usize) -> Result<(), RenderError> {
-        let (pk, nk) = Self::corner_keys(ctx, t);
+        let vi = ctx.tris.get(t).copied().unwrap_or([0; 3]);
         let mut vs = [0u16; 3];
         for c in 0..3 {
-            let cv = Self::clip_vert(ctx, pk[c], nk[c], true);
-            vs[c] = self.emit(
-                ctx,
-                &cv,
-                Link {
-                    normal: NONE,
-                    next: NONE,
-                    code: 0,
-                    unlit: false,
-                },
-                0,
-            )?;
+            let cv = Self::clip_vert(ctx, usize::from(vi[c]), true);
+            vs[c] = self.emit(ctx, &cv)?;
         }
-        let color = self.flat_color(ctx, t, true);
-        // New vertices: read their positions.
+        let color = Self::flat_color(ctx, t, true);
         self.push_tri(Tri {
             v: vs,
             color,
@@ -775,16 +1043,14 @@ impl<P: Profile> Preparer<'_, P> {
         t: usize,
         codes: [Outcode; 3],
     ) -> Result<(), RenderError> {
-        let (pk, nk) = Self::corner_keys(ctx, t);
         if codes[0] & codes[1] & codes[2] != 0 {
             return Ok(());
         }
+        let vi = ctx.tris.get(t).copied().unwrap_or([0; 3]).map(usize::from);
         // Clip in eye space. Facing from the eye-space plane: front when
         // the normal points towards the eye (at the origin).
-        let keys = [(pk[0], nk[0]), (pk[1], nk[1]), (pk[2], nk[2])];
-        let mut cvs = keys.map(|(p, n)| Self::clip_vert(ctx, p, n, false));
-        let nf = (cvs[1].pos - cvs[0].pos).cross(cvs[2].pos - cvs[0].pos);
-        let facing = nf.dot(cvs[0].pos);
+        let mut cvs = vi.map(|i| Self::clip_vert(ctx, i, false));
+        let facing = facing(cvs[0].pos, cvs[1].pos, cvs[2].pos);
         if facing == P::Real::ZERO {
             return Ok(());
         }
@@ -793,24 +1059,18 @@ impl<P: Profile> Preparer<'_, P> {
             return Ok(());
         }
         if back && matches!(ctx.layout, Layout::GouraudMono | Layout::GouraudRgb) {
-            cvs = keys.map(|(p, n)| Self::clip_vert(ctx, p, n, true));
+            cvs = vi.map(|i| Self::clip_vert(ctx, i, true));
         }
         let mut poly = [cvs[0]; MAX_POLY];
         let n = self.view.planes.clip(&cvs, codes, &mut poly);
         if n < 3 {
             return Ok(());
         }
-        let color = self.flat_color(ctx, t, back);
-        let free = Link {
-            normal: NONE,
-            next: NONE,
-            code: 0,
-            unlit: false,
-        };
-        let first = self.emit(ctx, &poly[0], free, 0)?;
-        let mut prev = self.emit(ctx, &poly[1], free, 0)?;
+        let color = Self::flat_color(ctx, t, back);
+        let first = self.emit(ctx, &poly[0])?;
+        let mut prev = self.emit(ctx, &poly[1])?;
         for q in poly.iter().take(n).skip(2) {
-            let cur = self.emit(ctx, q, free, 0)?;
+            let cur = self.emit(ctx, q)?;
             self.push_tri(Tri {
                 v: [first, prev, cur],
                 color,

@@ -18,8 +18,6 @@ struct Mem<L> {
     xy: Vec<[i32; 2]>,
     vals: Vec<L>,
     tris: Vec<Tri>,
-    heads: Vec<u16>,
-    links: Vec<Link>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -28,8 +26,6 @@ impl<L: Copy + Default> Mem<L> {
             xy: vec![[0; 2]; verts],
             vals: vec![L::default(); verts * 7],
             tris: vec![Tri::default(); tris],
-            heads: vec![0; 2000],
-            links: vec![Link::default(); verts],
         }
     }
     fn ws(&mut self) -> Workspace<'_, L> {
@@ -37,8 +33,6 @@ impl<L: Copy + Default> Mem<L> {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
-            heads: &mut self.heads,
-            links: &mut self.links,
         }
     }
 }
@@ -431,7 +425,6 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 #[test]
 fn memory_figures_are_as_documented() {
     assert_eq!(core::mem::size_of::<Tri>(), 14);
-    assert_eq!(core::mem::size_of::<Link>(), 6);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
@@ -612,13 +605,8 @@ fn capacity_and_scene_errors_are_values() {
     )];
     let ls = lights();
     let s = scene(&objs, &ls, [0.0, 0.0, 5.0]);
-    for (verts, tris, heads, part) in [
-        (10, 1000, 2000, Part::Vertices),
-        (1000, 10, 2000, Part::Triangles),
-        (1000, 1000, 5, Part::Heads),
-    ] {
+    for (verts, tris, part) in [(10, 1000, Part::Vertices), (1000, 10, Part::Triangles)] {
         let mut mem = Mem::<i32>::new(verts, tris);
-        mem.heads.truncate(heads);
         let e = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap_err();
         assert_eq!(e, RenderError::Capacity { part, object: 0 });
     }
@@ -788,4 +776,122 @@ fn band_state_memory_is_as_documented() {
     assert_eq!(Pool::<i32, 1, 8>::SLOT_BYTES, 88 + 96);
     // The pool adds two u16 list entries per slot.
     assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (88 + 96 + 4));
+}
+
+/// The bounding sphere decides once per object: wholly inside (no
+/// outcodes), wholly outside one plane (nothing prepared), or across.
+#[test]
+fn bounding_sphere_accepts_and_rejects_whole_objects() {
+    use super::clip::Planes;
+    use super::prepare::{sphere, Sphere};
+    fn place<R: Real>(z: f32, scale: f32) -> Sphere {
+        let cam = Camera::look_at_f32(
+            [0.0, 0.0, 4.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            45.0,
+            1.0,
+            Some(20.0),
+        )
+        .unwrap();
+        let planes = Planes {
+            near: cam.near,
+            far: cam.far,
+            guard: R::from_f32(4096.0 / 290.0),
+        };
+        let t = Affine::from_parts(
+            R::from_f32(scale),
+            Vec3::ZERO,
+            Vec3::from_f32([0.0, 0.0, z]),
+        );
+        let mv = cam.view.then_after(&t);
+        sphere(&planes, &shapes::BUNNY, &mv)
+    }
+    for (z, scale, want) in [
+        (0.0, 1.0, Sphere::Inside),
+        (2.5, 1.0, Sphere::Across),   // crosses the near plane (w = 1)
+        (5.5, 1.0, Sphere::Outside),  // behind the near plane
+        (-15.5, 1.0, Sphere::Across), // crosses the far plane (w = 20)
+        (-30.0, 1.0, Sphere::Outside),
+        (0.0, 0.01, Sphere::Inside),
+    ] {
+        assert_eq!(place::<crate::num::Q16>(z, scale), want, "Q16 {z} {scale}");
+        assert_eq!(place::<f64>(z, scale), want, "f64 {z} {scale}");
+    }
+}
+
+/// Non-uniform scale: normals go through the inverse-transpose and are
+/// renormalised. Gouraud vertex levels of a sphere stretched (3, 1, 0.5)
+/// and turned, under one directional light, against the f64 formula
+/// `ka·Ia·C + kd·max(0, N·L)·C` with `N = normalize(M⁻ᵀ n)`: within 0.02
+/// level (F64), 1 level (Q16, Q32); a uniform scale lights as before
+/// (object-space path) within the same bounds.
+#[test]
+fn non_uniform_scale_lights_with_the_inverse_transpose() {
+    use crate::geom::Mat3;
+    fn run<P: Profile>(stretch: [f32; 3], tol: f64, lv: fn(P::Lerp) -> f64) {
+        type R<P> = <P as Profile>::Real;
+        let rot = Mat3::<R<P>>::rotation_y(R::<P>::from_f32(0.6))
+            .compose(&Mat3::rotation_x(R::<P>::from_f32(0.3)));
+        let diag = Mat3::from_rows([
+            [R::<P>::from_f32(stretch[0]), R::<P>::ZERO, R::<P>::ZERO],
+            [R::<P>::ZERO, R::<P>::from_f32(stretch[1]), R::<P>::ZERO],
+            [R::<P>::ZERO, R::<P>::ZERO, R::<P>::from_f32(stretch[2])],
+        ]);
+        let m = rot.compose(&diag);
+        let objs = [Object {
+            mesh: shapes::SPHERE,
+            transform: Affine { m, t: Vec3::ZERO },
+            material: Material {
+                color: Vec3::from_f32([1.0; 3]),
+                ka: R::<P>::from_f32(0.2),
+                kd: R::<P>::from_f32(0.8),
+                ks: R::<P>::ZERO,
+                shininess: R::<P>::ONE,
+            },
+            shading: Shading::Gouraud,
+            cull_backfaces: true,
+        }];
+        let l = [0.3f64, 0.5, 0.81];
+        let ls = [Light::directional(
+            Vec3::from_f32(l.map(|c| c as f32)),
+            R::<P>::ONE,
+        )];
+        let mut s = scene(&objs, &ls, [0.0, 0.0, 8.0]);
+        s.ambient = R::<P>::ONE;
+        let mut mem = Mem::<P::Lerp>::new(4000, 4000);
+        let frame = prepare::<P>(&s, 128, 128, mem.ws()).unwrap();
+        let po = &frame.objects()[0];
+        assert_eq!(po.layout, Layout::GouraudMono);
+        // The exact inverse-transpose of the (f64) matrix, in world
+        // space (the camera is a translation along z).
+        let mf = m.rows.map(|r| r.to_f64());
+        let c = |i: usize, j: usize| {
+            mf[(i + 1) % 3][(j + 1) % 3] * mf[(i + 2) % 3][(j + 2) % 3]
+                - mf[(i + 1) % 3][(j + 2) % 3] * mf[(i + 2) % 3][(j + 1) % 3]
+        };
+        let ln = {
+            let n = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+            l.map(|x| x / n)
+        };
+        let mut worst = 0f64;
+        for (i, n) in shapes::SPHERE.vertex_normals().unwrap().iter().enumerate() {
+            let nq = n.map(|v| f64::from(v) / 16384.0);
+            let ne: [f64; 3] =
+                core::array::from_fn(|r| (0..3).map(|k| c(r, k) * nq[k]).sum::<f64>());
+            let len = (ne[0] * ne[0] + ne[1] * ne[1] + ne[2] * ne[2]).sqrt();
+            let nl = (0..3).map(|k| ne[k] / len * ln[k]).sum::<f64>().max(0.0);
+            let want = 255.0 * (0.2 + 0.8 * nl).min(1.0);
+            let v = frame.ws.vals[po.val_base + i * po.stride + 1];
+            let got = lv(v);
+            worst = worst.max((got - want).abs());
+        }
+        assert!(worst <= tol, "{} {stretch:?}: {worst}", P::NAME);
+    }
+    let fixed = |v: i32| f64::from(v) / 65536.0;
+    for stretch in [[3.0, 1.0, 0.5], [1.5, 1.5, 1.5]] {
+        run::<F64>(stretch, 0.02, |v| v);
+        run::<Precise>(stretch, 1.0, fixed);
+        run::<Fast>(stretch, 1.0, fixed);
+    }
 }

@@ -7,7 +7,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
 use fixshade::num::{Profile, Real};
-use fixshade::render::{prepare, Link, Tri, Workspace};
+use fixshade::render::{prepare, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{Depth32, DepthBuffer, FrameBuf, Rgb8, Rgb888};
 
@@ -199,24 +199,15 @@ pub fn with_scene<P: Profile, T>(
     inspect: impl FnOnce(&fixshade::render::Frame<'_, P>) -> T,
 ) -> (Image, T) {
     let tris: usize = scene.objects.iter().map(|o| o.mesh.triangle_count()).sum();
-    let verts = 2 * 3 * tris + 64;
-    let max_mesh = scene
-        .objects
-        .iter()
-        .map(|o| o.mesh.vertex_count())
-        .max()
-        .unwrap_or(1);
+    let mesh_verts: usize = scene.objects.iter().map(|o| o.mesh.vertex_count()).sum();
+    let verts = mesh_verts + 2 * 3 * tris + 64;
     let mut xy = vec![[0i32; 2]; verts];
     let mut vals = vec![P::Lerp::default(); verts * 7];
     let mut tri_buf = vec![Tri::default(); 4 * tris + 16];
-    let mut heads = vec![0u16; max_mesh];
-    let mut links = vec![Link::default(); verts];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tri_buf,
-        heads: &mut heads,
-        links: &mut links,
     };
     let frame = prepare::<P>(scene, w, h, ws).expect("prepare");
     let mut px = vec![[0u8; 3]; (w * h) as usize];
@@ -316,15 +307,7 @@ pub fn square(normals: [[i16; 3]; 4]) -> Mesh<'static> {
     ]);
     let tris = leak(vec![[0u16, 1, 2], [0, 2, 3]]);
     let nrm = leak(normals.to_vec());
-    Mesh::new(
-        pos,
-        tris,
-        Some(fixshade::mesh::CornerNormals {
-            normals: nrm,
-            indices: tris,
-        }),
-    )
-    .expect("square mesh")
+    Mesh::new(pos, tris, Some(nrm)).expect("square mesh")
 }
 
 /// The reference Phong illumination in `f64`, written from the formula
@@ -394,7 +377,7 @@ pub fn phong_f64(
 
 /// `mesh` with generated fully smooth normals (one per vertex).
 pub fn smooth(mesh: Mesh<'static>) -> Mesh<'static> {
-    use fixshade::mesh::{generate_normals, CornerNormals, Smoothing};
+    use fixshade::mesh::{generate_normals, weld, CornerNormals, Smoothing};
     let (t, v) = (mesh.triangle_count(), mesh.vertex_count());
     let mut adjacency = vec![0u16; 3 * t];
     let mut offsets = vec![0u32; v + 1];
@@ -410,13 +393,24 @@ pub fn smooth(mesh: Mesh<'static>) -> Mesh<'static> {
     )
     .expect("normals");
     normals.truncate(n);
-    Mesh::new(
+    let cap = 3 * t;
+    let (mut pos, mut nrm) = (vec![[0i16; 3]; cap], vec![[0i16; 3]; cap]);
+    let mut tris = vec![[0u16; 3]; t];
+    let mut scratch = vec![0u16; v + cap];
+    let count = weld(
         mesh.positions(),
         mesh.triangles(),
-        Some(CornerNormals {
-            normals: leak(normals),
-            indices: leak(indices),
-        }),
+        CornerNormals {
+            normals: &normals,
+            indices: &indices,
+        },
+        &mut pos,
+        &mut nrm,
+        &mut tris,
+        &mut scratch,
     )
-    .expect("smooth mesh")
+    .expect("weld");
+    pos.truncate(count);
+    nrm.truncate(count);
+    Mesh::new(leak(pos), leak(tris), Some(leak(nrm))).expect("smooth mesh")
 }

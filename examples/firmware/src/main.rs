@@ -21,7 +21,6 @@
 #![no_main]
 
 use core::hint::black_box;
-use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::ptr::{addr_of, addr_of_mut};
 use cortex_m_rt::entry;
@@ -30,7 +29,7 @@ use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
-use fixshade::render::{Link, PhongShader, Tri, Workspace};
+use fixshade::render::{PhongShader, Tri, Workspace};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
     capacity_of, check, render_frame, BandPool, FrameError, Needs, Pixel, Probe, BAND_PIXELS,
@@ -147,8 +146,6 @@ struct Memory {
     xy: &'static mut [[i32; 2]; CAP.vertices],
     vals: &'static mut [i32; CAP.values],
     tris: &'static mut [Tri; CAP.triangles],
-    heads: &'static mut [u16; CAP.heads],
-    links: &'static mut [Link; CAP.vertices],
     order: &'static mut [u16; 2 * CAP.triangles],
     pool: &'static mut BandPool,
 }
@@ -159,8 +156,6 @@ impl Memory {
             xy: &mut self.xy[..],
             vals: &mut self.vals[..],
             tris: &mut self.tris[..],
-            heads: &mut self.heads[..],
-            links: &mut self.links[..],
         }
     }
 }
@@ -186,13 +181,12 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         BAND_ROWS,
     );
     hprintln!(
-        "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} ws_heads={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
+        "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
         band_bytes,
         depth_bytes,
         ws.vertices,
         ws.values,
         ws.triangles,
-        ws.heads,
         workspace_bytes(mem),
         MESH_SHAPE_BYTES,
         MESH_NORMAL_BYTES,
@@ -208,8 +202,6 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
             xy: &mut mem.xy[..],
             vals: &mut mem.vals[..],
             tris: &mut mem.tris[..],
-            heads: &mut mem.heads[..],
-            links: &mut mem.links[..],
         };
         let stats = render_frame(
             spec,
@@ -348,8 +340,6 @@ fn workspace_bytes(mem: &Memory) -> usize {
     core::mem::size_of_val(mem.xy)
         + core::mem::size_of_val(mem.vals)
         + core::mem::size_of_val(mem.tris)
-        + core::mem::size_of_val(mem.heads)
-        + core::mem::size_of_val(mem.links)
 }
 
 // cortex-m-rt passes each `static mut` below as an argument.
@@ -363,30 +353,14 @@ fn main() -> ! {
     static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
     static mut VALS: [i32; CAP.values] = [0; CAP.values];
     static mut TRIS: [Tri; CAP.triangles] = [NO_TRI; CAP.triangles];
-    static mut HEADS: [u16; CAP.heads] = [0; CAP.heads];
     static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
     static mut POOL: BandPool = BandPool::new();
-    // `Link` has private fields and no const constructor: initialised
-    // below with `Link::default()`.
-    static mut LINKS: MaybeUninit<[Link; CAP.vertices]> = MaybeUninit::uninit();
-    let links = {
-        let p = LINKS.as_mut_ptr().cast::<Link>();
-        for i in 0..CAP.vertices {
-            // SAFETY: `i` is within the array; writing a value into
-            // uninitialised memory through a raw pointer is sound.
-            unsafe { p.add(i).write(Link::default()) };
-        }
-        // SAFETY: every element was initialised above.
-        unsafe { LINKS.assume_init_mut() }
-    };
     let mut mem = Memory {
         pixels: PIXELS,
         depth: DEPTH,
         xy: XY,
         vals: VALS,
         tris: TRIS,
-        heads: HEADS,
-        links,
         order: ORDER,
         pool: POOL,
     };
@@ -394,12 +368,11 @@ fn main() -> ! {
         Ok(()) => debug::EXIT_SUCCESS,
         Err(Failure::Startup(name, e)) => {
             hprintln!(
-                "error: scene {} does not fit the firmware's workspace (capacities: {} vertices, {} values, {} triangles, {} heads; it needs {:?}): {}",
+                "error: scene {} does not fit the firmware's workspace (capacities: {} vertices, {} values, {} triangles; it needs {:?}): {}",
                 name,
                 CAP.vertices,
                 CAP.values,
                 CAP.triangles,
-                CAP.heads,
                 SCENES.iter().find(|s| s.name == name).map(|s| s.needs),
                 e
             );

@@ -35,7 +35,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::shapes::{BUNNY, DODECAHEDRON};
 use fixshade::num::{Profile, Real};
-use fixshade::render::{prepare, BandState, Link, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 
@@ -59,7 +59,6 @@ const POOL: usize = 32;
 const MAX_VERTS: usize = 8192;
 const MAX_VALS: usize = 32768;
 const MAX_TRIS: usize = 8192;
-const MAX_MESH_VERTS: usize = 2048;
 
 /// Frames rendered, each with another rotation and specular model.
 const FRAMES: i32 = 4;
@@ -297,17 +296,12 @@ fn main() -> ! {
     static mut XY: [[i32; 2]; MAX_VERTS] = [[0; 2]; MAX_VERTS];
     static mut VALS: [L; MAX_VALS] = [0; MAX_VALS];
     static mut TRIS: [Tri; MAX_TRIS] = [Tri::EMPTY; MAX_TRIS];
-    static mut HEADS: [u16; MAX_MESH_VERTS] = [0; MAX_MESH_VERTS];
-    // `Link` has private fields and no constant constructor: filled with
-    // `Link::default()` once, at start.
-    static mut LINKS: Option<[Link; MAX_VERTS]> = None;
     static mut BAND: [[u8; 2]; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     // The band state: triangle order and active pool.
     static mut BAND_STATE: ([u16; 2 * MAX_TRIS], Pool<L, POOL, 8>) =
         ([0; 2 * MAX_TRIS], Pool::new());
 
-    let links = LINKS.get_or_insert_with(|| [Link::default(); MAX_VERTS]);
     let mut line = Line::new();
     line.text("fixshade panic-never: profile ")
         .text(P::NAME)
@@ -324,8 +318,6 @@ fn main() -> ! {
             xy: &mut XY[..],
             vals: &mut VALS[..],
             tris: &mut TRIS[..],
-            heads: &mut HEADS[..],
-            links: &mut links[..],
         };
         match frame(
             f,

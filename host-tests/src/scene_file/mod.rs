@@ -86,8 +86,8 @@ mod validate;
 use std::path::Path;
 
 use fixshade::mesh::{
-    generate_normals, CornerNormals, Crease, Mesh, NormalsError, Smoothing, BUNNY, CAN, CUBE,
-    DODECAHEDRON, GRID, SPHERE,
+    generate_normals, Crease, Mesh, NormalsError, Smoothing, BUNNY, CAN, CUBE, DODECAHEDRON, GRID,
+    SPHERE,
 };
 use serde::Deserialize;
 
@@ -198,6 +198,11 @@ pub fn generate_corner_normals(
     mesh: &Mesh<'_>,
     crease: Crease,
 ) -> Result<GeneratedNormals, NormalsError> {
+    // Vertices split by their normals are one position again: faces are
+    // adjacent through shared positions.
+    let (positions, triangles) = crate::bake::merge_positions(mesh.positions(), mesh.triangles());
+    let mesh = &Mesh::new(&positions, &triangles, None)
+        .expect("merging the positions of a valid mesh keeps it valid");
     let (t, v) = (mesh.triangle_count(), mesh.vertex_count());
     let mut adjacency = vec![0u16; 3 * t];
     let mut offsets = vec![0u32; v + 1];
@@ -216,20 +221,22 @@ pub fn generate_corner_normals(
 }
 
 /// A mesh with owned tables: an OBJ file's, or a built-in mesh with
-/// regenerated normals. Always valid for `Mesh::new` and always with
-/// normals.
+/// regenerated normals, in the core's form (one vertex per distinct
+/// position and normal, face normals baked). Always valid for
+/// `Mesh::new` and always with normals.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct OwnedMesh {
     origin: String,
     positions: Vec<[i16; 3]>,
     triangles: Vec<[u16; 3]>,
     normals: Vec<[i16; 3]>,
-    normal_indices: Vec<[u16; 3]>,
+    face_normals: Vec<[i16; 3]>,
 }
 
 impl OwnedMesh {
-    /// Checks the tables with `Mesh::new`; `origin` describes where they
-    /// come from (an OBJ path or a built-in name and crease angle).
+    /// Welds per-corner normals (equal positions merged first) and checks
+    /// the tables with `Mesh::new`; `origin` describes where they come
+    /// from (an OBJ path or a built-in name and crease angle).
     pub fn new(
         origin: String,
         positions: Vec<[i16; 3]>,
@@ -237,20 +244,18 @@ impl OwnedMesh {
         normals: Vec<[i16; 3]>,
         normal_indices: Vec<[u16; 3]>,
     ) -> Result<Self, fixshade::mesh::MeshError> {
-        Mesh::new(
-            &positions,
-            &triangles,
-            Some(CornerNormals {
-                normals: &normals,
-                indices: &normal_indices,
-            }),
-        )?;
+        Mesh::new(&positions, &triangles, None)?;
+        let (merged, tris) = crate::bake::merge_positions(&positions, &triangles);
+        let (positions, normals, triangles) =
+            crate::bake::weld_corners(&merged, &tris, &normals, &normal_indices)?;
+        Mesh::new(&positions, &triangles, Some(&normals))?;
+        let face_normals = crate::bake::face_normals(&positions, &triangles);
         Ok(Self {
             origin,
             positions,
             triangles,
             normals,
-            normal_indices,
+            face_normals,
         })
     }
 
@@ -259,7 +264,7 @@ impl OwnedMesh {
         &self.origin
     }
 
-    /// Q1.14 positions.
+    /// Q1.14 positions, one per vertex.
     pub fn positions(&self) -> &[[i16; 3]] {
         &self.positions
     }
@@ -269,28 +274,22 @@ impl OwnedMesh {
         &self.triangles
     }
 
-    /// Unit Q1.14 normals.
+    /// Unit Q1.14 normals, one per vertex.
     pub fn normals(&self) -> &[[i16; 3]] {
         &self.normals
     }
 
-    /// Normal index of each triangle corner.
-    pub fn normal_indices(&self) -> &[[u16; 3]] {
-        &self.normal_indices
+    /// Unit Q1.14 face normals, one per triangle.
+    pub fn face_normals(&self) -> &[[i16; 3]] {
+        &self.face_normals
     }
 
     /// The core's view of the tables.
     pub fn mesh(&self) -> Mesh<'_> {
-        Mesh::new(
-            &self.positions,
-            &self.triangles,
-            Some(CornerNormals {
-                normals: &self.normals,
-                indices: &self.normal_indices,
-            }),
-        )
-        // The tables are private and were checked by `new`.
-        .expect("OwnedMesh tables were checked when built")
+        Mesh::new(&self.positions, &self.triangles, Some(&self.normals))
+            .and_then(|m| m.with_face_normals(&self.face_normals))
+            // The tables are private and were checked by `new`.
+            .expect("OwnedMesh tables were checked when built")
     }
 }
 

@@ -8,7 +8,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
 use fixshade::num::{Profile, Real};
-use fixshade::render::{prepare, BandState, Link, Pool, RenderError, RenderStats, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, RenderStats, Tri, Workspace};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
 use fixshade::target::{
     BandBuf, Depth32, DepthBuffer, FrameBuf, Gray8, PixelFormat, Rgb8, Rgb888, Target, Window,
@@ -20,8 +20,6 @@ pub struct Mem<L> {
     pub xy: Vec<[i32; 2]>,
     pub vals: Vec<L>,
     pub tris: Vec<Tri>,
-    pub heads: Vec<u16>,
-    pub links: Vec<Link>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -32,8 +30,6 @@ impl<L: Copy + Default> Mem<L> {
             xy: vec![[0; 2]; verts],
             vals: vec![L::default(); verts * 8],
             tris: vec![Tri::default(); tris],
-            heads: vec![0; 2000],
-            links: vec![Link::default(); verts],
         }
     }
 
@@ -42,8 +38,6 @@ impl<L: Copy + Default> Mem<L> {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
-            heads: &mut self.heads,
-            links: &mut self.links,
         }
     }
 }

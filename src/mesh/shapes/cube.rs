@@ -2,46 +2,51 @@
 //!
 //! Regenerate with `MAKE_MESHES=1 cargo test -p fixshade-host --test mesh_data`.
 
-use crate::mesh::{CornerNormals, Mesh};
+use crate::mesh::Mesh;
 
-/// Cube of side 2 centred on the origin: 8 vertices, 12 triangles,
-/// flat faces (6 normals, one per face, on all its corners).
-pub const CUBE: Mesh<'static> = match Mesh::new(
-    POSITIONS,
-    TRIANGLES,
-    Some(CornerNormals {
-        normals: NORMALS,
-        indices: NORMAL_INDICES,
-    }),
-) {
-    Ok(mesh) => mesh,
+/// Cube of side 2 centred on the origin: 8 corners, 12 triangles,
+/// flat faces (6 normals, one per face): 24 vertices, one per face
+/// corner.
+pub const CUBE: Mesh<'static> = match Mesh::new(POSITIONS, TRIANGLES, Some(NORMALS)) {
+    Ok(mesh) => match mesh.with_face_normals(FACE_NORMALS) {
+        Ok(mesh) => mesh,
+        Err(_) => panic!("invalid face normals of CUBE"),
+    },
     Err(_) => panic!("invalid built-in mesh CUBE"),
 };
 
-/// Vertex positions, Q1.14.
+/// Vertex positions, Q1.14: one per distinct (position, normal) pair.
 #[rustfmt::skip]
 const POSITIONS: &[[i16; 3]] = &[
-    [-16384, -16384, -16384], [16384, -16384, -16384], [-16384, 16384, -16384],
-    [16384, 16384, -16384], [-16384, -16384, 16384], [16384, -16384, 16384], [-16384, 16384, 16384],
-    [16384, 16384, 16384],
+    [16384, 16384, -16384], [16384, 16384, 16384], [16384, -16384, 16384], [16384, -16384, -16384],
+    [-16384, -16384, -16384], [-16384, -16384, 16384], [-16384, 16384, 16384],
+    [-16384, 16384, -16384], [16384, 16384, -16384], [-16384, 16384, -16384],
+    [-16384, 16384, 16384], [16384, 16384, 16384], [-16384, -16384, -16384],
+    [16384, -16384, -16384], [16384, -16384, 16384], [-16384, -16384, 16384],
+    [16384, -16384, 16384], [16384, 16384, 16384], [-16384, 16384, 16384], [-16384, -16384, 16384],
+    [-16384, -16384, -16384], [-16384, 16384, -16384], [16384, 16384, -16384],
+    [16384, -16384, -16384],
 ];
 
 /// Triangles, counter-clockwise.
 #[rustfmt::skip]
 const TRIANGLES: &[[u16; 3]] = &[
-    [3, 7, 5], [3, 5, 1], [0, 4, 6], [0, 6, 2], [3, 2, 6], [3, 6, 7], [0, 1, 5], [0, 5, 4],
-    [5, 7, 6], [5, 6, 4], [0, 2, 3], [0, 3, 1],
+    [0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7], [8, 9, 10], [8, 10, 11], [12, 13, 14], [12, 14, 15],
+    [16, 17, 18], [16, 18, 19], [20, 21, 22], [20, 22, 23],
 ];
 
-/// Unit normals, Q1.14.
+/// Unit vertex normals, Q1.14, one per vertex.
 #[rustfmt::skip]
 const NORMALS: &[[i16; 3]] = &[
-    [16384, 0, 0], [-16384, 0, 0], [0, 16384, 0], [0, -16384, 0], [0, 0, 16384], [0, 0, -16384],
+    [16384, 0, 0], [16384, 0, 0], [16384, 0, 0], [16384, 0, 0], [-16384, 0, 0], [-16384, 0, 0],
+    [-16384, 0, 0], [-16384, 0, 0], [0, 16384, 0], [0, 16384, 0], [0, 16384, 0], [0, 16384, 0],
+    [0, -16384, 0], [0, -16384, 0], [0, -16384, 0], [0, -16384, 0], [0, 0, 16384], [0, 0, 16384],
+    [0, 0, 16384], [0, 0, 16384], [0, 0, -16384], [0, 0, -16384], [0, 0, -16384], [0, 0, -16384],
 ];
 
-/// Normal index of each corner.
+/// Unit face normals, Q1.14: the exact `face_normal` of each triangle.
 #[rustfmt::skip]
-const NORMAL_INDICES: &[[u16; 3]] = &[
-    [0, 0, 0], [0, 0, 0], [1, 1, 1], [1, 1, 1], [2, 2, 2], [2, 2, 2], [3, 3, 3], [3, 3, 3],
-    [4, 4, 4], [4, 4, 4], [5, 5, 5], [5, 5, 5],
+const FACE_NORMALS: &[[i16; 3]] = &[
+    [16384, 0, 0], [16384, 0, 0], [-16384, 0, 0], [-16384, 0, 0], [0, 16384, 0], [0, 16384, 0],
+    [0, -16384, 0], [0, -16384, 0], [0, 0, 16384], [0, 0, 16384], [0, 0, -16384], [0, 0, -16384],
 ];

@@ -1,4 +1,4 @@
-use super::error_ulps;
+use super::{error_ulps, Shape};
 use crate::mesh::{generate_normals, Crease, Mesh, NormalsError, Smoothing, CAN, CUBE, NORMAL_ONE};
 
 /// Outputs of [`run`] for meshes of up to 32 triangles and 32 vertices.
@@ -54,10 +54,12 @@ fn crease(degrees: u32) -> Smoothing<'static> {
 
 #[test]
 fn cube_below_90_degrees_stays_flat() {
-    let out = run(&CUBE, &crease(89)).unwrap();
+    let shape = Shape::of(&CUBE);
+    let cube = shape.mesh();
+    let out = run(&cube, &crease(89)).unwrap();
     assert_eq!(out.count, 24);
     for v in 0..8 {
-        assert_eq!(out.distinct_at(&CUBE, v), 3, "vertex {v}");
+        assert_eq!(out.distinct_at(&cube, v), 3, "vertex {v}");
     }
     for t in 0..12 {
         for c in 0..3 {
@@ -65,22 +67,24 @@ fn cube_below_90_degrees_stays_flat() {
         }
     }
     // Crease 0 gives the same flat normals.
-    let flat = run(&CUBE, &Smoothing::crease(Crease::FLAT)).unwrap();
+    let flat = run(&cube, &Smoothing::crease(Crease::FLAT)).unwrap();
     assert_eq!(flat.count, 24);
     assert_eq!(flat.indices, out.indices);
 }
 
 #[test]
 fn cube_at_90_and_180_degrees_is_smooth() {
+    let shape = Shape::of(&CUBE);
+    let cube = shape.mesh();
     for smoothing in [crease(90), crease(180), Smoothing::SMOOTH] {
-        let out = run(&CUBE, &smoothing).unwrap();
+        let out = run(&cube, &smoothing).unwrap();
         assert_eq!(out.count, 8);
-        for (v, p) in CUBE.positions().iter().enumerate() {
+        for (v, p) in cube.positions().iter().enumerate() {
             // Normal i belongs to vertex i: all vertices are used.
             assert_eq!(out.normals[v], p.map(|c| c.signum() * 9459));
-            assert_eq!(out.distinct_at(&CUBE, v as u16), 1);
+            assert_eq!(out.distinct_at(&cube, v as u16), 1);
         }
-        for (t, tri) in CUBE.triangles().iter().enumerate() {
+        for (t, tri) in cube.triangles().iter().enumerate() {
             assert_eq!(out.indices[t], *tri);
         }
     }
@@ -102,11 +106,13 @@ const CAN_GROUPS: [u32; 24] = {
 
 #[test]
 fn can_has_smooth_sides_and_flat_caps() {
+    let shape = Shape::of(&CAN);
+    let can = shape.mesh();
     let groups = Smoothing {
         crease: Crease::SMOOTH,
         groups: Some(&CAN_GROUPS),
     };
-    let out = run(&CAN, &groups).unwrap();
+    let out = run(&can, &groups).unwrap();
     // 12 ring vertices with a side and a cap normal, 2 cap centres.
     assert_eq!(out.count, 26);
     let mut sides = [[0i16; 3]; 12];
@@ -138,7 +144,7 @@ fn can_has_smooth_sides_and_flat_caps() {
     assert_eq!(n_sides, 6);
     // A crease of 89 degrees finds the same split: sides meet at 60°, caps
     // at 90°.
-    let by_angle = run(&CAN, &crease(89)).unwrap();
+    let by_angle = run(&can, &crease(89)).unwrap();
     assert_eq!(by_angle.count, out.count);
     assert_eq!(by_angle.normals, out.normals);
     assert_eq!(by_angle.indices, out.indices);
@@ -233,12 +239,14 @@ fn cancelling_faces_fall_back_to_their_own_normal() {
 
 #[test]
 fn small_buffers_and_bad_groups_are_errors() {
+    let shape = Shape::of(&CUBE);
+    let cube = shape.mesh();
     let s = Smoothing::SMOOTH;
     let (mut adj, mut off) = ([0u16; 36], [0u32; 9]);
     let (mut normals, mut idx) = ([[0i16; 3]; 36], [[0u16; 3]; 12]);
     let mut call = |a: usize, o: usize, n: usize, i: usize, s: &Smoothing<'_>| {
         generate_normals(
-            &CUBE,
+            &cube,
             s,
             &mut adj[..a],
             &mut off[..o],

@@ -32,3 +32,41 @@ fn error_ulps(n: [i16; 3], v: [f64; 3]) -> f64 {
         .map(|k| libm::fabs(f64::from(n[k]) - 16384.0 * v[k] / len))
         .fold(0.0, f64::max)
 }
+
+/// A built-in mesh's shape: its positions merged by value (a vertex per
+/// distinct position, in order of first appearance) and its triangles
+/// renumbered, without normals: what normal generation works on.
+struct Shape {
+    pos: [[i16; 3]; 64],
+    n: usize,
+    tris: [[u16; 3]; 64],
+    t: usize,
+}
+
+impl Shape {
+    fn of(m: &crate::mesh::Mesh<'_>) -> Self {
+        let mut s = Self {
+            pos: [[0; 3]; 64],
+            n: 0,
+            tris: [[0; 3]; 64],
+            t: m.triangle_count(),
+        };
+        let mut map = [0u16; 64];
+        for (i, p) in m.positions().iter().enumerate() {
+            let k = s.pos[..s.n].iter().position(|q| q == p).unwrap_or_else(|| {
+                s.pos[s.n] = *p;
+                s.n += 1;
+                s.n - 1
+            });
+            map[i] = k as u16;
+        }
+        for (d, t) in s.tris.iter_mut().zip(m.triangles()) {
+            *d = t.map(|v| map[usize::from(v)]);
+        }
+        s
+    }
+
+    fn mesh(&self) -> crate::mesh::Mesh<'_> {
+        crate::mesh::Mesh::new(&self.pos[..self.n], &self.tris[..self.t], None).unwrap()
+    }
+}

@@ -9,7 +9,7 @@
 //! `--ppm`, also writes each frame as `DIR/<scene>.ppm` (binary PPM) to look
 //! at.
 
-use fixshade::render::{Link, Tri, Workspace};
+use fixshade::render::{Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
 use fixshade_scenes::{
     render_frame, BandPool, Crc32, Needs, NoProbe, Pixel, BAND_PIXELS, MAX_NEEDS, SCENES,
@@ -21,8 +21,6 @@ struct Owned {
     xy: Vec<[i32; 2]>,
     vals: Vec<i32>,
     tris: Vec<Tri>,
-    heads: Vec<u16>,
-    links: Vec<Link>,
 }
 
 impl Owned {
@@ -31,8 +29,6 @@ impl Owned {
             xy: vec![[0; 2]; n.vertices],
             vals: vec![0; n.values],
             tris: vec![Tri::default(); n.triangles],
-            heads: vec![0; n.heads],
-            links: vec![Link::default(); n.vertices],
         }
     }
 
@@ -41,8 +37,6 @@ impl Owned {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
-            heads: &mut self.heads,
-            links: &mut self.links,
         }
     }
 }

@@ -148,10 +148,9 @@ impl core::error::Error for FrameError {}
 /// The lengths of a workspace's parts.
 pub fn capacity_of(ws: &Workspace<'_, i32>) -> Needs {
     Needs {
-        vertices: ws.xy.len().min(ws.links.len()),
+        vertices: ws.xy.len(),
         values: ws.vals.len(),
         triangles: ws.tris.len(),
-        heads: ws.heads.len(),
         prepared_bytes: 0,
     }
 }
@@ -255,7 +254,7 @@ pub fn render_frame<P: Probe>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fixshade::render::{Link, Part, Tri};
+    use fixshade::render::{Part, Tri};
     use fixshade::target::{DepthBuffer, FrameBuf, Target};
     use std::{vec, vec::Vec};
 
@@ -263,8 +262,6 @@ mod tests {
         xy: Vec<[i32; 2]>,
         vals: Vec<i32>,
         tris: Vec<Tri>,
-        heads: Vec<u16>,
-        links: Vec<Link>,
     }
 
     impl Owned {
@@ -273,8 +270,6 @@ mod tests {
                 xy: vec![[0; 2]; n.vertices],
                 vals: vec![0; n.values],
                 tris: vec![Tri::default(); n.triangles],
-                heads: vec![0; n.heads],
-                links: vec![Link::default(); n.vertices],
             }
         }
         fn ws(&mut self) -> Workspace<'_, i32> {
@@ -282,8 +277,6 @@ mod tests {
                 xy: &mut self.xy,
                 vals: &mut self.vals,
                 tris: &mut self.tris,
-                heads: &mut self.heads,
-                links: &mut self.links,
             }
         }
     }
@@ -373,7 +366,7 @@ mod tests {
         for spec in SCENES.iter() {
             let (n, m) = (spec.needs, MAX_NEEDS);
             assert!(n.vertices <= m.vertices && n.values <= m.values);
-            assert!(n.triangles <= m.triangles && n.heads <= m.heads);
+            assert!(n.triangles <= m.triangles);
             assert!(spec.width <= WIDTH && spec.objects.len() <= MAX_OBJECTS);
         }
     }

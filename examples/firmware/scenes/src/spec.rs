@@ -23,14 +23,12 @@ pub const fn v(x: i32, y: i32, z: i32) -> Vec3<Q16> {
 /// generator).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Needs {
-    /// Prepared vertices (`Workspace::xy` and `Workspace::links`).
+    /// Prepared vertices (`Workspace::xy`).
     pub vertices: usize,
     /// Interpolated values (`Workspace::vals`).
     pub values: usize,
     /// Prepared triangles (`Workspace::tris`).
     pub triangles: usize,
-    /// Scratch heads: vertices of the largest mesh (`Workspace::heads`).
-    pub heads: usize,
     /// `Frame::bytes_used()` of the prepared frame on the host.
     pub prepared_bytes: usize,
 }
