@@ -144,8 +144,45 @@ fn shininess<P: Profile>() {
         assert!((spec(0.0, a) - 1.0).abs() <= t, "{} n=0 a={a}", P::NAME);
         assert!((spec(-5.0, a) - 1.0).abs() <= t, "{} n=-5 a={a}", P::NAME);
     }
-    // R·V = cos(2.0) < 0: no specular even at n = 0.
+    // N·L = cos(2.0) < 0: the light is behind the surface, no specular
+    // even at n = 0.
     assert_eq!(spec(0.0, 2.0), 0.0);
+    // N·L > 0 > R·V: the normal tilted by -0.8 rad, the light at +0.5 rad
+    // (N·L = cos 1.3 = 0.27), so R lies at -2.1 rad and R·V = cos 2.1 =
+    // -0.50. At n = 0 the specular term is max(0, R·V)^0 = 0^0 = 1 (as
+    // `Real::powf` defines it and the ideal renderer does); at n = 1 it
+    // is 0.
+    let tilted = |n: f64| {
+        shade::<P>(
+            m(n),
+            0.0,
+            &[Lamp::Dir([0.5f64.sin(), 0.0, 0.5f64.cos()], 1.0, WHITE)],
+            Specular::Phong,
+            Viewer::Infinite,
+            [(-0.8f64).sin(), 0.0, (-0.8f64).cos()],
+            [0.0, 0.0, -1.0],
+        )[0]
+    };
+    assert!(
+        (tilted(0.0) - 1.0).abs() <= t,
+        "{} n=0: {}",
+        P::NAME,
+        tilted(0.0)
+    );
+    assert_eq!(tilted(1.0), 0.0, "{} n=1", P::NAME);
+    // The reference agrees.
+    let want = |n: f64| {
+        common::phong_f64(
+            &m(n),
+            0.0,
+            &[Lamp::Dir([0.5f64.sin(), 0.0, 0.5f64.cos()], 1.0, WHITE)],
+            Specular::Phong,
+            Viewer::Infinite,
+            [(-0.8f64).sin(), 0.0, (-0.8f64).cos()],
+            [0.0, 0.0, -1.0],
+        )[0]
+    };
+    assert_eq!((want(0.0), want(1.0)), (1.0, 0.0));
     // Huge shininess is clamped to 10 000: at R·V = cos(0.01), 10 000
     // gives 0.99995^10000 = e^-0.5 = 0.6065, where 1e6 would give
     // e^-50 = 0. Q16 holds R·V = 0.99995000 as 65533/65536 = 0.99995422

@@ -360,8 +360,13 @@ pub fn phong_f64(
                 }
                 Specular::Blinn => dot(n, norm([l[0] + v[0], l[1] + v[1], l[2] + v[2]])),
             };
+            // max(0, base)^n, with 0^0 = 1 as the core (`Real::powf`)
+            // and the ideal renderer define it: at n = 0 the specular term
+            // is ks wherever N·L > 0, even where R·V (or N·H) <= 0.
             if base > 0.0 {
                 base.min(1.0).powf(sh)
+            } else if sh == 0.0 {
+                1.0
             } else {
                 0.0
             }
