@@ -80,6 +80,7 @@ impl<P: Profile> Shader<P::Lerp, 6> for PhongShader<'_, P> {
 
 /// What a render call drew.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RenderStats {
     /// Triangles set up (a triangle spanning two bands counts twice).
     pub triangles: u32,
