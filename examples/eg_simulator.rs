@@ -110,7 +110,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .save_png(dir.join("eg_rgb565.png"))?;
     // The OLED's frame in colour, for comparison.
     let mut small = SimulatorDisplay::<Rgb565>::new(Size::new(128, 64));
-    render_to(&mut small, 128, 64, &Levels::IDENTITY)?;
+    let m = render_to(&mut small, 128, 64, &Levels::IDENTITY)?;
     small
         .to_rgb_output_image(&rgb(2))
         .save_png(dir.join("eg_oled_rgb565.png"))?;
@@ -140,7 +140,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             .save_png(dir.join(name))?;
     }
     println!(
-        "wrote {0}/eg_rgb565.png ({n} pixels shaded), {0}/eg_oled_rgb565.png, \
+        "wrote {0}/eg_rgb565.png ({n} pixels shaded), {0}/eg_oled_rgb565.png ({m} shaded), \
          {0}/eg_oled_linear.png ({1} pixels lit) and {0}/eg_oled.png (Levels::ONE_BIT, {2} lit)",
         dir.display(),
         lit[0],
