@@ -5,6 +5,8 @@
 //! Y (the middle of the X, Y, Z rotations: about the world's vertical axis
 //! for objects not rotated about Z), the per-frame model transform the
 //! firmware's animation uses, so the last frame leads back to the first.
+//! Each object turns about its own origin: a built-in mesh's, or an OBJ
+//! mesh's bounding-box centre (where the scene file's transform put it).
 //! Each frame is rendered as `fixshade render` renders it (16-row bands,
 //! 16-bit depth, any profile) and quantised to a 256-colour palette of its
 //! own (NeuQuant, `gif`'s `Frame::from_rgb_speed`).
