@@ -59,13 +59,15 @@ const H: u32 = 240;
 const ROWS: u32 = 16;
 const BAND_PX: usize = (W * ROWS) as usize;
 
-/// Workspace capacities: every vertex of the bunny (1 839), two values
-/// per vertex (grey Gouraud: intensity and depth), every triangle
-/// (3 674: a turn shows other faces than any one view; the camera never
-/// clips, so no triangle is split). 95 KB with the band buffers' 23 KB:
-/// 118 KB of the RP2040's 264 KB.
+/// Workspace capacities: every vertex of the bunny (1 839), four values
+/// per vertex (colour Gouraud: three channels and the depth; a grey
+/// material and white lights would need two), every triangle (3 674: a
+/// turn shows other faces than any one view, at most 1 574 of them in this
+/// turn; the camera never clips, so no triangle is split). 110 KB with the
+/// band buffers' 23 KB: 133 KB of the RP2040's 264 KB. A material or
+/// shading that needs more values is a start-up error over defmt.
 const VERTICES: usize = 1839;
-const VALUES: usize = 2 * VERTICES;
+const VALUES: usize = 4 * VERTICES;
 const TRIANGLES: usize = 3674;
 const HEADS: usize = 1839;
 
