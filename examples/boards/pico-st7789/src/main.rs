@@ -11,10 +11,11 @@
 //! `mipidsi`'s display interface over rp2040-hal's SPI, with a DMA path
 //! for whole bands.
 //!
-//! Each frame turns the bunny by 15° about Y (the model transform from the
-//! core's Q16 `sin_cos`) and logs over defmt (RTT) the microseconds of the
-//! geometry and of the raster plus transfer, measured with the RP2040's
-//! 1 MHz timer. A scene that does not fit the workspace is a compile-time
+//! The scene is the project's bunny benchmark (white, one directional
+//! light); each frame turns the bunny by 15° about Y (the model transform
+//! from the core's Q16 `sin_cos`), as the QEMU animation firmware does,
+//! and logs over defmt (RTT) the microseconds of the geometry and of the
+//! raster plus transfer, measured with the RP2040's 1 MHz timer. A scene that does not fit the workspace is a compile-time
 //! error (the const assertions below) or a start-up error over defmt.
 #![no_std]
 #![no_main]
@@ -26,7 +27,7 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::{SpiBus, MODE_0};
-use fixshade::geom::{radians, Affine, Vec3};
+use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::BUNNY;
 use fixshade::num::{Fast, Q16};
@@ -60,10 +61,10 @@ const ROWS: u32 = 16;
 const BAND_PX: usize = (W * ROWS) as usize;
 
 /// Workspace capacities: every vertex of the bunny (1 839), four values
-/// per vertex (colour Gouraud: three channels and the depth; a grey
-/// material and white lights would need two), every triangle (3 674: a
-/// turn shows other faces than any one view, at most 1 574 of them in this
-/// turn; the camera never clips, so no triangle is split). 110 KB with the
+/// per vertex (colour Gouraud: three channels and the depth; this white
+/// scene uses two, a coloured material or light four), every triangle
+/// (3 674: a turn shows other faces than any one view; the camera never
+/// clips, so no triangle is split). 110 KB with the
 /// band buffers' 23 KB: 133 KB of the RP2040's 264 KB. A material or
 /// shading that needs more values is a start-up error over defmt.
 const VERTICES: usize = 1839;
@@ -250,34 +251,39 @@ fn main() -> ! {
     let heads = cortex_m::singleton!(: [u16; HEADS] = [0; HEADS]).unwrap();
     let links = cortex_m::singleton!(: [Link; VERTICES] = [Link::default(); VERTICES]).unwrap();
 
-    // The bunny benchmark's view and light (host-tests/scenes/bunny-gouraud.toml),
-    // a warm white material.
+    // The bunny benchmark scene (host-tests/scenes/bunny-gouraud.toml),
+    // with the Q16 values the host's `Q16::from_f64` gives: the frames
+    // are the firmware animation's (examples/firmware/src/bin/animate.rs),
+    // whose cost is measured under QEMU.
     let Ok(camera) = Camera::look_at(
-        Vec3::new(q(0, 1), q(0, 1), q(3922, 1000)),
+        Vec3::new(q(0, 1), q(0, 1), Q16::from_bits(257_032)), // 3.922
         Vec3::ZERO,
         Vec3::new(q(0, 1), q(1, 1), q(0, 1)),
-        radians(q(45, 1)),
+        Q16::from_bits(51_472), // 45° in radians
         q(1, 1),
-        None,
+        Some(q(10, 1)),
     ) else {
         defmt::panic!("camera refused");
     };
+    // I = 0.2 + 0.8 max(0, N·L), white.
     let material = Material {
-        color: Vec3::new(q(1, 1), q(85, 100), q(70, 100)),
-        ka: q(2, 10),
-        kd: q(8, 10),
+        color: Vec3::new(q(1, 1), q(1, 1), q(1, 1)),
+        ka: q(1, 1),
+        kd: q(1, 1),
         ks: q(0, 1),
         shininess: q(1, 1),
     };
     let lights = [Light::directional(
         Vec3::new(q(1, 1), q(1, 1), q(1, 1)),
-        q(1, 1),
+        Q16::from_bits(52_429), // 0.8
     )];
 
     let mut i = 0;
     loop {
         let t0 = timer.get_counter();
-        let angle = q(2 * 314_159 * i, 100_000 * FRAMES);
+        // 2π·i/FRAMES rounded in Q16 (2π = 411 775 / 65 536), as the
+        // firmware animation turns.
+        let angle = Q16::from_bits((411_775 * i + FRAMES / 2) / FRAMES);
         let objects = [Object {
             mesh: BUNNY,
             transform: Affine::from_parts(q(1, 1), Vec3::new(q(0, 1), angle, q(0, 1)), Vec3::ZERO),
@@ -289,9 +295,9 @@ fn main() -> ! {
             camera,
             objects: &objects,
             lights: &lights,
-            ambient: q(1, 1),
+            ambient: Q16::from_bits(13_107), // 0.2
             specular: Specular::Phong,
-            viewer: Viewer::Infinite,
+            viewer: Viewer::Local,
             background: Rgb8::BLACK,
         };
         let ws = Workspace {
