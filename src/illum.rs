@@ -164,6 +164,7 @@ pub const MAX_LIGHTS: usize = 8;
 
 /// Why a [`Shade`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum IllumError {
     /// More than [`MAX_LIGHTS`] lights.
     TooManyLights,

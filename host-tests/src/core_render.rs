@@ -8,7 +8,7 @@
 
 use crate::ideal::{LightKind, Shading as IShading, SpecularModel};
 use crate::scene_file::{PixelFormat, SceneDesc};
-use fixshade::geom::{Affine, Vec3};
+use fixshade::geom::{Affine, Mat3, Vec3};
 use fixshade::illum::{Light, LightKind as CLightKind, Material, Specular, Viewer};
 use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Real, F32, F64};
 use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
@@ -170,6 +170,26 @@ fn v3<R: Real>(v: [f64; 3]) -> Vec3<R> {
     Vec3::new(R::from_f64(v[0]), R::from_f64(v[1]), R::from_f64(v[2]))
 }
 
+/// The core's model transform of `t`: `Affine::from_parts` for a uniform
+/// scale (as the firmware builds it), else the rotation of
+/// `Affine::from_parts` with unit scale times `diag(sx, sy, sz)`, so that
+/// `m = R · S` as in the scene file's [`Transform`](crate::scene_file::Transform).
+pub fn model_transform<R: Real>(t: &crate::scene_file::Transform) -> Affine<R> {
+    let angles = v3(t.rotation_rad);
+    let translation = v3(t.translation);
+    if t.is_uniform() {
+        return Affine::from_parts(R::from_f64(t.scale[0]), angles, translation);
+    }
+    let rotation = Affine::from_parts(R::ONE, angles, translation);
+    let [sx, sy, sz] = t.scale.map(R::from_f64);
+    let z = R::ZERO;
+    let scale = Mat3::from_rows([[sx, z, z], [z, sy, z], [z, z, sz]]);
+    Affine {
+        m: rotation.m.compose(&scale),
+        t: translation,
+    }
+}
+
 /// A scene description converted to the core's types for scalar `R`
 /// (values through `R::from_f64`, exactly as the firmware's generated
 /// constants): it owns the objects and lights a [`Scene`] borrows.
@@ -203,11 +223,7 @@ impl<'d, R: Real> CoreScene<'d, R> {
             .iter()
             .map(|o| Object {
                 mesh: o.mesh.mesh(),
-                transform: Affine::from_parts(
-                    R::from_f64(o.transform.scale),
-                    v3(o.transform.rotation_rad),
-                    v3(o.transform.translation),
-                ),
+                transform: model_transform(&o.transform),
                 material: Material {
                     color: v3(o.material.color),
                     ka: R::from_f64(o.material.ka),

@@ -124,8 +124,11 @@ fn q16_scene(desc: &SceneDesc) -> Q16Scene<'_> {
         .objects
         .iter()
         .map(|o| {
+            // The firmware's ObjectSpec holds one scale: the scenes in
+            // FIRMWARE_SCENES are scaled uniformly.
+            assert!(o.transform.is_uniform(), "firmware scenes scale uniformly");
             (
-                Q16::from_f64(o.transform.scale),
+                Q16::from_f64(o.transform.scale[0]),
                 v3(o.transform.rotation_rad),
                 v3(o.transform.translation),
             )

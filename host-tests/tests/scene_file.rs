@@ -92,7 +92,7 @@ fn the_example_parses_to_its_values() {
         ),
         (0.2, 0.5, 0.5, 100.0)
     );
-    assert_eq!(o.transform.scale, 1.0);
+    assert_eq!(o.transform.scale, [1.0; 3]);
     assert_eq!(o.transform.rotation_rad, [0.0, 30f64.to_radians(), 0.0]);
     assert_eq!(o.transform.translation, [0.0; 3]);
     // Crease 180: the dodecahedron becomes smooth, one normal per vertex:
@@ -135,7 +135,7 @@ fn defaults() {
     assert_eq!(
         o.transform,
         Transform {
-            scale: 1.0,
+            scale: [1.0; 3],
             rotation_rad: [0.0; 3],
             translation: [0.0; 3]
         }
@@ -457,7 +457,7 @@ fn obj_meshes_keep_world_geometry_and_their_normals() {
     assert_eq!(owned.positions()[1], [-16384, 12288, -8192]);
     assert_eq!(owned.positions()[2], [16384, -12288, -8192]);
     // The fold: scale 0.5 / 0.5 = 1; translation (1, 2, 3) + 0.5 R(12, 21.5, 31).
-    assert_eq!(o.transform.scale, 1.0);
+    assert_eq!(o.transform.scale, [1.0; 3]);
     let t = o.transform.translation;
     let expected = [1.0 - 0.5 * 21.5, 2.0 + 0.5 * 12.0, 3.0 + 0.5 * 31.0];
     for k in 0..3 {
@@ -597,7 +597,7 @@ fn obj_with_too_many_vertices() {
 #[test]
 fn rotation_is_x_then_y_then_z() {
     let deg = |x: f64, y: f64, z: f64| Transform {
-        scale: 2.0,
+        scale: [2.0; 3],
         rotation_rad: [x.to_radians(), y.to_radians(), z.to_radians()],
         translation: [10.0, 20.0, 30.0],
     };
@@ -745,7 +745,7 @@ fn bunny_benchmark_scene() {
     let o = &s.objects[0];
     assert!(matches!(o.mesh, SceneMesh::BuiltIn { name: "bunny", .. }));
     assert_eq!((o.shading, o.cull_backfaces), (Shading::Gouraud, true));
-    assert_eq!(o.transform.scale, 1.0);
+    assert_eq!(o.transform.scale, [1.0; 3]);
     let flat = load_builtin("bunny-flat").unwrap();
     assert_eq!(flat.objects[0].shading, Shading::Flat);
 

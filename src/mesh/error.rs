@@ -4,6 +4,7 @@ use core::fmt;
 
 /// Why [`Mesh::new`](super::Mesh::new) rejected its tables.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum MeshError {
     /// No vertex or no triangle.
     Empty,
@@ -79,6 +80,7 @@ impl core::error::Error for MeshError {}
 
 /// Why [`generate_normals`](super::generate_normals) could not run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum NormalsError {
     /// More than [`MAX_TRIANGLES`](super::MAX_TRIANGLES) triangles: face
     /// numbers would not fit the u16 adjacency buffer.

@@ -183,6 +183,7 @@ pub struct Vertex<L, const N: usize> {
 
 /// Why a triangle was not drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RasterError {
     /// A vertex lies outside ±[`COORD_LIMIT_PX`] pixels (index of the vertex).
     OutOfRange(u8),

@@ -86,6 +86,7 @@ impl<P: Profile> Shader<P::Lerp, 6> for PhongShader<'_, P> {
 
 /// What a render call drew.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RenderStats {
     /// Triangle setups: by the band renderer ([`super::Bands`]) each
     /// prepared triangle once (more only when its pool was full); by

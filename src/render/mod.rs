@@ -234,6 +234,7 @@ impl<P: Profile> Frame<'_, P> {
 
 /// Which workspace part ran out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Part {
     /// [`Workspace::xy`].
     Vertices,
@@ -248,6 +249,7 @@ pub enum Part {
 
 /// Why a frame could not be prepared or rendered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RenderError {
     /// A workspace part is too small (which part, and the object being
     /// prepared).

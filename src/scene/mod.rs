@@ -88,6 +88,7 @@ impl<R: Real> Scene<'_, '_, R> {
 
 /// Why a scene or camera is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SceneError {
     /// A floating-point input is NaN or infinite (which parameter).
     NotFinite(&'static str),

@@ -72,6 +72,7 @@ pub const MAX_SCREEN: u32 = 4096;
 
 /// Why a buffer could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum BufferError {
     /// The slice does not hold exactly `width × rows` elements.
     WrongLength {

@@ -7,7 +7,7 @@
 //!   subcommand, holding that subcommand's argument struct;
 //!   [`Command::run`] dispatches to the subcommand's `run` function.
 //! * One module per subcommand: [`scenes`], [`bake`], [`ideal`],
-//!   [`render`], [`compare`], [`report`], each with
+//!   [`render`], [`compare`], [`report`], [`animate`], each with
 //!   its `...Args` struct and `pub fn run(&Args) -> Result<(), CliError>`.
 //! * Shared helpers in [`common`]: [`SceneArgs`] (a scene file or
 //!   `--scene NAME`, flattened into a subcommand's arguments, with
@@ -23,6 +23,7 @@
 //! Adding a subcommand: a module with its `Args` struct and `run`, one
 //! [`Command`] variant and its arm in [`Command::run`].
 
+pub mod animate;
 pub mod bake;
 pub mod common;
 pub mod compare;
@@ -67,6 +68,8 @@ pub enum Command {
     /// Sweep scenes × shading modes × profiles and write the
     /// accuracy-versus-speed report (HTML, Markdown, JSON).
     Report(report::ReportArgs),
+    /// Render one turn of a scene with the core to an animated GIF.
+    Animate(animate::AnimateArgs),
 }
 
 impl Command {
@@ -79,6 +82,7 @@ impl Command {
             Self::Render(args) => render::run(args),
             Self::Compare(args) => compare::run(args),
             Self::Report(args) => report::run(args),
+            Self::Animate(args) => animate::run(args),
         }
     }
 }

@@ -14,7 +14,8 @@ impl SceneDesc {
     /// The scene for the ideal renderer: world-space triangles made from
     /// the Q1.14 mesh data (converted exactly to f64, then transformed in
     /// f64 by each object's [`Transform`](super::Transform)), world-space
-    /// per-corner normals (the mesh's Q1.14 normals rotated), and the same
+    /// per-corner normals (the mesh's Q1.14 normals by the inverse transpose
+    /// of the model transform, [`Transform::apply_normal`](super::Transform::apply_normal)), and the same
     /// frame, camera, lights and materials. The background levels become
     /// `level / 255`. So the ideal reference sees exactly the geometry the
     /// fixed-point core is given.
@@ -35,21 +36,16 @@ impl SceneDesc {
 fn ideal_object(object: &ObjectDesc) -> Object {
     let mesh = object.mesh.mesh();
     let t = &object.transform;
-    let r = t.rotation_matrix();
-    let rotate = |n: [f64; 3]| -> [f64; 3] {
-        std::array::from_fn(|i| r[i][0] * n[0] + r[i][1] * n[1] + r[i][2] * n[2])
-    };
     let triangles = (0..mesh.triangle_count())
         .filter_map(|tri| {
             let corners = mesh.triangle_positions(tri)?;
-            let world = corners.map(|p| {
-                let w = rotate(q14(p).map(|c| c * t.scale));
-                std::array::from_fn(|k| w[k] + t.translation[k])
-            });
+            let world = corners.map(|p| t.apply_point(q14(p)));
             let face = unit_face_normal(world[0], world[1], world[2]).unwrap_or([0.0; 3]);
             Some(std::array::from_fn(|c| Vertex {
                 position: world[c],
-                normal: mesh.corner_normal(tri, c).map_or(face, |n| rotate(q14(n))),
+                normal: mesh
+                    .corner_normal(tri, c)
+                    .map_or(face, |n| t.apply_normal(q14(n))),
             }))
         })
         .collect();

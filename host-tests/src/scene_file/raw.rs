@@ -163,8 +163,8 @@ pub(crate) struct RawObject {
     pub shading: RawShading,
     #[serde(default)]
     pub crease_angle_deg: Option<f64>,
-    #[serde(default = "one")]
-    pub scale: f64,
+    #[serde(default)]
+    pub scale: RawScale,
     #[serde(default)]
     pub rotate_deg: [f64; 3],
     #[serde(default)]
@@ -173,6 +173,57 @@ pub(crate) struct RawObject {
     pub cull_backfaces: bool,
     #[serde(default)]
     pub material: RawMaterial,
+}
+
+/// `object.scale`: one number (uniform) or `[x, y, z]` (per mesh axis).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum RawScale {
+    Uniform(f64),
+    Axes([f64; 3]),
+}
+
+impl Default for RawScale {
+    fn default() -> Self {
+        Self::Uniform(1.0)
+    }
+}
+
+impl<'de> Deserialize<'de> for RawScale {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = RawScale;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a number or an array of three numbers [x, y, z]")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<RawScale, E> {
+                Ok(RawScale::Uniform(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<RawScale, E> {
+                // Exact for |v| <= 2^53; larger values fail the range check.
+                Ok(RawScale::Uniform(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<RawScale, E> {
+                Ok(RawScale::Uniform(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<RawScale, A::Error> {
+                let mut axes = [0.0; 3];
+                for (i, slot) in axes.iter_mut().enumerate() {
+                    *slot = seq
+                        .next_element::<f64>()?
+                        .ok_or_else(|| serde::de::Error::invalid_length(i, &self))?;
+                }
+                if seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
+                    return Err(serde::de::Error::invalid_length(4, &self));
+                }
+                Ok(RawScale::Axes(axes))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 fn yes() -> bool {

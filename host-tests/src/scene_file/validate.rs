@@ -9,7 +9,8 @@ use crate::ideal::{Camera, IdealError, Light, LightKind, Material, Shading, Spec
 use super::error::line_column;
 use super::obj::{normalize_positions, read_obj, ObjData};
 use super::raw::{
-    RawCamera, RawLight, RawLightType, RawMaterial, RawObject, RawScene, RawShading, RawSpecular,
+    RawCamera, RawLight, RawLightType, RawMaterial, RawObject, RawScale, RawScene, RawShading,
+    RawSpecular,
 };
 use super::{
     builtin_mesh, crease_from_degrees, generate_corner_normals, ObjectDesc, OwnedMesh, SceneDesc,
@@ -346,13 +347,25 @@ impl Check<'_> {
             .crease_angle_deg
             .map(|c| self.in_range(&format!("{at}.crease_angle_deg"), c, 0.0, 180.0))
             .transpose()?;
-        let scale = raw.scale;
-        if !(scale > 0.0 && scale <= MAX_COORD) {
-            return Err(self.err(
-                format!("{at}.scale"),
-                format!("must be > 0 and at most {MAX_COORD:e}, got {scale}"),
-            ));
-        }
+        let ok = |s: f64| s > 0.0 && s <= MAX_COORD;
+        let scale = match raw.scale {
+            RawScale::Uniform(s) if ok(s) => [s; 3],
+            RawScale::Uniform(s) => {
+                return Err(self.err(
+                    format!("{at}.scale"),
+                    format!("must be > 0 and at most {MAX_COORD:e}, got {s}"),
+                ))
+            }
+            RawScale::Axes(axes) if axes.iter().all(|&s| ok(s)) => axes,
+            RawScale::Axes(axes) => {
+                return Err(self.err(
+                    format!("{at}.scale"),
+                    format!(
+                        "each of [x, y, z] must be > 0 and at most {MAX_COORD:e}, got {axes:?}"
+                    ),
+                ))
+            }
+        };
         let rotate = raw.rotate_deg;
         if !rotate.iter().all(|a| a.is_finite() && a.abs() <= MAX_COORD) {
             return Err(self.err(
@@ -424,12 +437,16 @@ impl Check<'_> {
             .map_err(|e| self.err(&field, format!("OBJ file `{}`: {e}", path.display())))?;
         let (owned, centre, factor) = obj_mesh(&obj, name, crease)
             .map_err(|e| self.err(&field, format!("OBJ file `{}`: {e}", path.display())))?;
-        // world = translate + R(scale p) with p = q / factor + centre.
-        let r_centre = transform.rotate(centre);
+        // world = translate + R(S p) with p = q / factor + centre, S the
+        // diagonal of the scale: translate + R(S centre) + R((S / factor) q).
+        let scaled_centre = std::array::from_fn(|k| transform.scale[k] * centre[k]);
+        let r_centre = transform.rotate(scaled_centre);
         for (t, rc) in transform.translation.iter_mut().zip(r_centre) {
-            *t += transform.scale * rc;
+            *t += rc;
         }
-        transform.scale /= factor;
+        for s in &mut transform.scale {
+            *s /= factor;
+        }
         Ok(SceneMesh::Owned(owned))
     }
 }

@@ -1,0 +1,281 @@
+//! fixshade animation firmware for QEMU's MPS2 boards: a turn of the bunny
+//! and of the dodecahedron, measured frame by frame.
+//!
+//! For each scene of [`ANIMATED`] (the firmware's generated scenes), renders
+//! [`FRAMES`] frames of one turn: frame `i` adds `2π·i/FRAMES` (in Q16) to
+//! every object's rotation about Y and builds the model transform with
+//! `Affine::from_parts` (the core's Q16 `sin_cos`); the camera, lights and
+//! meshes stay as they are. Per frame, one measured region (bracketed by
+//! `yield`, closed by `sev`, counted by the QEMU plugin in `qemu-plugin/`)
+//! holds the geometry (scene, camera, per-frame transform, `prepare`) and
+//! the raster (per band of 16 rows: clear colour and depth, render); the
+//! CRC-32 of the frame and the covered pixels are taken outside it.
+//! Prints one line per frame:
+//!
+//! ```text
+//! frame <scene> i=<i> angle_q16=<bits> crc=0x<crc32> covered=<px> setups=<n> prepared_triangles=<n>
+//! ```
+//!
+//! Before anything is measured, every frame of every scene is prepared once
+//! into the static workspace: a frame that does not fit stops the firmware
+//! with the core's error and exit status 1 (never a hang). `.ci/firmware`
+//! turns the regions into per-frame instructions min / median / max and the
+//! frame rates at 48 MHz (M0) and 168 MHz (M4F).
+#![no_std]
+#![no_main]
+
+use core::mem::MaybeUninit;
+use core::panic::PanicInfo;
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use fixshade::geom::{Affine, Vec3};
+use fixshade::num::{Fast, Q16};
+use fixshade::render::{prepare, Link, RenderError, Tri, Workspace};
+use fixshade::scene::Object;
+use fixshade::target::{Depth16, DepthBuffer, DepthFormat, FrameBuf, Rgb565Be, Target};
+use fixshade_scenes::{
+    Crc32, FrameError, Needs, Pixel, SceneSpec, BAND_PIXELS, BAND_ROWS, MAX_NEEDS, MAX_OBJECTS,
+    SCENES,
+};
+
+/// The animated scenes (names of [`SCENES`]).
+const ANIMATED: [&str; 2] = ["bunny-gouraud", "dodeca-gouraud-n100"];
+
+/// Frames per turn: 15° apart.
+const FRAMES: u32 = 24;
+
+/// 2π in Q16.16, rounded: 411 775 / 65 536 = 6.283 188 (2π = 6.283 185).
+const TAU_Q16: i64 = 411_775;
+
+/// The rotation added in frame `i`: `round(2π·i/FRAMES)` in Q16.
+const fn angle(i: u32) -> Q16 {
+    Q16::from_bits(((TAU_Q16 * i as i64 + FRAMES as i64 / 2) / FRAMES as i64) as i32)
+}
+
+/// The workspace: the benchmark firmware's (sized for the fixed views) with
+/// room for every triangle of the bunny, as a turn shows other faces than
+/// the fixed view (the start-up check proves each frame fits).
+const CAP: Needs = Needs {
+    triangles: 3674,
+    ..MAX_NEEDS
+};
+
+/// Executes `yield`, the plugin's marker (see the benchmark firmware).
+#[inline(always)]
+fn yield_marker() {
+    // SAFETY: `yield` is an architectural hint with no effect on registers,
+    // memory or flags; as an asm block it is also a compiler barrier.
+    unsafe { core::arch::asm!("yield", options(nostack, preserves_flags)) }
+}
+
+struct Memory {
+    pixels: &'static mut [Pixel; BAND_PIXELS],
+    depth: &'static mut [u16; BAND_PIXELS],
+    xy: &'static mut [[i32; 2]; CAP.vertices],
+    vals: &'static mut [i32; CAP.values],
+    tris: &'static mut [Tri; CAP.triangles],
+    heads: &'static mut [u16; CAP.heads],
+    links: &'static mut [Link; CAP.vertices],
+}
+
+impl Memory {
+    fn workspace(&mut self) -> Workspace<'_, i32> {
+        Workspace {
+            xy: &mut self.xy[..],
+            vals: &mut self.vals[..],
+            tris: &mut self.tris[..],
+            heads: &mut self.heads[..],
+            links: &mut self.links[..],
+        }
+    }
+}
+
+/// The objects of `spec` turned by `a` more about Y.
+fn turned(spec: &SceneSpec, a: Q16) -> heapless::Vec<Object<'static, Q16>, MAX_OBJECTS> {
+    spec.objects
+        .iter()
+        .map(|o| {
+            let r = o.rotation;
+            Object {
+                transform: Affine::from_parts(o.scale, Vec3::new(r.x, r.y + a, r.z), o.translation),
+                ..o.object()
+            }
+        })
+        .collect()
+}
+
+/// What a frame gave.
+struct Stats {
+    crc: u32,
+    covered: u32,
+    setups: u32,
+    triangles: u32,
+}
+
+/// Renders frame `i` of `spec`; with `measure`, executes the markers
+/// around the measured work and closes the region.
+fn frame(spec: &SceneSpec, i: u32, mem: &mut Memory, measure: bool) -> Result<Stats, FrameError> {
+    let mark = |on: bool| {
+        if on {
+            yield_marker()
+        }
+    };
+    mark(measure);
+    let objects = turned(spec, angle(i));
+    let prepared = match spec.camera() {
+        Ok(camera) => {
+            let scene = spec.scene(camera, &objects);
+            let ws = Workspace {
+                xy: &mut mem.xy[..],
+                vals: &mut mem.vals[..],
+                tris: &mut mem.tris[..],
+                heads: &mut mem.heads[..],
+                links: &mut mem.links[..],
+            };
+            prepare::<Fast>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
+        }
+        Err(e) => Err(RenderError::from(e)),
+    };
+    mark(measure);
+    let (scene, frame) = match prepared {
+        Ok(p) => p,
+        Err(e) => {
+            if measure {
+                cortex_m::asm::sev();
+            }
+            return Err(e.into());
+        }
+    };
+    let mut stats = Stats {
+        crc: 0,
+        covered: 0,
+        setups: 0,
+        triangles: frame.triangle_count() as u32,
+    };
+    let (w, h) = (spec.width, spec.height);
+    let mut crc = Crc32::new();
+    let mut y0 = 0;
+    while y0 < h {
+        let y1 = (y0 + BAND_ROWS).min(h);
+        let n = ((y1 - y0) * w) as usize;
+        let (px, z) = (&mut mem.pixels[..n], &mut mem.depth[..n]);
+        mark(measure);
+        let r = (|| {
+            let mut fb = FrameBuf::<Rgb565Be>::band(&mut px[..], w, y0, y1)?;
+            fb.clear(scene.background);
+            let mut db = DepthBuffer::<Depth16>::new(&mut z[..], w, y0, y1)?;
+            Ok::<_, FrameError>(frame.render(&scene, &mut fb, Some(&mut db))?)
+        })();
+        mark(measure);
+        let s = r?;
+        stats.setups += s.triangles;
+        crc.update(FrameBuf::<Rgb565Be>::band(px, w, y0, y1)?.bytes());
+        stats.covered += z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
+        y0 = y1;
+    }
+    if measure {
+        cortex_m::asm::sev();
+    }
+    stats.crc = crc.finish();
+    Ok(stats)
+}
+
+fn run(mem: &mut Memory) -> Result<(), (&'static str, u32, FrameError)> {
+    hprintln!(
+        "fixshade-animate target={} board={} profile=fast frames_per_turn={} band_rows={} depth16 ws_triangles={}",
+        env!("FW_TARGET"),
+        env!("FW_BOARD"),
+        FRAMES,
+        BAND_ROWS,
+        CAP.triangles,
+    );
+    let specs = ANIMATED.map(|name| SCENES.iter().find(|s| s.name == name));
+    // Start-up check: every frame of the turn fits the workspace.
+    for (name, spec) in ANIMATED.iter().zip(specs) {
+        let Some(spec) = spec else {
+            return Err((name, 0, FrameError::Render(RenderError::Window)));
+        };
+        for i in 0..FRAMES {
+            let objects = turned(spec, angle(i));
+            let camera = spec.camera().map_err(|e| (spec.name, i, e.into()))?;
+            let scene = spec.scene(camera, &objects);
+            prepare::<Fast>(&scene, spec.width, spec.height, mem.workspace())
+                .map_err(|e| (spec.name, i, e.into()))?;
+        }
+    }
+    for spec in specs.into_iter().flatten() {
+        for i in 0..FRAMES {
+            let s = frame(spec, i, mem, true).map_err(|e| (spec.name, i, e))?;
+            hprintln!(
+                "frame {} i={} angle_q16={} crc=0x{:08x} covered={} setups={} prepared_triangles={}",
+                spec.name,
+                i,
+                angle(i).to_bits(),
+                s.crc,
+                s.covered,
+                s.setups,
+                s.triangles,
+            );
+        }
+    }
+    Ok(())
+}
+
+#[entry]
+fn main() -> ! {
+    static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
+    static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
+    static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
+    static mut VALS: [i32; CAP.values] = [0; CAP.values];
+    static mut TRIS: [Tri; CAP.triangles] = [Tri::EMPTY; CAP.triangles];
+    static mut HEADS: [u16; CAP.heads] = [0; CAP.heads];
+    static mut LINKS: MaybeUninit<[Link; CAP.vertices]> = MaybeUninit::uninit();
+    let links = {
+        let p = LINKS.as_mut_ptr().cast::<Link>();
+        for i in 0..CAP.vertices {
+            // SAFETY: `i` is within the array; writing into uninitialised
+            // memory through a raw pointer is sound.
+            unsafe { p.add(i).write(Link::default()) };
+        }
+        // SAFETY: every element was initialised above.
+        unsafe { LINKS.assume_init_mut() }
+    };
+    let mut mem = Memory {
+        pixels: PIXELS,
+        depth: DEPTH,
+        xy: XY,
+        vals: VALS,
+        tris: TRIS,
+        heads: HEADS,
+        links,
+    };
+    let status = match run(&mut mem) {
+        Ok(()) => debug::EXIT_SUCCESS,
+        Err((name, i, e)) => {
+            hprintln!(
+                "error: scene {} frame {} does not fit the animation's workspace (capacities: {} vertices, {} values, {} triangles, {} heads): {}",
+                name,
+                i,
+                CAP.vertices,
+                CAP.values,
+                CAP.triangles,
+                CAP.heads,
+                e
+            );
+            debug::EXIT_FAILURE
+        }
+    };
+    debug::exit(status);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+#[panic_handler]
+fn panic(info: &PanicInfo) -> ! {
+    hprintln!("panic: {}", info);
+    debug::exit(debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
