@@ -28,10 +28,12 @@
 
 mod band;
 pub mod clip;
+mod phong_span;
 mod prepare;
 
 pub use band::PhongShader;
 pub use band::{render_in_bands, RenderStats};
+pub use phong_span::{KernelError, PhongFill, PhongKernel, PhongSpan, RSQRT_N, SPEC_SEGMENTS};
 pub use prepare::prepare;
 
 use crate::num::Profile;
