@@ -66,7 +66,7 @@
 
 use crate::illum::{RawTerm, Shade, Specular, Viewer, MAX_LIGHTS};
 use crate::num::approx16;
-use crate::num::wide::wmul;
+use crate::num::wide::{clz32, wmul};
 use crate::num::Real;
 use crate::raster::{Lerp, RasterError, Span, Spans};
 use crate::target::{DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
@@ -195,7 +195,9 @@ fn unit30(v: [i64; 3]) -> [i32; 3] {
         } else {
             (c as i128) >> -e
         };
-        (num / root as i128).clamp(-(1 << 30), 1 << 30) as i32
+        num.checked_div(root as i128)
+            .unwrap_or(0)
+            .clamp(-(1 << 30), 1 << 30) as i32
     })
 }
 
@@ -289,7 +291,10 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             }
         }
         // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
-        let qlim = (u64::from(t_eff) * (5 << 28) / 4) / u64::from(m) + 1;
+        let qlim = (u64::from(t_eff) * (5 << 28) / 4)
+            .checked_div(u64::from(m))
+            .unwrap_or(0)
+            + 1;
         let mut sq = 0u32;
         while (1u64 << (15 + sq)) < qlim {
             sq += 1;
@@ -307,9 +312,11 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 if e > 24 {
                     continue;
                 }
-                (num << e) / u64::from(t_eff)
+                (num << e).checked_div(u64::from(t_eff)).unwrap_or(u64::MAX)
             } else {
-                (num >> (-e).min(63)) / u64::from(t_eff)
+                (num >> (-e).min(63))
+                    .checked_div(u64::from(t_eff))
+                    .unwrap_or(u64::MAX)
             };
             if v < 1 << 16 {
                 c16 = v as u32;
@@ -357,8 +364,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         let mut ls = [LightSpan::default(); MAX_LIGHTS];
         let (nn, nn_d1, nn_d2) = quad(&[(n, dn)]);
         if self.duff {
-            for (k, l) in self.lights.iter().enumerate() {
-                let s = &mut ls[k];
+            for (s, l) in ls.iter_mut().zip(self.lights.iter()) {
                 s.nl = lin(n, l.at);
                 s.dnl = lin(dn, l.at);
                 if self.spec {
@@ -392,10 +398,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             let far = |v: i64| v.unsigned_abs() > 1 << 30;
             let mut slow = dp.iter().any(|&d| d.unsigned_abs() > 1 << 18)
                 || p.iter().any(|&c| far(i64::from(c)));
-            for (k, l) in self.lights.iter().enumerate() {
+            for (s, l) in ls.iter_mut().zip(self.lights.iter()) {
                 if l.point {
                     slow |= (0..3).any(|a| far(i64::from(l.at[a]) - i64::from(p[a])));
-                    let s = &mut ls[k];
                     s.l = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
                     s.dl = dv;
                     let (q, d1, d2) = quad(&[(s.l, s.dl)]);
@@ -631,10 +636,35 @@ fn rsqrt_n(f: i32) -> Option<u32> {
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation)]
 fn rsqrt64(x: u64) -> (i32, u32) {
-    let lz = x.leading_zeros() & !1;
-    let m = ((x << lz) >> 32) as u32;
+    // The top 32 bits of `x << lz` from 32-bit shifts and the crate's
+    // `clz32` (ARMv6-M: no 64-bit shift or count-leading-zeros calls).
+    let (hi, lo) = ((x >> 32) as u32, x as u32);
+    let (lz, m) = if hi != 0 {
+        let lz = clz32(hi) & !1; // 0..=30
+        let m = if lz == 0 {
+            hi
+        } else {
+            (hi << lz) | (lo >> (32 - lz))
+        };
+        (lz, m)
+    } else {
+        let lz = clz32(lo) & !1; // 0..=30 for lo >= 2
+        (32 + lz, lo << lz)
+    };
     let y = approx16::rsqrt_newton(m) >> 1;
     (y as i32, 61 - lz / 2)
+}
+
+/// The low 32 bits of `x >> s` for `s` in `0..32` (32-bit shifts only).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn shr_low(x: i64, s: u32) -> i32 {
+    let (hi, lo) = ((x >> 32) as u32, x as u32);
+    if s == 0 {
+        lo as i32
+    } else {
+        ((lo >> s) | (hi << (32 - s))) as i32
+    }
 }
 
 /// `v / |v|` in Q30 from `v` and `|v|²` (any common scale).
@@ -645,8 +675,8 @@ fn unit_of(v: [i32; 3], vv: u64) -> [i32; 3] {
         return [0; 3];
     }
     let (y, e) = rsqrt64(vv);
-    let s = e - 30; // e >= 30
-    v.map(|c| (wmul(c, y) >> s) as i32)
+    let s = (e - 30).min(31); // e >= 30
+    v.map(|c| shr_low(wmul(c, y), s))
 }
 
 /// The generic per-pixel path (`Shade::at_q16` on the normalised normal)
