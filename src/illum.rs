@@ -577,6 +577,59 @@ impl<R: Real> ObjectLight<R> {
     }
 }
 
+/// One light of a [`Shade`] as raw `Q16` bits, for the Phong span kernel
+/// (`render::phong_span`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct RawTerm {
+    /// Point light position, or unit direction towards the light (Q16).
+    pub(crate) at: [i32; 3],
+    /// A point light.
+    pub(crate) point: bool,
+    /// `Ip·Lc·kd·C` (Q16).
+    pub(crate) diffuse: [i32; 3],
+    /// `Ip·Lc·ks` (Q16).
+    pub(crate) specular: [i32; 3],
+}
+
+impl<R: Real> Shade<R> {
+    /// The folded material and lights as raw `Q16` bits (`None` unless
+    /// `R` is `Q16`, [`Real::Q16_KERNELS`]): ambient, lights, shininess
+    /// (Q16), whether the specular term is on, its model and the viewer.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn raw_q16(
+        &self,
+    ) -> Option<(
+        [i32; 3],
+        heapless::Vec<RawTerm, MAX_LIGHTS>,
+        i32,
+        bool,
+        Specular,
+        Viewer,
+    )> {
+        if !R::Q16_KERNELS {
+            return None;
+        }
+        let mut terms = heapless::Vec::new();
+        for t in &self.terms {
+            // Never fails: as many terms as `self.terms` holds.
+            let _ = terms.push(RawTerm {
+                at: raw3(t.at),
+                point: t.point,
+                diffuse: raw3(t.diffuse),
+                specular: raw3(t.specular),
+            });
+        }
+        Some((
+            raw3(self.ambient),
+            terms,
+            raw(self.shininess),
+            self.has_specular(),
+            self.specular,
+            self.viewer,
+        ))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;

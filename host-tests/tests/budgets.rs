@@ -75,6 +75,16 @@ fn every_scene_meets_its_budgets() {
                     p.name(),
                     f.mean_abs_error
                 );
+                // Phong in `fast` runs the span kernel (`render::PhongKernel`):
+                // within 2 levels of the twin on every Phong scene (issue
+                // 15's budget; measured 1). `fast-pc` keeps the generic path.
+                if phong && p == CoreProfile::Fast {
+                    assert!(
+                        f.max_abs_error <= 2,
+                        "{name} fast: {} levels from the twin",
+                        f.max_abs_error
+                    );
+                }
             } else {
                 assert_eq!(
                     f.coverage_mismatch,

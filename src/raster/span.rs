@@ -40,6 +40,31 @@ pub trait Shader<L: Lerp, const N: usize> {
     fn constant(&self) -> Option<Rgb8> {
         None
     }
+
+    /// A span loop of the shader's own (chosen by the shader's type): shades
+    /// the pixels of `row`, depth-testing against `drow` (the same length)
+    /// when given, from the depth `z` and the attributes `a` at the first
+    /// pixel, stepped per pixel by `dz` and `da`, and returns the pixels
+    /// drawn; the depth test and write must be the span stage's own
+    /// ([`DepthFormat::from_lerp`], less-than). `None`, the default: the
+    /// span stage runs its loop, with [`Shader::begin_span`] and
+    /// [`Shader::shade_raw`] per pixel. Per-pixel Phong
+    /// (`render::PhongKernelShader`) keeps its forward differences in
+    /// registers this way. Called by the band renderer's row kernel.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn span_kernel<F: PixelFormat, D: DepthFormat>(
+        &mut self,
+        row: &mut [F::Raw],
+        drow: Option<&mut [D::Raw]>,
+        z: L,
+        dz: L,
+        a: &[L; N],
+        da: &[L; N],
+    ) -> Option<u32> {
+        let _ = (row, drow, z, dz, a, da);
+        None
+    }
 }
 
 /// One colour for the whole triangle (flat shading); attributes ignored.
@@ -309,6 +334,12 @@ where
         let raw = F::encode(c);
         row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |_| raw)
     } else {
+        let mut drow = drow;
+        if let Some(drawn) =
+            shader.span_kernel::<F, D>(row, drow.as_deref_mut(), v.z, sx.z, &v.a, &sx.a)
+        {
+            return drawn;
+        }
         shader.begin_span(&v.a, &sx.a, row.len() as u32);
         let shader = &*shader;
         row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |a| shader.shade_raw::<F>(a))

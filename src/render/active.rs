@@ -36,6 +36,7 @@
 //! bytes, and the order scratch for its 1 498 triangles 5 992 bytes.
 
 use super::band::PhongShader;
+use super::phong_span::{PhongKernel, PhongKernelShader};
 use super::prepare::eye_lights;
 use super::{Frame, Layout, Part, PreparedObject, RenderError, RenderStats, Tri};
 use crate::illum::{Light, Shade, MAX_LIGHTS};
@@ -495,8 +496,27 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         sc.viewer,
                     )
                     .map_err(|_| SceneError::TooManyLights)?;
-                    let sh = PhongShader::<P>::new(&shade, false);
                     let normal = po.layout == Layout::PhongNormal;
+                    // The span kernel (`phong_span`) where the profile has
+                    // one (the affine Q16 profiles), else the per-pixel
+                    // shader.
+                    let kernel = if P::PERSPECTIVE {
+                        None
+                    } else {
+                        PhongKernel::new(&shade).ok()
+                    };
+                    if let Some(k) = &kernel {
+                        let sh = PhongKernelShader::new(k);
+                        let set =
+                            |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &Tri| s.back = t.back;
+                        if normal {
+                            self.run::<3, _, _, _>(po, &mut t, sh, set)?;
+                        } else {
+                            self.run::<6, _, _, _>(po, &mut t, sh, set)?;
+                        }
+                        continue;
+                    }
+                    let sh = PhongShader::<P>::new(&shade, false);
                     if P::PERSPECTIVE {
                         let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.set_back(t.back);
                         if normal {

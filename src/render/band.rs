@@ -1,5 +1,6 @@
 //! Rasterizing a prepared frame into a band (or a whole frame).
 
+use super::phong_span::{PhongFill, PhongKernel};
 use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, RenderError, Tri};
 use crate::geom::Vec3;
@@ -7,7 +8,7 @@ use crate::illum::Shade;
 use crate::num::{approx16, Profile, Real};
 use crate::raster::{
     draw_sorted, in_limits, sort3, Fill, Flat, Gouraud, GouraudMono, Persp, RasterError, Shader,
-    Vertex,
+    Spans, Vertex,
 };
 use crate::scene::{Scene, SceneError};
 use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
@@ -130,8 +131,20 @@ impl<P: Profile> Frame<'_, P> {
         D: DepthFormat,
         S: Shader<P::Lerp, N>,
     {
-        let sub = P::SUBPIXEL_BITS;
         let win = fill.window();
+        self.draw_spans(po, win, fill, stats, |f, t| per_tri(&mut f.shader, t))
+    }
+
+    /// [`Frame::draw_object`] into any span stage.
+    fn draw_spans<const N: usize, F: Spans<P::Lerp, N>>(
+        &self,
+        po: &PreparedObject,
+        win: crate::target::Window,
+        fill: &mut F,
+        stats: &mut RenderStats,
+        mut per_tri: impl FnMut(&mut F, &Tri),
+    ) -> Result<(), RenderError> {
+        let sub = P::SUBPIXEL_BITS;
         let (y0, y1) = (
             win.y0.min(u16::MAX as u32) as u16,
             win.y1.min(u16::MAX as u32) as u16,
@@ -164,7 +177,7 @@ impl<P: Profile> Frame<'_, P> {
             ) else {
                 continue;
             };
-            per_tri(&mut fill.shader, tri);
+            per_tri(fill, tri);
             stats.triangles += 1;
             if let Some(i) = out {
                 return Err(RasterError::OutOfRange(i as u8).into());
@@ -240,7 +253,28 @@ impl<P: Profile> Frame<'_, P> {
                         shade: &shade,
                         back: false,
                     };
-                    if P::PERSPECTIVE {
+                    // The span kernel (`phong_span`) for the affine Q16
+                    // profiles, built only for objects in this window.
+                    let kernel = if P::PERSPECTIVE
+                        || po.rows[1] <= win.y0.min(u16::MAX as u32) as u16
+                        || po.rows[0] >= win.y1.min(u16::MAX as u32) as u16
+                    {
+                        None
+                    } else {
+                        PhongKernel::new(&shade).ok()
+                    };
+                    if let Some(k) = &kernel {
+                        let mut f = PhongFill::new(&mut *target, d, k)?;
+                        let w = f.window();
+                        let set = |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
+                                   t: &Tri| f.back = t.back;
+                        if po.layout == Layout::PhongNormal {
+                            self.draw_spans::<3, _>(po, w, &mut f, &mut stats, set)?;
+                        } else {
+                            self.draw_spans::<6, _>(po, w, &mut f, &mut stats, set)?;
+                        }
+                        stats.pixels += f.drawn();
+                    } else if P::PERSPECTIVE {
                         let mut f = Fill::new(target, d, Persp(sh))?;
                         let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.back = t.back;
                         if po.layout == Layout::PhongNormal {

@@ -61,10 +61,14 @@
 mod active;
 mod band;
 pub mod clip;
+mod phong_span;
 mod prepare;
 
 pub use active::{BandState, Bands, Pool, Slot};
 pub use band::{PhongShader, RenderStats};
+pub use phong_span::{
+    KernelError, PhongFill, PhongKernel, PhongKernelShader, PhongSpan, RSQRT_N, SPEC_SEGMENTS,
+};
 pub use prepare::prepare;
 
 use crate::num::Profile;

@@ -29,7 +29,7 @@ use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
-use fixshade::render::{PhongShader, Tri, Workspace};
+use fixshade::render::{PhongFill, PhongKernel, PhongShader, Tri, Workspace};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
     capacity_of, check, render_frame, BandPool, FrameError, Needs, Pixel, Probe, BAND_PIXELS,
@@ -332,6 +332,81 @@ fn span_loops(mem: &mut Memory) -> Result<(), FrameError> {
         )?;
     }
     hprintln!("span phong rows={} long={} short=1", SPAN_ROWS, SPAN_LONG);
+    phong_kernel_spans(mem, &material, n, dn)
+}
+
+/// The Phong span kernel (`render::PhongKernel`) on the same sweep: 1, 2
+/// and 4 directional lights with the viewer at infinity, and one point
+/// light with a local viewer (the eye-space position stepping too).
+fn phong_kernel_spans(
+    mem: &mut Memory,
+    material: &Material<Q16>,
+    n: [i32; 3],
+    dn: [i32; 3],
+) -> Result<(), FrameError> {
+    let bad = || FrameError::Render(fixshade::render::RenderError::Window);
+    let dir = [
+        Light::directional(Vec3::new(q3(300), q3(400), q3(866)), q3(1000)),
+        Light::directional(Vec3::new(q3(-500), q3(200), q3(800)), q3(500)),
+        Light::directional(Vec3::new(q3(100), q3(-600), q3(700)), q3(400)),
+        Light::directional(Vec3::new(q3(700), q3(100), q3(600)), q3(300)),
+    ];
+    // A surface point 5 units in front of the eye, moving 1/100 unit per
+    // pixel; the point light 2 units towards the eye, up and to the right.
+    let p = [0, 0, -5 << 16];
+    let dp = [655, 0, 0];
+    let point = [Light::point(
+        Vec3::new(q3(1500), q3(1000), q3(-3000)),
+        q3(1000),
+    )];
+    let cases: [(&str, &[Light<Q16>], Viewer); 4] = [
+        ("phong-k1", &dir[..1], Viewer::Infinite),
+        ("phong-k2", &dir[..2], Viewer::Infinite),
+        ("phong-k4", &dir[..4], Viewer::Infinite),
+        ("phong-kpoint", &point[..], Viewer::Local),
+    ];
+    for (name, lights, viewer) in cases {
+        let shade =
+            Shade::new(material, q3(200), lights, Specular::Phong, viewer).map_err(|_| bad())?;
+        let kernel = PhongKernel::new(&shade).map_err(|_| bad())?;
+        for len in [SPAN_LONG, 1] {
+            let mut fb = FrameBuf::<Rgb565Be>::band(&mut mem.pixels[..], WIDTH, 0, BAND_ROWS)?;
+            let mut db = DepthBuffer::<Depth16>::new(&mut mem.depth[..], WIDTH, 0, BAND_ROWS)?;
+            let mut fill = PhongFill::new(&mut fb, Some(&mut db), &kernel)
+                .map_err(|e| FrameError::Render(e.into()))?;
+            let x0 = (WIDTH - SPAN_LONG) / 2;
+            let mut a = [0i32; 6];
+            let mut da = [0i32; 6];
+            a[..3].copy_from_slice(&n);
+            a[3..].copy_from_slice(&p);
+            da[..3].copy_from_slice(&dn);
+            da[3..].copy_from_slice(&dp);
+            yield_marker();
+            for y in 0..SPAN_ROWS {
+                let s = black_box(Span {
+                    y,
+                    x0,
+                    x1: x0 + len,
+                    z: 1 << 28,
+                    dz: 1 << 16,
+                    a,
+                    da,
+                });
+                fill.span(&s);
+            }
+            yield_marker();
+            cortex_m::asm::sev();
+            if fill.drawn() != SPAN_ROWS * len {
+                return Err(bad());
+            }
+        }
+        hprintln!(
+            "span {} rows={} long={} short=1",
+            name,
+            SPAN_ROWS,
+            SPAN_LONG
+        );
+    }
     Ok(())
 }
 

@@ -1,0 +1,1248 @@
+//! The Phong span kernel: per-span set-up, per-pixel table lookups.
+//!
+//! [`PhongKernel`] is made once per object per frame from a [`Shade`]
+//! (material and lights in eye space) of the `Q16` profiles; per span,
+//! [`PhongKernel::begin`] takes the interpolated normal (`Q30` raw, the
+//! layout's [`UNIT_FRAC_BITS`](crate::num::UNIT_FRAC_BITS)) and eye
+//! position (`Q16` raw) at the span's first pixel and their steps per
+//! pixel, and [`PhongSpan::next`] gives one pixel after another.
+//!
+//! # Interpolation of the normal
+//! Planar, as the rest of the crate: the normal is the screen-linear
+//! interpolation of the vertex normals, `n(i) = n0 + i·dn`, *not*
+//! renormalised before it is interpolated (the seed's "normalise the span
+//! ends, then interpolate" weighs the ends differently, see
+//! `tests/seed_phong.rs`). It is the `f64` twin's model, so the kernel is
+//! compared with its twin on the same quantity, and it is what makes
+//! Duff's formulation possible: every dot product of `n` with a constant
+//! vector is linear in `i` and `|n|²` is quadratic.
+//!
+//! # Directional lights, viewer at infinity (Duff)
+//! With `L` and `V` constant the specular base is written as a quadratic
+//! over `|n|²`, so that it needs no precise normalisation at all:
+//!
+//! ```text
+//! Phong:  1 - R·V   = ( |n × (L+V)|² + (n·(L-V))² ) / (2 |n|²)       x^n = (1 - w)^n
+//! Blinn:  1 - (N·H)² = |n × H|² / |n|²                                x^n = (1 - w)^(n/2)
+//! ```
+//!
+//! (`|n × S|² = |n|²|S|² - (n·S)²` and `(n·S)² - (n·D)² = 4 (n·L)(n·V)`
+//! give the first; `N·H > 0` is checked on the linear `n·H`). The
+//! numerator `Q` is a sum of squares of linear functions of `i`, each
+//! vanishing at the highlight's peak, so the rounding of their linear
+//! coefficients (`2^-31` per step) enters `Q` multiplied by their small
+//! values there: `w = Q/|n|²` keeps its *relative* accuracy where `x^n`
+//! needs it (`n = 10 000`), and `1/|n|²` needs only ~12 bits. Per span:
+//! `|n|²` and `Q` as exact `i64` forward differences (two adds each per
+//! pixel, no drift), `n·L` linear. Per pixel: `1/|n|` from a 65-entry
+//! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
+//! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
+//! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
+//! kernel is made for that shininess, so `n = 10 000` keeps its peak).
+//!
+//! # Point lights, local viewer
+//! `l = Lp - p` and `v = -p` are linear per pixel and `|l|²`, `|v|²`
+//! quadratic (exact forward differences in `u64`); their reciprocal square
+//! roots come from the table of [`approx16::rsqrt_newton`] (one Newton
+//! step: `2^-29` relative), which makes unit `L` and `V` in `Q30` with
+//! three products each; the specular base is then the same sum of squares
+//! (`L + V` and `L - V` per pixel). No general normalisation.
+//!
+//! # Accuracy (tests in this module)
+//! Against the same model in `f64` on the same inputs, per channel: within
+//! 1 level for shininess 1 to 10 000, peaks and grazing lights included
+//! (the table interpolation `2^-11` at 128 segments, `1/|n|` `2^-11.4`
+//! relative at `|n|² = 1/4`, `2^-15.4` at 1, the coefficients' rounding
+//! `1/128` level).
+//!
+//! # Limits
+//! Coefficients `Ip·Lc·kd·C` and `Ip·Lc·ks` up to 4 and shininess from 1
+//! to [`MAX_SHININESS`](crate::illum::MAX_SHININESS): outside those,
+//! [`PhongKernel::new`] gives [`KernelError`] and the caller keeps the
+//! generic path. Pixels whose `|n|²` lies outside `[1/4, 5/4)` (vertex
+//! normals more than 120° apart within a triangle) take the generic
+//! per-pixel path (`Shade::at_q16`), as do spans whose positions leave
+//! `±2^30` raw.
+
+use crate::illum::{RawTerm, Shade, Specular, Viewer, MAX_LIGHTS};
+use crate::num::approx16;
+use crate::num::wide::{clz32, wmul};
+use crate::num::Real;
+use crate::raster::{Lerp, RasterError, Span, Spans};
+use crate::target::{DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
+use core::fmt;
+
+/// Segments of the specular table (`SPEC_SEGMENTS + 1` entries of `u16`):
+/// chosen from the sweep in this module's tests (`spec_table_sweep`).
+pub const SPEC_SEGMENTS: usize = 128;
+/// Segments of the `1/|n|` table over `|n|² ∈ [1/4, 5/4)`.
+pub const RSQRT_N: usize = 64;
+/// Fraction bits of a specular table position.
+const POS_FRAC: u32 = 20;
+/// Largest table argument `u = m·w` (Q16): `e^-8 < 2^-11`.
+const U_MAX: u32 = 8 << 16;
+
+/// `1/sqrt(f)` in Q16 for `f = 1/4 + j/64`, `j` in `0..=64`: `2^19 /
+/// sqrt(16 + j)`, floor of the square root of the floor (within `2^-16`
+/// absolute).
+const RS: [u32; RSQRT_N + 1] = {
+    let mut t = [0u32; RSQRT_N + 1];
+    let mut j = 0;
+    while j <= RSQRT_N {
+        // (2 r)^2 = 2^40 / (16 + j); r rounded from 2r.
+        let v = (1u64 << 40) / (16 + j as u64);
+        let mut lo = 0u64;
+        let mut hi = 1u64 << 21;
+        while lo < hi {
+            let mid = (lo + hi).div_ceil(2);
+            if mid * mid <= v {
+                lo = mid;
+            } else {
+                hi = mid - 1;
+            }
+        }
+        t[j] = lo.div_ceil(2) as u32;
+        j += 1;
+    }
+    t
+};
+
+/// Why a kernel could not be made (the caller keeps the generic path).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KernelError {
+    /// Not a `Q16` shade.
+    Profile,
+    /// A coefficient above 4, or a shininess below 1.
+    Range,
+}
+
+impl fmt::Display for KernelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Profile => write!(f, "the Phong span kernel runs the Q16 profiles only"),
+            Self::Range => write!(
+                f,
+                "a light coefficient above 4 or a shininess below 1 (Phong span kernel)"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for KernelError {}
+
+/// One light folded for the kernel.
+#[derive(Clone, Copy, Debug)]
+struct KLight {
+    /// Directional: unit direction (Q30). Point: position (Q16).
+    at: [i32; 3],
+    point: bool,
+    /// Directional lights, viewer at infinity: `P1` (Phong `(L+V)/√2`,
+    /// Blinn `H`) and `P2` (Phong `(L-V)/√2`), Q30.
+    p1: [i32; 3],
+    p2: [i32; 3],
+    /// `255 · 2^6 ·` the diffuse and specular coefficients per channel.
+    d: [u32; 3],
+    s: [u32; 3],
+}
+
+/// Material, lights and tables of one object for one frame (see the
+/// module docs).
+#[derive(Clone, Debug)]
+pub struct PhongKernel<'s, R> {
+    shade: &'s Shade<R>,
+    lights: heapless::Vec<KLight, MAX_LIGHTS>,
+    /// `255 · 2^13 ·` ambient per channel.
+    amb: [u32; 3],
+    spec: bool,
+    blinn: bool,
+    /// All lights directional and the viewer at infinity.
+    duff: bool,
+    local: bool,
+    /// Specular table, Q15.
+    table: [u16; SPEC_SEGMENTS + 1],
+    /// `Q` (Q28) at or above `2^(15 + sq)`: no specular term.
+    sq: u32,
+    /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
+    c16: u32,
+    cb: u32,
+}
+
+/// `round(v · 255 · 2^k / 2^16)` for a Q16 coefficient `v >= 0`.
+fn scale255(v: i32, k: u32) -> u64 {
+    let v = u64::from(v.max(0).unsigned_abs());
+    (v * 255 * (1 << k) + (1 << 15)) >> 16
+}
+
+/// The unit vector of `v` (any scale) in Q30, by 64-bit arithmetic
+/// (per kernel): within `2^-29` per component.
+#[allow(clippy::cast_possible_truncation)]
+fn unit30(v: [i64; 3]) -> [i32; 3] {
+    let s: u128 = v.iter().map(|&c| (c as i128 * c as i128) as u128).sum();
+    if s == 0 {
+        return [0; 3];
+    }
+    // |v| to 2^-.. precision: isqrt of s scaled to ~2^124.
+    let sh = s.leading_zeros() & !1;
+    let big = s << sh; // >= 2^126
+    let top = (big >> 64) as u64; // >= 2^62
+    let (root, _) = approx16::isqrt_u64(top); // |v| · 2^(sh/2 - 32) ~ 2^31
+    let root = root.max(1);
+    v.map(|c| {
+        // c · 2^30 / |v| = c · 2^(30 + sh/2 - 32) / root
+        let e = 30 + i64::from(sh / 2) - 32;
+        let num = if e >= 0 {
+            (c as i128) << e
+        } else {
+            (c as i128) >> -e
+        };
+        num.checked_div(root as i128)
+            .unwrap_or(0)
+            .clamp(-(1 << 30), 1 << 30) as i32
+    })
+}
+
+impl<'s, R: Real> PhongKernel<'s, R> {
+    /// The kernel of `shade` (a `Q16` shade).
+    ///
+    /// # Errors
+    /// [`KernelError::Profile`] for other scalars; [`KernelError::Range`]
+    /// for a coefficient above 4 or a shininess below 1 with a specular
+    /// term.
+    pub fn new(shade: &'s Shade<R>) -> Result<Self, KernelError> {
+        let (ambient, terms, shin, spec, model, viewer) =
+            shade.raw_q16().ok_or(KernelError::Profile)?;
+        let blinn = model == Specular::Blinn;
+        let local = viewer == Viewer::Local;
+        if spec && shin < 1 << 16 {
+            return Err(KernelError::Range);
+        }
+        let amb = ambient.map(|a| scale255(a, 13) as u32);
+        let mut lights = heapless::Vec::new();
+        let r = core::f64::consts::FRAC_1_SQRT_2;
+        let _ = r;
+        // 2^30 / sqrt 2, rounded.
+        const INV_SQRT2_Q30: i64 = 759_250_125;
+        for t in &terms {
+            let RawTerm {
+                at,
+                point,
+                diffuse,
+                specular,
+            } = *t;
+            let conv = |c: [i32; 3]| -> Result<[u32; 3], KernelError> {
+                let mut o = [0u32; 3];
+                for (o, &c) in o.iter_mut().zip(c.iter()) {
+                    let v = scale255(c, 6);
+                    *o = u32::try_from(v)
+                        .ok()
+                        .filter(|&v| v < 1 << 16)
+                        .ok_or(KernelError::Range)?;
+                }
+                Ok(o)
+            };
+            let d = conv(diffuse)?;
+            let s = conv(specular)?;
+            let (at, p1, p2) = if point {
+                (at, [0; 3], [0; 3])
+            } else {
+                let l = unit30(at.map(i64::from));
+                let l64 = l.map(i64::from);
+                let v = [0i64, 0, 1 << 30];
+                let (p1, p2) = if blinn {
+                    (
+                        unit30([l64[0] + v[0], l64[1] + v[1], l64[2] + v[2]]),
+                        [0; 3],
+                    )
+                } else {
+                    let f = |a: i64| ((a * INV_SQRT2_Q30 + (1 << 29)) >> 30) as i32;
+                    (
+                        [f(l64[0] + v[0]), f(l64[1] + v[1]), f(l64[2] + v[2])],
+                        [f(l64[0] - v[0]), f(l64[1] - v[1]), f(l64[2] - v[2])],
+                    )
+                };
+                (l, p1, p2)
+            };
+            let _ = lights.push(KLight {
+                at,
+                point,
+                p1,
+                p2,
+                d,
+                s,
+            });
+        }
+        let duff = !local && lights.iter().all(|l| !l.point);
+        // Specular table and its position scale.
+        let m = if blinn {
+            (shin as u32) / 2
+        } else {
+            shin as u32
+        }
+        .max(1);
+        let t_eff = m.min(U_MAX);
+        let mut table = [0u16; SPEC_SEGMENTS + 1];
+        if spec {
+            for (j, e) in table.iter_mut().enumerate() {
+                let u = (u64::from(t_eff) * j as u64 / SPEC_SEGMENTS as u64) as u32;
+                *e = approx16::spec_entry(u, m);
+            }
+            if t_eff == m {
+                table[SPEC_SEGMENTS] = 0;
+            }
+        }
+        // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
+        let qlim = (u64::from(t_eff) * (5 << 28) / 4)
+            .checked_div(u64::from(m))
+            .unwrap_or(0)
+            + 1;
+        let mut sq = 0u32;
+        while (1u64 << (15 + sq)) < qlim {
+            sq += 1;
+        }
+        // pos = qs_s · rr14 · X, X = m K / t_eff · 2^(POS_FRAC + sq - 42)
+        // = c16 · 2^-cb with c16 < 2^16 and c16 <= 2^cb, so that
+        // g = (rr14 · c16) >> cb <= 2^16 and pos = qs_s · g <= 2^31.
+        let num = u64::from(m) * SPEC_SEGMENTS as u64; // < 2^38
+        let mut c16 = 0u32;
+        let mut cb = 0u32;
+        let mut found = false;
+        for b in (0..48u32).rev() {
+            let e = i64::from(POS_FRAC + sq + b) - 42;
+            let v = if e >= 0 {
+                if e > 24 {
+                    continue;
+                }
+                (num << e).checked_div(u64::from(t_eff)).unwrap_or(u64::MAX)
+            } else {
+                (num >> (-e).min(63))
+                    .checked_div(u64::from(t_eff))
+                    .unwrap_or(u64::MAX)
+            };
+            if v < 1 << 16 {
+                c16 = v as u32;
+                cb = b;
+                found = v <= 1 << b;
+                break;
+            }
+        }
+        if spec && !found {
+            return Err(KernelError::Range);
+        }
+        Ok(Self {
+            shade,
+            lights,
+            amb,
+            spec,
+            blinn,
+            duff,
+            local,
+            table,
+            sq,
+            c16,
+            cb,
+        })
+    }
+
+    /// Per-span set-up from the interpolated values at the span's first
+    /// pixel and their steps per pixel: normal `n`, `dn` (Q30 raw) and,
+    /// for the position layout, eye position `p`, `dp` (Q16 raw; zeros for
+    /// the normal-only layout); `back` flips the normal.
+    #[inline(always)]
+    pub fn begin(
+        &self,
+        n: [i32; 3],
+        dn: [i32; 3],
+        p: [i32; 3],
+        dp: [i32; 3],
+        back: bool,
+    ) -> PhongSpan<'_, 's, R> {
+        let (n, dn) = if back {
+            (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
+        } else {
+            (n, dn)
+        };
+        let mut ls = [LightSpan::default(); MAX_LIGHTS];
+        let (nn, nn_d1, nn_d2) = quad(&[(n, dn)]);
+        if self.duff {
+            for (s, l) in ls.iter_mut().zip(self.lights.iter()) {
+                s.nl = lin(n, l.at);
+                s.dnl = lin(dn, l.at);
+                if self.spec {
+                    let c0 = cross(n, l.p1);
+                    let c1 = cross(dn, l.p1);
+                    let k0 = lin(n, l.p2);
+                    let k1 = lin(dn, l.p2);
+                    let f = [
+                        ([c0[0], 0, 0], [c1[0], 0, 0]),
+                        ([c0[1], 0, 0], [c1[1], 0, 0]),
+                        ([c0[2], 0, 0], [c1[2], 0, 0]),
+                        ([k0, 0, 0], [k1, 0, 0]),
+                    ];
+                    let (q, d1, d2) = quad(&f);
+                    s.q = q;
+                    s.q_d1 = d1;
+                    s.q_d2 = d2;
+                    if self.blinn {
+                        s.nh = lin(n, l.p1);
+                        s.dnh = lin(dn, l.p1);
+                    }
+                }
+            }
+        } else {
+            let v0 = p.map(i32::wrapping_neg);
+            let dv = dp.map(i32::wrapping_neg);
+            // `l = Lp - p` stays within ±2^31 along any span of up to
+            // 4096 pixels when it starts within ±2^30 and steps by at most
+            // 2^18 (4 eye units) a pixel; else (a light near the edge of
+            // the coordinate range) the span takes the generic path.
+            let far = |v: i64| v.unsigned_abs() > 1 << 30;
+            let mut slow = dp.iter().any(|&d| d.unsigned_abs() > 1 << 18)
+                || p.iter().any(|&c| far(i64::from(c)));
+            for (s, l) in ls.iter_mut().zip(self.lights.iter()) {
+                if l.point {
+                    slow |= (0..3).any(|a| far(i64::from(l.at[a]) - i64::from(p[a])));
+                    s.l = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
+                    s.dl = dv;
+                    let (q, d1, d2) = quad(&[(s.l, s.dl)]);
+                    s.q = q;
+                    s.q_d1 = d1;
+                    s.q_d2 = d2;
+                }
+            }
+            let (vv, vv_d1, vv_d2) = quad(&[(v0, dv)]);
+            return PhongSpan {
+                k: self,
+                n0: n,
+                dn,
+                p0: p,
+                dp,
+                i: 0,
+                n,
+                nn,
+                nn_d1,
+                nn_d2,
+                v: v0,
+                dv,
+                vv,
+                vv_d1,
+                vv_d2,
+                l0: ls[0],
+                rest: [ls[1], ls[2], ls[3], ls[4], ls[5], ls[6], ls[7]],
+                slow,
+            };
+        }
+        PhongSpan {
+            k: self,
+            n0: n,
+            dn,
+            p0: p,
+            dp,
+            i: 0,
+            n,
+            nn,
+            nn_d1,
+            nn_d2,
+            v: [0; 3],
+            dv: [0; 3],
+            vv: 0,
+            vv_d1: 0,
+            vv_d2: 0,
+            l0: ls[0],
+            rest: [ls[1], ls[2], ls[3], ls[4], ls[5], ls[6], ls[7]],
+            slow: false,
+        }
+    }
+
+    /// A whole span of `len` pixels: for each pixel `i` for which
+    /// `test(i)` holds (a depth test), `write(i, colour)`. The same colours
+    /// as [`PhongKernel::begin`] and [`PhongSpan::next`]/[`PhongSpan::skip`];
+    /// one directional light with the viewer at infinity runs a loop whose
+    /// state stays in registers (the span-stage hook the kernel is made
+    /// for).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn fill(
+        &self,
+        n: [i32; 3],
+        dn: [i32; 3],
+        p: [i32; 3],
+        dp: [i32; 3],
+        back: bool,
+        len: u32,
+        mut test: impl FnMut(u32) -> bool,
+        mut write: impl FnMut(u32, Rgb8),
+    ) {
+        let mut s = self.begin(n, dn, p, dp, back);
+        if let (true, [l]) = (self.duff, &self.lights[..]) {
+            let (n0, dn0) = (s.n0, s.dn);
+            let (mut nn, mut nn_d1, nn_d2) = (s.nn, s.nn_d1, s.nn_d2);
+            let mut ls = s.l0;
+            for i in 0..len {
+                if test(i) {
+                    let f = (nn >> 32) as i32;
+                    let c = if let Some(r) = rsqrt_n(f) {
+                        let r14 = r >> 2;
+                        let rr14 = (r14 * r14) >> 14;
+                        let mut acc = self.amb;
+                        let nl = ls.nl;
+                        if nl > 0 {
+                            let sp = if self.spec && (!self.blinn || ls.nh > 0) {
+                                self.spec_of((ls.q >> 32) as i32, rr14)
+                            } else {
+                                0
+                            };
+                            add_light(&mut acc, l, nl15(nl, r), sp);
+                        }
+                        Self::level(acc)
+                    } else {
+                        fallback(self.shade, n0, dn0, p, dp, i)
+                    };
+                    write(i, c);
+                }
+                duff_step(&mut ls);
+                step(&mut nn, &mut nn_d1, nn_d2);
+            }
+        } else {
+            for i in 0..len {
+                if test(i) {
+                    write(i, s.next());
+                } else {
+                    s.skip();
+                }
+            }
+        }
+    }
+
+    /// The colour for the accumulated channels (units `255 · 2^13`).
+    #[inline(always)]
+    fn level(acc: [u32; 3]) -> Rgb8 {
+        // acc < 2^28 (ambient 2^21, at most 8 lights of 2^24 each).
+        let l = |a: u32| ((a as i32).wrapping_add(1 << 12) >> 13).clamp(0, 255) as u8;
+        Rgb8::new(l(acc[0]), l(acc[1]), l(acc[2]))
+    }
+
+    /// The specular factor (Q15) for `qs` (Q28 of `Q`, with `w = qs / |n|²`)
+    /// and `rr14 = 2^14 / |n|²`.
+    #[inline(always)]
+    fn spec_of(&self, qs: i32, rr14: u32) -> u32 {
+        let qs = qs.max(0) as u32 >> self.sq;
+        if qs >= 1 << 15 {
+            return 0;
+        }
+        let g = (rr14.wrapping_mul(self.c16)) >> self.cb;
+        let pos = qs.wrapping_mul(g);
+        let idx = (pos >> POS_FRAC) as usize;
+        match (self.table.get(idx), self.table.get(idx + 1)) {
+            (Some(&a), Some(&b)) => {
+                let f = (pos >> (POS_FRAC - 16)) & 0xFFFF;
+                let (a, b) = (u32::from(a), u32::from(b));
+                a - ((a.saturating_sub(b) * f) >> 16)
+            }
+            _ => 0,
+        }
+    }
+}
+
+/// `round(a·b / 2^30)` summed over three components (wrapping: callers
+/// keep it within `i32`, unit vectors and normals of length <= 1.25).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn lin(a: [i32; 3], b: [i32; 3]) -> i32 {
+    let s = wmul(a[0], b[0])
+        .wrapping_add(wmul(a[1], b[1]))
+        .wrapping_add(wmul(a[2], b[2]));
+    (s.wrapping_add(1 << 29) >> 30) as i32
+}
+
+/// `a × b` in Q30 (rounded) for Q30 `a` and `b`.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn cross(a: [i32; 3], b: [i32; 3]) -> [i32; 3] {
+    let c = |x: i64| (x.wrapping_add(1 << 29) >> 30) as i32;
+    [
+        c(wmul(a[1], b[2]) - wmul(a[2], b[1])),
+        c(wmul(a[2], b[0]) - wmul(a[0], b[2])),
+        c(wmul(a[0], b[1]) - wmul(a[1], b[0])),
+    ]
+}
+
+/// The sum of squares `Σ |f0 + i·df|²` of linear vector functions as a
+/// forward-difference triple `(value, first difference, second
+/// difference)`, exact modulo 2^64 (every true value below 2^64 is exact).
+#[allow(clippy::cast_sign_loss)]
+fn quad(f: &[([i32; 3], [i32; 3])]) -> (u64, u64, u64) {
+    let (mut c0, mut c1, mut c2) = (0u64, 0u64, 0u64);
+    for (a, d) in f {
+        for k in 0..3 {
+            c0 = c0.wrapping_add(wmul(a[k], a[k]) as u64);
+            c1 = c1.wrapping_add((wmul(a[k], d[k]) as u64).wrapping_mul(2));
+            c2 = c2.wrapping_add(wmul(d[k], d[k]) as u64);
+        }
+    }
+    (c0, c1.wrapping_add(c2), c2.wrapping_mul(2))
+}
+
+/// Per-light state of a span.
+#[derive(Clone, Copy, Debug, Default)]
+struct LightSpan {
+    nl: i32,
+    dnl: i32,
+    nh: i32,
+    dnh: i32,
+    /// Directional: `Q` (Q60). Point: `|l|²` (Q32).
+    q: u64,
+    q_d1: u64,
+    q_d2: u64,
+    /// Point: `l = Lp - p` (Q16) and its step.
+    l: [i32; 3],
+    dl: [i32; 3],
+}
+
+/// One span in progress (see [`PhongKernel::begin`]).
+#[derive(Debug)]
+pub struct PhongSpan<'k, 's, R> {
+    k: &'k PhongKernel<'s, R>,
+    n0: [i32; 3],
+    dn: [i32; 3],
+    p0: [i32; 3],
+    dp: [i32; 3],
+    i: u32,
+    n: [i32; 3],
+    nn: u64,
+    nn_d1: u64,
+    nn_d2: u64,
+    v: [i32; 3],
+    dv: [i32; 3],
+    vv: u64,
+    vv_d1: u64,
+    vv_d2: u64,
+    l0: LightSpan,
+    rest: [LightSpan; MAX_LIGHTS - 1],
+    /// Every pixel by the generic path (positions near the range's edge).
+    slow: bool,
+}
+
+/// `2^16 / |n|` (Q16) from `|n|²` in Q28 in `[1/4, 5/4)`, else `None`.
+#[inline(always)]
+fn rsqrt_n(f: i32) -> Option<u32> {
+    let j = ((f.wrapping_sub(1 << 26)) >> 22) as u32 as usize;
+    let (a, b) = (*RS.get(j)?, *RS.get(j + 1)?);
+    let t = ((f >> 6) & 0xFFFF) as u32;
+    Some(a - (((a - b) * t) >> 16))
+}
+
+/// `1 / sqrt(x)` for `x > 0` as `(y, e)`: `y · 2^-e`, `y` in `(2^29,
+/// 2^30]`, within `2^-29` relative ([`approx16::rsqrt_newton`]).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn rsqrt64(x: u64) -> (i32, u32) {
+    // The top 32 bits of `x << lz` from 32-bit shifts and the crate's
+    // `clz32` (ARMv6-M: no 64-bit shift or count-leading-zeros calls).
+    let (hi, lo) = ((x >> 32) as u32, x as u32);
+    let (lz, m) = if hi != 0 {
+        let lz = clz32(hi) & !1; // 0..=30
+        let m = if lz == 0 {
+            hi
+        } else {
+            (hi << lz) | (lo >> (32 - lz))
+        };
+        (lz, m)
+    } else {
+        let lz = clz32(lo) & !1; // 0..=30 for lo >= 2
+        (32 + lz, lo << lz)
+    };
+    let y = approx16::rsqrt_newton(m) >> 1;
+    (y as i32, 61 - lz / 2)
+}
+
+/// The low 32 bits of `x >> s` for `s` in `0..32` (32-bit shifts only).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn shr_low(x: i64, s: u32) -> i32 {
+    let (hi, lo) = ((x >> 32) as u32, x as u32);
+    if s == 0 {
+        lo as i32
+    } else {
+        ((lo >> s) | (hi << (32 - s))) as i32
+    }
+}
+
+/// `v / |v|` in Q30 from `v` and `|v|²` (any common scale).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn unit_of(v: [i32; 3], vv: u64) -> [i32; 3] {
+    if vv == 0 {
+        return [0; 3];
+    }
+    let (y, e) = rsqrt64(vv);
+    let s = (e - 30).min(31); // e >= 30
+    v.map(|c| shr_low(wmul(c, y), s))
+}
+
+/// The generic per-pixel path (`Shade::at_q16` on the normalised normal)
+/// at pixel `i` of a span (values passed by copy: the span's state stays
+/// in registers).
+#[cold]
+#[inline(never)]
+fn fallback<R: Real>(
+    shade: &Shade<R>,
+    n0: [i32; 3],
+    dn: [i32; 3],
+    p0: [i32; 3],
+    dp: [i32; 3],
+    i: u32,
+) -> Rgb8 {
+    let i = i as i32;
+    let n = [0, 1, 2].map(|a| n0[a].wrapping_add(dn[a].wrapping_mul(i)));
+    let p = [0, 1, 2].map(|a| p0[a].wrapping_add(dp[a].wrapping_mul(i)));
+    // Q30 -> Q16 (as `Profile::unit_back`, rounded), then normalised.
+    let n16 = n.map(|c| ((i64::from(c) + (1 << 13)) >> 14) as i32);
+    let u = approx16::unit(n16);
+    let c = shade.at_q16(u, p);
+    let level = |c: i32| R::from_fixed_i32(c, 16).to_level();
+    Rgb8::new(level(c[0]), level(c[1]), level(c[2]))
+}
+
+/// Adds one light's diffuse and specular terms (factors Q15) to `acc`.
+#[inline(always)]
+fn add_light(acc: &mut [u32; 3], l: &KLight, nl15: u32, sp: u32) {
+    for ((a, d), s) in acc.iter_mut().zip(l.d).zip(l.s) {
+        *a = a.wrapping_add((d * nl15).wrapping_add(s * sp) >> 8);
+    }
+}
+
+/// `N·L` in Q15 from `n·L` (Q30, > 0) and `2^16/|n|`.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+fn nl15(nl: i32, r: u32) -> u32 {
+    ((nl as u32 >> 15).wrapping_mul(r) >> 16).min(1 << 15)
+}
+
+/// One directional light at one pixel (viewer at infinity), then its
+/// state stepped.
+#[inline(always)]
+fn duff_light<R: Real>(
+    k: &PhongKernel<'_, R>,
+    s: &mut LightSpan,
+    l: &KLight,
+    r: u32,
+    rr14: u32,
+    acc: &mut [u32; 3],
+) {
+    let nl = s.nl;
+    if nl > 0 {
+        let sp = if k.spec && (!k.blinn || s.nh > 0) {
+            k.spec_of((s.q >> 32) as i32, rr14)
+        } else {
+            0
+        };
+        add_light(acc, l, nl15(nl, r), sp);
+    }
+    duff_step(s);
+}
+
+#[inline(always)]
+fn duff_step(s: &mut LightSpan) {
+    s.nl = s.nl.wrapping_add(s.dnl);
+    s.nh = s.nh.wrapping_add(s.dnh);
+    step(&mut s.q, &mut s.q_d1, s.q_d2);
+}
+
+/// One light at one pixel, point lights or a local viewer (`vh`: unit `V`).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+#[allow(clippy::too_many_arguments)]
+fn general_light<R: Real>(
+    k: &PhongKernel<'_, R>,
+    s: &LightSpan,
+    l: &KLight,
+    n: [i32; 3],
+    vh: [i32; 3],
+    r: u32,
+    rr14: u32,
+    acc: &mut [u32; 3],
+) {
+    let lh = if l.point { unit_of(s.l, s.q) } else { l.at };
+    let nl = lin(n, lh);
+    if nl <= 0 {
+        return;
+    }
+    let sp = if k.spec {
+        // Halves: |l̂ ± v̂| / 2 <= 1 keeps them in Q30.
+        let a = [0, 1, 2].map(|c| (lh[c] >> 1) + (vh[c] >> 1));
+        if k.blinn {
+            let h = unit_of(a, sq3(a));
+            if lin(n, h) > 0 {
+                let q = sq3(cross(n, h));
+                k.spec_of((q >> 32) as i32, rr14)
+            } else {
+                0
+            }
+        } else {
+            let d = [0, 1, 2].map(|c| (lh[c] >> 1) - (vh[c] >> 1));
+            let kd = lin(n, d);
+            // Q/2 = |n × a|² + (n·d)² with the halves; w = 2 (Q/2) / |n|².
+            let q = sq3(cross(n, a)).wrapping_add(wmul(kd, kd) as u64);
+            k.spec_of(((q >> 31) as i32).max(0), rr14)
+        }
+    } else {
+        0
+    };
+    add_light(acc, l, nl15(nl, r), sp);
+}
+
+#[inline(always)]
+fn general_step(s: &mut LightSpan, l: &KLight) {
+    if l.point {
+        for a in 0..3 {
+            s.l[a] = s.l[a].wrapping_add(s.dl[a]);
+        }
+        step(&mut s.q, &mut s.q_d1, s.q_d2);
+    }
+}
+
+impl<R: Real> PhongSpan<'_, '_, R> {
+    /// The next pixel's colour (then steps to the following pixel).
+    // Not an `Iterator`: the span never ends by itself, and an `Option`
+    // per pixel would cost in the loop.
+    #[allow(clippy::should_implement_trait)]
+    #[inline(always)]
+    pub fn next(&mut self) -> Rgb8 {
+        // One light, the common case, in a copy of its own whose state
+        // the compiler keeps in registers (`l0`, no array indexing).
+        let c = match (self.k.duff, self.k.lights.len()) {
+            _ if self.slow => self.slow(),
+            (true, 1) => self.duff::<true>(),
+            (true, _) => self.duff::<false>(),
+            (false, 1) => self.general::<true>(),
+            (false, _) => self.general::<false>(),
+        };
+        self.i = self.i.wrapping_add(1);
+        c
+    }
+
+    /// Steps over a pixel without shading it (a failed depth test).
+    #[inline(always)]
+    pub fn skip(&mut self) {
+        self.step_all();
+        self.i = self.i.wrapping_add(1);
+    }
+
+    #[inline(always)]
+    fn step_all(&mut self) {
+        let k = self.k;
+        step(&mut self.nn, &mut self.nn_d1, self.nn_d2);
+        let rest = k.lights.len().saturating_sub(1);
+        if k.duff {
+            duff_step(&mut self.l0);
+            for s in self.rest.iter_mut().take(rest) {
+                duff_step(s);
+            }
+        } else {
+            self.step_general(rest);
+        }
+    }
+
+    #[inline(always)]
+    fn step_general(&mut self, rest: usize) {
+        let k = self.k;
+        for a in 0..3 {
+            self.n[a] = self.n[a].wrapping_add(self.dn[a]);
+            self.v[a] = self.v[a].wrapping_add(self.dv[a]);
+        }
+        step(&mut self.vv, &mut self.vv_d1, self.vv_d2);
+        if let Some(l) = k.lights.first() {
+            general_step(&mut self.l0, l);
+        }
+        for (s, l) in self.rest.iter_mut().zip(k.lights.iter().skip(1)).take(rest) {
+            general_step(s, l);
+        }
+    }
+
+    /// The generic path at this pixel, then a step.
+    #[cold]
+    fn slow(&mut self) -> Rgb8 {
+        let c = fallback(self.k.shade, self.n0, self.dn, self.p0, self.dp, self.i);
+        self.step_all();
+        c
+    }
+
+    /// Directional lights, viewer at infinity (`ONE`: exactly one light).
+    #[inline(always)]
+    fn duff<const ONE: bool>(&mut self) -> Rgb8 {
+        let k = self.k;
+        let f = (self.nn >> 32) as i32;
+        let Some(r) = rsqrt_n(f) else {
+            return self.slow();
+        };
+        let r14 = r >> 2;
+        let rr14 = (r14 * r14) >> 14;
+        let mut acc = k.amb;
+        if let Some(l) = k.lights.first() {
+            duff_light(k, &mut self.l0, l, r, rr14, &mut acc);
+        }
+        if !ONE {
+            for (s, l) in self.rest.iter_mut().zip(k.lights.iter().skip(1)) {
+                duff_light(k, s, l, r, rr14, &mut acc);
+            }
+        }
+        step(&mut self.nn, &mut self.nn_d1, self.nn_d2);
+        PhongKernel::<R>::level(acc)
+    }
+
+    /// Point lights or a local viewer (`ONE`: exactly one light). Not
+    /// inlined: its ~400 instructions a pixel dwarf a call, and inlined
+    /// into every span loop it added 60 KB of code.
+    #[inline(never)]
+    fn general<const ONE: bool>(&mut self) -> Rgb8 {
+        let k = self.k;
+        let f = (self.nn >> 32) as i32;
+        let Some(r) = rsqrt_n(f) else {
+            return self.slow();
+        };
+        let r14 = r >> 2;
+        let rr14 = (r14 * r14) >> 14;
+        let n = self.n;
+        let vh = if k.local {
+            unit_of(self.v, self.vv)
+        } else {
+            [0, 0, 1 << 30]
+        };
+        let mut acc = k.amb;
+        if let Some(l) = k.lights.first() {
+            general_light(k, &self.l0, l, n, vh, r, rr14, &mut acc);
+        }
+        if !ONE {
+            for (s, l) in self.rest.iter().zip(k.lights.iter().skip(1)) {
+                general_light(k, s, l, n, vh, r, rr14, &mut acc);
+            }
+        }
+        step(&mut self.nn, &mut self.nn_d1, self.nn_d2);
+        let rest = if ONE {
+            0
+        } else {
+            k.lights.len().saturating_sub(1)
+        };
+        self.step_general(rest);
+        PhongKernel::<R>::level(acc)
+    }
+}
+
+/// `|v|²` exactly (`u64`, wrapping only beyond `3 · 2^62`).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+fn sq3(v: [i32; 3]) -> u64 {
+    (wmul(v[0], v[0]) as u64)
+        .wrapping_add(wmul(v[1], v[1]) as u64)
+        .wrapping_add(wmul(v[2], v[2]) as u64)
+}
+
+/// One forward-difference step.
+#[inline(always)]
+fn step(v: &mut u64, d1: &mut u64, d2: u64) {
+    *v = v.wrapping_add(*d1);
+    *d1 = d1.wrapping_add(d2);
+}
+
+/// Today's span stage for the kernel (glue until the span stage gives
+/// shaders a per-span hook): depth test and write as
+/// [`Fill`](crate::raster::Fill), the kernel's colour per passing pixel,
+/// the kernel stepped over failing ones.
+#[derive(Debug)]
+pub struct PhongFill<'t, 'd, 'b, 'k, 's, T, D: DepthFormat, R> {
+    target: &'t mut T,
+    depth: Option<&'d mut DepthBuffer<'b, D>>,
+    kernel: &'k PhongKernel<'s, R>,
+    /// The next triangles are back faces (normal flipped).
+    pub back: bool,
+    drawn: u32,
+}
+
+impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
+    PhongFill<'t, 'd, 'b, 'k, 's, T, D, R>
+{
+    /// The span stage over `target` and `depth`.
+    ///
+    /// # Errors
+    /// [`RasterError::DepthWindowMismatch`] when the depth buffer holds
+    /// other rows or another width than the target (as
+    /// [`Fill::new`](crate::raster::Fill::new)).
+    pub fn new(
+        target: &'t mut T,
+        depth: Option<&'d mut DepthBuffer<'b, D>>,
+        kernel: &'k PhongKernel<'s, R>,
+    ) -> Result<Self, RasterError> {
+        if let Some(d) = &depth {
+            if d.window() != target.window() {
+                return Err(RasterError::DepthWindowMismatch);
+            }
+        }
+        Ok(Self {
+            target,
+            depth,
+            kernel,
+            back: false,
+            drawn: 0,
+        })
+    }
+
+    /// Pixels written so far.
+    pub fn drawn(&self) -> u32 {
+        self.drawn
+    }
+
+    /// The target's window.
+    pub fn window(&self) -> crate::target::Window {
+        self.target.window()
+    }
+
+    #[inline(always)]
+    fn run<L: Lerp, const N: usize>(&mut self, s: &Span<L, N>, pp: Option<([i32; 3], [i32; 3])>) {
+        let n = [raw(s.a[0]), raw(s.a[1]), raw(s.a[2])];
+        let dn = [raw(s.da[0]), raw(s.da[1]), raw(s.da[2])];
+        let (p, dp) = pp.unwrap_or(([0; 3], [0; 3]));
+        let (y, x0, x1) = (s.y, s.x0, s.x1);
+        let len = x1.saturating_sub(x0);
+        let enc = <T::Format as PixelFormat>::encode;
+        let k = self.kernel;
+        let back = self.back;
+        let drawn = &mut self.drawn;
+        match self.depth.as_deref_mut() {
+            Some(d) => {
+                let Some(drow) = d.span_mut(y, x0, x1) else {
+                    return;
+                };
+                let (z0, dz) = (s.z, s.dz);
+                let mut z = z0;
+                let mut test = |i: u32| {
+                    let pass = match drow.get_mut(i as usize) {
+                        Some(zb) => {
+                            let zd = D::from_lerp(z);
+                            let pass = zd < *zb;
+                            if pass {
+                                *zb = zd;
+                            }
+                            pass
+                        }
+                        None => false,
+                    };
+                    z = z.add(dz);
+                    pass
+                };
+                if let Some(row) = self.target.span_mut(y, x0, x1) {
+                    k.fill(n, dn, p, dp, back, len, &mut test, |i, c| {
+                        if let Some(px) = row.get_mut(i as usize) {
+                            *px = enc(c);
+                            *drawn += 1;
+                        }
+                    });
+                } else {
+                    let t = &mut *self.target;
+                    k.fill(n, dn, p, dp, back, len, &mut test, |i, c| {
+                        t.write_pixel(x0 + i, y, enc(c));
+                        *drawn += 1;
+                    });
+                }
+            }
+            None => {
+                if let Some(row) = self.target.span_mut(y, x0, x1) {
+                    k.fill(
+                        n,
+                        dn,
+                        p,
+                        dp,
+                        back,
+                        len,
+                        |_| true,
+                        |i, c| {
+                            if let Some(px) = row.get_mut(i as usize) {
+                                *px = enc(c);
+                            }
+                        },
+                    );
+                } else {
+                    let t = &mut *self.target;
+                    k.fill(
+                        n,
+                        dn,
+                        p,
+                        dp,
+                        back,
+                        len,
+                        |_| true,
+                        |i, c| {
+                            t.write_pixel(x0 + i, y, enc(c));
+                        },
+                    );
+                }
+                *drawn += len;
+            }
+        }
+    }
+}
+
+/// The kernel as a [`Shader`](crate::raster::Shader) of the band
+/// renderer: its own span loop ([`Shader::span_kernel`]) runs
+/// [`PhongKernel::fill`] with the span stage's depth test, so the
+/// forward differences stay in registers; attributes are the normal (3) or
+/// the normal and the eye position (6), as for [`super::PhongShader`].
+#[derive(Debug)]
+pub struct PhongKernelShader<'k, 's, R> {
+    kernel: &'k PhongKernel<'s, R>,
+    /// The next triangles are back faces (normal flipped).
+    pub back: bool,
+}
+
+impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
+    /// A shader running `kernel`, front faces first.
+    pub fn new(kernel: &'k PhongKernel<'s, R>) -> Self {
+        Self {
+            kernel,
+            back: false,
+        }
+    }
+
+    /// The kernel's colour at one pixel (a span of one pixel: the very
+    /// value the span loop computes there, its forward differences being
+    /// exact).
+    fn at<L: Lerp>(&self, a: &[L], p: [i32; 3]) -> Rgb8 {
+        let n = [raw(a[0]), raw(a[1]), raw(a[2])];
+        self.kernel.begin(n, [0; 3], p, [0; 3], self.back).next()
+    }
+
+    /// The span loop: depth test as the span stage's, the kernel's colour
+    /// per passing pixel.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn fill_row<L: Lerp, F: PixelFormat, D: DepthFormat>(
+        &self,
+        row: &mut [F::Raw],
+        drow: Option<&mut [D::Raw]>,
+        z: L,
+        dz: L,
+        a: &[L],
+        da: &[L],
+        pp: ([i32; 3], [i32; 3]),
+    ) -> u32 {
+        let n = [raw(a[0]), raw(a[1]), raw(a[2])];
+        let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
+        let (p, dp) = pp;
+        let len = row.len() as u32;
+        let mut drawn = 0u32;
+        match drow {
+            Some(drow) => {
+                let mut z = z;
+                let test = |i: u32| {
+                    let pass = match drow.get_mut(i as usize) {
+                        Some(zb) => {
+                            let zd = D::from_lerp(z);
+                            let pass = zd < *zb;
+                            if pass {
+                                *zb = zd;
+                            }
+                            pass
+                        }
+                        None => false,
+                    };
+                    z = z.add(dz);
+                    pass
+                };
+                self.kernel
+                    .fill(n, dn, p, dp, self.back, len, test, |i, c| {
+                        if let Some(px) = row.get_mut(i as usize) {
+                            *px = F::encode(c);
+                            drawn += 1;
+                        }
+                    });
+            }
+            None => {
+                self.kernel.fill(
+                    n,
+                    dn,
+                    p,
+                    dp,
+                    self.back,
+                    len,
+                    |_| true,
+                    |i, c| {
+                        if let Some(px) = row.get_mut(i as usize) {
+                            *px = F::encode(c);
+                            drawn += 1;
+                        }
+                    },
+                );
+            }
+        }
+        drawn
+    }
+}
+
+impl<L: Lerp, R: Real> crate::raster::Shader<L, 3> for PhongKernelShader<'_, '_, R> {
+    fn shade(&self, a: &[L; 3]) -> Rgb8 {
+        self.at(a, [0; 3])
+    }
+
+    #[inline(always)]
+    fn span_kernel<F: PixelFormat, D: DepthFormat>(
+        &mut self,
+        row: &mut [F::Raw],
+        drow: Option<&mut [D::Raw]>,
+        z: L,
+        dz: L,
+        a: &[L; 3],
+        da: &[L; 3],
+    ) -> Option<u32> {
+        Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, ([0; 3], [0; 3])))
+    }
+}
+
+impl<L: Lerp, R: Real> crate::raster::Shader<L, 6> for PhongKernelShader<'_, '_, R> {
+    fn shade(&self, a: &[L; 6]) -> Rgb8 {
+        self.at(a, [raw(a[3]), raw(a[4]), raw(a[5])])
+    }
+
+    #[inline(always)]
+    fn span_kernel<F: PixelFormat, D: DepthFormat>(
+        &mut self,
+        row: &mut [F::Raw],
+        drow: Option<&mut [D::Raw]>,
+        z: L,
+        dz: L,
+        a: &[L; 6],
+        da: &[L; 6],
+    ) -> Option<u32> {
+        let pp = (
+            [raw(a[3]), raw(a[4]), raw(a[5])],
+            [raw(da[3]), raw(da[4]), raw(da[5])],
+        );
+        Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, pp))
+    }
+}
+
+/// Raw bits of a fixed-point interpolated value (`i32` profiles; the
+/// kernel is never made for the float ones).
+#[inline(always)]
+fn raw<L: Lerp>(v: L) -> i32 {
+    v.round_int(0)
+}
+
+impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 3>
+    for PhongFill<'_, '_, '_, '_, '_, T, D, R>
+{
+    fn span(&mut self, s: &Span<L, 3>) {
+        self.run(s, None);
+    }
+}
+
+impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 6>
+    for PhongFill<'_, '_, '_, '_, '_, T, D, R>
+{
+    fn span(&mut self, s: &Span<L, 6>) {
+        let p = [raw(s.a[3]), raw(s.a[4]), raw(s.a[5])];
+        let dp = [raw(s.da[3]), raw(s.da[4]), raw(s.da[5])];
+        self.run(s, Some((p, dp)));
+    }
+}
+
+#[cfg(test)]
+mod tests;

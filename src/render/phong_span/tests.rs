@@ -1,0 +1,311 @@
+//! The kernel against the same model in `f64` (the twin's `Shade::at` on
+//! the exactly interpolated normal), on random spans and on the
+//! highlight-peak set.
+extern crate std;
+use super::*;
+use crate::geom::Vec3;
+use crate::illum::{Light, LightKind, Material};
+use crate::num::Q16;
+use std::vec::Vec;
+
+fn xorshift(s: &mut u64) -> u64 {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    *s
+}
+
+struct Case {
+    mat: Material<Q16>,
+    lights: Vec<Light<Q16>>,
+    ambient: Q16,
+    specular: Specular,
+    viewer: Viewer,
+}
+
+fn to64(v: Vec3<Q16>) -> Vec3<f64> {
+    Vec3::new(v.x.to_f64(), v.y.to_f64(), v.z.to_f64())
+}
+
+/// Largest channel error (levels) of the kernel against `f64` along one
+/// span of `len` pixels; also checks `skip` keeps the kernel in step.
+fn span_error(c: &Case, n0: [f64; 3], dn: [f64; 3], p0: [f64; 3], dp: [f64; 3], len: i32) -> f64 {
+    let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+    let mat64 = Material {
+        color: to64(c.mat.color),
+        ka: c.mat.ka.to_f64(),
+        kd: c.mat.kd.to_f64(),
+        ks: c.mat.ks.to_f64(),
+        shininess: c.mat.shininess.to_f64(),
+    };
+    let l64: Vec<Light<f64>> = c
+        .lights
+        .iter()
+        .map(|l| Light {
+            kind: match l.kind {
+                LightKind::Point(p) => LightKind::Point(to64(p)),
+                LightKind::Directional(d) => LightKind::Directional(to64(d)),
+            },
+            intensity: l.intensity.to_f64(),
+            color: to64(l.color),
+        })
+        .collect();
+    let twin = Shade::new(&mat64, c.ambient.to_f64(), &l64, c.specular, c.viewer).unwrap();
+    let k = PhongKernel::new(&shade).unwrap();
+    let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
+    let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
+    let (n0, dn, p0, dp) = (q30(n0), q30(dn), q16(p0), q16(dp));
+    let mut sp = k.begin(n0, dn, p0, dp, false);
+    let mut worst = 0f64;
+    for i in 0..len {
+        if i % 7 == 3 {
+            sp.skip();
+            continue;
+        }
+        let got = sp.next();
+        let n = Vec3::new(
+            f64::from(n0[0] + i * dn[0]),
+            f64::from(n0[1] + i * dn[1]),
+            f64::from(n0[2] + i * dn[2]),
+        )
+        .normalize();
+        let p = Vec3::new(
+            f64::from(p0[0] + i * dp[0]) / 65536.0,
+            f64::from(p0[1] + i * dp[1]) / 65536.0,
+            f64::from(p0[2] + i * dp[2]) / 65536.0,
+        );
+        let e = twin.at(n, p);
+        for (g, w) in [got.r, got.g, got.b].into_iter().zip([e.x, e.y, e.z]) {
+            worst = worst.max((f64::from(g) - w * 255.0).abs());
+        }
+    }
+    worst
+}
+
+fn q(v: f64) -> Q16 {
+    Q16::from_f64(v)
+}
+
+fn v3(x: f64, y: f64, z: f64) -> Vec3<Q16> {
+    Vec3::new(q(x), q(y), q(z))
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|c| c / l)
+}
+
+/// The highlight-peak set: shininess 1 to 10 000, a light straight above
+/// the face (normal, light and viewer along +z) and grazing (80° off),
+/// Phong and Blinn, directional light with the viewer at infinity and a
+/// point light with a local viewer; spans of 64 pixels sweeping the
+/// normal across the peak by 0.5 (n = 1) down to 0.005 (n = 10 000)
+/// radians. Within 1 level of `f64` (the budget for `fast`: 2).
+#[test]
+fn highlight_peak_set() {
+    let mut worst = 0f64;
+    let mut table = Vec::new();
+    for &n in &[1.0, 2.0, 5.0, 10.0, 50.0, 100.0, 800.0, 2000.0, 10_000.0] {
+        let mut row = Vec::new();
+        for &(model, viewer, point) in &[
+            (Specular::Phong, Viewer::Infinite, false),
+            (Specular::Blinn, Viewer::Infinite, false),
+            (Specular::Phong, Viewer::Local, true),
+            (Specular::Blinn, Viewer::Local, true),
+        ] {
+            for &graze in &[false, true] {
+                let ang: f64 = if graze { 80f64.to_radians() } else { 0.0 };
+                let ldir = [ang.sin(), 0.0, ang.cos()];
+                // The normal at the peak: H for Blinn and for Phong (R = V).
+                let h = unit([ldir[0], ldir[1], ldir[2] + 1.0]);
+                let light = if point {
+                    Light::point(
+                        v3(ldir[0] * 4.0, ldir[1] * 4.0, ldir[2] * 4.0 - 5.0),
+                        q(1.0),
+                    )
+                } else {
+                    Light::directional(v3(ldir[0], ldir[1], ldir[2]), q(1.0))
+                };
+                let c = Case {
+                    mat: Material {
+                        color: v3(1.0, 0.8, 0.6),
+                        ka: q(0.1),
+                        kd: q(0.3),
+                        ks: q(0.7),
+                        shininess: q(n),
+                    },
+                    lights: std::vec![light],
+                    ambient: q(0.2),
+                    specular: model,
+                    viewer,
+                };
+                let width = (2.0 / n.sqrt()).clamp(0.005, 0.5);
+                let len = 64;
+                let n0 = [h[0] - width, h[1] + 0.01, h[2]];
+                let dn = [2.0 * width / f64::from(len), 0.0, 0.0];
+                // Local viewer: the surface point at (0, 0, -5), the eye at the origin.
+                let (p0, dp) = ([0.0, 0.0, -5.0], [0.001, 0.0, 0.0]);
+                let e = span_error(&c, n0, dn, p0, dp, len);
+                row.push(e);
+                worst = worst.max(e);
+            }
+        }
+        table.push((n, row));
+    }
+    for (n, row) in &table {
+        std::println!("n = {n:>6}: {row:.2?}");
+    }
+    assert!(worst <= 1.0, "{worst}");
+}
+
+/// Random materials, 1 to 4 lights, directional and point, both models
+/// and viewers, spans with normals up to 60° apart: within 1 level.
+#[test]
+fn random_spans_against_f64() {
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut f =
+        |lo: f64, hi: f64| lo + (hi - lo) * ((xorshift(&mut s) >> 11) as f64 / (1u64 << 53) as f64);
+    let mut worst = [0f64; 2];
+    for it in 0..3000 {
+        let viewer = if it % 2 == 0 {
+            Viewer::Infinite
+        } else {
+            Viewer::Local
+        };
+        let point = it % 4 >= 2;
+        let nl = 1 + it % 4;
+        let mut lights = Vec::new();
+        for _ in 0..nl {
+            let mut l = if point && f(0.0, 1.0) < 0.7 {
+                Light::point(v3(f(-5.0, 5.0), f(-5.0, 5.0), f(-3.0, 5.0)), q(f(0.2, 1.5)))
+            } else {
+                Light::directional(v3(f(-1.0, 1.0), f(-1.0, 1.0), f(0.0, 1.0)), q(f(0.2, 1.5)))
+            };
+            l.color = v3(f(0.3, 1.0), f(0.3, 1.0), f(0.3, 1.0));
+            lights.push(l);
+        }
+        let c = Case {
+            mat: Material {
+                color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
+                ka: q(f(0.0, 0.5)),
+                kd: q(f(0.0, 1.0)),
+                ks: q(f(0.0, 1.0)),
+                shininess: q(f(1.0, if it % 3 == 0 { 10_000.0 } else { 200.0 })),
+            },
+            lights,
+            ambient: q(f(0.0, 0.4)),
+            specular: if it % 3 == 1 {
+                Specular::Blinn
+            } else {
+                Specular::Phong
+            },
+            viewer,
+        };
+        let n0 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
+        let n1 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
+        let len = 1 + f(0.0, 79.99) as i32;
+        let dn = [0, 1, 2].map(|k| (n1[k] - n0[k]) / 80.0);
+        let p0 = [f(-2.0, 2.0), f(-2.0, 2.0), f(-8.0, -3.0)];
+        let dp = [f(0.0, 0.03), f(-0.005, 0.005), f(-0.01, 0.01)];
+        let e = span_error(&c, n0, dn, p0, dp, len);
+        let w = &mut worst[usize::from(viewer == Viewer::Local || point)];
+        *w = w.max(e);
+    }
+    std::println!(
+        "kernel vs f64: directional/infinite {:.3}, point/local {:.3} levels",
+        worst[0],
+        worst[1]
+    );
+    assert!(worst[0] <= 1.0 && worst[1] <= 1.0, "{worst:?}");
+}
+
+/// Error of the linearly interpolated specular table against
+/// `(1 - u/m)^m` in `f64`, for table sizes 16 to 512 (the sweep that chose
+/// [`SPEC_SEGMENTS`]): printed, and the chosen size within 0.2 level.
+#[test]
+fn spec_table_sweep() {
+    let mut chosen = 0f64;
+    std::println!("segments | max error (levels of 255), shininess 1 .. 10 000");
+    for seg in [16usize, 32, 64, 128, 256, 512] {
+        let mut worst = 0f64;
+        for &n in &[1.0f64, 2.0, 3.0, 10.0, 31.0, 64.0, 100.0, 800.0, 10_000.0] {
+            let m = (n * 65536.0) as u32;
+            let t = m.min(U_MAX);
+            let tab: Vec<f64> = (0..=seg)
+                .map(|j| {
+                    let u = (u64::from(t) * j as u64 / seg as u64) as u32;
+                    if j == seg && t == m {
+                        0.0
+                    } else {
+                        f64::from(approx16::spec_entry(u, m)) / 32768.0
+                    }
+                })
+                .collect();
+            let mf = f64::from(m) / 65536.0;
+            let tf = f64::from(t) / 65536.0;
+            for k in 0..=20_000 {
+                let u = tf * f64::from(k) / 20_000.0;
+                let pos = u / tf * seg as f64;
+                let j = (pos as usize).min(seg - 1);
+                let fr = pos - j as f64;
+                let got = tab[j] + (tab[j + 1] - tab[j]) * fr;
+                let want = (1.0 - u / mf).max(0.0).powf(mf);
+                worst = worst.max((got - want).abs() * 255.0);
+            }
+        }
+        std::println!("{seg:>8} | {worst:.3}");
+        if seg == SPEC_SEGMENTS {
+            chosen = worst;
+        }
+    }
+    assert!(chosen <= 0.2, "{chosen}");
+}
+
+/// `spec_entry` against `f64` at every table point of a few shininesses.
+#[test]
+fn spec_entries() {
+    let mut worst = 0f64;
+    for &n in &[1.0f64, 1.5, 7.0, 31.9, 32.0, 100.0, 5000.0, 10_000.0] {
+        let m = (n * 65536.0) as u32;
+        for k in 0..=256u32 {
+            let u = (u64::from(m.min(U_MAX)) * u64::from(k) / 256) as u32;
+            let got = f64::from(approx16::spec_entry(u, m)) / 32768.0;
+            let (uf, mf) = (f64::from(u) / 65536.0, f64::from(m) / 65536.0);
+            let want = (1.0 - uf / mf).max(0.0).powf(mf);
+            worst = worst.max((got - want).abs());
+        }
+    }
+    std::println!("spec_entry: {:.2e} ({:.2} bits)", worst, -worst.log2());
+    assert!(worst <= 1.0 / 2048.0, "{worst}");
+}
+
+/// The `1/|n|` table: within `2^-11.4` relative at `|n|² = 1/4`, `2^-14.5`
+/// from `|n|² >= 0.9`.
+#[test]
+fn rsqrt_n_table() {
+    let (mut lo, mut hi) = (0f64, 0f64);
+    for f in (1 << 26)..(5 << 26) {
+        if f % 7 != 0 {
+            continue;
+        }
+        let r = f64::from(rsqrt_n(f).unwrap()) / 65536.0;
+        let want = 1.0 / (f64::from(f) / f64::from(1 << 28)).sqrt();
+        let e = (r / want - 1.0).abs();
+        if f64::from(f) >= 0.9 * f64::from(1 << 28) {
+            hi = hi.max(e);
+        } else {
+            lo = lo.max(e);
+        }
+    }
+    std::println!(
+        "rsqrt_n: {:.2} bits below 0.9, {:.2} bits above",
+        -lo.log2(),
+        -hi.log2()
+    );
+    assert!(
+        lo <= 2f64.powf(-11.4) && hi <= 2f64.powf(-14.5),
+        "{lo} {hi}"
+    );
+    assert_eq!(rsqrt_n((1 << 26) - 1), None);
+    assert_eq!(rsqrt_n(5 << 26), None);
+}
