@@ -784,7 +784,7 @@ mod tests {
     #[test]
     fn object_light_q16_within_its_bound() {
         use crate::geom::Mat3;
-        let mut st = 0x0b1e_c7_5eed_u64;
+        let mut st = 0x000b_1ec7_5eed_u64;
         let mut f = |lo: f64, hi: f64| {
             let r = xorshift(&mut st);
             lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
