@@ -731,7 +731,7 @@ impl<P: Profile> Preparer<'_, P> {
             .zip(vals.chunks_exact_mut(S))
             .enumerate()
         {
-            let (s, q) = pj.project(x.point(*p), sub);
+            let (s, q) = pj.project_inside(x.point(*p), sub);
             *out = s;
             let d = R::<P>::ONE - R::<P>::from_fixed_i32(q, 16);
             let d = scale.map_or(d, |s| d * s);
