@@ -365,6 +365,34 @@ fn shr_round_clamp(p: i64, s: u32, lim: i32) -> i32 {
     v.max(lim.wrapping_neg()).min(lim)
 }
 
+/// [`shr_round_clamp`] without the clamp, for results known to lie
+/// within `±lim <= 2^30`: the same value then (tested), fewer
+/// instructions (no saturation to `i32`, no clamp).
+#[inline(always)]
+#[allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    clippy::cast_possible_wrap
+)]
+fn shr_round(p: i64, s: u32) -> i32 {
+    let (mut hi, mut lo) = ((p >> 32) as i32, p as u32);
+    let k = s.wrapping_sub(1) & 63;
+    if k < 32 {
+        let (l, carry) = lo.overflowing_add(1 << k);
+        lo = l;
+        hi = hi.wrapping_add(i32::from(carry));
+    } else {
+        hi = hi.wrapping_add(1 << (k & 31));
+    }
+    let s = s & 63;
+    if s < 32 {
+        let up = ((hi as u32) << 1) << (31 - (s & 31));
+        ((lo >> (s & 31)) | up) as i32
+    } else {
+        hi >> ((s - 32) & 31)
+    }
+}
+
 /// The plain 64-bit [`shr_round_clamp`] it replaces (the reference of its
 /// test).
 #[cfg(test)]
@@ -416,12 +444,40 @@ impl Proj16 {
     }
 }
 
+impl Proj16 {
+    /// [`Proj16::project`] of a point known to lie inside the near plane
+    /// and the guard band (an object whose bounding sphere is inside every
+    /// plane): the same result, bit for bit (tested), without the clamps
+    /// that cannot act there (`|x k / w| <= GUARD_PX` pixels `< lim`, `q
+    /// <= 1`).
+    #[inline]
+    pub(crate) fn project_inside(&self, p: [i32; 3], sub: u32) -> ([i32; 2], i32) {
+        let w = p[2].saturating_neg().max(1).unsigned_abs();
+        let lz = clz32(w);
+        let m = w << lz;
+        #[allow(clippy::cast_possible_wrap)]
+        let y0 = recip_mant(m) as i32;
+        let fy = wmul((m >> 1) as i32, y0) >> 30;
+        #[allow(clippy::cast_possible_truncation)]
+        let e = ((1i64 << 31) - fy) as i32;
+        #[allow(clippy::cast_possible_truncation)]
+        let y = (wmul(y0, e) >> 30) as i32;
+        #[allow(clippy::cast_possible_truncation)]
+        let g = (wmul(self.k, y) >> 30) as i32;
+        let s = 47 - lz - sub;
+        let dx = shr_round(wmul(p[0], g), s);
+        let dy = shr_round(-wmul(p[1], g), s);
+        let q = shr_round(wmul(self.near, y), 45 - lz).max(0);
+        ([self.cx + dx, self.cy + dy], q)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::{
-        face_cross, face_normal_q14, row_split, row_wide, shr_round_clamp, shr_round_clamp_wide,
-        Proj16,
+        face_cross, face_normal_q14, row_split, row_wide, shr_round, shr_round_clamp,
+        shr_round_clamp_wide, Proj16,
     };
 
     #[test]
@@ -551,6 +607,55 @@ mod tests {
                         }
                     }
                 }
+            }
+        }
+    }
+
+    /// `project_inside` equals `project` for points inside the near
+    /// plane and the guard band, and `shr_round` equals
+    /// `shr_round_clamp` where no clamp acts.
+    #[test]
+    fn project_inside_matches_project() {
+        let mut st = 0x5eed_0bad_f00d_0001u64;
+        let mut next = || {
+            st ^= st << 13;
+            st ^= st >> 7;
+            st ^= st << 17;
+            st
+        };
+        for (k, near, sub) in [
+            (290.0f64, 1.0f64, 4u32),
+            (41.6, 0.5, 4),
+            (2048.0, 0.1, 4),
+            (20.0, 0.01, 8),
+        ] {
+            let p = Proj16 {
+                k: (k * 65536.0) as i32,
+                near: (near * 65536.0) as i32,
+                cx: 120 << sub,
+                cy: 120 << sub,
+                lim: 8192 << sub,
+            };
+            let guard = 4096.0 / k;
+            for _ in 0..200_000 {
+                let u = |r: u64| (r >> 11) as f64 / (1u64 << 53) as f64;
+                // w from near to 16000 units, log-uniform; x, y within
+                // the guard band.
+                let w = near * (16000.0 / near).powf(u(next()));
+                let x = (u(next()) * 2.0 - 1.0) * guard * w * 0.999;
+                let y = (u(next()) * 2.0 - 1.0) * guard * w * 0.999;
+                let raw = |v: f64| (v * 65536.0).round().clamp(-2e9, 2e9) as i32;
+                let q = [raw(x), raw(y), raw(-w).min(-p.near)];
+                assert_eq!(p.project_inside(q, sub), p.project(q, sub), "{q:?} {k}");
+            }
+        }
+        for _ in 0..1_000_000 {
+            let s = 1 + (next() % 62) as u32;
+            let v = (next() as i64) >> (next() % 64);
+            let lim = 1 << 30;
+            let c = shr_round_clamp(v, s, lim);
+            if c.unsigned_abs() < lim as u32 {
+                assert_eq!(shr_round(v, s), c, "{v} {s}");
             }
         }
     }

@@ -7,7 +7,7 @@ use crate::geom::{Affine, Vec3};
 use crate::illum::{Light, LightKind, ObjectLight, Shade, MAX_LIGHTS};
 use crate::mesh::Mesh;
 use crate::num::approx16;
-use crate::num::wide::{det_sign, det_sign_small};
+use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
 use crate::num::{Profile, Real};
 use crate::raster::{first_row, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
@@ -723,6 +723,11 @@ impl<P: Profile> Preparer<'_, P> {
         };
         let sub = P::SUBPIXEL_BITS.get();
         let scale = self.view.depth_scale;
+        // The depth scale `far / (far - near)` as raw Q16 when at most 2
+        // (far at least twice near): `mul16_small`'s range.
+        let scale_small = scale
+            .map(|s| s.to_fixed_i32(16))
+            .filter(|s| s.unsigned_abs() <= SMALL);
         let normals = ctx.normals;
         for (i, ((p, out), v)) in ctx
             .positions
@@ -731,10 +736,14 @@ impl<P: Profile> Preparer<'_, P> {
             .zip(vals.chunks_exact_mut(S))
             .enumerate()
         {
-            let (s, q) = pj.project(x.point(*p), sub);
+            let (s, q) = pj.project_inside(x.point(*p), sub);
             *out = s;
             let d = R::<P>::ONE - R::<P>::from_fixed_i32(q, 16);
-            let d = scale.map_or(d, |s| d * s);
+            let d = match scale_small {
+                // `Q16`'s `*` in 32-bit products, bit for bit (`d <= 1`).
+                Some(s) => R::<P>::from_fixed_i32(mul16_small(d.to_fixed_i32(16), s), 16),
+                None => scale.map_or(d, |s| d * s),
+            };
             v[0] = P::depth(d.clamp(R::<P>::ZERO, R::<P>::ONE));
             if let Some(ol) = ol {
                 let nrm = normals.get(i).copied().unwrap_or([0; 3]);
