@@ -705,9 +705,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
             return Ok(None);
         };
-        let out = [p0, p1, p2]
-            .iter()
-            .position(|&[x, y]| !in_limits(x, y, sub));
+        // All six coordinates within ±lim at once, without branches: `v`
+        // lies in `[-lim, lim]` exactly when `v + lim` (wrapping) is in
+        // `[0, 2·lim]` as a `u32` (`lim <= 2^21`); the same test as
+        // `in_limits`, whose vertex index is looked for only on failure.
+        let lim = sub.coord_limit();
+        let off = |v: i32| (v.wrapping_add(lim) as u32 > (2 * lim) as u32) as u32;
+        let outside = off(p0[0]) | off(p0[1]) | off(p1[0]) | off(p1[1]) | off(p2[0]) | off(p2[1]);
         let [(i0, q0), (i1, q1), (i2, q2)] =
             sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
         let (Some(a), Some(b), Some(c)) = (
@@ -718,7 +722,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             return Ok(None);
         };
         self.stats.triangles += 1;
-        if let Some(i) = out {
+        if outside != 0 {
+            let i = [p0, p1, p2]
+                .iter()
+                .position(|&[x, y]| !in_limits(x, y, sub))
+                .unwrap_or(0);
             return Err(RasterError::OutOfRange(i as u8).into());
         }
         Ok(setup::<P::Lerp, N>(&a, &b, &c, sub, j0, width))
