@@ -34,6 +34,7 @@ impl Edge {
     /// The edge from `(x0, y0)` down to `(x1, y1)` (subpixels, `y1 > y0`,
     /// coordinates within the limits of the [module](super)), positioned at
     /// row `j`.
+    #[inline(always)]
     pub fn new(x0: i32, y0: i32, x1: i32, y1: i32, j: i32, sub: SubpixelBits) -> Self {
         let s = sub.scale();
         let dx = x1 - x0;

@@ -14,7 +14,7 @@
 //! pays for one division per triangle, none per scanline or pixel.
 
 use super::wide::{
-    clz32, clz64, fits_i16, mul_i32, mul_i32_i16, mul_u32, shl64, shr64, NO_LONG_MUL,
+    clz32, clz64, fits_i16, mul_i32, mul_i32_i16, mul_u32, shl64, shr64, NO_DIVIDE, NO_LONG_MUL,
 };
 use super::SubpixelBits;
 use core::fmt::Debug;
@@ -214,6 +214,36 @@ impl Recip {
     }
 }
 
+impl Recip {
+    /// [`Recip::mul_shift`] of a numerator within an `i32`: the same value,
+    /// with one 32 × 32 → 64-bit product and no normalisation.
+    ///
+    /// Why the same: a magnitude `n <= 2^31` loses no bit when
+    /// [`Recip::mul_shift`] normalises it to 31 bits (`v = n·2^(c-1)` for
+    /// `c >= 1` leading zeros; `n = 2^31` has a zero bit 0), so its
+    /// rounded `p >> sh` equals `round(n·m / 2^(k - s))`, which for
+    /// `e = k - s - 33` in `0..32` is `(h >> 1) + (h & 1)` with `h =
+    /// ⌊n·m / 2^32⌋ >> e` (the high word alone holds every bit down to
+    /// the rounding bit). Other shifts (areas below about `2^(s+1)` or
+    /// beyond `2^(s+32)`) take [`Recip::mul_shift`]. Tested equal on
+    /// random and extreme values.
+    #[inline(always)]
+    pub fn mul_shift_i32(&self, num: i32, s: u32) -> i64 {
+        let e = self.k.wrapping_sub(s).wrapping_sub(33);
+        if e >= 32 {
+            return self.mul_shift(num as i64, s);
+        }
+        let h = (mul_u32(num.unsigned_abs(), self.m) >> 32) as u32 >> e;
+        // h < 2^31 (n·m < 2^63): no carry.
+        let r = ((h >> 1) + (h & 1)) as i64;
+        if (num < 0) != self.negative {
+            -r
+        } else {
+            r
+        }
+    }
+}
+
 /// Seeds of the reciprocal: `round(2^23 / (128 + i + ½))` for the top
 /// eight bits `128 + i` of a normalised divisor (relative error < 2^-8).
 static RECIP_SEED: [u16; 128] = {
@@ -236,13 +266,59 @@ static RECIP_SEED: [u16; 128] = {
 /// exact remainder `2^63 + x/2 - q·x` moves `q` to the quotient. Checked
 /// for every `x` in the range: at most two correction steps, and the
 /// intermediate bounds noted below hold (`|E >> 19| < 6·10^8`).
+///
+/// On ARMv7-M (a 32-bit hardware divider) the same quotient by two 32-bit
+/// divisions instead ([`recip63_udiv`]).
 fn recip63(x: u32) -> u64 {
-    if cfg!(target_arch = "arm") {
+    if NO_DIVIDE {
         recip63_newton(x)
+    } else if cfg!(target_arch = "arm") {
+        recip63_udiv(x)
     } else {
         // One instruction on the host's 64-bit divider.
         ((1u64 << 63) + (x / 2) as u64) / (x as u64).max(1 << 31)
     }
+}
+
+/// [`recip63`] by long division in base 2^16 with two 32-bit divisions
+/// (Knuth's algorithm D as in Hacker's Delight's `divlu`): the dividend
+/// `2^63 + ⌊x/2⌋` is `2^31·2^32 + ⌊x/2⌋` and the divisor `x` is already
+/// normalised (bit 31 set, `x > 2^31`), so the quotient fits 32 bits and
+/// each digit `q1`, `q0` is estimated from the divisor's top half `vn1`
+/// (`>= 2^15`) and corrected at most twice. Bounds: `rhat < vn1 < 2^16`
+/// whenever `rhat·2^16 + un` is formed, and a digit is multiplied by
+/// `vn0 < 2^16` only once below 2^16: every intermediate fits a `u32`.
+/// Exact: the very value of the 64-bit division, tested against it.
+fn recip63_udiv(x: u32) -> u64 {
+    if x <= 1 << 31 {
+        return 1 << 32;
+    }
+    const B: u32 = 1 << 16;
+    let (vn1, vn0) = ((x >> 16).max(1), x & 0xffff);
+    let u0 = x / 2;
+    let (un1, un0) = (u0 >> 16, u0 & 0xffff);
+    // First digit of (2^31·2^16 + un1) / x.
+    let mut q1 = (1u32 << 31) / vn1;
+    let mut rhat = (1u32 << 31) - q1 * vn1;
+    while q1 >= B || q1 * vn0 > (rhat << 16) + un1 {
+        q1 -= 1;
+        rhat += vn1;
+        if rhat >= B {
+            break;
+        }
+    }
+    // The remainder (below x) modulo 2^32: 2^31·2^16 vanishes.
+    let un21 = un1.wrapping_sub(q1.wrapping_mul(x));
+    let mut q0 = un21 / vn1;
+    let mut rhat = un21 - q0 * vn1;
+    while q0 >= B || q0 * vn0 > (rhat << 16) + un0 {
+        q0 -= 1;
+        rhat += vn1;
+        if rhat >= B {
+            break;
+        }
+    }
+    ((q1 as u64) << 16) + q0 as u64
 }
 
 /// [`recip63`] without a division (the Cortex-M0 has no divider, the M4 only
@@ -427,7 +503,13 @@ impl Lerp for i32 {
         } else {
             numerators64(a, d)
         };
-        (r.mul_shift(nx, sub.get()), r.mul_shift(ny, sub.get()))
+        let s = sub.get();
+        match (i32::try_from(nx), i32::try_from(ny)) {
+            // The usual case (small triangles, small value differences):
+            // no normalisation, the same values.
+            (Ok(x), Ok(y)) => (r.mul_shift_i32(x, s), r.mul_shift_i32(y, s)),
+            _ => (r.mul_shift(nx, s), r.mul_shift(ny, s)),
+        }
     }
 
     #[inline]
@@ -776,6 +858,7 @@ mod tests {
             let want = ((1u64 << 63) + (x / 2) as u64) / x as u64;
             assert_eq!(recip63(x), want, "x={x}");
             assert_eq!(recip63_newton(x), want, "x={x}");
+            assert_eq!(recip63_udiv(x), want, "x={x}");
         };
         for x in [
             1u32 << 31,
@@ -792,6 +875,16 @@ mod tests {
         while let Some(n) = x.checked_add(997) {
             check(x);
             x = n;
+        }
+        // Every top half of the divisor (the digit estimates of
+        // recip63_udiv) with the extreme low halves.
+        for vn1 in 0x8000u32..=0xffff {
+            for vn0 in [0u32, 1, 2, 0x7fff, 0x8000, 0xfffe, 0xffff] {
+                let x = (vn1 << 16) | vn0;
+                if x > 1 << 31 {
+                    check(x);
+                }
+            }
         }
         // Every seed boundary and its neighbours.
         for top in 128u32..256 {
@@ -831,6 +924,71 @@ mod tests {
                     assert_eq!(anchor32(a0, gx, gy, ox, oy, sub), want);
                 }
             }
+        }
+    }
+
+    #[test]
+    fn mul_shift_i32_equals_mul_shift() {
+        let mut g = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let nums = [
+            0i32,
+            1,
+            -1,
+            2,
+            3,
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
+            1 << 30,
+            -(1 << 30),
+        ];
+        let areas = [
+            1i64,
+            -1,
+            2,
+            3,
+            16,
+            17,
+            255,
+            256,
+            257,
+            1 << 20,
+            (1 << 31) - 1,
+            1 << 31,
+            1 << 40,
+            (1 << 45) - 1,
+            -(1 << 45),
+        ];
+        for &a in &areas {
+            let r = Recip::new(a);
+            for &n in &nums {
+                for s in 1..=8 {
+                    assert_eq!(
+                        r.mul_shift_i32(n, s),
+                        r.mul_shift(n as i64, s),
+                        "a={a} n={n} s={s}"
+                    );
+                }
+            }
+        }
+        for i in 0..200_000u32 {
+            let x = next();
+            let a = ((x as i64) >> (19 + x % 45)).max(1) * if x & 1 == 0 { 1 } else { -1 };
+            let y = next();
+            let n = (y as i32) >> (y % 32);
+            let s = 1 + i % 8;
+            let r = Recip::new(a);
+            assert_eq!(
+                r.mul_shift_i32(n, s),
+                r.mul_shift(n as i64, s),
+                "a={a} n={n} s={s}"
+            );
         }
     }
 

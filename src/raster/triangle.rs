@@ -106,15 +106,8 @@ pub(crate) fn draw_sorted<L: Lerp, const N: usize, S: Spans<L, N>>(
     sink: &mut S,
 ) {
     let width = window.width as i32;
-    if let Some((mut walk, mut row, sx, sy)) = setup(a, b, c, sub, window.y0 as i32, width) {
-        walk.rows(
-            &mut row,
-            &sx,
-            &sy,
-            window.y1 as i32,
-            width,
-            &mut ToSpans(sink),
-        );
+    if let Some((mut walk, row, sx, sy)) = setup(a, b, c, sub, window.y0 as i32, width) {
+        walk.rows(&row, &sx, &sy, window.y1 as i32, width, &mut ToSpans(sink));
     }
 }
 

@@ -2,19 +2,21 @@
 //! band renderer resumes band after band.
 //!
 //! [`setup`] computes everything a triangle needs (its edge walkers, the
-//! gradients, the values at column 0 of its first row); [`Walk::rows`]
-//! walks it down to any row and stops there, keeping its edge walkers and
-//! row values, so that the next band continues where this one stopped.
+//! gradients, the values at pixel (0, 0)); [`Walk::rows`] walks it down to
+//! any row and stops there, keeping its edge walkers, so that the next band
+//! continues where this one stopped (the values do not change while
+//! walking).
 //! Every quantity is stepped exactly (integer DDA, wrapping integer
 //! attribute steps), so a triangle walked in pieces gives the very columns
 //! and values of one walked in one go: a banded frame equals the full frame
 //! byte for byte by construction.
 //!
 //! # The row kernel
-//! Per row: two edge steps, the `x0 < x1` test, the span's start values
-//! (one multiply-add per value from the values at column 0 of the row),
+//! Per row: two edge steps, the `x0 < x1` test, and for a non-empty row the
+//! span's start values (two multiply-adds per value from the values at
+//! pixel (0, 0)),
 //! the span handed to an inlined [`RowSpans`] sink (no call, no `Span`
-//! value), and one addition per value to step the row. A triangle whose
+//! value). A triangle whose
 //! column range lies inside the window (decided once at setup) walks
 //! without clipping; the others clamp each span to `0..width`.
 
@@ -32,14 +34,6 @@ pub(crate) struct Vals<L, const N: usize> {
 }
 
 impl<L: Lerp, const N: usize> Vals<L, N> {
-    #[inline(always)]
-    pub(crate) fn add(&mut self, s: &Self) {
-        self.z = self.z.add(s.z);
-        for (a, d) in self.a.iter_mut().zip(s.a.iter()) {
-            *a = a.add(*d);
-        }
-    }
-
     #[inline(always)]
     pub(crate) fn add_n(mut self, s: &Self, n: i32) -> Self {
         self.z = self.z.add_n(s.z, n);
@@ -106,14 +100,14 @@ impl Walk {
 
     /// Walks rows from the next one down to `until` (excluded) or the
     /// triangle's last row, whichever comes first, handing each non-empty
-    /// span to `sink`. `row` holds the values at column 0 of the next row
-    /// (integers) or at the anchor (floats); `sx`, `sy` their steps.
+    /// span to `sink`. `row` holds the values at pixel (0, 0) (integers) or
+    /// at the anchor (floats); `sx`, `sy` their steps.
     /// `width` is the window's width (spans are clamped to it unless the
     /// triangle lies inside).
     #[inline(always)]
     pub(crate) fn rows<L: Lerp, const N: usize, K: RowSpans<L, N>>(
         &mut self,
-        row: &mut Vals<L, N>,
+        row: &Vals<L, N>,
         sx: &Vals<L, N>,
         sy: &Vals<L, N>,
         until: i32,
@@ -130,7 +124,7 @@ impl Walk {
     #[inline(always)]
     fn rows_in<L: Lerp, const N: usize, K: RowSpans<L, N>, const CLIP: bool>(
         &mut self,
-        row: &mut Vals<L, N>,
+        row: &Vals<L, N>,
         sx: &Vals<L, N>,
         sy: &Vals<L, N>,
         until: i32,
@@ -162,7 +156,10 @@ impl Walk {
                 };
                 if x0 < x1 {
                     if L::EXACT_STEPS {
-                        sink.span(j, x0, x1, &row.add_n(sx, x0), sx);
+                        // From the values at pixel (0, 0): two
+                        // multiply-adds per value, and no work at all on
+                        // an empty row.
+                        sink.span(j, x0, x1, &row.add_n(sx, x0).add_n(sy, j), sx);
                     } else {
                         // Floats: afresh from the anchor on every row (see
                         // `Lerp::EXACT_STEPS`).
@@ -173,9 +170,6 @@ impl Walk {
                 }
                 l.step();
                 r.step();
-                if L::EXACT_STEPS {
-                    row.add(sy);
-                }
             }
             self.left = l;
             self.right = r;
@@ -186,8 +180,8 @@ impl Walk {
 
 /// Sets up the triangle `a`, `b`, `c` (sorted top to bottom by
 /// [`super::triangle::sort3`], within the coordinate limits) to be walked
-/// from row `max(first row, j0)`: the walk, the values at column 0 of
-/// that row (integers) or at the anchor (floats), and their steps per
+/// from row `max(first row, j0)`: the walk, the values at pixel (0, 0)
+/// (integers) or at the anchor (floats), and their steps per
 /// pixel along x and y. `None` for a zero-area triangle or one with no
 /// row at or below `j0`.
 ///
@@ -281,12 +275,14 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
         long_left,
         inside,
     };
-    // Exact steps (integers, wrapping): the values at column 0 of the row,
-    // stepped by `sy` per row; a span's start is then one multiply-add
-    // away, `row + sx·x0`, the very value `anchor + sx·(x0 - ia) +
-    // sy·(j - ja)` modulo 2^32, however the left edge moved.
+    // Exact steps (integers, wrapping): the values at pixel (0, 0), fixed
+    // for the whole walk; a span's start is two multiply-adds away, `row +
+    // sx·x0 + sy·j`, the very value `anchor + sx·(x0 - ia) + sy·(j - ja)`
+    // modulo 2^32, however the left edge moved.
     let row = if L::EXACT_STEPS {
-        anchor.add_n(&sx, ia.wrapping_neg()).add_n(&sy, js - ja)
+        anchor
+            .add_n(&sx, ia.wrapping_neg())
+            .add_n(&sy, ja.wrapping_neg())
     } else {
         anchor
     };

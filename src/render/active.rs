@@ -53,8 +53,9 @@ use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
 pub struct Slot<L, const V: usize> {
     tri: u16,
     walk: Walk,
-    /// Per value (depth first): the value at column 0 of the next row
-    /// (floats: at the anchor), its step per pixel along x, along y.
+    /// Per value (depth first): the value at pixel (0, 0) (floats: at
+    /// the anchor), its step per pixel along x, along y (none of them
+    /// changes while the triangle is walked).
     vals: [[L; 3]; V],
 }
 
@@ -668,15 +669,14 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 let Some(slot) = self.pool.slots.get_mut(si) else {
                     return Ok(());
                 };
-                let (mut row, sx, sy) = unpack::<_, N, V>(&slot.vals);
-                slot.walk.rows(&mut row, &sx, &sy, y1, width, &mut k);
+                let (row, sx, sy) = unpack::<_, N, V>(&slot.vals);
+                slot.walk.rows(&row, &sx, &sy, y1, width, &mut k);
                 if slot.walk.done() {
                     if let Some(f) = self.pool.free.get_mut(self.free_len) {
                         *f = si as u16;
                         self.free_len += 1;
                     }
                 } else {
-                    pack_row(&mut slot.vals, &row);
                     let tail = (self.ring_head + self.ring_len) % CAP.max(1);
                     if let Some(r) = self.pool.ring.get_mut(tail) {
                         *r = si as u16;
@@ -692,11 +692,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     self.cursor += 1;
                 }
                 let fresh = self.fresh::<N>(po, tri, t.y0 as i32, width)?;
-                let Some((mut walk, mut row, sx, sy)) = fresh else {
+                let Some((mut walk, row, sx, sy)) = fresh else {
                     self.stats.pixels += k.drawn;
                     continue;
                 };
-                walk.rows(&mut row, &sx, &sy, y1, width, &mut k);
+                walk.rows(&row, &sx, &sy, y1, width, &mut k);
                 if !walk.done() {
                     self.keep::<N>(ti as u16, walk, &row, &sx, &sy);
                 }
@@ -724,9 +724,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
             return Ok(None);
         };
-        let out = [p0, p1, p2]
-            .iter()
-            .position(|&[x, y]| !in_limits(x, y, sub));
+        // All six coordinates within ±lim at once, without branches: `v`
+        // lies in `[-lim, lim]` exactly when `v + lim` (wrapping) is in
+        // `[0, 2·lim]` as a `u32` (`lim <= 2^21`); the same test as
+        // `in_limits`, whose vertex index is looked for only on failure.
+        let lim = sub.coord_limit();
+        let off = |v: i32| (v.wrapping_add(lim) as u32 > (2 * lim) as u32) as u32;
+        let outside = off(p0[0]) | off(p0[1]) | off(p1[0]) | off(p1[1]) | off(p2[0]) | off(p2[1]);
         let [(i0, q0), (i1, q1), (i2, q2)] =
             sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
         let (Some(a), Some(b), Some(c)) = (
@@ -737,7 +741,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             return Ok(None);
         };
         self.stats.triangles += 1;
-        if let Some(i) = out {
+        if outside != 0 {
+            let i = [p0, p1, p2]
+                .iter()
+                .position(|&[x, y]| !in_limits(x, y, sub))
+                .unwrap_or(0);
             return Err(RasterError::OutOfRange(i as u8).into());
         }
         Ok(setup::<P::Lerp, N>(&a, &b, &c, sub, j0, width))
@@ -805,19 +813,6 @@ fn pack<L: Lerp, const N: usize, const V: usize>(
     for k in 0..N {
         if let Some(x) = v.get_mut(k + 1) {
             *x = [row.a[k], sx.a[k], sy.a[k]];
-        }
-    }
-}
-
-/// Stores the row values (the steps do not change).
-#[inline(always)]
-fn pack_row<L: Lerp, const N: usize, const V: usize>(v: &mut [[L; 3]; V], row: &Vals<L, N>) {
-    if let Some(x) = v.get_mut(0) {
-        x[0] = row.z;
-    }
-    for k in 0..N {
-        if let Some(x) = v.get_mut(k + 1) {
-            x[0] = row.a[k];
         }
     }
 }
