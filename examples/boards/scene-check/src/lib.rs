@@ -7,8 +7,9 @@
 //! must fit the board's pool (so every prepared triangle is set up once),
 //! and the Pico's frames must be the QEMU animation firmware's frames.
 //!
-//! `cargo test --release` (from this folder; `.ci/boards` runs it) prints
-//! the figures the board READMEs and the scene files quote.
+//! `cargo test -- --nocapture` (from this folder; `.ci/boards` runs the
+//! tests) prints, frame by frame, the figures the board READMEs and the
+//! scene files quote; the tests assert them.
 
 #[path = "../../blackpill-ssd1306/src/scene.rs"]
 pub mod blackpill;

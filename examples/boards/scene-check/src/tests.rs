@@ -175,6 +175,15 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     }
     // The figures the scene file and the README state.
     assert_eq!(most.peak, PICO_PEAK);
+    assert_eq!(
+        (most.vertices, most.triangles, most.bytes),
+        (1839, 1574, 51_460)
+    );
+    assert_eq!(
+        [turn[0].crc, turn[1].crc, turn[2].crc],
+        [0x4cca_0265, 0x92df_ef96, 0x1dc1_eb71]
+    );
+    assert_eq!(turn.iter().map(|u| u.peak).min(), Some(49));
     assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);
 }
 
@@ -218,6 +227,10 @@ fn blackpill_turn_fits() {
         );
     }
     assert_eq!(most.peak, BLACKPILL_PEAK);
+    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2412));
+    assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
+    assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
+    assert_eq!(most.pixels, 2488);
     assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);
 }
 
