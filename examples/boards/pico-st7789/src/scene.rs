@@ -67,7 +67,7 @@ const _: () = assert!(
     "the order scratch needs 2 entries per workspace triangle"
 );
 const _: () = assert!(
-    H % ROWS == 0,
+    H.is_multiple_of(ROWS),
     "every band must be full: the DMA sends whole band buffers"
 );
 
