@@ -11,9 +11,10 @@
 //!
 //! Each frame turns the solid by 10° about Y and logs over defmt (RTT) the
 //! CPU cycles (DWT cycle counter) of the geometry, of the raster with the
-//! dither, and of the I2C transfer. A scene that does not fit the
-//! workspace is a compile-time error (the const assertions below) or a
-//! start-up error over defmt.
+//! dither (one band buffer: `Frame::render_bands` hands each band to the
+//! dither), and of the I2C transfer. The scene and the memory plan are in
+//! [`scene`]; a scene that does not fit the workspace is a compile-time
+//! error (the const assertions there) or a start-up error over defmt.
 #![no_std]
 #![no_main]
 
@@ -21,49 +22,16 @@ use defmt_rtt as _;
 use panic_probe as _;
 
 use cortex_m::peripheral::DWT;
-use fixshade::geom::{radians, Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
-use fixshade::mesh::DODECAHEDRON;
-use fixshade::num::{Fast, Q16};
-use fixshade::render::{prepare, Link, Tri, Workspace};
-use fixshade::scene::{Camera, Object, Scene, Shading};
+use fixshade::num::Fast;
+use fixshade::render::{prepare, BandState, RenderError, Tri, Workspace};
 use fixshade::target::eg::{draw_band_with, Levels};
-use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Gray8, Rgb8, Target};
+use fixshade::target::{BandBuf, Gray8};
 use ssd1306::{prelude::*, I2CDisplayInterface, Ssd1306};
 use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 
-/// Screen and bands.
-const W: u32 = 128;
-const H: u32 = 64;
-const ROWS: u32 = 16;
-const BAND_PX: usize = (W * ROWS) as usize;
+mod scene;
 
-/// Workspace capacities: a prepared vertex per triangle corner at most
-/// (the vertex cache merges corners sharing a position and a normal: 60
-/// for the dodecahedron), 7 values per vertex (Phong: normal, position,
-/// depth), every triangle (the camera never clips). 4.6 KB, with the 2 KiB
-/// grey band and the 4 KiB depth band: 11 KB of the F411's 128 KB.
-const TRIANGLES: usize = 36;
-const VERTICES: usize = 3 * TRIANGLES;
-const VALUES: usize = 7 * VERTICES;
-const HEADS: usize = 20;
-
-const _: () = assert!(
-    TRIANGLES >= DODECAHEDRON.triangle_count() && VERTICES >= 3 * DODECAHEDRON.triangle_count(),
-    "the workspace holds fewer triangles or corners than the mesh has"
-);
-const _: () = assert!(
-    HEADS >= DODECAHEDRON.vertex_count(),
-    "the workspace's heads are fewer than the mesh's vertices"
-);
-
-/// Frames per turn.
-const FRAMES: i32 = 36;
-
-/// `n / d` in Q16.16.
-const fn q(n: i32, d: i32) -> Q16 {
-    Q16::from_ratio_const(n, d)
-}
+use scene::{BandPool, BAND_PX, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
@@ -93,103 +61,61 @@ fn main() -> ! {
         defmt::panic!("SSD1306 init: {}", defmt::Debug2Format(&e));
     }
 
-    let mut band = [[0u8; 1]; BAND_PX];
+    let mut pixels = [[0u8; 1]; BAND_PX];
     let mut depth = [0u16; BAND_PX];
     let mut xy = [[0i32; 2]; VERTICES];
     let mut vals = [0i32; VALUES];
     let mut tris = [Tri::EMPTY; TRIANGLES];
-    let mut heads = [0u16; HEADS];
-    let mut links = [Link::default(); VERTICES];
+    let mut order = [0u16; ORDER];
+    let mut pool = BandPool::new();
+    let mut band = match BandBuf::<Gray8>::new(&mut pixels, Some(&mut depth), W, ROWS) {
+        Ok(b) => b,
+        Err(e) => defmt::panic!("band buffer: {}", e),
+    };
 
-    // The view of examples/eg_simulator.rs: the solid fills ~60 of the 64
-    // rows; a bright material (see the README's 1-bit section).
-    let Ok(camera) = Camera::look_at(
-        Vec3::new(q(0, 1), q(0, 1), q(6, 1)),
-        Vec3::ZERO,
-        Vec3::new(q(0, 1), q(1, 1), q(0, 1)),
-        radians(q(20, 1)),
-        q(1, 2),
-        None,
-    ) else {
+    let Ok(camera) = scene::camera() else {
         defmt::panic!("camera refused");
     };
-    let material = Material {
-        color: Vec3::new(q(1, 1), q(9, 10), q(6, 10)),
-        ka: q(2, 10),
-        kd: q(7, 10),
-        ks: q(4, 10),
-        shininess: q(25, 1),
-    };
-    let lights = [Light::point(Vec3::new(q(2, 1), q(2, 1), q(4, 1)), q(1, 1))];
+    let lights = scene::lights();
 
     let mut i = 0;
     loop {
         let t0 = DWT::cycle_count();
-        let angle = q(2 * 314_159 * i, 100_000 * FRAMES);
-        let objects = [Object {
-            mesh: DODECAHEDRON,
-            transform: Affine::from_parts(
-                q(1, 1),
-                Vec3::new(radians(q(20, 1)), angle, q(0, 1)),
-                Vec3::ZERO,
-            ),
-            material,
-            shading: Shading::Phong,
-            cull_backfaces: true,
-        }];
-        let scene = Scene {
-            camera,
-            objects: &objects,
-            lights: &lights,
-            ambient: q(1, 1),
-            specular: Specular::Phong,
-            viewer: Viewer::Local,
-            background: Rgb8::BLACK,
-        };
+        let objects = scene::objects(i);
+        let scene = scene::scene(camera, &objects, &lights);
         let ws = Workspace {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
-            heads: &mut heads,
-            links: &mut links,
         };
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,
             Err(e) => defmt::panic!("frame {} does not fit the workspace: {}", i, e),
         };
         let t1 = DWT::cycle_count();
-        let mut drawn = 0;
-        let mut y0 = 0;
-        while y0 < H {
-            let y1 = (y0 + ROWS).min(H);
-            let n = ((y1 - y0) * W) as usize;
-            let r = FrameBuf::<Gray8>::band(&mut band[..n], W, y0, y1).and_then(|mut fb| {
-                fb.clear(scene.background);
-                let mut db = DepthBuffer::<Depth16>::new(&mut depth[..n], W, y0, y1)?;
-                let stats = frame.render(&scene, &mut fb, Some(&mut db));
-                // Into the driver's 1 KiB buffer, dithered; it cannot fail.
-                let _ = draw_band_with(&fb, &mut oled, &Levels::ONE_BIT);
-                Ok(stats)
-            });
-            match r {
-                Ok(Ok(s)) => drawn += s.pixels,
-                Ok(Err(e)) => defmt::panic!("render: {}", e),
-                Err(e) => defmt::panic!("band: {}", e),
-            }
-            y0 = y1;
-        }
+        let mut state = BandState::new(&mut order, &mut pool);
+        // Each band in 8-bit grey, then dithered into the driver's 1 KiB
+        // buffer (which cannot fail).
+        let stats = match frame.render_bands(&scene, &mut state, &mut band, |b| {
+            let _ = draw_band_with(b, &mut oled, &Levels::ONE_BIT);
+            Ok::<(), RenderError>(())
+        }) {
+            Ok(s) => s,
+            Err(e) => defmt::panic!("render: {}", e),
+        };
         let t2 = DWT::cycle_count();
         if let Err(e) = oled.flush() {
             defmt::panic!("SSD1306 flush: {}", defmt::Debug2Format(&e));
         }
         let t3 = DWT::cycle_count();
         defmt::info!(
-            "frame {}: geometry {} cycles, raster + dither {} cycles, I2C {} cycles, {} pixels drawn",
+            "frame {}: geometry {} cycles, raster + dither {} cycles, I2C {} cycles, {} setups, {} pixels drawn",
             i,
             t1.wrapping_sub(t0),
             t2.wrapping_sub(t1),
             t3.wrapping_sub(t2),
-            drawn
+            stats.triangles,
+            stats.pixels
         );
         i = (i + 1) % FRAMES;
     }

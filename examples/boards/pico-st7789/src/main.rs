@@ -6,17 +6,20 @@
 //! address window of each band). The pixels of a band go out by DMA
 //! straight from the band buffer (fixshade's `Rgb565Be` is the byte order
 //! the ST7789 takes) while the CPU renders the next band into the other
-//! buffer: two 7 680-byte band buffers, one 16-bit depth band. The only
+//! buffer (`Bands::next_band` into buffer `i` while buffer `i ^ 1` is
+//! sent): two 7 680-byte band buffers, one 16-bit depth band. The only
 //! code here that a driver crate does not already have is [`DmaSpi`]:
 //! `mipidsi`'s display interface over rp2040-hal's SPI, with a DMA path
 //! for whole bands.
 //!
-//! The scene is the project's bunny benchmark (white, one directional
-//! light); each frame turns the bunny by 15° about Y (the model transform
-//! from the core's Q16 `sin_cos`), as the QEMU animation firmware does,
-//! and logs over defmt (RTT) the microseconds of the geometry and of the
-//! raster plus transfer, measured with the RP2040's 1 MHz timer. A scene that does not fit the workspace is a compile-time
-//! error (the const assertions below) or a start-up error over defmt.
+//! The scene ([`scene`]) is the project's bunny benchmark (white, one
+//! directional light); each frame turns the bunny by 15° about Y (the
+//! model transform from the core's Q16 `sin_cos`), as the QEMU animation
+//! firmware does, and logs over defmt (RTT) the microseconds of the
+//! geometry and of the raster plus transfer, measured with the RP2040's
+//! 1 MHz timer, and the band renderer's setups and active-triangle peak.
+//! A scene that does not fit the workspace is a compile-time error (the
+//! const assertions in [`scene`]) or a start-up error over defmt.
 #![no_std]
 #![no_main]
 
@@ -27,13 +30,9 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::{SpiBus, MODE_0};
-use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
-use fixshade::mesh::BUNNY;
-use fixshade::num::{Fast, Q16};
-use fixshade::render::{prepare, Link, Tri, Workspace};
-use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8, Target};
+use fixshade::num::Fast;
+use fixshade::render::{prepare, BandState, Tri, Workspace};
+use fixshade::target::{BandBuf, Rgb565Be};
 use fugit::RateExtU32;
 use hal::dma::{single_buffer, Channel, DMAExt, CH0};
 use hal::gpio::bank0::{Gpio16, Gpio18, Gpio19};
@@ -54,40 +53,9 @@ pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 /// The Pico's crystal.
 const XTAL_FREQ_HZ: u32 = 12_000_000;
 
-/// Screen and bands.
-const W: u32 = 240;
-const H: u32 = 240;
-const ROWS: u32 = 16;
-const BAND_PX: usize = (W * ROWS) as usize;
+mod scene;
 
-/// Workspace capacities: every vertex of the bunny (1 839), four values
-/// per vertex (colour Gouraud: three channels and the depth; this white
-/// scene uses two, a coloured material or light four), every triangle
-/// (3 674: a turn shows other faces than any one view; the camera never
-/// clips, so no triangle is split). 110 KB with the
-/// band buffers' 23 KB: 133 KB of the RP2040's 264 KB. A material or
-/// shading that needs more values is a start-up error over defmt.
-const VERTICES: usize = 1839;
-const VALUES: usize = 4 * VERTICES;
-const TRIANGLES: usize = 3674;
-const HEADS: usize = 1839;
-
-const _: () = assert!(
-    VERTICES >= BUNNY.vertex_count() && HEADS >= BUNNY.vertex_count(),
-    "the workspace holds fewer vertices than the mesh has"
-);
-const _: () = assert!(
-    TRIANGLES >= BUNNY.triangle_count(),
-    "the workspace holds fewer triangles than the mesh has"
-);
-
-/// Frames per turn.
-const FRAMES: i32 = 24;
-
-/// `n / d` in Q16.16.
-const fn q(n: i32, d: i32) -> Q16 {
-    Q16::from_ratio_const(n, d)
-}
+use scene::{BandPool, BAND_PX, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
 
 type Mosi = Pin<Gpio19, FunctionSpi, PullDown>;
 type Sck = Pin<Gpio18, FunctionSpi, PullDown>;
@@ -235,7 +203,8 @@ fn main() -> ! {
         .reset_pin(rst)
         .init(&mut timer);
 
-    // Memory: two band buffers for the DMA, the depth band, the workspace.
+    // Memory: two band buffers for the DMA, the depth band (shared: only
+    // the band being rendered uses it), the workspace, the band state.
     let (Some(a), Some(b)) = (
         cortex_m::singleton!(: [u8; 2 * BAND_PX] = [0; 2 * BAND_PX]),
         cortex_m::singleton!(: [u8; 2 * BAND_PX] = [0; 2 * BAND_PX]),
@@ -244,102 +213,71 @@ fn main() -> ! {
     };
     let mut spare: Option<Band> = Some(b);
     let mut next: Option<Band> = Some(a);
-    let depth = cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]).unwrap();
-    let xy = cortex_m::singleton!(: [[i32; 2]; VERTICES] = [[0; 2]; VERTICES]).unwrap();
-    let vals = cortex_m::singleton!(: [i32; VALUES] = [0; VALUES]).unwrap();
-    let tris = cortex_m::singleton!(: [Tri; TRIANGLES] = [Tri::EMPTY; TRIANGLES]).unwrap();
-    let heads = cortex_m::singleton!(: [u16; HEADS] = [0; HEADS]).unwrap();
-    let links = cortex_m::singleton!(: [Link; VERTICES] = [Link::default(); VERTICES]).unwrap();
-
-    // The bunny benchmark scene (host-tests/scenes/bunny-gouraud.toml),
-    // with the Q16 values the host's `Q16::from_f64` gives: the frames
-    // are the firmware animation's (examples/firmware/src/bin/animate.rs),
-    // whose cost is measured under QEMU.
-    let Ok(camera) = Camera::look_at(
-        Vec3::new(q(0, 1), q(0, 1), Q16::from_bits(257_032)), // 3.922
-        Vec3::ZERO,
-        Vec3::new(q(0, 1), q(1, 1), q(0, 1)),
-        Q16::from_bits(51_472), // 45° in radians
-        q(1, 1),
-        Some(q(10, 1)),
+    let (Some(depth), Some(xy), Some(vals), Some(tris), Some(order), Some(pool)) = (
+        cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
+        cortex_m::singleton!(: [[i32; 2]; VERTICES] = [[0; 2]; VERTICES]),
+        cortex_m::singleton!(: [i32; VALUES] = [0; VALUES]),
+        cortex_m::singleton!(: [Tri; TRIANGLES] = [Tri::EMPTY; TRIANGLES]),
+        cortex_m::singleton!(: [u16; ORDER] = [0; ORDER]),
+        cortex_m::singleton!(: BandPool = BandPool::new()),
     ) else {
+        defmt::panic!("workspace taken twice");
+    };
+
+    let Ok(camera) = scene::camera() else {
         defmt::panic!("camera refused");
     };
-    // I = 0.2 + 0.8 max(0, N·L), white.
-    let material = Material {
-        color: Vec3::new(q(1, 1), q(1, 1), q(1, 1)),
-        ka: q(1, 1),
-        kd: q(1, 1),
-        ks: q(0, 1),
-        shininess: q(1, 1),
-    };
-    let lights = [Light::directional(
-        Vec3::new(q(1, 1), q(1, 1), q(1, 1)),
-        Q16::from_bits(52_429), // 0.8
-    )];
+    let lights = scene::lights();
 
     let mut i = 0;
     loop {
         let t0 = timer.get_counter();
-        // 2π·i/FRAMES rounded in Q16 (2π = 411 775 / 65 536), as the
-        // firmware animation turns.
-        let angle = Q16::from_bits((411_775 * i + FRAMES / 2) / FRAMES);
-        let objects = [Object {
-            mesh: BUNNY,
-            transform: Affine::from_parts(q(1, 1), Vec3::new(q(0, 1), angle, q(0, 1)), Vec3::ZERO),
-            material,
-            shading: Shading::Gouraud,
-            cull_backfaces: true,
-        }];
-        let scene = Scene {
-            camera,
-            objects: &objects,
-            lights: &lights,
-            ambient: Q16::from_bits(13_107), // 0.2
-            specular: Specular::Phong,
-            viewer: Viewer::Local,
-            background: Rgb8::BLACK,
-        };
+        let objects = scene::objects(i);
+        let scene = scene::scene(camera, &objects, &lights);
         let ws = Workspace {
             xy: &mut xy[..],
             vals: &mut vals[..],
             tris: &mut tris[..],
-            heads: &mut heads[..],
-            links: &mut links[..],
         };
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,
             Err(e) => defmt::panic!("frame {} does not fit the workspace: {}", i, e),
         };
         let t1 = timer.get_counter();
-        let mut drawn = 0;
-        let mut y0 = 0;
-        while y0 < H {
-            let y1 = (y0 + ROWS).min(H);
-            let n = ((y1 - y0) * W) as usize;
+        let mut state = BandState::new(&mut order[..], &mut *pool);
+        let mut bands = match frame.bands(&scene, &mut state, ROWS) {
+            Ok(b) => b,
+            Err(e) => defmt::panic!("frame {}: band order: {}", i, e),
+        };
+        loop {
             let Some(buf) = next.take() else {
                 defmt::panic!("no free band buffer");
             };
-            let (pixels, _) = buf.as_chunks_mut::<2>();
-            let stats =
-                FrameBuf::<Rgb565Be>::band(&mut pixels[..n], W, y0, y1).and_then(|mut fb| {
-                    fb.clear(scene.background);
-                    let mut db = DepthBuffer::<Depth16>::new(&mut depth[..n], W, y0, y1)?;
-                    Ok(frame.render(&scene, &mut fb, Some(&mut db)))
-                });
-            match stats {
-                Ok(Ok(s)) => drawn += s.pixels,
-                Ok(Err(e)) => defmt::panic!("render: {}", e),
-                Err(e) => defmt::panic!("band: {}", e),
-            }
+            // The next band into this buffer while the other one (the
+            // band above) is still going out by DMA.
+            let rendered = {
+                let (pixels, _) = buf.as_chunks_mut::<2>();
+                match BandBuf::<Rgb565Be>::new(pixels, Some(&mut depth[..]), W, ROWS) {
+                    Ok(mut band) => bands.next_band(&mut band),
+                    Err(e) => defmt::panic!("band buffer: {}", e),
+                }
+            };
+            let win = match rendered {
+                Ok(Some(win)) => win,
+                Ok(None) => {
+                    next = Some(buf);
+                    break;
+                }
+                Err(e) => defmt::panic!("render: {}", e),
+            };
             // mipidsi sets the window and starts the memory write (waiting
             // for the previous band's DMA), then this band goes out by DMA
             // while the loop renders the next one into the other buffer.
             let _ = display.set_pixels(
                 0,
-                y0 as u16,
+                win.y0 as u16,
                 (W - 1) as u16,
-                (y1 - 1) as u16,
+                (win.y1 - 1) as u16,
                 core::iter::empty::<Rgb565>(),
             );
             // SAFETY (mipidsi's contract for `dcs`): sending pixel data
@@ -350,16 +288,18 @@ fn main() -> ! {
             // The buffer of the previous band, free since `set_pixels`
             // waited for its transfer (the first band uses the spare).
             next = dcs.take_free().or_else(|| spare.take());
-            y0 = y1;
         }
         let t2 = timer.get_counter();
+        let stats = bands.stats();
         defmt::info!(
-            "frame {}: geometry {} us, raster + transfer {} us, {} prepared triangles, {} pixels drawn",
+            "frame {}: geometry {} us, raster + transfer {} us, {} prepared triangles, {} setups, active peak {}, {} pixels drawn",
             i,
             (t1 - t0).to_micros(),
             (t2 - t1).to_micros(),
             frame.triangle_count(),
-            drawn
+            stats.triangles,
+            bands.active_peak(),
+            stats.pixels
         );
         i = (i + 1) % FRAMES;
     }

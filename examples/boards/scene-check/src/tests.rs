@@ -1,0 +1,266 @@
+use fixshade::num::Fast;
+use fixshade::render::{prepare, BandState, Frame, Tri, Workspace};
+use fixshade::target::{BandBuf, Depth16, DepthFormat, Gray8, PixelFormat, Rgb565Be};
+
+/// CRC-32 (ISO-HDLC: reflected polynomial 0xEDB88320, initial and final
+/// XOR all ones), the firmware's frame checksum.
+fn crc32(bytes: impl IntoIterator<Item = u8>, crc: u32) -> u32 {
+    let mut c = !crc;
+    for b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0xEDB8_8320
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+#[test]
+fn crc32_of_the_check_string() {
+    assert_eq!(crc32(*b"123456789", 0), 0xCBF4_3926);
+}
+
+/// What one frame of a turn used.
+#[derive(Debug, Default, Clone, Copy)]
+struct Use {
+    vertices: usize,
+    triangles: usize,
+    bytes: usize,
+    peak: usize,
+    setups: u32,
+    pixels: u32,
+    covered: u32,
+    crc: u32,
+}
+
+/// Renders `frame` band by band, the board's way, with its pool.
+fn bands<F: PixelFormat, const CAP: usize, const V: usize>(
+    frame: &Frame<'_, Fast>,
+    scene: &fixshade::scene::Scene<'_, '_, fixshade::num::Q16>,
+    pool: &mut fixshade::render::Pool<i32, CAP, V>,
+    order: &mut [u16],
+    w: u32,
+    rows: u32,
+) -> Use {
+    let n = (w * rows) as usize;
+    let mut px = vec![F::Raw::default(); n];
+    let mut z = vec![0u16; n];
+    let mut band = BandBuf::<F>::new(&mut px, Some(&mut z), w, rows).unwrap();
+    let mut state = BandState::new(order, pool);
+    let mut bands = frame.bands(scene, &mut state, rows).unwrap();
+    let mut u = Use::default();
+    while bands.next_band(&mut band).unwrap().is_some() {
+        u.crc = crc32(band.bytes(), u.crc);
+        u.covered += band
+            .depth()
+            .unwrap()
+            .iter()
+            .filter(|&&d| d != Depth16::CLEAR)
+            .count() as u32;
+    }
+    u.peak = bands.active_peak();
+    u.setups = bands.stats().triangles;
+    u.pixels = bands.stats().pixels;
+    u.vertices = frame.vertex_count();
+    u.triangles = frame.triangle_count();
+    u.bytes = frame.bytes_used();
+    u
+}
+
+fn max(a: Use, b: Use) -> Use {
+    Use {
+        vertices: a.vertices.max(b.vertices),
+        triangles: a.triangles.max(b.triangles),
+        bytes: a.bytes.max(b.bytes),
+        peak: a.peak.max(b.peak),
+        setups: a.setups.max(b.setups),
+        pixels: a.pixels.max(b.pixels),
+        covered: a.covered.max(b.covered),
+        crc: 0,
+    }
+}
+
+/// Frame `i` of the firmware animation's turn of `bunny-gouraud`
+/// (examples/firmware/src/bin/animate.rs: every object turned by
+/// `round(2π·i/24)` in Q16 more about Y), rendered in the Pico's bands.
+fn firmware_frame(i: u32, ws: Workspace<'_, i32>, order: &mut [u16]) -> Use {
+    use fixshade::geom::{Affine, Vec3};
+    use fixshade::num::Q16;
+    let spec = fixshade_scenes::SCENES
+        .iter()
+        .find(|s| s.name == "bunny-gouraud")
+        .unwrap();
+    let angle = Q16::from_bits(((411_775 * i64::from(i) + 12) / 24) as i32);
+    let objects: Vec<_> = spec
+        .objects
+        .iter()
+        .map(|o| {
+            let r = o.rotation;
+            fixshade::scene::Object {
+                transform: Affine::from_parts(
+                    o.scale,
+                    Vec3::new(r.x, r.y + angle, r.z),
+                    o.translation,
+                ),
+                ..o.object()
+            }
+        })
+        .collect();
+    let scene = spec.scene(spec.camera().unwrap(), &objects);
+    let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
+    let mut pool = Box::new(fixshade_scenes::BandPool::new());
+    bands::<Rgb565Be, { fixshade_scenes::POOL_SLOTS }, { fixshade_scenes::POOL_VALUES }>(
+        &frame,
+        &scene,
+        &mut pool,
+        order,
+        spec.width,
+        fixshade_scenes::BAND_ROWS,
+    )
+}
+
+#[test]
+fn pico_turn_fits_and_is_the_firmware_animation() {
+    use crate::pico::*;
+    let mut xy = vec![[0i32; 2]; VERTICES];
+    let mut vals = vec![0i32; VALUES];
+    let mut tris = vec![Tri::EMPTY; TRIANGLES];
+    let mut order = vec![0u16; ORDER];
+    let mut pool = Box::new(BandPool::new());
+    let camera = camera().unwrap();
+    let lights = lights();
+    let mut most = Use::default();
+    let mut turn = Vec::new();
+    for i in 0..FRAMES {
+        let objects = objects(i);
+        let scene = scene(camera, &objects, &lights);
+        let ws = Workspace {
+            xy: &mut xy,
+            vals: &mut vals,
+            tris: &mut tris,
+        };
+        let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
+        let u = bands::<Rgb565Be, POOL_SLOTS, POOL_VALUES>(
+            &frame, &scene, &mut pool, &mut order, W, ROWS,
+        );
+        println!("pico frame {i:2}: crc 0x{:08x} {u:?}", u.crc);
+        turn.push(u);
+        most = max(most, u);
+    }
+    println!("pico turn, most: {most:?}");
+    for (i, u) in turn.iter().enumerate() {
+        // The pool holds every active triangle: each set up once.
+        assert!(u.peak <= POOL_SLOTS, "frame {i}: {u:?}");
+        assert_eq!(u.setups as usize, u.triangles, "frame {i}");
+        assert!(
+            u.covered > 5000 && u.pixels >= u.covered,
+            "frame {i}: {u:?}"
+        );
+        // The very frame the firmware animation renders (and QEMU measures).
+        let ws = Workspace {
+            xy: &mut xy,
+            vals: &mut vals,
+            tris: &mut tris,
+        };
+        let f = firmware_frame(i as u32, ws, &mut order);
+        assert_eq!(
+            (u.crc, u.covered, u.pixels),
+            (f.crc, f.covered, f.pixels),
+            "frame {i}"
+        );
+    }
+    // The figures the scene file and the README state.
+    assert_eq!(most.peak, PICO_PEAK);
+    assert_eq!(
+        (most.vertices, most.triangles, most.bytes),
+        (1839, 1574, 51_460)
+    );
+    assert_eq!(
+        [turn[0].crc, turn[1].crc, turn[2].crc],
+        [0x4cca_0265, 0x92df_ef96, 0x1dc1_eb71]
+    );
+    assert_eq!(turn.iter().map(|u| u.peak).min(), Some(49));
+    assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);
+}
+
+/// The Pico turn's active-triangle peak (pico-st7789/src/scene.rs).
+const PICO_PEAK: usize = 69;
+
+#[test]
+fn blackpill_turn_fits() {
+    use crate::blackpill::*;
+    let mut xy = [[0i32; 2]; VERTICES];
+    let mut vals = [0i32; VALUES];
+    let mut tris = [Tri::EMPTY; TRIANGLES];
+    let mut order = [0u16; ORDER];
+    let mut pool = BandPool::new();
+    let camera = camera().unwrap();
+    let lights = lights();
+    let mut most = Use::default();
+    let mut turn = Vec::new();
+    for i in 0..FRAMES {
+        let objects = objects(i);
+        let scene = scene(camera, &objects, &lights);
+        let ws = Workspace {
+            xy: &mut xy,
+            vals: &mut vals,
+            tris: &mut tris,
+        };
+        let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
+        let u =
+            bands::<Gray8, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut pool, &mut order, W, ROWS);
+        println!("blackpill frame {i:2}: {u:?}");
+        turn.push(u);
+        most = max(most, u);
+    }
+    println!("blackpill turn, most: {most:?}");
+    for (i, u) in turn.iter().enumerate() {
+        assert!(u.peak <= POOL_SLOTS, "frame {i}: {u:?}");
+        assert_eq!(u.setups as usize, u.triangles, "frame {i}");
+        assert!(
+            u.covered > 1500 && u.pixels >= u.covered,
+            "frame {i}: {u:?}"
+        );
+    }
+    assert_eq!(most.peak, BLACKPILL_PEAK);
+    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2412));
+    assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
+    assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
+    assert_eq!(most.pixels, 2488);
+    assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);
+}
+
+/// The Black Pill turn's active-triangle peak (blackpill-ssd1306/src/scene.rs).
+const BLACKPILL_PEAK: usize = 12;
+
+/// The memory figures the READMEs state: the pools and the workspaces.
+#[test]
+fn memory_figures() {
+    use core::mem::size_of;
+    let ws = |v: usize, vals: usize, t: usize| v * 8 + vals * 4 + t * size_of::<Tri>();
+    let pico = (
+        size_of::<crate::pico::BandPool>(),
+        ws(
+            crate::pico::VERTICES,
+            crate::pico::VALUES,
+            crate::pico::TRIANGLES,
+        ),
+        2 * crate::pico::ORDER,
+    );
+    let blackpill = (
+        size_of::<crate::blackpill::BandPool>(),
+        ws(
+            crate::blackpill::VERTICES,
+            crate::blackpill::VALUES,
+            crate::blackpill::TRIANGLES,
+        ),
+        2 * crate::blackpill::ORDER,
+    );
+    println!("pool, workspace, order bytes: pico {pico:?}, blackpill {blackpill:?}");
+    assert_eq!(pico, (11_200, 95_572, 14_696));
+    assert_eq!(blackpill, (3_008, 2_664, 144));
+}
