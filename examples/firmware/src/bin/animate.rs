@@ -24,18 +24,17 @@
 #![no_std]
 #![no_main]
 
-use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::geom::{Affine, Vec3};
 use fixshade::num::{Fast, Q16};
-use fixshade::render::{prepare, Link, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, RenderError, Tri, Workspace};
 use fixshade::scene::Object;
-use fixshade::target::{Depth16, DepthBuffer, DepthFormat, FrameBuf, Rgb565Be, Target};
+use fixshade::target::{Depth16, DepthFormat};
 use fixshade_scenes::{
-    Crc32, FrameError, Needs, Pixel, SceneSpec, BAND_PIXELS, BAND_ROWS, MAX_NEEDS, MAX_OBJECTS,
-    SCENES,
+    Band, BandPool, Crc32, FrameError, Needs, Pixel, SceneSpec, BAND_PIXELS, BAND_ROWS, MAX_NEEDS,
+    MAX_OBJECTS, SCENES,
 };
 
 /// The animated scenes (names of [`SCENES`]).
@@ -74,8 +73,8 @@ struct Memory {
     xy: &'static mut [[i32; 2]; CAP.vertices],
     vals: &'static mut [i32; CAP.values],
     tris: &'static mut [Tri; CAP.triangles],
-    heads: &'static mut [u16; CAP.heads],
-    links: &'static mut [Link; CAP.vertices],
+    order: &'static mut [u16; 2 * CAP.triangles],
+    pool: &'static mut BandPool,
 }
 
 impl Memory {
@@ -84,8 +83,6 @@ impl Memory {
             xy: &mut self.xy[..],
             vals: &mut self.vals[..],
             tris: &mut self.tris[..],
-            heads: &mut self.heads[..],
-            links: &mut self.links[..],
         }
     }
 }
@@ -129,8 +126,6 @@ fn frame(spec: &SceneSpec, i: u32, mem: &mut Memory, measure: bool) -> Result<St
                 xy: &mut mem.xy[..],
                 vals: &mut mem.vals[..],
                 tris: &mut mem.tris[..],
-                heads: &mut mem.heads[..],
-                links: &mut mem.links[..],
             };
             prepare::<Fast>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
         }
@@ -152,27 +147,26 @@ fn frame(spec: &SceneSpec, i: u32, mem: &mut Memory, measure: bool) -> Result<St
         setups: 0,
         triangles: frame.triangle_count() as u32,
     };
-    let (w, h) = (spec.width, spec.height);
+    let w = spec.width;
     let mut crc = Crc32::new();
-    let mut y0 = 0;
-    while y0 < h {
-        let y1 = (y0 + BAND_ROWS).min(h);
-        let n = ((y1 - y0) * w) as usize;
-        let (px, z) = (&mut mem.pixels[..n], &mut mem.depth[..n]);
+    let mut band = Band::new(&mut mem.pixels[..], Some(&mut mem.depth[..]), w, BAND_ROWS)?;
+    let mut state = BandState::new(&mut mem.order[..], mem.pool);
+    mark(measure);
+    let bands = frame.bands(&scene, &mut state, BAND_ROWS);
+    mark(measure);
+    let mut bands = bands?;
+    loop {
         mark(measure);
-        let r = (|| {
-            let mut fb = FrameBuf::<Rgb565Be>::band(&mut px[..], w, y0, y1)?;
-            fb.clear(scene.background);
-            let mut db = DepthBuffer::<Depth16>::new(&mut z[..], w, y0, y1)?;
-            Ok::<_, FrameError>(frame.render(&scene, &mut fb, Some(&mut db))?)
-        })();
+        let r = bands.next_band(&mut band);
         mark(measure);
-        let s = r?;
-        stats.setups += s.triangles;
-        crc.update(FrameBuf::<Rgb565Be>::band(px, w, y0, y1)?.bytes());
+        if r?.is_none() {
+            break;
+        }
+        crc.update(band.bytes());
+        let z = band.depth().unwrap_or(&[]);
         stats.covered += z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
-        y0 = y1;
     }
+    stats.setups = bands.stats().triangles;
     if measure {
         cortex_m::asm::sev();
     }
@@ -228,38 +222,27 @@ fn main() -> ! {
     static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
     static mut VALS: [i32; CAP.values] = [0; CAP.values];
     static mut TRIS: [Tri; CAP.triangles] = [Tri::EMPTY; CAP.triangles];
-    static mut HEADS: [u16; CAP.heads] = [0; CAP.heads];
-    static mut LINKS: MaybeUninit<[Link; CAP.vertices]> = MaybeUninit::uninit();
-    let links = {
-        let p = LINKS.as_mut_ptr().cast::<Link>();
-        for i in 0..CAP.vertices {
-            // SAFETY: `i` is within the array; writing into uninitialised
-            // memory through a raw pointer is sound.
-            unsafe { p.add(i).write(Link::default()) };
-        }
-        // SAFETY: every element was initialised above.
-        unsafe { LINKS.assume_init_mut() }
-    };
+    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut POOL: BandPool = BandPool::new();
     let mut mem = Memory {
         pixels: PIXELS,
         depth: DEPTH,
         xy: XY,
         vals: VALS,
         tris: TRIS,
-        heads: HEADS,
-        links,
+        order: ORDER,
+        pool: POOL,
     };
     let status = match run(&mut mem) {
         Ok(()) => debug::EXIT_SUCCESS,
         Err((name, i, e)) => {
             hprintln!(
-                "error: scene {} frame {} does not fit the animation's workspace (capacities: {} vertices, {} values, {} triangles, {} heads): {}",
+                "error: scene {} frame {} does not fit the animation's workspace (capacities: {} vertices, {} values, {} triangles): {}",
                 name,
                 i,
                 CAP.vertices,
                 CAP.values,
                 CAP.triangles,
-                CAP.heads,
                 e
             );
             debug::EXIT_FAILURE
