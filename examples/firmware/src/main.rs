@@ -19,6 +19,12 @@
 //! semihosting with status 0, or 1 on any error or panic.
 #![no_std]
 #![no_main]
+// With a `profile-*` feature, `profiled::main` is the entry and the
+// default build's frame and span-loop code is unused.
+#![cfg_attr(feature = "profiled", allow(dead_code, unused_imports))]
+
+#[cfg(feature = "profiled")]
+mod profiled;
 
 use core::hint::black_box;
 use core::mem::MaybeUninit;
@@ -348,6 +354,7 @@ fn workspace_bytes(mem: &Memory) -> usize {
         + core::mem::size_of_val(mem.links)
 }
 
+#[cfg(not(feature = "profiled"))]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once),

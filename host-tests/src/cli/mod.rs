@@ -28,6 +28,8 @@ pub mod common;
 pub mod compare;
 mod error;
 pub mod ideal;
+pub mod measure;
+pub mod pick;
 pub mod render;
 pub mod report;
 pub mod scenes;
@@ -67,6 +69,12 @@ pub enum Command {
     /// Sweep scenes × shading modes × profiles and write the
     /// accuracy-versus-speed report (HTML, Markdown, JSON).
     Report(report::ReportArgs),
+    /// Measure every profile's chip costs under QEMU; write or check
+    /// docs/measurements/firmware.json.
+    MeasureFirmware(measure::MeasureArgs),
+    /// The most accurate configuration that fits a chip's clock, frame
+    /// rate and RAM.
+    Pick(pick::PickArgs),
 }
 
 impl Command {
@@ -79,6 +87,8 @@ impl Command {
             Self::Render(args) => render::run(args),
             Self::Compare(args) => compare::run(args),
             Self::Report(args) => report::run(args),
+            Self::MeasureFirmware(args) => measure::run(args),
+            Self::Pick(args) => pick::run(args),
         }
     }
 }

@@ -24,6 +24,17 @@ pub struct ReportArgs {
     /// figures are not available.
     #[arg(long, value_name = "FILE")]
     pub firmware_results: Option<PathBuf>,
+    /// The chip measurements (default: docs/measurements/firmware.json of
+    /// the checkout; refused when stale).
+    #[arg(long, value_name = "FILE")]
+    pub measurements: Option<PathBuf>,
+    /// Use chip measurements made from other sources (the page says so).
+    #[arg(long)]
+    pub allow_stale: bool,
+    /// Re-measure every profile on both chips under QEMU (needs
+    /// qemu-system-arm, gcc and the thumb targets; minutes).
+    #[arg(long)]
+    pub measure_firmware: bool,
 }
 
 /// Runs the sweep and writes the report; prints the summary and the files.
@@ -33,6 +44,9 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         quick: args.quick,
         firmware_results: args.firmware_results.clone(),
         progress: true,
+        measurements: args.measurements.clone(),
+        allow_stale: args.allow_stale,
+        measure_firmware: args.measure_firmware,
     })?;
     let mut text = String::new();
     for line in &out.data.summary {

@@ -35,8 +35,12 @@
 //! a temporary name and renamed, `index.html` last: an interrupted run
 //! leaves no half-written page.
 
+mod chip_section;
+pub mod chips;
 mod embedded;
+pub mod measure;
 mod page;
+pub mod picks;
 mod plot;
 mod summary;
 mod sweep;
@@ -51,6 +55,7 @@ use crate::cli::{write_atomically, CliError};
 use crate::ideal::Shading;
 use crate::metrics::Metrics;
 
+pub use chip_section::{ChipSection, Table};
 pub use embedded::{parse_firmware_results, read_firmware_results, EmbeddedResult, Target};
 pub use plot::pareto_front;
 pub use summary::{
@@ -122,6 +127,14 @@ pub struct ReportOptions {
     /// Draw a progress bar on stderr (never drawn when stderr is not a
     /// terminal).
     pub progress: bool,
+    /// The chip measurements (default: [`chips::DEFAULT_PATH`] of the
+    /// checkout).
+    pub measurements: Option<PathBuf>,
+    /// Use measurements from other sources (the page says they are
+    /// stale).
+    pub allow_stale: bool,
+    /// Re-measure the firmware under QEMU instead of reading the file.
+    pub measure_firmware: bool,
 }
 
 /// Host cost of one record.
@@ -273,6 +286,8 @@ pub struct ReportData {
     pub embedded_available: bool,
     /// The summary, as on the page.
     pub summary: Vec<String>,
+    /// The chip section (picks, costs per profile on the chips).
+    pub chips: Option<ChipSection>,
 }
 
 /// What a run wrote.
@@ -300,6 +315,35 @@ pub fn prepare_out_dir(out: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The chip measurements of a run: re-measured (`--measure-firmware`),
+/// or read from the file and checked to be fresh (unless allowed stale).
+/// Returns them, the file's name and whether they are stale.
+fn chip_measurements(
+    opts: &ReportOptions,
+) -> Result<(chips::Measurements, String, bool), CliError> {
+    let root = chips::repo_root();
+    if opts.measure_firmware {
+        let ms = measure::measure_firmware(&measure::MeasureOptions {
+            root,
+            profiles: crate::core_render::CoreProfile::ALL.to_vec(),
+            progress: opts.progress,
+        })?;
+        return Ok((ms, "a fresh measurement (--measure-firmware)".into(), false));
+    }
+    let path = opts
+        .measurements
+        .clone()
+        .unwrap_or_else(|| root.join(chips::DEFAULT_PATH));
+    let file = path.display().to_string();
+    let ms = chips::load(&path)?;
+    let stale = match chips::check_fresh(&ms, &root, &file) {
+        Ok(()) => false,
+        Err(_) if opts.allow_stale => true,
+        Err(e) => return Err(e),
+    };
+    Ok((ms, file, stale))
+}
+
 /// Runs the sweep and writes the report (see the [module docs](self)).
 ///
 /// # Errors
@@ -308,12 +352,27 @@ pub fn prepare_out_dir(out: &Path) -> Result<(), CliError> {
 /// input, exit status 2). Checked before the sweep starts, except
 /// failures while writing.
 pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
+    let started = Instant::now();
+    let (ms, ms_file, stale) = chip_measurements(opts)?;
     let embedded = match &opts.firmware_results {
         Some(path) => read_firmware_results(path)?,
-        None => Vec::new(),
+        None => {
+            let text = serde_json::to_string(&ms).unwrap_or_default();
+            parse_firmware_results(&text, &ms_file)?
+        }
     };
     prepare_out_dir(&opts.out)?;
-    let started = Instant::now();
+    let fw_scenes: Vec<String> = {
+        let mut v: Vec<String> = Vec::new();
+        for r in &ms.results {
+            if !v.contains(&r.scene) {
+                v.push(r.scene.clone());
+            }
+        }
+        v
+    };
+    let errors = picks::host_errors(&fw_scenes, &crate::core_render::CoreProfile::ALL)?;
+    let chips = ChipSection::new(&ms, &ms_file, stale, &errors);
     let scenes = sweep_scenes(opts.quick)?;
     let repeats = if opts.quick {
         Repeats::QUICK
@@ -347,6 +406,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
         embedded_available: !embedded.is_empty(),
         embedded,
         summary: summary.lines(),
+        chips: Some(chips),
     };
 
     // Frames of the representative profiles, then the three pages,

@@ -255,7 +255,7 @@ fn embedded_text(data: &ReportData, summary: &Summary) -> (String, Vec<Vec<Strin
             "qemu-system-arm is not installed here, so the firmware example cannot count instructions on this machine."
         };
         return (
-            format!("Embedded figures are not available: no firmware results were given (`--firmware-results FILE`, `RESULT key=value` lines or JSON). The report does not estimate them; the Cortex-M0 and Cortex-M4F picks use host time as a proxy. {qemu}"),
+            format!("Embedded figures are not available: no firmware results were given (`--firmware-results FILE`, `RESULT key=value` lines or JSON). The report does not estimate them, and host time never stands in for a chip: the Cortex-M0 and Cortex-M4F picks have no candidates. {qemu}"),
             Vec::new(),
         );
     }
@@ -368,6 +368,10 @@ pub fn html(data: &ReportData, summary: &Summary, frames: &FrameIndex) -> String
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>fixshade: accuracy versus speed</title><style>{CSS}</style></head><body>\n<h1>fixshade: accuracy versus speed</h1>\n<p class=\"note\">{}</p>\n",
         esc(&run_text(data))
     );
+    if let Some(chips) = &data.chips {
+        s.push_str(&chips.html().into_string());
+        s.push('\n');
+    }
     let n_picks = summary.picks.len();
     s.push_str("<h2 id=\"summary\">Summary</h2>\n<ul class=\"summary\">\n");
     for (i, line) in data.summary.iter().enumerate() {
@@ -473,9 +477,14 @@ const METHOD_HTML: &str = "<h2 id=\"method\">Method</h2>\n<ul>
 /// `report.md`.
 pub fn markdown(data: &ReportData, summary: &Summary) -> String {
     let mut s = format!(
-        "# fixshade: accuracy versus speed\n\n{}\n\n## Summary\n\n",
+        "# fixshade: accuracy versus speed\n\n{}\n\n",
         run_text(data)
     );
+    if let Some(chips) = &data.chips {
+        s.push_str(&chips.markdown());
+        s.push('\n');
+    }
+    s.push_str("## Summary\n\n");
     for (i, line) in data.summary.iter().enumerate() {
         if i == summary.picks.len() {
             s.push_str("\n### Where the fixed profiles lose accuracy\n\n");

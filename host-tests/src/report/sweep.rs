@@ -173,7 +173,7 @@ fn mesh_flash(desc: &SceneDesc) -> (usize, usize, usize) {
     (p, t, n)
 }
 
-fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
+pub(super) fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
     FrameView {
         width: f.width,
         height: f.height,
@@ -268,10 +268,28 @@ pub fn measure(
     repeats: Repeats,
     progress: bool,
 ) -> Result<Vec<Record>, CliError> {
+    use rayon::prelude::*;
     let total = (scenes.len() * Mode::ALL.len() * CoreProfile::ALL.len()) as u64;
     let bar = progress_bar(total, progress);
+    // One task per scene on every core; the records come back in scene
+    // order, so the output is the same whatever the scheduling (host
+    // times aside: frames timed side by side share the machine).
+    let per_scene: Vec<Vec<Record>> = scenes
+        .par_iter()
+        .map(|s| measure_scene(s, repeats, &bar))
+        .collect::<Result<_, CliError>>()?;
+    bar.finish_and_clear();
+    Ok(per_scene.into_iter().flatten().collect())
+}
+
+/// The records of one scene, mode then profile order.
+fn measure_scene(
+    s: &SweepScene,
+    repeats: Repeats,
+    bar: &ProgressBar,
+) -> Result<Vec<Record>, CliError> {
     let mut records = Vec::new();
-    for s in scenes {
+    {
         let phong_ideal = ideal_frame(&s.with_mode(Mode::Phong))?;
         let phong_rgb = phong_ideal.to_rgb8();
         let (p, t, n) = mesh_flash(&s.desc);
@@ -365,7 +383,6 @@ pub fn measure(
             }
         }
     }
-    bar.finish_and_clear();
     Ok(records)
 }
 
@@ -420,6 +437,43 @@ mod tests {
         }
         assert_eq!(find("dodeca-light-2-2-2").family, "dodeca-light-2-2-2");
         assert_eq!(find("bunny").family, "bunny");
+    }
+
+    #[test]
+    fn the_parallel_sweep_is_deterministic_but_for_host_times() {
+        let scenes = sweep_scenes(true).unwrap();
+        let once = Repeats {
+            min_runs: 1,
+            min_time: std::time::Duration::ZERO,
+            max_runs: 1,
+        };
+        let strip = |mut rs: Vec<Record>| {
+            for r in &mut rs {
+                r.host.median_ms = 0.0;
+                r.host.min_ms = 0.0;
+                r.host.max_ms = 0.0;
+                r.host.pixels_per_s = 0.0;
+            }
+            rs
+        };
+        let a = strip(measure(&scenes[..2], once, false).unwrap());
+        let b = strip(measure(&scenes[..2], once, false).unwrap());
+        assert_eq!(a.len(), 2 * 3 * 8);
+        // Scene, then mode, then profile order, whatever the threads did.
+        let order: Vec<(String, Mode, String)> = a
+            .iter()
+            .map(|r| (r.scene.clone(), r.mode, r.profile.clone()))
+            .collect();
+        let mut sorted = order.clone();
+        sorted.sort_by_key(|(s, m, p)| {
+            (
+                scenes.iter().position(|x| &x.name == s),
+                *m,
+                CoreProfile::parse(p),
+            )
+        });
+        assert_eq!(order, sorted);
+        assert_eq!(a, b);
     }
 
     #[test]

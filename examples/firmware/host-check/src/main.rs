@@ -7,7 +7,9 @@
 //!
 //! `cargo run --release -p fixshade-host-check [-- --ppm DIR]`: with
 //! `--ppm`, also writes each frame as `DIR/<scene>.ppm` (binary PPM) to look
-//! at.
+//! at. `-- --profile NAME` (`precise`, `f32`, `f64`, `fast-pc`, ...)
+//! renders with that profile instead, as the firmware built with the
+//! feature `profile-NAME` does (`fixshade_scenes::profiled`).
 
 use fixshade::render::{Link, Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
@@ -51,7 +53,15 @@ fn main() -> Result<(), Box<dyn Error>> {
     while let Some(a) = args.next() {
         match a.as_str() {
             "--ppm" => ppm = Some(args.next().ok_or("--ppm needs a directory")?.into()),
-            _ => return Err(format!("unknown argument {a}; usage: [--ppm DIR]").into()),
+            "--profile" => {
+                let name = args.next().ok_or("--profile needs a name")?;
+                return other_profile(&name);
+            }
+            _ => {
+                return Err(
+                    format!("unknown argument {a}; usage: [--ppm DIR] | [--profile NAME]").into(),
+                )
+            }
         }
     }
     let mut ws = Owned::new(MAX_NEEDS);
@@ -121,4 +131,58 @@ fn whole_frame(
             [c.r, c.g, c.b]
         })
         .collect())
+}
+
+/// `--profile NAME`: every scene with that profile, one `scene` line each.
+fn other_profile(name: &str) -> Result<(), Box<dyn Error>> {
+    use fixshade::num::{F32Pc, F64Pc, FastPc, Precise, PrecisePc, F32, F64};
+    match name {
+        "precise" => with::<Precise>(),
+        "f32" => with::<F32>(),
+        "f64" => with::<F64>(),
+        "fast-pc" => with::<FastPc>(),
+        "precise-pc" => with::<PrecisePc>(),
+        "f32-pc" => with::<F32Pc>(),
+        "f64-pc" => with::<F64Pc>(),
+        _ => Err(format!("unknown profile {name} (precise, f32, f64, fast-pc, precise-pc, f32-pc, f64-pc; the default is fast)").into()),
+    }
+}
+
+fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
+    use fixshade_scenes::profiled::{needs_for, render_frame_with};
+    let n = needs_for::<P>(MAX_NEEDS);
+    let mut xy = vec![[0i32; 2]; n.vertices];
+    let mut vals = vec![P::Lerp::default(); n.values];
+    let mut tris = vec![Tri::default(); n.triangles];
+    let mut heads = vec![0u16; n.heads];
+    let mut links = vec![Link::default(); n.vertices];
+    let mut px = vec![[0u8; 2]; BAND_PIXELS];
+    let mut z = vec![0u16; BAND_PIXELS];
+    println!("fixshade-host-check target=host profile={}", P::NAME);
+    for spec in SCENES.iter() {
+        let ws = Workspace {
+            xy: &mut xy,
+            vals: &mut vals,
+            tris: &mut tris,
+            heads: &mut heads,
+            links: &mut links,
+        };
+        let s = render_frame_with::<P, _>(spec, ws, &mut px, &mut z, &mut NoProbe)
+            .map_err(|e| format!("scene {}: {e}", spec.name))?;
+        println!(
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
+            spec.name,
+            spec.width,
+            spec.height,
+            s.crc,
+            s.covered,
+            s.drawn,
+            s.setups,
+            spec.triangles(),
+            s.vertices,
+            s.triangles,
+            s.prepared_bytes,
+        );
+    }
+    Ok(())
 }
