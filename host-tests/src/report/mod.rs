@@ -37,6 +37,7 @@
 
 mod chip_section;
 pub mod chips;
+pub mod docs_tables;
 mod embedded;
 pub mod measure;
 mod page;
