@@ -365,7 +365,7 @@ impl ChipSection {
         }
     }
 
-    /// The section's HTML.
+    /// The section's head: picks, plots, fixed against soft-float.
     pub fn html(&self) -> Markup {
         html! {
             h2 id="chips" { "On the chips: picks and costs" }
@@ -383,6 +383,14 @@ impl ChipSection {
             }
             h3 { "Fixed point against soft-float on the Cortex-M0" }
             (table(&self.m0_float))
+            p.note { "Per scene and profile figures: " a href="#chip-tables" { "the chip tables" } ", after the host's." }
+        }
+    }
+
+    /// The section's long tables (at the end of the page).
+    pub fn html_tables(&self) -> Markup {
+        html! {
+            h2 id="chip-tables" { "On the chips: every scene and profile" }
             h3 { "Frames per second at the parts' clocks" }
             (table(&self.fps))
             h3 { "Flash and static RAM per firmware build" }
