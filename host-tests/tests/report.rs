@@ -171,6 +171,31 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
         }
     }
 
+    // The knob sweeps: band rows trade RAM for setups (the same frame),
+    // 32-bit depth costs RAM, subpixel bits move coverage.
+    let knobs = data.knobs.as_ref().unwrap();
+    assert_eq!(knobs.scene, "bunny-gouraud");
+    assert_eq!(knobs.rows.rows.len(), 6);
+    let setups: Vec<u64> = knobs
+        .rows
+        .rows
+        .iter()
+        .map(|r| r[2].parse().unwrap())
+        .collect();
+    assert!(setups.windows(2).all(|w| w[0] > w[1]), "{setups:?}");
+    let ram: Vec<u64> = knobs
+        .rows
+        .rows
+        .iter()
+        .map(|r| r[1].parse().unwrap())
+        .collect();
+    assert_eq!(ram[0], 240 * 4 * 2 * 2);
+    assert!(ram.windows(2).all(|w| w[0] < w[1]), "{ram:?}");
+    assert_eq!(knobs.depth.rows.len(), 2);
+    assert_eq!(knobs.depth.rows[1][1], (240 * 16 * 4).to_string());
+    assert_eq!(knobs.subpixel.rows.len(), 5);
+    assert_eq!(knobs.perspective.rows.len(), 5);
+
     // index.html: the chip section first, the summary, the plots, the
     // frames.
     let html = text(&out.join("index.html"));
@@ -211,8 +236,8 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
     assert!(data.summary.iter().any(|l| l.starts_with("Which pixels")));
     assert_eq!(
         html.matches("<svg").count(),
-        3 + 2 * 3 + 2 * 2,
-        "three plots for the host and per chip (errors vs ideal, twin, ideal Phong against mean cost), and the chip section's error vs cycles and vs RAM per chip"
+        3 + 2 * 3 + 2 * 2 + 4,
+        "three plots for the host and per chip (errors vs ideal, twin, ideal Phong against mean cost), the chip section's error vs cycles and vs RAM per chip, one per knob"
     );
     assert!(html.contains("Pareto front"));
     assert!(!html.contains("Embedded figures are not available"));

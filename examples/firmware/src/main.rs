@@ -19,10 +19,16 @@
 //! semihosting with status 0, or 1 on any error or panic.
 #![no_std]
 #![no_main]
-// With a `profile-*` feature, `profiled::main` is the entry and the
-// default build's frame and span-loop code is unused.
-#![cfg_attr(feature = "profiled", allow(dead_code, unused_imports))]
+// With a `profile-*` feature, `profiled::main` is the entry (with
+// `knobs`, `knobs::main`) and the default build's frame and span-loop
+// code is unused.
+#![cfg_attr(
+    any(feature = "profiled", feature = "knobs"),
+    allow(dead_code, unused_imports)
+)]
 
+#[cfg(feature = "knobs")]
+mod knobs;
 #[cfg(feature = "profiled")]
 mod profiled;
 
@@ -354,7 +360,7 @@ fn workspace_bytes(mem: &Memory) -> usize {
         + core::mem::size_of_val(mem.links)
 }
 
-#[cfg(not(feature = "profiled"))]
+#[cfg(not(any(feature = "profiled", feature = "knobs")))]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once),

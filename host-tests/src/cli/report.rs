@@ -12,6 +12,9 @@ use super::error::CliError;
 /// Arguments of `fixshade report`.
 #[derive(Clone, Debug, Args)]
 pub struct ReportArgs {
+    /// Your scene files (TOML) to sweep instead of the built-in scenes.
+    #[arg(value_name = "SCENE.toml")]
+    pub scenes: Vec<PathBuf>,
     /// The folder to write `index.html`, `report.md`, `results.json` and
     /// `img/` into (created if missing).
     #[arg(long, value_name = "DIR")]
@@ -47,6 +50,7 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         measurements: args.measurements.clone(),
         allow_stale: args.allow_stale,
         measure_firmware: args.measure_firmware,
+        scene_files: args.scenes.clone(),
     })?;
     let mut text = String::new();
     for line in &out.data.summary {

@@ -56,6 +56,10 @@ pub struct ChipSection {
     pub builds: Table,
     /// Float profiles' CRCs against the host's.
     pub crc_notes: Vec<String>,
+    /// The user's scenes: the RAM each needs per profile and mode against
+    /// the parts' RAM (empty for the built-in sweep).
+    #[serde(default)]
+    pub user_ram: Option<Table>,
     /// Per chip: (title, error vs cycles SVG, error vs RAM SVG).
     #[serde(skip)]
     pub plots: Vec<(String, String, String)>,
@@ -361,8 +365,60 @@ impl ChipSection {
             },
             builds,
             crc_notes,
+            user_ram: None,
             plots,
         }
+    }
+
+    /// Adds the table of the user's scenes: per scene, mode and profile,
+    /// the RAM it needs (the host's prepared frame, the same bytes as on
+    /// the chips, + colour and 16-bit depth band + the largest stack
+    /// measured on that chip with that profile) against each part's RAM.
+    /// Cycles are not measured for them: the firmware holds the built-in
+    /// scenes only.
+    pub fn add_user_scenes(&mut self, ms: &Measurements, records: &[super::Record]) {
+        let parts: Vec<&'static super::picks::Chip> =
+            TABLE_CHIPS.iter().filter_map(|n| find_chip(n)).collect();
+        let mut head: Vec<String> = ["scene", "mode", "profile", "prepared + bands B"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        for c in &parts {
+            head.push(format!("{} ({:.0} KiB)", c.name, c.ram_kb));
+        }
+        let stack = |chip: Target, p: &str| {
+            ms.of(chip)
+                .filter(|r| r.profile == p)
+                .map(|r| r.stack)
+                .max()
+        };
+        let rows = records
+            .iter()
+            .map(|r| {
+                let mut row = vec![
+                    r.scene.clone(),
+                    r.mode.title().to_string(),
+                    r.profile.clone(),
+                    r.memory.ram_bytes.to_string(),
+                ];
+                for c in &parts {
+                    row.push(match stack(c.target, &r.profile) {
+                        Some(st) => {
+                            let need = r.memory.ram_bytes as u64 + st;
+                            let have = (c.ram_kb * 1024.0) as u64;
+                            if need <= have {
+                                format!("fits ({need} B)")
+                            } else {
+                                format!("too big: needs {need} B, {} over", need - have)
+                            }
+                        }
+                        None => "–".into(),
+                    });
+                }
+                row
+            })
+            .collect();
+        self.user_ram = Some(Table { head, rows });
     }
 
     /// The section's head: picks, plots, fixed against soft-float.
@@ -380,6 +436,11 @@ impl ChipSection {
             @for (title, cycles, ram) in &self.plots {
                 h3 { (title) }
                 div.plots { (PreEscaped(svg_body(cycles))) (PreEscaped(svg_body(ram))) }
+            }
+            @if let Some(t) = &self.user_ram {
+                h3 { "Your scenes on the parts: RAM" }
+                p.note { "RAM each of your scenes needs (prepared frame, colour and 16-bit depth band of 16 rows, and the largest stack measured on that chip with that profile) against each part's RAM. Cycles are not measured for your scenes: the firmware renders the built-in scenes only; the figures above are those." }
+                (table(t))
             }
             h3 { "Fixed point against soft-float on the Cortex-M0" }
             (table(&self.m0_float))
@@ -410,6 +471,10 @@ impl ChipSection {
             self.scenes.join(", ")
         );
         s += &md(&self.picks);
+        if let Some(t) = &self.user_ram {
+            s += "\n### Your scenes on the parts: RAM\n\nPrepared frame + bands + the largest stack measured on the chip with the profile; cycles are not measured for your scenes.\n\n";
+            s += &md(t);
+        }
         s += "\n### Fixed point against soft-float on the Cortex-M0\n\n";
         s += &md(&self.m0_float);
         s += "\n### Frames per second at the parts' clocks\n\n";

@@ -7,7 +7,9 @@
 //! raster; counted exactly by the QEMU plugin), the estimated Cortex-M0
 //! cycles (M0 only: ARM DDI 0432C table 3-1, zero wait states, an
 //! estimate), covered pixels, the stack high-water mark, the prepared
-//! frame's bytes, and per build the flash and static RAM. With them: the
+//! frame's bytes, and per build the flash and static RAM; and the knob
+//! variants of the firmware's `knobs` build ([`KnobResult`]: band rows,
+//! 32-bit depth, subpixel bits on one scene). With them: the
 //! toolchain, the QEMU version and a fingerprint of every source the
 //! firmware is built from ([`source_fingerprint`]).
 //!
@@ -159,6 +161,54 @@ pub fn target_of(triple: &str) -> Option<Target> {
     }
 }
 
+/// One knob variant on one target (the firmware's `knobs` build): `fast`,
+/// one scene, band rows × depth bits × subpixel bits.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KnobResult {
+    /// `thumbv6m-none-eabi` or `thumbv7em-none-eabihf`.
+    pub target: String,
+    /// The scene.
+    pub scene: String,
+    /// Rows per band.
+    pub rows: u32,
+    /// Depth bits (16 or 32).
+    pub depth_bits: u32,
+    /// Subpixel bits.
+    pub subpixel_bits: u32,
+    /// Instructions per frame.
+    pub insns: u64,
+    /// ...of the geometry.
+    pub insns_geometry: u64,
+    /// ...of the bands.
+    pub insns_raster: u64,
+    /// Estimated M0 cycles per frame (M0 only).
+    pub cycles: Option<u64>,
+    /// Covered pixels.
+    pub covered: u64,
+    /// Triangle setups (a triangle counts once per band it is set up in).
+    pub setups: u64,
+    /// Bytes of the prepared frame.
+    pub prepared_bytes: u64,
+    /// Colour band bytes.
+    pub band_bytes: u64,
+    /// Depth band bytes.
+    pub depth_bytes: u64,
+    /// Stack high-water mark.
+    pub stack: u64,
+    /// band + depth + prepared + stack.
+    pub ram: u64,
+    /// CRC-32 of the frame (equal to host-check's, checked).
+    pub crc: String,
+}
+
+impl KnobResult {
+    /// Cycles per frame (as [`ChipResult::frame_cycles`]).
+    pub fn frame_cycles(&self) -> u64 {
+        self.cycles.unwrap_or(self.insns)
+    }
+}
+
 /// `docs/measurements/firmware.json`.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -185,6 +235,13 @@ pub struct Measurements {
     pub builds: Vec<Build>,
     /// One per target × profile × scene.
     pub results: Vec<ChipResult>,
+    /// The knob variants per target.
+    #[serde(default)]
+    pub knobs: Vec<KnobResult>,
+    /// Pixels where the knob scene's frame with a 32-bit depth buffer
+    /// differs from the 16-bit one (z-fighting the 16 bits lose), host.
+    #[serde(default)]
+    pub knob_depth32_vs_depth16_pixels: u64,
 }
 
 impl Measurements {
@@ -233,6 +290,21 @@ impl Measurements {
                 }
                 Some(_) => {}
             }
+        }
+        if self.knobs != other.knobs
+            || self.knob_depth32_vs_depth16_pixels != other.knob_depth32_vs_depth16_pixels
+        {
+            let n = self
+                .knobs
+                .iter()
+                .zip(&other.knobs)
+                .filter(|(a, b)| a != b)
+                .count();
+            out.push(format!(
+                "knobs: {n} variant(s) differ ({} measured before, {} now)",
+                self.knobs.len(),
+                other.knobs.len()
+            ));
         }
         for k in theirs.keys().filter(|k| !mine.contains_key(*k)) {
             out.push(format!("{} {} {}: newly measured", k.0, k.1, k.2));
@@ -463,6 +535,8 @@ mod tests {
             depth_bits: 16,
             builds: vec![],
             results: vec![r],
+            knobs: vec![],
+            knob_depth32_vs_depth16_pixels: 0,
         }
     }
 

@@ -34,7 +34,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use crate::cli::{CliError, ErrorKind};
 use crate::core_render::{CoreProfile, BAND_ROWS};
 
-use super::chips::{self, Build, ChipResult, Measurements, REGENERATE, SCHEMA};
+use super::chips::{self, Build, ChipResult, KnobResult, Measurements, REGENERATE, SCHEMA};
 use super::Mode;
 
 /// The targets, with their QEMU machine and plugin arguments.
@@ -232,29 +232,109 @@ fn host_crcs(fw: &Path, profile: CoreProfile) -> Result<BTreeMap<String, String>
         .collect())
 }
 
-/// Builds, runs and parses one target × profile.
-fn measure_one(
+/// Instructions and estimated M0 cycles of each counted region.
+type Regions = Vec<(u64, Option<u64>)>;
+
+/// What one firmware build printed and counted.
+struct Run {
+    /// Its semihosting output.
+    out: String,
+    /// The plugin's regions.
+    regions: Regions,
+    /// Flash, static RAM, text, rodata.
+    sizes: Sizes,
+    /// Defined symbols.
+    symbols: Vec<String>,
+}
+
+/// Builds the firmware for `target` with `features` (the default build
+/// without) and runs it under QEMU with the counting plugin.
+fn build_run(
     root: &Path,
     plugin: &Path,
     (target, cpu, machine, plugarg): (&str, &str, &str, &str),
-    profile: CoreProfile,
-    host: &BTreeMap<String, String>,
-) -> Result<(Build, Vec<ChipResult>), CliError> {
+    features: Option<&str>,
+    tag: &str,
+) -> Result<Run, CliError> {
     let fw = root.join("examples/firmware");
     let mut cmd = Command::new("cargo");
     cmd.current_dir(&fw)
         .args(["build", "-q", "--release", "--target", target]);
     let target_dir = fw.join("target");
-    if profile != CoreProfile::Fast {
-        cmd.args(["--features", &format!("profile-{}", profile.name())]);
+    if let Some(f) = features {
+        cmd.args(["--features", f]);
     }
     cmd.env("CARGO_TARGET_DIR", &target_dir);
-    run(
-        &mut cmd,
-        &format!("cargo build {target} {}", profile.name()),
-    )?;
+    run(&mut cmd, &format!("cargo build {target} {tag}"))?;
     let elf = target_dir.join(target).join("release/fixshade-firmware");
-    let ((flash, static_ram, text, rodata), symbols) = elf_info(&elf)?;
+    let (sizes, symbols) = elf_info(&elf)?;
+    let log = target_dir.join(format!("measure/plugin-{target}-{tag}.log"));
+    let _ = std::fs::remove_file(&log);
+    let out = run(
+        Command::new("qemu-system-arm")
+            .args(["-cpu", cpu, "-machine", machine, "-nographic"])
+            .args(["-semihosting-config", "enable=on,target=native"])
+            .arg("-plugin")
+            .arg(format!("{}{plugarg}", plugin.display()))
+            .args(["-d", "plugin", "-D"])
+            .arg(&log)
+            .arg("-kernel")
+            .arg(&elf),
+        &format!("qemu {target} {tag}"),
+    )?;
+    let log_text = std::fs::read_to_string(&log)
+        .map_err(|e| failed(format!("{}: cannot read: {e}", log.display())))?;
+    if log_text.contains("insn_count: warning") || !log_text.contains(" warnings 0") {
+        return Err(failed(format!(
+            "{target} {tag}: the instruction-counting plugin warned: {}",
+            log_text
+                .lines()
+                .filter(|l| l.contains("warning"))
+                .collect::<Vec<_>>()
+                .join(" | ")
+        )));
+    }
+    let regions = log_text
+        .lines()
+        .filter(|l| l.starts_with("region "))
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            (
+                w.get(3).and_then(|v| v.parse().ok()).unwrap_or(0),
+                w.get(5).and_then(|v| v.parse().ok()),
+            )
+        })
+        .collect();
+    Ok(Run {
+        out,
+        regions,
+        sizes,
+        symbols,
+    })
+}
+
+/// Builds, runs and parses one target × profile.
+fn measure_one(
+    root: &Path,
+    plugin: &Path,
+    t: (&str, &str, &str, &str),
+    profile: CoreProfile,
+    host: &BTreeMap<String, String>,
+) -> Result<(Build, Vec<ChipResult>), CliError> {
+    let target = t.0;
+    let features = format!("profile-{}", profile.name());
+    let Run {
+        out,
+        regions,
+        sizes: (flash, static_ram, text, rodata),
+        symbols,
+    } = build_run(
+        root,
+        plugin,
+        t,
+        (profile != CoreProfile::Fast).then_some(features.as_str()),
+        profile.name(),
+    )?;
     let softfloat: Vec<&String> = symbols.iter().filter(|s| is_softfloat(s)).collect();
     if profile.is_fixed() && target.starts_with("thumbv6m") && !softfloat.is_empty() {
         return Err(failed(format!(
@@ -268,44 +348,6 @@ fn measure_one(
         )));
     }
     let softfloat = softfloat.len() as u64;
-    let log = target_dir.join(format!("measure/plugin-{target}-{}.log", profile.name()));
-    let _ = std::fs::remove_file(&log);
-    let out = run(
-        Command::new("qemu-system-arm")
-            .args(["-cpu", cpu, "-machine", machine, "-nographic"])
-            .args(["-semihosting-config", "enable=on,target=native"])
-            .arg("-plugin")
-            .arg(format!("{}{plugarg}", plugin.display()))
-            .args(["-d", "plugin", "-D"])
-            .arg(&log)
-            .arg("-kernel")
-            .arg(&elf),
-        &format!("qemu {target} {}", profile.name()),
-    )?;
-    let log_text = std::fs::read_to_string(&log)
-        .map_err(|e| failed(format!("{}: cannot read: {e}", log.display())))?;
-    if log_text.contains("insn_count: warning") || !log_text.contains(" warnings 0") {
-        return Err(failed(format!(
-            "{target} {}: the instruction-counting plugin warned: {}",
-            profile.name(),
-            log_text
-                .lines()
-                .filter(|l| l.contains("warning"))
-                .collect::<Vec<_>>()
-                .join(" | ")
-        )));
-    }
-    let regions: Vec<(u64, Option<u64>)> = log_text
-        .lines()
-        .filter(|l| l.starts_with("region "))
-        .map(|l| {
-            let w: Vec<&str> = l.split_whitespace().collect();
-            (
-                w.get(3).and_then(|v| v.parse().ok()).unwrap_or(0),
-                w.get(5).and_then(|v| v.parse().ok()),
-            )
-        })
-        .collect();
     let scenes: Vec<&str> = out.lines().filter(|l| l.starts_with("scene ")).collect();
     if scenes.is_empty() || regions.len() < 2 * scenes.len() {
         return Err(failed(format!(
@@ -375,6 +417,108 @@ fn measure_one(
     Ok((build, results))
 }
 
+/// The knob variants on one target (the firmware's `knobs` build), with
+/// host-check's CRCs (`host`: by `rows/depth/subpixel`).
+fn measure_knobs(
+    root: &Path,
+    plugin: &Path,
+    t: (&str, &str, &str, &str),
+    host: &BTreeMap<String, String>,
+) -> Result<Vec<KnobResult>, CliError> {
+    let target = t.0;
+    let r = build_run(root, plugin, t, Some("knobs"), "knobs")?;
+    let lines: Vec<&str> = r.out.lines().filter(|l| l.starts_with("knob ")).collect();
+    if lines.is_empty() || r.regions.len() < 2 * lines.len() {
+        return Err(failed(format!(
+            "{target} knobs: {} variants but {} counted regions (want two each)",
+            lines.len(),
+            r.regions.len()
+        )));
+    }
+    lines
+        .iter()
+        .enumerate()
+        .map(|(i, line)| {
+            let (g, ra) = (r.regions[2 * i], r.regions[2 * i + 1]);
+            let key = format!(
+                "{}/{}/{}",
+                kv(line, "rows").unwrap_or(""),
+                kv(line, "depth").unwrap_or(""),
+                kv(line, "subpixel").unwrap_or("")
+            );
+            let crc = kv(line, "crc").unwrap_or("").to_string();
+            let host_crc = host.get(&key).cloned().unwrap_or_default();
+            if crc != host_crc {
+                return Err(failed(format!(
+                    "{target} knob {key}: CRC {crc} on the chip but {host_crc} on the host"
+                )));
+            }
+            let (band, depth, prepared, stack) = (
+                num(line, "band_bytes")?,
+                num(line, "depth_bytes")?,
+                num(line, "prepared_bytes")?,
+                num(line, "stack")?,
+            );
+            Ok(KnobResult {
+                target: target.to_string(),
+                scene: kv(line, "scene").unwrap_or("").to_string(),
+                rows: num(line, "rows")? as u32,
+                depth_bits: num(line, "depth")? as u32,
+                subpixel_bits: num(line, "subpixel")? as u32,
+                insns: g.0 + ra.0,
+                insns_geometry: g.0,
+                insns_raster: ra.0,
+                cycles: g.1.zip(ra.1).map(|(a, b)| a + b),
+                covered: num(line, "covered")?,
+                setups: num(line, "setups")?,
+                prepared_bytes: prepared,
+                band_bytes: band,
+                depth_bytes: depth,
+                stack,
+                ram: band + depth + prepared + stack,
+                crc,
+            })
+        })
+        .collect()
+}
+
+/// host-check `--knobs`: CRCs by `rows/depth/subpixel`, and the pixels
+/// where the 32-bit depth frame differs from the 16-bit one.
+fn host_knobs(fw: &Path) -> Result<(BTreeMap<String, String>, u64), CliError> {
+    let out = run(
+        Command::new("cargo").current_dir(fw).args([
+            "run",
+            "-q",
+            "--release",
+            "-p",
+            "fixshade-host-check",
+            "--",
+            "--knobs",
+        ]),
+        "host-check --knobs",
+    )?;
+    let crcs = out
+        .lines()
+        .filter(|l| l.starts_with("knob "))
+        .filter_map(|l| {
+            Some((
+                format!(
+                    "{}/{}/{}",
+                    kv(l, "rows")?,
+                    kv(l, "depth")?,
+                    kv(l, "subpixel")?
+                ),
+                kv(l, "crc")?.to_string(),
+            ))
+        })
+        .collect();
+    let differ = out
+        .lines()
+        .find_map(|l| kv(l, "depth32_vs_depth16_pixels")?.parse().ok())
+        .ok_or_else(|| failed("host-check --knobs printed no depth comparison".into()))?;
+    Ok((crcs, differ))
+}
+
 /// The firmware's release opt-level from its manifest.
 fn opt_level(fw: &Path) -> String {
     let text = std::fs::read_to_string(fw.join("Cargo.toml")).unwrap_or_default();
@@ -428,7 +572,7 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
             .arg(fw.join("qemu-plugin/insn_count.c")),
         "gcc (QEMU plugin)",
     )?;
-    let total = (opts.profiles.len() * (TARGETS.len() + 1)) as u64;
+    let total = ((opts.profiles.len() + 1) * (TARGETS.len() + 1)) as u64;
     let bar = if opts.progress && std::io::stderr().is_terminal() {
         ProgressBar::new(total)
     } else {
@@ -455,6 +599,21 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
             bar.inc(1);
         }
     }
+    bar.set_message("knobs on the host");
+    let (knob_host, depth_differ) = host_knobs(&fw)?;
+    bar.inc(1);
+    let mut knobs = Vec::new();
+    for t in TARGETS {
+        bar.set_message(format!("knobs on {}", t.0));
+        knobs.extend(measure_knobs(root, &plugin, t, &knob_host)?);
+        bar.inc(1);
+    }
+    // The default build last again: its ELF stays in place.
+    if order.contains(&CoreProfile::Fast) {
+        for t in TARGETS {
+            build_run(root, &plugin, t, None, "fast")?;
+        }
+    }
     bar.finish_and_clear();
     let rank = |p: &str| CoreProfile::ALL.iter().position(|c| c.name() == p);
     builds.sort_by_key(|b: &Build| (rank(&b.profile), b.target.clone()));
@@ -471,6 +630,8 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
         depth_bits: 16,
         builds,
         results,
+        knobs,
+        knob_depth32_vs_depth16_pixels: depth_differ,
     })
 }
 

@@ -39,6 +39,7 @@ mod chip_section;
 pub mod chips;
 pub mod docs_tables;
 mod embedded;
+mod knob_section;
 pub mod measure;
 mod page;
 pub mod picks;
@@ -58,6 +59,7 @@ use crate::metrics::Metrics;
 
 pub use chip_section::{ChipSection, Table};
 pub use embedded::{parse_firmware_results, read_firmware_results, EmbeddedResult, Target};
+pub use knob_section::{FastSub, KnobSection};
 pub use plot::pareto_front;
 pub use summary::{
     aggregate, Aggregate, CostSource, Pick, Point, Summary, MODE_TOLERANCE, QUALITY_TOLERANCE,
@@ -136,6 +138,8 @@ pub struct ReportOptions {
     pub allow_stale: bool,
     /// Re-measure the firmware under QEMU instead of reading the file.
     pub measure_firmware: bool,
+    /// The user's scene files to sweep instead of the built-in scenes.
+    pub scene_files: Vec<PathBuf>,
 }
 
 /// Host cost of one record.
@@ -289,6 +293,8 @@ pub struct ReportData {
     pub summary: Vec<String>,
     /// The chip section (picks, costs per profile on the chips).
     pub chips: Option<ChipSection>,
+    /// The knob sweeps (when the measurements have them).
+    pub knobs: Option<KnobSection>,
 }
 
 /// What a run wrote.
@@ -362,6 +368,10 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
             parse_firmware_results(&text, &ms_file)?
         }
     };
+    // Bad scene files are bad input before any output.
+    if !opts.scene_files.is_empty() {
+        sweep::scene_files(&opts.scene_files, opts.quick)?;
+    }
     prepare_out_dir(&opts.out)?;
     let fw_scenes: Vec<String> = {
         let mut v: Vec<String> = Vec::new();
@@ -373,14 +383,22 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
         v
     };
     let errors = picks::host_errors(&fw_scenes, &crate::core_render::CoreProfile::ALL)?;
-    let chips = ChipSection::new(&ms, &ms_file, stale, &errors);
-    let scenes = sweep_scenes(opts.quick)?;
+    let mut chips = ChipSection::new(&ms, &ms_file, stale, &errors);
+    let knobs = KnobSection::new(&ms)?;
+    let scenes = if opts.scene_files.is_empty() {
+        sweep_scenes(opts.quick)?
+    } else {
+        sweep::scene_files(&opts.scene_files, opts.quick)?
+    };
     let repeats = if opts.quick {
         Repeats::QUICK
     } else {
         Repeats::FULL
     };
     let records = sweep::measure(&scenes, repeats, opts.progress)?;
+    if !opts.scene_files.is_empty() {
+        chips.add_user_scenes(&ms, &records);
+    }
     let elapsed_s = started.elapsed().as_secs_f64();
     let summary = Summary::new(&records, &embedded);
     let meta = Meta {
@@ -408,6 +426,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
         embedded,
         summary: summary.lines(),
         chips: Some(chips),
+        knobs,
     };
 
     // Frames of the representative profiles, then the three pages,

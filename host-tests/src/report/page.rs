@@ -374,6 +374,7 @@ pub fn html(data: &ReportData, summary: &Summary, frames: &FrameIndex) -> String
                 h1 { "fixshade: accuracy versus speed" }
                 p.note { (run_text(data)) }
                 @if let Some(chips) = &data.chips { (chips.html()) }
+                @if let Some(knobs) = &data.knobs { (knobs.html()) }
                 h2 id="summary" { "Summary" }
                 ul.summary { @for line in picks { li { (line) } } }
                 h3 { "Where the fixed profiles lose accuracy" }
@@ -445,6 +446,10 @@ pub fn markdown(data: &ReportData, summary: &Summary) -> String {
     );
     if let Some(chips) = &data.chips {
         s.push_str(&chips.markdown());
+        s.push('\n');
+    }
+    if let Some(knobs) = &data.knobs {
+        s.push_str(&knobs.markdown());
         s.push('\n');
     }
     s.push_str("## Summary\n\n");

@@ -75,6 +75,42 @@ pub(crate) fn base_name(name: &str) -> String {
     }
 }
 
+/// The user's scene files (TOML, or OBJ meshes through their scene
+/// files) as base scenes, named by their file stems (`-2`, `-3`, ... for
+/// repeated stems), every object's shading overridden per mode as for
+/// the built-ins; `quick` halves the frame size.
+///
+/// # Errors
+/// A file that does not load (bad input naming the file and field).
+pub fn scene_files(paths: &[std::path::PathBuf], quick: bool) -> Result<Vec<SweepScene>, CliError> {
+    let mut out: Vec<SweepScene> = Vec::new();
+    for path in paths {
+        let mut desc = SceneDesc::load(path)?;
+        let stem = path
+            .file_stem()
+            .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
+        let mut name = stem.clone();
+        let mut k = 2;
+        while out.iter().any(|s| s.name == name) {
+            name = format!("{stem}-{k}");
+            k += 1;
+        }
+        if quick {
+            desc.width = (desc.width / 2).max(16);
+            desc.height = (desc.height / 2).max(16);
+        }
+        desc.source = path.display().to_string();
+        out.push(SweepScene {
+            family: name.clone(),
+            name,
+            sources: vec![path.display().to_string()],
+            description: format!("your scene {}", path.display()),
+            desc,
+        });
+    }
+    Ok(out)
+}
+
 /// The base scenes: the built-in scenes with their shading overridden,
 /// equal ones merged (in built-in order), named by the first one's name
 /// without its shading words `flat`, `gouraud`, `phong`, `smooth` (the

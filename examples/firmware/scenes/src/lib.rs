@@ -29,6 +29,7 @@ extern crate std;
 mod crc;
 #[rustfmt::skip]
 mod generated;
+pub mod knobs;
 pub mod profiled;
 pub mod spec;
 

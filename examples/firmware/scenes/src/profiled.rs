@@ -64,14 +64,14 @@ fn light<R: Real>(l: &Light<Q16>) -> Light<R> {
 }
 
 /// The parts of a scene in the scalar `R` that the core's `Scene` borrows.
-struct Parts<R: Real> {
-    camera: Result<Camera<R>, SceneError>,
+pub(crate) struct Parts<R: Real> {
+    pub(crate) camera: Result<Camera<R>, SceneError>,
     objects: heapless::Vec<Object<'static, R>, MAX_OBJECTS>,
     lights: heapless::Vec<Light<R>, MAX_LIGHTS>,
 }
 
 impl<R: Real> Parts<R> {
-    fn new(spec: &SceneSpec) -> Self {
+    pub(crate) fn new(spec: &SceneSpec) -> Self {
         Self {
             camera: Camera::look_at(
                 widen3(spec.eye),
@@ -89,7 +89,11 @@ impl<R: Real> Parts<R> {
         }
     }
 
-    fn scene<'s>(&'s self, spec: &SceneSpec, camera: Camera<R>) -> Scene<'s, 'static, R> {
+    pub(crate) fn scene<'s>(
+        &'s self,
+        spec: &SceneSpec,
+        camera: Camera<R>,
+    ) -> Scene<'s, 'static, R> {
         Scene {
             camera,
             objects: &self.objects,
