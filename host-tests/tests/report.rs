@@ -466,3 +466,89 @@ fn pick_fits_a_budget_or_says_how_far_off_it_is() {
         assert!(o.stdout.is_empty(), "{a:?}");
     }
 }
+
+#[test]
+fn the_users_scene_files_are_swept_and_picked_by_ram() {
+    let scenes = fixshade_host::report::chips::repo_root().join("host-tests/scenes");
+    let bunny = scenes.join("bunny-gouraud.toml");
+    let bunny = bunny.to_str().unwrap();
+    // The bunny needs more than 32 KiB in every configuration: exit 1,
+    // with the bytes it needs.
+    let o = run(&[
+        "pick",
+        "--chip",
+        "m0",
+        "--fps",
+        "10",
+        "--scene",
+        bunny,
+        "--allow-stale",
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.contains("cycles: not measured for your scene"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("your scene is too big for 32768 bytes of RAM"),
+        "{stdout}"
+    );
+    let o = run(&[
+        "pick",
+        "--chip",
+        "m0",
+        "--fps",
+        "10",
+        "--ram-kb",
+        "80",
+        "--scene",
+        bunny,
+        "--allow-stale",
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}");
+    assert!(stdout.contains("pick: fast / Gouraud"), "{stdout}");
+
+    // `report SCENE.toml...`: the files instead of the built-ins, with
+    // the RAM each needs against the parts.
+    let tmp = TempDir::new("user");
+    let out = tmp.0.join("out");
+    let dodeca = scenes.join("dodeca-phong-n100.toml");
+    let o = run(&[
+        "report",
+        dodeca.to_str().unwrap(),
+        bunny,
+        "--quick",
+        "--allow-stale",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let data: ReportData = serde_json::from_str(&text(&out.join("results.json"))).unwrap();
+    let names: Vec<&str> = data.meta.scenes.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["dodeca-phong-n100", "bunny-gouraud"]);
+    assert_eq!(data.records.len(), 2 * 3 * 8);
+    let ram = data.chips.as_ref().unwrap().user_ram.as_ref().unwrap();
+    assert_eq!(ram.rows.len(), 2 * 3 * 8);
+    assert!(
+        ram.rows.iter().any(|r| r[4].starts_with("too big: needs ")),
+        "{ram:?}"
+    );
+    assert!(
+        ram.rows.iter().any(|r| r[4].starts_with("fits (")),
+        "{ram:?}"
+    );
+    // A missing file: bad input, no output.
+    let out2 = tmp.0.join("out2");
+    let o = run(&[
+        "report",
+        "/nonexistent/scene.toml",
+        "--quick",
+        "--allow-stale",
+        "--out",
+        out2.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!out2.exists());
+}

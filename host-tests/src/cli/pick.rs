@@ -15,8 +15,8 @@ use clap::Args;
 use crate::core_render::CoreProfile;
 use crate::report::chips;
 use crate::report::picks::{
-    candidates, chip_names, choose_scenes, describe, find_chip, host_errors, pick, unit, Budget,
-    Outcome,
+    candidates, chip_names, choose_scenes, describe, find_chip, host_errors, pick, unit,
+    user_scene_candidates, Budget, Outcome,
 };
 
 use super::common::print_stdout;
@@ -39,7 +39,8 @@ pub struct PickArgs {
     #[arg(long = "ram-kb", allow_negative_numbers = true)]
     pub ram_kb: Option<f64>,
     /// A firmware scene, or a base scene (`dodeca-n100`, `bunny`); by
-    /// default the scenes measured in every shading mode.
+    /// default the scenes measured in every shading mode. A scene file
+    /// (`SCENE.toml`) is picked by RAM alone: its cycles are not measured.
     #[arg(long)]
     pub scene: Option<String>,
     /// The measurements file.
@@ -82,6 +83,13 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
     let m = chips::load(&path)?;
     if !args.allow_stale {
         chips::check_fresh(&m, &chips::repo_root(), &path.display().to_string())?;
+    }
+    if let Some(file) = args
+        .scene
+        .as_deref()
+        .filter(|s| s.ends_with(".toml") || std::path::Path::new(s).is_file())
+    {
+        return pick_file(std::path::Path::new(file), chip, &budget, &m, &path);
     }
     let choice = choose_scenes(&m, args.scene.as_deref())?;
     let errors = host_errors(&choice.scenes, &CoreProfile::ALL)?;
@@ -148,6 +156,74 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
             "{}: no measurements for {} on {}",
             path.display(),
             choice.name,
+            chip.target.title()
+        ))),
+    }
+}
+
+/// `--scene FILE`: the user's scene, picked by RAM alone (its cycles are
+/// not measured: the firmware renders the built-in scenes).
+fn pick_file(
+    file: &std::path::Path,
+    chip: &crate::report::picks::Chip,
+    budget: &Budget,
+    m: &chips::Measurements,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let cands = user_scene_candidates(file, m, chip.target)?;
+    let ram_only = Budget {
+        fps: f64::MIN_POSITIVE,
+        ..*budget
+    };
+    let line = |c: &crate::report::picks::Candidate| {
+        format!(
+            "{}, band rows 16, depth 16 bits: {:.3} levels from the ideal Phong frame; RAM {} bytes ({:.1} KiB)",
+            c.label(),
+            c.error,
+            c.ram,
+            c.ram as f64 / 1024.0
+        )
+    };
+    let mut text = format!(
+        "chip: {} ({}): {:.0} bytes RAM\nscene: {} (your scene file)\ncycles: not measured for your scene (the firmware renders the built-in scenes only), so this pick is by RAM and accuracy alone; the built-in scenes' cycles: `fixshade pick --chip {} --fps {}`\nfigures: stacks from {}; RAM = prepared frame (host, the same bytes as on the chip) + colour and depth bands + stack\n",
+        chip.name,
+        chip.target.title(),
+        budget.ram_bytes,
+        file.display(),
+        chip.name,
+        budget.fps,
+        path.display()
+    );
+    match pick(&cands, &ram_only) {
+        Outcome::Fit { chosen, runner_up } => {
+            text += &format!("pick: {}\n", line(&cands[chosen]));
+            if let Some(r) = runner_up {
+                text += &format!("runner-up: {}\n", line(&cands[r]));
+            }
+            print_stdout(&text)
+        }
+        Outcome::NoFit { closest } => {
+            let c = &cands[closest];
+            text += &format!(
+                "nothing fits: your scene is too big for {:.0} bytes of RAM. closest: {}; {} bytes over\n",
+                budget.ram_bytes,
+                line(c),
+                (c.ram as f64 - budget.ram_bytes).ceil()
+            );
+            print_stdout(&text)?;
+            Err(CliError {
+                kind: ErrorKind::Io,
+                message: format!(
+                    "{}: too big for {:.0} KiB of RAM (needs at least {} bytes)",
+                    file.display(),
+                    budget.ram_bytes / 1024.0,
+                    c.ram
+                ),
+            })
+        }
+        Outcome::Empty => Err(CliError::input(format!(
+            "{}: no stack measurements for {}",
+            path.display(),
             chip.target.title()
         ))),
     }

@@ -370,7 +370,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
     };
     // Bad scene files are bad input before any output.
     if !opts.scene_files.is_empty() {
-        sweep::scene_files(&opts.scene_files, opts.quick)?;
+        sweep::scene_files(&opts.scene_files)?;
     }
     prepare_out_dir(&opts.out)?;
     let fw_scenes: Vec<String> = {
@@ -388,7 +388,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
     let scenes = if opts.scene_files.is_empty() {
         sweep_scenes(opts.quick)?
     } else {
-        sweep::scene_files(&opts.scene_files, opts.quick)?
+        sweep::scene_files(&opts.scene_files)?
     };
     let repeats = if opts.quick {
         Repeats::QUICK
@@ -404,7 +404,11 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
     let meta = Meta {
         quick: opts.quick,
         debug_build: cfg!(debug_assertions),
-        frame_divisor: if opts.quick { 2 } else { 1 },
+        frame_divisor: if opts.quick && opts.scene_files.is_empty() {
+            2
+        } else {
+            1
+        },
         min_runs: repeats.min_runs,
         min_time_ms: u64::try_from(repeats.min_time.as_millis()).unwrap_or(u64::MAX),
         scenes: scenes.iter().map(SweepScene::info).collect(),

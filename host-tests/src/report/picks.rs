@@ -362,6 +362,61 @@ pub enum Outcome {
     Empty,
 }
 
+/// The configurations of a user's scene file on `target`, for a pick by
+/// RAM alone: the firmware renders the built-in scenes only, so their
+/// cycles are not measured (`cycles` is 0 here). RAM: the host's prepared
+/// frame (the bytes the chip's would take), the colour and 16-bit depth
+/// bands of 16 rows, and the largest stack measured on `target` with the
+/// profile; error: against the scene's ideal Phong frame.
+///
+/// # Errors
+/// A file that does not load or that a renderer refuses (bad input).
+pub fn user_scene_candidates(
+    path: &std::path::Path,
+    ms: &Measurements,
+    target: Target,
+) -> Result<Vec<Candidate>, CliError> {
+    use rayon::prelude::*;
+    let desc = crate::scene_file::SceneDesc::load(path)?;
+    let with = |m: Mode| {
+        let mut d = desc.clone();
+        for o in &mut d.objects {
+            o.shading = m.shading();
+        }
+        d
+    };
+    let phong = super::sweep::ideal_frame(&with(Mode::Phong))?;
+    let prgb = phong.to_rgb8();
+    let bands = u64::from(desc.width) * u64::from(crate::core_render::BAND_ROWS) * 2 * 2;
+    let jobs: Vec<(CoreProfile, Mode)> = CoreProfile::ALL
+        .into_iter()
+        .flat_map(|p| Mode::ALL.into_iter().map(move |m| (p, m)))
+        .collect();
+    jobs.par_iter()
+        .filter_map(|&(p, m)| {
+            let stack = ms
+                .of(target)
+                .filter(|r| r.profile == p.name())
+                .map(|r| r.stack)
+                .max()?;
+            Some((p, m, stack))
+        })
+        .map(|(p, m, stack)| {
+            let f = super::sweep::rgb_frame(&with(m), p)?;
+            let e = compare(&core_view(&f), &ideal_view(&phong, &prgb))
+                .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+            Ok(Candidate {
+                profile: p,
+                mode: Some(m),
+                scenes: vec![path.display().to_string()],
+                cycles: 0,
+                ram: f.prepared_bytes as u64 + bands + stack,
+                error: e.mean_abs_error,
+            })
+        })
+        .collect()
+}
+
 /// Picks the most accurate fitting candidate (ties: fewer cycles).
 pub fn pick(cands: &[Candidate], b: &Budget) -> Outcome {
     let mut fit: Vec<usize> = (0..cands.len()).filter(|&i| cands[i].fits(b)).collect();

@@ -78,11 +78,12 @@ pub(crate) fn base_name(name: &str) -> String {
 /// The user's scene files (TOML, or OBJ meshes through their scene
 /// files) as base scenes, named by their file stems (`-2`, `-3`, ... for
 /// repeated stems), every object's shading overridden per mode as for
-/// the built-ins; `quick` halves the frame size.
+/// the built-ins, at their own size (also with `--quick`: the RAM they
+/// need is the point).
 ///
 /// # Errors
 /// A file that does not load (bad input naming the file and field).
-pub fn scene_files(paths: &[std::path::PathBuf], quick: bool) -> Result<Vec<SweepScene>, CliError> {
+pub fn scene_files(paths: &[std::path::PathBuf]) -> Result<Vec<SweepScene>, CliError> {
     let mut out: Vec<SweepScene> = Vec::new();
     for path in paths {
         let mut desc = SceneDesc::load(path)?;
@@ -94,10 +95,6 @@ pub fn scene_files(paths: &[std::path::PathBuf], quick: bool) -> Result<Vec<Swee
         while out.iter().any(|s| s.name == name) {
             name = format!("{stem}-{k}");
             k += 1;
-        }
-        if quick {
-            desc.width = (desc.width / 2).max(16);
-            desc.height = (desc.height / 2).max(16);
         }
         desc.source = path.display().to_string();
         out.push(SweepScene {
