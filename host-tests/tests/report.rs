@@ -236,8 +236,8 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
     assert!(data.summary.iter().any(|l| l.starts_with("Which pixels")));
     assert_eq!(
         html.matches("<svg").count(),
-        3 + 2 * 3 + 2 * 2 + 4,
-        "three plots for the host and per chip (errors vs ideal, twin, ideal Phong against mean cost), the chip section's error vs cycles and vs RAM per chip, one per knob"
+        3 + 2 * 3 + 2 * 2 + 2 + 4,
+        "three plots for the host and per chip (errors vs ideal, twin, ideal Phong against mean cost), the chip section's error vs cycles and vs RAM per chip, M0 fixed point and soft-float side by side, one per knob"
     );
     assert!(html.contains("Pareto front"));
     assert!(!html.contains("Embedded figures are not available"));

@@ -303,7 +303,7 @@ impl ChipSection {
         }
 
         // Plots per chip.
-        let plots = Target::ALL
+        let mut plots: Vec<(String, String, String)> = Target::ALL
             .into_iter()
             .map(|t| {
                 let cs = &cands[&t];
@@ -332,6 +332,38 @@ impl ChipSection {
                 )
             })
             .collect();
+        // Fixed point and soft-float on the M0, side by side (same axes:
+        // each plot is drawn on its own, so read the cycle scales).
+        {
+            let m0 = &cands[&Target::M0];
+            let side = |fixed: bool| -> Vec<Point> {
+                m0.iter()
+                    .filter(|c| c.profile.is_fixed() == fixed)
+                    .filter_map(|c| point(c, c.cycles as f64))
+                    .collect()
+            };
+            let t = format!(
+                "Cortex-M0: fixed point against soft-float ({})",
+                choice.name
+            );
+            plots.push((
+                t,
+                scatter_svg(
+                    "M0, fixed point (fast, precise, -pc)",
+                    "est. M0 cycles per frame",
+                    "mean error vs ideal Phong (levels)",
+                    &side(true),
+                    |p| p.vs_phong,
+                ),
+                scatter_svg(
+                    "M0, soft-float (f32, f64, -pc)",
+                    "est. M0 cycles per frame",
+                    "mean error vs ideal Phong (levels)",
+                    &side(false),
+                    |p| p.vs_phong,
+                ),
+            ));
+        }
 
         Self {
             file: file.to_string(),
