@@ -13,7 +13,8 @@ use crate::report::measure::{measure_firmware, MeasureOptions};
 use super::common::{print_stdout, write_atomically};
 use super::error::{CliError, ErrorKind};
 
-/// Arguments of `fixshade measure-firmware`.
+/// Arguments of `fixshade measure-firmware` (`--write` also rewrites the
+/// generated tables of `README.md` and `docs/accuracy.md`).
 #[derive(Clone, Debug, Args)]
 pub struct MeasureArgs {
     /// Write the measurements to FILE (e.g.
@@ -65,6 +66,14 @@ pub fn run(args: &MeasureArgs) -> Result<(), CliError> {
     if let Some(path) = &args.write {
         write_atomically(path, |out| out.write_all(json.as_bytes()))?;
         text.push_str(&format!("wrote {}\n", path.display()));
+        // The tables generated from it (README, docs/accuracy.md), so one
+        // command regenerates every figure.
+        for f in crate::report::docs_tables::write_blocks(&chips::repo_root(), &m)? {
+            text.push_str(&format!(
+                "rewrote the generated tables of {}\n",
+                f.display()
+            ));
+        }
     }
     if let (Some(path), Some(old)) = (&args.check, committed) {
         let diff = old.differences(&m);

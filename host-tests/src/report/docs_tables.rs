@@ -78,6 +78,37 @@ pub fn block(name: &str, ms: &Measurements) -> Result<String, CliError> {
     Ok(format!("\n{body}"))
 }
 
+/// Rewrites every block of [`BLOCKS`] under `root` from `ms`; returns the
+/// files changed. A file without a block's markers is left alone.
+///
+/// # Errors
+/// A file that cannot be read or written, or a block that cannot be
+/// computed.
+pub fn write_blocks(
+    root: &std::path::Path,
+    ms: &Measurements,
+) -> Result<Vec<std::path::PathBuf>, CliError> {
+    let mut changed = Vec::new();
+    for (file, name) in BLOCKS {
+        let path = root.join(file);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| CliError::input(format!("{}: cannot read: {e}", path.display())))?;
+        let Some(have) = find_block(&text, name) else {
+            continue;
+        };
+        let want = block(name, ms)?;
+        if have != want {
+            if let Some(new) = replace_block(&text, name, &want) {
+                crate::cli::write_atomically(&path, |out| out.write_all(new.as_bytes()))?;
+                if !changed.contains(&path) {
+                    changed.push(path);
+                }
+            }
+        }
+    }
+    Ok(changed)
+}
+
 /// Markers and all, for a file that lacks them.
 pub fn with_markers(name: &str, body: &str) -> String {
     format!("{}{body}{}", begin(name), end(name))
@@ -246,6 +277,35 @@ fn accuracy() -> Result<String, CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn write_blocks_rewrites_stale_blocks_and_leaves_the_rest() {
+        let root = std::env::temp_dir().join(format!("fixshade-docs-{}", std::process::id()));
+        std::fs::create_dir_all(root.join("docs")).unwrap();
+        let readme = format!("# x\n{}\ntail\n", with_markers("chip-fast", "\nold\n"));
+        std::fs::write(root.join("README.md"), &readme).unwrap();
+        // No markers: left alone (and the accuracy block not computed).
+        std::fs::write(root.join("docs/accuracy.md"), "no markers\n").unwrap();
+        let ms = super::super::chips::load(
+            &super::super::chips::repo_root().join(super::super::chips::DEFAULT_PATH),
+        )
+        .unwrap();
+        let changed = write_blocks(&root, &ms).unwrap();
+        assert_eq!(changed, [root.join("README.md")]);
+        let text = std::fs::read_to_string(root.join("README.md")).unwrap();
+        assert_eq!(
+            find_block(&text, "chip-fast").unwrap(),
+            block("chip-fast", &ms).unwrap()
+        );
+        assert!(text.starts_with("# x\n") && text.ends_with("\ntail\n"));
+        assert_eq!(
+            std::fs::read_to_string(root.join("docs/accuracy.md")).unwrap(),
+            "no markers\n"
+        );
+        // Current blocks: nothing to write.
+        assert!(write_blocks(&root, &ms).unwrap().is_empty());
+        std::fs::remove_dir_all(&root).unwrap();
+    }
 
     #[test]
     fn blocks_are_found_and_replaced() {
