@@ -48,7 +48,13 @@ fn text(path: &Path) -> String {
 fn quick_report_has_every_record_the_summary_and_the_plots() {
     let tmp = TempDir::new("quick");
     let out = tmp.0.join("out");
-    let o = run(&["report", "--quick", "--out", out.to_str().unwrap()]);
+    let o = run(&[
+        "report",
+        "--quick",
+        "--allow-stale",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{stderr}");
     // No progress bar when stderr is not a terminal.
@@ -147,16 +153,67 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
                 .vs_ideal
                 .mean_abs_error
     );
-    assert!(!data.embedded_available);
+    // The committed chip measurements: every profile on both chips.
+    assert!(data.embedded_available);
+    assert_eq!(data.embedded.len(), 2 * 8 * 6);
+    let chips = data.chips.as_ref().unwrap();
+    assert_eq!(chips.picks.rows.len(), 4);
+    assert_eq!(chips.fps.rows.len(), 6 * 8);
+    assert_eq!(chips.builds.rows.len(), 16);
+    // The Cortex-M0 at 48 MHz and 32 KiB picks a fixed profile that fits.
+    let m0 = &chips.picks.rows[0];
+    assert!(m0[0].starts_with("Cortex-M0/M0+ at 48 MHz"), "{m0:?}");
+    assert!(m0[2].starts_with("fast"), "{m0:?}");
+    // Every fixed profile's frame is the host's, bit for bit.
+    for n in &chips.crc_notes {
+        if n.contains("(required)") {
+            assert!(n.contains(": 6 of 6 frames"), "{n}");
+        }
+    }
 
-    // index.html: the summary, three plots for the host, the frames.
+    // The knob sweeps: band rows trade RAM for setups (the same frame),
+    // 32-bit depth costs RAM, subpixel bits move coverage.
+    let knobs = data.knobs.as_ref().unwrap();
+    assert_eq!(knobs.scene, "bunny-gouraud");
+    assert_eq!(knobs.rows.rows.len(), 6);
+    let setups: Vec<u64> = knobs
+        .rows
+        .rows
+        .iter()
+        .map(|r| r[2].parse().unwrap())
+        .collect();
+    assert!(setups.windows(2).all(|w| w[0] > w[1]), "{setups:?}");
+    let ram: Vec<u64> = knobs
+        .rows
+        .rows
+        .iter()
+        .map(|r| r[1].parse().unwrap())
+        .collect();
+    assert_eq!(ram[0], 240 * 4 * 2 * 2);
+    assert!(ram.windows(2).all(|w| w[0] < w[1]), "{ram:?}");
+    assert_eq!(knobs.depth.rows.len(), 2);
+    assert_eq!(knobs.depth.rows[1][1], (240 * 16 * 4).to_string());
+    assert_eq!(knobs.subpixel.rows.len(), 5);
+    assert_eq!(knobs.perspective.rows.len(), 5);
+
+    // index.html: the chip section first, the summary, the plots, the
+    // frames.
     let html = text(&out.join("index.html"));
-    assert!(html.starts_with("<!doctype html>"));
+    assert!(html.to_ascii_lowercase().starts_with("<!doctype html>"));
     assert!(html.trim_end().ends_with("</html>"));
     assert!(html.contains("<h2 id=\"summary\">Summary</h2>"));
+    let chips_at = html.find("<h2 id=\"chips\">").unwrap();
+    assert!(chips_at < html.find("<h2 id=\"summary\">").unwrap());
+    assert!(!html.contains("host time as a proxy"));
     for line in &data.summary {
         assert!(
-            html.contains(&line.replace('&', "&amp;").replace('<', "&lt;")),
+            html.contains(
+                &line
+                    .replace('&', "&amp;")
+                    .replace('<', "&lt;")
+                    .replace('>', "&gt;")
+                    .replace('"', "&quot;")
+            ),
             "{line}"
         );
     }
@@ -177,9 +234,13 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
         .iter()
         .any(|l| l.starts_with("Largest departures")));
     assert!(data.summary.iter().any(|l| l.starts_with("Which pixels")));
-    assert_eq!(html.matches("<svg").count(), 3, "host plots only");
+    assert_eq!(
+        html.matches("<svg").count(),
+        3 + 2 * 3 + 2 * 2 + 2 + 4,
+        "three plots for the host and per chip (errors vs ideal, twin, ideal Phong against mean cost), the chip section's error vs cycles and vs RAM per chip, M0 fixed point and soft-float side by side, one per knob"
+    );
     assert!(html.contains("Pareto front"));
-    assert!(html.contains("Embedded figures are not available"));
+    assert!(!html.contains("Embedded figures are not available"));
     assert_eq!(html.contains("in a debug build"), cfg!(debug_assertions));
     assert!(
         !html.contains("http://")
@@ -227,7 +288,9 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
         (p.profile, p.mode, p.cost),
         (CoreProfile::Precise, Mode::Gouraud, 1000.0)
     );
-    assert_eq!(s.picks[2].source, CostSource::HostProxy);
+    // No figures for the M4F: no candidates (host time never stands in).
+    assert!(s.picks[2].points.is_empty());
+    assert!(s.picks[2].sentence().ends_with("no candidates measured."));
     assert_eq!(s.embedded_points.len(), 1);
 }
 
@@ -238,7 +301,13 @@ fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
     std::fs::write(&file, "x").unwrap();
     let under_file = file.join("out");
     let start = std::time::Instant::now();
-    let o = run(&["report", "--quick", "--out", under_file.to_str().unwrap()]);
+    let o = run(&[
+        "report",
+        "--quick",
+        "--allow-stale",
+        "--out",
+        under_file.to_str().unwrap(),
+    ]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{stderr}");
     assert!(stderr.starts_with("error: "), "{stderr}");
@@ -263,6 +332,7 @@ fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
         out.to_str().unwrap(),
         "--firmware-results",
         fw.to_str().unwrap(),
+        "--allow-stale",
     ]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
@@ -272,4 +342,213 @@ fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
     );
     assert_eq!(text(&out.join("index.html")), "old");
     assert!(!out.join("results.json").exists());
+}
+
+#[test]
+fn missing_malformed_and_stale_measurements_are_refused_before_any_output() {
+    let tmp = TempDir::new("measurements");
+    let out = tmp.0.join("out");
+    let committed =
+        text(&fixshade_host::report::chips::repo_root().join("docs/measurements/firmware.json"));
+    let stale = tmp.0.join("stale.json");
+    std::fs::write(
+        &stale,
+        committed.replacen(
+            "\"source_fingerprint\": \"fnv1a64:",
+            "\"source_fingerprint\": \"fnv1a64:0",
+            1,
+        ),
+    )
+    .unwrap();
+    let malformed = tmp.0.join("malformed.json");
+    std::fs::write(
+        &malformed,
+        committed.replacen("\"insns\": ", "\"insns\": -", 1),
+    )
+    .unwrap();
+    let cases = [
+        (
+            tmp.0.join("missing.json"),
+            "cannot read the firmware measurements",
+        ),
+        (
+            malformed,
+            "malformed firmware measurements at `results[0].insns`",
+        ),
+        (stale, "stale firmware measurements"),
+    ];
+    for (file, want) in cases {
+        for args in [
+            vec!["report", "--quick", "--out", out.to_str().unwrap()],
+            vec!["pick", "--chip", "cortex-m0", "--fps", "10"],
+        ] {
+            let mut args = args.clone();
+            args.extend(["--measurements", file.to_str().unwrap()]);
+            let o = run(&args);
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+            assert!(stderr.contains(want), "{args:?}: {stderr}");
+            assert_eq!(stderr.lines().count(), 1, "{stderr}");
+            assert!(o.stdout.is_empty(), "{args:?}");
+            assert!(!out.exists(), "{args:?}: no partial output");
+        }
+    }
+}
+
+#[test]
+fn pick_fits_a_budget_or_says_how_far_off_it_is() {
+    let o = run(&[
+        "pick",
+        "--chip",
+        "cortex-m0",
+        "--mhz",
+        "48",
+        "--fps",
+        "10",
+        "--ram-kb",
+        "32",
+        "--allow-stale",
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}");
+    let pick = stdout.lines().find(|l| l.starts_with("pick: ")).unwrap();
+    // The most accurate within 4.8 M est. cycles and 32 KiB on the
+    // dodecahedron: Phong costs 16.3 M cycles, so Gouraud with `fast`.
+    assert!(pick.starts_with("pick: fast / Gouraud"), "{pick}");
+    assert!(
+        stdout.lines().any(|l| l.starts_with("runner-up: ")),
+        "{stdout}"
+    );
+    // 60 fps in 8 KiB: nothing fits, exit 1 with the closest.
+    let o = run(&[
+        "pick",
+        "--chip",
+        "m0",
+        "--fps",
+        "60",
+        "--ram-kb",
+        "8",
+        "--allow-stale",
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("nothing fits. closest: "), "{stdout}");
+    assert!(stdout.contains("bytes over the RAM"), "{stdout}");
+    // Bad input: exit 2, nothing on stdout.
+    for (args, want) in [
+        (
+            vec!["--chip", "cortex-m7", "--fps", "10"],
+            "unknown chip `cortex-m7`",
+        ),
+        (
+            vec!["--chip", "m0", "--fps", "0"],
+            "--fps: 0 is not a positive number",
+        ),
+        (
+            vec!["--chip", "m0", "--fps", "10", "--mhz", "-48"],
+            "--mhz: -48 is not a positive number",
+        ),
+        (
+            vec!["--chip", "m0", "--fps", "10", "--ram-kb", "NaN"],
+            "--ram-kb: NaN is not a positive number",
+        ),
+        (
+            vec!["--chip", "m0", "--fps", "10", "--scene", "teapot"],
+            "no firmware measurements for `teapot`",
+        ),
+    ] {
+        let mut a = vec!["pick", "--allow-stale"];
+        a.extend(args);
+        let o = run(&a);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{a:?}: {stderr}");
+        assert!(stderr.contains(want), "{a:?}: {stderr}");
+        assert!(o.stdout.is_empty(), "{a:?}");
+    }
+}
+
+#[test]
+fn the_users_scene_files_are_swept_and_picked_by_ram() {
+    let scenes = fixshade_host::report::chips::repo_root().join("host-tests/scenes");
+    let bunny = scenes.join("bunny-gouraud.toml");
+    let bunny = bunny.to_str().unwrap();
+    // The bunny needs more than 32 KiB in every configuration: exit 1,
+    // with the bytes it needs.
+    let o = run(&[
+        "pick",
+        "--chip",
+        "m0",
+        "--fps",
+        "10",
+        "--scene",
+        bunny,
+        "--allow-stale",
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.contains("cycles: not measured for your scene"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("your scene is too big for 32768 bytes of RAM"),
+        "{stdout}"
+    );
+    let o = run(&[
+        "pick",
+        "--chip",
+        "m0",
+        "--fps",
+        "10",
+        "--ram-kb",
+        "80",
+        "--scene",
+        bunny,
+        "--allow-stale",
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}");
+    assert!(stdout.contains("pick: fast / Gouraud"), "{stdout}");
+
+    // `report SCENE.toml...`: the files instead of the built-ins, with
+    // the RAM each needs against the parts.
+    let tmp = TempDir::new("user");
+    let out = tmp.0.join("out");
+    let dodeca = scenes.join("dodeca-phong-n100.toml");
+    let o = run(&[
+        "report",
+        dodeca.to_str().unwrap(),
+        bunny,
+        "--quick",
+        "--allow-stale",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let data: ReportData = serde_json::from_str(&text(&out.join("results.json"))).unwrap();
+    let names: Vec<&str> = data.meta.scenes.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["dodeca-phong-n100", "bunny-gouraud"]);
+    assert_eq!(data.records.len(), 2 * 3 * 8);
+    let ram = data.chips.as_ref().unwrap().user_ram.as_ref().unwrap();
+    assert_eq!(ram.rows.len(), 2 * 3 * 8);
+    assert!(
+        ram.rows.iter().any(|r| r[4].starts_with("too big: needs ")),
+        "{ram:?}"
+    );
+    assert!(
+        ram.rows.iter().any(|r| r[4].starts_with("fits (")),
+        "{ram:?}"
+    );
+    // A missing file: bad input, no output.
+    let out2 = tmp.0.join("out2");
+    let o = run(&[
+        "report",
+        "/nonexistent/scene.toml",
+        "--quick",
+        "--allow-stale",
+        "--out",
+        out2.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!out2.exists());
 }

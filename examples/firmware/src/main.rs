@@ -19,6 +19,18 @@
 //! semihosting with status 0, or 1 on any error or panic.
 #![no_std]
 #![no_main]
+// With a `profile-*` feature, `profiled::main` is the entry (with
+// `knobs`, `knobs::main`) and the default build's frame and span-loop
+// code is unused.
+#![cfg_attr(
+    any(feature = "profiled", feature = "knobs"),
+    allow(dead_code, unused_imports)
+)]
+
+#[cfg(feature = "knobs")]
+mod knobs;
+#[cfg(feature = "profiled")]
+mod profiled;
 
 use core::hint::black_box;
 use core::panic::PanicInfo;
@@ -419,6 +431,7 @@ fn workspace_bytes(mem: &Memory) -> usize {
 
 // cortex-m-rt passes each `static mut` below as an argument.
 #[allow(clippy::too_many_arguments)]
+#[cfg(not(any(feature = "profiled", feature = "knobs")))]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once),

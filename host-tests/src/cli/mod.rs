@@ -29,6 +29,8 @@ pub mod common;
 pub mod compare;
 mod error;
 pub mod ideal;
+pub mod measure;
+pub mod pick;
 pub mod render;
 pub mod report;
 pub mod scenes;
@@ -70,6 +72,12 @@ pub enum Command {
     Report(report::ReportArgs),
     /// Render one turn of a scene with the core to an animated GIF.
     Animate(animate::AnimateArgs),
+    /// Measure every profile's chip costs under QEMU; write or check
+    /// docs/measurements/firmware.json.
+    MeasureFirmware(measure::MeasureArgs),
+    /// The most accurate configuration that fits a chip's clock, frame
+    /// rate and RAM.
+    Pick(pick::PickArgs),
 }
 
 impl Command {
@@ -83,6 +91,8 @@ impl Command {
             Self::Compare(args) => compare::run(args),
             Self::Report(args) => report::run(args),
             Self::Animate(args) => animate::run(args),
+            Self::MeasureFirmware(args) => measure::run(args),
+            Self::Pick(args) => pick::run(args),
         }
     }
 }

@@ -12,6 +12,9 @@ use super::error::CliError;
 /// Arguments of `fixshade report`.
 #[derive(Clone, Debug, Args)]
 pub struct ReportArgs {
+    /// Your scene files (TOML) to sweep instead of the built-in scenes.
+    #[arg(value_name = "SCENE.toml")]
+    pub scenes: Vec<PathBuf>,
     /// The folder to write `index.html`, `report.md`, `results.json` and
     /// `img/` into (created if missing).
     #[arg(long, value_name = "DIR")]
@@ -24,6 +27,17 @@ pub struct ReportArgs {
     /// figures are not available.
     #[arg(long, value_name = "FILE")]
     pub firmware_results: Option<PathBuf>,
+    /// The chip measurements (default: docs/measurements/firmware.json of
+    /// the checkout; refused when stale).
+    #[arg(long, value_name = "FILE")]
+    pub measurements: Option<PathBuf>,
+    /// Use chip measurements made from other sources (the page says so).
+    #[arg(long)]
+    pub allow_stale: bool,
+    /// Re-measure every profile on both chips under QEMU (needs
+    /// qemu-system-arm, gcc and the thumb targets; minutes).
+    #[arg(long)]
+    pub measure_firmware: bool,
 }
 
 /// Runs the sweep and writes the report; prints the summary and the files.
@@ -33,6 +47,10 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         quick: args.quick,
         firmware_results: args.firmware_results.clone(),
         progress: true,
+        measurements: args.measurements.clone(),
+        allow_stale: args.allow_stale,
+        measure_firmware: args.measure_firmware,
+        scene_files: args.scenes.clone(),
     })?;
     let mut text = String::new();
     for line in &out.data.summary {

@@ -35,8 +35,14 @@
 //! a temporary name and renamed, `index.html` last: an interrupted run
 //! leaves no half-written page.
 
+mod chip_section;
+pub mod chips;
+pub mod docs_tables;
 mod embedded;
+mod knob_section;
+pub mod measure;
 mod page;
+pub mod picks;
 mod plot;
 mod summary;
 mod sweep;
@@ -51,7 +57,9 @@ use crate::cli::{write_atomically, CliError};
 use crate::ideal::Shading;
 use crate::metrics::Metrics;
 
+pub use chip_section::{ChipSection, Table};
 pub use embedded::{parse_firmware_results, read_firmware_results, EmbeddedResult, Target};
+pub use knob_section::{FastSub, KnobSection};
 pub use plot::pareto_front;
 pub use summary::{
     aggregate, Aggregate, CostSource, Pick, Point, Summary, MODE_TOLERANCE, QUALITY_TOLERANCE,
@@ -122,6 +130,16 @@ pub struct ReportOptions {
     /// Draw a progress bar on stderr (never drawn when stderr is not a
     /// terminal).
     pub progress: bool,
+    /// The chip measurements (default: [`chips::DEFAULT_PATH`] of the
+    /// checkout).
+    pub measurements: Option<PathBuf>,
+    /// Use measurements from other sources (the page says they are
+    /// stale).
+    pub allow_stale: bool,
+    /// Re-measure the firmware under QEMU instead of reading the file.
+    pub measure_firmware: bool,
+    /// The user's scene files to sweep instead of the built-in scenes.
+    pub scene_files: Vec<PathBuf>,
 }
 
 /// Host cost of one record.
@@ -273,6 +291,10 @@ pub struct ReportData {
     pub embedded_available: bool,
     /// The summary, as on the page.
     pub summary: Vec<String>,
+    /// The chip section (picks, costs per profile on the chips).
+    pub chips: Option<ChipSection>,
+    /// The knob sweeps (when the measurements have them).
+    pub knobs: Option<KnobSection>,
 }
 
 /// What a run wrote.
@@ -300,6 +322,35 @@ pub fn prepare_out_dir(out: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The chip measurements of a run: re-measured (`--measure-firmware`),
+/// or read from the file and checked to be fresh (unless allowed stale).
+/// Returns them, the file's name and whether they are stale.
+fn chip_measurements(
+    opts: &ReportOptions,
+) -> Result<(chips::Measurements, String, bool), CliError> {
+    let root = chips::repo_root();
+    if opts.measure_firmware {
+        let ms = measure::measure_firmware(&measure::MeasureOptions {
+            root,
+            profiles: crate::core_render::CoreProfile::ALL.to_vec(),
+            progress: opts.progress,
+        })?;
+        return Ok((ms, "a fresh measurement (--measure-firmware)".into(), false));
+    }
+    let path = opts
+        .measurements
+        .clone()
+        .unwrap_or_else(|| root.join(chips::DEFAULT_PATH));
+    let file = path.display().to_string();
+    let ms = chips::load(&path)?;
+    let stale = match chips::check_fresh(&ms, &root, &file) {
+        Ok(()) => false,
+        Err(_) if opts.allow_stale => true,
+        Err(e) => return Err(e),
+    };
+    Ok((ms, file, stale))
+}
+
 /// Runs the sweep and writes the report (see the [module docs](self)).
 ///
 /// # Errors
@@ -308,25 +359,56 @@ pub fn prepare_out_dir(out: &Path) -> Result<(), CliError> {
 /// input, exit status 2). Checked before the sweep starts, except
 /// failures while writing.
 pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
+    let started = Instant::now();
+    let (ms, ms_file, stale) = chip_measurements(opts)?;
     let embedded = match &opts.firmware_results {
         Some(path) => read_firmware_results(path)?,
-        None => Vec::new(),
+        None => {
+            let text = serde_json::to_string(&ms).unwrap_or_default();
+            parse_firmware_results(&text, &ms_file)?
+        }
     };
+    // Bad scene files are bad input before any output.
+    if !opts.scene_files.is_empty() {
+        sweep::scene_files(&opts.scene_files)?;
+    }
     prepare_out_dir(&opts.out)?;
-    let started = Instant::now();
-    let scenes = sweep_scenes(opts.quick)?;
+    let fw_scenes: Vec<String> = {
+        let mut v: Vec<String> = Vec::new();
+        for r in &ms.results {
+            if !v.contains(&r.scene) {
+                v.push(r.scene.clone());
+            }
+        }
+        v
+    };
+    let errors = picks::host_errors(&fw_scenes, &crate::core_render::CoreProfile::ALL)?;
+    let mut chips = ChipSection::new(&ms, &ms_file, stale, &errors);
+    let knobs = KnobSection::new(&ms)?;
+    let scenes = if opts.scene_files.is_empty() {
+        sweep_scenes(opts.quick)?
+    } else {
+        sweep::scene_files(&opts.scene_files)?
+    };
     let repeats = if opts.quick {
         Repeats::QUICK
     } else {
         Repeats::FULL
     };
     let records = sweep::measure(&scenes, repeats, opts.progress)?;
+    if !opts.scene_files.is_empty() {
+        chips.add_user_scenes(&ms, &records);
+    }
     let elapsed_s = started.elapsed().as_secs_f64();
     let summary = Summary::new(&records, &embedded);
     let meta = Meta {
         quick: opts.quick,
         debug_build: cfg!(debug_assertions),
-        frame_divisor: if opts.quick { 2 } else { 1 },
+        frame_divisor: if opts.quick && opts.scene_files.is_empty() {
+            2
+        } else {
+            1
+        },
         min_runs: repeats.min_runs,
         min_time_ms: u64::try_from(repeats.min_time.as_millis()).unwrap_or(u64::MAX),
         scenes: scenes.iter().map(SweepScene::info).collect(),
@@ -347,6 +429,8 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
         embedded_available: !embedded.is_empty(),
         embedded,
         summary: summary.lines(),
+        chips: Some(chips),
+        knobs,
     };
 
     // Frames of the representative profiles, then the three pages,

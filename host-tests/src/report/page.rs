@@ -2,6 +2,8 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
+
+use maud::{html, Markup, PreEscaped, DOCTYPE};
 use std::path::Path;
 
 use crate::cli::CliError;
@@ -84,13 +86,6 @@ pub fn write_frames(
         }
     }
     Ok(index)
-}
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 fn psnr(x: f64) -> String {
@@ -187,22 +182,21 @@ fn agg_row(a: &Aggregate) -> Vec<String> {
     ]
 }
 
-fn html_table(head: &[&str], rows: &[Vec<String>]) -> String {
-    let mut s = String::from("<table><thead><tr>");
-    for h in head {
-        let _ = write!(s, "<th>{}</th>", esc(h));
-    }
-    s.push_str("</tr></thead><tbody>\n");
-    for r in rows {
-        s.push_str("<tr>");
-        for (i, c) in r.iter().enumerate() {
-            let class = if i < 2 { "" } else { " class=\"n\"" };
-            let _ = write!(s, "<td{class}>{}</td>", esc(c));
+fn html_table(head: &[&str], rows: &[Vec<String>]) -> Markup {
+    html! {
+        table {
+            thead { tr { @for h in head { th { (h) } } } }
+            tbody {
+                @for r in rows {
+                    tr {
+                        @for (i, c) in r.iter().enumerate() {
+                            @if i < 2 { td { (c) } } @else { td.n { (c) } }
+                        }
+                    }
+                }
+            }
         }
-        s.push_str("</tr>\n");
     }
-    s.push_str("</tbody></table>\n");
-    s
 }
 
 fn md_table(head: &[&str], rows: &[Vec<String>]) -> String {
@@ -255,7 +249,7 @@ fn embedded_text(data: &ReportData, summary: &Summary) -> (String, Vec<Vec<Strin
             "qemu-system-arm is not installed here, so the firmware example cannot count instructions on this machine."
         };
         return (
-            format!("Embedded figures are not available: no firmware results were given (`--firmware-results FILE`, `RESULT key=value` lines or JSON). The report does not estimate them; the Cortex-M0 and Cortex-M4F picks use host time as a proxy. {qemu}"),
+            format!("Embedded figures are not available: no firmware results were given (`--firmware-results FILE`, `RESULT key=value` lines or JSON). The report does not estimate them, and host time never stands in for a chip: the Cortex-M0 and Cortex-M4F picks have no candidates. {qemu}"),
             Vec::new(),
         );
     }
@@ -360,106 +354,80 @@ th{background:#f4f4f4}td.n{text-align:right;font-variant-numeric:tabular-nums}
 figcaption{font-size:12px;text-align:center}.note{color:#555}.summary li{margin:.4em 0}
 ";
 
-/// `index.html`.
+/// `index.html`: built with `maud`, so every text is escaped by
+/// construction; only the SVG plots (drawn by plotters, from numbers and
+/// fixed labels) and the constant method text go in unescaped.
 pub fn html(data: &ReportData, summary: &Summary, frames: &FrameIndex) -> String {
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>fixshade: accuracy versus speed</title><style>{CSS}</style></head><body>\n<h1>fixshade: accuracy versus speed</h1>\n<p class=\"note\">{}</p>\n",
-        esc(&run_text(data))
-    );
     let n_picks = summary.picks.len();
-    s.push_str("<h2 id=\"summary\">Summary</h2>\n<ul class=\"summary\">\n");
-    for (i, line) in data.summary.iter().enumerate() {
-        if i == n_picks {
-            s.push_str(
-                "</ul>\n<h3>Where the fixed profiles lose accuracy</h3>\n<ul class=\"summary\">\n",
-            );
-        }
-        let _ = writeln!(s, "<li>{}</li>", esc(line));
-    }
-    let _ = writeln!(
-        s,
-        "</ul>\n<p class=\"note\">How the picks are made: a pick is the cheapest candidate whose mean error against the ideal Phong frame of each scene is within {QUALITY_TOLERANCE} levels of the best candidate's (so the shading mode counts: flat and Gouraud lose highlights); per mode, the cheapest within {MODE_TOLERANCE} levels of that mode's best against its own ideal. Errors are in 8-bit levels, means over the scenes.</p>"
-    );
-
+    let (picks, findings) = data.summary.split_at(n_picks.min(data.summary.len()));
     let (emb, emb_rows) = embedded_text(data, summary);
-    let _ = writeln!(
-        s,
-        "<h2 id=\"embedded\">Embedded figures</h2>\n<p>{}</p>",
-        esc(&emb)
-    );
-    if !emb_rows.is_empty() {
-        s.push_str(&html_table(&EMB_HEAD, &emb_rows));
-    }
-
-    s.push_str("<h2 id=\"plots\">Error against cost</h2>\n<p class=\"note\">One point per mode × profile (colour: mode; filled: fixed point, ring: float), errors averaged over the scenes. The black line and rings mark the Pareto front: no other point is both cheaper and more accurate. Against the ideal each mode is compared with the ideal frame of the same mode, so flat shading looks accurate there; against the ideal Phong frame (third plot) the mode's own loss counts too, which is what the picks use. Log scales.</p>\n");
-    for (title, svgs) in plots(summary) {
-        let _ = writeln!(s, "<h3>{}</h3>\n<div class=\"plots\">", esc(&title));
-        for svg in svgs {
-            // plotters writes an XML declaration first; inline SVG does
-            // not want it.
-            let body = svg.find("<svg").map_or(svg.as_str(), |i| &svg[i..]);
-            s.push_str(body);
-            s.push('\n');
-        }
-        s.push_str("</div>\n");
-    }
-
-    s.push_str("<h2 id=\"modes\">Per mode and profile, over all scenes</h2>\n");
-    let rows: Vec<Vec<String>> = summary.aggregates.iter().map(agg_row).collect();
-    s.push_str(&html_table(&AGG_HEAD, &rows));
-
-    s.push_str("<h2 id=\"scenes\">Scenes</h2>\n<p>");
-    let links: Vec<String> = data
-        .meta
-        .scenes
-        .iter()
-        .map(|sc| format!("<a href=\"#s-{0}\">{0}</a>", esc(&sc.name)))
-        .collect();
-    s.push_str(&links.join(" · "));
-    s.push_str("</p>\n<p class=\"note\">Heat-maps: black identical, magenta covered in one frame only, otherwise dark purple (1 level) to yellow (255 levels) on a log scale.</p>\n");
-    for sc in &data.meta.scenes {
-        let _ = writeln!(
-            s,
-            "<h3 id=\"s-{0}\">{0}</h3>\n<p>{1} ({2}×{3}; built-in scenes: {4})</p>",
-            esc(&sc.name),
-            esc(&sc.description),
-            sc.width,
-            sc.height,
-            esc(&sc.sources.join(", "))
-        );
-        for mode in Mode::ALL {
-            let Some(f) = frames.get(&(sc.name.clone(), mode)) else {
-                continue;
-            };
-            let _ = writeln!(
-                s,
-                "<p><b>{}</b> with {}:</p><div class=\"frames\">",
-                mode.title(),
-                esc(f.profile.name())
-            );
-            for (caption, path) in &f.images {
-                let _ = writeln!(
-                    s,
-                    "<figure><img src=\"{0}\" alt=\"{1}\"><figcaption>{1}</figcaption></figure>",
-                    esc(path),
-                    esc(caption)
-                );
+    let agg_rows: Vec<Vec<String>> = summary.aggregates.iter().map(agg_row).collect();
+    let page = html! {
+        (DOCTYPE)
+        html lang="en" {
+            head {
+                meta charset="utf-8";
+                title { "fixshade: accuracy versus speed" }
+                style { (PreEscaped(CSS)) }
             }
-            s.push_str("</div>\n");
+            body {
+                h1 { "fixshade: accuracy versus speed" }
+                p.note { (run_text(data)) }
+                @if let Some(chips) = &data.chips { (chips.html()) }
+                @if let Some(knobs) = &data.knobs { (knobs.html()) }
+                h2 id="summary" { "Summary" }
+                ul.summary { @for line in picks { li { (line) } } }
+                h3 { "Where the fixed profiles lose accuracy" }
+                ul.summary { @for line in findings { li { (line) } } }
+                p.note {
+                    "How the picks are made: a pick is the cheapest candidate whose mean error against the ideal Phong frame of each scene is within " (QUALITY_TOLERANCE) " levels of the best candidate's (so the shading mode counts: flat and Gouraud lose highlights); per mode, the cheapest within " (MODE_TOLERANCE) " levels of that mode's best against its own ideal. Errors are in 8-bit levels, means over the scenes."
+                }
+                h2 id="embedded" { "Embedded figures" }
+                p { (emb) }
+                @if !emb_rows.is_empty() { (html_table(&EMB_HEAD, &emb_rows)) }
+                h2 id="plots" { "Error against cost" }
+                p.note { "One point per mode × profile (colour: mode; filled: fixed point, ring: float), errors averaged over the scenes. The black line and rings mark the Pareto front: no other point is both cheaper and more accurate. Against the ideal each mode is compared with the ideal frame of the same mode, so flat shading looks accurate there; against the ideal Phong frame (third plot) the mode's own loss counts too, which is what the picks use. Log scales." }
+                @for (title, svgs) in plots(summary) {
+                    h3 { (title) }
+                    div.plots {
+                        @for svg in &svgs {
+                            // plotters writes an XML declaration first;
+                            // inline SVG does not want it.
+                            (PreEscaped(svg.find("<svg").map_or(svg.as_str(), |i| &svg[i..])))
+                        }
+                    }
+                }
+                h2 id="modes" { "Per mode and profile, over all scenes" }
+                (html_table(&AGG_HEAD, &agg_rows))
+                @if let Some(chips) = &data.chips { (chips.html_tables()) }
+                h2 id="scenes" { "Scenes" }
+                p {
+                    @for (i, sc) in data.meta.scenes.iter().enumerate() {
+                        @if i > 0 { " · " }
+                        a href={ "#s-" (sc.name) } { (sc.name) }
+                    }
+                }
+                p.note { "Heat-maps: black identical, magenta covered in one frame only, otherwise dark purple (1 level) to yellow (255 levels) on a log scale." }
+                @for sc in &data.meta.scenes {
+                    h3 id={ "s-" (sc.name) } { (sc.name) }
+                    p { (sc.description) " (" (sc.width) "×" (sc.height) "; built-in scenes: " (sc.sources.join(", ")) ")" }
+                    @for mode in Mode::ALL {
+                        @if let Some(f) = frames.get(&(sc.name.clone(), mode)) {
+                            p { b { (mode.title()) } " with " (f.profile.name()) ":" }
+                            div.frames {
+                                @for (caption, path) in &f.images {
+                                    figure { img src=(path) alt=(caption); figcaption { (caption) } }
+                                }
+                            }
+                        }
+                    }
+                    (html_table(&RECORD_HEAD, &data.records.iter().filter(|r| r.scene == sc.name).map(record_row).collect::<Vec<_>>()))
+                }
+                (PreEscaped(METHOD_HTML))
+            }
         }
-        let rows: Vec<Vec<String>> = data
-            .records
-            .iter()
-            .filter(|r| r.scene == sc.name)
-            .map(record_row)
-            .collect();
-        s.push_str(&html_table(&RECORD_HEAD, &rows));
-    }
-    s.push_str(METHOD_HTML);
-    s.push_str("</body></html>\n");
-    s
+    };
+    page.into_string() + "\n"
 }
 
 const METHOD_HTML: &str = "<h2 id=\"method\">Method</h2>\n<ul>
@@ -473,9 +441,18 @@ const METHOD_HTML: &str = "<h2 id=\"method\">Method</h2>\n<ul>
 /// `report.md`.
 pub fn markdown(data: &ReportData, summary: &Summary) -> String {
     let mut s = format!(
-        "# fixshade: accuracy versus speed\n\n{}\n\n## Summary\n\n",
+        "# fixshade: accuracy versus speed\n\n{}\n\n",
         run_text(data)
     );
+    if let Some(chips) = &data.chips {
+        s.push_str(&chips.markdown());
+        s.push('\n');
+    }
+    if let Some(knobs) = &data.knobs {
+        s.push_str(&knobs.markdown());
+        s.push('\n');
+    }
+    s.push_str("## Summary\n\n");
     for (i, line) in data.summary.iter().enumerate() {
         if i == summary.picks.len() {
             s.push_str("\n### Where the fixed profiles lose accuracy\n\n");

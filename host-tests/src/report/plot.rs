@@ -155,6 +155,90 @@ fn draw(
     Ok(())
 }
 
+/// A named series of labelled `(x, y)` points.
+pub type Series = (String, Vec<(f64, f64, String)>);
+
+/// A small linear plot of named series of `(x, y)` points joined by
+/// lines, each point labelled by its series' `labels`. Returns the SVG
+/// text (empty on a drawing error, which only a bug could cause).
+pub fn line_svg(title: &str, x_desc: &str, y_desc: &str, series: &[Series]) -> String {
+    let mut svg = String::new();
+    if draw_lines(&mut svg, title, x_desc, y_desc, series).is_err() {
+        return String::new();
+    }
+    svg
+}
+
+fn draw_lines(
+    svg: &mut String,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|&(x, y, _)| (x, y)))
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    let span = |f: fn(&(f64, f64)) -> f64| {
+        let lo = all.iter().map(f).fold(f64::INFINITY, f64::min);
+        let hi = all.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
+        if lo.is_finite() && hi.is_finite() {
+            let pad = ((hi - lo) * 0.12).max(hi.abs() * 0.05).max(1e-9);
+            (lo - pad, hi + pad)
+        } else {
+            (0.0, 1.0)
+        }
+    };
+    let ((x0, x1), (y0, y1)) = (span(|p| p.0), span(|p| p.1));
+    let root = SVGBackend::with_string(svg, (420, 300)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 14))
+        .margin(10)
+        .x_label_area_size(36)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style(("sans-serif", 10))
+        .light_line_style(RGBColor(245, 245, 245))
+        .draw()?;
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(230, 120, 20),
+        RGBColor(44, 160, 44),
+        RGBColor(140, 140, 140),
+    ];
+    for (i, (name, pts)) in series.iter().enumerate() {
+        let color = colors[i % colors.len()];
+        chart
+            .draw_series(LineSeries::new(
+                pts.iter().map(|&(x, y, _)| (x, y)),
+                ShapeStyle::from(&color).stroke_width(2),
+            ))?
+            .label(name.as_str())
+            .legend(move |(x, y)| Circle::new((x, y), 4, color.filled()));
+        chart.draw_series(pts.iter().map(|(x, y, label)| {
+            EmptyElement::at((*x, *y))
+                + Circle::new((0, 0), 3, color.filled())
+                + Text::new(label.clone(), (5, -12), ("sans-serif", 9))
+        }))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(RGBColor(200, 200, 200))
+        .label_font(("sans-serif", 10))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -388,13 +388,15 @@ impl Summary {
                 .filter(|p| allowed(&p.profile))
                 .cloned()
                 .collect();
+            // Host time is never a chip's cost: without figures, no
+            // candidates.
             let pick = if measured.is_empty() {
-                let proxy = host_points
-                    .iter()
-                    .filter(|p| allowed(&p.profile))
-                    .cloned()
-                    .collect();
-                Pick::new(Some(target), note, proxy, CostSource::HostProxy)
+                Pick::new(
+                    Some(target),
+                    note,
+                    Vec::new(),
+                    CostSource::Embedded(unit, 0),
+                )
             } else {
                 Pick::new(
                     Some(target),

@@ -7,7 +7,12 @@
 //!
 //! `cargo run --release -p fixshade-host-check [-- --ppm DIR]`: with
 //! `--ppm`, also writes each frame as `DIR/<scene>.ppm` (binary PPM) to look
-//! at.
+//! at. `-- --profile NAME` (`precise`, `f32`, `f64`, `fast-pc`, ...)
+//! renders with that profile instead, as the firmware built with the
+//! feature `profile-NAME` does (`fixshade_scenes::profiled`). `-- --knobs`
+//! renders the knob variants of the firmware's `knobs` build (one `knob`
+//! line each, as the firmware prints them, without the stack) and counts
+//! the pixels where the 32-bit depth frame differs from the 16-bit one.
 
 use fixshade::render::{Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
@@ -47,7 +52,17 @@ fn main() -> Result<(), Box<dyn Error>> {
     while let Some(a) = args.next() {
         match a.as_str() {
             "--ppm" => ppm = Some(args.next().ok_or("--ppm needs a directory")?.into()),
-            _ => return Err(format!("unknown argument {a}; usage: [--ppm DIR]").into()),
+            "--knobs" => return knobs(),
+            "--profile" => {
+                let name = args.next().ok_or("--profile needs a name")?;
+                return other_profile(&name);
+            }
+            _ => {
+                return Err(format!(
+                    "unknown argument {a}; usage: [--ppm DIR] | [--profile NAME] | [--knobs]"
+                )
+                .into())
+            }
         }
     }
     let mut ws = Owned::new(MAX_NEEDS);
@@ -137,4 +152,123 @@ fn whole_frame(
             [c.r, c.g, c.b]
         })
         .collect())
+}
+
+/// `--profile NAME`: every scene with that profile, one `scene` line each.
+fn other_profile(name: &str) -> Result<(), Box<dyn Error>> {
+    use fixshade::num::{F32Pc, F64Pc, FastPc, Precise, PrecisePc, F32, F64};
+    match name {
+        "precise" => with::<Precise>(),
+        "f32" => with::<F32>(),
+        "f64" => with::<F64>(),
+        "fast-pc" => with::<FastPc>(),
+        "precise-pc" => with::<PrecisePc>(),
+        "f32-pc" => with::<F32Pc>(),
+        "f64-pc" => with::<F64Pc>(),
+        _ => Err(format!("unknown profile {name} (precise, f32, f64, fast-pc, precise-pc, f32-pc, f64-pc; the default is fast)").into()),
+    }
+}
+
+fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
+    use fixshade_scenes::profiled::{needs_for, render_frame_with};
+    let n = needs_for::<P>(MAX_NEEDS);
+    let mut xy = vec![[0i32; 2]; n.vertices];
+    let mut vals = vec![P::Lerp::default(); n.values];
+    let mut tris = vec![Tri::default(); n.triangles];
+    let mut heads = vec![0u16; n.heads];
+    let mut links = vec![Link::default(); n.vertices];
+    let mut px = vec![[0u8; 2]; BAND_PIXELS];
+    let mut z = vec![0u16; BAND_PIXELS];
+    println!("fixshade-host-check target=host profile={}", P::NAME);
+    for spec in SCENES.iter() {
+        let ws = Workspace {
+            xy: &mut xy,
+            vals: &mut vals,
+            tris: &mut tris,
+            heads: &mut heads,
+            links: &mut links,
+        };
+        let s = render_frame_with::<P, _>(spec, ws, &mut px, &mut z, &mut NoProbe)
+            .map_err(|e| format!("scene {}: {e}", spec.name))?;
+        println!(
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
+            spec.name,
+            spec.width,
+            spec.height,
+            s.crc,
+            s.covered,
+            s.drawn,
+            s.setups,
+            spec.triangles(),
+            s.vertices,
+            s.triangles,
+            s.prepared_bytes,
+        );
+    }
+    Ok(())
+}
+
+/// `--knobs`: the knob variants (band rows, 32-bit depth, subpixel bits).
+fn knobs() -> Result<(), Box<dyn Error>> {
+    use fixshade::num::{Fast, Profile};
+    use fixshade::target::{Depth16, Depth32, DepthFormat};
+    use fixshade_scenes::knobs::{
+        render_frame_knobs, FastSub, BAND_ROWS_SWEEP, KNOB_NEEDS, KNOB_SCENE, MAX_BAND_PIXELS,
+    };
+    let spec = SCENES
+        .iter()
+        .find(|s| s.name == KNOB_SCENE)
+        .ok_or("no knob scene")?;
+    let mut ws = Owned::new(KNOB_NEEDS);
+    let mut px = vec![[0u8; 2]; MAX_BAND_PIXELS];
+    let mut z16 = vec![0u16; MAX_BAND_PIXELS];
+    let mut z32 = vec![0u32; MAX_BAND_PIXELS];
+    println!("fixshade-host-check target=host knobs scene={KNOB_SCENE}");
+    fn line(
+        spec: &fixshade_scenes::SceneSpec,
+        rows: u32,
+        depth: u32,
+        bits: u32,
+        s: &fixshade_scenes::FrameStats,
+    ) {
+        let band = spec.width * rows.min(spec.height);
+        println!(
+            "knob rows={rows} depth={depth} subpixel={bits} scene={} crc=0x{:08x} covered={} drawn={} setups={} prepared_bytes={} band_bytes={} depth_bytes={}",
+            spec.name, s.crc, s.covered, s.drawn, s.setups, s.prepared_bytes, band * 2, band * depth / 8
+        );
+    }
+    fn go<P: Profile<Lerp = i32>, D: DepthFormat>(
+        spec: &fixshade_scenes::SceneSpec,
+        ws: &mut Owned,
+        px: &mut [Pixel],
+        z: &mut [D::Raw],
+        rows: u32,
+    ) -> Result<fixshade_scenes::FrameStats, Box<dyn Error>> {
+        render_frame_knobs::<P, D, _>(spec, ws.ws(), px, z, rows, &mut NoProbe)
+            .map_err(|e| format!("knobs: {e}").into())
+    }
+    for rows in BAND_ROWS_SWEEP {
+        let s = go::<Fast, Depth16>(spec, &mut ws, &mut px, &mut z16, rows)?;
+        line(spec, rows, 16, 4, &s);
+    }
+    // The whole frame with each depth format: the pixels that differ.
+    let h = spec.height;
+    let n = (spec.width * h) as usize;
+    let s = go::<Fast, Depth16>(spec, &mut ws, &mut px, &mut z16, h)?;
+    let _ = s;
+    let frame16: Vec<Pixel> = px[..n].to_vec();
+    let s = go::<Fast, Depth32>(spec, &mut ws, &mut px, &mut z32, 16)?;
+    line(spec, 16, 32, 4, &s);
+    let _ = go::<Fast, Depth32>(spec, &mut ws, &mut px, &mut z32, h)?;
+    let differ = frame16.iter().zip(&px[..n]).filter(|(a, b)| a != b).count();
+    println!("knob-depth depth32_vs_depth16_pixels={differ}");
+    let s = go::<FastSub<2>, Depth16>(spec, &mut ws, &mut px, &mut z16, 16)?;
+    line(spec, 16, 16, 2, &s);
+    let s = go::<FastSub<3>, Depth16>(spec, &mut ws, &mut px, &mut z16, 16)?;
+    line(spec, 16, 16, 3, &s);
+    let s = go::<FastSub<6>, Depth16>(spec, &mut ws, &mut px, &mut z16, 16)?;
+    line(spec, 16, 16, 6, &s);
+    let s = go::<FastSub<8>, Depth16>(spec, &mut ws, &mut px, &mut z16, 16)?;
+    line(spec, 16, 16, 8, &s);
+    Ok(())
 }

@@ -29,6 +29,8 @@ extern crate std;
 mod crc;
 #[rustfmt::skip]
 mod generated;
+pub mod knobs;
+pub mod profiled;
 pub mod spec;
 
 pub use crc::Crc32;

@@ -1,0 +1,308 @@
+//! The firmware's scenes in any core profile, for the per-profile
+//! measurements (`fixshade_firmware` built with a `profile-*` feature) and
+//! their host check.
+//!
+//! The scene data is Q16 ([`crate::SCENES`]); a profile with another
+//! scalar gets every value *widened* exactly from its Q16 bits
+//! ([`widen`]: `Q32` and `f64` hold every Q16 value exactly; `f32` holds
+//! those below 2^8 in magnitude exactly, all the scene values are). So a
+//! `precise` or `f32` frame here renders the Q16-rounded scene, the same
+//! inputs on the host (`host-check --profile NAME`) and on both targets,
+//! and their CRCs must agree. The frame loop is [`crate::render_frame`]'s,
+//! generic over the profile: geometry (scene, camera, `prepare::<P>`) then
+//! bands of [`BAND_ROWS`] rows, RGB565 big-endian, 16-bit depth band.
+
+use crate::{
+    Band, BandDepth, Crc32, FrameError, FrameStats, Needs, ObjectSpec, Pixel, Probe, SceneSpec,
+    BAND_ROWS, MAX_OBJECTS,
+};
+use fixshade::geom::{Affine, Vec3};
+use fixshade::illum::{Light, LightKind, Material, MAX_LIGHTS};
+use fixshade::num::{Profile, Real, Q16};
+use fixshade::render::{prepare, Frame, RenderStats, Workspace};
+use fixshade::scene::{Camera, Object, Scene, SceneError};
+use fixshade::target::{BufferError, Depth16, DepthFormat, Target};
+
+/// A Q16 value in the scalar `R`, from its bits: exact for `Q16`, `Q32`
+/// and `f64`; for `f32`, exact below 2^8 in magnitude (24 significant
+/// bits), else rounded to nearest (relative error at most 2^-24).
+#[inline]
+pub fn widen<R: Real>(q: Q16) -> R {
+    R::from_fixed_i32(q.to_bits(), 16)
+}
+
+fn widen3<R: Real>(v: Vec3<Q16>) -> Vec3<R> {
+    Vec3::new(widen(v.x), widen(v.y), widen(v.z))
+}
+
+fn object<R: Real>(o: &ObjectSpec) -> Object<'static, R> {
+    let m = o.material;
+    Object {
+        mesh: o.mesh,
+        transform: Affine::from_parts(widen(o.scale), widen3(o.rotation), widen3(o.translation)),
+        material: Material {
+            color: widen3(m.color),
+            ka: widen(m.ka),
+            kd: widen(m.kd),
+            ks: widen(m.ks),
+            shininess: widen(m.shininess),
+        },
+        shading: o.shading,
+        cull_backfaces: o.cull_backfaces,
+    }
+}
+
+fn light<R: Real>(l: &Light<Q16>) -> Light<R> {
+    Light {
+        kind: match l.kind {
+            LightKind::Point(p) => LightKind::Point(widen3(p)),
+            LightKind::Directional(d) => LightKind::Directional(widen3(d)),
+        },
+        intensity: widen(l.intensity),
+        color: widen3(l.color),
+    }
+}
+
+/// The parts of a scene in the scalar `R` that the core's `Scene` borrows.
+pub(crate) struct Parts<R: Real> {
+    pub(crate) camera: Result<Camera<R>, SceneError>,
+    objects: heapless::Vec<Object<'static, R>, MAX_OBJECTS>,
+    lights: heapless::Vec<Light<R>, MAX_LIGHTS>,
+}
+
+impl<R: Real> Parts<R> {
+    pub(crate) fn new(spec: &SceneSpec) -> Self {
+        Self {
+            camera: Camera::look_at(
+                widen3(spec.eye),
+                widen3(spec.target),
+                widen3(spec.up),
+                widen(spec.fov_y),
+                widen(spec.near),
+                spec.far.map(widen),
+            ),
+            objects: spec.objects.iter().map(object).collect(),
+            // More lights than the core takes: the rest are dropped here
+            // and `Scene::check` cannot see them; the generator never
+            // writes more (the host's scene files allow `MAX_LIGHTS`).
+            lights: spec.lights.iter().map(light).collect(),
+        }
+    }
+
+    pub(crate) fn scene<'s>(
+        &'s self,
+        spec: &SceneSpec,
+        camera: Camera<R>,
+    ) -> Scene<'s, 'static, R> {
+        Scene {
+            camera,
+            objects: &self.objects,
+            lights: &self.lights,
+            ambient: widen(spec.ambient),
+            specular: spec.specular,
+            viewer: fixshade::illum::Viewer::Local,
+            background: spec.background,
+        }
+    }
+}
+
+/// [`crate::render_frame`] with the profile `P`: prepares `spec` into
+/// `ws`, renders it band by band into `pixels` and `depth`, `probe`
+/// around the geometry and around each band.
+///
+/// # Errors
+/// As [`crate::render_frame`].
+pub fn render_frame_with<P: Profile, Q: Probe>(
+    spec: &SceneSpec,
+    ws: Workspace<'_, P::Lerp>,
+    pixels: &mut [Pixel],
+    depth: &mut [u16],
+    probe: &mut Q,
+) -> Result<FrameStats, FrameError> {
+    // Geometry.
+    probe.resume();
+    let parts = Parts::<P::Real>::new(spec);
+    let prepared = match parts.camera {
+        Ok(camera) => {
+            let scene = parts.scene(spec, camera);
+            prepare::<P>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
+        }
+        Err(e) => Err(e.into()),
+    };
+    probe.pause();
+    probe.close();
+    let (scene, frame) = prepared?;
+    let mut stats = FrameStats {
+        vertices: frame.vertex_count() as u32,
+        triangles: frame.triangle_count() as u32,
+        prepared_bytes: frame.bytes_used() as u32,
+        ..FrameStats::default()
+    };
+
+    // Raster.
+    let (w, h) = (spec.width, spec.height);
+    let mut crc = Crc32::new();
+    let mut y0 = 0;
+    while y0 < h {
+        let y1 = (y0 + BAND_ROWS).min(h);
+        let n = ((y1 - y0) * w) as usize;
+        let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
+            return Err(BufferError::WrongLength {
+                expected: n,
+                actual: pixels.len().min(depth.len()),
+            }
+            .into());
+        };
+        probe.resume();
+        let r = draw_band(&frame, &scene, px, z, w, y0, y1);
+        probe.pause();
+        let s = r?;
+        stats.setups += s.triangles;
+        stats.drawn += s.pixels;
+        let fb = Band::band(px, w, y0, y1)?;
+        crc.update(fb.bytes());
+        stats.covered += z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
+        y0 = y1;
+    }
+    probe.close();
+    stats.crc = crc.finish();
+    Ok(stats)
+}
+
+/// The measured work of one band: clear colour and depth, render.
+#[inline(always)]
+fn draw_band<P: Profile>(
+    frame: &Frame<'_, P>,
+    scene: &Scene<'_, '_, P::Real>,
+    px: &mut [Pixel],
+    z: &mut [u16],
+    w: u32,
+    y0: u32,
+    y1: u32,
+) -> Result<RenderStats, FrameError> {
+    let mut fb = Band::band(px, w, y0, y1)?;
+    fb.clear(scene.background);
+    let mut db = BandDepth::new(z, w, y0, y1)?;
+    Ok(frame.render(scene, &mut fb, Some(&mut db))?)
+}
+
+/// The workspace a profile needs where the `Fast` profile needs `n` (the
+/// generator measures `Fast`): perspective-correct profiles interpolate
+/// one more value (`q = near/w`) per vertex of a Gouraud or Phong object,
+/// so at most `n.vertices` more values; the others need the same lengths
+/// (their values are wider: `size_of::<P::Lerp>()` bytes each).
+pub const fn needs_for<P: Profile>(n: Needs) -> Needs {
+    Needs {
+        values: if P::PERSPECTIVE {
+            n.values + n.vertices
+        } else {
+            n.values
+        },
+        ..n
+    }
+}
+
+/// Prepares `spec` with the profile `P` into `ws` (no probe): the
+/// start-up check that every scene fits the workspace.
+///
+/// # Errors
+/// The core's error, e.g. a workspace part too small.
+pub fn check_with<P: Profile>(
+    spec: &SceneSpec,
+    ws: Workspace<'_, P::Lerp>,
+) -> Result<u32, FrameError> {
+    let parts = Parts::<P::Real>::new(spec);
+    let camera = parts.camera?;
+    let scene = parts.scene(spec, camera);
+    let frame = prepare::<P>(&scene, spec.width, spec.height, ws)?;
+    Ok(frame.bytes_used() as u32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{render_frame, NoProbe, BAND_PIXELS, MAX_NEEDS, SCENES};
+    use fixshade::num::{Fast, FastPc, Precise, F32, F64};
+    use fixshade::render::{Link, Tri};
+    use std::{vec, vec::Vec};
+
+    fn run<P: Profile>(spec: &SceneSpec) -> FrameStats
+    where
+        P::Lerp: Default,
+    {
+        let n = needs_for::<P>(MAX_NEEDS);
+        let (mut xy, mut vals, mut tris, mut heads, mut links) = (
+            vec![[0i32; 2]; n.vertices],
+            vec![P::Lerp::default(); n.values],
+            vec![Tri::default(); n.triangles],
+            vec![0u16; n.heads],
+            vec![Link::default(); n.vertices],
+        );
+        let ws = Workspace {
+            xy: &mut xy,
+            vals: &mut vals,
+            tris: &mut tris,
+            heads: &mut heads,
+            links: &mut links,
+        };
+        let mut px = vec![[0u8; 2]; BAND_PIXELS];
+        let mut z = vec![0u16; BAND_PIXELS];
+        render_frame_with::<P, _>(spec, ws, &mut px, &mut z, &mut NoProbe).unwrap()
+    }
+
+    #[test]
+    fn fast_equals_the_firmware_frame_loop() {
+        let n = MAX_NEEDS;
+        for spec in SCENES.iter() {
+            let (mut xy, mut vals, mut tris, mut heads, mut links) = (
+                vec![[0i32; 2]; n.vertices],
+                vec![0i32; n.values],
+                vec![Tri::default(); n.triangles],
+                vec![0u16; n.heads],
+                vec![Link::default(); n.vertices],
+            );
+            let ws = Workspace {
+                xy: &mut xy,
+                vals: &mut vals,
+                tris: &mut tris,
+                heads: &mut heads,
+                links: &mut links,
+            };
+            let mut px = vec![[0u8; 2]; BAND_PIXELS];
+            let mut z = vec![0u16; BAND_PIXELS];
+            let want = render_frame(spec, ws, &mut px, &mut z, &mut NoProbe).unwrap();
+            assert_eq!(run::<Fast>(spec), want, "{}", spec.name);
+        }
+    }
+
+    #[test]
+    fn every_profile_renders_every_scene_with_the_same_coverage_nearly() {
+        for spec in SCENES.iter() {
+            let fast = run::<Fast>(spec);
+            let others: Vec<FrameStats> = vec![
+                run::<Precise>(spec),
+                run::<F32>(spec),
+                run::<F64>(spec),
+                run::<FastPc>(spec),
+            ];
+            for s in others {
+                // All profiles snap to the same subpixel grid: coverage
+                // departs only where depth or projection rounding moves
+                // an edge by a subpixel (a few pixels per frame).
+                let d = s.covered.abs_diff(fast.covered);
+                assert!(d * 200 <= fast.covered, "{}: {s:?} vs {fast:?}", spec.name);
+                assert_eq!(s.triangles, fast.triangles, "{}", spec.name);
+            }
+        }
+    }
+
+    #[test]
+    fn widening_is_exact_for_the_wide_scalars() {
+        for bits in [-(1 << 24), -65536, -1, 0, 1, 13107, 6_553_600, i32::MAX] {
+            let q = Q16::from_bits(bits);
+            assert_eq!(widen::<f64>(q), f64::from(bits) / 65536.0);
+            assert_eq!(widen::<Q16>(q), q);
+        }
+        assert_eq!(widen::<f32>(Q16::from_bits(13107)), 13107.0 / 65536.0);
+    }
+}

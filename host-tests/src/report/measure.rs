@@ -1,0 +1,673 @@
+//! Measuring the firmware under QEMU: every profile on both targets
+//! (`fixshade measure-firmware`, `fixshade report --measure-firmware`).
+//!
+//! For each target (`thumbv6m-none-eabi` on QEMU `mps2-an385` with the
+//! plugin's M0 cycle model, `thumbv7em-none-eabihf` on `mps2-an386`) and
+//! each profile, builds `examples/firmware` (the default build for `fast`,
+//! the feature `profile-NAME` otherwise), reads
+//! the ELF's section sizes and soft-float symbols, runs it under QEMU with
+//! the instruction-counting plugin (`qemu-plugin/insn_count.c`, built with
+//! `gcc`), and pairs the i-th `scene` line with the plugin's regions 2i
+//! (geometry) and 2i + 1 (bands). The host renders the same scenes with the
+//! same code (`host-check [--profile NAME]`) for the CRCs.
+//!
+//! All builds share the firmware's `target/` folder: cargo keeps one
+//! artifact per feature set, so an unchanged profile is not rebuilt; the
+//! ELF at `target/TARGET/release/fixshade-firmware` is the last build's,
+//! and `fast` is measured last so that it is the default build's again.
+//!
+//! Needs `qemu-system-arm`, `gcc` and the two Rust targets (`rustup target
+//! add`, pinned by `rust-toolchain.toml`); a missing tool is bad input
+//! (exit status 2) naming it. A failed build or run, a plugin warning, or
+//! a chip CRC that differs from the host's for a fixed-point profile, or
+//! a fixed-point profile linking soft-float routines on the M0, is a
+//! failure (exit status 1): float profiles' CRCs are recorded and compared,
+//! never required to agree.
+
+use std::collections::BTreeMap;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::cli::{CliError, ErrorKind};
+use crate::core_render::{CoreProfile, BAND_ROWS};
+
+use super::chips::{self, Build, ChipResult, KnobResult, Measurements, REGENERATE, SCHEMA};
+use super::Mode;
+
+/// The targets, with their QEMU machine and plugin arguments.
+pub const TARGETS: [(&str, &str, &str, &str); 2] = [
+    ("thumbv6m-none-eabi", "cortex-m3", "mps2-an385", ",m0=on"),
+    ("thumbv7em-none-eabihf", "cortex-m4", "mps2-an386", ""),
+];
+
+/// What to measure.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MeasureOptions {
+    /// The repository root.
+    pub root: PathBuf,
+    /// The profiles (all by default).
+    pub profiles: Vec<CoreProfile>,
+    /// Draw a progress bar on stderr (only on a terminal).
+    pub progress: bool,
+}
+
+fn failed(message: String) -> CliError {
+    CliError {
+        kind: ErrorKind::Io,
+        message,
+    }
+}
+
+fn run(cmd: &mut Command, what: &str) -> Result<String, CliError> {
+    let out = cmd
+        .output()
+        .map_err(|e| CliError::input(format!("{what}: cannot run: {e}")))?;
+    if !out.status.success() {
+        let err = String::from_utf8_lossy(&out.stderr);
+        let tail: Vec<&str> = err.lines().rev().take(15).collect();
+        let tail: Vec<&str> = tail.into_iter().rev().collect();
+        return Err(failed(format!(
+            "{what} failed ({}): {}",
+            out.status,
+            tail.join(" | ")
+        )));
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// The first line a tool prints for `--version`, or bad input naming it.
+fn tool_version(tool: &str, hint: &str) -> Result<String, CliError> {
+    let out = Command::new(tool).arg("--version").output().map_err(|_| {
+        CliError::input(format!(
+            "{tool} not found: measuring the firmware needs it ({hint})"
+        ))
+    })?;
+    Ok(String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .next()
+        .unwrap_or("")
+        .trim()
+        .to_string())
+}
+
+/// `key=value` of a firmware line.
+fn kv<'a>(line: &'a str, key: &str) -> Option<&'a str> {
+    line.split_whitespace()
+        .find_map(|w| w.strip_prefix(key)?.strip_prefix('='))
+}
+
+fn num(line: &str, key: &str) -> Result<u64, CliError> {
+    kv(line, key)
+        .and_then(|v| v.parse().ok())
+        .ok_or_else(|| failed(format!("firmware line without a number `{key}`: {line}")))
+}
+
+/// Section sizes in bytes: flash, static RAM, text, rodata.
+type Sizes = (u64, u64, u64, u64);
+
+/// Section sizes of an ELF32 little-endian file and the names of the
+/// defined symbols.
+fn elf_info(path: &Path) -> Result<(Sizes, Vec<String>), CliError> {
+    let bytes =
+        std::fs::read(path).map_err(|e| failed(format!("{}: cannot read: {e}", path.display())))?;
+    let bad = || {
+        failed(format!(
+            "{}: not a 32-bit little-endian ELF",
+            path.display()
+        ))
+    };
+    let u16_at = |o: usize| -> Option<u64> {
+        Some(u64::from(u16::from_le_bytes(
+            bytes.get(o..o + 2)?.try_into().ok()?,
+        )))
+    };
+    let u32_at = |o: usize| -> Option<u64> {
+        Some(u64::from(u32::from_le_bytes(
+            bytes.get(o..o + 4)?.try_into().ok()?,
+        )))
+    };
+    if bytes.get(..6) != Some(&[0x7f, b'E', b'L', b'F', 1, 1][..]) {
+        return Err(bad());
+    }
+    let shoff = u32_at(0x20).ok_or_else(bad)? as usize;
+    let shentsize = u16_at(0x2e).ok_or_else(bad)? as usize;
+    let shnum = u16_at(0x30).ok_or_else(bad)? as usize;
+    let shstrndx = u16_at(0x32).ok_or_else(bad)? as usize;
+    // (name offset, type, offset, size, link)
+    let sec = |i: usize| -> Option<(u64, u64, u64, u64, u64)> {
+        let b = shoff + i * shentsize;
+        Some((
+            u32_at(b)?,
+            u32_at(b + 4)?,
+            u32_at(b + 16)?,
+            u32_at(b + 20)?,
+            u32_at(b + 24)?,
+        ))
+    };
+    let cstr = |o: usize| -> String {
+        let s = bytes.get(o..).unwrap_or(&[]);
+        let end = s.iter().position(|&c| c == 0).unwrap_or(s.len());
+        String::from_utf8_lossy(&s[..end]).into_owned()
+    };
+    let strtab = sec(shstrndx).ok_or_else(bad)?.2 as usize;
+    let (mut flash, mut ram, mut text, mut rodata) = (0, 0, 0, 0);
+    let mut symbols = Vec::new();
+    for i in 0..shnum {
+        let (name, kind, off, size, link) = sec(i).ok_or_else(bad)?;
+        match cstr(strtab + name as usize).as_str() {
+            ".vector_table" => flash += size,
+            ".text" => {
+                flash += size;
+                text = size;
+            }
+            ".rodata" => {
+                flash += size;
+                rodata = size;
+            }
+            ".data" => {
+                flash += size;
+                ram += size;
+            }
+            ".bss" | ".uninit" => ram += size,
+            _ => {}
+        }
+        // SHT_SYMTAB: 16-byte entries, names in the linked string table.
+        if kind == 2 {
+            let names = sec(link as usize).ok_or_else(bad)?.2 as usize;
+            for s in 0..(size as usize / 16) {
+                let e = off as usize + 16 * s;
+                let (Some(n), Some(shndx)) = (u32_at(e), u16_at(e + 14)) else {
+                    return Err(bad());
+                };
+                if shndx != 0 && n != 0 {
+                    symbols.push(cstr(names + n as usize));
+                }
+            }
+        }
+    }
+    Ok(((flash, ram, text, rodata), symbols))
+}
+
+/// Soft-float routines by name (the AEABI helpers and compiler-builtins'
+/// `__addsf3`-style names), as `.ci/firmware` finds them.
+fn is_softfloat(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix("__") else {
+        return false;
+    };
+    rest.starts_with("aeabi_f")
+        || rest.starts_with("aeabi_d")
+        || rest.starts_with("float")
+        || rest.starts_with("fix")
+        || ["sf2", "df2", "sf3", "df3", "sf", "df"].iter().any(|s| {
+            rest.ends_with(s)
+                && rest.len() > s.len()
+                && rest.chars().all(|c| c.is_ascii_alphanumeric())
+        })
+}
+
+/// The CRCs of `host-check` for a profile, by scene.
+fn host_crcs(fw: &Path, profile: CoreProfile) -> Result<BTreeMap<String, String>, CliError> {
+    let mut cmd = Command::new("cargo");
+    cmd.current_dir(fw)
+        .args(["run", "-q", "--release", "-p", "fixshade-host-check"]);
+    if profile != CoreProfile::Fast {
+        cmd.args(["--", "--profile", profile.name()]);
+    }
+    let out = run(
+        &mut cmd,
+        &format!("host-check --profile {}", profile.name()),
+    )?;
+    Ok(out
+        .lines()
+        .filter(|l| l.starts_with("scene "))
+        .filter_map(|l| {
+            Some((
+                l.split_whitespace().nth(1)?.to_string(),
+                kv(l, "crc")?.to_string(),
+            ))
+        })
+        .collect())
+}
+
+/// Instructions and estimated M0 cycles of each counted region.
+type Regions = Vec<(u64, Option<u64>)>;
+
+/// What one firmware build printed and counted.
+struct Run {
+    /// Its semihosting output.
+    out: String,
+    /// The plugin's regions.
+    regions: Regions,
+    /// Flash, static RAM, text, rodata.
+    sizes: Sizes,
+    /// Defined symbols.
+    symbols: Vec<String>,
+}
+
+/// Builds the firmware for `target` with `features` (the default build
+/// without) and runs it under QEMU with the counting plugin.
+fn build_run(
+    root: &Path,
+    plugin: &Path,
+    (target, cpu, machine, plugarg): (&str, &str, &str, &str),
+    features: Option<&str>,
+    tag: &str,
+) -> Result<Run, CliError> {
+    let fw = root.join("examples/firmware");
+    let mut cmd = Command::new("cargo");
+    cmd.current_dir(&fw)
+        .args(["build", "-q", "--release", "--target", target]);
+    let target_dir = fw.join("target");
+    if let Some(f) = features {
+        cmd.args(["--features", f]);
+    }
+    cmd.env("CARGO_TARGET_DIR", &target_dir);
+    run(&mut cmd, &format!("cargo build {target} {tag}"))?;
+    let elf = target_dir.join(target).join("release/fixshade-firmware");
+    let (sizes, symbols) = elf_info(&elf)?;
+    let log = target_dir.join(format!("measure/plugin-{target}-{tag}.log"));
+    let _ = std::fs::remove_file(&log);
+    let out = run(
+        Command::new("qemu-system-arm")
+            .args(["-cpu", cpu, "-machine", machine, "-nographic"])
+            .args(["-semihosting-config", "enable=on,target=native"])
+            .arg("-plugin")
+            .arg(format!("{}{plugarg}", plugin.display()))
+            .args(["-d", "plugin", "-D"])
+            .arg(&log)
+            .arg("-kernel")
+            .arg(&elf),
+        &format!("qemu {target} {tag}"),
+    )?;
+    let log_text = std::fs::read_to_string(&log)
+        .map_err(|e| failed(format!("{}: cannot read: {e}", log.display())))?;
+    if log_text.contains("insn_count: warning") || !log_text.contains(" warnings 0") {
+        return Err(failed(format!(
+            "{target} {tag}: the instruction-counting plugin warned: {}",
+            log_text
+                .lines()
+                .filter(|l| l.contains("warning"))
+                .collect::<Vec<_>>()
+                .join(" | ")
+        )));
+    }
+    let regions = log_text
+        .lines()
+        .filter(|l| l.starts_with("region "))
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            (
+                w.get(3).and_then(|v| v.parse().ok()).unwrap_or(0),
+                w.get(5).and_then(|v| v.parse().ok()),
+            )
+        })
+        .collect();
+    Ok(Run {
+        out,
+        regions,
+        sizes,
+        symbols,
+    })
+}
+
+/// Builds, runs and parses one target × profile.
+fn measure_one(
+    root: &Path,
+    plugin: &Path,
+    t: (&str, &str, &str, &str),
+    profile: CoreProfile,
+    host: &BTreeMap<String, String>,
+) -> Result<(Build, Vec<ChipResult>), CliError> {
+    let target = t.0;
+    let features = format!("profile-{}", profile.name());
+    let Run {
+        out,
+        regions,
+        sizes: (flash, static_ram, text, rodata),
+        symbols,
+    } = build_run(
+        root,
+        plugin,
+        t,
+        (profile != CoreProfile::Fast).then_some(features.as_str()),
+        profile.name(),
+    )?;
+    let softfloat: Vec<&String> = symbols.iter().filter(|s| is_softfloat(s)).collect();
+    if profile.is_fixed() && target.starts_with("thumbv6m") && !softfloat.is_empty() {
+        return Err(failed(format!(
+            "{target} {}: a fixed-point profile links soft-float routines: {}",
+            profile.name(),
+            softfloat
+                .iter()
+                .map(|s| s.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
+    let softfloat = softfloat.len() as u64;
+    let scenes: Vec<&str> = out.lines().filter(|l| l.starts_with("scene ")).collect();
+    if scenes.is_empty() || regions.len() < 2 * scenes.len() {
+        return Err(failed(format!(
+            "{target} {}: {} scenes but {} counted regions (want two each)",
+            profile.name(),
+            scenes.len(),
+            regions.len()
+        )));
+    }
+    let mut results = Vec::new();
+    for (i, line) in scenes.iter().enumerate() {
+        let name = line.split_whitespace().nth(1).unwrap_or("").to_string();
+        let (w, h) = kv(line, "size")
+            .and_then(|s| s.split_once('x'))
+            .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)))
+            .ok_or_else(|| failed(format!("firmware line without a size: {line}")))?;
+        let (g, r) = (regions[2 * i], regions[2 * i + 1]);
+        let crc = kv(line, "crc").unwrap_or("").to_string();
+        let host_crc = host.get(&name).cloned().unwrap_or_default();
+        let band = u64::from(w) * u64::from(BAND_ROWS) * 2;
+        let (prepared, stack) = (num(line, "prepared_bytes")?, num(line, "stack")?);
+        results.push(ChipResult {
+            target: target.to_string(),
+            profile: profile.name().to_string(),
+            mode: name.split('-').find_map(Mode::parse),
+            scene: name,
+            width: w,
+            height: h,
+            insns: g.0 + r.0,
+            insns_geometry: g.0,
+            insns_raster: r.0,
+            cycles: g.1.zip(r.1).map(|(a, b)| a + b),
+            cycles_geometry: g.1,
+            cycles_raster: r.1,
+            covered: num(line, "covered")?,
+            drawn: num(line, "drawn")?,
+            setups: num(line, "setups")?,
+            prepared_bytes: prepared,
+            band_bytes: band,
+            depth_bytes: band,
+            stack,
+            ram: 2 * band + prepared + stack,
+            static_ram,
+            flash,
+            crc_equal: crc == host_crc,
+            crc,
+            host_crc,
+        });
+    }
+    if profile.is_fixed() {
+        if let Some(r) = results.iter().find(|r| !r.crc_equal) {
+            return Err(failed(format!(
+                "{target} {} {}: CRC {} on the chip but {} on the host (a fixed profile must compute the same bits)",
+                r.profile, r.scene, r.crc, r.host_crc
+            )));
+        }
+    }
+    let build = Build {
+        target: target.to_string(),
+        profile: profile.name().to_string(),
+        flash_bytes: flash,
+        text_bytes: text,
+        rodata_bytes: rodata,
+        static_ram_bytes: static_ram,
+        softfloat_routines: softfloat,
+    };
+    Ok((build, results))
+}
+
+/// The knob variants on one target (the firmware's `knobs` build), with
+/// host-check's CRCs (`host`: by `rows/depth/subpixel`).
+fn measure_knobs(
+    root: &Path,
+    plugin: &Path,
+    t: (&str, &str, &str, &str),
+    host: &BTreeMap<String, String>,
+) -> Result<Vec<KnobResult>, CliError> {
+    let target = t.0;
+    let r = build_run(root, plugin, t, Some("knobs"), "knobs")?;
+    let lines: Vec<&str> = r.out.lines().filter(|l| l.starts_with("knob ")).collect();
+    if lines.is_empty() || r.regions.len() < 2 * lines.len() {
+        return Err(failed(format!(
+            "{target} knobs: {} variants but {} counted regions (want two each)",
+            lines.len(),
+            r.regions.len()
+        )));
+    }
+    lines
+        .iter()
+        .enumerate()
+        .map(|(i, line)| {
+            let (g, ra) = (r.regions[2 * i], r.regions[2 * i + 1]);
+            let key = format!(
+                "{}/{}/{}",
+                kv(line, "rows").unwrap_or(""),
+                kv(line, "depth").unwrap_or(""),
+                kv(line, "subpixel").unwrap_or("")
+            );
+            let crc = kv(line, "crc").unwrap_or("").to_string();
+            let host_crc = host.get(&key).cloned().unwrap_or_default();
+            if crc != host_crc {
+                return Err(failed(format!(
+                    "{target} knob {key}: CRC {crc} on the chip but {host_crc} on the host"
+                )));
+            }
+            let (band, depth, prepared, stack) = (
+                num(line, "band_bytes")?,
+                num(line, "depth_bytes")?,
+                num(line, "prepared_bytes")?,
+                num(line, "stack")?,
+            );
+            Ok(KnobResult {
+                target: target.to_string(),
+                scene: kv(line, "scene").unwrap_or("").to_string(),
+                rows: num(line, "rows")? as u32,
+                depth_bits: num(line, "depth")? as u32,
+                subpixel_bits: num(line, "subpixel")? as u32,
+                insns: g.0 + ra.0,
+                insns_geometry: g.0,
+                insns_raster: ra.0,
+                cycles: g.1.zip(ra.1).map(|(a, b)| a + b),
+                covered: num(line, "covered")?,
+                setups: num(line, "setups")?,
+                prepared_bytes: prepared,
+                band_bytes: band,
+                depth_bytes: depth,
+                stack,
+                ram: band + depth + prepared + stack,
+                crc,
+            })
+        })
+        .collect()
+}
+
+/// host-check `--knobs`: CRCs by `rows/depth/subpixel`, and the pixels
+/// where the 32-bit depth frame differs from the 16-bit one.
+fn host_knobs(fw: &Path) -> Result<(BTreeMap<String, String>, u64), CliError> {
+    let out = run(
+        Command::new("cargo").current_dir(fw).args([
+            "run",
+            "-q",
+            "--release",
+            "-p",
+            "fixshade-host-check",
+            "--",
+            "--knobs",
+        ]),
+        "host-check --knobs",
+    )?;
+    let crcs = out
+        .lines()
+        .filter(|l| l.starts_with("knob "))
+        .filter_map(|l| {
+            Some((
+                format!(
+                    "{}/{}/{}",
+                    kv(l, "rows")?,
+                    kv(l, "depth")?,
+                    kv(l, "subpixel")?
+                ),
+                kv(l, "crc")?.to_string(),
+            ))
+        })
+        .collect();
+    let differ = out
+        .lines()
+        .find_map(|l| kv(l, "depth32_vs_depth16_pixels")?.parse().ok())
+        .ok_or_else(|| failed("host-check --knobs printed no depth comparison".into()))?;
+    Ok((crcs, differ))
+}
+
+/// The firmware's release opt-level from its manifest.
+fn opt_level(fw: &Path) -> String {
+    let text = std::fs::read_to_string(fw.join("Cargo.toml")).unwrap_or_default();
+    let mut in_release = false;
+    for l in text.lines() {
+        let l = l.trim();
+        if l.starts_with('[') {
+            in_release = l == "[profile.release]";
+        } else if in_release {
+            if let Some(v) = l.strip_prefix("opt-level") {
+                return v
+                    .trim_start_matches([' ', '='])
+                    .trim_matches('"')
+                    .to_string();
+            }
+        }
+    }
+    "unknown".into()
+}
+
+/// Measures every profile of `opts` on both targets (see the module
+/// docs).
+///
+/// # Errors
+/// A missing tool (bad input); a failed build, run or CRC check (exit
+/// status 1).
+pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError> {
+    let root = &opts.root;
+    let fw = root.join("examples/firmware");
+    if !fw.join("Cargo.toml").is_file() {
+        return Err(CliError::input(format!(
+            "{}: no firmware here (examples/firmware) to measure",
+            root.display()
+        )));
+    }
+    let qemu = tool_version("qemu-system-arm", "apt-get install qemu-system-arm")?;
+    tool_version("gcc", "apt-get install gcc, for the QEMU plugin")?;
+    let toolchain = run(Command::new("rustc").arg("-V").current_dir(&fw), "rustc -V")?
+        .trim()
+        .to_string();
+    let fingerprint = chips::source_fingerprint(root)?;
+    let plugin_dir = fw.join("target/measure");
+    std::fs::create_dir_all(&plugin_dir).map_err(|e| CliError::io(&plugin_dir, &e))?;
+    let plugin = plugin_dir.join("insn_count.so");
+    run(
+        Command::new("gcc")
+            .args([
+                "-O2", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC", "-o",
+            ])
+            .arg(&plugin)
+            .arg(fw.join("qemu-plugin/insn_count.c")),
+        "gcc (QEMU plugin)",
+    )?;
+    let total = ((opts.profiles.len() + 1) * (TARGETS.len() + 1)) as u64;
+    let bar = if opts.progress && std::io::stderr().is_terminal() {
+        ProgressBar::new(total)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} measuring {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut builds = Vec::new();
+    let mut results = Vec::new();
+    // `fast` last: the default build's ELF stays in place.
+    let mut order: Vec<CoreProfile> = opts.profiles.clone();
+    order.sort_by_key(|&p| p == CoreProfile::Fast);
+    for &profile in &order {
+        bar.set_message(format!("{} on the host", profile.name()));
+        let host = host_crcs(&fw, profile)?;
+        bar.inc(1);
+        for t in TARGETS {
+            bar.set_message(format!("{} on {}", profile.name(), t.0));
+            let (b, r) = measure_one(root, &plugin, t, profile, &host)?;
+            builds.push(b);
+            results.extend(r);
+            bar.inc(1);
+        }
+    }
+    bar.set_message("knobs on the host");
+    let (knob_host, depth_differ) = host_knobs(&fw)?;
+    bar.inc(1);
+    let mut knobs = Vec::new();
+    for t in TARGETS {
+        bar.set_message(format!("knobs on {}", t.0));
+        knobs.extend(measure_knobs(root, &plugin, t, &knob_host)?);
+        bar.inc(1);
+    }
+    // The default build last again: its ELF stays in place.
+    if order.contains(&CoreProfile::Fast) {
+        for t in TARGETS {
+            build_run(root, &plugin, t, None, "fast")?;
+        }
+    }
+    bar.finish_and_clear();
+    let rank = |p: &str| CoreProfile::ALL.iter().position(|c| c.name() == p);
+    builds.sort_by_key(|b: &Build| (rank(&b.profile), b.target.clone()));
+    results.sort_by_key(|r: &ChipResult| (rank(&r.profile), r.target.clone()));
+    Ok(Measurements {
+        schema: SCHEMA,
+        about: "fixshade firmware (examples/firmware) under QEMU 7.2: instructions counted exactly by the plugin (qemu-plugin/insn_count.c); est. Cortex-M0 cycles from ARM DDI 0432C table 3-1, zero wait states (an ESTIMATE, M0 only); RAM per scene = colour band + 16-bit depth band (16 rows) + prepared frame + stack high-water mark. Generated: do not edit.".into(),
+        regenerate: REGENERATE.into(),
+        toolchain,
+        qemu,
+        source_fingerprint: fingerprint,
+        opt_level: opt_level(&fw),
+        band_rows: BAND_ROWS,
+        depth_bits: 16,
+        builds,
+        results,
+        knobs,
+        knob_depth32_vs_depth16_pixels: depth_differ,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn soft_float_names_are_found() {
+        for n in [
+            "__aeabi_fmul",
+            "__aeabi_dadd",
+            "__addsf3",
+            "__floatsisf",
+            "__fixdfsi",
+            "__powisf2",
+        ] {
+            assert!(is_softfloat(n), "{n}");
+        }
+        for n in [
+            "__aeabi_lmul",
+            "__aeabi_uidiv",
+            "memset",
+            "__udivsi3",
+            "main",
+        ] {
+            assert!(!is_softfloat(n), "{n}");
+        }
+    }
+
+    #[test]
+    fn firmware_lines_are_read() {
+        let l = "scene bunny-flat size=240x240 crc=0x48276f27 covered=14910 stack=11724";
+        assert_eq!(kv(l, "crc"), Some("0x48276f27"));
+        assert_eq!(num(l, "covered").unwrap(), 14910);
+        assert!(num(l, "drawn").is_err());
+        assert_eq!(kv(l, "size"), Some("240x240"));
+    }
+}
