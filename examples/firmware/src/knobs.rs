@@ -8,16 +8,15 @@
 //! knob rows=<n> depth=<16|32> subpixel=<bits> scene=<name> crc=0x<crc32> covered=<px> drawn=<px> setups=<n> prepared_bytes=<bytes> band_bytes=<bytes> depth_bytes=<bytes> stack=<bytes>
 //! ```
 
-use core::mem::MaybeUninit;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::{Fast, Profile};
-use fixshade::render::{Link, Tri, Workspace};
+use fixshade::render::{Tri, Workspace};
 use fixshade::target::{Depth16, Depth32, DepthFormat};
 use fixshade_scenes::knobs::{
     render_frame_knobs, FastSub, BAND_ROWS_SWEEP, KNOB_NEEDS, KNOB_SCENE, MAX_BAND_PIXELS,
 };
-use fixshade_scenes::{FrameError, Pixel, SceneSpec, SCENES};
+use fixshade_scenes::{BandPool, FrameError, Pixel, SceneSpec, SCENES};
 
 const CAP: fixshade_scenes::Needs = KNOB_NEEDS;
 
@@ -29,8 +28,8 @@ struct Mem {
     xy: &'static mut [[i32; 2]; CAP.vertices],
     vals: &'static mut [i32; CAP.values],
     tris: &'static mut [Tri; CAP.triangles],
-    heads: &'static mut [u16; CAP.heads],
-    links: &'static mut [Link; CAP.vertices],
+    order: &'static mut [u16; 2 * CAP.triangles],
+    pool: &'static mut BandPool,
 }
 
 impl Mem {
@@ -48,8 +47,6 @@ impl Mem {
                 xy: &mut self.xy[..],
                 vals: &mut self.vals[..],
                 tris: &mut self.tris[..],
-                heads: &mut self.heads[..],
-                links: &mut self.links[..],
             };
             render_frame_knobs::<P, Depth16, _>(
                 spec,
@@ -57,6 +54,8 @@ impl Mem {
                 &mut self.pixels[..],
                 &mut self.depth16[..],
                 rows,
+                &mut self.order[..],
+                self.pool,
                 &mut super::Markers,
             )?
         } else {
@@ -64,8 +63,6 @@ impl Mem {
                 xy: &mut self.xy[..],
                 vals: &mut self.vals[..],
                 tris: &mut self.tris[..],
-                heads: &mut self.heads[..],
-                links: &mut self.links[..],
             };
             render_frame_knobs::<P, Depth32, _>(
                 spec,
@@ -73,6 +70,8 @@ impl Mem {
                 &mut self.pixels[..],
                 &mut self.depth32[..],
                 rows,
+                &mut self.order[..],
+                self.pool,
                 &mut super::Markers,
             )?
         };
@@ -95,20 +94,6 @@ impl Mem {
         );
         Ok(())
     }
-}
-
-fn fill<T, const N: usize>(
-    s: &'static mut MaybeUninit<[T; N]>,
-    f: impl Fn() -> T,
-) -> &'static mut [T; N] {
-    let p = s.as_mut_ptr().cast::<T>();
-    for i in 0..N {
-        // SAFETY: `i < N`, within the array; writing into uninitialised
-        // memory through a raw pointer is sound.
-        unsafe { p.add(i).write(f()) };
-    }
-    // SAFETY: every element was initialised above.
-    unsafe { s.assume_init_mut() }
 }
 
 fn run(mem: &mut Mem) -> Result<(), FrameError> {
@@ -143,9 +128,8 @@ fn main() -> ! {
     static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
     static mut VALS: [i32; CAP.values] = [0; CAP.values];
     static mut TRIS: [Tri; CAP.triangles] = [Tri::EMPTY; CAP.triangles];
-    static mut HEADS: [u16; CAP.heads] = [0; CAP.heads];
-    static mut LINKS: MaybeUninit<[Link; CAP.vertices]> = MaybeUninit::uninit();
-    let links = fill(LINKS, Link::default);
+    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut POOL: BandPool = BandPool::new();
     let mut mem = Mem {
         pixels: PIXELS,
         depth16: DEPTH16,
@@ -153,8 +137,8 @@ fn main() -> ! {
         xy: XY,
         vals: VALS,
         tris: TRIS,
-        heads: HEADS,
-        links,
+        order: ORDER,
+        pool: POOL,
     };
     let status = match run(&mut mem) {
         Ok(()) => debug::EXIT_SUCCESS,

@@ -13,8 +13,8 @@ use core::mem::MaybeUninit;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::Profile;
-use fixshade::render::{Link, Tri, Workspace};
-use fixshade_scenes::profiled::{check_with, needs_for, render_frame_with};
+use fixshade::render::{Tri, Workspace};
+use fixshade_scenes::profiled::{check_with, needs_for, render_frame_with, ProfilePool};
 use fixshade_scenes::{Needs, Pixel, BAND_PIXELS, BAND_ROWS, MAX_NEEDS, SCENES, WIDTH};
 
 #[cfg(feature = "profile-precise")]
@@ -61,11 +61,10 @@ fn main() -> ! {
     static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
     static mut VALS: MaybeUninit<[L; CAP.values]> = MaybeUninit::uninit();
     static mut TRIS: [Tri; CAP.triangles] = [Tri::EMPTY; CAP.triangles];
-    static mut HEADS: [u16; CAP.heads] = [0; CAP.heads];
-    static mut LINKS: MaybeUninit<[Link; CAP.vertices]> = MaybeUninit::uninit();
+    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut POOL: ProfilePool<P> = ProfilePool::<P>::new();
     let vals = fill(VALS, L::default);
-    let links = fill(LINKS, Link::default);
-    let status = match run(PIXELS, DEPTH, XY, vals, TRIS, HEADS, links) {
+    let status = match run(PIXELS, DEPTH, XY, vals, TRIS, ORDER, POOL) {
         Ok(()) => debug::EXIT_SUCCESS,
         Err((name, e)) => {
             hprintln!("error: scene {}: {}", name, e);
@@ -85,14 +84,11 @@ fn run(
     xy: &mut [[i32; 2]; CAP.vertices],
     vals: &mut [L; CAP.values],
     tris: &mut [Tri; CAP.triangles],
-    heads: &mut [u16; CAP.heads],
-    links: &mut [Link; CAP.vertices],
+    order: &mut [u16; 2 * CAP.triangles],
+    pool: &mut ProfilePool<P>,
 ) -> Result<(), (&'static str, fixshade_scenes::FrameError)> {
-    let workspace_bytes = core::mem::size_of_val(xy)
-        + core::mem::size_of_val(vals)
-        + core::mem::size_of_val(tris)
-        + core::mem::size_of_val(heads)
-        + core::mem::size_of_val(links);
+    let workspace_bytes =
+        core::mem::size_of_val(xy) + core::mem::size_of_val(vals) + core::mem::size_of_val(tris);
     hprintln!(
         "fixshade-firmware target={} board={} profile={} max_frame={}x{} rgb565be band_rows={} depth16",
         env!("FW_TARGET"),
@@ -103,13 +99,12 @@ fn run(
         BAND_ROWS,
     );
     hprintln!(
-        "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} ws_heads={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
+        "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
         core::mem::size_of_val(pixels),
         core::mem::size_of_val(depth),
         CAP.vertices,
         CAP.values,
         CAP.triangles,
-        CAP.heads,
         workspace_bytes,
         fixshade_scenes::MESH_SHAPE_BYTES,
         fixshade_scenes::MESH_NORMAL_BYTES,
@@ -121,8 +116,6 @@ fn run(
                 xy: &mut xy[..],
                 vals: &mut vals[..],
                 tris: &mut tris[..],
-                heads: &mut heads[..],
-                links: &mut links[..],
             }
         };
     }
@@ -136,6 +129,8 @@ fn run(
             ws!(),
             &mut pixels[..],
             &mut depth[..],
+            &mut order[..],
+            pool,
             &mut super::Markers,
         )
         .map_err(|e| (spec.name, e))?;

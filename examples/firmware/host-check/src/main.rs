@@ -175,8 +175,8 @@ fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
     let mut xy = vec![[0i32; 2]; n.vertices];
     let mut vals = vec![P::Lerp::default(); n.values];
     let mut tris = vec![Tri::default(); n.triangles];
-    let mut heads = vec![0u16; n.heads];
-    let mut links = vec![Link::default(); n.vertices];
+    let mut order = vec![0u16; 2 * n.triangles];
+    let mut pool = Box::new(fixshade_scenes::profiled::ProfilePool::<P>::new());
     let mut px = vec![[0u8; 2]; BAND_PIXELS];
     let mut z = vec![0u16; BAND_PIXELS];
     println!("fixshade-host-check target=host profile={}", P::NAME);
@@ -185,11 +185,17 @@ fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
-            heads: &mut heads,
-            links: &mut links,
         };
-        let s = render_frame_with::<P, _>(spec, ws, &mut px, &mut z, &mut NoProbe)
-            .map_err(|e| format!("scene {}: {e}", spec.name))?;
+        let s = render_frame_with::<P, _>(
+            spec,
+            ws,
+            &mut px,
+            &mut z,
+            &mut order,
+            &mut pool,
+            &mut NoProbe,
+        )
+        .map_err(|e| format!("scene {}: {e}", spec.name))?;
         println!(
             "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
             spec.name,
@@ -244,8 +250,19 @@ fn knobs() -> Result<(), Box<dyn Error>> {
         z: &mut [D::Raw],
         rows: u32,
     ) -> Result<fixshade_scenes::FrameStats, Box<dyn Error>> {
-        render_frame_knobs::<P, D, _>(spec, ws.ws(), px, z, rows, &mut NoProbe)
-            .map_err(|e| format!("knobs: {e}").into())
+        let mut order = vec![0u16; 2 * KNOB_NEEDS.triangles];
+        let mut pool = Box::new(BandPool::new());
+        render_frame_knobs::<P, D, _>(
+            spec,
+            ws.ws(),
+            px,
+            z,
+            rows,
+            &mut order,
+            &mut pool,
+            &mut NoProbe,
+        )
+        .map_err(|e| format!("knobs: {e}").into())
     }
     for rows in BAND_ROWS_SWEEP {
         let s = go::<Fast, Depth16>(spec, &mut ws, &mut px, &mut z16, rows)?;

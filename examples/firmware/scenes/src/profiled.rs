@@ -13,15 +13,15 @@
 //! bands of [`BAND_ROWS`] rows, RGB565 big-endian, 16-bit depth band.
 
 use crate::{
-    Band, BandDepth, Crc32, FrameError, FrameStats, Needs, ObjectSpec, Pixel, Probe, SceneSpec,
-    BAND_ROWS, MAX_OBJECTS,
+    Crc32, FrameError, FrameStats, Needs, ObjectSpec, Pixel, Probe, SceneSpec, BAND_ROWS,
+    MAX_OBJECTS, POOL_SLOTS, POOL_VALUES,
 };
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, MAX_LIGHTS};
 use fixshade::num::{Profile, Real, Q16};
-use fixshade::render::{prepare, Frame, RenderStats, Workspace};
+use fixshade::render::{prepare, BandState, Frame, Pool, Workspace};
 use fixshade::scene::{Camera, Object, Scene, SceneError};
-use fixshade::target::{BufferError, Depth16, DepthFormat, Target};
+use fixshade::target::{BandBuf, BufferError, Depth16, DepthFormat, Rgb565Be};
 
 /// A Q16 value in the scalar `R`, from its bits: exact for `Q16`, `Q32`
 /// and `f64`; for `f32`, exact below 2^8 in magnitude (24 significant
@@ -117,6 +117,8 @@ pub fn render_frame_with<P: Profile, Q: Probe>(
     ws: Workspace<'_, P::Lerp>,
     pixels: &mut [Pixel],
     depth: &mut [u16],
+    order: &mut [u16],
+    pool: &mut ProfilePool<P>,
     probe: &mut Q,
 ) -> Result<FrameStats, FrameError> {
     // Geometry.
@@ -132,58 +134,69 @@ pub fn render_frame_with<P: Profile, Q: Probe>(
     probe.pause();
     probe.close();
     let (scene, frame) = prepared?;
+    raster_bands::<P, Depth16, Q>(&frame, &scene, pixels, depth, BAND_ROWS, order, pool, probe)
+}
+
+/// The active-triangle pool of the band renderer for profile `P` (the
+/// benchmark's capacities, values of `P`'s type).
+pub type ProfilePool<P> = Pool<<P as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
+
+/// The raster part of a frame: the band state, then band by band (clear,
+/// render) in bands of `rows` rows with the depth format `D`, each band
+/// bracketed by `probe`, its bytes added to the CRC.
+///
+/// # Errors
+/// Buffers shorter than a band, or a render error.
+#[allow(clippy::too_many_arguments)]
+pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
+    frame: &Frame<'_, P>,
+    scene: &Scene<'_, '_, P::Real>,
+    pixels: &mut [Pixel],
+    depth: &mut [D::Raw],
+    rows: u32,
+    order: &mut [u16],
+    pool: &mut ProfilePool<P>,
+    probe: &mut Q,
+) -> Result<FrameStats, FrameError> {
     let mut stats = FrameStats {
         vertices: frame.vertex_count() as u32,
         triangles: frame.triangle_count() as u32,
         prepared_bytes: frame.bytes_used() as u32,
         ..FrameStats::default()
     };
-
-    // Raster.
-    let (w, h) = (spec.width, spec.height);
+    let w = frame.size().0;
     let mut crc = Crc32::new();
-    let mut y0 = 0;
-    while y0 < h {
-        let y1 = (y0 + BAND_ROWS).min(h);
-        let n = ((y1 - y0) * w) as usize;
-        let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
-            return Err(BufferError::WrongLength {
-                expected: n,
-                actual: pixels.len().min(depth.len()),
-            }
-            .into());
-        };
+    let n = (w * rows) as usize;
+    let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
+        return Err(BufferError::WrongLength {
+            expected: n,
+            actual: pixels.len().min(depth.len()),
+        }
+        .into());
+    };
+    let mut band = BandBuf::<Rgb565Be, D>::with_depth(px, Some(z), w, rows)?;
+    let mut state = BandState::new(order, pool);
+    probe.resume();
+    let bands = frame.bands(scene, &mut state, rows);
+    probe.pause();
+    let mut bands = bands?;
+    loop {
         probe.resume();
-        let r = draw_band(&frame, &scene, px, z, w, y0, y1);
+        let r = bands.next_band(&mut band);
         probe.pause();
-        let s = r?;
-        stats.setups += s.triangles;
-        stats.drawn += s.pixels;
-        let fb = Band::band(px, w, y0, y1)?;
-        crc.update(fb.bytes());
-        stats.covered += z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
-        y0 = y1;
+        if r?.is_none() {
+            break;
+        }
+        crc.update(band.bytes());
+        let z = band.depth().unwrap_or(&[]);
+        stats.covered += z.iter().filter(|&&d| d != D::CLEAR).count() as u32;
     }
+    stats.setups = bands.stats().triangles;
+    stats.active_peak = bands.active_peak() as u32;
+    stats.drawn = bands.stats().pixels;
     probe.close();
     stats.crc = crc.finish();
     Ok(stats)
-}
-
-/// The measured work of one band: clear colour and depth, render.
-#[inline(always)]
-fn draw_band<P: Profile>(
-    frame: &Frame<'_, P>,
-    scene: &Scene<'_, '_, P::Real>,
-    px: &mut [Pixel],
-    z: &mut [u16],
-    w: u32,
-    y0: u32,
-    y1: u32,
-) -> Result<RenderStats, FrameError> {
-    let mut fb = Band::band(px, w, y0, y1)?;
-    fb.clear(scene.background);
-    let mut db = BandDepth::new(z, w, y0, y1)?;
-    Ok(frame.render(scene, &mut fb, Some(&mut db))?)
 }
 
 /// The workspace a profile needs where the `Fast` profile needs `n` (the
@@ -221,56 +234,71 @@ pub fn check_with<P: Profile>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::BandPool;
     use crate::{render_frame, NoProbe, BAND_PIXELS, MAX_NEEDS, SCENES};
     use fixshade::num::{Fast, FastPc, Precise, F32, F64};
-    use fixshade::render::{Link, Tri};
-    use std::{vec, vec::Vec};
+    use fixshade::render::Tri;
+    use std::{boxed::Box, vec, vec::Vec};
 
     fn run<P: Profile>(spec: &SceneSpec) -> FrameStats
     where
         P::Lerp: Default,
     {
         let n = needs_for::<P>(MAX_NEEDS);
-        let (mut xy, mut vals, mut tris, mut heads, mut links) = (
+        let (mut xy, mut vals, mut tris) = (
             vec![[0i32; 2]; n.vertices],
             vec![P::Lerp::default(); n.values],
             vec![Tri::default(); n.triangles],
-            vec![0u16; n.heads],
-            vec![Link::default(); n.vertices],
         );
         let ws = Workspace {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
-            heads: &mut heads,
-            links: &mut links,
         };
         let mut px = vec![[0u8; 2]; BAND_PIXELS];
         let mut z = vec![0u16; BAND_PIXELS];
-        render_frame_with::<P, _>(spec, ws, &mut px, &mut z, &mut NoProbe).unwrap()
+        let mut order = vec![0u16; 2 * n.triangles];
+        let mut pool = Box::new(ProfilePool::<P>::new());
+        render_frame_with::<P, _>(
+            spec,
+            ws,
+            &mut px,
+            &mut z,
+            &mut order,
+            &mut pool,
+            &mut NoProbe,
+        )
+        .unwrap()
     }
 
     #[test]
     fn fast_equals_the_firmware_frame_loop() {
         let n = MAX_NEEDS;
         for spec in SCENES.iter() {
-            let (mut xy, mut vals, mut tris, mut heads, mut links) = (
+            let (mut xy, mut vals, mut tris) = (
                 vec![[0i32; 2]; n.vertices],
                 vec![0i32; n.values],
                 vec![Tri::default(); n.triangles],
-                vec![0u16; n.heads],
-                vec![Link::default(); n.vertices],
             );
             let ws = Workspace {
                 xy: &mut xy,
                 vals: &mut vals,
                 tris: &mut tris,
-                heads: &mut heads,
-                links: &mut links,
             };
             let mut px = vec![[0u8; 2]; BAND_PIXELS];
             let mut z = vec![0u16; BAND_PIXELS];
-            let want = render_frame(spec, ws, &mut px, &mut z, &mut NoProbe).unwrap();
+            let mut order = vec![0u16; 2 * n.triangles];
+            let mut pool = Box::new(BandPool::new());
+            let want = render_frame(
+                spec,
+                ws,
+                &mut px,
+                &mut z,
+                &mut order,
+                &mut pool,
+                &mut NoProbe,
+            )
+            .unwrap();
             assert_eq!(run::<Fast>(spec), want, "{}", spec.name);
         }
     }
