@@ -1082,7 +1082,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
 }
 
 /// The kernel as a [`Shader`](crate::raster::Shader) of the band
-/// renderer: its own span loop ([`Shader::span_kernel`]) runs
+/// renderer: its own span loop ([`Shader::span_kernel`](crate::raster::Shader::span_kernel)) runs
 /// [`PhongKernel::fill`] with the span stage's depth test, so the
 /// forward differences stay in registers; attributes are the normal (3) or
 /// the normal and the eye position (6), as for [`super::PhongShader`].

@@ -23,7 +23,7 @@ mod depth;
 #[cfg(feature = "embedded-graphics")]
 pub mod eg;
 mod format;
-mod mock;
+pub mod mock;
 
 pub use band::BandBuf;
 pub use buffer::FrameBuf;
