@@ -171,7 +171,7 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
         }
     }
 
-    // The knob sweeps: band rows trade RAM for setups (the same frame),
+    // The knob sweeps: band rows trade RAM for cycles (the same frame),
     // 32-bit depth costs RAM, subpixel bits move coverage.
     let knobs = data.knobs.as_ref().unwrap();
     assert_eq!(knobs.scene, "bunny-gouraud");
@@ -182,7 +182,11 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
         .iter()
         .map(|r| r[2].parse().unwrap())
         .collect();
-    assert!(setups.windows(2).all(|w| w[0] > w[1]), "{setups:?}");
+    // With the active triangle list each prepared triangle is set up once
+    // (1 498 on the bunny); only bands so short that more triangles are
+    // active at a border than the pool holds set a few up again.
+    assert!(setups.windows(2).all(|w| w[0] >= w[1]), "{setups:?}");
+    assert_eq!(setups[2..], [1498; 4], "{setups:?}");
     let ram: Vec<u64> = knobs
         .rows
         .rows

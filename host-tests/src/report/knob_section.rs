@@ -370,7 +370,7 @@ impl KnobSection {
 
     fn parts(&self) -> [(&str, &Table, &str); 4] {
         [
-            ("Band rows", &self.rows, "Taller bands cost RAM (colour and depth band) and save triangle setups (a triangle crossing a band border is set up again); the frame is the same byte for byte."),
+            ("Band rows", &self.rows, "Taller bands cost RAM (colour and depth band) and save per-band work (clearing, admitting and resuming the active triangles); each triangle is set up once unless more triangles are active at a band border than the pool holds; the frame is the same byte for byte."),
             ("Depth bits", &self.depth, "A 32-bit depth band doubles the depth RAM; the pixels column counts where the 16-bit frame differs from the 32-bit one (depth resolution lost: z-fighting), on the host."),
             ("Subpixel bits", &self.subpixel, "Finer snapping moves edges closer to the exact ones (coverage against the ideal, host) at about the same cost; the range is 1 to 8 bits."),
             ("Perspective correction", &self.perspective, "The -pc profiles interpolate colours and normals perspective-correctly (one division per pixel); errors against the ideal of the scene's own shading, host."),
