@@ -149,7 +149,17 @@ fn frame(spec: &SceneSpec, i: u32, mem: &mut Memory, measure: bool) -> Result<St
     };
     let w = spec.width;
     let mut crc = Crc32::new();
-    let mut band = Band::new(&mut mem.pixels[..], Some(&mut mem.depth[..]), w, BAND_ROWS)?;
+    // A band buffer holds exactly `w × BAND_ROWS` pixels (scenes narrower
+    // than the buffers use a part).
+    let n = (w * BAND_ROWS) as usize;
+    let (Some(px), Some(z)) = (mem.pixels.get_mut(..n), mem.depth.get_mut(..n)) else {
+        return Err(fixshade::target::BufferError::WrongLength {
+            expected: n,
+            actual: BAND_PIXELS,
+        }
+        .into());
+    };
+    let mut band = Band::new(px, Some(z), w, BAND_ROWS)?;
     let mut state = BandState::new(&mut mem.order[..], mem.pool);
     mark(measure);
     let bands = frame.bands(&scene, &mut state, BAND_ROWS);
