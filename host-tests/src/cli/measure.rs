@@ -67,8 +67,17 @@ pub fn run(args: &MeasureArgs) -> Result<(), CliError> {
         write_atomically(path, |out| out.write_all(json.as_bytes()))?;
         text.push_str(&format!("wrote {}\n", path.display()));
         // The tables generated from it (README, docs/accuracy.md), so one
-        // command regenerates every figure.
-        for f in crate::report::docs_tables::write_blocks(&chips::repo_root(), &m)? {
+        // command regenerates every figure: only from a whole measurement
+        // written to the committed file.
+        let root = chips::repo_root();
+        let committed_file = std::fs::canonicalize(path).ok()
+            == std::fs::canonicalize(root.join(chips::DEFAULT_PATH)).ok();
+        let tables = if committed_file && args.profiles.is_empty() {
+            crate::report::docs_tables::write_blocks(&root, &m)?
+        } else {
+            Vec::new()
+        };
+        for f in tables {
             text.push_str(&format!(
                 "rewrote the generated tables of {}\n",
                 f.display()

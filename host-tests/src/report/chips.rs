@@ -409,34 +409,62 @@ pub fn check_fresh(m: &Measurements, root: &Path, file: &str) -> Result<(), CliE
     Ok(())
 }
 
+/// Appends the source files (`.rs`, `.toml`, `.lock`, `.x`, `.c`, `.h`)
+/// under `root/rel` to `out`, skipping cargo's build folders (those holding
+/// a `CACHEDIR.TAG`; a source module may well be called `target`, as
+/// `src/target/` is).
+fn walk(root: &Path, rel: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(root.join(rel)) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name();
+        let r = rel.join(&name);
+        let Ok(ft) = e.file_type() else { continue };
+        if ft.is_dir() {
+            if !root.join(&r).join("CACHEDIR.TAG").is_file() {
+                walk(root, &r, out);
+            }
+        } else if ft.is_file() {
+            let keep = r
+                .extension()
+                .and_then(|x| x.to_str())
+                .is_some_and(|x| matches!(x, "rs" | "toml" | "lock" | "x" | "c" | "h"));
+            if keep {
+                out.push(r);
+            }
+        }
+    }
+}
+
+/// The files a firmware build needs besides [`source_files`] but which do
+/// not change its code: the README the core's docs include, the firmware
+/// workspace's host member `host-check`, and the root manifest's benches
+/// and examples.
+pub fn build_only_files(root: &Path) -> Vec<PathBuf> {
+    let mut out = vec![PathBuf::from("README.md")];
+    walk(root, Path::new("examples/firmware/host-check"), &mut out);
+    // The root manifest's bench and example targets must exist for cargo
+    // to read it.
+    walk(root, Path::new("benches"), &mut out);
+    if let Ok(entries) = std::fs::read_dir(root.join("examples")) {
+        for e in entries.flatten() {
+            let p = Path::new("examples").join(e.file_name());
+            if e.file_type().is_ok_and(|t| t.is_file())
+                && p.extension().is_some_and(|x| x == "rs")
+            {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
 /// The files a firmware measurement depends on, relative to `root`:
 /// the core (`Cargo.toml`, `src/`), the toolchain pin, and the firmware
 /// (`examples/firmware/`: manifests, lock file, build script, memory
 /// maps, sources, scenes, QEMU plugin), sorted.
 pub fn source_files(root: &Path) -> Vec<PathBuf> {
-    fn walk(root: &Path, rel: &Path, out: &mut Vec<PathBuf>) {
-        let Ok(entries) = std::fs::read_dir(root.join(rel)) else {
-            return;
-        };
-        for e in entries.flatten() {
-            let name = e.file_name();
-            let r = rel.join(&name);
-            let Ok(ft) = e.file_type() else { continue };
-            if ft.is_dir() {
-                if name != "target" {
-                    walk(root, &r, out);
-                }
-            } else if ft.is_file() {
-                let keep = r
-                    .extension()
-                    .and_then(|x| x.to_str())
-                    .is_some_and(|x| matches!(x, "rs" | "toml" | "lock" | "x" | "c" | "h"));
-                if keep {
-                    out.push(r);
-                }
-            }
-        }
-    }
     let mut out = Vec::new();
     for f in ["Cargo.toml", "rust-toolchain.toml"] {
         if root.join(f).is_file() {

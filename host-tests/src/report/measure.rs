@@ -11,10 +11,12 @@
 //! (geometry) and 2i + 1 (bands). The host renders the same scenes with the
 //! same code (`host-check [--profile NAME]`) for the CRCs.
 //!
-//! All builds share the firmware's `target/` folder: cargo keeps one
-//! artifact per feature set, so an unchanged profile is not rebuilt; the
-//! ELF at `target/TARGET/release/fixshade-firmware` is the last build's,
-//! and `fast` is measured last so that it is the default build's again.
+//! The builds are made from a copy of the sources at a fixed path (see
+//! `Stage`: counts are then the same on every clone), one target folder
+//! per target (`examples/firmware/target/measure-TARGET`), both targets at
+//! once; cargo keeps one artifact per feature set, so an unchanged profile
+//! is not rebuilt. The default build (`target/TARGET/release`) is not
+//! touched.
 //!
 //! Needs `qemu-system-arm`, `gcc` and the two Rust targets (`rustup target
 //! add`, pinned by `rust-toolchain.toml`); a missing tool is bad input
@@ -212,7 +214,7 @@ fn is_softfloat(name: &str) -> bool {
 fn host_crcs(fw: &Path, profile: CoreProfile) -> Result<BTreeMap<String, String>, CliError> {
     let mut cmd = Command::new("cargo");
     cmd.current_dir(fw)
-        .args(["run", "-q", "--release", "-p", "fixshade-host-check"]);
+        .args(["run", "-q", "--profile", "host", "-p", "fixshade-host-check"]);
     if profile != CoreProfile::Fast {
         cmd.args(["--", "--profile", profile.name()]);
     }
@@ -247,28 +249,82 @@ struct Run {
     symbols: Vec<String>,
 }
 
+/// Where the measured firmware is built from: a copy of exactly the
+/// fingerprinted sources ([`chips::source_files`], and
+/// [`chips::build_only_files`]) at the fixed path [`STAGE`], built into the firmware's own
+/// `target/`.
+///
+/// Why a copy: the core is a path dependency outside the firmware's
+/// workspace, so cargo hashes its absolute path into the crate's metadata
+/// and with it every symbol name, and LLVM's inlining order follows the
+/// names: the same sources built in two clones at different paths differed
+/// by up to 25 000 instructions (0.12 %, `fast-pc` bunny on thumbv6m) and
+/// 28 bytes of flash. Built from one path, the counts are reproducible on
+/// any clone, which `measure-firmware --check` requires.
+struct Stage {
+    /// The copy's root.
+    src: PathBuf,
+    /// The firmware's `target/` in the repository (builds stay cached).
+    target_dir: PathBuf,
+}
+
+/// The fixed path of [`Stage`]'s copy.
+pub const STAGE: &str = "/tmp/fixshade-measure-src";
+
+impl Stage {
+    /// The same copy built into a target folder of its own for `target`
+    /// (`target/measure-TARGET`), so that both targets build at once.
+    fn for_target(&self, target: &str) -> Self {
+        Self {
+            src: self.src.clone(),
+            target_dir: self.target_dir.join(format!("measure-{target}")),
+        }
+    }
+
+    /// Copies the fingerprinted sources of `root` to [`STAGE`] (replacing
+    /// an earlier copy).
+    fn new(root: &Path) -> Result<Self, CliError> {
+        let src = PathBuf::from(STAGE);
+        if src.exists() {
+            std::fs::remove_dir_all(&src).map_err(|e| CliError::io(&src, &e))?;
+        }
+        let mut files = chips::source_files(root);
+        files.extend(chips::build_only_files(root));
+        for f in &files {
+            let to = src.join(f);
+            if let Some(dir) = to.parent() {
+                std::fs::create_dir_all(dir).map_err(|e| CliError::io(dir, &e))?;
+            }
+            std::fs::copy(root.join(f), &to).map_err(|e| CliError::io(&to, &e))?;
+        }
+        Ok(Self {
+            src,
+            target_dir: root.join("examples/firmware/target"),
+        })
+    }
+}
+
 /// Builds the firmware for `target` with `features` (the default build
 /// without) and runs it under QEMU with the counting plugin.
 fn build_run(
-    root: &Path,
+    stage: &Stage,
     plugin: &Path,
     (target, cpu, machine, plugarg): (&str, &str, &str, &str),
     features: Option<&str>,
     tag: &str,
 ) -> Result<Run, CliError> {
-    let fw = root.join("examples/firmware");
     let mut cmd = Command::new("cargo");
-    cmd.current_dir(&fw)
+    cmd.current_dir(stage.src.join("examples/firmware"))
         .args(["build", "-q", "--release", "--target", target]);
-    let target_dir = fw.join("target");
+    let target_dir = &stage.target_dir;
     if let Some(f) = features {
         cmd.args(["--features", f]);
     }
-    cmd.env("CARGO_TARGET_DIR", &target_dir);
+    cmd.env("CARGO_TARGET_DIR", target_dir);
     run(&mut cmd, &format!("cargo build {target} {tag}"))?;
     let elf = target_dir.join(target).join("release/fixshade-firmware");
     let (sizes, symbols) = elf_info(&elf)?;
-    let log = target_dir.join(format!("measure/plugin-{target}-{tag}.log"));
+    let log = target_dir.join(format!("plugin-{target}-{tag}.log"));
     let _ = std::fs::remove_file(&log);
     let out = run(
         Command::new("qemu-system-arm")
@@ -315,7 +371,7 @@ fn build_run(
 
 /// Builds, runs and parses one target × profile.
 fn measure_one(
-    root: &Path,
+    stage: &Stage,
     plugin: &Path,
     t: (&str, &str, &str, &str),
     profile: CoreProfile,
@@ -329,7 +385,7 @@ fn measure_one(
         sizes: (flash, static_ram, text, rodata),
         symbols,
     } = build_run(
-        root,
+        stage,
         plugin,
         t,
         (profile != CoreProfile::Fast).then_some(features.as_str()),
@@ -420,13 +476,13 @@ fn measure_one(
 /// The knob variants on one target (the firmware's `knobs` build), with
 /// host-check's CRCs (`host`: by `rows/depth/subpixel`).
 fn measure_knobs(
-    root: &Path,
+    stage: &Stage,
     plugin: &Path,
     t: (&str, &str, &str, &str),
     host: &BTreeMap<String, String>,
 ) -> Result<Vec<KnobResult>, CliError> {
     let target = t.0;
-    let r = build_run(root, plugin, t, Some("knobs"), "knobs")?;
+    let r = build_run(stage, plugin, t, Some("knobs"), "knobs")?;
     let lines: Vec<&str> = r.out.lines().filter(|l| l.starts_with("knob ")).collect();
     if lines.is_empty() || r.regions.len() < 2 * lines.len() {
         return Err(failed(format!(
@@ -489,7 +545,8 @@ fn host_knobs(fw: &Path) -> Result<(BTreeMap<String, String>, u64), CliError> {
         Command::new("cargo").current_dir(fw).args([
             "run",
             "-q",
-            "--release",
+            "--profile",
+            "host",
             "-p",
             "fixshade-host-check",
             "--",
@@ -560,6 +617,7 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
         .trim()
         .to_string();
     let fingerprint = chips::source_fingerprint(root)?;
+    let stage = Stage::new(root)?;
     let plugin_dir = fw.join("target/measure");
     std::fs::create_dir_all(&plugin_dir).map_err(|e| CliError::io(&plugin_dir, &e))?;
     let plugin = plugin_dir.join("insn_count.so");
@@ -582,37 +640,54 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
         ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} measuring {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let mut builds = Vec::new();
-    let mut results = Vec::new();
-    // `fast` last: the default build's ELF stays in place.
-    let mut order: Vec<CoreProfile> = opts.profiles.clone();
-    order.sort_by_key(|&p| p == CoreProfile::Fast);
-    for &profile in &order {
+    // The host's CRCs first (one host build, cached), then both targets
+    // at once: each builds in its own target folder (cargo locks a folder
+    // per build), and the single-unit LTO links keep one core each busy.
+    let mut hosts = Vec::new();
+    for &profile in &opts.profiles {
         bar.set_message(format!("{} on the host", profile.name()));
-        let host = host_crcs(&fw, profile)?;
+        hosts.push((profile, host_crcs(&fw, profile)?));
         bar.inc(1);
-        for t in TARGETS {
-            bar.set_message(format!("{} on {}", profile.name(), t.0));
-            let (b, r) = measure_one(root, &plugin, t, profile, &host)?;
-            builds.push(b);
-            results.extend(r);
-            bar.inc(1);
-        }
     }
     bar.set_message("knobs on the host");
     let (knob_host, depth_differ) = host_knobs(&fw)?;
     bar.inc(1);
-    let mut knobs = Vec::new();
-    for t in TARGETS {
-        bar.set_message(format!("knobs on {}", t.0));
-        knobs.extend(measure_knobs(root, &plugin, t, &knob_host)?);
-        bar.inc(1);
-    }
-    // The default build last again: its ELF stays in place.
-    if order.contains(&CoreProfile::Fast) {
-        for t in TARGETS {
-            build_run(root, &plugin, t, None, "fast")?;
-        }
+    let per_target = std::thread::scope(|s| {
+        let jobs: Vec<_> = TARGETS
+            .iter()
+            .map(|&t| {
+                let (stage, plugin, hosts, knob_host, bar) =
+                    (&stage, &plugin, &hosts, &knob_host, &bar);
+                s.spawn(move || -> Result<_, CliError> {
+                    let stage = stage.for_target(t.0);
+                    let (mut builds, mut results) = (Vec::new(), Vec::new());
+                    for (profile, host) in hosts {
+                        bar.set_message(format!("{} on {}", profile.name(), t.0));
+                        let (b, r) = measure_one(&stage, plugin, t, *profile, host)?;
+                        builds.push(b);
+                        results.extend(r);
+                        bar.inc(1);
+                    }
+                    bar.set_message(format!("knobs on {}", t.0));
+                    let knobs = measure_knobs(&stage, plugin, t, knob_host)?;
+                    bar.inc(1);
+                    Ok((builds, results, knobs))
+                })
+            })
+            .collect();
+        jobs.into_iter()
+            .map(|j| {
+                j.join()
+                    .unwrap_or_else(|_| Err(failed("a measuring thread panicked".into())))
+            })
+            .collect::<Vec<_>>()
+    });
+    let (mut builds, mut results, mut knobs) = (Vec::new(), Vec::new(), Vec::new());
+    for r in per_target {
+        let (b, r, k) = r?;
+        builds.extend(b);
+        results.extend(r);
+        knobs.extend(k);
     }
     bar.finish_and_clear();
     let rank = |p: &str| CoreProfile::ALL.iter().position(|c| c.name() == p);

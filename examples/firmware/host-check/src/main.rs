@@ -5,7 +5,7 @@
 //! compares them with the host's `fixshade render --profile fast --crc`
 //! too, which renders from the scene files.)
 //!
-//! `cargo run --release -p fixshade-host-check [-- --ppm DIR]`: with
+//! `cargo run --profile host -p fixshade-host-check [-- --ppm DIR]`: with
 //! `--ppm`, also writes each frame as `DIR/<scene>.ppm` (binary PPM) to look
 //! at. `-- --profile NAME` (`precise`, `f32`, `f64`, `fast-pc`, ...)
 //! renders with that profile instead, as the firmware built with the
