@@ -450,8 +450,7 @@ pub fn build_only_files(root: &Path) -> Vec<PathBuf> {
     if let Ok(entries) = std::fs::read_dir(root.join("examples")) {
         for e in entries.flatten() {
             let p = Path::new("examples").join(e.file_name());
-            if e.file_type().is_ok_and(|t| t.is_file())
-                && p.extension().is_some_and(|x| x == "rs")
+            if e.file_type().is_ok_and(|t| t.is_file()) && p.extension().is_some_and(|x| x == "rs")
             {
                 out.push(p);
             }

@@ -213,8 +213,14 @@ fn is_softfloat(name: &str) -> bool {
 /// The CRCs of `host-check` for a profile, by scene.
 fn host_crcs(fw: &Path, profile: CoreProfile) -> Result<BTreeMap<String, String>, CliError> {
     let mut cmd = Command::new("cargo");
-    cmd.current_dir(fw)
-        .args(["run", "-q", "--profile", "host", "-p", "fixshade-host-check"]);
+    cmd.current_dir(fw).args([
+        "run",
+        "-q",
+        "--profile",
+        "host",
+        "-p",
+        "fixshade-host-check",
+    ]);
     if profile != CoreProfile::Fast {
         cmd.args(["--", "--profile", profile.name()]);
     }
@@ -314,8 +320,13 @@ fn build_run(
     tag: &str,
 ) -> Result<Run, CliError> {
     let mut cmd = Command::new("cargo");
-    cmd.current_dir(stage.src.join("examples/firmware"))
-        .args(["build", "-q", "--release", "--target", target]);
+    cmd.current_dir(stage.src.join("examples/firmware")).args([
+        "build",
+        "-q",
+        "--release",
+        "--target",
+        target,
+    ]);
     let target_dir = &stage.target_dir;
     if let Some(f) = features {
         cmd.args(["--features", f]);
