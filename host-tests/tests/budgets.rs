@@ -1,10 +1,13 @@
 //! Accuracy budgets for every built-in scene and profile.
 //!
-//! Against the float twin (quantization alone): `precise` covers exactly
-//! the twin's pixels and stays within 1 level (Gouraud, flat) or 2 levels
-//! (Phong) on every pixel; `fast` (Q16.16) may snap a few vertices to the
-//! neighbouring subpixel (its projection is within 1.5 subpixels) and so
-//! differ in coverage at a handful of silhouette pixels.
+//! Against the float twin (quantization alone): `precise` and `f32` cover
+//! exactly the twin's pixels and stay within 1 level (Gouraud, flat) or 2
+//! levels (Phong) on every pixel; `fast` (Q16.16) may snap a few vertices
+//! to the neighbouring subpixel (its projection is within 1.5 subpixels)
+//! and so differ in coverage at a handful of silhouette pixels, where
+//! another surface can show through (up to 75 levels, measured on the
+//! bunny). `f64` and `f64-pc` are their own twins: they are bounded against
+//! the ideal reference alone.
 //!
 //! Against the ideal reference (everything: subpixel snapping, affine
 //! interpolation, quantization), every profile: coverage differs only at a
@@ -33,14 +36,13 @@ fn ideal_bound(p: CoreProfile) -> (u64, f64, f64) {
 
 #[test]
 fn every_scene_meets_its_budgets() {
-    let mut lines = vec![];
     for &(name, _, _) in builtin_scenes() {
         let desc = load_builtin(name).unwrap();
         let phong = desc.objects.iter().any(|o| o.shading == Shading::Phong);
         for p in CoreProfile::ALL {
             let c = compare_scene(&desc, p).unwrap();
             let (f, i) = (&c.metrics.vs_float, &c.metrics.vs_ideal);
-            lines.push(format!(
+            println!(
                 "{name:28} {:10} twin: cov {:2} max {:3} mean {:.4} | ideal: cov {:2} max {:3} mean {:.3} >1: {:.4}",
                 p.name(),
                 f.coverage_mismatch,
@@ -50,8 +52,10 @@ fn every_scene_meets_its_budgets() {
                 i.max_abs_error,
                 i.mean_abs_error,
                 i.share_over_1
-            ));
-            if matches!(p, CoreProfile::Fast | CoreProfile::FastPc) {
+            );
+            if matches!(p, CoreProfile::F64 | CoreProfile::F64Pc) {
+                // The twin is this very profile: nothing to bound there.
+            } else if matches!(p, CoreProfile::Fast | CoreProfile::FastPc) {
                 // Q16 projection: a few vertices one subpixel off, a few
                 // silhouette pixels covered differently (measured 3-4).
                 assert!(
@@ -77,14 +81,20 @@ fn every_scene_meets_its_budgets() {
                 );
                 // Phong in `fast` runs the span kernel (`render::PhongKernel`):
                 // within 2 levels of the twin on every Phong scene (issue
-                // 15's budget; measured 1). `fast-pc` keeps the generic path.
-                if phong && p == CoreProfile::Fast {
-                    assert!(
-                        f.max_abs_error <= 2,
-                        "{name} fast: {} levels from the twin",
-                        f.max_abs_error
-                    );
-                }
+                // 15's budget; measured 2); `fast-pc` keeps the generic
+                // path (measured 3). Gouraud and flat: a silhouette pixel
+                // showing another surface (measured 75, the bunny).
+                let max_bound = match (phong, p) {
+                    (true, CoreProfile::Fast) => 2,
+                    (true, _) => 3,
+                    (false, _) => 80,
+                };
+                assert!(
+                    f.max_abs_error <= max_bound,
+                    "{name} {}: {} levels from the twin",
+                    p.name(),
+                    f.max_abs_error
+                );
             } else {
                 assert_eq!(
                     f.coverage_mismatch,
@@ -101,9 +111,6 @@ fn every_scene_meets_its_budgets() {
                 );
             }
             let (cov, mean, share) = ideal_bound(p);
-            if std::env::var("BUDGETS_MEASURE").is_ok() {
-                continue;
-            }
             assert!(
                 i.coverage_mismatch <= cov,
                 "{name} {}: {} coverage mismatches vs ideal",
@@ -124,5 +131,4 @@ fn every_scene_meets_its_budgets() {
             );
         }
     }
-    println!("{}", lines.join("\n"));
 }
