@@ -465,6 +465,27 @@ mod tests {
         assert!(worst_d <= 1.0 / 8192.0, "{worst_d}");
     }
 
+    /// `recip_mant_top` equals `recip_mant` for every mantissa with its
+    /// top bit set (each 18-bit position, with low bits), and the 17-bit
+    /// reciprocal of [`Fused::project`] is within `3·2^-17` of `2^16 / f`.
+    #[test]
+    fn reciprocal_within_bound() {
+        use crate::num::approx16::{recip_mant, recip_mant_top};
+        let mut worst = 0f64;
+        for k in 0..1u32 << 18 {
+            for low in [0, 0x1FFF, 0x0AAA] {
+                let m = (1u32 << 31) | (k << 13) | low;
+                let r = recip_mant_top(m);
+                assert_eq!(r, recip_mant(m), "{m:#x}");
+                let y16 = (r + (1 << 13)) >> 14;
+                let exact = 65536.0 * 2f64.powi(31) / f64::from(m);
+                worst = worst.max((f64::from(y16) / exact - 1.0).abs());
+            }
+        }
+        std::println!("17-bit reciprocal: worst {worst:e} = 2^{:.2}", worst.log2());
+        assert!(worst <= 3.0 / 131_072.0, "{worst}");
+    }
+
     /// The split products equal the wide ones (the Cortex-M0 form).
     #[test]
     fn split_products_are_exact() {
