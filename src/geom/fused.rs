@@ -13,8 +13,8 @@
 //! halves on the Cortex-M0) and one shift.
 //!
 //! Measured (`examples/firmware/profile.sh`, bunny Gouraud, 1 839
-//! vertices, exact QEMU counts): the vertex loop with lighting costs 136
-//! instructions per vertex on the Cortex-M4 and 237 on the Cortex-M0,
+//! vertices, exact QEMU counts): the vertex loops with lighting cost 127
+//! instructions per vertex on the Cortex-M4 and 234 on the Cortex-M0,
 //! where the exact-rounding kernel of [`super::q16`] (64-bit transform,
 //! Newton-refined reciprocal, variable 64-bit shifts) cost 237 and 515.
 //!
