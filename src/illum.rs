@@ -581,6 +581,120 @@ impl<R: Real> ObjectLight<R> {
     }
 }
 
+impl<R: Real> ObjectLight<R> {
+    /// The integer form of these lights for the `fast` vertex kernel:
+    /// colour levels (Q16, `255 = 255 · 2^16`) straight from a Q1.14
+    /// normal, or `None` unless `R` is `Q16` and every diffuse factor is
+    /// below `2^8 / 255 ≈ 1.004` (brighter lights use [`ObjectLight::at`]).
+    pub(crate) fn levels(&self) -> Option<LevelLight> {
+        if !R::Q16_KERNELS {
+            return None;
+        }
+        #[allow(clippy::cast_possible_truncation)]
+        let ambient =
+            raw3(self.ambient).map(|a| (i64::from(a) * 255).clamp(-(1 << 29), 1 << 29) as i32);
+        let mut terms = heapless::Vec::new();
+        for t in &self.terms {
+            // dq = round(diffuse · 255 · 2^8), below 2^16.
+            let dq = raw3(t.diffuse).map(|c| (i64::from(c) * 255 + (1 << 7)) >> 8);
+            if dq.iter().any(|v| v.unsigned_abs() >= 1 << 16) {
+                return None;
+            }
+            #[allow(clippy::cast_possible_truncation)]
+            terms
+                .push(LevelTerm {
+                    l14: t.l14,
+                    dq: dq.map(|v| v as i32),
+                })
+                .ok()?;
+        }
+        Some(LevelLight { ambient, terms })
+    }
+}
+
+/// [`ObjectLight`] as integers ([`ObjectLight::levels`]): a colour level
+/// per channel is `ambient + Σ max(0, n·L') · dq >> 6`, with `n·L'` the
+/// exact 32-bit sum of [`ObjectLight`] cut to Q1.14 (at most `2^15`).
+///
+/// Error against [`ObjectLight::at`]'s exact value `255 · (ambient + Σ
+/// diffuse · max(0, n·L'))` before clamping: per light, the cut of `n·L'`
+/// (`2^-14`, times `255 · diffuse <= 256`: `2^-6` level), the rounding of
+/// `dq` (`1/2 · 2^15 / 2^6` Q16, `2^-8` level) and of the shift (`2^-16`
+/// level): within `0.02` level per light (tested by
+/// `level_light_within_its_bound`).
+#[derive(Clone, Debug)]
+pub(crate) struct LevelLight {
+    ambient: [i32; 3],
+    terms: heapless::Vec<LevelTerm, MAX_LIGHTS>,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct LevelTerm {
+    l14: [i32; 3],
+    dq: [i32; 3],
+}
+
+impl LevelLight {
+    /// The colour levels (Q16, clamped to `[0, 255 · 2^16]`) of Q1.14
+    /// normal `n`; only the first channel when `MONO`.
+    #[inline(always)]
+    pub(crate) fn at<const MONO: bool>(&self, n: [i16; 3]) -> [i32; 3] {
+        let mut sum = self.ambient;
+        let n = n.map(i32::from);
+        for t in &self.terms {
+            // |n_k| <= 2^15, |l14_k| <= 2^14: below 3 · 2^29.
+            let nl = n[0] * t.l14[0] + n[1] * t.l14[1] + n[2] * t.l14[2];
+            if nl <= 0 {
+                continue;
+            }
+            // nl14 <= 2^15, |dq| < 2^16: the products fit.
+            let nl14 = (nl >> 14).min(1 << 15);
+            sum[0] += (nl14 * t.dq[0]) >> 6;
+            if !MONO {
+                sum[1] += (nl14 * t.dq[1]) >> 6;
+                sum[2] += (nl14 * t.dq[2]) >> 6;
+            }
+        }
+        sum.map(|v| v.clamp(0, 255 << 16))
+    }
+
+    /// The lights when there is exactly one (the common case: its
+    /// constants stay in registers across a vertex loop).
+    pub(crate) fn one(&self) -> Option<OneLight> {
+        match self.terms.as_slice() {
+            [t] => Some(OneLight {
+                ambient: self.ambient,
+                t: *t,
+            }),
+            _ => None,
+        }
+    }
+}
+
+/// A [`LevelLight`] of one light: the same values.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct OneLight {
+    ambient: [i32; 3],
+    t: LevelTerm,
+}
+
+impl OneLight {
+    /// [`LevelLight::at`], bit for bit.
+    #[inline(always)]
+    pub(crate) fn at<const MONO: bool>(&self, n: [i16; 3]) -> [i32; 3] {
+        let (t, n) = (&self.t, n.map(i32::from));
+        let nl = n[0] * t.l14[0] + n[1] * t.l14[1] + n[2] * t.l14[2];
+        let nl14 = if nl <= 0 { 0 } else { (nl >> 14).min(1 << 15) };
+        let mut sum = self.ambient;
+        sum[0] += (nl14 * t.dq[0]) >> 6;
+        if !MONO {
+            sum[1] += (nl14 * t.dq[1]) >> 6;
+            sum[2] += (nl14 * t.dq[2]) >> 6;
+        }
+        sum.map(|v| v.clamp(0, 255 << 16))
+    }
+}
+
 /// One light of a [`Shade`] as raw `Q16` bits, for the Phong span kernel
 /// (`render::phong_span`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -637,7 +751,9 @@ impl<R: Real> Shade<R> {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::{mul16, mul16_small, Light, Material, Shade, Specular, Viewer, SMALL};
+    use super::{
+        mul16, mul16_small, LevelLight, LevelTerm, Light, Material, Shade, Specular, Viewer, SMALL,
+    };
     use crate::geom::Vec3;
     use crate::num::{Real, Q16};
 
@@ -835,6 +951,65 @@ mod tests {
     /// eye-space product of the same Q1.14 normal under the same `Q16`
     /// model-view matrix (random rotations, uniform scales 0.5 to 200,
     /// random light directions): within `2^-13` (0.031 of a level).
+    /// [`LevelLight::at`] within 0.02 level per light of the exact
+    /// `255 · (ambient + Σ diffuse · max(0, n·L'))` of the same Q1.14
+    /// normal and the same `L'` (clamped to `[0, 255]`), on random lights,
+    /// diffuse factors up to the accepted limit and random normals.
+    #[test]
+    fn level_light_within_its_bound() {
+        let mut st = 0x1e7e_1b0d_u64;
+        let mut f = |lo: f64, hi: f64| {
+            let r = xorshift(&mut st);
+            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        let mut worst = 0f64;
+        for _ in 0..2000 {
+            let nl = 1 + (f(0.0, 2.999) as usize);
+            let mut terms = heapless::Vec::new();
+            let mut exact_terms = std::vec::Vec::new();
+            for _ in 0..nl {
+                let v = [f(-1.0, 1.0), f(-1.0, 1.0), f(-1.0, 1.0)];
+                let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(0.1);
+                let l14 = v.map(|c| (c / len * 16384.0).round() as i32);
+                let d = [f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)];
+                let draw = d.map(|c| (c * 65536.0).round() as i64);
+                let dq = draw.map(|c| ((c * 255 + 128) >> 8) as i32);
+                terms.push(LevelTerm { l14, dq }).unwrap();
+                exact_terms.push((l14, draw.map(|c| c as f64 / 65536.0)));
+            }
+            let amb = [f(0.0, 0.5), f(0.0, 0.5), f(0.0, 0.5)];
+            let ambient = amb.map(|a| ((a * 65536.0).round() as i32) * 255);
+            let ll = LevelLight { ambient, terms };
+            for _ in 0..50 {
+                let v = [f(-1.0, 1.0), f(-1.0, 1.0), f(-1.0, 1.0)];
+                let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(0.1);
+                let n = v.map(|c| (c / len * 16384.0).round() as i16);
+                let got = ll.at::<false>(n);
+                let mono = ll.at::<true>(n);
+                assert_eq!(got[0], mono[0]);
+                if let Some(one) = ll.one() {
+                    assert_eq!(one.at::<false>(n), got);
+                    assert_eq!(one.at::<true>(n)[0], got[0]);
+                }
+                for ch in 0..3 {
+                    let mut e = f64::from(ambient[ch]) / 65536.0 / 255.0;
+                    for (l14, d) in &exact_terms {
+                        let dot = (0..3)
+                            .map(|j| f64::from(n[j]) * f64::from(l14[j]))
+                            .sum::<f64>()
+                            / 2f64.powi(28);
+                        e += d[ch] * dot.max(0.0);
+                    }
+                    let e = (e * 255.0).clamp(0.0, 255.0);
+                    let err = (f64::from(got[ch]) / 65536.0 - e).abs() / nl as f64;
+                    worst = worst.max(err);
+                }
+            }
+        }
+        std::println!("level light: worst {worst} level per light");
+        assert!(worst <= 0.02, "{worst}");
+    }
+
     #[test]
     fn object_light_q16_within_its_bound() {
         use crate::geom::Mat3;

@@ -109,6 +109,11 @@ impl Xform16 {
         })
     }
 
+    /// The linear part and the translation, raw `Q16`.
+    pub(crate) fn parts(&self) -> (&[[i32; 3]; 3], &[i32; 3]) {
+        (&self.m, &self.t)
+    }
+
     /// A Q1.14 point transformed, in raw Q16: the exact value rounded to
     /// nearest once (<= 1/2 ulp), the translation added with saturation.
     #[inline]

@@ -201,6 +201,17 @@ pub(crate) fn recip_mant(m: u32) -> u32 {
     a - ((d * t) >> 10)
 }
 
+/// [`recip_mant`] for a mantissa with its top bit set (`m >= 2^31`): the
+/// same value (the segment index is then `(m >> 23) & 0xFF`, no clamp).
+#[inline(always)]
+pub(crate) fn recip_mant_top(m: u32) -> u32 {
+    let idx = ((m >> 23) & 0xFF) as usize;
+    let t = (m >> 13) & 0x3FF;
+    let a = RECIP.get(idx).copied().unwrap_or(0);
+    let b = RECIP.get(idx + 1).copied().unwrap_or(0);
+    a - (((a - b) * t) >> 10)
+}
+
 /// [`rsqrt_mant`] refined by one Newton step `y (3 - f y^2) / 2`: within
 /// `2^-29` relative of `2^31 / sqrt(f)` (the chord error `2^-15.4`
 /// squared, times 1.5, plus truncations of `2^-31`), at most `2^31`.

@@ -65,6 +65,19 @@ pub trait Profile: Copy + Debug + Default + 'static {
     fn level(r: Self::Real) -> Self::Lerp;
     /// A depth in `[0, 1]` as an interpolated value.
     fn depth(r: Self::Real) -> Self::Lerp;
+    /// A depth given in Q2.30 (`2^30` is 1) as an interpolated value.
+    /// (Default: through [`Profile::depth`], rounded to the scalar.)
+    #[inline]
+    fn depth_q30(d: i32) -> Self::Lerp {
+        Self::depth(Self::Real::from_fixed_i32(d, 30))
+    }
+    /// A colour level given in Q16 levels (`255 · 2^16` is full) as an
+    /// interpolated value. (Default: through [`Profile::level`], rounded
+    /// to the scalar.)
+    #[inline]
+    fn level_q16(l: i32) -> Self::Lerp {
+        Self::level(Self::Real::from_fixed_i32(l, 16).div(Self::Real::from_i32(255)))
+    }
     /// A unit-vector component as an interpolated value.
     fn unit(r: Self::Real) -> Self::Lerp;
     /// An interpolated unit-vector component back as a scalar.
@@ -94,6 +107,14 @@ macro_rules! fixed_profile {
             #[inline]
             fn depth(r: $real) -> i32 {
                 r.to_fixed_i32(DEPTH_FRAC_BITS)
+            }
+            #[inline(always)]
+            fn depth_q30(d: i32) -> i32 {
+                d >> (30 - DEPTH_FRAC_BITS)
+            }
+            #[inline(always)]
+            fn level_q16(l: i32) -> i32 {
+                l >> (16 - LEVEL_FRAC_BITS)
             }
             #[inline]
             fn unit(r: $real) -> i32 {
@@ -174,6 +195,14 @@ macro_rules! float_profile {
             #[inline]
             fn depth(r: $t) -> $t {
                 r
+            }
+            #[inline]
+            fn depth_q30(d: i32) -> $t {
+                d as $t / (1u32 << 30) as $t
+            }
+            #[inline]
+            fn level_q16(l: i32) -> $t {
+                l as $t / 65536.0
             }
             #[inline]
             fn unit(r: $t) -> $t {
