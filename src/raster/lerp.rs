@@ -63,6 +63,29 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// A gradient as a per-step increment.
     fn step(g: Self::Grad) -> Self;
 
+    /// For [`Lerp::EXACT_STEPS`] types, the walker's row origin: the value
+    /// at the centre of pixel (0, 0) of the plane through `a0` at subpixel
+    /// `(x0, y0)` with gradients `gx`, `gy` per pixel, as the anchor at the
+    /// pixel centre nearest `(x0, y0)` ([`Lerp::anchor`]) stepped back by
+    /// whole steps (wrapping). Types may compute the same value another
+    /// way.
+    #[inline(always)]
+    fn origin(
+        a0: Self,
+        gx: Self::Grad,
+        gy: Self::Grad,
+        x0: i32,
+        y0: i32,
+        sub: SubpixelBits,
+    ) -> Self {
+        let s = sub.scale();
+        let (ia, ja) = (x0 >> sub.get(), y0 >> sub.get());
+        let (ox, oy) = (ia * s + s / 2 - x0, ja * s + s / 2 - y0);
+        Self::anchor(a0, gx, gy, ox, oy, sub)
+            .add_n(Self::step(gx), ia.wrapping_neg())
+            .add_n(Self::step(gy), ja.wrapping_neg())
+    }
+
     /// `self + n · step` (whole steps).
     fn add_n(self, step: Self, n: i32) -> Self;
 
@@ -458,6 +481,25 @@ fn anchor64(a0: i32, gx: i64, gy: i64, ox: i32, oy: i32, sub: SubpixelBits) -> i
     a0.wrapping_add((t.wrapping_add(1 << (s - 1)) >> s) as i32)
 }
 
+/// [`Lerp::origin`] for `i32` from one 64-bit sum: `a0 + round((gx·(S/2 -
+/// x0) + gy·(S/2 - y0)) / S)` (wrapping). The same value as the anchor
+/// `anchor64(ox, oy)` at pixel `(ia, ja)` stepped back by `ia·gx + ja·gy`:
+/// the two sums differ by `S·(ia·gx + ja·gy)` exactly, so their rounded
+/// quotients by `S` differ by `ia·gx + ja·gy`; and the low 32 bits of
+/// `t >> s` depend only on `t` modulo `2^(32 + s)`, which wrapping `i64`
+/// arithmetic keeps (`32 + s <= 64`), whatever the magnitudes. Tested
+/// equal on random and extreme values.
+#[inline(always)]
+fn origin64(a0: i32, gx: i64, gy: i64, x0: i32, y0: i32, sub: SubpixelBits) -> i32 {
+    let s = sub.get();
+    let h = 1i64 << (s - 1);
+    let t = gx
+        .wrapping_mul(h - x0 as i64)
+        .wrapping_add(gy.wrapping_mul(h - y0 as i64))
+        .wrapping_add(h);
+    a0.wrapping_add((t >> s) as i32)
+}
+
 /// [`anchor64`] in 32-bit arithmetic for offsets within a pixel (`|o| <=
 /// S`; others take [`anchor64`]): with `g = gh·S + gl` (`0 <= gl < S`),
 /// `floor(t / S) = gh·ox + gyh·oy + floor((gl·ox + gyl·oy + S/2) / S)`
@@ -524,6 +566,22 @@ impl Lerp for i32 {
     #[inline]
     fn step(g: i64) -> i32 {
         g as i32
+    }
+
+    #[inline(always)]
+    fn origin(a0: i32, gx: i64, gy: i64, x0: i32, y0: i32, sub: SubpixelBits) -> i32 {
+        if NO_LONG_MUL {
+            // Two 64-bit products would be library calls: the anchor's
+            // 32-bit form, stepped back.
+            let s = sub.scale();
+            let (ia, ja) = (x0 >> sub.get(), y0 >> sub.get());
+            let (ox, oy) = (ia * s + s / 2 - x0, ja * s + s / 2 - y0);
+            anchor32(a0, gx, gy, ox, oy, sub)
+                .wrapping_sub((gx as i32).wrapping_mul(ia))
+                .wrapping_sub((gy as i32).wrapping_mul(ja))
+        } else {
+            origin64(a0, gx, gy, x0, y0, sub)
+        }
     }
 
     #[inline]
@@ -891,6 +949,44 @@ mod tests {
             for d in [0u32, 1, 2, 0xffff, 0x10000] {
                 check((top << 24) | d);
                 check(((top << 24) | 0x00ff_ffff) - d);
+            }
+        }
+    }
+
+    #[test]
+    fn origin_from_one_sum_equals_the_anchor_stepped_back() {
+        let mut g = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let lim = 1i32 << 21;
+        for s in 1..=8u32 {
+            let sub = SubpixelBits::new(s).unwrap();
+            for i in 0..20_000 {
+                let r = next();
+                let gx = (r as i64) >> (r % 60);
+                let gy = (r.rotate_left(29) as i64) >> (r.rotate_left(7) % 60);
+                let a0 = next() as i32;
+                let (x0, y0) = match i % 4 {
+                    0 => (lim, -lim),
+                    1 => (-lim, lim - 1),
+                    _ => ((next() as i32) % lim, (next() as i32) % lim),
+                };
+                let sc = sub.scale();
+                let (ia, ja) = (x0 >> s, y0 >> s);
+                let (ox, oy) = (ia * sc + sc / 2 - x0, ja * sc + sc / 2 - y0);
+                let want = anchor64(a0, gx, gy, ox, oy, sub)
+                    .wrapping_sub((gx as i32).wrapping_mul(ia))
+                    .wrapping_sub((gy as i32).wrapping_mul(ja));
+                assert_eq!(
+                    origin64(a0, gx, gy, x0, y0, sub),
+                    want,
+                    "{gx} {gy} {x0} {y0} {s}"
+                );
+                assert_eq!(<i32 as Lerp>::origin(a0, gx, gy, x0, y0, sub), want);
             }
         }
     }

@@ -221,23 +221,34 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
         return None;
     }
 
-    // Gradients once per triangle, anchored at the pixel centre nearest
-    // vertex 0 (within half a pixel in each direction).
+    // Gradients once per triangle. Integers: the values at the centre of
+    // pixel (0, 0), fixed for the whole walk; a span's start is two
+    // multiply-adds away, `row + sx·x0 + sy·j`, the very value `anchor +
+    // sx·(x0 - ia) + sy·(j - ja)` modulo 2^32 (anchored at the pixel
+    // centre nearest vertex 0, within half a pixel in each direction),
+    // however the left edge moved. Floats: the values at that anchor.
     let setup = L::setup(area2);
     let s = sub.scale();
     let (ia, ja) = (a.x >> sub.get(), a.y >> sub.get());
     let (ox, oy) = (ia * s + s / 2 - a.x, ja * s + s / 2 - a.y);
+    let start = |a0: L, gx: L::Grad, gy: L::Grad| {
+        if L::EXACT_STEPS {
+            L::origin(a0, gx, gy, a.x, a.y, sub)
+        } else {
+            L::anchor(a0, gx, gy, ox, oy, sub)
+        }
+    };
     let zero = Vals { z: a.z, a: a.attrs };
-    let (mut anchor, mut sx, mut sy) = (zero, zero, zero);
+    let (mut row, mut sx, mut sy) = (zero, zero, zero);
     {
         let (gx, gy) = L::gradients([a.z, b.z, c.z], d, &setup, sub);
-        anchor.z = L::anchor(a.z, gx, gy, ox, oy, sub);
+        row.z = start(a.z, gx, gy);
         sx.z = L::step(gx);
         sy.z = L::step(gy);
     }
     for k in 0..N {
         let (gx, gy) = L::gradients([a.attrs[k], b.attrs[k], c.attrs[k]], d, &setup, sub);
-        anchor.a[k] = L::anchor(a.attrs[k], gx, gy, ox, oy, sub);
+        row.a[k] = start(a.attrs[k], gx, gy);
         sx.a[k] = L::step(gx);
         sy.a[k] = L::step(gy);
     }
@@ -274,17 +285,6 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
         ja,
         long_left,
         inside,
-    };
-    // Exact steps (integers, wrapping): the values at pixel (0, 0), fixed
-    // for the whole walk; a span's start is two multiply-adds away, `row +
-    // sx·x0 + sy·j`, the very value `anchor + sx·(x0 - ia) + sy·(j - ja)`
-    // modulo 2^32, however the left edge moved.
-    let row = if L::EXACT_STEPS {
-        anchor
-            .add_n(&sx, ia.wrapping_neg())
-            .add_n(&sy, ja.wrapping_neg())
-    } else {
-        anchor
     };
     Some((walk, row, sx, sy))
 }
