@@ -115,6 +115,18 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
         false
     }
 
+    /// `true` when every pixel of a triangle whose vertex depths are `z`
+    /// and whose depth gradients per pixel are `gx`, `gy` gets a depth
+    /// within `[0, 65535·2^14)` as the walker computes it (fixed; the
+    /// conversions then need no clamp, and the span loop no per-span
+    /// check). Conservative: `false` (the default, and always for floats)
+    /// selects the checks.
+    #[inline(always)]
+    fn depth16_plane_in_range(z: [Self; 3], gx: Self::Grad, gy: Self::Grad) -> bool {
+        let _ = (z, gx, gy);
+        false
+    }
+
     /// [`Lerp::depth16`] without the clamp (in a `u32`), for values for
     /// which [`Lerp::depth16_span_in_range`] holds.
     #[inline(always)]
@@ -708,6 +720,26 @@ impl Lerp for i32 {
     #[inline(always)]
     fn depth16_unclamped(self) -> u32 {
         self as u32 >> 14
+    }
+
+    /// Every vertex depth within `[2^15, 65535·2^14 - 2^15)` and both
+    /// gradients below 2^24 per pixel. A covered pixel centre lies in the
+    /// triangle, so the exact plane there lies between the vertex depths;
+    /// the walker's value is `origin + gx·x + gy·y` with the rounded
+    /// gradients ([`InvArea::quot`], within `½ + |g|·2^-28` of the exact
+    /// ones) through the rounded origin (`½`), so it is within `½ + (½ +
+    /// 2^-4)·(|Δx| + |Δy|) < 2^15` of the plane for pixels at most 2^14
+    /// apart (vertices within ±2^13 pixels, `COORD_LIMIT_PX`): in range,
+    /// without wrapping.
+    #[inline(always)]
+    fn depth16_plane_in_range(z: [i32; 3], gx: i64, gy: i64) -> bool {
+        const M: u32 = 1 << 15;
+        let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < DEPTH16_LIM - 2 * M;
+        ok(z[0])
+            && ok(z[1])
+            && ok(z[2])
+            && gx.unsigned_abs() < 1 << 24
+            && gy.unsigned_abs() < 1 << 24
     }
 
     #[inline(always)]

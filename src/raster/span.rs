@@ -322,6 +322,7 @@ pub(crate) fn span_pixels<L, const N: usize, F, D, S>(
     drow: Option<&mut [D::Raw]>,
     v: &Vals<L, N>,
     sx: &Vals<L, N>,
+    plane_in_range: bool,
     shader: &mut S,
 ) -> u32
 where
@@ -332,7 +333,7 @@ where
 {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |_| raw)
+        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, plane_in_range, |_| raw)
     } else {
         let mut drow = drow;
         if let Some(drawn) =
@@ -342,7 +343,9 @@ where
         }
         shader.begin_span(&v.a, &sx.a, row.len() as u32);
         let shader = &*shader;
-        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, |a| shader.shade_raw::<F>(a))
+        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, plane_in_range, |a| {
+            shader.shade_raw::<F>(a)
+        })
     }
 }
 
@@ -352,18 +355,37 @@ fn row_pixels<L: Lerp, const N: usize, R, D: DepthFormat>(
     drow: Option<&mut [D::Raw]>,
     v: &Vals<L, N>,
     sx: &Vals<L, N>,
+    plane_in_range: bool,
     color: impl Fn(&[L; N]) -> R,
 ) -> u32 {
     let (z, dz, a, da) = (v.z, sx.z, v.a, &sx.a);
     let len = row.len() as u32;
     match drow {
         Some(drow) => {
-            let fails = if len >= SHORT_SPAN && D::span_in_range(z, dz, len) {
-                if NO_LONG_MUL || N > 1 {
+            // A triangle whose depths are all in range (`plane_in_range`)
+            // takes the loop without clamps on every span, without the
+            // per-span check. Two loops inlined where the in-range loop
+            // is (ARMv6-M, several attributes); on ARMv7-M with at most
+            // one attribute, the outlined in-range loop only for long
+            // spans (its call costs more than it saves on short ones).
+            let long = len >= SHORT_SPAN;
+            let fails = if NO_LONG_MUL || N != 1 {
+                if plane_in_range || (long && D::span_in_range(z, dz, len)) {
                     depth_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
                 } else {
-                    in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, &color)
+                    depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
+                        let zd = D::from_lerp(z);
+                        let pass = zd < *zb;
+                        if pass {
+                            *zb = zd;
+                        }
+                        pass
+                    })
                 }
+            } else if long && (plane_in_range || D::span_in_range(z, dz, len)) {
+                in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, &color)
+            } else if plane_in_range {
+                depth_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
             } else {
                 depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
                     let zd = D::from_lerp(z);
