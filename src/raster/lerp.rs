@@ -63,6 +63,29 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// A gradient as a per-step increment.
     fn step(g: Self::Grad) -> Self;
 
+    /// For [`Lerp::EXACT_STEPS`] types, the walker's row origin: the value
+    /// at the centre of pixel (0, 0) of the plane through `a0` at subpixel
+    /// `(x0, y0)` with gradients `gx`, `gy` per pixel, as the anchor at the
+    /// pixel centre nearest `(x0, y0)` ([`Lerp::anchor`]) stepped back by
+    /// whole steps (wrapping). Types may compute the same value another
+    /// way.
+    #[inline(always)]
+    fn origin(
+        a0: Self,
+        gx: Self::Grad,
+        gy: Self::Grad,
+        x0: i32,
+        y0: i32,
+        sub: SubpixelBits,
+    ) -> Self {
+        let s = sub.scale();
+        let (ia, ja) = (x0 >> sub.get(), y0 >> sub.get());
+        let (ox, oy) = (ia * s + s / 2 - x0, ja * s + s / 2 - y0);
+        Self::anchor(a0, gx, gy, ox, oy, sub)
+            .add_n(Self::step(gx), ia.wrapping_neg())
+            .add_n(Self::step(gy), ja.wrapping_neg())
+    }
+
     /// `self + n · step` (whole steps).
     fn add_n(self, step: Self, n: i32) -> Self;
 
@@ -89,6 +112,18 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     #[inline(always)]
     fn depth16_span_in_range(self, step: Self, n: u32) -> bool {
         let _ = (step, n);
+        false
+    }
+
+    /// `true` when every pixel of a triangle whose vertex depths are `z`
+    /// and whose depth gradients per pixel are `gx`, `gy` gets a depth
+    /// within `[0, 65535·2^14)` as the walker computes it (fixed; the
+    /// conversions then need no clamp, and the span loop no per-span
+    /// check). Conservative: `false` (the default, and always for floats)
+    /// selects the checks.
+    #[inline(always)]
+    fn depth16_plane_in_range(z: [Self; 3], gx: Self::Grad, gy: Self::Grad) -> bool {
+        let _ = (z, gx, gy);
         false
     }
 
@@ -240,6 +275,93 @@ impl Recip {
             -r
         } else {
             r
+        }
+    }
+}
+
+/// The reciprocal of a doubled triangle area for the gradients of `i32`
+/// values: `1/a ≈ m · 2^-e`, `|m|` in `[2^30, 2^31)` with the sign of `a`.
+///
+/// A gradient is then one 32 × 32 → 64-bit product and a rounding shift
+/// ([`InvArea::quot`]): `⌊n_t · m / 2^(e - s - t) + ½⌋`, where `n_t` keeps
+/// the top 31 bits of the numerator (`t = 0` whenever it fits
+/// an `i32`, the usual case). The same integer function on every target
+/// (the reciprocal from [`recip63`], exact everywhere).
+///
+/// Error: `|a|` is truncated to 32 significant bits (relative < 2^-31),
+/// `m` is within 1 of `2^62 / norm` (< 2^-30), `n_t` (`|n| / 2^t`
+/// truncated, with the sign of `n`) loses less than one of its units
+/// (< 2^-30 relative, only when `t > 0`) and the rounding half a unit:
+/// `|quot - n·2^s/a| <= ½ + |n·2^s/a| · 2^-28`. Tested
+/// against exact quotients on random and extreme values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InvArea {
+    m: i32,
+    e: u32,
+}
+
+impl InvArea {
+    /// The reciprocal of `a` (`a != 0`; zero is taken as 1, and the
+    /// rasterizer never asks for it).
+    pub fn new(a: i64) -> Self {
+        let mag = a.unsigned_abs().max(1);
+        let c = clz64(mag); // 2^(63-c) <= mag < 2^(64-c)
+        let norm = if c >= 32 {
+            shl64(mag, c - 32)
+        } else {
+            shr64(mag, 32 - c)
+        } as u32; // in [2^31, 2^32)
+                  // round(2^63 / norm) in (2^31, 2^32], halved: within 1 of 2^62/norm.
+        let m = ((recip63(norm) >> 1) as u32).min(i32::MAX as u32) as i32;
+        // 1/|a| ≈ 1/(norm · 2^(32-c)) ≈ m · 2^-(62 + 32 - c)
+        Self {
+            m: if a < 0 { -m } else { m },
+            e: 94 - c,
+        }
+    }
+
+    /// `n · 2^s / a`, rounded, within the error stated on [`InvArea`]
+    /// (saturating at `i64` bounds for quotients beyond them).
+    #[inline(always)]
+    pub fn quot(&self, n: i64, s: u32) -> i64 {
+        let (nt, t) = match i32::try_from(n) {
+            Ok(v) => (v, 0),
+            Err(_) => {
+                // 32 to 64 significant bits: keep the top 31 (truncated
+                // toward zero).
+                let t = 33 - clz64(n.unsigned_abs());
+                let m = shr64(n.unsigned_abs(), t) as i32;
+                (if n < 0 { -m } else { m }, t)
+            }
+        };
+        // |p| < 2^31 · 2^31.
+        let p = mul_i32(nt, self.m);
+        let sh = self.e as i32 - s as i32 - t as i32;
+        if (33..64).contains(&sh) {
+            // The usual case, from the high word alone: rounding half up
+            // commutes with dropping the low word (whole units of 2^32
+            // are added). |h| < 2^30, the half unit at most 2^30.
+            let h = (p >> 32) as i32;
+            ((h + (1 << (sh - 33))) >> (sh - 32)) as i64
+        } else if sh >= 64 {
+            // |p| < 2^62: below half a unit.
+            0
+        } else if sh >= 1 {
+            // |p| + 2^(sh-1) < 2^63.
+            (p + (1 << (sh - 1))) >> sh
+        } else {
+            let up = (-sh) as u32;
+            if up >= 62 {
+                if p < 0 {
+                    i64::MIN
+                } else if p > 0 {
+                    i64::MAX
+                } else {
+                    0
+                }
+            } else {
+                p.saturating_mul(1 << up)
+            }
         }
     }
 }
@@ -458,6 +580,25 @@ fn anchor64(a0: i32, gx: i64, gy: i64, ox: i32, oy: i32, sub: SubpixelBits) -> i
     a0.wrapping_add((t.wrapping_add(1 << (s - 1)) >> s) as i32)
 }
 
+/// [`Lerp::origin`] for `i32` from one 64-bit sum: `a0 + round((gx·(S/2 -
+/// x0) + gy·(S/2 - y0)) / S)` (wrapping). The same value as the anchor
+/// `anchor64(ox, oy)` at pixel `(ia, ja)` stepped back by `ia·gx + ja·gy`:
+/// the two sums differ by `S·(ia·gx + ja·gy)` exactly, so their rounded
+/// quotients by `S` differ by `ia·gx + ja·gy`; and the low 32 bits of
+/// `t >> s` depend only on `t` modulo `2^(32 + s)`, which wrapping `i64`
+/// arithmetic keeps (`32 + s <= 64`), whatever the magnitudes. Tested
+/// equal on random and extreme values.
+#[inline(always)]
+fn origin64(a0: i32, gx: i64, gy: i64, x0: i32, y0: i32, sub: SubpixelBits) -> i32 {
+    let s = sub.get();
+    let h = 1i64 << (s - 1);
+    let t = gx
+        .wrapping_mul(h - x0 as i64)
+        .wrapping_add(gy.wrapping_mul(h - y0 as i64))
+        .wrapping_add(h);
+    a0.wrapping_add((t >> s) as i32)
+}
+
 /// [`anchor64`] in 32-bit arithmetic for offsets within a pixel (`|o| <=
 /// S`; others take [`anchor64`]): with `g = gh·S + gl` (`0 <= gl < S`),
 /// `floor(t / S) = gh·ox + gyh·oy + floor((gl·ox + gyl·oy + S/2) / S)`
@@ -487,14 +628,15 @@ impl Lerp for i32 {
     const EXACT_STEPS: bool = true;
     const ZERO: i32 = 0;
     type Grad = i64;
-    type Setup = Recip;
+    type Setup = InvArea;
 
-    fn setup(area2: i64) -> Recip {
-        Recip::new(area2)
+    #[inline]
+    fn setup(area2: i64) -> InvArea {
+        InvArea::new(area2)
     }
 
     #[inline]
-    fn gradients(a: [i32; 3], d: [i32; 4], r: &Recip, sub: SubpixelBits) -> (i64, i64) {
+    fn gradients(a: [i32; 3], d: [i32; 4], r: &InvArea, sub: SubpixelBits) -> (i64, i64) {
         // On ARM 32 × 32 → 64-bit products (one `smull` each on ARMv7-M,
         // the exact 16-bit helper on ARMv6-M); 64-bit products on 64-bit
         // hosts. The same values.
@@ -504,12 +646,7 @@ impl Lerp for i32 {
             numerators64(a, d)
         };
         let s = sub.get();
-        match (i32::try_from(nx), i32::try_from(ny)) {
-            // The usual case (small triangles, small value differences):
-            // no normalisation, the same values.
-            (Ok(x), Ok(y)) => (r.mul_shift_i32(x, s), r.mul_shift_i32(y, s)),
-            _ => (r.mul_shift(nx, s), r.mul_shift(ny, s)),
-        }
+        (r.quot(nx, s), r.quot(ny, s))
     }
 
     #[inline]
@@ -524,6 +661,22 @@ impl Lerp for i32 {
     #[inline]
     fn step(g: i64) -> i32 {
         g as i32
+    }
+
+    #[inline(always)]
+    fn origin(a0: i32, gx: i64, gy: i64, x0: i32, y0: i32, sub: SubpixelBits) -> i32 {
+        if NO_LONG_MUL {
+            // Two 64-bit products would be library calls: the anchor's
+            // 32-bit form, stepped back.
+            let s = sub.scale();
+            let (ia, ja) = (x0 >> sub.get(), y0 >> sub.get());
+            let (ox, oy) = (ia * s + s / 2 - x0, ja * s + s / 2 - y0);
+            anchor32(a0, gx, gy, ox, oy, sub)
+                .wrapping_sub((gx as i32).wrapping_mul(ia))
+                .wrapping_sub((gy as i32).wrapping_mul(ja))
+        } else {
+            origin64(a0, gx, gy, x0, y0, sub)
+        }
     }
 
     #[inline]
@@ -567,6 +720,26 @@ impl Lerp for i32 {
     #[inline(always)]
     fn depth16_unclamped(self) -> u32 {
         self as u32 >> 14
+    }
+
+    /// Every vertex depth within `[2^15, 65535·2^14 - 2^15)` and both
+    /// gradients below 2^24 per pixel. A covered pixel centre lies in the
+    /// triangle, so the exact plane there lies between the vertex depths;
+    /// the walker's value is `origin + gx·x + gy·y` with the rounded
+    /// gradients ([`InvArea::quot`], within `½ + |g|·2^-28` of the exact
+    /// ones) through the rounded origin (`½`), so it is within `½ + (½ +
+    /// 2^-4)·(|Δx| + |Δy|) < 2^15` of the plane for pixels at most 2^14
+    /// apart (vertices within ±2^13 pixels, `COORD_LIMIT_PX`): in range,
+    /// without wrapping.
+    #[inline(always)]
+    fn depth16_plane_in_range(z: [i32; 3], gx: i64, gy: i64) -> bool {
+        const M: u32 = 1 << 15;
+        let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < DEPTH16_LIM - 2 * M;
+        ok(z[0])
+            && ok(z[1])
+            && ok(z[2])
+            && gx.unsigned_abs() < 1 << 24
+            && gy.unsigned_abs() < 1 << 24
     }
 
     #[inline(always)]
@@ -891,6 +1064,120 @@ mod tests {
             for d in [0u32, 1, 2, 0xffff, 0x10000] {
                 check((top << 24) | d);
                 check(((top << 24) | 0x00ff_ffff) - d);
+            }
+        }
+    }
+
+    /// `n·2^s/a` (from the exact product in i128).
+    fn exact_quot(n: i64, s: u32, a: i64) -> f64 {
+        ((n as i128) << s) as f64 / a as f64
+    }
+
+    #[test]
+    fn inv_area_quotients_within_stated_error() {
+        let mut g = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let mut areas = [0i64; 2015];
+        let fixed = [1i64, -1, 2, 3, 7, 255, 4096, 99_991, 1 << 31, (1 << 31) - 1];
+        let fixed2 = [
+            (1 << 32) + 1,
+            (1 << 37) - 1,
+            -(1 << 37) + 3,
+            -5,
+            -123_456_789,
+        ];
+        for (i, a) in areas.iter_mut().enumerate() {
+            let r = next();
+            let rand = ((r >> 1) as i64 >> (26 + r % 37)).max(1) * if r & 1 == 0 { 1 } else { -1 };
+            *a = *fixed
+                .get(i)
+                .or(fixed2.get(i.wrapping_sub(10)))
+                .unwrap_or(&rand);
+        }
+        let mut nums = [0i64; 213];
+        let fixed = [
+            0i64,
+            1,
+            -1,
+            3,
+            1000,
+            -77_777,
+            i32::MAX as i64,
+            i32::MIN as i64,
+        ];
+        let fixed2 = [
+            1 << 31,
+            -(1 << 31) - 1,
+            1 << 40,
+            (1 << 54) - 1,
+            -(1 << 53) + 17,
+        ];
+        for (i, n) in nums.iter_mut().enumerate() {
+            let r = next();
+            let rand = (r as i64) >> (10 + r % 50);
+            *n = *fixed
+                .get(i)
+                .or(fixed2.get(i.wrapping_sub(8)))
+                .unwrap_or(&rand);
+        }
+        for &a in &areas {
+            let r = InvArea::new(a);
+            for &n in &nums {
+                for s in [0u32, 4, 8] {
+                    let exact = exact_quot(n, s, a);
+                    if exact.abs() > 4.0e18 {
+                        continue;
+                    }
+                    let got = r.quot(n, s) as f64;
+                    let rel = exact.abs() * (1.0 / (1u64 << 28) as f64);
+                    assert!(
+                        (got - exact).abs() <= 0.5 + rel,
+                        "a={a} n={n} s={s}: got {got}, exact {exact}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn origin_from_one_sum_equals_the_anchor_stepped_back() {
+        let mut g = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let lim = 1i32 << 21;
+        for s in 1..=8u32 {
+            let sub = SubpixelBits::new(s).unwrap();
+            for i in 0..20_000 {
+                let r = next();
+                let gx = (r as i64) >> (r % 60);
+                let gy = (r.rotate_left(29) as i64) >> (r.rotate_left(7) % 60);
+                let a0 = next() as i32;
+                let (x0, y0) = match i % 4 {
+                    0 => (lim, -lim),
+                    1 => (-lim, lim - 1),
+                    _ => ((next() as i32) % lim, (next() as i32) % lim),
+                };
+                let sc = sub.scale();
+                let (ia, ja) = (x0 >> s, y0 >> s);
+                let (ox, oy) = (ia * sc + sc / 2 - x0, ja * sc + sc / 2 - y0);
+                let want = anchor64(a0, gx, gy, ox, oy, sub)
+                    .wrapping_sub((gx as i32).wrapping_mul(ia))
+                    .wrapping_sub((gy as i32).wrapping_mul(ja));
+                assert_eq!(
+                    origin64(a0, gx, gy, x0, y0, sub),
+                    want,
+                    "{gx} {gy} {x0} {y0} {s}"
+                );
+                assert_eq!(<i32 as Lerp>::origin(a0, gx, gy, x0, y0, sub), want);
             }
         }
     }

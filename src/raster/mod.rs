@@ -69,7 +69,7 @@ mod walk;
 mod wide;
 
 pub use edge::Edge;
-pub use lerp::{Lerp, Recip};
+pub use lerp::{InvArea, Lerp, Recip};
 pub(crate) use span::span_pixels;
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
 pub(crate) use triangle::{draw_sorted, first_row, in_limits, sort3};

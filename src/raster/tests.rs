@@ -732,3 +732,85 @@ fn shaders_see_each_span_before_its_pixels() {
         p.spans
     );
 }
+
+/// Checks every pixel of spans flagged `z16` converts to 16 bits without
+/// a clamp; counts the flagged pixels.
+struct Z16Probe {
+    flagged: u64,
+    spans: u64,
+}
+
+impl super::RowSpans<i32, 1> for Z16Probe {
+    fn span(
+        &mut self,
+        j: i32,
+        x0: i32,
+        x1: i32,
+        v: &super::Vals<i32, 1>,
+        sx: &super::Vals<i32, 1>,
+        z16: bool,
+    ) {
+        self.spans += 1;
+        if !z16 {
+            return;
+        }
+        let mut z = v.z as i64;
+        for x in x0..x1 {
+            assert!(
+                (0..65535i64 << 14).contains(&z),
+                "row {j} column {x}: depth {z} out of range"
+            );
+            assert_eq!(v.z.wrapping_add(sx.z.wrapping_mul(x - x0)) as i64, z);
+            z += sx.z as i64;
+            self.flagged += 1;
+        }
+    }
+}
+
+#[test]
+fn triangles_flagged_in_depth_range_convert_without_clamps() {
+    let mut rng = Rng(0x5eed_1234_5678_9abc);
+    let mut probe = Z16Probe {
+        flagged: 0,
+        spans: 0,
+    };
+    let lim = 1i64 << 30;
+    for i in 0..6000 {
+        let s = [1u32, 4, 8][i % 3];
+        let sub = SubpixelBits::new(s).unwrap();
+        let cl = sub.coord_limit();
+        // Small, large and extreme triangles; depths near both ends.
+        let span = match i % 20 {
+            0 => cl / 2,
+            1 | 2 => 1 << 10,
+            _ => 16,
+        };
+        let (cx, cy) = (
+            rng.range(-cl + span, cl - span),
+            rng.range(-cl + span, cl - span),
+        );
+        let mut vs = [Vertex {
+            x: 0,
+            y: 0,
+            z: 0,
+            attrs: [0],
+        }; 3];
+        for v in vs.iter_mut() {
+            v.x = (cx + rng.range(-span, span)).clamp(-cl, cl);
+            v.y = (cy + rng.range(-span, span)).clamp(-cl, cl);
+            v.z = match rng.next() % 4 {
+                0 => (1 << 15) + rng.range(0, 1 << 12),
+                1 => (65535 << 14) - (1 << 15) - 1 - rng.range(0, 1 << 12),
+                _ => rng.range(0, lim as i32),
+            };
+        }
+        let [a, b, c] = super::sort3(vs, |v| v.y);
+        // Four rows through the middle (all of a small triangle).
+        let (width, j0) = (1 << 14, (cy >> s) - 2);
+        if let Some((mut walk, row, sx, sy)) = super::setup(&a, &b, &c, sub, j0, width) {
+            walk.rows(&row, &sx, &sy, j0 + 4, width, &mut probe);
+        }
+    }
+    // Most triangles with depths inside the margins are flagged.
+    assert!(probe.flagged > 100_000, "{} pixels flagged", probe.flagged);
+}

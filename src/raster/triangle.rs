@@ -116,7 +116,7 @@ struct ToSpans<'s, S>(&'s mut S);
 
 impl<L: Lerp, const N: usize, S: Spans<L, N>> RowSpans<L, N> for ToSpans<'_, S> {
     #[inline(always)]
-    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>) {
+    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>, _z16: bool) {
         self.0.span(&Span {
             y: j as u32,
             x0: x0 as u32,

@@ -48,8 +48,9 @@ impl<L: Lerp, const N: usize> Vals<L, N> {
 /// into the row loop (`#[inline(always)]`).
 pub(crate) trait RowSpans<L: Lerp, const N: usize> {
     /// Pixels `x0..x1` (`0 <= x0 < x1 <= width`) of screen row `j`, with
-    /// the values at the centre of pixel `x0` and their steps per pixel.
-    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>);
+    /// the values at the centre of pixel `x0` and their steps per pixel;
+    /// `z16`: every depth converts to 16 bits without a clamp.
+    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>, z16: bool);
 }
 
 /// The edge and row state of a triangle being walked (its values are kept
@@ -75,6 +76,9 @@ pub(crate) struct Walk {
     long_left: bool,
     /// The triangle's columns lie within `0..=width`: no clipping.
     inside: bool,
+    /// Every pixel's depth converts to 16 bits without a clamp
+    /// ([`Lerp::depth16_plane_in_range`]).
+    z16: bool,
 }
 
 impl Walk {
@@ -90,6 +94,7 @@ impl Walk {
         ja: 0,
         long_left: false,
         inside: false,
+        z16: false,
     };
 
     /// `true` when every row has been walked.
@@ -159,13 +164,13 @@ impl Walk {
                         // From the values at pixel (0, 0): two
                         // multiply-adds per value, and no work at all on
                         // an empty row.
-                        sink.span(j, x0, x1, &row.add_n(sx, x0).add_n(sy, j), sx);
+                        sink.span(j, x0, x1, &row.add_n(sx, x0).add_n(sy, j), sx, self.z16);
                     } else {
                         // Floats: afresh from the anchor on every row (see
                         // `Lerp::EXACT_STEPS`).
                         let vl = row.add_n(sx, xl - self.ia).add_n(sy, j - self.ja);
                         let v = if x0 == xl { vl } else { vl.add_n(sx, x0 - xl) };
-                        sink.span(j, x0, x1, &v, sx);
+                        sink.span(j, x0, x1, &v, sx, self.z16);
                     }
                 }
                 l.step();
@@ -221,23 +226,36 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
         return None;
     }
 
-    // Gradients once per triangle, anchored at the pixel centre nearest
-    // vertex 0 (within half a pixel in each direction).
+    // Gradients once per triangle. Integers: the values at the centre of
+    // pixel (0, 0), fixed for the whole walk; a span's start is two
+    // multiply-adds away, `row + sx·x0 + sy·j`, the very value `anchor +
+    // sx·(x0 - ia) + sy·(j - ja)` modulo 2^32 (anchored at the pixel
+    // centre nearest vertex 0, within half a pixel in each direction),
+    // however the left edge moved. Floats: the values at that anchor.
     let setup = L::setup(area2);
     let s = sub.scale();
     let (ia, ja) = (a.x >> sub.get(), a.y >> sub.get());
     let (ox, oy) = (ia * s + s / 2 - a.x, ja * s + s / 2 - a.y);
+    let start = |a0: L, gx: L::Grad, gy: L::Grad| {
+        if L::EXACT_STEPS {
+            L::origin(a0, gx, gy, a.x, a.y, sub)
+        } else {
+            L::anchor(a0, gx, gy, ox, oy, sub)
+        }
+    };
     let zero = Vals { z: a.z, a: a.attrs };
-    let (mut anchor, mut sx, mut sy) = (zero, zero, zero);
+    let (mut row, mut sx, mut sy) = (zero, zero, zero);
+    let z16;
     {
         let (gx, gy) = L::gradients([a.z, b.z, c.z], d, &setup, sub);
-        anchor.z = L::anchor(a.z, gx, gy, ox, oy, sub);
+        z16 = L::depth16_plane_in_range([a.z, b.z, c.z], gx, gy);
+        row.z = start(a.z, gx, gy);
         sx.z = L::step(gx);
         sy.z = L::step(gy);
     }
     for k in 0..N {
         let (gx, gy) = L::gradients([a.attrs[k], b.attrs[k], c.attrs[k]], d, &setup, sub);
-        anchor.a[k] = L::anchor(a.attrs[k], gx, gy, ox, oy, sub);
+        row.a[k] = start(a.attrs[k], gx, gy);
         sx.a[k] = L::step(gx);
         sy.a[k] = L::step(gy);
     }
@@ -274,17 +292,7 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
         ja,
         long_left,
         inside,
-    };
-    // Exact steps (integers, wrapping): the values at pixel (0, 0), fixed
-    // for the whole walk; a span's start is two multiply-adds away, `row +
-    // sx·x0 + sy·j`, the very value `anchor + sx·(x0 - ia) + sy·(j - ja)`
-    // modulo 2^32, however the left edge moved.
-    let row = if L::EXACT_STEPS {
-        anchor
-            .add_n(&sx, ia.wrapping_neg())
-            .add_n(&sy, ja.wrapping_neg())
-    } else {
-        anchor
+        z16,
     };
     Some((walk, row, sx, sy))
 }

@@ -391,7 +391,7 @@ impl<L: Lerp, const N: usize, F: PixelFormat, D: DepthFormat, S: Shader<L, N>> R
     for Kernel<'_, '_, F, D, S>
 {
     #[inline(always)]
-    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>) {
+    fn span(&mut self, j: i32, x0: i32, x1: i32, v: &Vals<L, N>, sx: &Vals<L, N>, z16: bool) {
         // The walker gives rows of the band and columns within the width.
         let base = (j - self.y0) as usize * self.width;
         let r = base + x0 as usize..base + x1 as usize;
@@ -405,7 +405,8 @@ impl<L: Lerp, const N: usize, F: PixelFormat, D: DepthFormat, S: Shader<L, N>> R
             },
             None => None,
         };
-        self.drawn += span_pixels::<L, N, F, D, S>(row, drow, v, sx, self.shader);
+        let plane = D::plane_in_range(z16);
+        self.drawn += span_pixels::<L, N, F, D, S>(row, drow, v, sx, plane, self.shader);
     }
 }
 

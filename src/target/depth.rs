@@ -39,6 +39,16 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
         false
     }
 
+    /// `true` when a triangle whose depths convert to 16 bits without a
+    /// clamp (`z16`, [`crate::raster::Lerp::depth16_plane_in_range`]) has
+    /// every span in range as [`DepthFormat::span_in_range`] says (then
+    /// not asked per span). `false` by default.
+    #[inline(always)]
+    fn plane_in_range(z16: bool) -> bool {
+        let _ = z16;
+        false
+    }
+
     /// The conversion for a span for which [`DepthFormat::span_in_range`]
     /// holds, as a `u32` key ordered as the stored values: the span stage
     /// compares `key < to_key(stored)` and stores `from_key(key)`.
@@ -92,6 +102,11 @@ impl DepthFormat for Depth16 {
     #[inline(always)]
     fn span_in_range<L: crate::raster::Lerp>(z: L, dz: L, n: u32) -> bool {
         z.depth16_span_in_range(dz, n)
+    }
+
+    #[inline(always)]
+    fn plane_in_range(z16: bool) -> bool {
+        z16
     }
 
     #[inline(always)]
