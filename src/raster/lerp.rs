@@ -286,7 +286,7 @@ impl Recip {
 /// ([`InvArea::quot`]): `⌊n_t · m / 2^(e - s - t) + ½⌋`, where `n_t` keeps
 /// the top 31 bits of the numerator (`t = 0` whenever it fits
 /// an `i32`, the usual case). The same integer function on every target
-/// (the reciprocal from [`recip63`], exact everywhere).
+/// (the reciprocal from `recip63`, exact everywhere).
 ///
 /// Error: `|a|` is truncated to 32 significant bits (relative < 2^-31),
 /// `m` is within 1 of `2^62 / norm` (< 2^-30), `n_t` (`|n| / 2^t`

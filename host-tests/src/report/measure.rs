@@ -310,6 +310,14 @@ impl Stage {
     }
 }
 
+/// Cargo's home (`CARGO_HOME`, else `~/.cargo`), where registry sources
+/// live.
+fn cargo_home() -> Option<PathBuf> {
+    std::env::var_os("CARGO_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cargo")))
+}
+
 /// Builds the firmware for `target` with `features` (the default build
 /// without) and runs it under QEMU with the counting plugin.
 fn build_run(
@@ -332,6 +340,14 @@ fn build_run(
         cmd.args(["--features", f]);
     }
     cmd.env("CARGO_TARGET_DIR", target_dir);
+    // Registry crates' panic locations name their source files under
+    // CARGO_HOME: the same text whoever measures.
+    if let Some(home) = cargo_home() {
+        cmd.env(
+            "CARGO_ENCODED_RUSTFLAGS",
+            format!("--remap-path-prefix={}=/cargo", home.display()),
+        );
+    }
     run(&mut cmd, &format!("cargo build {target} {tag}"))?;
     let elf = target_dir.join(target).join("release/fixshade-firmware");
     let (sizes, symbols) = elf_info(&elf)?;
