@@ -69,6 +69,10 @@ pub(crate) struct Fused {
     g: u32,
     gsh: u32,
     s30: u32,
+    /// `S30 - (G · y / 2^16) >> (gsh - lz)` lies within `[0, 2^30]` at
+    /// every point of the bounding sphere (proved by [`Fused::new`]): the
+    /// depth needs no clamp ([`Fused::project`] with `CLAMP = false`).
+    pub(crate) depth_in_range: bool,
 }
 
 /// `round(v · 2^-s)` (ties up) of `v` for a shift of either sign; `None`
@@ -265,6 +269,28 @@ impl Fused {
         if !(0..1 << 31).contains(&g) || gsh - lz_min > 31 {
             return None;
         }
+        // The unclamped depth term `p = ((G y16) >> 16) >> (gsh - lz)`:
+        // with `y16 = 2^47 (1 ± ρ) / (W 2^lz)`, `ρ = 3·2^-17`, it is
+        // `G 2^(31 - gsh) (1 ± ρ) / W` (the `lz` cancel) less at most 2 for
+        // the two floors. Over `W` in `[w_lo, w_hi]`: `p <= ⌈G 2^31 /
+        // (w_lo 2^gsh)⌉ (1 + ρ)` and `p >= ⌊G 2^31 / (w_hi 2^gsh)⌋ (1 - ρ)
+        // - 2`; the clamp is idle when `p_max <= S30` and `S30 - p_min <=
+        // 2^30` (ρ rounded up to 2^-15 below).
+        let depth_in_range = {
+            let gn = (g as u64) << 31;
+            // (Both divisors are at least `w_lo >= 1`: `checked_div` only
+            // keeps the panic-free build free of a division-by-zero branch.)
+            match (gn.checked_div(w_lo << gsh), gn.checked_div(w_hi << gsh)) {
+                (Some(q), Some(q_lo)) => {
+                    let q_hi = q + 1;
+                    let p_max = q_hi + q_hi.div_ceil(1 << 15);
+                    let p_min = (q_lo - q_lo.div_ceil(1 << 15)).saturating_sub(2);
+                    let s30 = (sr as u64) << 14;
+                    p_max <= s30 && s30 - p_min <= 1 << 30
+                }
+                _ => false,
+            }
+        };
         Some(Self {
             a: [ax.a32, ay.a32, aw.a32],
             hi: [ax.hi, ay.hi, aw.hi],
@@ -276,6 +302,7 @@ impl Fused {
             g: g as u32,
             gsh,
             s30: (sr as u32) << 14,
+            depth_in_range,
         })
     }
 
@@ -308,10 +335,11 @@ impl Fused {
 
     /// Screen position (subpixels) and depth (Q2.30, clamped to `[0, 1]`)
     /// of Q1.14 mesh point `c` within the object's bounding sphere (see
-    /// [`Fused::new`] for the error bounds).
+    /// [`Fused::new`] for the error bounds). `CLAMP = false` only when
+    /// [`Fused::depth_in_range`]: the same values without the clamp.
     #[inline(always)]
     #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
-    pub(crate) fn project(&self, c: [i16; 3]) -> ([i32; 2], i32) {
+    pub(crate) fn project<const CLAMP: bool>(&self, c: [i16; 3]) -> ([i32; 2], i32) {
         let c = c.map(i32::from);
         let r = |k: usize| self.row(k, c);
         let (x, y, w) = (r(0), r(1), r(2));
@@ -324,7 +352,12 @@ impl Fused {
         let dx = (mul_hi16(x, y16) + (1 << (sh - 1))) >> sh;
         let dy = (mul_hi16(y, y16) + (1 << (sh - 1))) >> sh;
         let p = mul_hi16_u(self.g, y16) >> (self.gsh - lz);
-        let d = self.s30.saturating_sub(p).min(1 << 30) as i32;
+        let d = if CLAMP {
+            self.s30.saturating_sub(p).min(1 << 30) as i32
+        } else {
+            // Within [0, 2^30] (`depth_in_range`).
+            self.s30.wrapping_sub(p) as i32
+        };
         ([self.cx + dx, self.cy + dy], d)
     }
 }
@@ -387,6 +420,7 @@ mod tests {
         };
         let mut u = move || (next() >> 11) as f64 / (1u64 << 53) as f64;
         let (mut accepted, mut worst, mut worst_d) = (0, 0f64, 0f64);
+        let mut in_range = 0;
         for i in 0..3000 {
             let sub = [4u32, 4, 2, 6, 8][i % 5];
             let k = 50.0 + 600.0 * u();
@@ -425,6 +459,7 @@ mod tests {
                 continue;
             };
             accepted += 1;
+            in_range += usize::from(f.depth_in_range);
             for _ in 0..200 {
                 // A point of the sphere.
                 let d = [u() - 0.5, u() - 0.5, u() - 0.5];
@@ -447,7 +482,12 @@ mod tests {
                 let ss = f64::from(1u32 << sub);
                 let ex = f64::from(cx) + kk * e[0] / w * ss;
                 let ey = f64::from(cy) - kk * e[1] / w * ss;
-                let ([gx, gy], gd) = f.project(p);
+                let ([gx, gy], gd) = f.project::<true>(p);
+                if f.depth_in_range {
+                    // The clamp idle, as `new` proved (a wrapped or
+                    // out-of-range depth would differ from the clamped one).
+                    assert_eq!(f.project::<false>(p), ([gx, gy], gd));
+                }
                 worst = worst
                     .max((f64::from(gx) - ex).abs())
                     .max((f64::from(gy) - ey).abs());
@@ -460,7 +500,9 @@ mod tests {
         std::println!(
             "fused: {accepted} objects accepted, worst {worst} subpixels, depth {worst_d}"
         );
+        std::println!("fused: depth clamp idle for {in_range}");
         assert!(accepted > 1000, "{accepted}");
+        assert!(in_range > accepted / 2, "{in_range} of {accepted}");
         assert!(worst <= 0.75, "{worst}");
         assert!(worst_d <= 1.0 / 8192.0, "{worst_d}");
     }
