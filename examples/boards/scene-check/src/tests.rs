@@ -181,7 +181,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     );
     assert_eq!(
         [turn[0].crc, turn[1].crc, turn[2].crc],
-        [0x4cca_0265, 0x92df_ef96, 0x1dc1_eb71]
+        [0x1a5e_2025, 0x6cd7_8710, 0x7956_283c]
     );
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(49));
     assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);
