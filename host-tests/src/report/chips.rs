@@ -74,6 +74,44 @@ pub struct Build {
     pub static_ram_bytes: u64,
     /// Soft-float routines linked (AEABI / compiler-builtins names).
     pub softfloat_routines: u64,
+    /// The span loops alone (the default `fast` build measures them; other
+    /// builds leave this empty).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub spans: Vec<SpanLoop>,
+}
+
+/// One span loop measured alone by the firmware: `rows` spans of `long`
+/// pixels and `rows` spans of 1 pixel, depth test and write, RGB565 store.
+/// The difference cancels the per-span cost, so
+/// [`SpanLoop::insns_per_px`] is the loop's cost per pixel.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpanLoop {
+    /// The kernel: `flat`, `gouraud`, `phong` (the generic per-pixel
+    /// shader), `phong-k1`/`-k2`/`-k4` (the Phong span kernel with 1, 2, 4
+    /// directional lights and the viewer at infinity), `phong-kpoint` (one
+    /// point light, local viewer).
+    pub kernel: String,
+    /// Spans per run.
+    pub rows: u64,
+    /// Pixels of a long span.
+    pub long: u64,
+    /// Instructions of the run with long spans.
+    pub long_insns: u64,
+    /// Instructions of the run with 1-pixel spans.
+    pub short_insns: u64,
+}
+
+impl SpanLoop {
+    /// Instructions per pixel: the difference of the two runs over the
+    /// `rows · (long - 1)` pixels that tell them apart.
+    pub fn insns_per_px(&self) -> f64 {
+        let px = self.rows * self.long.saturating_sub(1);
+        if px == 0 {
+            return 0.0;
+        }
+        self.long_insns.saturating_sub(self.short_insns) as f64 / px as f64
+    }
 }
 
 /// One scene measured with one profile on one target.

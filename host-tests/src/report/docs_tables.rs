@@ -25,8 +25,11 @@ use crate::ideal::Shading;
 use super::chips::{ChipResult, Measurements};
 
 /// The blocks: (file relative to the repository root, block name).
-pub const BLOCKS: [(&str, &str); 3] = [
+pub const BLOCKS: [(&str, &str); 6] = [
     ("README.md", "chip-fast"),
+    ("README.md", "chip-budgets"),
+    ("README.md", "chip-spans"),
+    ("README.md", "chip-memory"),
     ("README.md", "chip-profiles"),
     ("docs/accuracy.md", "accuracy"),
 ];
@@ -72,6 +75,9 @@ pub fn block(name: &str, ms: &Measurements) -> Result<String, CliError> {
     let body = match name {
         "chip-fast" => chip_fast(ms),
         "chip-profiles" => chip_profiles(ms),
+        "chip-budgets" => chip_budgets(ms),
+        "chip-spans" => chip_spans(ms),
+        "chip-memory" => chip_memory(ms),
         "accuracy" => accuracy()?,
         _ => return Err(CliError::input(format!("no docs block `{name}`"))),
     };
@@ -159,6 +165,182 @@ fn chip_fast(ms: &Measurements) -> String {
             r.cycles.map_or("–".into(), mi),
             m4.map_or("–".into(), |m| mi(m.insns)),
             thousands(r.covered)
+        );
+    }
+    s
+}
+
+/// A span loop's instructions per pixel (`fast` build) on `t`.
+fn span_px(ms: &Measurements, t: &str, kernel: &str) -> Option<f64> {
+    ms.builds
+        .iter()
+        .filter(|b| b.target == t)
+        .flat_map(|b| &b.spans)
+        .find(|s| s.kernel == kernel)
+        .map(|s| s.insns_per_px())
+}
+
+/// small3dlib's bunny frame (no subpixel precision, no top-left rule),
+/// instructions, from the benchmark scene's notes: thumbv6m, thumbv7em.
+pub const SMALL3DLIB_BUNNY: [(&str, u64); 2] = [(M0, 10_550_000), (M4, 4_380_000)];
+
+/// The cost budgets of the issues, checked against the measurements:
+/// (what, target, measured, budget text, met).
+fn budget_rows(ms: &Measurements) -> Vec<(String, &'static str, String, String, bool)> {
+    let fast = |t: &str, sc: &str| find(ms, t, "fast", sc);
+    let mut rows = Vec::new();
+    let mut cost = |what: &str, t: &'static str, v: Option<u64>, budget: u64| {
+        if let Some(v) = v {
+            rows.push((
+                what.to_string(),
+                t,
+                mi(v),
+                format!("≤ {}", mi(budget)),
+                v <= budget,
+            ));
+        }
+    };
+    for (t, geo, ras, frame) in [
+        (M0, 800_000, 2_400_000, 3_500_000),
+        (M4, 400_000, 1_000_000, 1_500_000),
+    ] {
+        let b = fast(t, "bunny-gouraud");
+        cost(
+            "bunny Gouraud geometry",
+            t,
+            b.map(|r| r.insns_geometry),
+            geo,
+        );
+        cost("bunny Gouraud raster", t, b.map(|r| r.insns_raster), ras);
+        cost("bunny Gouraud frame", t, b.map(|r| r.insns), frame);
+    }
+    for t in [M0, M4] {
+        if let (Some(f), Some(g)) = (fast(t, "bunny-flat"), fast(t, "bunny-gouraud")) {
+            rows.push((
+                "bunny flat frame".into(),
+                t,
+                mi(f.insns),
+                format!("< Gouraud {}", mi(g.insns)),
+                f.insns < g.insns,
+            ));
+        }
+        if let (Some(p), Some(g)) = (fast(t, "dodeca-phong-n100"), fast(t, "dodeca-gouraud-n100")) {
+            rows.push((
+                "dodecahedron Phong frame".into(),
+                t,
+                mi(p.insns),
+                format!("≤ 3 × Gouraud = {}", mi(3 * g.insns)),
+                p.insns <= 3 * g.insns,
+            ));
+        }
+    }
+    let px = |v: f64| format!("{v:.2} /px");
+    for (what, t, kernel, budget) in [
+        ("flat span", M4, "flat", 8.0),
+        ("Gouraud span", M4, "gouraud", 12.0),
+        ("Gouraud span", M0, "gouraud", 18.0),
+        ("Phong span, 1 directional light", M4, "phong-k1", 60.0),
+        (
+            "Phong span, 1 point light, local viewer",
+            M4,
+            "phong-kpoint",
+            90.0,
+        ),
+    ] {
+        if let Some(v) = span_px(ms, t, kernel) {
+            rows.push((what.into(), t, px(v), format!("≤ {budget}"), v <= budget));
+        }
+    }
+    for kernel in ["phong-k1", "phong-kpoint"] {
+        if let (Some(m0), Some(m4)) = (span_px(ms, M0, kernel), span_px(ms, M4, kernel)) {
+            rows.push((
+                format!("Phong span `{kernel}`"),
+                M0,
+                px(m0),
+                format!("≤ 2.5 × thumbv7em = {:.1}", 2.5 * m4),
+                m0 <= 2.5 * m4,
+            ));
+        }
+    }
+    rows
+}
+
+/// The budgets table: measured against each budget, and the bunny frame
+/// against small3dlib's.
+fn chip_budgets(ms: &Measurements) -> String {
+    let mut s =
+        String::from("| budget | target | measured | budget | met |\n|---|---|---:|---:|---|\n");
+    for (what, t, v, b, met) in budget_rows(ms) {
+        s += &format!(
+            "| {what} | {t} | {v} | {b} | {} |\n",
+            if met { "yes" } else { "**no**" }
+        );
+    }
+    for (t, peer) in SMALL3DLIB_BUNNY {
+        if let Some(r) = find(ms, t, "fast", "bunny-gouraud") {
+            s += &format!(
+                "\nbunny Gouraud frame on {t}: {} = {:.2} × small3dlib's {} (which has no subpixel precision and no top-left rule).\n",
+                mi(r.insns),
+                r.insns as f64 / peer as f64,
+                mi(peer)
+            );
+        }
+    }
+    s
+}
+
+/// The span loops alone, per pixel, on both chips (`fast` build).
+fn chip_spans(ms: &Measurements) -> String {
+    let mut s =
+        String::from("| span loop | thumbv7em insns/px | thumbv6m insns/px |\n|---|---:|---:|\n");
+    let kernels: Vec<&str> = ms
+        .builds
+        .iter()
+        .filter(|b| b.target == M4)
+        .flat_map(|b| b.spans.iter().map(|s| s.kernel.as_str()))
+        .collect();
+    for k in kernels {
+        let cell = |t: &str| span_px(ms, t, k).map_or("–".into(), |v| format!("{v:.2}"));
+        s += &format!("| {k} | {} | {} |\n", cell(M4), cell(M0));
+    }
+    s
+}
+
+/// Memory of the `fast` firmware: flash and static RAM per chip, and per
+/// scene the prepared frame, the bands and the stack.
+fn chip_memory(ms: &Measurements) -> String {
+    let mut s = String::from(
+        "| `fast` firmware | flash B | code B | read-only data B | static RAM B |\n|---|---:|---:|---:|---:|\n",
+    );
+    for t in [M0, M4] {
+        if let Some(b) = ms
+            .builds
+            .iter()
+            .find(|b| b.target == t && b.profile == "fast")
+        {
+            s += &format!(
+                "| {t} | {} | {} | {} | {} |\n",
+                thousands(b.flash_bytes),
+                thousands(b.text_bytes),
+                thousands(b.rodata_bytes),
+                thousands(b.static_ram_bytes)
+            );
+        }
+    }
+    s += "\n| scene | prepared frame B | colour + depth band B | stack B (thumbv6m / thumbv7em) |\n|---|---:|---:|---:|\n";
+    for r in ms
+        .results
+        .iter()
+        .filter(|r| r.target == M0 && r.profile == "fast")
+    {
+        let m4 = find(ms, M4, "fast", &r.scene);
+        s += &format!(
+            "| {} | {} | {} | {} / {} |\n",
+            r.scene,
+            thousands(r.prepared_bytes),
+            thousands(r.band_bytes + r.depth_bytes),
+            thousands(r.stack),
+            m4.map_or("–".into(), |m| thousands(m.stack))
         );
     }
     s

@@ -36,7 +36,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use crate::cli::{CliError, ErrorKind};
 use crate::core_render::{CoreProfile, BAND_ROWS};
 
-use super::chips::{self, Build, ChipResult, KnobResult, Measurements, REGENERATE, SCHEMA};
+use super::chips::{
+    self, Build, ChipResult, KnobResult, Measurements, SpanLoop, REGENERATE, SCHEMA,
+};
 use super::Mode;
 
 /// The targets, with their QEMU machine and plugin arguments.
@@ -496,8 +498,34 @@ fn measure_one(
         rodata_bytes: rodata,
         static_ram_bytes: static_ram,
         softfloat_routines: softfloat,
+        spans: span_loops(&out, &regions, scenes.len())?,
     };
     Ok((build, results))
+}
+
+/// The span loops a build printed (`span NAME rows=R long=L short=1`):
+/// the k-th line owns the regions `2·scenes + 2k` (long spans) and `+ 1`
+/// (1-pixel spans).
+fn span_loops(out: &str, regions: &Regions, scenes: usize) -> Result<Vec<SpanLoop>, CliError> {
+    out.lines()
+        .filter(|l| l.starts_with("span "))
+        .enumerate()
+        .map(|(k, line)| {
+            let g = 2 * scenes + 2 * k;
+            let (long, short) = regions.get(g).zip(regions.get(g + 1)).ok_or_else(|| {
+                failed(format!(
+                    "span line {k} without its two counted regions: {line}"
+                ))
+            })?;
+            Ok(SpanLoop {
+                kernel: line.split_whitespace().nth(1).unwrap_or("").to_string(),
+                rows: num(line, "rows")?,
+                long: num(line, "long")?,
+                long_insns: long.0,
+                short_insns: short.0,
+            })
+        })
+        .collect()
 }
 
 /// The knob variants on one target (the firmware's `knobs` build), with
@@ -771,5 +799,27 @@ mod tests {
         assert_eq!(num(l, "covered").unwrap(), 14910);
         assert!(num(l, "drawn").is_err());
         assert_eq!(kv(l, "size"), Some("240x240"));
+    }
+
+    #[test]
+    fn span_lines_take_the_regions_after_the_scenes() {
+        let out = "scene a size=8x8\nspan flat rows=16 long=200 short=1\nspan gouraud rows=16 long=200 short=1\n";
+        // Two regions for the scene, then (long, short) per span line.
+        let regions = vec![
+            (10, None),
+            (20, None),
+            (16 * 199 * 9 + 500, None),
+            (500, None),
+            (16 * 199 * 12 + 700, None),
+            (700, None),
+        ];
+        let spans = span_loops(out, &regions, 1).unwrap();
+        assert_eq!(spans.len(), 2);
+        assert_eq!(spans[0].kernel, "flat");
+        assert_eq!(spans[0].insns_per_px(), 9.0);
+        assert_eq!(spans[1].kernel, "gouraud");
+        assert_eq!(spans[1].insns_per_px(), 12.0);
+        // A span line without its regions is an error, not a zero.
+        assert!(span_loops(out, &regions[..5].to_vec(), 1).is_err());
     }
 }
