@@ -25,13 +25,16 @@ use crate::ideal::Shading;
 use super::chips::{ChipResult, Measurements};
 
 /// The blocks: (file relative to the repository root, block name).
-pub const BLOCKS: [(&str, &str); 6] = [
+pub const BLOCKS: [(&str, &str); 9] = [
     ("README.md", "chip-fast"),
     ("README.md", "chip-budgets"),
     ("README.md", "chip-spans"),
     ("README.md", "chip-memory"),
     ("README.md", "chip-profiles"),
     ("docs/accuracy.md", "accuracy"),
+    ("examples/firmware/README.md", "chip-split"),
+    ("examples/firmware/README.md", "chip-spans"),
+    ("examples/firmware/README.md", "chip-memory"),
 ];
 
 /// The command that rewrites every block.
@@ -78,6 +81,7 @@ pub fn block(name: &str, ms: &Measurements) -> Result<String, CliError> {
         "chip-budgets" => chip_budgets(ms),
         "chip-spans" => chip_spans(ms),
         "chip-memory" => chip_memory(ms),
+        "chip-split" => chip_split(ms),
         "accuracy" => accuracy()?,
         _ => return Err(CliError::input(format!("no docs block `{name}`"))),
     };
@@ -341,6 +345,41 @@ fn chip_memory(ms: &Measurements) -> String {
             thousands(r.band_bytes + r.depth_bytes),
             thousands(r.stack),
             m4.map_or("–".into(), |m| thousands(m.stack))
+        );
+    }
+    s
+}
+
+/// The `fast` profile per firmware scene on both chips, geometry and
+/// raster apart, and per covered pixel.
+fn chip_split(ms: &Measurements) -> String {
+    let mut s = String::from(
+        "| scene | M0 insns: frame (geometry + raster) | est. M0 cycles | M4 insns: frame (geometry + raster) | M0 / M4 insns per covered px | setups |\n|---|---:|---:|---:|---:|---:|\n",
+    );
+    let split = |r: &ChipResult| {
+        format!(
+            "{} ({:.3} + {:.3})",
+            mi(r.insns),
+            r.insns_geometry as f64 / 1e6,
+            r.insns_raster as f64 / 1e6
+        )
+    };
+    let per_px = |r: &ChipResult| r.insns / r.covered.max(1);
+    for r in ms
+        .results
+        .iter()
+        .filter(|r| r.target == M0 && r.profile == "fast")
+    {
+        let m4 = find(ms, M4, "fast", &r.scene);
+        s += &format!(
+            "| {} | {} | {} | {} | {} / {} | {} |\n",
+            r.scene,
+            split(r),
+            r.cycles.map_or("–".into(), mi),
+            m4.map_or("–".into(), split),
+            thousands(per_px(r)),
+            m4.map_or("–".into(), |m| thousands(per_px(m))),
+            thousands(r.setups)
         );
     }
     s
