@@ -7,7 +7,7 @@
 //! over semihosting a header, one `capacity` line, and one line per scene:
 //!
 //! ```text
-//! scene <name> crc=0x<crc32> covered=<px> drawn=<px> setups=<n> triangles=<mesh> prepared_vertices=<n> prepared_triangles=<n> prepared_bytes=<bytes> stack=<bytes> static_ram=<bytes>
+//! scene <name> crc=0x<crc32> covered=<px> drawn=<px> setups=<n> triangles=<mesh> prepared_vertices=<n> prepared_triangles=<n> prepared_bytes=<bytes> storage_bytes=<bytes> depth_bytes=<bytes> pool_bytes=<bytes> stack=<bytes> static_ram=<bytes>
 //! ```
 //!
 //! Before rendering, every scene is prepared once (unmeasured) to check
@@ -45,7 +45,7 @@ use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader, Storage};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
     check, render_frame, BandPool, FrameError, Pixel, Probe, BAND_PIXELS, BAND_ROWS, CAPACITY,
-    DEPTH_PIXELS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
+    DEPTH_PIXELS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH as SCENE_WIDTH,
 };
 
 /// Executes the marker instruction `yield`: a hint that QEMU runs as a
@@ -179,8 +179,8 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         "fixshade-firmware target={} board={} profile=fast max_frame={}x{} rgb565be band_rows={} depth16={}",
         env!("FW_TARGET"),
         env!("FW_BOARD"),
-        WIDTH,
-        WIDTH,
+        SCENE_WIDTH,
+        SCENE_WIDTH,
         BAND_ROWS,
         DEPTH_PIXELS > 0,
     );
@@ -215,7 +215,7 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         .map_err(|e| Failure::Frame(spec.name, e))?;
         let stack = stack_used();
         hprintln!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} stack={} static_ram={}",
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} storage_bytes={} depth_bytes={} pool_bytes={} stack={} static_ram={}",
             spec.name,
             spec.width,
             spec.height,
@@ -227,17 +227,25 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
             stats.vertices,
             stats.triangles,
             stats.prepared_bytes,
+            fixshade_scenes::storage_bytes::<Fast>(spec),
+            if spec.depth { 2 * spec.width * BAND_ROWS } else { 0 },
+            core::mem::size_of::<BandPool>(),
             stack,
             static_ram(),
         );
     }
-    // The span loops write a depth band: not in a build whose scenes
-    // need none (one convex object each).
-    if DEPTH_PIXELS > 0 {
+    // The span loops write a 240-pixel band and its depth band: not in a
+    // build whose scenes are narrower or need no depth band (one convex
+    // object each: a build for other scenes than the built-in ones).
+    if DEPTH_PIXELS >= (WIDTH * BAND_ROWS) as usize {
         span_loops(mem).map_err(|e| Failure::Frame("span-loops", e))?;
     }
     Ok(())
 }
+
+/// Width of the span-loop regions' band (their spans are [`SPAN_LONG`]
+/// pixels long): the built-in scenes' widest.
+const WIDTH: u32 = 240;
 
 /// Rows (spans) per span-loop region.
 const SPAN_ROWS: u32 = 16;

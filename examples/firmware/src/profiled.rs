@@ -107,7 +107,7 @@ fn run(
         .map_err(|e| (spec.name, e))?;
         let stack = super::stack_used();
         hprintln!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} stack={} static_ram={}",
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} storage_bytes={} depth_bytes={} pool_bytes={} stack={} static_ram={}",
             spec.name,
             spec.width,
             spec.height,
@@ -119,6 +119,9 @@ fn run(
             stats.vertices,
             stats.triangles,
             stats.prepared_bytes,
+            fixshade_scenes::storage_bytes::<P>(spec),
+            if spec.depth { 2 * spec.width * BAND_ROWS } else { 0 },
+            core::mem::size_of::<ProfilePool<P>>(),
             stack,
             super::static_ram(),
         );

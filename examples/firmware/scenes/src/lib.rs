@@ -68,6 +68,18 @@ pub const fn capacity_for<P: Profile>() -> Capacity {
     }
 }
 
+/// Bytes of the storage a firmware built for `spec` alone would hold with
+/// profile `P` (`Capacity::bytes` of its capacity, for `P`'s values): the
+/// scene's own share of the static RAM.
+pub const fn storage_bytes<P: Profile>(spec: &SceneSpec) -> usize {
+    let c = if P::PERSPECTIVE {
+        spec.capacity.perspective()
+    } else {
+        spec.capacity
+    };
+    c.bytes(core::mem::size_of::<P::Lerp>())
+}
+
 /// The `Fast` storage of the scenes (sized by the compiler from their
 /// meshes: see `generated.rs`).
 pub type SceneStorage =
