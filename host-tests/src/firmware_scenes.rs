@@ -1,17 +1,20 @@
-//! Built-in scenes for the firmware (`examples/firmware`), as Rust source.
+//! Scenes for the firmware (`examples/firmware`), as Rust source.
 //!
 //! The firmware has no floating point, so it cannot read a scene file:
-//! [`generate`] turns the built-in scenes named in [`FIRMWARE_SCENES`] into
-//! the source of `examples/firmware/scenes/src/generated.rs`, where every
+//! [`generate`] turns the built-in scenes named in [`FIRMWARE_SCENES`] (and
+//! [`generate_for`] any scene files, a user's for `--measure-firmware`)
+//! into the source of `examples/firmware/scenes/src/generated.rs`, where every
 //! scalar is the raw Q16.16 bits of exactly the value the host renders
 //! with (`Q16::from_f64` of the scene's `f64`, as
 //! [`render_core`](crate::core_render::render_core) converts it for the
 //! `fast` profile). Meshes are the core's built-in constants, or, where the
-//! scene regenerates normals (`crease_angle_deg`), the built-in positions
-//! and triangles with the regenerated normals and indices as constant
-//! arrays. Each scene also records the workspace it needs (prepared
-//! vertices, values and triangles: the smallest workspace
-//! `prepare::<Fast>` accepts), so the firmware can size its static buffers.
+//! scene regenerates normals (`crease_angle_deg`) or reads an OBJ file,
+//! the welded positions, triangles, normals and face normals as constant
+//! arrays. Each scene's storage is a call of the core's `const fn`
+//! `Capacity::object(&MESH, layout, reach)` per object (see `rooms`:
+//! no size is searched here), and whether it needs a depth band
+//! ([`convex`]); the firmware's static storage is their maximum, sized by
+//! the compiler.
 //!
 //! The test `tests/firmware_scenes.rs` regenerates the file and compares it
 //! byte for byte with the committed one (`MAKE_FIRMWARE_SCENES=1` rewrites
@@ -179,6 +182,33 @@ impl Q16Scene<'_> {
     }
 }
 
+/// A `Fast` workspace of the lengths `cap`, on the heap (lengths a host
+/// chooses at run time: the core's `Storage` takes them as const
+/// generics).
+struct Owned {
+    xy: Vec<[i32; 2]>,
+    vals: Vec<i32>,
+    tris: Vec<Tri>,
+}
+
+impl Owned {
+    fn new(cap: Capacity) -> Self {
+        Self {
+            xy: vec![[0; 2]; cap.vertices],
+            vals: vec![0; cap.values],
+            tris: vec![Tri::default(); cap.triangles],
+        }
+    }
+
+    fn ws(&mut self) -> Workspace<'_, i32> {
+        Workspace {
+            xy: &mut self.xy,
+            vals: &mut self.vals,
+            tris: &mut self.tris,
+        }
+    }
+}
+
 /// The storage of `scene` as the firmware sizes it: per object the
 /// layout `prepare::<Fast>` chooses and its [`Reach`], and the
 /// [`Capacity`] they give.
@@ -200,15 +230,8 @@ fn rooms(
     let any = scene.objects.iter().fold(Capacity::EMPTY, |c, o| {
         c.object(&o.mesh, Layout::PhongPosition, Reach::Clipped)
     });
-    let mut xy = vec![[0i32; 2]; any.vertices];
-    let mut vals = vec![0i32; any.values];
-    let mut tris = vec![Tri::default(); any.triangles];
-    let ws = Workspace {
-        xy: &mut xy,
-        vals: &mut vals,
-        tris: &mut tris,
-    };
-    let frame = prepare::<Fast>(scene, w, h, ws)?;
+    let mut mem = Owned::new(any);
+    let frame = prepare::<Fast>(scene, w, h, mem.ws())?;
     let mut cap = Capacity::EMPTY;
     let rooms = scene
         .objects
@@ -298,15 +321,8 @@ fn render_crc(
     cap: Capacity,
     depth: bool,
 ) -> Result<HostFrame, RenderError> {
-    let mut xy = vec![[0i32; 2]; cap.vertices];
-    let mut vals = vec![0i32; cap.values];
-    let mut tris = vec![Tri::default(); cap.triangles];
-    let ws = Workspace {
-        xy: &mut xy,
-        vals: &mut vals,
-        tris: &mut tris,
-    };
-    let frame = prepare::<Fast>(scene, w, h, ws)?;
+    let mut mem = Owned::new(cap);
+    let frame = prepare::<Fast>(scene, w, h, mem.ws())?;
     let mut band = vec![[0u8; 2]; (w * BAND_ROWS) as usize];
     let mut z = vec![0u16; (w * BAND_ROWS) as usize];
     let mut buf = BandBuf::<Rgb565Be>::new(&mut band, depth.then_some(&mut z[..]), w, BAND_ROWS)?;
@@ -410,15 +426,8 @@ impl FirmwareScene {
     pub fn prepare_with(&self, cap: Capacity) -> Result<(), RenderError> {
         let q = q16_scene(&self.desc);
         let scene = q.scene().map_err(|_| RenderError::Window)?;
-        let mut xy = vec![[0i32; 2]; cap.vertices];
-        let mut vals = vec![0i32; cap.values];
-        let mut tris = vec![Tri::default(); cap.triangles];
-        let ws = Workspace {
-            xy: &mut xy,
-            vals: &mut vals,
-            tris: &mut tris,
-        };
-        prepare::<Fast>(&scene, self.desc.width, self.desc.height, ws).map(|_| ())
+        let mut mem = Owned::new(cap);
+        prepare::<Fast>(&scene, self.desc.width, self.desc.height, mem.ws()).map(|_| ())
     }
 
     /// The frame rendered from the Q16 values the generated source holds,

@@ -1,45 +1,4 @@
-//! Storage sized by the compiler: a prepared frame's memory as arrays
-//! whose lengths are const generics, computed by a `const fn` from the
-//! meshes a scene uses.
-//!
-//! ```
-//! use fixshade::mesh::CUBE;
-//! use fixshade::render::{Capacity, Storage};
-//!
-//! const CAP: Capacity = Capacity::of(&[&CUBE, &CUBE]);
-//! type CubeStorage = Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
-//! static STORAGE: CubeStorage = CubeStorage::EMPTY;
-//! assert_eq!(CAP.triangles, 2 * CUBE.triangle_count());
-//! ```
-//!
-//! (In a firmware, `static mut STORAGE: CubeStorage = CubeStorage::EMPTY;`
-//! in the entry function, which `cortex-m-rt` hands out as
-//! `&'static mut`; [`Storage::split`] then lends the [`Workspace`] to
-//! [`prepare`](super::prepare) and the order scratch to a
-//! [`BandState`](super::BandState).)
-//!
-//! # What the bound covers
-//! [`prepare`](super::prepare) takes, per object, room for every mesh
-//! vertex (one linear pass) with `stride` values each, then one prepared
-//! triangle per kept triangle; clipping and the back sides of two-sided
-//! Gouraud objects add vertices. A [`Capacity`] adds per object:
-//!
-//! | object ([`Reach`]) | vertices | triangles |
-//! |--------------------|----------|-----------|
-//! | [`Reach::Inside`]: culled, or two-sided flat or Phong | `V` | `T` |
-//! | [`Reach::TwoSided`]: two-sided Gouraud (back faces lit on their own) | `V + 3T` | `T` |
-//! | [`Reach::Clipped`]: may be cut by the near, far or guard planes | `V + 9T` | `7T` |
-//!
-//! with `V`, `T` the mesh's vertices and triangles, and `stride` values
-//! per vertex of the object ([`Layout::stride`]); a clipped triangle
-//! becomes a polygon of at most [`MAX_POLY`](super::clip::MAX_POLY) = 9
-//! corners, emitted as new vertices, fanned into at most 7 triangles.
-//! [`Capacity::perspective`] adds the perspective-correct profiles' weight
-//! (one value per vertex). The triangle bound is every mesh triangle:
-//! how many a view keeps (the front faces on the screen) is known only
-//! when the view is (the bunny keeps 1 498 of its 3 674 in the benchmark
-//! view). A storage smaller than what a frame uses makes `prepare` return
-//! [`RenderError::Capacity`](super::RenderError::Capacity), never a panic.
+//! Storage sized by the compiler: see [`Storage`].
 
 use super::{Layout, Tri, Workspace};
 use crate::mesh::Mesh;
@@ -59,7 +18,7 @@ pub struct Capacity {
 }
 
 /// Where an object lies and how its back faces are drawn: what its
-/// prepared frame can grow to (see the [module docs](self)).
+/// prepared frame can grow to (see [`Storage`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Reach {
     /// Inside the clipping planes; back faces culled, or drawn with the
@@ -99,8 +58,8 @@ impl Capacity {
     }
 
     /// Room for one more object: `mesh` with `layout`'s values (affine
-    /// profiles; see [`Self::perspective`]) and `reach` (the table of the
-    /// [module docs](self)).
+    /// profiles; see [`Self::perspective`]) and `reach` (the table in the
+    /// docs of [`Storage`]).
     pub const fn object(self, mesh: &Mesh<'_>, layout: Layout, reach: Reach) -> Self {
         let (v, t) = (mesh.vertex_count(), mesh.triangle_count());
         let (vertices, triangles) = match reach {
@@ -155,6 +114,49 @@ impl Capacity {
 /// `L` and `T` triangles (with the band renderer's order scratch, two
 /// entries per triangle), sized by the compiler from a [`Capacity`].
 /// `const` ([`Self::EMPTY`]): it may live in a `static` (in `.bss`).
+///
+/// Storage sized by the compiler: a prepared frame's memory as arrays
+/// whose lengths are const generics, computed by a `const fn` from the
+/// meshes a scene uses.
+///
+/// ```
+/// use fixshade::mesh::CUBE;
+/// use fixshade::render::{Capacity, Storage};
+///
+/// const CAP: Capacity = Capacity::of(&[&CUBE, &CUBE]);
+/// type CubeStorage = Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
+/// static STORAGE: CubeStorage = CubeStorage::EMPTY;
+/// assert_eq!(CAP.triangles, 2 * CUBE.triangle_count());
+/// ```
+///
+/// (In a firmware, `static mut STORAGE: CubeStorage = CubeStorage::EMPTY;`
+/// in the entry function, which `cortex-m-rt` hands out as
+/// `&'static mut`; [`Storage::split`] then lends the [`Workspace`] to
+/// [`prepare`](super::prepare) and the order scratch to a
+/// [`BandState`](super::BandState).)
+///
+/// # What the bound covers
+/// [`prepare`](super::prepare) takes, per object, room for every mesh
+/// vertex (one linear pass) with `stride` values each, then one prepared
+/// triangle per kept triangle; clipping and the back sides of two-sided
+/// Gouraud objects add vertices. A [`Capacity`] adds per object:
+///
+/// | object ([`Reach`]) | vertices | triangles |
+/// |--------------------|----------|-----------|
+/// | [`Reach::Inside`]: culled, or two-sided flat or Phong | `V` | `T` |
+/// | [`Reach::TwoSided`]: two-sided Gouraud (back faces lit on their own) | `V + 3T` | `T` |
+/// | [`Reach::Clipped`]: may be cut by the near, far or guard planes | `V + 9T` | `7T` |
+///
+/// with `V`, `T` the mesh's vertices and triangles, and `stride` values
+/// per vertex of the object ([`Layout::stride`]); a clipped triangle
+/// becomes a polygon of at most [`MAX_POLY`](super::clip::MAX_POLY) = 9
+/// corners, emitted as new vertices, fanned into at most 7 triangles.
+/// [`Capacity::perspective`] adds the perspective-correct profiles' weight
+/// (one value per vertex). The triangle bound is every mesh triangle:
+/// how many a view keeps (the front faces on the screen) is known only
+/// when the view is (the bunny keeps 1 498 of its 3 674 in the benchmark
+/// view). A storage smaller than what a frame uses makes `prepare` return
+/// [`RenderError::Capacity`](super::RenderError::Capacity), never a panic.
 #[derive(Clone, Debug)]
 pub struct Storage<L, const V: usize, const N: usize, const T: usize> {
     xy: [[i32; 2]; V],

@@ -712,6 +712,31 @@ fn progress_bar(show: bool, total: u64) -> ProgressBar {
     bar
 }
 
+/// `job` for each target at once, one thread each: each builds in its own
+/// target folder (cargo locks a folder per build), and the single-unit
+/// LTO links keep one core each busy. The results in target order, or
+/// the first error.
+fn on_targets<T: Send>(
+    targets: &[(&str, &str, &str, &str)],
+    job: impl Fn((&str, &str, &str, &str)) -> Result<T, CliError> + Sync,
+) -> Result<Vec<T>, CliError> {
+    std::thread::scope(|s| {
+        let jobs: Vec<_> = targets
+            .iter()
+            .map(|&t| {
+                let job = &job;
+                s.spawn(move || job(t))
+            })
+            .collect();
+        jobs.into_iter()
+            .map(|j| {
+                j.join()
+                    .unwrap_or_else(|_| Err(failed("a measuring thread panicked".into())))
+            })
+            .collect()
+    })
+}
+
 /// Measures every profile of `opts` on both targets (see the module
 /// docs).
 ///
@@ -748,39 +773,23 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
     bar.set_message("knobs on the host");
     let (knob_host, depth_differ) = host_knobs(&fw)?;
     bar.inc(1);
-    let per_target = std::thread::scope(|s| {
-        let jobs: Vec<_> = TARGETS
-            .iter()
-            .map(|&t| {
-                let (stage, plugin, hosts, knob_host, bar) =
-                    (&stage, &plugin, &hosts, &knob_host, &bar);
-                s.spawn(move || -> Result<_, CliError> {
-                    let stage = stage.for_target(t.0);
-                    let (mut builds, mut results) = (Vec::new(), Vec::new());
-                    for (profile, host) in hosts {
-                        bar.set_message(format!("{} on {}", profile.name(), t.0));
-                        let (b, r) = measure_one(&stage, plugin, t, *profile, host, None)?;
-                        builds.push(b);
-                        results.extend(r);
-                        bar.inc(1);
-                    }
-                    bar.set_message(format!("knobs on {}", t.0));
-                    let knobs = measure_knobs(&stage, plugin, t, knob_host)?;
-                    bar.inc(1);
-                    Ok((builds, results, knobs))
-                })
-            })
-            .collect();
-        jobs.into_iter()
-            .map(|j| {
-                j.join()
-                    .unwrap_or_else(|_| Err(failed("a measuring thread panicked".into())))
-            })
-            .collect::<Vec<_>>()
+    let per_target = on_targets(&TARGETS, |t| {
+        let stage = stage.for_target(t.0);
+        let (mut builds, mut results) = (Vec::new(), Vec::new());
+        for (profile, host) in &hosts {
+            bar.set_message(format!("{} on {}", profile.name(), t.0));
+            let (b, r) = measure_one(&stage, &plugin, t, *profile, host, None)?;
+            builds.push(b);
+            results.extend(r);
+            bar.inc(1);
+        }
+        bar.set_message(format!("knobs on {}", t.0));
+        let knobs = measure_knobs(&stage, &plugin, t, &knob_host)?;
+        bar.inc(1);
+        Ok((builds, results, knobs))
     });
     let (mut builds, mut results, mut knobs) = (Vec::new(), Vec::new(), Vec::new());
-    for r in per_target {
-        let (b, r, k) = r?;
+    for (b, r, k) in per_target? {
         builds.extend(b);
         results.extend(r);
         knobs.extend(k);
@@ -957,35 +966,20 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Cl
         };
         hosts.push((profile, crcs));
     }
-    let per_target = std::thread::scope(|s| {
-        let jobs: Vec<_> = targets
-            .iter()
-            .map(|&t| {
-                let (stage, plugin, hosts, bar, modes) = (&stage, &plugin, &hosts, &bar, &modes);
-                s.spawn(move || -> Result<_, CliError> {
-                    let stage = stage.for_target(t.0);
-                    let (mut builds, mut results) = (Vec::new(), Vec::new());
-                    for (profile, host) in hosts {
-                        bar.set_message(format!("your scenes, {} on {}", profile.name(), t.0));
-                        let (b, r) = measure_one(&stage, plugin, t, *profile, host, Some(modes))?;
-                        builds.push(b);
-                        results.extend(r);
-                        bar.inc(1);
-                    }
-                    Ok((builds, results))
-                })
-            })
-            .collect();
-        jobs.into_iter()
-            .map(|j| {
-                j.join()
-                    .unwrap_or_else(|_| Err(failed("a measuring thread panicked".into())))
-            })
-            .collect::<Vec<_>>()
+    let per_target = on_targets(&targets, |t| {
+        let stage = stage.for_target(t.0);
+        let (mut builds, mut results) = (Vec::new(), Vec::new());
+        for (profile, host) in &hosts {
+            bar.set_message(format!("your scenes, {} on {}", profile.name(), t.0));
+            let (b, r) = measure_one(&stage, &plugin, t, *profile, host, Some(&modes))?;
+            builds.push(b);
+            results.extend(r);
+            bar.inc(1);
+        }
+        Ok((builds, results))
     });
     let (mut builds, mut results) = (Vec::new(), Vec::new());
-    for r in per_target {
-        let (b, r) = r?;
+    for (b, r) in per_target? {
         builds.extend(b);
         results.extend(r);
     }
