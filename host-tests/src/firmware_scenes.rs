@@ -1,17 +1,20 @@
-//! Built-in scenes for the firmware (`examples/firmware`), as Rust source.
+//! Scenes for the firmware (`examples/firmware`), as Rust source.
 //!
 //! The firmware has no floating point, so it cannot read a scene file:
-//! [`generate`] turns the built-in scenes named in [`FIRMWARE_SCENES`] into
-//! the source of `examples/firmware/scenes/src/generated.rs`, where every
+//! [`generate`] turns the built-in scenes named in [`FIRMWARE_SCENES`] (and
+//! [`generate_for`] any scene files, a user's for `--measure-firmware`)
+//! into the source of `examples/firmware/scenes/src/generated.rs`, where every
 //! scalar is the raw Q16.16 bits of exactly the value the host renders
 //! with (`Q16::from_f64` of the scene's `f64`, as
 //! [`render_core`](crate::core_render::render_core) converts it for the
 //! `fast` profile). Meshes are the core's built-in constants, or, where the
-//! scene regenerates normals (`crease_angle_deg`), the built-in positions
-//! and triangles with the regenerated normals and indices as constant
-//! arrays. Each scene also records the workspace it needs (prepared
-//! vertices, values and triangles: the smallest workspace
-//! `prepare::<Fast>` accepts), so the firmware can size its static buffers.
+//! scene regenerates normals (`crease_angle_deg`) or reads an OBJ file,
+//! the welded positions, triangles, normals and face normals as constant
+//! arrays. Each scene's storage is a call of the core's `const fn`
+//! `Capacity::object(&MESH, layout, reach)` per object (see `rooms`:
+//! no size is searched here), and whether it needs a depth band
+//! ([`convex`]); the firmware's static storage is their maximum, sized by
+//! the compiler.
 //!
 //! The test `tests/firmware_scenes.rs` regenerates the file and compares it
 //! byte for byte with the committed one (`MAKE_FIRMWARE_SCENES=1` rewrites
@@ -25,7 +28,9 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
 use fixshade::num::{Fast, Real, Q16};
-use fixshade::render::{prepare, BandState, Part, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Layout, Pool, Reach, RenderError, Tri, Workspace};
+
+pub use fixshade::render::Capacity;
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 
@@ -55,36 +60,14 @@ pub fn generated_path(root: &Path) -> PathBuf {
     root.join(GENERATED_PATH)
 }
 
-/// Workspace a scene needs: the smallest lengths of the parts of
-/// [`Workspace`] with which `prepare::<Fast>` succeeds.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Needs {
-    /// `xy`: prepared vertices.
-    pub vertices: usize,
-    /// `vals`: interpolated values.
-    pub values: usize,
-    /// `tris`: prepared triangles.
-    pub triangles: usize,
-    /// `Frame::bytes_used()` of the prepared frame.
-    pub prepared_bytes: usize,
-}
-
-impl Needs {
-    /// The larger of each part.
-    pub fn max(self, o: Self) -> Self {
-        Self {
-            vertices: self.vertices.max(o.vertices),
-            values: self.values.max(o.values),
-            triangles: self.triangles.max(o.triangles),
-            prepared_bytes: self.prepared_bytes.max(o.prepared_bytes),
-        }
-    }
-
-    /// Bytes of a workspace of these lengths (fixed profiles: 4-byte
-    /// values), scratch included.
-    pub fn workspace_bytes(&self) -> usize {
-        self.vertices * 8 + self.values * 4 + self.triangles * core::mem::size_of::<Tri>()
-    }
+/// How one object of a firmware scene is stored: its layout and reach
+/// (the arguments of [`Capacity::object`] besides the mesh).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ObjectRoom {
+    /// Values per prepared vertex.
+    pub layout: Layout,
+    /// Whether the planes cut it or its back faces add vertices.
+    pub reach: Reach,
 }
 
 /// Q16 bits of `v`, as the host converts it for the `fast` profile.
@@ -199,97 +182,156 @@ impl Q16Scene<'_> {
     }
 }
 
-/// Prepares `scene` into a workspace of the lengths `n`: the result of
-/// `prepare`, and on success the frame's bytes, vertices, values and
-/// triangles in use.
-fn try_prepare(scene: &Scene<'_, '_, Q16>, w: u32, h: u32, n: Needs) -> Result<Needs, RenderError> {
-    let mut xy = vec![[0i32; 2]; n.vertices];
-    let mut vals = vec![0i32; n.values];
-    let mut tris = vec![Tri::default(); n.triangles];
-    let ws = Workspace {
-        xy: &mut xy,
-        vals: &mut vals,
-        tris: &mut tris,
-    };
-    let frame = prepare::<Fast>(scene, w, h, ws)?;
-    let values = frame
-        .objects()
-        .last()
-        .map_or(0, |o| o.val_base + o.verts.len() * o.stride);
-    Ok(Needs {
-        vertices: frame.vertex_count(),
-        values,
-        triangles: frame.triangle_count(),
-        prepared_bytes: frame.bytes_used(),
+/// A `Fast` workspace of the lengths `cap`, on the heap (lengths a host
+/// chooses at run time: the core's `Storage` takes them as const
+/// generics).
+struct Owned {
+    xy: Vec<[i32; 2]>,
+    vals: Vec<i32>,
+    tris: Vec<Tri>,
+}
+
+impl Owned {
+    fn new(cap: Capacity) -> Self {
+        Self {
+            xy: vec![[0; 2]; cap.vertices],
+            vals: vec![0; cap.values],
+            tris: vec![Tri::default(); cap.triangles],
+        }
+    }
+
+    fn ws(&mut self) -> Workspace<'_, i32> {
+        Workspace {
+            xy: &mut self.xy,
+            vals: &mut self.vals,
+            tris: &mut self.tris,
+        }
+    }
+}
+
+/// The storage of `scene` as the firmware sizes it: per object the
+/// layout `prepare::<Fast>` chooses and its [`Reach`], and the
+/// [`Capacity`] they give.
+///
+/// The layout comes from one `prepare` into a storage with room for any
+/// object (every object [`Reach::Clipped`], 7 values per vertex); the
+/// reach from the same frame: an object with more prepared vertices
+/// than mesh vertices in the firmware's (fixed) view is cut by the
+/// planes or lights back faces of its own, and is given
+/// [`Reach::Clipped`] (room for both); a two-sided Gouraud object is
+/// given [`Reach::TwoSided`]; the others [`Reach::Inside`]. The sizes
+/// themselves are the core's `const fn` ([`Capacity::object`]), which the
+/// generated source calls: no size is searched here.
+fn rooms(
+    scene: &Scene<'_, '_, Q16>,
+    w: u32,
+    h: u32,
+) -> Result<(Vec<ObjectRoom>, Capacity), RenderError> {
+    let any = scene.objects.iter().fold(Capacity::EMPTY, |c, o| {
+        c.object(&o.mesh, Layout::PhongPosition, Reach::Clipped)
+    });
+    let mut mem = Owned::new(any);
+    let frame = prepare::<Fast>(scene, w, h, mem.ws())?;
+    let mut cap = Capacity::EMPTY;
+    let rooms = scene
+        .objects
+        .iter()
+        .zip(frame.objects())
+        .map(|(o, p)| {
+            let reach = if p.verts.len() > o.mesh.vertex_count() {
+                Reach::Clipped
+            } else if !o.cull_backfaces && o.shading == Shading::Gouraud {
+                Reach::TwoSided
+            } else {
+                Reach::Inside
+            };
+            cap = cap.object(&o.mesh, p.layout, reach);
+            ObjectRoom {
+                layout: p.layout,
+                reach,
+            }
+        })
+        .collect();
+    Ok((rooms, cap))
+}
+
+/// How far a vertex may lie in front of a face's plane for [`convex`]:
+/// 4 units of the Q1.14 positions (2^-12 of the unit), for the rounding
+/// of the positions to the grid (measured: the dodecahedron's vertices lie
+/// up to 0.05 units in front of a face's plane, its pentagons being split
+/// into three triangles each; the sphere's up to 1.56; the bunny's 32 198).
+pub const CONVEX_SLACK: f64 = 4.0;
+
+/// Whether `mesh` is convex up to the rounding of its positions: every
+/// vertex lies behind the plane of every triangle, or at most
+/// [`CONVEX_SLACK`] units in front of it (integer cross and dot products:
+/// edge components below 2^16, the cross product below 2^33, the dot
+/// product below 2^51; the distance in `f64`). The front faces of a
+/// convex mesh never overlap on the screen (nor once clipped), so a scene
+/// of one such object with back faces culled draws each pixel at most
+/// once (the top-left rule shares edges) and needs no depth band.
+/// [`FirmwareScene::new`] leaves the depth band out only when, besides,
+/// the frame rendered without it is the frame rendered with it (checked
+/// on the host for the firmware's view).
+pub fn convex(mesh: &Mesh<'_>) -> bool {
+    let p = mesh.positions();
+    let sub = |a: [i16; 3], b: [i16; 3]| [0, 1, 2].map(|i| i64::from(a[i]) - i64::from(b[i]));
+    mesh.triangles().iter().all(|t| {
+        let [a, b, c] = t.map(|i| p.get(usize::from(i)).copied().unwrap_or([0; 3]));
+        let (u, v) = (sub(b, a), sub(c, a));
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let len = (n.iter().map(|&x| (x as f64) * (x as f64)).sum::<f64>()).sqrt();
+        p.iter().all(|&q| {
+            let d = sub(q, a);
+            let dot = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+            dot <= 0 || (dot as f64) <= CONVEX_SLACK * len
+        })
     })
 }
 
-/// The smallest workspace `prepare::<Fast>` accepts for `scene`: starts
-/// from what a generous workspace uses and grows a part while `prepare`
-/// reports it too small.
-fn needs(scene: &Scene<'_, '_, Q16>, w: u32, h: u32) -> Result<Needs, String> {
-    let tris: usize = scene.objects.iter().map(|o| o.mesh.triangle_count()).sum();
-    let big = Needs {
-        vertices: (scene
-            .objects
-            .iter()
-            .map(|o| o.mesh.vertex_count())
-            .sum::<usize>()
-            + tris * 14)
-            .min(u16::MAX as usize - 1),
-        values: (u16::MAX as usize - 1) * 8,
-        triangles: tris * 8,
-        prepared_bytes: 0,
-    };
-    let mut n = try_prepare(scene, w, h, big).map_err(|e| e.to_string())?;
-    for _ in 0..100_000 {
-        match try_prepare(scene, w, h, n) {
-            Ok(used) => {
-                return Ok(Needs {
-                    prepared_bytes: used.prepared_bytes,
-                    ..n
-                })
-            }
-            Err(RenderError::Capacity { part, .. }) => match part {
-                Part::Vertices => n.vertices += 1,
-                Part::Values => n.values += 1,
-                Part::Triangles => n.triangles += 1,
-                // Not a part `prepare` fills.
-                Part::Order => return Err("order scratch".into()),
-            },
-            Err(e) => return Err(e.to_string()),
-        }
-    }
-    Err("no workspace found".into())
+/// What [`FirmwareScene::render_crc`] gives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HostFrame {
+    /// CRC-32 of the RGB565 big-endian frame.
+    pub crc: u32,
+    /// Pixels covered (with a depth band: depth no longer clear; without:
+    /// fragments drawn, each pixel at most once).
+    pub covered: u32,
+    /// Fragments drawn.
+    pub drawn: u32,
+    /// Prepared vertices.
+    pub vertices: usize,
+    /// Prepared triangles.
+    pub triangles: usize,
+    /// `Frame::bytes_used()`.
+    pub prepared_bytes: usize,
 }
 
-/// Renders the Q16 scene as the firmware does (bands of 16 rows, 16-bit
-/// depth band, background cleared per band) into a workspace of exactly
-/// `n`: the CRC-32 of the RGB565 big-endian frame and the covered pixels.
+/// Renders the Q16 scene as the firmware does (bands of 16 rows, a 16-bit
+/// depth band unless `depth` is false, background cleared per band)
+/// into a workspace of exactly `cap`.
 fn render_crc(
     scene: &Scene<'_, '_, Q16>,
     w: u32,
     h: u32,
-    n: Needs,
-) -> Result<(u32, u32), RenderError> {
-    let mut xy = vec![[0i32; 2]; n.vertices];
-    let mut vals = vec![0i32; n.values];
-    let mut tris = vec![Tri::default(); n.triangles];
-    let ws = Workspace {
-        xy: &mut xy,
-        vals: &mut vals,
-        tris: &mut tris,
-    };
-    let frame = prepare::<Fast>(scene, w, h, ws)?;
+    cap: Capacity,
+    depth: bool,
+) -> Result<HostFrame, RenderError> {
+    let mut mem = Owned::new(cap);
+    let frame = prepare::<Fast>(scene, w, h, mem.ws())?;
     let mut band = vec![[0u8; 2]; (w * BAND_ROWS) as usize];
-    let mut depth = vec![0u16; (w * BAND_ROWS) as usize];
-    let mut buf = BandBuf::<Rgb565Be>::new(&mut band, Some(&mut depth), w, BAND_ROWS)?;
-    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut z = vec![0u16; (w * BAND_ROWS) as usize];
+    let mut buf = BandBuf::<Rgb565Be>::new(&mut band, depth.then_some(&mut z[..]), w, BAND_ROWS)?;
+    let mut order = vec![0u16; 2 * cap.triangles];
     let mut pool = Box::new(Pool::<i32, 256, 8>::new());
     let mut state = BandState::new(&mut order, &mut pool);
     let mut bytes = Vec::with_capacity((w * h * 2) as usize);
     let mut covered = 0;
-    frame.render_bands(scene, &mut state, &mut buf, |b| {
+    let stats = frame.render_bands(scene, &mut state, &mut buf, |b| {
         bytes.extend(b.bytes());
         covered += b
             .depth()
@@ -299,59 +341,112 @@ fn render_crc(
             .count() as u32;
         Ok::<(), RenderError>(())
     })?;
-    Ok((crc32(&bytes), covered))
+    Ok(HostFrame {
+        crc: crc32(&bytes),
+        covered: if depth { covered } else { stats.pixels },
+        drawn: stats.pixels,
+        vertices: frame.vertex_count(),
+        triangles: frame.triangle_count(),
+        prepared_bytes: frame.bytes_used(),
+    })
 }
 
-/// A firmware scene: its description, Q16 values and needs.
+/// A firmware scene: its description and how it is stored.
 pub struct FirmwareScene {
-    /// Built-in name.
-    pub name: &'static str,
+    /// Its name (the built-in name, or the scene file's stem).
+    pub name: String,
     /// The scene as the host reads it.
     pub desc: SceneDesc,
-    /// The workspace it needs.
-    pub needs: Needs,
+    /// Per object: layout and reach.
+    pub rooms: Vec<ObjectRoom>,
+    /// The storage the generated `Capacity` expression gives.
+    pub capacity: Capacity,
+    /// Whether it needs a depth band (not for one convex object with back
+    /// faces culled: see [`convex`]).
+    pub depth: bool,
 }
 
 impl FirmwareScene {
-    /// Loads the built-in scene `name` and measures its needs.
+    /// Loads the built-in scene `name`.
     ///
     /// # Errors
-    /// A scene the firmware cannot take: not RGB565, wider than
-    /// [`MAX_WIDTH`], a mesh other than a built-in one, or one the core
-    /// refuses.
-    pub fn load(name: &'static str) -> Result<Self, String> {
+    /// As [`Self::new`].
+    pub fn load(name: &str) -> Result<Self, String> {
         let desc = load_builtin(name).map_err(|e| e.to_string())?;
+        Self::new(name.to_string(), desc)
+    }
+
+    /// The scene `desc` called `name` for the firmware.
+    ///
+    /// # Errors
+    /// A scene the firmware cannot take: not RGB565, wider or taller than
+    /// [`MAX_WIDTH`], a non-uniform scale, more objects than the core
+    /// takes, or one the core refuses.
+    pub fn new(name: String, desc: SceneDesc) -> Result<Self, String> {
         if desc.pixel_format != PixelFormat::Rgb565 {
             return Err(format!("{name}: the firmware renders RGB565 only"));
         }
         if desc.width > MAX_WIDTH || desc.height > MAX_WIDTH {
-            return Err(format!("{name}: larger than {MAX_WIDTH}x{MAX_WIDTH}"));
+            return Err(format!(
+                "{name}: {}x{} is larger than the firmware's {MAX_WIDTH}x{MAX_WIDTH}",
+                desc.width, desc.height
+            ));
+        }
+        if let Some(i) = desc.objects.iter().position(|o| !o.transform.is_uniform()) {
+            return Err(format!(
+                "{name}: object {i} is scaled non-uniformly; the firmware's scenes take one scale per object"
+            ));
+        }
+        if desc.objects.len() > fixshade::scene::MAX_OBJECTS {
+            return Err(format!(
+                "{name}: {} objects, the core takes at most {}",
+                desc.objects.len(),
+                fixshade::scene::MAX_OBJECTS
+            ));
         }
         let q = q16_scene(&desc);
-        let needs = needs(&q.scene()?, desc.width, desc.height)?;
-        Ok(Self { name, desc, needs })
+        let scene = q.scene().map_err(|e| format!("{name}: {e}"))?;
+        let (rooms, capacity) =
+            rooms(&scene, desc.width, desc.height).map_err(|e| format!("{name}: {e}"))?;
+        let depth =
+            !(q.objects.len() == 1 && q.objects[0].cull_backfaces && convex(&q.objects[0].mesh));
+        Ok(Self {
+            name,
+            desc,
+            rooms,
+            capacity,
+            depth,
+        })
     }
 
-    /// Whether `prepare::<Fast>` accepts a workspace of the lengths `n`.
+    /// Whether `prepare::<Fast>` accepts a workspace of the lengths `cap`.
     ///
     /// # Errors
     /// The core's error, e.g. [`RenderError::Capacity`].
-    pub fn prepare_with(&self, n: Needs) -> Result<(), RenderError> {
+    pub fn prepare_with(&self, cap: Capacity) -> Result<(), RenderError> {
         let q = q16_scene(&self.desc);
         let scene = q.scene().map_err(|_| RenderError::Window)?;
-        try_prepare(&scene, self.desc.width, self.desc.height, n).map(|_| ())
+        let mut mem = Owned::new(cap);
+        prepare::<Fast>(&scene, self.desc.width, self.desc.height, mem.ws()).map(|_| ())
     }
 
-    /// CRC-32 and covered pixels of the frame rendered from the Q16 values
-    /// the generated source holds, into a workspace of exactly
-    /// [`needs`](Self::needs), as the firmware renders it.
+    /// The frame rendered from the Q16 values the generated source holds,
+    /// into a workspace of exactly [`capacity`](Self::capacity), with a
+    /// depth band or none as the firmware renders it.
     ///
     /// # Errors
     /// The core's error.
-    pub fn render_crc(&self) -> Result<(u32, u32), String> {
+    pub fn render_crc(&self) -> Result<HostFrame, String> {
         let q = q16_scene(&self.desc);
         let scene = q.scene()?;
-        render_crc(&scene, self.desc.width, self.desc.height, self.needs).map_err(|e| e.to_string())
+        render_crc(
+            &scene,
+            self.desc.width,
+            self.desc.height,
+            self.capacity,
+            self.depth,
+        )
+        .map_err(|e| e.to_string())
     }
 }
 
@@ -436,14 +531,16 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
     let mut shapes: Vec<&str> = vec![];
     let mut regenerated: Vec<String> = vec![];
     let (mut shape_bytes, mut normal_bytes) = (0, 0);
-    let mut max = Needs::default();
+    let mut caps: Vec<String> = vec![];
+    let mut owned_meshes: Vec<&crate::scene_file::OwnedMesh> = vec![];
+    let mut depth = false;
     let mut max_objects = 0;
     let mut body = String::new();
 
     for s in scenes {
         let d = &s.desc;
         let qs = q16_scene(d);
-        max = max.max(s.needs);
+        depth |= s.depth;
         max_objects = max_objects.max(d.objects.len());
         let ([eye, target, up], fov, near, far) = qs.camera_in;
         writeln!(body, "    SceneSpec {{").unwrap();
@@ -460,7 +557,10 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
             None => writeln!(body, "        far: None,").unwrap(),
         }
         writeln!(body, "        objects: &[").unwrap();
-        for ((o, obj), &(scale, rot, tr)) in d.objects.iter().zip(&qs.objects).zip(&qs.parts) {
+        let mut cap_expr = String::from("Capacity::EMPTY");
+        for (oi, ((o, obj), &(scale, rot, tr))) in
+            d.objects.iter().zip(&qs.objects).zip(&qs.parts).enumerate()
+        {
             let mesh = match &o.mesh {
                 SceneMesh::BuiltIn { name, mesh } => {
                     let c = builtin_const(name);
@@ -474,36 +574,56 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
                 }
                 SceneMesh::Owned(owned) => {
                     let m = owned.mesh();
-                    let base = builtin_base(owned.origin())
-                        .ok_or_else(|| format!("{}: only built-in meshes are supported", s.name))?;
-                    let crease = o
-                        .crease_angle_deg
-                        .ok_or_else(|| format!("{}: owned mesh without a crease", s.name))?;
-                    let c = format!(
-                        "{}_CREASE_{}",
-                        builtin_const(base),
-                        format!("{crease}").replace(['.', '-'], "_")
-                    );
-                    if !shapes.contains(&base) {
-                        shapes.push(base);
-                    }
+                    // A built-in mesh with regenerated normals is named
+                    // after it and its crease; an OBJ mesh by its place
+                    // among the distinct owned meshes.
+                    let (c, about) = match (builtin_base(owned.origin()), o.crease_angle_deg) {
+                        (Some(base), Some(crease)) => {
+                            let bc = builtin_const(base);
+                            if !shapes.contains(&base) {
+                                shapes.push(base);
+                            }
+                            (
+                                format!(
+                                    "{bc}_CREASE_{}",
+                                    format!("{crease}").replace(['.', '-'], "_")
+                                ),
+                                format!(
+                                    "`{bc}` with normals regenerated by the core's `generate_normals`\n\
+                                     /// with a crease angle of {crease}°, welded"
+                                ),
+                            )
+                        }
+                        _ => {
+                            let k = match owned_meshes.iter().position(|t| *t == owned) {
+                                Some(k) => k,
+                                None => {
+                                    owned_meshes.push(owned);
+                                    owned_meshes.len() - 1
+                                }
+                            };
+                            let origin = owned.origin().replace(['`', '\n'], " ");
+                            (
+                                format!("MESH_{k}"),
+                                format!("The mesh of `{origin}`, baked (welded, face normals)"),
+                            )
+                        }
+                    };
                     let (a, b) = tables.add_mesh(&m);
                     shape_bytes += a;
                     normal_bytes += b;
                     if !regenerated.contains(&c) {
                         regenerated.push(c.clone());
-                        let bc = builtin_const(base);
                         writeln!(
                             meshes,
-                            "\n/// `{bc}` with normals regenerated by the core's `generate_normals`\n\
-                             /// with a crease angle of {crease}°, welded: {} vertices.\n\
+                            "\n/// {about}: {} vertices.\n\
                              const {c}: Mesh<'static> =\n    \
                              match Mesh::new({c}_POSITIONS, {c}_TRIANGLES, Some({c}_NORMALS)) {{\n        \
                              Ok(mesh) => match mesh.with_face_normals({c}_FACE_NORMALS) {{\n            \
                              Ok(mesh) => mesh,\n            \
                              Err(_) => panic!(\"invalid face normals {c}\"),\n        \
                              }},\n        \
-                             Err(_) => panic!(\"invalid regenerated normals {c}\"),\n    \
+                             Err(_) => panic!(\"invalid normals {c}\"),\n    \
                              }};",
                             owned.positions().len()
                         )
@@ -527,6 +647,11 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
                     c
                 }
             };
+            let room = s.rooms[oi];
+            cap_expr.push_str(&format!(
+                "\n    .object(&{mesh}, Layout::{:?}, Reach::{:?})",
+                room.layout, room.reach
+            ));
             let m = &obj.material;
             writeln!(body, "            ObjectSpec {{").unwrap();
             writeln!(body, "                mesh: {mesh},").unwrap();
@@ -577,28 +702,37 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
             bg.r, bg.g, bg.b
         )
         .unwrap();
-        let n = s.needs;
-        writeln!(
-            body,
-            "        needs: Needs {{ vertices: {}, values: {}, triangles: {}, prepared_bytes: {} }},",
-            n.vertices, n.values, n.triangles, n.prepared_bytes
-        )
-        .unwrap();
+        let k = caps.len();
+        writeln!(body, "        capacity: CAPACITY_{k},").unwrap();
+        writeln!(body, "        depth: {},", s.depth).unwrap();
+        caps.push(format!(
+            "\n/// The storage of `{}`.\nconst CAPACITY_{k}: Capacity = {cap_expr};\n",
+            s.name
+        ));
         writeln!(body, "    }},").unwrap();
     }
 
+    let names: Vec<String> = (0..caps.len()).map(|k| format!("CAPACITY_{k}")).collect();
+    let max_cap = names.iter().skip(1).fold(
+        names.first().cloned().unwrap_or("Capacity::EMPTY".into()),
+        |a, n| format!("{a}\n    .max({n})"),
+    );
+    let width = scenes.iter().map(|s| s.desc.width).max().unwrap_or(1);
     write!(
         out,
         "//! The firmware's scenes, generated by `fixshade_host::firmware_scenes`\n\
-         //! from the built-in scenes of `host-tests/scenes/`: do not edit.\n\
+         //! from scene files (the built-in scenes of `host-tests/scenes/`, or\n\
+         //! yours for `fixshade report SCENE.toml --measure-firmware`): do not\n\
+         //! edit.\n\
          //!\n\
          //! Regenerate with\n\
          //! `MAKE_FIRMWARE_SCENES=1 cargo test -p fixshade-host --test firmware_scenes`\n\
          //! (from the repository root). Every scalar is the Q16.16 bits of\n\
          //! `Q16::from_f64` of the scene file's value, as the host renders the\n\
-         //! scene with `--profile fast`.\n\
+         //! scene with `--profile fast`. Storage is sized by the core's\n\
+         //! `const fn`s (`Capacity::object`) from the meshes each scene uses.\n\
          \n\
-         use crate::spec::{{q, v, Needs, ObjectSpec, SceneSpec}};\n\
+         use crate::spec::{{q, v, ObjectSpec, SceneSpec}};\n\
          use fixshade::illum::{{Light, LightKind, Material, Specular}};\n"
     )
     .unwrap();
@@ -607,35 +741,35 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
     }
     write!(
         out,
-        "use fixshade::scene::Shading;\n\
+        "use fixshade::render::{{Capacity, Layout, Reach}};\n\
+         use fixshade::scene::Shading;\n\
          use fixshade::target::Rgb8;\n\
          \n\
          /// Every scene, in the order the firmware renders them.\n\
          pub static SCENES: [SceneSpec; {}] = [\n{body}];\n\
+         {}\n\
+         /// The largest storage part over the scenes: the firmware's capacities.\n\
+         pub const CAPACITY: Capacity = {max_cap};\n\
          \n\
-         /// The largest workspace part over the scenes: the firmware's capacities.\n\
-         pub const MAX_NEEDS: Needs = Needs {{\n    \
-         vertices: {},\n    \
-         values: {},\n    \
-         triangles: {},\n    \
-         prepared_bytes: {},\n\
-         }};\n\
+         /// Whether some scene needs a depth band.\n\
+         pub const DEPTH: bool = {depth};\n\
+         \n\
+         /// The widest scene, pixels: the band buffers' width.\n\
+         pub const WIDTH: u32 = {width};\n\
          \n\
          /// Most objects in a scene.\n\
          pub const MAX_OBJECTS: usize = {max_objects};\n\
          \n\
          /// Bytes of mesh tables the scenes use: positions and triangles of\n\
-         /// the built-in shapes ({}), identical tables counted once.\n\
+         /// the built-in shapes ({}) and of the scene files' meshes,\n\
+         /// identical tables counted once.\n\
          pub const MESH_SHAPE_BYTES: usize = {shape_bytes};\n\
          \n\
          /// Bytes of normal tables the scenes use (normals and their corner\n\
          /// indices, built-in or regenerated), identical tables counted once.\n\
          pub const MESH_NORMAL_BYTES: usize = {normal_bytes};\n",
         scenes.len(),
-        max.vertices,
-        max.values,
-        max.triangles,
-        max.prepared_bytes,
+        caps.concat(),
         shapes.join(", "),
     )
     .unwrap();

@@ -4,10 +4,10 @@
 //! render, from the generated Q16 values into the recorded workspace, the
 //! frame the host renders from the scene file with the `fast` profile.
 
-use fixshade::render::{Part, RenderError};
+use fixshade::render::{Part, Reach, RenderError};
 use fixshade_host::core_render::{crc32, render_core, CoreProfile};
 use fixshade_host::firmware_scenes::{
-    generate, generated_path, FirmwareScene, Needs, FIRMWARE_SCENES,
+    generate, generated_path, Capacity, FirmwareScene, FIRMWARE_SCENES,
 };
 use std::path::PathBuf;
 
@@ -35,42 +35,89 @@ fn committed_file_is_generator_output() {
 fn generated_values_render_the_hosts_fast_frame() {
     for name in FIRMWARE_SCENES {
         let s = FirmwareScene::load(name).unwrap();
-        let (crc, covered) = s.render_crc().unwrap();
+        let f = s.render_crc().unwrap();
         let host = render_core(&s.desc, Some(CoreProfile::Fast)).unwrap();
-        assert_eq!(crc, crc32(&host.bytes), "{name}");
-        assert_eq!(
-            covered as usize,
-            host.covered.iter().filter(|&&c| c).count(),
+        // The same bytes, also where the depth band is left out.
+        assert_eq!(f.crc, crc32(&host.bytes), "{name}");
+        let covered = host.covered.iter().filter(|&&c| c).count();
+        assert_eq!(f.covered as usize, covered, "{name}");
+        // The storage is the core's bound: every mesh vertex, every mesh
+        // triangle (the view keeps fewer), the layout's values.
+        let c = s.capacity;
+        let mesh_v: usize = s
+            .desc
+            .objects
+            .iter()
+            .map(|o| o.mesh.mesh().vertex_count())
+            .sum();
+        let mesh_t: usize = s
+            .desc
+            .objects
+            .iter()
+            .map(|o| o.mesh.mesh().triangle_count())
+            .sum();
+        assert!(s.rooms.iter().all(|r| r.reach == Reach::Inside), "{name}");
+        assert_eq!((c.vertices, c.triangles), (mesh_v, mesh_t), "{name}");
+        assert!(
+            f.vertices <= c.vertices && f.triangles <= c.triangles,
             "{name}"
         );
-        // The recorded workspace is the smallest: one less of any part fails.
-        let n = s.needs;
-        assert!(n.vertices > 0 && n.values > 0 && n.triangles > 0);
-        // No scratch: the smallest workspace is the prepared frame.
-        assert_eq!(n.prepared_bytes, n.workspace_bytes());
-        s.prepare_with(n).unwrap();
-        let less = [
-            Needs {
-                vertices: n.vertices - 1,
-                ..n
-            },
-            Needs {
-                values: n.values - 1,
-                ..n
-            },
-            Needs {
-                triangles: n.triangles - 1,
-                ..n
-            },
-        ];
-        for (m, part) in less
-            .into_iter()
-            .zip([Part::Vertices, Part::Values, Part::Triangles])
-        {
+        s.prepare_with(c).unwrap();
+        // The vertex pass takes room for every mesh vertex and its values:
+        // one less fails, naming the part.
+        for (m, part) in [
+            (
+                Capacity {
+                    vertices: c.vertices - 1,
+                    ..c
+                },
+                Part::Vertices,
+            ),
+            (
+                Capacity {
+                    values: c.values - 1,
+                    ..c
+                },
+                Part::Values,
+            ),
+            (
+                Capacity {
+                    triangles: f.triangles - 1,
+                    ..c
+                },
+                Part::Triangles,
+            ),
+        ] {
             assert!(
                 matches!(s.prepare_with(m), Err(RenderError::Capacity { part: p, object: _ }) if p == part),
                 "{name}: {m:?}"
             );
         }
     }
+}
+
+#[test]
+fn the_depth_band_is_left_out_for_one_convex_culled_object() {
+    use fixshade::mesh::{BUNNY, CUBE, DODECAHEDRON, SPHERE};
+    use fixshade_host::firmware_scenes::convex;
+    assert_eq!(
+        [convex(&CUBE), convex(&DODECAHEDRON), convex(&SPHERE)],
+        [true; 3]
+    );
+    assert!(!convex(&BUNNY));
+    let depth: Vec<(&str, bool)> = FIRMWARE_SCENES
+        .iter()
+        .map(|n| (*n, FirmwareScene::load(n).unwrap().depth))
+        .collect();
+    assert_eq!(
+        depth,
+        [
+            ("dodeca-flat-n100", false),
+            ("dodeca-gouraud-n100", false),
+            ("dodeca-phong-n100", false),
+            ("bunny-gouraud", true),
+            ("bunny-flat", true),
+            ("cubes-and-sphere", true),
+        ]
+    );
 }

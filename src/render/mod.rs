@@ -63,6 +63,7 @@ mod band;
 pub mod clip;
 mod phong_span;
 mod prepare;
+mod storage;
 
 pub use active::{BandState, Bands, Pool, Slot};
 pub use band::{PhongShader, RenderStats};
@@ -70,6 +71,7 @@ pub use phong_span::{
     KernelError, PhongFill, PhongKernel, PhongKernelShader, PhongSpan, RSQRT_N, SPEC_SEGMENTS,
 };
 pub use prepare::prepare;
+pub use storage::{Capacity, Reach, Storage};
 
 use crate::num::Profile;
 use crate::raster::RasterError;
@@ -108,7 +110,10 @@ impl Tri {
     };
 }
 
-/// Caller-provided memory for a prepared frame.
+/// Caller-provided memory for a prepared frame: slices the caller brings
+/// (for arrays sized by the compiler from the scene's meshes, see
+/// [`Storage`] and [`Capacity`]). Too short a part makes [`prepare`]
+/// return [`RenderError::Capacity`] naming it.
 #[derive(Debug)]
 pub struct Workspace<'a, L> {
     /// Screen positions of prepared vertices (subpixels).

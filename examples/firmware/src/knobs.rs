@@ -11,24 +11,20 @@
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::{Fast, Profile};
-use fixshade::render::{Tri, Workspace};
 use fixshade::target::{Depth16, Depth32, DepthFormat};
 use fixshade_scenes::knobs::{
-    render_frame_knobs, FastSub, BAND_ROWS_SWEEP, KNOB_NEEDS, KNOB_SCENE, MAX_BAND_PIXELS,
+    render_frame_knobs, FastSub, BAND_ROWS_SWEEP, KNOB_SCENE, MAX_BAND_PIXELS,
 };
-use fixshade_scenes::{BandPool, FrameError, Pixel, SceneSpec, SCENES};
-
-const CAP: fixshade_scenes::Needs = KNOB_NEEDS;
+use fixshade_scenes::{BandPool, FrameError, Pixel, SceneSpec, SceneStorage, SCENES};
 
 /// Static memory.
 struct Mem {
     pixels: &'static mut [Pixel; MAX_BAND_PIXELS],
     depth16: &'static mut [u16; MAX_BAND_PIXELS],
     depth32: &'static mut [u32; MAX_BAND_PIXELS],
-    xy: &'static mut [[i32; 2]; CAP.vertices],
-    vals: &'static mut [i32; CAP.values],
-    tris: &'static mut [Tri; CAP.triangles],
-    order: &'static mut [u16; 2 * CAP.triangles],
+    /// The core's bound holds for every subpixel precision (finer
+    /// subpixels keep more thin triangles, never more than the mesh's).
+    storage: &'static mut SceneStorage,
     pool: &'static mut BandPool,
 }
 
@@ -42,35 +38,26 @@ impl Mem {
     ) -> Result<(), FrameError> {
         super::paint_stack();
         let depth_bytes = core::mem::size_of::<D::Raw>();
+        let (ws, order) = self.storage.split();
         let stats = if depth_bytes == 2 {
-            let ws = Workspace {
-                xy: &mut self.xy[..],
-                vals: &mut self.vals[..],
-                tris: &mut self.tris[..],
-            };
             render_frame_knobs::<P, Depth16, _>(
                 spec,
                 ws,
                 &mut self.pixels[..],
-                &mut self.depth16[..],
+                Some(&mut self.depth16[..]),
                 rows,
-                &mut self.order[..],
+                order,
                 self.pool,
                 &mut super::Markers,
             )?
         } else {
-            let ws = Workspace {
-                xy: &mut self.xy[..],
-                vals: &mut self.vals[..],
-                tris: &mut self.tris[..],
-            };
             render_frame_knobs::<P, Depth32, _>(
                 spec,
                 ws,
                 &mut self.pixels[..],
-                &mut self.depth32[..],
+                Some(&mut self.depth32[..]),
                 rows,
-                &mut self.order[..],
+                order,
                 self.pool,
                 &mut super::Markers,
             )?
@@ -118,26 +105,18 @@ fn run(mem: &mut Mem) -> Result<(), FrameError> {
     Ok(())
 }
 
-// cortex-m-rt passes each `static mut` as an argument.
-#[allow(clippy::too_many_arguments)]
 #[entry]
 fn main() -> ! {
     static mut PIXELS: [Pixel; MAX_BAND_PIXELS] = [[0; 2]; MAX_BAND_PIXELS];
     static mut DEPTH16: [u16; MAX_BAND_PIXELS] = [0; MAX_BAND_PIXELS];
     static mut DEPTH32: [u32; MAX_BAND_PIXELS] = [0; MAX_BAND_PIXELS];
-    static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
-    static mut VALS: [i32; CAP.values] = [0; CAP.values];
-    static mut TRIS: [Tri; CAP.triangles] = [Tri::EMPTY; CAP.triangles];
-    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut STORAGE: SceneStorage = SceneStorage::EMPTY;
     static mut POOL: BandPool = BandPool::new();
     let mut mem = Mem {
         pixels: PIXELS,
         depth16: DEPTH16,
         depth32: DEPTH32,
-        xy: XY,
-        vals: VALS,
-        tris: TRIS,
-        order: ORDER,
+        storage: STORAGE,
         pool: POOL,
     };
     let status = match run(&mut mem) {

@@ -7,7 +7,7 @@
 //! over semihosting a header, one `capacity` line, and one line per scene:
 //!
 //! ```text
-//! scene <name> crc=0x<crc32> covered=<px> drawn=<px> setups=<n> triangles=<mesh> prepared_vertices=<n> prepared_triangles=<n> prepared_bytes=<bytes> stack=<bytes> static_ram=<bytes>
+//! scene <name> crc=0x<crc32> covered=<px> drawn=<px> setups=<n> triangles=<mesh> prepared_vertices=<n> prepared_triangles=<n> prepared_bytes=<bytes> storage_bytes=<bytes> depth_bytes=<bytes> pool_bytes=<bytes> stack=<bytes> static_ram=<bytes>
 //! ```
 //!
 //! Before rendering, every scene is prepared once (unmeasured) to check
@@ -41,11 +41,11 @@ use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
-use fixshade::render::{PhongFill, PhongKernel, PhongShader, Tri, Workspace};
+use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader, Storage};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
-    capacity_of, check, render_frame, BandPool, FrameError, Needs, Pixel, Probe, BAND_PIXELS,
-    BAND_ROWS, MAX_NEEDS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
+    check, render_frame, BandPool, FrameError, Pixel, Probe, BAND_PIXELS, BAND_ROWS, CAPACITY,
+    DEPTH_PIXELS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH as SCENE_WIDTH,
 };
 
 /// Executes the marker instruction `yield`: a hint that QEMU runs as a
@@ -139,37 +139,28 @@ fn stack_used() -> usize {
     top - p
 }
 
-/// The workspace's capacities: what the largest scene needs, or, with the
-/// feature `tiny-workspace` (to test the start-up check), half the
-/// vertices.
-const CAP: Needs = if cfg!(feature = "tiny-workspace") {
-    Needs {
-        vertices: MAX_NEEDS.vertices / 2,
-        ..MAX_NEEDS
+/// The storage's capacities: the scenes' ([`CAPACITY`], computed by the
+/// core's `const fn`s from their meshes), or, with the feature
+/// `tiny-workspace` (to test the start-up check), half the vertices.
+const CAP: Capacity = if cfg!(feature = "tiny-workspace") {
+    Capacity {
+        vertices: CAPACITY.vertices / 2,
+        ..CAPACITY
     }
 } else {
-    MAX_NEEDS
+    CAPACITY
 };
 
-/// Static memory: the band buffers and the prepared frame's workspace.
+/// The prepared frame's storage, sized by the compiler.
+type FrameStorage = Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
+
+/// Static memory: the band buffers (no depth band when no scene needs
+/// one), the prepared frame's storage and the active triangles.
 struct Memory {
     pixels: &'static mut [Pixel; BAND_PIXELS],
-    depth: &'static mut [u16; BAND_PIXELS],
-    xy: &'static mut [[i32; 2]; CAP.vertices],
-    vals: &'static mut [i32; CAP.values],
-    tris: &'static mut [Tri; CAP.triangles],
-    order: &'static mut [u16; 2 * CAP.triangles],
+    depth: &'static mut [u16; DEPTH_PIXELS],
+    storage: &'static mut FrameStorage,
     pool: &'static mut BandPool,
-}
-
-impl Memory {
-    fn workspace(&mut self) -> Workspace<'_, i32> {
-        Workspace {
-            xy: &mut self.xy[..],
-            vals: &mut self.vals[..],
-            tris: &mut self.tris[..],
-        }
-    }
 }
 
 /// Why the firmware stops.
@@ -181,16 +172,17 @@ enum Failure {
 }
 
 fn run(mem: &mut Memory) -> Result<(), Failure> {
-    let ws = capacity_of(&mem.workspace());
+    let ws = FrameStorage::CAPACITY;
     let band_bytes = core::mem::size_of_val(mem.pixels);
     let depth_bytes = core::mem::size_of_val(mem.depth);
     hprintln!(
-        "fixshade-firmware target={} board={} profile=fast max_frame={}x{} rgb565be band_rows={} depth16",
+        "fixshade-firmware target={} board={} profile=fast max_frame={}x{} rgb565be band_rows={} depth16={}",
         env!("FW_TARGET"),
         env!("FW_BOARD"),
-        WIDTH,
-        WIDTH,
+        SCENE_WIDTH,
+        SCENE_WIDTH,
         BAND_ROWS,
+        DEPTH_PIXELS > 0,
     );
     hprintln!(
         "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
@@ -199,35 +191,31 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         ws.vertices,
         ws.values,
         ws.triangles,
-        workspace_bytes(mem),
+        FrameStorage::BYTES,
         MESH_SHAPE_BYTES,
         MESH_NORMAL_BYTES,
         static_ram(),
     );
     // Start-up check: every scene must fit the fixed workspace.
     for spec in SCENES.iter() {
-        check(spec, mem.workspace()).map_err(|e| Failure::Startup(spec.name, e))?;
+        check(spec, mem.storage.workspace()).map_err(|e| Failure::Startup(spec.name, e))?;
     }
     for spec in SCENES.iter() {
         paint_stack();
-        let ws = Workspace {
-            xy: &mut mem.xy[..],
-            vals: &mut mem.vals[..],
-            tris: &mut mem.tris[..],
-        };
+        let (ws, order) = mem.storage.split();
         let stats = render_frame(
             spec,
             ws,
             &mut mem.pixels[..],
-            &mut mem.depth[..],
-            &mut mem.order[..],
+            spec.depth.then_some(&mut mem.depth[..]),
+            order,
             mem.pool,
             &mut Markers,
         )
         .map_err(|e| Failure::Frame(spec.name, e))?;
         let stack = stack_used();
         hprintln!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} stack={} static_ram={}",
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} storage_bytes={} depth_bytes={} pool_bytes={} stack={} static_ram={}",
             spec.name,
             spec.width,
             spec.height,
@@ -239,13 +227,25 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
             stats.vertices,
             stats.triangles,
             stats.prepared_bytes,
+            fixshade_scenes::storage_bytes::<Fast>(spec),
+            if spec.depth { 2 * spec.width * BAND_ROWS } else { 0 },
+            core::mem::size_of::<BandPool>(),
             stack,
             static_ram(),
         );
     }
-    span_loops(mem).map_err(|e| Failure::Frame("span-loops", e))?;
+    // The span loops write a 240-pixel band and its depth band: not in a
+    // build whose scenes are narrower or need no depth band (one convex
+    // object each: a build for other scenes than the built-in ones).
+    if DEPTH_PIXELS >= (WIDTH * BAND_ROWS) as usize {
+        span_loops(mem).map_err(|e| Failure::Frame("span-loops", e))?;
+    }
     Ok(())
 }
+
+/// Width of the span-loop regions' band (their spans are [`SPAN_LONG`]
+/// pixels long): the built-in scenes' widest.
+const WIDTH: u32 = 240;
 
 /// Rows (spans) per span-loop region.
 const SPAN_ROWS: u32 = 16;
@@ -422,34 +422,19 @@ fn phong_kernel_spans(
     Ok(())
 }
 
-/// Bytes of the workspace buffers.
-fn workspace_bytes(mem: &Memory) -> usize {
-    core::mem::size_of_val(mem.xy)
-        + core::mem::size_of_val(mem.vals)
-        + core::mem::size_of_val(mem.tris)
-}
-
-// cortex-m-rt passes each `static mut` below as an argument.
-#[allow(clippy::too_many_arguments)]
 #[cfg(not(any(feature = "profiled", feature = "knobs")))]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once),
     // in .bss.
     static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
-    static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
-    static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
-    static mut VALS: [i32; CAP.values] = [0; CAP.values];
-    static mut TRIS: [Tri; CAP.triangles] = [NO_TRI; CAP.triangles];
-    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut DEPTH: [u16; DEPTH_PIXELS] = [0; DEPTH_PIXELS];
+    static mut STORAGE: FrameStorage = FrameStorage::EMPTY;
     static mut POOL: BandPool = BandPool::new();
     let mut mem = Memory {
         pixels: PIXELS,
         depth: DEPTH,
-        xy: XY,
-        vals: VALS,
-        tris: TRIS,
-        order: ORDER,
+        storage: STORAGE,
         pool: POOL,
     };
     let status = match run(&mut mem) {
@@ -461,7 +446,7 @@ fn main() -> ! {
                 CAP.vertices,
                 CAP.values,
                 CAP.triangles,
-                SCENES.iter().find(|s| s.name == name).map(|s| s.needs),
+                SCENES.iter().find(|s| s.name == name).map(|s| s.capacity),
                 e
             );
             debug::EXIT_FAILURE
@@ -476,9 +461,6 @@ fn main() -> ! {
         cortex_m::asm::wfi();
     }
 }
-
-/// An unused prepared triangle (`Tri::default()` is not `const`).
-const NO_TRI: Tri = Tri::EMPTY;
 
 #[panic_handler]
 fn panic(info: &PanicInfo) -> ! {

@@ -5,17 +5,16 @@
 //! Same output as the default build (header, `capacity`, one `scene`
 //! line each; no span-loop lines), same two measured regions per scene
 //! (geometry, bands), the scenes widened exactly from their Q16 data
-//! (`fixshade_scenes::profiled`). The workspace is sized for the profile
-//! (`needs_for`: one more value per vertex in the `-pc` profiles) and its
-//! values are the profile's `Lerp` (4 bytes, or 8 for `f64`).
+//! (`fixshade_scenes::profiled`). The storage is sized for the profile
+//! (`capacity_for`: one more value per vertex in the `-pc` profiles) and
+//! its values are the profile's `Lerp` (4 bytes, or 8 for `f64`).
 
-use core::mem::MaybeUninit;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::Profile;
-use fixshade::render::{Tri, Workspace};
-use fixshade_scenes::profiled::{check_with, needs_for, render_frame_with, ProfilePool};
-use fixshade_scenes::{Needs, Pixel, BAND_PIXELS, BAND_ROWS, MAX_NEEDS, SCENES, WIDTH};
+use fixshade::render::{Capacity, Storage};
+use fixshade_scenes::profiled::{check_with, render_frame_with, ProfilePool};
+use fixshade_scenes::{capacity_for, Pixel, BAND_PIXELS, BAND_ROWS, DEPTH_PIXELS, SCENES, WIDTH};
 
 #[cfg(feature = "profile-precise")]
 type P = fixshade::num::Precise;
@@ -35,36 +34,20 @@ type P = fixshade::num::F64Pc;
 /// The interpolated values' type.
 type L = <P as Profile>::Lerp;
 
-/// The workspace's capacities for the profile.
-const CAP: Needs = needs_for::<P>(MAX_NEEDS);
+/// The storage's capacities for the profile.
+const CAP: Capacity = capacity_for::<P>();
 
-/// `MaybeUninit` array storage filled with `f()`.
-fn fill<T, const N: usize>(
-    s: &'static mut MaybeUninit<[T; N]>,
-    f: impl Fn() -> T,
-) -> &'static mut [T; N] {
-    let p = s.as_mut_ptr().cast::<T>();
-    for i in 0..N {
-        // SAFETY: `i < N`, within the array; writing into uninitialised
-        // memory through a raw pointer is sound.
-        unsafe { p.add(i).write(f()) };
-    }
-    // SAFETY: every element was initialised above.
-    unsafe { s.assume_init_mut() }
-}
+/// The prepared frame's storage, sized by the compiler.
+type FrameStorage = Storage<L, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
 
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once).
     static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
-    static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
-    static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
-    static mut VALS: MaybeUninit<[L; CAP.values]> = MaybeUninit::uninit();
-    static mut TRIS: [Tri; CAP.triangles] = [Tri::EMPTY; CAP.triangles];
-    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut DEPTH: [u16; DEPTH_PIXELS] = [0; DEPTH_PIXELS];
+    static mut STORAGE: FrameStorage = FrameStorage::EMPTY;
     static mut POOL: ProfilePool<P> = ProfilePool::<P>::new();
-    let vals = fill(VALS, L::default);
-    let status = match run(PIXELS, DEPTH, XY, vals, TRIS, ORDER, POOL) {
+    let status = match run(PIXELS, DEPTH, STORAGE, POOL) {
         Ok(()) => debug::EXIT_SUCCESS,
         Err((name, e)) => {
             hprintln!("error: scene {}: {}", name, e);
@@ -77,26 +60,22 @@ fn main() -> ! {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
 fn run(
     pixels: &mut [Pixel; BAND_PIXELS],
-    depth: &mut [u16; BAND_PIXELS],
-    xy: &mut [[i32; 2]; CAP.vertices],
-    vals: &mut [L; CAP.values],
-    tris: &mut [Tri; CAP.triangles],
-    order: &mut [u16; 2 * CAP.triangles],
+    depth: &mut [u16; DEPTH_PIXELS],
+    storage: &mut FrameStorage,
     pool: &mut ProfilePool<P>,
 ) -> Result<(), (&'static str, fixshade_scenes::FrameError)> {
-    let workspace_bytes =
-        core::mem::size_of_val(xy) + core::mem::size_of_val(vals) + core::mem::size_of_val(tris);
+    let workspace_bytes = FrameStorage::BYTES;
     hprintln!(
-        "fixshade-firmware target={} board={} profile={} max_frame={}x{} rgb565be band_rows={} depth16",
+        "fixshade-firmware target={} board={} profile={} max_frame={}x{} rgb565be band_rows={} depth16={}",
         env!("FW_TARGET"),
         env!("FW_BOARD"),
         P::NAME,
         WIDTH,
         WIDTH,
         BAND_ROWS,
+        DEPTH_PIXELS > 0,
     );
     hprintln!(
         "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
@@ -110,33 +89,25 @@ fn run(
         fixshade_scenes::MESH_NORMAL_BYTES,
         super::static_ram(),
     );
-    macro_rules! ws {
-        () => {
-            Workspace {
-                xy: &mut xy[..],
-                vals: &mut vals[..],
-                tris: &mut tris[..],
-            }
-        };
-    }
     for spec in SCENES.iter() {
-        check_with::<P>(spec, ws!()).map_err(|e| (spec.name, e))?;
+        check_with::<P>(spec, storage.workspace()).map_err(|e| (spec.name, e))?;
     }
     for spec in SCENES.iter() {
         super::paint_stack();
+        let (ws, order) = storage.split();
         let stats = render_frame_with::<P, _>(
             spec,
-            ws!(),
+            ws,
             &mut pixels[..],
-            &mut depth[..],
-            &mut order[..],
+            spec.depth.then_some(&mut depth[..]),
+            order,
             pool,
             &mut super::Markers,
         )
         .map_err(|e| (spec.name, e))?;
         let stack = super::stack_used();
         hprintln!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} stack={} static_ram={}",
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} storage_bytes={} depth_bytes={} pool_bytes={} stack={} static_ram={}",
             spec.name,
             spec.width,
             spec.height,
@@ -148,6 +119,9 @@ fn run(
             stats.vertices,
             stats.triangles,
             stats.prepared_bytes,
+            fixshade_scenes::storage_bytes::<P>(spec),
+            if spec.depth { 2 * spec.width * BAND_ROWS } else { 0 },
+            core::mem::size_of::<ProfilePool<P>>(),
             stack,
             super::static_ram(),
         );

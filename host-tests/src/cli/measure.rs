@@ -8,7 +8,9 @@ use clap::Args;
 
 use crate::core_render::CoreProfile;
 use crate::report::chips::{self, REGENERATE};
-use crate::report::measure::{measure_firmware, MeasureOptions};
+use crate::report::measure::{
+    measure_firmware, measure_user_scenes, MeasureOptions, UserMeasureOptions, TARGETS,
+};
 
 use super::common::{print_stdout, write_atomically};
 use super::error::{CliError, ErrorKind};
@@ -28,21 +30,90 @@ pub struct MeasureArgs {
     /// Only these profiles (comma-separated; all by default).
     #[arg(long, value_delimiter = ',', value_name = "NAMES")]
     pub profiles: Vec<String>,
+    /// Measure your scene files instead of the built-in scenes (each in
+    /// flat, Gouraud and Phong; their OBJ meshes baked into the
+    /// firmware). Repeatable.
+    #[arg(long = "scene", value_name = "SCENE.toml", conflicts_with = "check")]
+    pub scenes: Vec<PathBuf>,
+    /// Only these targets (comma-separated: thumbv6m-none-eabi,
+    /// thumbv7em-none-eabihf; both by default). With --scene only.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "TARGETS",
+        requires = "scenes"
+    )]
+    pub targets: Vec<String>,
+}
+
+/// The profiles named on a command line (all when none).
+///
+/// # Errors
+/// An unknown name (bad input).
+pub fn parse_profiles(names: &[String], option: &str) -> Result<Vec<CoreProfile>, CliError> {
+    if names.is_empty() {
+        return Ok(CoreProfile::ALL.to_vec());
+    }
+    names
+        .iter()
+        .map(|p| {
+            CoreProfile::parse(p)
+                .ok_or_else(|| CliError::input(format!("--{option}: unknown profile `{p}`")))
+        })
+        .collect()
+}
+
+/// The user's scenes measured, written to `--write` or printed.
+fn run_scenes(args: &MeasureArgs, profiles: Vec<CoreProfile>) -> Result<(), CliError> {
+    let targets = if args.targets.is_empty() {
+        TARGETS.iter().map(|t| t.0.to_string()).collect()
+    } else {
+        args.targets.clone()
+    };
+    let m = measure_user_scenes(&UserMeasureOptions {
+        root: chips::repo_root(),
+        files: args.scenes.clone(),
+        profiles,
+        targets,
+        progress: true,
+    })?;
+    let json = serde_json::to_string_pretty(&m)
+        .map_err(|e| CliError::input(format!("cannot serialise the measurements: {e}")))?
+        + "\n";
+    let mut text = String::new();
+    for r in &m.results {
+        text.push_str(&format!(
+            "{} {} {}: {} instructions{}, RAM {} B (stack {} B), flash {} B, CRC {} (host {})\n",
+            r.scene,
+            r.profile,
+            r.target,
+            r.insns,
+            r.cycles
+                .map(|c| format!(", {c} est. M0 cycles"))
+                .unwrap_or_default(),
+            r.ram,
+            r.stack,
+            r.flash,
+            r.crc,
+            r.host_crc
+        ));
+    }
+    match &args.write {
+        Some(path) => {
+            write_atomically(path, |out| out.write_all(json.as_bytes()))?;
+            text.push_str(&format!("wrote {}\n", path.display()));
+        }
+        None => text.push_str(&json),
+    }
+    print_stdout(&text)
 }
 
 /// Measures, then writes or checks.
 pub fn run(args: &MeasureArgs) -> Result<(), CliError> {
-    let profiles = if args.profiles.is_empty() {
-        CoreProfile::ALL.to_vec()
-    } else {
-        args.profiles
-            .iter()
-            .map(|p| {
-                CoreProfile::parse(p)
-                    .ok_or_else(|| CliError::input(format!("--profiles: unknown profile `{p}`")))
-            })
-            .collect::<Result<_, _>>()?
-    };
+    let profiles = parse_profiles(&args.profiles, "profiles")?;
+    if !args.scenes.is_empty() {
+        return run_scenes(args, profiles);
+    }
     // Read the file to check first: bad input before minutes of work.
     let committed = match &args.check {
         Some(path) => Some(chips::load(path)?),

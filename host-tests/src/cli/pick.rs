@@ -49,6 +49,21 @@ pub struct PickArgs {
     /// Use measurements whose source fingerprint differs from the tree's.
     #[arg(long)]
     pub allow_stale: bool,
+    /// With `--scene SCENE.toml`: generate the firmware for your scene,
+    /// build it for the chip's target and measure it under QEMU (needs
+    /// qemu-system-arm, gcc and the thumb target), so the pick weighs its
+    /// measured cycles too.
+    #[arg(long)]
+    pub measure_firmware: bool,
+    /// The profiles --measure-firmware measures (comma-separated; all by
+    /// default).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "NAMES",
+        requires = "measure_firmware"
+    )]
+    pub firmware_profiles: Vec<String>,
 }
 
 fn positive(name: &str, v: f64) -> Result<f64, CliError> {
@@ -89,13 +104,24 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
         .as_deref()
         .filter(|s| s.ends_with(".toml") || std::path::Path::new(s).is_file())
     {
-        return pick_file(std::path::Path::new(file), chip, &budget, &m, &path);
+        let file = std::path::Path::new(file);
+        if args.measure_firmware {
+            let profiles =
+                super::measure::parse_profiles(&args.firmware_profiles, "firmware-profiles")?;
+            return pick_file_measured(file, chip, &budget, &m, &profiles);
+        }
+        return pick_file(file, chip, &budget, &m, &path);
+    }
+    if args.measure_firmware {
+        return Err(CliError::input(
+            "--measure-firmware measures your scene: give it with --scene SCENE.toml (the built-in scenes' figures are in the measurements file; `fixshade measure-firmware` re-measures them)".to_string(),
+        ));
     }
     let choice = choose_scenes(&m, args.scene.as_deref())?;
     let errors = host_errors(&choice.scenes, &CoreProfile::ALL)?;
     let cands = candidates(&m, chip.target, &choice.scenes, &errors);
     let u = unit(chip.target);
-    let mut text = format!(
+    let text = format!(
         "chip: {} ({}): {} MHz, {} fps, {:.0} bytes RAM: at most {:.3} M {u} per frame\n\
          scenes: {} (worst case over: {})\n\
          figures: {} ({}, {}); errors: mean absolute error in 8-bit levels against the ideal Phong frame, rendered on this host\n",
@@ -111,7 +137,28 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
         m.toolchain,
         m.source_fingerprint,
     );
-    match pick(&cands, &budget) {
+    let what = format!(
+        "{}: no measurements for {} on {}",
+        path.display(),
+        choice.name,
+        chip.target.title()
+    );
+    print_pick(text, &cands, chip, &budget, &what)
+}
+
+/// Prints the pick of `cands` for `budget` after `text`; nothing fits:
+/// the closest and by how much, exit status 1; no candidates: bad input
+/// `empty`.
+fn print_pick(
+    mut text: String,
+    cands: &[crate::report::picks::Candidate],
+    chip: &crate::report::picks::Chip,
+    budget: &Budget,
+    empty: &str,
+) -> Result<(), CliError> {
+    let budget = *budget;
+    let u = unit(chip.target);
+    match pick(cands, &budget) {
         Outcome::Fit { chosen, runner_up } => {
             text += &format!("pick: {}\n", describe(&cands[chosen], &budget, u));
             match runner_up {
@@ -152,13 +199,73 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
                 ),
             })
         }
-        Outcome::Empty => Err(CliError::input(format!(
-            "{}: no measurements for {} on {}",
-            path.display(),
-            choice.name,
-            chip.target.title()
-        ))),
+        Outcome::Empty => Err(CliError::input(empty.to_string())),
     }
+}
+
+/// `--scene FILE --measure-firmware`: the firmware generated for the
+/// user's scene, measured on the chip's target in every mode and in
+/// `profiles`; picked by its measured cycles and RAM and its error
+/// against the ideal Phong frame (host).
+fn pick_file_measured(
+    file: &std::path::Path,
+    chip: &crate::report::picks::Chip,
+    budget: &Budget,
+    m: &chips::Measurements,
+    profiles: &[CoreProfile],
+) -> Result<(), CliError> {
+    use crate::report::measure::{measure_user_scenes, UserMeasureOptions, TARGETS};
+    // Errors against the ideal Phong frame, per profile and mode (the
+    // RAM-only candidates carry them): bad scene files fail here first.
+    let host = user_scene_candidates(file, m, chip.target)?;
+    let target = TARGETS
+        .iter()
+        .find(|t| chips::target_of(t.0) == Some(chip.target))
+        .map(|t| t.0.to_string())
+        .unwrap_or_default();
+    let um = measure_user_scenes(&UserMeasureOptions {
+        root: chips::repo_root(),
+        files: vec![file.to_path_buf()],
+        profiles: profiles.to_vec(),
+        targets: vec![target],
+        progress: true,
+    })?;
+    let errors = um
+        .results
+        .iter()
+        .filter_map(|r| {
+            let p = r.core_profile()?;
+            let e = host
+                .iter()
+                .find(|c| c.profile == p && c.mode == r.mode)?
+                .error;
+            Some(((r.scene.clone(), p), e))
+        })
+        .collect();
+    let mut names: Vec<String> = um.results.iter().map(|r| r.scene.clone()).collect();
+    names.dedup();
+    let cands = candidates(&um, chip.target, &names, &errors);
+    let text = format!(
+        "chip: {} ({}): {} MHz, {} fps, {:.0} bytes RAM: at most {:.3} M {} per frame\n\
+         scene: {} (your scene file), measured: the firmware generated for it, run under QEMU ({}, {})\n\
+         figures: RAM = colour band + depth band (none for one convex culled object) + storage + pool + stack, as the firmware reports it; errors: mean absolute error in 8-bit levels against the ideal Phong frame, rendered on this host\n",
+        chip.name,
+        chip.target.title(),
+        budget.mhz,
+        budget.fps,
+        budget.ram_bytes,
+        budget.cycles() / 1e6,
+        unit(chip.target),
+        file.display(),
+        um.toolchain,
+        um.qemu,
+    );
+    let empty = format!(
+        "{}: nothing measured on {}",
+        file.display(),
+        chip.target.title()
+    );
+    print_pick(text, &cands, chip, budget, &empty)
 }
 
 /// `--scene FILE`: the user's scene, picked by RAM alone (its cycles are
@@ -185,7 +292,7 @@ fn pick_file(
         )
     };
     let mut text = format!(
-        "chip: {} ({}): {:.0} bytes RAM\nscene: {} (your scene file)\ncycles: not measured for your scene (the firmware renders the built-in scenes only), so this pick is by RAM and accuracy alone; the built-in scenes' cycles: `fixshade pick --chip {} --fps {}`\nfigures: stacks from {}; RAM = prepared frame (host, the same bytes as on the chip) + colour and depth bands + stack\n",
+        "chip: {} ({}): {:.0} bytes RAM\nscene: {} (your scene file)\ncycles: not measured for your scene (add --measure-firmware to build the firmware for it and measure it under QEMU), so this pick is by RAM and accuracy alone; the built-in scenes' cycles: `fixshade pick --chip {} --fps {}`\nfigures: stacks from {}; RAM = prepared frame (host, the same bytes as on the chip) + colour and depth bands + stack\n",
         chip.name,
         chip.target.title(),
         budget.ram_bytes,

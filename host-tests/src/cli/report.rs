@@ -35,9 +35,20 @@ pub struct ReportArgs {
     #[arg(long)]
     pub allow_stale: bool,
     /// Re-measure every profile on both chips under QEMU (needs
-    /// qemu-system-arm, gcc and the thumb targets; minutes).
+    /// qemu-system-arm, gcc and the thumb targets; minutes). With scene
+    /// files: generate the firmware for your scenes (their OBJ meshes
+    /// baked in), build it for both chips and measure it.
     #[arg(long)]
     pub measure_firmware: bool,
+    /// The profiles --measure-firmware measures (comma-separated; all by
+    /// default).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "NAMES",
+        requires = "measure_firmware"
+    )]
+    pub firmware_profiles: Vec<String>,
 }
 
 /// Runs the sweep and writes the report; prints the summary and the files.
@@ -50,6 +61,10 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         measurements: args.measurements.clone(),
         allow_stale: args.allow_stale,
         measure_firmware: args.measure_firmware,
+        firmware_profiles: super::measure::parse_profiles(
+            &args.firmware_profiles,
+            "firmware-profiles",
+        )?,
         scene_files: args.scenes.clone(),
     })?;
     let mut text = String::new();

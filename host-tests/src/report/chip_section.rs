@@ -60,6 +60,12 @@ pub struct ChipSection {
     /// the parts' RAM (empty for the built-in sweep).
     #[serde(default)]
     pub user_ram: Option<Table>,
+    /// The user's scenes measured on the chips (`--measure-firmware`):
+    /// instructions, est. M0 cycles, RAM, stack and flash per scene ×
+    /// mode × profile × target, and whether each part holds and runs it
+    /// (`None`: not measured, the note says so).
+    #[serde(default)]
+    pub user_measured: Option<Table>,
     /// Per chip: (title, error vs cycles SVG, error vs RAM SVG).
     #[serde(skip)]
     pub plots: Vec<(String, String, String)>,
@@ -398,6 +404,7 @@ impl ChipSection {
             builds,
             crc_notes,
             user_ram: None,
+            user_measured: None,
             plots,
         }
     }
@@ -453,6 +460,79 @@ impl ChipSection {
         self.user_ram = Some(Table { head, rows });
     }
 
+    /// The user's scenes as measured on the chips (`um`: from
+    /// [`super::measure::measure_user_scenes`]): one row per scene × mode
+    /// × profile × target with the measured figures, and per part of that
+    /// target whether its RAM holds the scene (else the bytes it needs)
+    /// and the frames per second at its clock.
+    pub fn add_user_measured(&mut self, um: &Measurements) {
+        let parts: Vec<&'static super::picks::Chip> =
+            TABLE_CHIPS.iter().filter_map(|n| find_chip(n)).collect();
+        let head: Vec<String> = [
+            "scene",
+            "mode",
+            "profile",
+            "target",
+            "instructions (geometry + raster)",
+            "est. M0 cycles",
+            "RAM B",
+            "stack B",
+            "flash B",
+            "CRC = host",
+            "on the parts",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let rows = um
+            .results
+            .iter()
+            .map(|r| {
+                let on: Vec<String> = parts
+                    .iter()
+                    .filter(|c| r.chip() == Some(c.target))
+                    .map(|c| {
+                        let have = (c.ram_kb * 1024.0) as u64;
+                        if r.ram <= have {
+                            format!(
+                                "{}: fits, {:.1} fps at {} MHz",
+                                c.name,
+                                c.mhz * 1e6 / r.frame_cycles().max(1) as f64,
+                                c.mhz
+                            )
+                        } else {
+                            format!(
+                                "{}: too big: needs {} B, {} over its {} KiB",
+                                c.name,
+                                r.ram,
+                                r.ram - have,
+                                c.ram_kb
+                            )
+                        }
+                    })
+                    .collect();
+                vec![
+                    r.scene.clone(),
+                    r.mode.map_or("–".into(), |m| m.title().to_string()),
+                    r.profile.clone(),
+                    r.target.clone(),
+                    format!("{} ({} + {})", r.insns, r.insns_geometry, r.insns_raster),
+                    r.cycles.map_or("–".into(), |c| c.to_string()),
+                    r.ram.to_string(),
+                    r.stack.to_string(),
+                    r.flash.to_string(),
+                    if r.crc_equal {
+                        "yes".into()
+                    } else {
+                        format!("no ({} / {})", r.crc, r.host_crc)
+                    },
+                    on.join("; "),
+                ]
+            })
+            .collect();
+        self.user_measured = Some(Table { head, rows });
+    }
+
     /// The section's head: picks, plots, fixed against soft-float.
     pub fn html(&self) -> Markup {
         html! {
@@ -469,9 +549,18 @@ impl ChipSection {
                 h3 { (title) }
                 div.plots { (PreEscaped(svg_body(cycles))) (PreEscaped(svg_body(ram))) }
             }
+            @if let Some(t) = &self.user_measured {
+                h3 { "Your scenes on the chips: measured" }
+                p.note { "The firmware generated for your scenes (each in every mode, meshes baked into flash, storage sized by the compiler) and run under QEMU (--measure-firmware): instructions counted exactly, Cortex-M0 cycles estimated; RAM = colour band + depth band (none for one convex object with back faces culled) + storage + active-triangle pool + stack, as the firmware reports it. A part too small for a scene says how many bytes it needs." }
+                (table(t))
+            }
             @if let Some(t) = &self.user_ram {
                 h3 { "Your scenes on the parts: RAM" }
-                p.note { "RAM each of your scenes needs (prepared frame, colour and 16-bit depth band of 16 rows, and the largest stack measured on that chip with that profile) against each part's RAM. Cycles are not measured for your scenes: the firmware renders the built-in scenes only; the figures above are those." }
+                @if self.user_measured.is_none() {
+                    p.note { "RAM each of your scenes needs (prepared frame, colour and 16-bit depth band of 16 rows, and the largest stack measured on that chip with that profile) against each part's RAM. Cycles are not measured for your scenes here: run with --measure-firmware to build the firmware for them and measure them under QEMU; the figures above are the built-in scenes'." }
+                } @else {
+                    p.note { "The host's estimate (prepared frame, bands, the largest stack measured for the built-in scenes), beside the measured figures above." }
+                }
                 (table(t))
             }
             h3 { "Fixed point against soft-float on the Cortex-M0" }
@@ -503,8 +592,17 @@ impl ChipSection {
             self.scenes.join(", ")
         );
         s += &md(&self.picks);
+        if let Some(t) = &self.user_measured {
+            s += "\n### Your scenes on the chips: measured\n\nThe firmware generated for your scenes, run under QEMU (--measure-firmware): instructions exact, M0 cycles estimated; RAM = bands + storage + pool + stack as the firmware reports it.\n\n";
+            s += &md(t);
+        }
         if let Some(t) = &self.user_ram {
-            s += "\n### Your scenes on the parts: RAM\n\nPrepared frame + bands + the largest stack measured on the chip with the profile; cycles are not measured for your scenes.\n\n";
+            s += "\n### Your scenes on the parts: RAM\n\nPrepared frame + bands + the largest stack measured on the chip with the profile";
+            s += if self.user_measured.is_none() {
+                "; cycles are not measured for your scenes (run with --measure-firmware to measure them).\n\n"
+            } else {
+                " (the host's estimate).\n\n"
+            };
             s += &md(t);
         }
         s += "\n### Fixed point against soft-float on the Cortex-M0\n\n";

@@ -156,7 +156,12 @@ pub struct ChipResult {
     pub depth_bytes: u64,
     /// Stack high-water mark, bytes.
     pub stack: u64,
-    /// RAM for this scene: band + depth band + prepared frame + stack.
+    /// RAM for this scene: band + depth band + prepared frame + stack
+    /// (the built-in scenes); for a user's scene (`--measure-firmware`
+    /// with scene files), what a firmware built for it alone holds, as
+    /// the firmware reports it: band + depth band (none for one convex
+    /// culled object) + storage sized by the compiler + active-triangle
+    /// pool + stack.
     pub ram: u64,
     /// Static RAM of the measured firmware (workspace for every scene).
     pub static_ram: u64,

@@ -507,6 +507,8 @@ mod tests {
         std::fs::write(root.join("README.md"), &readme).unwrap();
         // No markers: left alone (and the accuracy block not computed).
         std::fs::write(root.join("docs/accuracy.md"), "no markers\n").unwrap();
+        std::fs::create_dir_all(root.join("examples/firmware")).unwrap();
+        std::fs::write(root.join("examples/firmware/README.md"), "no markers\n").unwrap();
         let ms = super::super::chips::load(
             &super::super::chips::repo_root().join(super::super::chips::DEFAULT_PATH),
         )

@@ -36,6 +36,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use crate::cli::{CliError, ErrorKind};
 use crate::core_render::{CoreProfile, BAND_ROWS};
 
+use crate::firmware_scenes::{generate_for, FirmwareScene};
+use crate::scene_file::SceneDesc;
+
 use super::chips::{
     self, Build, ChipResult, KnobResult, Measurements, SpanLoop, REGENERATE, SCHEMA,
 };
@@ -213,8 +216,15 @@ fn is_softfloat(name: &str) -> bool {
 }
 
 /// The CRCs of `host-check` for a profile, by scene.
-fn host_crcs(fw: &Path, profile: CoreProfile) -> Result<BTreeMap<String, String>, CliError> {
+fn host_crcs(
+    fw: &Path,
+    profile: CoreProfile,
+    target_dir: Option<&Path>,
+) -> Result<BTreeMap<String, String>, CliError> {
     let mut cmd = Command::new("cargo");
+    if let Some(dir) = target_dir {
+        cmd.env("CARGO_TARGET_DIR", dir);
+    }
     cmd.current_dir(fw).args([
         "run",
         "-q",
@@ -350,7 +360,16 @@ fn build_run(
             format!("--remap-path-prefix={}=/cargo", home.display()),
         );
     }
-    run(&mut cmd, &format!("cargo build {target} {tag}"))?;
+    run(&mut cmd, &format!("cargo build {target} {tag}")).map_err(|e| {
+        if e.message.contains("will not fit in region") || e.message.contains("overflowed by") {
+            failed(format!(
+                "the firmware for {target} ({tag}) does not fit the board's memory (4 MiB of flash, 4 MiB of RAM: the scenes' meshes and storage are too large): {}",
+                e.message
+            ))
+        } else {
+            e
+        }
+    })?;
     let elf = target_dir.join(target).join("release/fixshade-firmware");
     let (sizes, symbols) = elf_info(&elf)?;
     let log = target_dir.join(format!("plugin-{target}-{tag}.log"));
@@ -405,6 +424,7 @@ fn measure_one(
     t: (&str, &str, &str, &str),
     profile: CoreProfile,
     host: &BTreeMap<String, String>,
+    user: Option<&BTreeMap<String, Mode>>,
 ) -> Result<(Build, Vec<ChipResult>), CliError> {
     let target = t.0;
     let features = format!("profile-{}", profile.name());
@@ -454,10 +474,31 @@ fn measure_one(
         let host_crc = host.get(&name).cloned().unwrap_or_default();
         let band = u64::from(w) * u64::from(BAND_ROWS) * 2;
         let (prepared, stack) = (num(line, "prepared_bytes")?, num(line, "stack")?);
+        // Built-in scenes: bands + prepared frame + stack (comparable with
+        // the committed figures). A user's scene: what a firmware built for
+        // it alone holds, as the firmware reports it: colour band, depth
+        // band (none for one convex culled object), the storage sized by
+        // the compiler for its meshes, the active-triangle pool, and the
+        // stack.
+        let (depth, ram, mode) = match user {
+            None => (
+                band,
+                2 * band + prepared + stack,
+                name.split('-').find_map(Mode::parse),
+            ),
+            Some(modes) => {
+                let depth = num(line, "depth_bytes")?;
+                (
+                    depth,
+                    band + depth + num(line, "storage_bytes")? + num(line, "pool_bytes")? + stack,
+                    modes.get(&name).copied(),
+                )
+            }
+        };
         results.push(ChipResult {
             target: target.to_string(),
             profile: profile.name().to_string(),
-            mode: name.split('-').find_map(Mode::parse),
+            mode,
             scene: name,
             width: w,
             height: h,
@@ -472,9 +513,9 @@ fn measure_one(
             setups: num(line, "setups")?,
             prepared_bytes: prepared,
             band_bytes: band,
-            depth_bytes: band,
+            depth_bytes: depth,
             stack,
-            ram: 2 * band + prepared + stack,
+            ram,
             static_ram,
             flash,
             crc_equal: crc == host_crc,
@@ -651,6 +692,79 @@ fn opt_level(fw: &Path) -> String {
     "unknown".into()
 }
 
+/// The measuring tools: QEMU's version, the toolchain's, and the built
+/// plugin.
+struct Tools {
+    qemu: String,
+    toolchain: String,
+    plugin: PathBuf,
+}
+
+/// Checks for QEMU and gcc (bad input naming a missing one) and builds the
+/// counting plugin.
+fn tools(fw: &Path) -> Result<Tools, CliError> {
+    let qemu = tool_version("qemu-system-arm", "apt-get install qemu-system-arm")?;
+    tool_version("gcc", "apt-get install gcc, for the QEMU plugin")?;
+    let toolchain = run(Command::new("rustc").arg("-V").current_dir(fw), "rustc -V")?
+        .trim()
+        .to_string();
+    let plugin_dir = fw.join("target/measure");
+    std::fs::create_dir_all(&plugin_dir).map_err(|e| CliError::io(&plugin_dir, &e))?;
+    let plugin = plugin_dir.join("insn_count.so");
+    run(
+        Command::new("gcc")
+            .args([
+                "-O2", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC", "-o",
+            ])
+            .arg(&plugin)
+            .arg(fw.join("qemu-plugin/insn_count.c")),
+        "gcc (QEMU plugin)",
+    )?;
+    Ok(Tools {
+        qemu,
+        toolchain,
+        plugin,
+    })
+}
+
+fn progress_bar(show: bool, total: u64) -> ProgressBar {
+    let bar = if show && std::io::stderr().is_terminal() {
+        ProgressBar::new(total)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} measuring {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+/// `job` for each target at once, one thread each: each builds in its own
+/// target folder (cargo locks a folder per build), and the single-unit
+/// LTO links keep one core each busy. The results in target order, or
+/// the first error.
+fn on_targets<T: Send>(
+    targets: &[(&str, &str, &str, &str)],
+    job: impl Fn((&str, &str, &str, &str)) -> Result<T, CliError> + Sync,
+) -> Result<Vec<T>, CliError> {
+    std::thread::scope(|s| {
+        let jobs: Vec<_> = targets
+            .iter()
+            .map(|&t| {
+                let job = &job;
+                s.spawn(move || job(t))
+            })
+            .collect();
+        jobs.into_iter()
+            .map(|j| {
+                j.join()
+                    .unwrap_or_else(|_| Err(failed("a measuring thread panicked".into())))
+            })
+            .collect()
+    })
+}
+
 /// Measures every profile of `opts` on both targets (see the module
 /// docs).
 ///
@@ -666,80 +780,44 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
             root.display()
         )));
     }
-    let qemu = tool_version("qemu-system-arm", "apt-get install qemu-system-arm")?;
-    tool_version("gcc", "apt-get install gcc, for the QEMU plugin")?;
-    let toolchain = run(Command::new("rustc").arg("-V").current_dir(&fw), "rustc -V")?
-        .trim()
-        .to_string();
+    let Tools {
+        qemu,
+        toolchain,
+        plugin,
+    } = tools(&fw)?;
     let fingerprint = chips::source_fingerprint(root)?;
     let stage = Stage::new(root)?;
-    let plugin_dir = fw.join("target/measure");
-    std::fs::create_dir_all(&plugin_dir).map_err(|e| CliError::io(&plugin_dir, &e))?;
-    let plugin = plugin_dir.join("insn_count.so");
-    run(
-        Command::new("gcc")
-            .args([
-                "-O2", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC", "-o",
-            ])
-            .arg(&plugin)
-            .arg(fw.join("qemu-plugin/insn_count.c")),
-        "gcc (QEMU plugin)",
-    )?;
     let total = ((opts.profiles.len() + 1) * (TARGETS.len() + 1)) as u64;
-    let bar = if opts.progress && std::io::stderr().is_terminal() {
-        ProgressBar::new(total)
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} measuring {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = progress_bar(opts.progress, total);
     // The host's CRCs first (one host build, cached), then both targets
     // at once: each builds in its own target folder (cargo locks a folder
     // per build), and the single-unit LTO links keep one core each busy.
     let mut hosts = Vec::new();
     for &profile in &opts.profiles {
         bar.set_message(format!("{} on the host", profile.name()));
-        hosts.push((profile, host_crcs(&fw, profile)?));
+        hosts.push((profile, host_crcs(&fw, profile, None)?));
         bar.inc(1);
     }
     bar.set_message("knobs on the host");
     let (knob_host, depth_differ) = host_knobs(&fw)?;
     bar.inc(1);
-    let per_target = std::thread::scope(|s| {
-        let jobs: Vec<_> = TARGETS
-            .iter()
-            .map(|&t| {
-                let (stage, plugin, hosts, knob_host, bar) =
-                    (&stage, &plugin, &hosts, &knob_host, &bar);
-                s.spawn(move || -> Result<_, CliError> {
-                    let stage = stage.for_target(t.0);
-                    let (mut builds, mut results) = (Vec::new(), Vec::new());
-                    for (profile, host) in hosts {
-                        bar.set_message(format!("{} on {}", profile.name(), t.0));
-                        let (b, r) = measure_one(&stage, plugin, t, *profile, host)?;
-                        builds.push(b);
-                        results.extend(r);
-                        bar.inc(1);
-                    }
-                    bar.set_message(format!("knobs on {}", t.0));
-                    let knobs = measure_knobs(&stage, plugin, t, knob_host)?;
-                    bar.inc(1);
-                    Ok((builds, results, knobs))
-                })
-            })
-            .collect();
-        jobs.into_iter()
-            .map(|j| {
-                j.join()
-                    .unwrap_or_else(|_| Err(failed("a measuring thread panicked".into())))
-            })
-            .collect::<Vec<_>>()
+    let per_target = on_targets(&TARGETS, |t| {
+        let stage = stage.for_target(t.0);
+        let (mut builds, mut results) = (Vec::new(), Vec::new());
+        for (profile, host) in &hosts {
+            bar.set_message(format!("{} on {}", profile.name(), t.0));
+            let (b, r) = measure_one(&stage, &plugin, t, *profile, host, None)?;
+            builds.push(b);
+            results.extend(r);
+            bar.inc(1);
+        }
+        bar.set_message(format!("knobs on {}", t.0));
+        let knobs = measure_knobs(&stage, &plugin, t, &knob_host)?;
+        bar.inc(1);
+        Ok((builds, results, knobs))
     });
     let (mut builds, mut results, mut knobs) = (Vec::new(), Vec::new(), Vec::new());
-    for r in per_target {
-        let (b, r, k) = r?;
+    for (b, r, k) in per_target? {
         builds.extend(b);
         results.extend(r);
         knobs.extend(k);
@@ -762,6 +840,199 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError>
         results,
         knobs,
         knob_depth32_vs_depth16_pixels: depth_differ,
+    })
+}
+
+/// A user's scene files to measure on the chips (`fixshade report
+/// SCENE.toml... --measure-firmware`, `fixshade pick --scene SCENE.toml
+/// --measure-firmware`, `fixshade measure-firmware --scene SCENE.toml`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UserMeasureOptions {
+    /// The repository root (the firmware's sources).
+    pub root: PathBuf,
+    /// The scene files.
+    pub files: Vec<PathBuf>,
+    /// The profiles.
+    pub profiles: Vec<CoreProfile>,
+    /// The targets (of [`TARGETS`]).
+    pub targets: Vec<String>,
+    /// Draw a progress bar on stderr (only on a terminal).
+    pub progress: bool,
+}
+
+/// The firmware scenes of the user's scene files: each file in each
+/// shading mode (every object given the mode, as the report sweeps them),
+/// named `STEM-MODE` (`STEM` the file's name without `.toml`, numbered
+/// when two files share it), with the mode of each name.
+///
+/// # Errors
+/// A file that does not load, or a scene the firmware cannot take (bad
+/// input, naming the file).
+pub fn user_firmware_scenes(
+    files: &[PathBuf],
+) -> Result<(Vec<FirmwareScene>, BTreeMap<String, Mode>), CliError> {
+    let mut scenes = Vec::new();
+    let mut modes = BTreeMap::new();
+    let mut stems: Vec<String> = Vec::new();
+    for f in files {
+        let desc = SceneDesc::load(f)?;
+        let base: String = f
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into())
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let mut stem = base.clone();
+        let mut k = 2;
+        while stems.contains(&stem) {
+            stem = format!("{base}{k}");
+            k += 1;
+        }
+        stems.push(stem.clone());
+        for m in Mode::ALL {
+            let mut d = desc.clone();
+            for o in &mut d.objects {
+                o.shading = m.shading();
+            }
+            let name = format!("{stem}-{}", m.name());
+            let fs = FirmwareScene::new(name.clone(), d).map_err(|e| {
+                CliError::input(format!(
+                    "{}: the firmware cannot render this scene: {e}",
+                    f.display()
+                ))
+            })?;
+            modes.insert(name, m);
+            scenes.push(fs);
+        }
+    }
+    Ok((scenes, modes))
+}
+
+/// Measures the user's scenes ([`user_firmware_scenes`]) on the chips:
+/// the firmware's scenes are generated from them (meshes baked as
+/// constant tables, storage sized by the core's `const fn`s) into the
+/// staged copy, built for each target and profile, run under QEMU with
+/// the counting plugin; the fixed profiles' CRCs must equal the host's
+/// (`fast`: rendered here from the same Q16 values; the others by
+/// `host-check` built from the staged copy). The results' RAM is what a
+/// firmware built for the scene alone holds (see [`ChipResult::ram`]:
+/// colour band, depth band if the scene needs one, storage, pool, stack,
+/// as the firmware prints them).
+///
+/// # Errors
+/// A bad scene file or one the firmware cannot take, a missing tool (bad
+/// input); a failed build (e.g. meshes beyond the board's flash), run or
+/// CRC check (exit status 1).
+pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, CliError> {
+    let root = &opts.root;
+    let fw = root.join("examples/firmware");
+    if !fw.join("Cargo.toml").is_file() {
+        return Err(CliError::input(format!(
+            "{}: no firmware here (examples/firmware) to measure",
+            root.display()
+        )));
+    }
+    let targets: Vec<(&str, &str, &str, &str)> = opts
+        .targets
+        .iter()
+        .map(|t| {
+            TARGETS.iter().copied().find(|x| x.0 == t).ok_or_else(|| {
+                CliError::input(format!(
+                    "unknown target `{t}` (known: {})",
+                    TARGETS.map(|x| x.0).join(", ")
+                ))
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    let (scenes, modes) = user_firmware_scenes(&opts.files)?;
+    let source = generate_for(&scenes).map_err(CliError::input)?;
+    let fast_crcs: BTreeMap<String, String> = scenes
+        .iter()
+        .map(|s| {
+            let f = s
+                .render_crc()
+                .map_err(|e| CliError::input(format!("{}: {e}", s.name)))?;
+            Ok((s.name.clone(), format!("0x{:08x}", f.crc)))
+        })
+        .collect::<Result<_, CliError>>()?;
+    let Tools {
+        qemu,
+        toolchain,
+        plugin,
+    } = tools(&fw)?;
+    let fingerprint = chips::source_fingerprint(root)?;
+    let stage = Stage::new(root)?;
+    let generated = stage.src.join(crate::firmware_scenes::GENERATED_PATH);
+    std::fs::write(&generated, source).map_err(|e| CliError::io(&generated, &e))?;
+    let others = opts
+        .profiles
+        .iter()
+        .filter(|p| **p != CoreProfile::Fast)
+        .count();
+    let total = (others + opts.profiles.len() * targets.len()) as u64;
+    let bar = progress_bar(opts.progress, total);
+    let mut hosts = Vec::new();
+    for &profile in &opts.profiles {
+        let crcs = if profile == CoreProfile::Fast {
+            fast_crcs.clone()
+        } else {
+            bar.set_message(format!("{} on the host", profile.name()));
+            let c = host_crcs(
+                &stage.src.join("examples/firmware"),
+                profile,
+                Some(&stage.target_dir),
+            )?;
+            bar.inc(1);
+            c
+        };
+        hosts.push((profile, crcs));
+    }
+    let per_target = on_targets(&targets, |t| {
+        let stage = stage.for_target(t.0);
+        let (mut builds, mut results) = (Vec::new(), Vec::new());
+        for (profile, host) in &hosts {
+            bar.set_message(format!("your scenes, {} on {}", profile.name(), t.0));
+            let (b, r) = measure_one(&stage, &plugin, t, *profile, host, Some(&modes))?;
+            builds.push(b);
+            results.extend(r);
+            bar.inc(1);
+        }
+        Ok((builds, results))
+    });
+    let (mut builds, mut results) = (Vec::new(), Vec::new());
+    for (b, r) in per_target? {
+        builds.extend(b);
+        results.extend(r);
+    }
+    bar.finish_and_clear();
+    Ok(Measurements {
+        schema: SCHEMA,
+        about: format!(
+            "fixshade firmware under QEMU, generated for your scenes ({}): instructions counted exactly by the plugin; est. Cortex-M0 cycles from ARM DDI 0432C table 3-1, zero wait states (an ESTIMATE, M0 only); RAM per scene = what a firmware built for it alone holds: colour band + depth band (none for one convex object with back faces culled) + storage sized by the compiler for its meshes + active-triangle pool + stack high-water mark.",
+            opts.files
+                .iter()
+                .map(|f| f.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        regenerate: "fixshade measure-firmware --scene SCENE.toml --write FILE".into(),
+        toolchain,
+        qemu,
+        source_fingerprint: fingerprint,
+        opt_level: opt_level(&fw),
+        band_rows: BAND_ROWS,
+        depth_bits: 16,
+        builds,
+        results,
+        knobs: Vec::new(),
+        knob_depth32_vs_depth16_pixels: 0,
     })
 }
 

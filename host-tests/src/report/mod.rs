@@ -136,8 +136,12 @@ pub struct ReportOptions {
     /// Use measurements from other sources (the page says they are
     /// stale).
     pub allow_stale: bool,
-    /// Re-measure the firmware under QEMU instead of reading the file.
+    /// Re-measure the firmware under QEMU instead of reading the file;
+    /// with scene files, measure the firmware generated for them (the
+    /// built-in scenes' figures are then read from the file).
     pub measure_firmware: bool,
+    /// The profiles `measure_firmware` measures (all when empty).
+    pub firmware_profiles: Vec<crate::core_render::CoreProfile>,
     /// The user's scene files to sweep instead of the built-in scenes.
     pub scene_files: Vec<PathBuf>,
 }
@@ -329,10 +333,10 @@ fn chip_measurements(
     opts: &ReportOptions,
 ) -> Result<(chips::Measurements, String, bool), CliError> {
     let root = chips::repo_root();
-    if opts.measure_firmware {
+    if opts.measure_firmware && opts.scene_files.is_empty() {
         let ms = measure::measure_firmware(&measure::MeasureOptions {
             root,
-            profiles: crate::core_render::CoreProfile::ALL.to_vec(),
+            profiles: firmware_profiles(opts),
             progress: opts.progress,
         })?;
         return Ok((ms, "a fresh measurement (--measure-firmware)".into(), false));
@@ -349,6 +353,14 @@ fn chip_measurements(
         Err(e) => return Err(e),
     };
     Ok((ms, file, stale))
+}
+
+fn firmware_profiles(opts: &ReportOptions) -> Vec<crate::core_render::CoreProfile> {
+    if opts.firmware_profiles.is_empty() {
+        crate::core_render::CoreProfile::ALL.to_vec()
+    } else {
+        opts.firmware_profiles.clone()
+    }
 }
 
 /// Runs the sweep and writes the report (see the [module docs](self)).
@@ -373,6 +385,21 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
         sweep::scene_files(&opts.scene_files)?;
     }
     prepare_out_dir(&opts.out)?;
+    // The user's scenes on the chips: measured before the sweep, so a
+    // scene the firmware cannot hold or a failed build writes nothing.
+    let user_measured = if opts.measure_firmware && !opts.scene_files.is_empty() {
+        Some(measure::measure_user_scenes(
+            &measure::UserMeasureOptions {
+                root: chips::repo_root(),
+                files: opts.scene_files.clone(),
+                profiles: firmware_profiles(opts),
+                targets: measure::TARGETS.iter().map(|t| t.0.to_string()).collect(),
+                progress: opts.progress,
+            },
+        )?)
+    } else {
+        None
+    };
     let fw_scenes: Vec<String> = {
         let mut v: Vec<String> = Vec::new();
         for r in &ms.results {
@@ -398,6 +425,9 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
     let records = sweep::measure(&scenes, repeats, opts.progress)?;
     if !opts.scene_files.is_empty() {
         chips.add_user_scenes(&ms, &records);
+    }
+    if let Some(um) = &user_measured {
+        chips.add_user_measured(um);
     }
     let elapsed_s = started.elapsed().as_secs_f64();
     let summary = Summary::new(&records, &embedded);

@@ -14,35 +14,45 @@
 //! line each, as the firmware prints them, without the stack) and counts
 //! the pixels where the 32-bit depth frame differs from the 16-bit one.
 
-use fixshade::render::{Tri, Workspace};
+use fixshade::render::{Capacity, Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
 use fixshade_scenes::{
-    render_frame, BandPool, Crc32, Needs, NoProbe, Pixel, BAND_PIXELS, MAX_NEEDS, SCENES,
+    render_frame, BandPool, Crc32, NoProbe, Pixel, BAND_PIXELS, CAPACITY, DEPTH_PIXELS, SCENES,
 };
 use std::{error::Error, fs, io::Write, path::PathBuf};
 
-/// Workspace memory on the heap.
-struct Owned {
+/// Storage on the heap, of the firmware's capacities for the profile
+/// (values of type `L`).
+struct Owned<L> {
     xy: Vec<[i32; 2]>,
-    vals: Vec<i32>,
+    vals: Vec<L>,
     tris: Vec<Tri>,
+    order: Vec<u16>,
 }
 
-impl Owned {
-    fn new(n: Needs) -> Self {
+impl<L: fixshade::raster::Lerp> Owned<L> {
+    fn new(n: Capacity) -> Self {
         Self {
             xy: vec![[0; 2]; n.vertices],
-            vals: vec![0; n.values],
+            vals: vec![L::ZERO; n.values],
             tris: vec![Tri::default(); n.triangles],
+            order: vec![0; 2 * n.triangles],
         }
     }
 
-    fn ws(&mut self) -> Workspace<'_, i32> {
-        Workspace {
-            xy: &mut self.xy,
-            vals: &mut self.vals,
-            tris: &mut self.tris,
-        }
+    fn ws(&mut self) -> Workspace<'_, L> {
+        self.split().0
+    }
+
+    fn split(&mut self) -> (Workspace<'_, L>, &mut [u16]) {
+        (
+            Workspace {
+                xy: &mut self.xy,
+                vals: &mut self.vals,
+                tris: &mut self.tris,
+            },
+            &mut self.order,
+        )
     }
 }
 
@@ -65,19 +75,19 @@ fn main() -> Result<(), Box<dyn Error>> {
             }
         }
     }
-    let mut ws = Owned::new(MAX_NEEDS);
+    let mut ws = Owned::<i32>::new(CAPACITY);
     let mut px = vec![[0u8; 2]; BAND_PIXELS];
-    let mut z = vec![0u16; BAND_PIXELS];
-    let mut order = vec![0u16; 2 * MAX_NEEDS.triangles];
+    let mut z = vec![0u16; DEPTH_PIXELS];
     let mut pool = Box::new(BandPool::new());
     println!("fixshade-host-check target=host profile=fast");
     for spec in SCENES.iter() {
+        let (w, order) = ws.split();
         let s = render_frame(
             spec,
-            ws.ws(),
+            w,
             &mut px,
-            &mut z,
-            &mut order,
+            spec.depth.then_some(&mut z[..]),
+            order,
             &mut pool,
             &mut NoProbe,
         )
@@ -111,7 +121,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 /// tall as the frame); fails unless its CRC equals the banded frame's.
 fn whole_frame(
     spec: &fixshade_scenes::SceneSpec,
-    ws: &mut Owned,
+    ws: &mut Owned<i32>,
 ) -> Result<Vec<u8>, Box<dyn Error>> {
     use fixshade::num::Fast;
     use fixshade::render::prepare;
@@ -129,15 +139,15 @@ fn whole_frame(
     let mut crc = Crc32::new();
     crc.update(fb.bytes());
     let mut banded_px = vec![[0u8; 2]; BAND_PIXELS];
-    let mut banded_z = vec![0u16; BAND_PIXELS];
-    let mut order = vec![0u16; 2 * MAX_NEEDS.triangles];
+    let mut banded_z = vec![0u16; DEPTH_PIXELS];
     let mut pool = Box::new(BandPool::new());
+    let (w, order) = ws.split();
     let banded = render_frame(
         spec,
-        ws.ws(),
+        w,
         &mut banded_px,
-        &mut banded_z,
-        &mut order,
+        spec.depth.then_some(&mut banded_z[..]),
+        order,
         &mut pool,
         &mut NoProbe,
     )?;
@@ -170,28 +180,20 @@ fn other_profile(name: &str) -> Result<(), Box<dyn Error>> {
 }
 
 fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
-    use fixshade_scenes::profiled::{needs_for, render_frame_with};
-    let n = needs_for::<P>(MAX_NEEDS);
-    let mut xy = vec![[0i32; 2]; n.vertices];
-    let mut vals = vec![P::Lerp::default(); n.values];
-    let mut tris = vec![Tri::default(); n.triangles];
-    let mut order = vec![0u16; 2 * n.triangles];
+    use fixshade_scenes::profiled::render_frame_with;
+    let mut ws = Owned::<P::Lerp>::new(fixshade_scenes::capacity_for::<P>());
     let mut pool = Box::new(fixshade_scenes::profiled::ProfilePool::<P>::new());
     let mut px = vec![[0u8; 2]; BAND_PIXELS];
-    let mut z = vec![0u16; BAND_PIXELS];
+    let mut z = vec![0u16; DEPTH_PIXELS];
     println!("fixshade-host-check target=host profile={}", P::NAME);
     for spec in SCENES.iter() {
-        let ws = Workspace {
-            xy: &mut xy,
-            vals: &mut vals,
-            tris: &mut tris,
-        };
+        let (w, order) = ws.split();
         let s = render_frame_with::<P, _>(
             spec,
-            ws,
+            w,
             &mut px,
-            &mut z,
-            &mut order,
+            spec.depth.then_some(&mut z[..]),
+            order,
             &mut pool,
             &mut NoProbe,
         )
@@ -219,13 +221,13 @@ fn knobs() -> Result<(), Box<dyn Error>> {
     use fixshade::num::{Fast, Profile};
     use fixshade::target::{Depth16, Depth32, DepthFormat};
     use fixshade_scenes::knobs::{
-        render_frame_knobs, FastSub, BAND_ROWS_SWEEP, KNOB_NEEDS, KNOB_SCENE, MAX_BAND_PIXELS,
+        render_frame_knobs, FastSub, BAND_ROWS_SWEEP, KNOB_SCENE, MAX_BAND_PIXELS,
     };
     let spec = SCENES
         .iter()
         .find(|s| s.name == KNOB_SCENE)
         .ok_or("no knob scene")?;
-    let mut ws = Owned::new(KNOB_NEEDS);
+    let mut ws = Owned::<i32>::new(CAPACITY);
     let mut px = vec![[0u8; 2]; MAX_BAND_PIXELS];
     let mut z16 = vec![0u16; MAX_BAND_PIXELS];
     let mut z32 = vec![0u32; MAX_BAND_PIXELS];
@@ -245,24 +247,15 @@ fn knobs() -> Result<(), Box<dyn Error>> {
     }
     fn go<P: Profile<Lerp = i32>, D: DepthFormat>(
         spec: &fixshade_scenes::SceneSpec,
-        ws: &mut Owned,
+        ws: &mut Owned<i32>,
         px: &mut [Pixel],
         z: &mut [D::Raw],
         rows: u32,
     ) -> Result<fixshade_scenes::FrameStats, Box<dyn Error>> {
-        let mut order = vec![0u16; 2 * KNOB_NEEDS.triangles];
         let mut pool = Box::new(BandPool::new());
-        render_frame_knobs::<P, D, _>(
-            spec,
-            ws.ws(),
-            px,
-            z,
-            rows,
-            &mut order,
-            &mut pool,
-            &mut NoProbe,
-        )
-        .map_err(|e| format!("knobs: {e}").into())
+        let (w, order) = ws.split();
+        render_frame_knobs::<P, D, _>(spec, w, px, Some(z), rows, order, &mut pool, &mut NoProbe)
+            .map_err(|e| format!("knobs: {e}").into())
     }
     for rows in BAND_ROWS_SWEEP {
         let s = go::<Fast, Depth16>(spec, &mut ws, &mut px, &mut z16, rows)?;

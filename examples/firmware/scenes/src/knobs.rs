@@ -7,7 +7,7 @@
 //! `Fast`'s).
 
 use crate::profiled::{raster_bands, ProfilePool};
-use crate::{FrameError, FrameStats, Needs, Pixel, Probe, SceneSpec, MAX_NEEDS, WIDTH};
+use crate::{FrameError, FrameStats, Pixel, Probe, SceneSpec, WIDTH};
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::SubpixelBits;
 use fixshade::render::{prepare, Workspace};
@@ -21,16 +21,6 @@ pub const BAND_ROWS_SWEEP: [u32; 6] = [4, 8, 16, 32, 80, 240];
 pub const SUBPIXEL_SWEEP: [u32; 5] = [2, 3, 4, 6, 8];
 /// Most rows of a band: pixels (and depth values) of the largest band.
 pub const MAX_BAND_PIXELS: usize = (WIDTH * 240) as usize;
-/// The workspace for the knobs' scene: twice `Fast`'s at 4 subpixel
-/// bits, since finer subpixels keep more thin triangles (the bunny at 6
-/// bits needs more than the 1 498 prepared at 4).
-pub const KNOB_NEEDS: Needs = Needs {
-    vertices: 2 * MAX_NEEDS.vertices,
-    values: 2 * MAX_NEEDS.values,
-    triangles: 2 * MAX_NEEDS.triangles,
-    prepared_bytes: 0,
-};
-
 /// `Fast` with `B` subpixel bits.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FastSub<const B: u32>;
@@ -63,8 +53,10 @@ impl<const B: u32> Profile for FastSub<B> {
     }
 }
 
-/// [`crate::profiled::render_frame_with`] in bands of `rows` rows with the
-/// depth format `D` (`pixels` and `depth` hold at least `width × rows`).
+/// A frame with the profile `P` in bands of `rows` rows with the depth
+/// format `D` (`pixels` and `depth` hold at least `width × rows`; no depth
+/// band with `None`): [`crate::profiled::render_frame_with`] is this with
+/// 16-bit depth in bands of [`crate::BAND_ROWS`] rows.
 ///
 /// # Errors
 /// As [`crate::render_frame`].
@@ -73,14 +65,14 @@ pub fn render_frame_knobs<P: Profile, D: DepthFormat, Q: Probe>(
     spec: &SceneSpec,
     ws: Workspace<'_, P::Lerp>,
     pixels: &mut [Pixel],
-    depth: &mut [D::Raw],
+    depth: Option<&mut [D::Raw]>,
     rows: u32,
     order: &mut [u16],
     pool: &mut ProfilePool<P>,
     probe: &mut Q,
 ) -> Result<FrameStats, FrameError> {
     let rows = rows.max(1);
-    // Geometry, as `render_frame_with`.
+    // Geometry.
     probe.resume();
     let parts = crate::profiled::Parts::<P::Real>::new(spec);
     let prepared = match parts.camera {
@@ -100,7 +92,6 @@ pub fn render_frame_knobs<P: Profile, D: DepthFormat, Q: Probe>(
 mod tests {
     use super::*;
     use crate::{NoProbe, SCENES};
-    use fixshade::render::Tri;
     use fixshade::target::Depth16;
     use std::{boxed::Box, vec};
 
@@ -112,30 +103,22 @@ mod tests {
     #[test]
     fn every_band_height_renders_the_same_frame_with_one_setup_per_triangle() {
         let spec = SCENES.iter().find(|s| s.name == KNOB_SCENE).unwrap();
-        let n = KNOB_NEEDS;
-        let (mut xy, mut vals, mut tris) = (
-            vec![[0i32; 2]; n.vertices],
-            vec![0i32; n.values],
-            vec![Tri::default(); n.triangles],
-        );
+        // The core's bound holds for every subpixel precision: finer
+        // subpixels keep more thin triangles, never more than the mesh's.
+        let mut st = Box::new(crate::SceneStorage::new());
         let mut px = vec![[0u8; 2]; MAX_BAND_PIXELS];
         let mut z = vec![0u16; MAX_BAND_PIXELS];
-        let mut order = vec![0u16; 2 * n.triangles];
         let mut pool = Box::new(ProfilePool::<Fast>::new());
         let mut last: Option<FrameStats> = None;
         for rows in BAND_ROWS_SWEEP {
-            let ws = Workspace {
-                xy: &mut xy,
-                vals: &mut vals,
-                tris: &mut tris,
-            };
+            let (ws, order) = st.split();
             let s = render_frame_knobs::<Fast, Depth16, _>(
                 spec,
                 ws,
                 &mut px,
-                &mut z,
+                Some(&mut z),
                 rows,
-                &mut order,
+                order,
                 &mut pool,
                 &mut NoProbe,
             )

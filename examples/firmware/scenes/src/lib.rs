@@ -34,33 +34,68 @@ pub mod profiled;
 pub mod spec;
 
 pub use crc::Crc32;
-pub use generated::{MAX_NEEDS, MAX_OBJECTS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES};
-pub use spec::{Needs, ObjectSpec, SceneSpec};
+pub use generated::{
+    CAPACITY, DEPTH, MAX_OBJECTS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
+};
+pub use spec::{ObjectSpec, SceneSpec};
 
 use core::fmt;
-use fixshade::num::{Fast, Q16};
-use fixshade::render::{prepare, BandState, Frame, Pool, RenderError, Workspace};
-use fixshade::scene::Object;
-use fixshade::target::{BandBuf, BufferError, Depth16, DepthFormat, Rgb565Be};
+use fixshade::num::{Fast, Profile};
+use fixshade::render::{Capacity, Pool, RenderError, Storage, Workspace};
+use fixshade::target::{BandBuf, BufferError, Rgb565Be};
 
-/// Widest frame (and height) the band buffers hold.
-pub const WIDTH: u32 = 240;
 /// Rows per band.
 pub const BAND_ROWS: u32 = 16;
-/// Pixels (and depth values) per band buffer: 3 840.
+/// Pixels per band buffer: the widest scene's width × [`BAND_ROWS`]
+/// (3 840 at 240 pixels).
 pub const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
+/// Depth values per depth band: [`BAND_PIXELS`], or none when no scene
+/// needs depth ([`DEPTH`]: one convex object with back faces culled).
+pub const DEPTH_PIXELS: usize = if DEPTH { BAND_PIXELS } else { 0 };
 
 /// One stored pixel: RGB565, big-endian.
 pub type Pixel = [u8; 2];
 /// A band of the frame, with its 16-bit depth band.
 pub type Band<'a> = BandBuf<'a, Rgb565Be>;
 
-/// Active triangles the firmware keeps from band to band (the scene tests
-/// check that every built-in scene sets each triangle up once with it:
-/// the bunny keeps at most 55).
-pub const POOL_SLOTS: usize = 64;
+/// The storage the scenes need with profile `P`: [`CAPACITY`], with one
+/// more value per vertex for perspective-correct profiles.
+pub const fn capacity_for<P: Profile>() -> Capacity {
+    if P::PERSPECTIVE {
+        CAPACITY.perspective()
+    } else {
+        CAPACITY
+    }
+}
+
+/// Bytes of the storage a firmware built for `spec` alone would hold with
+/// profile `P` (`Capacity::bytes` of its capacity, for `P`'s values): the
+/// scene's own share of the static RAM.
+pub const fn storage_bytes<P: Profile>(spec: &SceneSpec) -> usize {
+    let c = if P::PERSPECTIVE {
+        spec.capacity.perspective()
+    } else {
+        spec.capacity
+    };
+    c.bytes(core::mem::size_of::<P::Lerp>())
+}
+
+/// The `Fast` storage of the scenes (sized by the compiler from their
+/// meshes: see `generated.rs`).
+pub type SceneStorage =
+    Storage<i32, { CAPACITY.vertices }, { CAPACITY.values }, { CAPACITY.triangles }>;
+
+/// Active triangles the firmware keeps from band to band: 64, or every
+/// triangle of the storage when fewer (the scene tests check that every
+/// built-in scene sets each triangle up once with it: the bunny keeps
+/// at most 55).
+pub const POOL_SLOTS: usize = if CAPACITY.triangles < 64 {
+    CAPACITY.triangles
+} else {
+    64
+};
 /// Values a pool slot holds: 8, every layout (dodeca-phong-n100 has 7:
-/// depth, normal, eye position).
+/// depth, normal, eye position; its `-pc` profiles 8).
 pub const POOL_VALUES: usize = 8;
 /// The firmware's pool of active triangles.
 pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
@@ -147,47 +182,22 @@ impl fmt::Display for FrameError {
 
 impl core::error::Error for FrameError {}
 
-/// The lengths of a workspace's parts.
-pub fn capacity_of(ws: &Workspace<'_, i32>) -> Needs {
-    Needs {
-        vertices: ws.xy.len(),
-        values: ws.vals.len(),
-        triangles: ws.tris.len(),
-        prepared_bytes: 0,
-    }
-}
-
-/// The objects of `spec` for the core.
-fn objects(spec: &SceneSpec) -> heapless::Vec<Object<'static, Q16>, MAX_OBJECTS> {
-    spec.objects.iter().map(ObjectSpec::object).collect()
-}
-
 /// Prepares `spec` into `ws` (no probe): for the firmware's start-up
-/// check that every scene fits its workspace.
+/// check that every scene fits its storage.
 ///
 /// # Errors
 /// The core's error, e.g. `RenderError::Capacity` naming the part that
 /// is too small and the object.
-pub fn check(spec: &SceneSpec, ws: Workspace<'_, i32>) -> Result<FrameStats, FrameError> {
-    let objects = objects(spec);
-    let scene = spec.scene(spec.camera()?, &objects);
-    let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws)?;
-    Ok(prepared_stats(&frame))
+pub fn check(spec: &SceneSpec, ws: Workspace<'_, i32>) -> Result<u32, FrameError> {
+    profiled::check_with::<Fast>(spec, ws)
 }
 
-fn prepared_stats(frame: &Frame<'_, Fast>) -> FrameStats {
-    FrameStats {
-        vertices: frame.vertex_count() as u32,
-        triangles: frame.triangle_count() as u32,
-        prepared_bytes: frame.bytes_used() as u32,
-        ..FrameStats::default()
-    }
-}
-
-/// Renders one frame of `spec`: prepares it into `ws`, then renders it
-/// band by band into the band memory (`BAND_PIXELS` pixels and depth
-/// values), with `probe` around the measured work: one region for the
-/// geometry (scene, camera, transforms, `prepare`), one for the bands.
+/// Renders one frame of `spec` with the `Fast` profile
+/// ([`profiled::render_frame_with`]): prepares it into `ws`, then renders
+/// it band by band into the band memory (`BAND_PIXELS` pixels, and as
+/// many depth values or none, see [`DEPTH_PIXELS`]), with `probe` around
+/// the measured work: one region for the geometry (scene, camera,
+/// transforms, `prepare`), one for the bands.
 ///
 /// # Errors
 /// [`FrameError`] when the core refuses the scene, the workspace is too
@@ -196,97 +206,26 @@ pub fn render_frame<P: Probe>(
     spec: &SceneSpec,
     ws: Workspace<'_, i32>,
     pixels: &mut [Pixel],
-    depth: &mut [u16],
+    depth: Option<&mut [u16]>,
     order: &mut [u16],
     pool: &mut BandPool,
     probe: &mut P,
 ) -> Result<FrameStats, FrameError> {
-    // Geometry.
-    probe.resume();
-    let objects = objects(spec);
-    let camera = spec.camera();
-    let prepared = match camera {
-        Ok(camera) => {
-            let scene = spec.scene(camera, &objects);
-            prepare::<Fast>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
-        }
-        Err(e) => Err(e.into()),
-    };
-    probe.pause();
-    probe.close();
-    let (scene, frame) = prepared?;
-    let mut stats = prepared_stats(&frame);
-
-    // Raster: the triangle order, then band by band (clear, render).
-    let w = spec.width;
-    let mut crc = Crc32::new();
-    let n = (w * BAND_ROWS) as usize;
-    let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
-        return Err(BufferError::WrongLength {
-            expected: n,
-            actual: pixels.len().min(depth.len()),
-        }
-        .into());
-    };
-    let mut band = Band::new(px, Some(z), w, BAND_ROWS)?;
-    let mut state = BandState::new(order, pool);
-    probe.resume();
-    let bands = frame.bands(&scene, &mut state, BAND_ROWS);
-    probe.pause();
-    let mut bands = bands?;
-    loop {
-        probe.resume();
-        let r = bands.next_band(&mut band);
-        probe.pause();
-        if r?.is_none() {
-            break;
-        }
-        crc.update(band.bytes());
-        let z = band.depth().unwrap_or(&[]);
-        stats.covered += z.iter().filter(|&&d| d != Depth16::CLEAR).count() as u32;
-    }
-    stats.setups = bands.stats().triangles;
-    stats.active_peak = bands.active_peak() as u32;
-    stats.drawn = bands.stats().pixels;
-    probe.close();
-    stats.crc = crc.finish();
-    Ok(stats)
+    profiled::render_frame_with::<Fast, P>(spec, ws, pixels, depth, order, pool, probe)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fixshade::render::{Part, Tri};
-    use fixshade::target::{DepthBuffer, FrameBuf, Target};
-    use std::{vec, vec::Vec};
+    use fixshade::render::{prepare, Part};
+    use fixshade::target::{Depth16, DepthBuffer, DepthFormat, FrameBuf, Target};
+    use std::{boxed::Box, vec};
 
-    struct Owned {
-        xy: Vec<[i32; 2]>,
-        vals: Vec<i32>,
-        tris: Vec<Tri>,
-    }
-
-    impl Owned {
-        fn new(n: Needs) -> Self {
-            Self {
-                xy: vec![[0; 2]; n.vertices],
-                vals: vec![0; n.values],
-                tris: vec![Tri::default(); n.triangles],
-            }
-        }
-        fn ws(&mut self) -> Workspace<'_, i32> {
-            Workspace {
-                xy: &mut self.xy,
-                vals: &mut self.vals,
-                tris: &mut self.tris,
-            }
-        }
-    }
-
-    /// Renders a scene into a whole frame at once (no bands): CRC and
-    /// covered pixels.
+    /// Renders a scene into a whole frame at once (no bands, a depth
+    /// buffer): CRC and covered pixels.
     fn whole_frame(spec: &SceneSpec, ws: Workspace<'_, i32>) -> (u32, u32) {
-        let objects = objects(spec);
+        let objects: heapless::Vec<_, MAX_OBJECTS> =
+            spec.objects.iter().map(ObjectSpec::object).collect();
         let scene = spec.scene(spec.camera().unwrap(), &objects);
         let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
         let n = (spec.width * spec.height) as usize;
@@ -304,54 +243,59 @@ mod tests {
 
     #[test]
     fn bands_equal_the_whole_frame() {
-        let mut ws = Owned::new(MAX_NEEDS);
+        let mut st = Box::new(SceneStorage::new());
+        let mut whole = Box::new(SceneStorage::new());
         let mut px = vec![[0u8; 2]; BAND_PIXELS];
-        let mut z = vec![0u16; BAND_PIXELS];
-        let mut order = vec![0u16; 2 * MAX_NEEDS.triangles];
-        let mut pool = std::boxed::Box::new(BandPool::new());
+        let mut z = vec![0u16; DEPTH_PIXELS];
+        let mut pool = Box::new(BandPool::new());
         for spec in SCENES.iter() {
-            let s = render_frame(
-                spec,
-                ws.ws(),
-                &mut px,
-                &mut z,
-                &mut order,
-                &mut pool,
-                &mut NoProbe,
-            )
-            .unwrap();
+            let (ws, order) = st.split();
+            let depth = spec.depth.then_some(&mut z[..]);
+            let s = render_frame(spec, ws, &mut px, depth, order, &mut pool, &mut NoProbe).unwrap();
             // The pool holds every active triangle: each set up once.
             std::println!("{} active peak {}", spec.name, s.active_peak);
             assert!(s.active_peak as usize <= POOL_SLOTS, "{}", spec.name);
             assert_eq!(s.setups, s.triangles, "{}", spec.name);
+            // Without a depth band (one convex object): the same bytes,
+            // each pixel drawn once.
             assert_eq!(
                 (s.crc, s.covered),
-                whole_frame(spec, ws.ws()),
+                whole_frame(spec, whole.workspace()),
                 "{}",
                 spec.name
             );
-            assert_eq!(s.prepared_bytes as usize, spec.needs.prepared_bytes);
             assert!(s.drawn >= s.covered && s.covered > 5000, "{s:?}");
+            assert!(spec.depth || s.drawn == s.covered, "{s:?}");
         }
     }
 
     #[test]
-    fn every_scene_fits_its_needs_and_not_less() {
+    fn every_scene_fits_its_storage_and_not_less() {
         for spec in SCENES.iter() {
-            let n = spec.needs;
-            check(spec, Owned::new(n).ws()).unwrap();
-            let short = Needs {
-                vertices: n.vertices - 1,
-                ..n
+            let c = spec.capacity;
+            let (mut xy, mut vals, mut tris) = (
+                vec![[0i32; 2]; c.vertices],
+                vec![0i32; c.values],
+                vec![fixshade::render::Tri::EMPTY; c.triangles],
+            );
+            let ws = Workspace {
+                xy: &mut xy[..],
+                vals: &mut vals[..],
+                tris: &mut tris[..],
             };
-            let e = check(spec, Owned::new(short).ws()).unwrap_err();
+            check(spec, ws).unwrap();
+            let short = Workspace {
+                xy: &mut xy[..c.vertices - 1],
+                vals: &mut vals[..],
+                tris: &mut tris[..],
+            };
+            let e = check(spec, short).unwrap_err();
             assert_eq!(
                 e,
                 FrameError::Render(RenderError::Capacity {
                     part: Part::Vertices,
                     object: spec.objects.len() - 1
-                })
-                .clone(),
+                }),
                 "{}",
                 spec.name
             );
@@ -364,12 +308,12 @@ mod tests {
     }
 
     #[test]
-    fn max_needs_cover_every_scene() {
+    fn the_storage_covers_every_scene() {
         for spec in SCENES.iter() {
-            let (n, m) = (spec.needs, MAX_NEEDS);
-            assert!(n.vertices <= m.vertices && n.values <= m.values);
-            assert!(n.triangles <= m.triangles);
+            assert_eq!(spec.capacity.max(CAPACITY), CAPACITY);
             assert!(spec.width <= WIDTH && spec.objects.len() <= MAX_OBJECTS);
+            assert!(DEPTH || !spec.depth);
         }
+        assert_eq!(SceneStorage::CAPACITY, CAPACITY);
     }
 }

@@ -13,8 +13,8 @@
 //! bands of [`BAND_ROWS`] rows, RGB565 big-endian, 16-bit depth band.
 
 use crate::{
-    Crc32, FrameError, FrameStats, Needs, ObjectSpec, Pixel, Probe, SceneSpec, BAND_ROWS,
-    MAX_OBJECTS, POOL_SLOTS, POOL_VALUES,
+    Crc32, FrameError, FrameStats, ObjectSpec, Pixel, Probe, SceneSpec, BAND_ROWS, MAX_OBJECTS,
+    POOL_SLOTS, POOL_VALUES,
 };
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, MAX_LIGHTS};
@@ -106,9 +106,11 @@ impl<R: Real> Parts<R> {
     }
 }
 
-/// [`crate::render_frame`] with the profile `P`: prepares `spec` into
-/// `ws`, renders it band by band into `pixels` and `depth`, `probe`
-/// around the geometry and around each band.
+/// A frame with the profile `P` ([`crate::render_frame`] is this with
+/// `Fast`): prepares `spec` into `ws`, renders it band by band into
+/// `pixels` and `depth` (none for a scene that needs no depth band:
+/// [`SceneSpec::depth`]), `probe` around the geometry and around each
+/// band.
 ///
 /// # Errors
 /// As [`crate::render_frame`].
@@ -116,25 +118,14 @@ pub fn render_frame_with<P: Profile, Q: Probe>(
     spec: &SceneSpec,
     ws: Workspace<'_, P::Lerp>,
     pixels: &mut [Pixel],
-    depth: &mut [u16],
+    depth: Option<&mut [u16]>,
     order: &mut [u16],
     pool: &mut ProfilePool<P>,
     probe: &mut Q,
 ) -> Result<FrameStats, FrameError> {
-    // Geometry.
-    probe.resume();
-    let parts = Parts::<P::Real>::new(spec);
-    let prepared = match parts.camera {
-        Ok(camera) => {
-            let scene = parts.scene(spec, camera);
-            prepare::<P>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
-        }
-        Err(e) => Err(e.into()),
-    };
-    probe.pause();
-    probe.close();
-    let (scene, frame) = prepared?;
-    raster_bands::<P, Depth16, Q>(&frame, &scene, pixels, depth, BAND_ROWS, order, pool, probe)
+    crate::knobs::render_frame_knobs::<P, Depth16, Q>(
+        spec, ws, pixels, depth, BAND_ROWS, order, pool, probe,
+    )
 }
 
 /// The active-triangle pool of the band renderer for profile `P` (the
@@ -142,8 +133,10 @@ pub fn render_frame_with<P: Profile, Q: Probe>(
 pub type ProfilePool<P> = Pool<<P as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
 
 /// The raster part of a frame: the band state, then band by band (clear,
-/// render) in bands of `rows` rows with the depth format `D`, each band
-/// bracketed by `probe`, its bytes added to the CRC.
+/// render) in bands of `rows` rows with the depth format `D` (or no depth
+/// band: `depth` `None`; covered pixels are then the fragments drawn,
+/// each pixel at most once), each band bracketed by `probe`, its bytes
+/// added to the CRC.
 ///
 /// # Errors
 /// Buffers shorter than a band, or a render error.
@@ -152,7 +145,7 @@ pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
     frame: &Frame<'_, P>,
     scene: &Scene<'_, '_, P::Real>,
     pixels: &mut [Pixel],
-    depth: &mut [D::Raw],
+    depth: Option<&mut [D::Raw]>,
     rows: u32,
     order: &mut [u16],
     pool: &mut ProfilePool<P>,
@@ -167,14 +160,21 @@ pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
     let w = frame.size().0;
     let mut crc = Crc32::new();
     let n = (w * rows) as usize;
-    let (Some(px), Some(z)) = (pixels.get_mut(..n), depth.get_mut(..n)) else {
-        return Err(BufferError::WrongLength {
-            expected: n,
-            actual: pixels.len().min(depth.len()),
-        }
-        .into());
+    let short = |actual| BufferError::WrongLength {
+        expected: n,
+        actual,
     };
-    let mut band = BandBuf::<Rgb565Be, D>::with_depth(px, Some(z), w, rows)?;
+    let plen = pixels.len();
+    let px = pixels.get_mut(..n).ok_or(short(plen))?;
+    let z = match depth {
+        Some(d) => {
+            let dlen = d.len();
+            Some(d.get_mut(..n).ok_or(short(dlen))?)
+        }
+        None => None,
+    };
+    let with_depth = z.is_some();
+    let mut band = BandBuf::<Rgb565Be, D>::with_depth(px, z, w, rows)?;
     let mut state = BandState::new(order, pool);
     probe.resume();
     let bands = frame.bands(scene, &mut state, rows);
@@ -194,25 +194,12 @@ pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
     stats.setups = bands.stats().triangles;
     stats.active_peak = bands.active_peak() as u32;
     stats.drawn = bands.stats().pixels;
+    if !with_depth {
+        stats.covered = stats.drawn;
+    }
     probe.close();
     stats.crc = crc.finish();
     Ok(stats)
-}
-
-/// The workspace a profile needs where the `Fast` profile needs `n` (the
-/// generator measures `Fast`): perspective-correct profiles interpolate
-/// one more value (`q = near/w`) per vertex of a Gouraud or Phong object,
-/// so at most `n.vertices` more values; the others need the same lengths
-/// (their values are wider: `size_of::<P::Lerp>()` bytes each).
-pub const fn needs_for<P: Profile>(n: Needs) -> Needs {
-    Needs {
-        values: if P::PERSPECTIVE {
-            n.values + n.vertices
-        } else {
-            n.values
-        },
-        ..n
-    }
 }
 
 /// Prepares `spec` with the profile `P` into `ws` (no probe): the
@@ -234,20 +221,16 @@ pub fn check_with<P: Profile>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::BandPool;
-    use crate::{render_frame, NoProbe, BAND_PIXELS, MAX_NEEDS, SCENES};
+    use crate::{capacity_for, render_frame, BandPool, NoProbe, BAND_PIXELS, SCENES};
     use fixshade::num::{Fast, FastPc, Precise, F32, F64};
     use fixshade::render::Tri;
     use std::{boxed::Box, vec, vec::Vec};
 
-    fn run<P: Profile>(spec: &SceneSpec) -> FrameStats
-    where
-        P::Lerp: Default,
-    {
-        let n = needs_for::<P>(MAX_NEEDS);
+    fn run<P: Profile>(spec: &SceneSpec) -> FrameStats {
+        let n = capacity_for::<P>();
         let (mut xy, mut vals, mut tris) = (
             vec![[0i32; 2]; n.vertices],
-            vec![P::Lerp::default(); n.values],
+            vec![<P::Lerp as fixshade::raster::Lerp>::ZERO; n.values],
             vec![Tri::default(); n.triangles],
         );
         let ws = Workspace {
@@ -263,7 +246,7 @@ mod tests {
             spec,
             ws,
             &mut px,
-            &mut z,
+            Some(&mut z),
             &mut order,
             &mut pool,
             &mut NoProbe,
@@ -273,28 +256,18 @@ mod tests {
 
     #[test]
     fn fast_equals_the_firmware_frame_loop() {
-        let n = MAX_NEEDS;
+        let mut st = Box::new(crate::SceneStorage::new());
         for spec in SCENES.iter() {
-            let (mut xy, mut vals, mut tris) = (
-                vec![[0i32; 2]; n.vertices],
-                vec![0i32; n.values],
-                vec![Tri::default(); n.triangles],
-            );
-            let ws = Workspace {
-                xy: &mut xy,
-                vals: &mut vals,
-                tris: &mut tris,
-            };
+            let (ws, order) = st.split();
             let mut px = vec![[0u8; 2]; BAND_PIXELS];
             let mut z = vec![0u16; BAND_PIXELS];
-            let mut order = vec![0u16; 2 * n.triangles];
             let mut pool = Box::new(BandPool::new());
             let want = render_frame(
                 spec,
                 ws,
                 &mut px,
-                &mut z,
-                &mut order,
+                Some(&mut z),
+                order,
                 &mut pool,
                 &mut NoProbe,
             )
@@ -302,7 +275,6 @@ mod tests {
             assert_eq!(run::<Fast>(spec), want, "{}", spec.name);
         }
     }
-
     #[test]
     fn every_profile_renders_every_scene_with_the_same_coverage_nearly() {
         for spec in SCENES.iter() {

@@ -5,6 +5,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
 use fixshade::num::Q16;
+use fixshade::render::Capacity;
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
 use fixshade::target::Rgb8;
 
@@ -16,21 +17,6 @@ pub const fn q(bits: i32) -> Q16 {
 /// A vector of raw Q16 bits.
 pub const fn v(x: i32, y: i32, z: i32) -> Vec3<Q16> {
     Vec3::new(q(x), q(y), q(z))
-}
-
-/// Lengths of the workspace parts a scene needs (the smallest with which
-/// the core's `prepare::<Fast>` succeeds, measured on the host by the
-/// generator).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Needs {
-    /// Prepared vertices (`Workspace::xy`).
-    pub vertices: usize,
-    /// Interpolated values (`Workspace::vals`).
-    pub values: usize,
-    /// Prepared triangles (`Workspace::tris`).
-    pub triangles: usize,
-    /// `Frame::bytes_used()` of the prepared frame on the host.
-    pub prepared_bytes: usize,
 }
 
 /// One object: its mesh and the inputs of its model transform
@@ -68,7 +54,7 @@ impl ObjectSpec {
 }
 
 /// A scene: the camera's `look_at` inputs, objects, lights and the rest
-/// of the core's `Scene`, the frame size and the workspace it needs.
+/// of the core's `Scene`, the frame size and the storage it needs.
 #[derive(Clone, Copy, Debug)]
 pub struct SceneSpec {
     /// The built-in scene's name (`fixshade scenes`).
@@ -99,8 +85,12 @@ pub struct SceneSpec {
     pub specular: Specular,
     /// Background colour.
     pub background: Rgb8,
-    /// The workspace it needs.
-    pub needs: Needs,
+    /// The storage it needs: the core's bound for its meshes
+    /// (`Capacity::object`, in the generated source).
+    pub capacity: Capacity,
+    /// Whether it needs a depth band (not for one convex object with back
+    /// faces culled).
+    pub depth: bool,
 }
 
 impl SceneSpec {

@@ -29,12 +29,12 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::geom::{Affine, Vec3};
 use fixshade::num::{Fast, Q16};
-use fixshade::render::{prepare, BandState, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, RenderError};
 use fixshade::scene::Object;
 use fixshade::target::{Depth16, DepthFormat};
 use fixshade_scenes::{
-    Band, BandPool, Crc32, FrameError, Needs, Pixel, SceneSpec, BAND_PIXELS, BAND_ROWS, MAX_NEEDS,
-    MAX_OBJECTS, SCENES,
+    Band, BandPool, Crc32, FrameError, Pixel, SceneSpec, SceneStorage, BAND_PIXELS, BAND_ROWS,
+    CAPACITY, MAX_OBJECTS, SCENES,
 };
 
 /// The animated scenes (names of [`SCENES`]).
@@ -51,13 +51,10 @@ const fn angle(i: u32) -> Q16 {
     Q16::from_bits(((TAU_Q16 * i as i64 + FRAMES as i64 / 2) / FRAMES as i64) as i32)
 }
 
-/// The workspace: the benchmark firmware's (sized for the fixed views) with
-/// room for every triangle of the bunny, as a turn shows other faces than
-/// the fixed view (the start-up check proves each frame fits).
-const CAP: Needs = Needs {
-    triangles: 3674,
-    ..MAX_NEEDS
-};
+/// The storage: the benchmark firmware's, the core's bound for the
+/// scenes' meshes (every mesh vertex and triangle), whatever a turn shows
+/// (the start-up check proves each frame fits).
+const CAP: fixshade::render::Capacity = CAPACITY;
 
 /// Executes `yield`, the plugin's marker (see the benchmark firmware).
 #[inline(always)]
@@ -70,21 +67,8 @@ fn yield_marker() {
 struct Memory {
     pixels: &'static mut [Pixel; BAND_PIXELS],
     depth: &'static mut [u16; BAND_PIXELS],
-    xy: &'static mut [[i32; 2]; CAP.vertices],
-    vals: &'static mut [i32; CAP.values],
-    tris: &'static mut [Tri; CAP.triangles],
-    order: &'static mut [u16; 2 * CAP.triangles],
+    storage: &'static mut SceneStorage,
     pool: &'static mut BandPool,
-}
-
-impl Memory {
-    fn workspace(&mut self) -> Workspace<'_, i32> {
-        Workspace {
-            xy: &mut self.xy[..],
-            vals: &mut self.vals[..],
-            tris: &mut self.tris[..],
-        }
-    }
 }
 
 /// The objects of `spec` turned by `a` more about Y.
@@ -119,14 +103,10 @@ fn frame(spec: &SceneSpec, i: u32, mem: &mut Memory, measure: bool) -> Result<St
     };
     mark(measure);
     let objects = turned(spec, angle(i));
+    let (ws, order) = mem.storage.split();
     let prepared = match spec.camera() {
         Ok(camera) => {
             let scene = spec.scene(camera, &objects);
-            let ws = Workspace {
-                xy: &mut mem.xy[..],
-                vals: &mut mem.vals[..],
-                tris: &mut mem.tris[..],
-            };
             prepare::<Fast>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
         }
         Err(e) => Err(RenderError::from(e)),
@@ -160,7 +140,7 @@ fn frame(spec: &SceneSpec, i: u32, mem: &mut Memory, measure: bool) -> Result<St
         .into());
     };
     let mut band = Band::new(px, Some(z), w, BAND_ROWS)?;
-    let mut state = BandState::new(&mut mem.order[..], mem.pool);
+    let mut state = BandState::new(order, mem.pool);
     mark(measure);
     let bands = frame.bands(&scene, &mut state, BAND_ROWS);
     mark(measure);
@@ -203,7 +183,7 @@ fn run(mem: &mut Memory) -> Result<(), (&'static str, u32, FrameError)> {
             let objects = turned(spec, angle(i));
             let camera = spec.camera().map_err(|e| (spec.name, i, e.into()))?;
             let scene = spec.scene(camera, &objects);
-            prepare::<Fast>(&scene, spec.width, spec.height, mem.workspace())
+            prepare::<Fast>(&scene, spec.width, spec.height, mem.storage.workspace())
                 .map_err(|e| (spec.name, i, e.into()))?;
         }
     }
@@ -229,18 +209,12 @@ fn run(mem: &mut Memory) -> Result<(), (&'static str, u32, FrameError)> {
 fn main() -> ! {
     static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
-    static mut XY: [[i32; 2]; CAP.vertices] = [[0; 2]; CAP.vertices];
-    static mut VALS: [i32; CAP.values] = [0; CAP.values];
-    static mut TRIS: [Tri; CAP.triangles] = [Tri::EMPTY; CAP.triangles];
-    static mut ORDER: [u16; 2 * CAP.triangles] = [0; 2 * CAP.triangles];
+    static mut STORAGE: SceneStorage = SceneStorage::EMPTY;
     static mut POOL: BandPool = BandPool::new();
     let mut mem = Memory {
         pixels: PIXELS,
         depth: DEPTH,
-        xy: XY,
-        vals: VALS,
-        tris: TRIS,
-        order: ORDER,
+        storage: STORAGE,
         pool: POOL,
     };
     let status = match run(&mut mem) {

@@ -1,0 +1,401 @@
+//! Storage sized by the compiler: see [`Storage`].
+
+use super::{Layout, Tri, Workspace};
+use crate::mesh::Mesh;
+use crate::raster::Lerp;
+
+/// Lengths of a prepared frame's parts: vertices (`Workspace::xy`),
+/// values (`Workspace::vals`) and triangles (`Workspace::tris`, and two
+/// order entries each for the band renderer).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Capacity {
+    /// Prepared vertices.
+    pub vertices: usize,
+    /// Interpolated values.
+    pub values: usize,
+    /// Prepared triangles.
+    pub triangles: usize,
+}
+
+/// Where an object lies and how its back faces are drawn: what its
+/// prepared frame can grow to (see [`Storage`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reach {
+    /// Inside the clipping planes; back faces culled, or drawn with the
+    /// front faces' vertices (flat, Phong).
+    Inside,
+    /// Inside the clipping planes, two-sided Gouraud: each back face lit
+    /// in three vertices of its own.
+    TwoSided,
+    /// The clipping planes may cut it.
+    Clipped,
+}
+
+/// Corners of a clipped polygon (a triangle cut by the six planes).
+const POLY: usize = super::clip::MAX_POLY;
+
+impl Capacity {
+    /// Nothing.
+    pub const EMPTY: Self = Self {
+        vertices: 0,
+        values: 0,
+        triangles: 0,
+    };
+
+    /// Room for `meshes`, one object each, in any shading mode (8 values
+    /// per vertex: the widest layout with the perspective weight), inside
+    /// the clipping planes with back faces culled or not Gouraud
+    /// ([`Reach::Inside`]).
+    pub const fn of(meshes: &[&Mesh<'_>]) -> Self {
+        let mut c = Self::EMPTY;
+        let mut i = 0;
+        while i < meshes.len() {
+            c = c.object(meshes[i], Layout::PhongPosition, Reach::Inside);
+            c.values += meshes[i].vertex_count();
+            i += 1;
+        }
+        c
+    }
+
+    /// Room for one more object: `mesh` with `layout`'s values (affine
+    /// profiles; see [`Self::perspective`]) and `reach` (the table in the
+    /// docs of [`Storage`]).
+    pub const fn object(self, mesh: &Mesh<'_>, layout: Layout, reach: Reach) -> Self {
+        let (v, t) = (mesh.vertex_count(), mesh.triangle_count());
+        let (vertices, triangles) = match reach {
+            Reach::Inside => (v, t),
+            Reach::TwoSided => (v + 3 * t, t),
+            Reach::Clipped => (v + POLY * t, (POLY - 2) * t),
+        };
+        Self {
+            vertices: self.vertices + vertices,
+            values: self.values + vertices * layout.stride(),
+            triangles: self.triangles + triangles,
+        }
+    }
+
+    /// The same room for a perspective-correct profile: one more value
+    /// (the weight `q = near/w`) per vertex (flat objects need none: an
+    /// upper bound for them).
+    pub const fn perspective(self) -> Self {
+        Self {
+            values: self.values + self.vertices,
+            ..self
+        }
+    }
+
+    /// The larger of each part (one storage for several scenes).
+    pub const fn max(self, o: Self) -> Self {
+        const fn m(a: usize, b: usize) -> usize {
+            if a > b {
+                a
+            } else {
+                b
+            }
+        }
+        Self {
+            vertices: m(self.vertices, o.vertices),
+            values: m(self.values, o.values),
+            triangles: m(self.triangles, o.triangles),
+        }
+    }
+
+    /// Bytes of a [`Storage`] of these lengths with `value_bytes`-byte
+    /// values: 8 per vertex, `value_bytes` per value, 14 + 4 (order) per
+    /// triangle.
+    pub const fn bytes(self, value_bytes: usize) -> usize {
+        self.vertices * 8
+            + self.values * value_bytes
+            + self.triangles * (core::mem::size_of::<Tri>() + 4)
+    }
+}
+
+/// A prepared frame's memory as arrays: `V` vertices, `N` values of type
+/// `L` and `T` triangles (with the band renderer's order scratch, two
+/// entries per triangle), sized by the compiler from a [`Capacity`].
+/// `const` ([`Self::EMPTY`]): it may live in a `static` (in `.bss`).
+///
+/// Storage sized by the compiler: a prepared frame's memory as arrays
+/// whose lengths are const generics, computed by a `const fn` from the
+/// meshes a scene uses.
+///
+/// ```
+/// use fixshade::mesh::CUBE;
+/// use fixshade::render::{Capacity, Storage};
+///
+/// const CAP: Capacity = Capacity::of(&[&CUBE, &CUBE]);
+/// type CubeStorage = Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
+/// static STORAGE: CubeStorage = CubeStorage::EMPTY;
+/// assert_eq!(CAP.triangles, 2 * CUBE.triangle_count());
+/// ```
+///
+/// (In a firmware, `static mut STORAGE: CubeStorage = CubeStorage::EMPTY;`
+/// in the entry function, which `cortex-m-rt` hands out as
+/// `&'static mut`; [`Storage::split`] then lends the [`Workspace`] to
+/// [`prepare`](super::prepare) and the order scratch to a
+/// [`BandState`](super::BandState).)
+///
+/// # What the bound covers
+/// [`prepare`](super::prepare) takes, per object, room for every mesh
+/// vertex (one linear pass) with `stride` values each, then one prepared
+/// triangle per kept triangle; clipping and the back sides of two-sided
+/// Gouraud objects add vertices. A [`Capacity`] adds per object:
+///
+/// | object ([`Reach`]) | vertices | triangles |
+/// |--------------------|----------|-----------|
+/// | [`Reach::Inside`]: culled, or two-sided flat or Phong | `V` | `T` |
+/// | [`Reach::TwoSided`]: two-sided Gouraud (back faces lit on their own) | `V + 3T` | `T` |
+/// | [`Reach::Clipped`]: may be cut by the near, far or guard planes | `V + 9T` | `7T` |
+///
+/// with `V`, `T` the mesh's vertices and triangles, and `stride` values
+/// per vertex of the object ([`Layout::stride`]); a clipped triangle
+/// becomes a polygon of at most [`MAX_POLY`](super::clip::MAX_POLY) = 9
+/// corners, emitted as new vertices, fanned into at most 7 triangles.
+/// [`Capacity::perspective`] adds the perspective-correct profiles' weight
+/// (one value per vertex). The triangle bound is every mesh triangle:
+/// how many a view keeps (the front faces on the screen) is known only
+/// when the view is (the bunny keeps 1 498 of its 3 674 in the benchmark
+/// view). A storage smaller than what a frame uses makes `prepare` return
+/// [`RenderError::Capacity`](super::RenderError::Capacity), never a panic.
+#[derive(Clone, Debug)]
+pub struct Storage<L, const V: usize, const N: usize, const T: usize> {
+    xy: [[i32; 2]; V],
+    vals: [L; N],
+    tris: [Tri; T],
+    order: [[u16; 2]; T],
+}
+
+impl<L: Lerp, const V: usize, const N: usize, const T: usize> Storage<L, V, N, T> {
+    /// Empty storage.
+    pub const EMPTY: Self = Self {
+        xy: [[0; 2]; V],
+        vals: [L::ZERO; N],
+        tris: [Tri::EMPTY; T],
+        order: [[0; 2]; T],
+    };
+
+    /// The lengths.
+    pub const CAPACITY: Capacity = Capacity {
+        vertices: V,
+        values: N,
+        triangles: T,
+    };
+
+    /// Bytes it takes.
+    pub const BYTES: usize = core::mem::size_of::<Self>();
+
+    /// Empty storage ([`Self::EMPTY`]).
+    pub const fn new() -> Self {
+        Self::EMPTY
+    }
+
+    /// The workspace for [`prepare`](super::prepare).
+    pub fn workspace(&mut self) -> Workspace<'_, L> {
+        self.split().0
+    }
+
+    /// The workspace for [`prepare`](super::prepare) and the order scratch
+    /// for a [`BandState`](super::BandState) (two entries per triangle).
+    pub fn split(&mut self) -> (Workspace<'_, L>, &mut [u16]) {
+        (
+            Workspace {
+                xy: &mut self.xy,
+                vals: &mut self.vals,
+                tris: &mut self.tris,
+            },
+            self.order.as_flattened_mut(),
+        )
+    }
+}
+
+impl<L: Lerp, const V: usize, const N: usize, const T: usize> Default for Storage<L, V, N, T> {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    extern crate std;
+    use crate::geom::{Affine, Vec3};
+    use crate::illum::{Light, Material, Specular, Viewer};
+    use crate::mesh::{BUNNY, CUBE};
+    use crate::num::{Fast, FastPc, Real, Q16};
+    use crate::render::{prepare, Part, RenderError};
+    use crate::scene::{Camera, Object, Scene, Shading};
+    use crate::target::Rgb8;
+    use std::boxed::Box;
+
+    fn q(v: f64) -> Q16 {
+        Q16::from_f64(v)
+    }
+
+    fn object(shading: Shading, cull: bool, z: f64, color: [f64; 3]) -> Object<'static, Q16> {
+        Object {
+            mesh: CUBE,
+            transform: Affine::from_parts(
+                q(1.0),
+                Vec3::new(q(0.4), q(0.6), q(0.0)),
+                Vec3::new(q(0.0), q(0.0), q(z)),
+            ),
+            material: Material {
+                color: Vec3::new(q(color[0]), q(color[1]), q(color[2])),
+                ka: q(0.1),
+                kd: q(0.7),
+                ks: q(0.0),
+                shininess: q(8.0),
+            },
+            shading,
+            cull_backfaces: cull,
+        }
+    }
+
+    fn scene<'a>(
+        objects: &'a [Object<'static, Q16>],
+        lights: &'a [Light<Q16>],
+    ) -> Scene<'a, 'static, Q16> {
+        let camera = Camera::look_at(
+            Vec3::new(q(0.0), q(0.0), q(5.0)),
+            Vec3::new(q(0.0), q(0.0), q(0.0)),
+            Vec3::new(q(0.0), q(1.0), q(0.0)),
+            q(0.8),
+            q(1.0),
+            None,
+        )
+        .unwrap();
+        Scene {
+            camera,
+            objects,
+            lights,
+            ambient: q(0.2),
+            specular: Specular::Phong,
+            viewer: Viewer::Infinite,
+            background: Rgb8::BLACK,
+        }
+    }
+
+    const CUBE_GREY: Capacity = Capacity::EMPTY.object(&CUBE, Layout::GouraudMono, Reach::Inside);
+    type Grey = Storage<i32, { CUBE_GREY.vertices }, { CUBE_GREY.values }, { CUBE_GREY.triangles }>;
+
+    #[test]
+    fn capacities_follow_the_table() {
+        let (v, t) = (CUBE.vertex_count(), CUBE.triangle_count());
+        assert_eq!(
+            CUBE_GREY,
+            Capacity {
+                vertices: v,
+                values: 2 * v,
+                triangles: t
+            }
+        );
+        let c = Capacity::EMPTY.object(&CUBE, Layout::GouraudRgb, Reach::TwoSided);
+        assert_eq!(
+            (c.vertices, c.values, c.triangles),
+            (v + 3 * t, 4 * (v + 3 * t), t)
+        );
+        let c = Capacity::EMPTY.object(&CUBE, Layout::Flat, Reach::Clipped);
+        assert_eq!(
+            (c.vertices, c.values, c.triangles),
+            (v + 9 * t, v + 9 * t, 7 * t)
+        );
+        let all = Capacity::of(&[&BUNNY, &CUBE]);
+        assert_eq!(
+            all,
+            Capacity {
+                vertices: BUNNY.vertex_count() + v,
+                values: 8 * (BUNNY.vertex_count() + v),
+                triangles: BUNNY.triangle_count() + t
+            }
+        );
+        assert_eq!(CUBE_GREY.perspective().values, 3 * v);
+        assert_eq!(
+            Grey::BYTES,
+            CUBE_GREY.bytes(4),
+            "8 per vertex, 4 per value, 18 per triangle"
+        );
+        assert_eq!(CUBE_GREY.max(all), all);
+    }
+
+    #[test]
+    fn a_storage_of_the_capacity_prepares_the_scene_and_one_less_fails() {
+        let light = [Light::directional(
+            Vec3::new(q(0.3), q(0.4), q(0.866)),
+            q(1.0),
+        )];
+        let objects = [object(Shading::Gouraud, true, 0.0, [0.5, 0.5, 0.5])];
+        let s = scene(&objects, &light);
+        let mut st = Box::new(Grey::new());
+        let frame = prepare::<Fast>(&s, 64, 64, st.workspace()).unwrap();
+        assert_eq!(frame.vertex_count(), CUBE.vertex_count());
+        assert!(frame.triangle_count() > 0);
+        type Short =
+            Storage<i32, { CUBE_GREY.vertices }, { CUBE_GREY.values - 1 }, { CUBE_GREY.triangles }>;
+        let mut short = Box::new(Short::new());
+        assert_eq!(
+            prepare::<Fast>(&s, 64, 64, short.workspace()).unwrap_err(),
+            RenderError::Capacity {
+                part: Part::Values,
+                object: 0
+            }
+        );
+        // A perspective-correct profile needs the weight too.
+        assert!(matches!(
+            prepare::<FastPc>(&s, 64, 64, st.workspace()),
+            Err(RenderError::Capacity {
+                part: Part::Values,
+                ..
+            })
+        ));
+        const PC: Capacity = CUBE_GREY.perspective();
+        let mut pc = Box::new(Storage::<
+            i32,
+            { PC.vertices },
+            { PC.values },
+            { PC.triangles },
+        >::new());
+        prepare::<FastPc>(&s, 64, 64, pc.workspace()).unwrap();
+    }
+
+    #[test]
+    fn two_sided_and_clipped_objects_fit_their_bounds() {
+        let light = [Light::directional(
+            Vec3::new(q(0.3), q(0.4), q(0.866)),
+            q(1.0),
+        )];
+        // Two-sided colour Gouraud, one cube cut by the near plane (the eye
+        // at z = 5, near 1: a cube at z = 4 reaches z = 4.9).
+        let objects = [
+            object(Shading::Gouraud, false, 0.0, [0.9, 0.5, 0.2]),
+            object(Shading::Gouraud, false, 4.0, [0.9, 0.5, 0.2]),
+        ];
+        let s = scene(&objects, &light);
+        const C: Capacity = Capacity::EMPTY
+            .object(&CUBE, Layout::GouraudRgb, Reach::TwoSided)
+            .object(&CUBE, Layout::GouraudRgb, Reach::Clipped);
+        let mut st = Box::new(Storage::<i32, { C.vertices }, { C.values }, { C.triangles }>::new());
+        let (ws, order) = st.split();
+        assert_eq!(order.len(), 2 * C.triangles);
+        let frame = prepare::<Fast>(&s, 64, 64, ws).unwrap();
+        // The clipped cube added vertices beyond its mesh's.
+        assert!(frame.objects()[1].verts.len() > CUBE.vertex_count());
+        assert!(frame.vertex_count() <= C.vertices && frame.triangle_count() <= C.triangles);
+        // Sized as if both were inside: too small.
+        const IN: Capacity = Capacity::EMPTY
+            .object(&CUBE, Layout::GouraudRgb, Reach::Inside)
+            .object(&CUBE, Layout::GouraudRgb, Reach::Inside);
+        let mut small = Box::new(Storage::<
+            i32,
+            { IN.vertices },
+            { IN.values },
+            { IN.triangles },
+        >::new());
+        assert!(matches!(
+            prepare::<Fast>(&s, 64, 64, small.workspace()),
+            Err(RenderError::Capacity {
+                part: Part::Vertices,
+                ..
+            })
+        ));
+    }
+}
