@@ -44,8 +44,9 @@ use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
 use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader, Storage};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
-    check, render_frame, BandPool, FrameError, Pixel, Probe, BAND_PIXELS, BAND_ROWS, CAPACITY,
-    DEPTH_PIXELS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH as SCENE_WIDTH,
+    check, render_frame, BandPool, ChipFields, FrameError, Pixel, Probe, SceneLine, BAND_PIXELS,
+    BAND_ROWS, CAPACITY, DEPTH_PIXELS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES,
+    WIDTH as SCENE_WIDTH,
 };
 
 /// Executes the marker instruction `yield`: a hint that QEMU runs as a
@@ -214,24 +215,19 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         )
         .map_err(|e| Failure::Frame(spec.name, e))?;
         let stack = stack_used();
-        hprintln!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} storage_bytes={} depth_bytes={} pool_bytes={} stack={} static_ram={}",
-            spec.name,
-            spec.width,
-            spec.height,
-            stats.crc,
-            stats.covered,
-            stats.drawn,
-            stats.setups,
-            spec.triangles(),
-            stats.vertices,
-            stats.triangles,
-            stats.prepared_bytes,
-            fixshade_scenes::storage_bytes::<Fast>(spec),
-            if spec.depth { 2 * spec.width * BAND_ROWS } else { 0 },
-            core::mem::size_of::<BandPool>(),
+        let chip = ChipFields {
+            storage_bytes: fixshade_scenes::storage_bytes::<Fast>(spec),
+            pool_bytes: core::mem::size_of::<BandPool>(),
             stack,
-            static_ram(),
+            static_ram: static_ram(),
+        };
+        hprintln!(
+            "{}",
+            SceneLine {
+                spec,
+                stats: &stats,
+                chip: Some(chip)
+            }
         );
     }
     // The span loops write a 240-pixel band and its depth band: not in a

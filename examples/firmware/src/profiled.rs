@@ -14,7 +14,9 @@ use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::Profile;
 use fixshade::render::{Capacity, Storage};
 use fixshade_scenes::profiled::{check_with, render_frame_with, ProfilePool};
-use fixshade_scenes::{capacity_for, Pixel, BAND_PIXELS, BAND_ROWS, DEPTH_PIXELS, SCENES, WIDTH};
+use fixshade_scenes::{
+    capacity_for, ChipFields, Pixel, SceneLine, BAND_PIXELS, BAND_ROWS, DEPTH_PIXELS, SCENES, WIDTH,
+};
 
 #[cfg(feature = "profile-precise")]
 type P = fixshade::num::Precise;
@@ -106,24 +108,19 @@ fn run(
         )
         .map_err(|e| (spec.name, e))?;
         let stack = super::stack_used();
-        hprintln!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={} storage_bytes={} depth_bytes={} pool_bytes={} stack={} static_ram={}",
-            spec.name,
-            spec.width,
-            spec.height,
-            stats.crc,
-            stats.covered,
-            stats.drawn,
-            stats.setups,
-            spec.triangles(),
-            stats.vertices,
-            stats.triangles,
-            stats.prepared_bytes,
-            fixshade_scenes::storage_bytes::<P>(spec),
-            if spec.depth { 2 * spec.width * BAND_ROWS } else { 0 },
-            core::mem::size_of::<ProfilePool<P>>(),
+        let chip = ChipFields {
+            storage_bytes: fixshade_scenes::storage_bytes::<P>(spec),
+            pool_bytes: core::mem::size_of::<ProfilePool<P>>(),
             stack,
-            super::static_ram(),
+            static_ram: super::static_ram(),
+        };
+        hprintln!(
+            "{}",
+            SceneLine {
+                spec,
+                stats: &stats,
+                chip: Some(chip)
+            }
         );
     }
     Ok(())

@@ -10,7 +10,7 @@ use fixshade::geom::{radians, Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::DODECAHEDRON;
 use fixshade::num::{Fast, Profile, Q16};
-use fixshade::render::Pool;
+use fixshade::render::{Capacity, Layout, Pool, Reach};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
 use fixshade::target::Rgb8;
 
@@ -23,16 +23,19 @@ pub const ROWS: u32 = 16;
 /// Pixels of a band.
 pub const BAND_PX: usize = (W * ROWS) as usize;
 
-/// Workspace capacities: every vertex of the mesh (60: one per face
-/// corner, the faces are flat; a prepared vertex per mesh vertex, and the
-/// camera never clips, so none is added), 7 values per vertex (Phong:
-/// depth, normal, eye position for the point light and the local viewer),
-/// every triangle (36).
-pub const VERTICES: usize = 60;
+/// The prepared frame's capacities, computed by the core's `const fn`
+/// from the mesh: every vertex (60: one per face corner, the faces are
+/// flat; the camera never clips, so none is added), 7 values per vertex
+/// (Phong: depth, normal, eye position for the point light and the local
+/// viewer), every triangle (36).
+pub const CAPACITY: Capacity =
+    Capacity::EMPTY.object(&DODECAHEDRON, Layout::PhongPosition, Reach::Inside);
+/// Vertices of the workspace.
+pub const VERTICES: usize = CAPACITY.vertices;
 /// Values of the workspace (7 per vertex).
-pub const VALUES: usize = 7 * VERTICES;
+pub const VALUES: usize = CAPACITY.values;
 /// Triangles of the workspace.
-pub const TRIANGLES: usize = 36;
+pub const TRIANGLES: usize = CAPACITY.triangles;
 /// The band renderer's order scratch: 2 `u16` per prepared triangle.
 pub const ORDER: usize = 2 * TRIANGLES;
 

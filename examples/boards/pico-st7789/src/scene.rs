@@ -12,7 +12,7 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, Material, Specular, Viewer};
 use fixshade::mesh::BUNNY;
 use fixshade::num::{Fast, Profile, Q16};
-use fixshade::render::Pool;
+use fixshade::render::{Capacity, Layout, Pool, Reach};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
 use fixshade::target::Rgb8;
 
@@ -25,18 +25,20 @@ pub const ROWS: u32 = 16;
 /// Pixels of a band.
 pub const BAND_PX: usize = (W * ROWS) as usize;
 
-/// Workspace capacities: every vertex of the bunny (1 839; a prepared
-/// vertex per mesh vertex, and the camera never clips, so none is added),
-/// four values per vertex (colour Gouraud: depth and three channels; this
-/// white scene uses two, a coloured material or light four), every
-/// triangle (3 674: a turn shows other faces than any one view). A
-/// material or shading that needs more values is a start-up error over
-/// defmt.
-pub const VERTICES: usize = 1839;
+/// The prepared frame's capacities, computed by the core's `const fn`
+/// from the mesh: every vertex of the bunny (1 839; a prepared vertex per
+/// mesh vertex, and the camera never clips, so none is added), four values
+/// per vertex (colour Gouraud: depth and three channels; this white scene
+/// uses two, a coloured material or light four), every triangle (3 674: a
+/// turn shows other faces than any one view). A material or shading that
+/// needs more values is a start-up error over defmt.
+pub const CAPACITY: Capacity = Capacity::EMPTY.object(&BUNNY, Layout::GouraudRgb, Reach::Inside);
+/// Vertices of the workspace.
+pub const VERTICES: usize = CAPACITY.vertices;
 /// Values of the workspace (4 per vertex).
-pub const VALUES: usize = 4 * VERTICES;
+pub const VALUES: usize = CAPACITY.values;
 /// Triangles of the workspace.
-pub const TRIANGLES: usize = 3674;
+pub const TRIANGLES: usize = CAPACITY.triangles;
 /// The band renderer's order scratch: 2 `u16` per prepared triangle.
 pub const ORDER: usize = 2 * TRIANGLES;
 

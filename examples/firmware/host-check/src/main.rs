@@ -92,20 +92,12 @@ fn main() -> Result<(), Box<dyn Error>> {
             &mut NoProbe,
         )
         .map_err(|e| format!("scene {}: {e}", spec.name))?;
-        println!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
-            spec.name,
-            spec.width,
-            spec.height,
-            s.crc,
-            s.covered,
-            s.drawn,
-            s.setups,
-            spec.triangles(),
-            s.vertices,
-            s.triangles,
-            s.prepared_bytes,
-        );
+        let line = fixshade_scenes::SceneLine {
+            spec,
+            stats: &s,
+            chip: None,
+        };
+        println!("{line}");
         if let Some(dir) = &ppm {
             fs::create_dir_all(dir)?;
             let rgb = whole_frame(spec, &mut ws)?;
@@ -198,20 +190,12 @@ fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
             &mut NoProbe,
         )
         .map_err(|e| format!("scene {}: {e}", spec.name))?;
-        println!(
-            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
-            spec.name,
-            spec.width,
-            spec.height,
-            s.crc,
-            s.covered,
-            s.drawn,
-            s.setups,
-            spec.triangles(),
-            s.vertices,
-            s.triangles,
-            s.prepared_bytes,
-        );
+        let line = fixshade_scenes::SceneLine {
+            spec,
+            stats: &s,
+            chip: None,
+        };
+        println!("{line}");
     }
     Ok(())
 }

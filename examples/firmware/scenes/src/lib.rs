@@ -80,6 +80,67 @@ pub const fn storage_bytes<P: Profile>(spec: &SceneSpec) -> usize {
     c.bytes(core::mem::size_of::<P::Lerp>())
 }
 
+/// A `scene` line as the firmware and `host-check` print it: name, size,
+/// CRC, coverage, setups, mesh and prepared counts, and on a chip (with
+/// [`ChipFields`]) the memory of a firmware built for the scene alone and
+/// the stack.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneLine<'a> {
+    /// The scene.
+    pub spec: &'a SceneSpec,
+    /// Its frame.
+    pub stats: &'a FrameStats,
+    /// The fields only a chip prints.
+    pub chip: Option<ChipFields>,
+}
+
+/// The `scene` line's fields only a chip prints.
+#[derive(Clone, Copy, Debug)]
+pub struct ChipFields {
+    /// [`storage_bytes`] of the scene with the build's profile.
+    pub storage_bytes: usize,
+    /// Bytes of the pool of active triangles.
+    pub pool_bytes: usize,
+    /// Stack high-water mark, bytes.
+    pub stack: usize,
+    /// Static RAM of the whole build, bytes.
+    pub static_ram: usize,
+}
+
+impl fmt::Display for SceneLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (spec, s) = (self.spec, self.stats);
+        write!(
+            f,
+            "scene {} size={}x{} crc=0x{:08x} covered={} drawn={} setups={} triangles={} prepared_vertices={} prepared_triangles={} prepared_bytes={}",
+            spec.name,
+            spec.width,
+            spec.height,
+            s.crc,
+            s.covered,
+            s.drawn,
+            s.setups,
+            spec.triangles(),
+            s.vertices,
+            s.triangles,
+            s.prepared_bytes,
+        )?;
+        if let Some(c) = self.chip {
+            let depth = if spec.depth {
+                2 * spec.width * BAND_ROWS
+            } else {
+                0
+            };
+            write!(
+                f,
+                " storage_bytes={} depth_bytes={} pool_bytes={} stack={} static_ram={}",
+                c.storage_bytes, depth, c.pool_bytes, c.stack, c.static_ram
+            )?;
+        }
+        Ok(())
+    }
+}
+
 /// The `Fast` storage of the scenes (sized by the compiler from their
 /// meshes: see `generated.rs`).
 pub type SceneStorage =
