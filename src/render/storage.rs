@@ -51,7 +51,7 @@ impl Capacity {
         let mut i = 0;
         while i < meshes.len() {
             c = c.object(meshes[i], Layout::PhongPosition, Reach::Inside);
-            c.values += meshes[i].vertex_count();
+            c.values = c.values.saturating_add(meshes[i].vertex_count());
             i += 1;
         }
         c
@@ -62,15 +62,23 @@ impl Capacity {
     /// docs of [`Storage`]).
     pub const fn object(self, mesh: &Mesh<'_>, layout: Layout, reach: Reach) -> Self {
         let (v, t) = (mesh.vertex_count(), mesh.triangle_count());
+        // Saturating: a sum beyond `usize` stays `usize::MAX` (no storage
+        // of that size builds, and `prepare` never indexes past `u16`
+        // vertices) instead of wrapping to a small capacity.
         let (vertices, triangles) = match reach {
             Reach::Inside => (v, t),
-            Reach::TwoSided => (v + 3 * t, t),
-            Reach::Clipped => (v + POLY * t, (POLY - 2) * t),
+            Reach::TwoSided => (v.saturating_add(3usize.saturating_mul(t)), t),
+            Reach::Clipped => (
+                v.saturating_add(POLY.saturating_mul(t)),
+                (POLY - 2).saturating_mul(t),
+            ),
         };
         Self {
-            vertices: self.vertices + vertices,
-            values: self.values + vertices * layout.stride(),
-            triangles: self.triangles + triangles,
+            vertices: self.vertices.saturating_add(vertices),
+            values: self
+                .values
+                .saturating_add(vertices.saturating_mul(layout.stride())),
+            triangles: self.triangles.saturating_add(triangles),
         }
     }
 
@@ -79,7 +87,7 @@ impl Capacity {
     /// upper bound for them).
     pub const fn perspective(self) -> Self {
         Self {
-            values: self.values + self.vertices,
+            values: self.values.saturating_add(self.vertices),
             ..self
         }
     }
@@ -104,9 +112,13 @@ impl Capacity {
     /// values: 8 per vertex, `value_bytes` per value, 14 + 4 (order) per
     /// triangle.
     pub const fn bytes(self, value_bytes: usize) -> usize {
-        self.vertices * 8
-            + self.values * value_bytes
-            + self.triangles * (core::mem::size_of::<Tri>() + 4)
+        self.vertices
+            .saturating_mul(8)
+            .saturating_add(self.values.saturating_mul(value_bytes))
+            .saturating_add(
+                self.triangles
+                    .saturating_mul(core::mem::size_of::<Tri>() + 4),
+            )
     }
 }
 
@@ -315,6 +327,20 @@ mod tests {
             "8 per vertex, 4 per value, 18 per triangle"
         );
         assert_eq!(CUBE_GREY.max(all), all);
+        // Beyond `usize`: saturated, never wrapped to a small capacity.
+        let huge = Capacity {
+            vertices: usize::MAX - 1,
+            values: usize::MAX - 1,
+            triangles: usize::MAX / 2,
+        };
+        let c = huge
+            .object(&CUBE, Layout::PhongPosition, Reach::Clipped)
+            .perspective();
+        assert_eq!(
+            (c.vertices, c.values, c.triangles),
+            (usize::MAX, usize::MAX, usize::MAX / 2 + 7 * t)
+        );
+        assert_eq!(huge.bytes(4), usize::MAX);
     }
 
     #[test]
