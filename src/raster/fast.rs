@@ -20,7 +20,7 @@
 //! Values are the same modulo 2^32 as the generic walker's `row + sx·x0 +
 //! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
 
-use super::span::{depth_loop, in_range_test};
+use super::span::{depth_loop, in_range_test, pair_loop};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::wide::NO_LONG_MUL;
@@ -53,7 +53,7 @@ fn span_inr<const N: usize, R: Copy, D: DepthFormat>(
     sx: &Vals<i32, N>,
     color: &impl Fn(&[i32; N]) -> R,
 ) -> u32 {
-    depth_loop(p, d, z, sx.z, a, &sx.a, color, in_range_test::<i32, D>)
+    pair_loop(p, d, z, sx.z, a, &sx.a, color, in_range_test::<i32, D>)
 }
 
 impl Walk {
@@ -320,6 +320,12 @@ fn depth16_plane_in_range32(z: [i32; 3], gx: i32, gy: i32) -> bool {
     ok(z[0]) & ok(z[1]) & ok(z[2]) & (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
 }
 
+/// `true` when `v` fits an `i32`.
+#[inline(always)]
+fn fits(v: i64) -> bool {
+    v as i32 as i64 == v
+}
+
 /// `a · b` in 64 bits (one `SMULL`).
 #[inline(always)]
 fn wide(a: i32, b: i32) -> i64 {
@@ -329,14 +335,18 @@ fn wide(a: i32, b: i32) -> i64 {
 /// The 32-bit setup: `Err(())` when a bound below fails (the caller then
 /// takes [`setup`]), else exactly [`setup`]'s result. The bounds:
 ///
-/// - the reciprocal of the doubled area takes [`InvArea::quot`]'s
-///   high-word case ([`InvArea::high_shift`]: areas between about
-///   `2^(s+1)` and `2^(s+32)` subpixels², decided once);
-/// - each value difference `v1 - v0`, `v2 - v0` fits an `i32`, and each
-///   gradient numerator `d1·dy2 - d2·dy1`, `d2·dx1 - d1·dx2` (two
-///   `SMULL`s) fits an `i32`: then [`InvArea::quot`] takes no
-///   normalisation and its value is [`InvArea::quot_high`]'s, whose
-///   result lies within ±2^30;
+/// - the subpixel offsets of vertices 1 and 2 from vertex 0 lie below
+///   `2^bxy` in magnitude with `bxy <= 15` (triangles under 2048 pixels a
+///   side at 4 subpixel bits): the doubled area `dx1·dy2 - dx2·dy1` is
+///   below `2·2^30` in magnitude, an `i32`;
+/// - for each value, its differences `v1 - v0`, `v2 - v0` do not wrap and
+///   lie below `2^bv` with `bv + bxy <= 30`: each product of a gradient
+///   numerator `d1·dy2 - d2·dy1`, `d2·dx1 - d1·dx2` is below 2^30, the
+///   numerator below 2^31, an exact `i32`, so [`InvArea::quot`] takes no
+///   normalisation;
+/// - the reciprocal takes [`InvArea::quot`]'s high-word case
+///   ([`InvArea::high_shift`]), and a numerator's quotient is
+///   [`InvArea::quot_high`]'s (within ±2^30);
 /// - the row origin `a0 + ((gx·(h - x0) + gy·(h - y0) + h) >> s)` (`h =
 ///   S/2`) is `origin64`'s sum of the same `i64`s (the gradients are
 ///   `i32`s, sign-extended), formed by `SMULL`/`SMLAL`.
@@ -354,7 +364,12 @@ fn setup32<const N: usize>(
     out: &mut (Walk, [Vals<i32, N>; 3]),
 ) -> Result<bool, ()> {
     let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    let area2 = wide(dx1, dy2) - wide(dx2, dy1);
+    let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
+    let bxy = 32 - mxy.leading_zeros();
+    if bxy > 15 {
+        return Err(());
+    }
+    let area2 = dx1 * dy2 - dx2 * dy1;
     if area2 == 0 {
         return Ok(false);
     }
@@ -367,9 +382,9 @@ fn setup32<const N: usize>(
     if js >= j_bot {
         return Ok(false);
     }
-    let inv = match i32::try_from(area2).ok().and_then(InvArea::new_small) {
+    let inv = match InvArea::new_small(area2) {
         Some(inv) => inv,
-        None => InvArea::new(area2),
+        None => InvArea::new(area2 as i64),
     };
     let s = sub.get();
     let k = inv.high_shift(s).ok_or(())?;
@@ -381,11 +396,11 @@ fn setup32<const N: usize>(
         let (d2, o2) = v2.overflowing_sub(v0);
         let nx = wide(d1, dy2) - wide(d2, dy1);
         let ny = wide(d2, dx1) - wide(d1, dx2);
-        let (nx32, ny32) = (nx as i32, ny as i32);
-        if o1 | o2 | (nx32 as i64 != nx) | (ny32 as i64 != ny) {
+        let (nx, ny) = (nx as i32, ny as i32);
+        if o1 | o2 | !fits(wide(d1, dy2) - wide(d2, dy1)) | !fits(wide(d2, dx1) - wide(d1, dx2)) {
             return Err(());
         }
-        let (gx, gy) = (inv.quot_high(nx32, k), inv.quot_high(ny32, k));
+        let (gx, gy) = (inv.quot_high(nx, k), inv.quot_high(ny, k));
         let t = wide(gx, ox) + wide(gy, oy) + h as i64;
         Ok((gx, gy, v0.wrapping_add((t >> s) as i32)))
     };
@@ -414,28 +429,23 @@ fn setup32<const N: usize>(
     } else {
         ((sx0, sy0, sx1, sy1, sj), (a.x, a.y, c.x, c.y, js))
     };
-    let left = Edge::new_first(lp.0, lp.1, lp.2, lp.3, lp.4, sub);
-    let right = Edge::new_first(rp.0, rp.1, rp.2, rp.3, rp.4, sub);
-    let low = if j_mid < j_bot {
+    let w = &mut out.0;
+    w.left = Edge::new_first(lp.0, lp.1, lp.2, lp.3, lp.4, sub);
+    w.right = Edge::new_first(rp.0, rp.1, rp.2, rp.3, rp.4, sub);
+    w.low = if j_mid < j_bot {
         Edge::new_first(b.x, b.y, c.x, c.y, lowp.2, sub)
     } else {
         Edge::EMPTY
     };
     let sc = sub.scale();
     let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
-    let inside = xmin >= 0 && xmax <= width.saturating_mul(sc);
-    out.0 = Walk {
-        left,
-        right,
-        low,
-        j: js,
-        mid: j_mid,
-        end: j_bot,
-        ia: a.x >> s,
-        ja: a.y >> s,
-        long_left,
-        inside,
-        z16,
-    };
+    w.inside = xmin >= 0 && xmax <= width.saturating_mul(sc);
+    w.j = js;
+    w.mid = j_mid;
+    w.end = j_bot;
+    w.ia = a.x >> s;
+    w.ja = a.y >> s;
+    w.long_left = long_left;
+    w.z16 = z16;
     Ok(true)
 }
