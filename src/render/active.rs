@@ -200,6 +200,9 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     n: usize,
     /// Next entry of the order.
     cursor: usize,
+    /// End of the entries of the order starting in the current band (or
+    /// above).
+    band_end: usize,
     /// Pool ring: first entry, entries of the band above still to resume,
     /// entries in all.
     ring_head: usize,
@@ -259,6 +262,7 @@ impl<'w, P: Profile> Frame<'w, P> {
             y: 0,
             n,
             cursor: 0,
+            band_end: 0,
             ring_head: 0,
             ring_cur: 0,
             ring_len: 0,
@@ -469,6 +473,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         self.ring_cur = self.ring_len;
         self.def_cur = self.def_len;
         let band_index = y0 / self.rows.max(1);
+        // The triangles starting in this band: the next run of the order
+        // (each triangle's band found once per frame, here).
+        let mut k = self.cursor;
+        while k < self.n && self.bucket_at(k, band_index) != NONE {
+            k += 1;
+        }
+        self.band_end = k;
         let frame = self.frame;
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
@@ -573,13 +584,21 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         a.min(b).min(self.bucket_head(band))
     }
 
-    /// The next triangle of the order when it starts in band `band`.
+    /// The next triangle of the order when it starts in this band.
     #[inline(always)]
-    fn bucket_head(&self, band: u32) -> u32 {
-        if self.cursor >= self.n {
-            return NONE;
+    fn bucket_head(&self, _band: u32) -> u32 {
+        if self.cursor < self.band_end {
+            self.order.get(self.cursor).map_or(NONE, |&i| i as u32)
+        } else {
+            NONE
         }
-        let Some(&i) = self.order.get(self.cursor) else {
+    }
+
+    /// Entry `k` of the order when its triangle starts in band `band` or
+    /// above, else [`NONE`].
+    #[inline(always)]
+    fn bucket_at(&self, k: usize, band: u32) -> u32 {
+        let Some(&i) = self.order.get(k) else {
             return NONE;
         };
         let tris = self.frame.tris();
@@ -617,16 +636,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     {
         let end = po.tris.end as u32;
         let band = t.y0 / self.rows.max(1);
-        let (shift, m) = band_consts(self.rows);
-        let last = self
-            .frame
-            .height
-            .div_ceil(self.rows.max(1))
-            .saturating_sub(1);
         let tris = self.frame.tris();
         let (y1, width) = (t.y1 as i32, t.width as i32);
         loop {
-            let Some((ti, src)) = self.take(band, end, shift, m, last) else {
+            let Some((ti, src)) = self.take(band, end) else {
                 return Ok(());
             };
             let Some(tri) = tris.get(ti as usize) else {
@@ -686,18 +699,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     {
         let end = po.tris.end as u32;
         let band = t.y0 / self.rows.max(1);
-        let (shift, m) = band_consts(self.rows);
-        let last = self
-            .frame
-            .height
-            .div_ceil(self.rows.max(1))
-            .saturating_sub(1);
         let tris = self.frame.tris();
         let (y0, y1, width) = (t.y0 as i32, t.y1 as i32, t.width as i32);
         let zero = Vals { z: 0, a: [0; N] };
         let mut st = (Walk::EMPTY, [zero; 3]);
         loop {
-            let Some((ti, src)) = self.take(band, end, shift, m, last) else {
+            let Some((ti, src)) = self.take(band, end) else {
                 return Ok(());
             };
             let Some(tri) = tris.get(ti as usize) else {
@@ -754,15 +761,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// of those that found the pool full, and the order (those starting in
     /// the band); `None` when none is left.
     #[inline(always)]
-    fn take(
-        &mut self,
-        band: u32,
-        end: u32,
-        shift: Option<u32>,
-        m: u32,
-        last: u32,
-    ) -> Option<(u32, Src)> {
-        let tris = self.frame.tris();
+    fn take(&mut self, band: u32, end: u32) -> Option<(u32, Src)> {
         let ta = if self.ring_cur > 0 {
             let s = self.pool.ring.get(self.ring_head).copied().unwrap_or(0);
             self.pool
@@ -779,18 +778,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         } else {
             NONE
         };
-        let tc = match self.order.get(self.cursor) {
-            Some(&i) if self.cursor < self.n => match tris.get(i as usize) {
-                Some(tr)
-                    if band_of((tr.rows[0] as u32).min(4095), self.rows, shift, m).min(last)
-                        <= band =>
-                {
-                    i as u32
-                }
-                _ => NONE,
-            },
-            _ => NONE,
-        };
+        let tc = self.bucket_head(band);
         let ti = ta.min(tb).min(tc);
         if ti >= end {
             return None;
