@@ -23,6 +23,18 @@
 //! once (integer DDA, exact wrapping steps), so a banded frame equals the
 //! full frame byte for byte.
 //!
+//! # The fixed affine fast path
+//! Flat and grey Gouraud objects of the fixed affine profiles (`i32`
+//! values, no perspective: [`Lerp::fixed_raw`]) take `Bands::run_fast`:
+//! the same streams, with the setup of `raster::fast` (32-bit where the
+//! triangle's extents allow it, the walk written in place; tested equal to
+//! the general setup) and its fused row kernel (two edge steps, one
+//! multiply-add per value for a span start, the span stage's own pixel
+//! loops), so the bytes are those of the general path. bunny-gouraud
+//! raster (exact QEMU counts, 16-row bands): thumbv7em 2.534 -> 2.271 M
+//! instructions, thumbv6m 4.036 -> 3.932 M. The other layouts and
+//! profiles take `Bands::run`.
+//!
 //! # Memory
 //! | part | bytes |
 //! |------|-------|
