@@ -15,10 +15,10 @@ use super::SubpixelBits;
 pub struct Edge {
     /// The current column (first pixel at or right of the edge).
     pub x: i32,
-    e: i32,
-    q: i32,
-    r: i32,
-    d: i32,
+    pub(super) e: i32,
+    pub(super) q: i32,
+    pub(super) r: i32,
+    pub(super) d: i32,
 }
 
 impl Edge {
@@ -105,6 +105,51 @@ impl Edge {
             }
         };
         Self { x, e, q, r, d }
+    }
+
+    /// [`Edge::new`] for an edge positioned at its own first row (`0 <= t
+    /// < S` for `t = j·S + S/2 - y0`, the case of every edge a triangle
+    /// starts with, and of its lower short edge), in 32-bit arithmetic
+    /// (with the module's limits `|j·S| < 2^22` and `|y0| <= 2^21`, `t`
+    /// fits an `i32`); other rows take [`Edge::new`]. The same walker.
+    #[inline(always)]
+    pub(crate) fn new_first(x0: i32, y0: i32, x1: i32, y1: i32, j: i32, sub: SubpixelBits) -> Self {
+        let s = sub.scale();
+        let t = j.wrapping_mul(s).wrapping_add(s / 2).wrapping_sub(y0);
+        if !(0..s).contains(&t) {
+            return Self::new_cold(x0, y0, x1, y1, j, sub);
+        }
+        let dx = x1 - x0;
+        let dy = (y1 - y0).max(1);
+        let d = (s * dy).max(1);
+        let small = if NO_DIVIDE {
+            small_floor_divmod(dx, dy)
+        } else {
+            None
+        };
+        let (q, rem) = match small {
+            Some(qr) => qr,
+            None => floor_divmod(dx, dy),
+        };
+        let r = s * rem;
+        let a_full = x0 - s / 2 + t * q;
+        let (a, b) = (a_full >> sub.get(), a_full & (s - 1));
+        let np = b * dy + t * rem;
+        let (x, e) = if np == 0 {
+            (a, 0)
+        } else if np <= d {
+            (a + 1, d - np)
+        } else {
+            (a + 2, 2 * d - np)
+        };
+        Self { x, e, q, r, d }
+    }
+
+    /// [`Edge::new`] out of line (a band starting inside a triangle).
+    #[inline(never)]
+    #[cold]
+    fn new_cold(x0: i32, y0: i32, x1: i32, y1: i32, j: i32, sub: SubpixelBits) -> Self {
+        Self::new(x0, y0, x1, y1, j, sub)
     }
 
     /// Advances one row; returns `true` when the column moved one further

@@ -149,6 +149,18 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
 
     /// `self / q`, for an attribute interpolated as `a · q`.
     fn unweight(self, f: Self::Unweight) -> Self;
+
+    /// The raw `i32` of a fixed-point value (`Some` for `i32`: the band
+    /// renderer's fixed affine fast path, `raster::fast`, works on raw
+    /// values); `None` for the float twins, which take the generic path.
+    #[inline(always)]
+    fn fixed_raw(self) -> Option<i32> {
+        None
+    }
+
+    /// The value whose [`Lerp::fixed_raw`] is `v` (`i32`: `v` itself;
+    /// floats, which never take the fast path: `v` as a number).
+    fn from_fixed_raw(v: i32) -> Self;
 }
 
 /// The reciprocal of a doubled triangle area in fixed point:
@@ -363,6 +375,69 @@ impl InvArea {
                 p.saturating_mul(1 << up)
             }
         }
+    }
+}
+
+impl InvArea {
+    /// [`InvArea::new`] for `0 < |a| < 2^16` (doubled areas below 256
+    /// pixels² at 4 subpixel bits: nearly every triangle of a small
+    /// display), by two 32-bit divisions (ARMv7-M's `UDIV`; the hosts'
+    /// divider): the very value. `None` for other areas.
+    ///
+    /// Why the same: with `c` the leading zeros of `|a|` in 64 bits (`c >=
+    /// 48`) and `k = c - 32`, `new` takes the reciprocal of `x = |a|·2^k`,
+    /// `⌊(2^63 + ⌊x/2⌋) / x⌋`, which is `⌊(2^(63-k) + ⌊|a|/2⌋) / |a|⌋`
+    /// (dividing numerator and divisor by `2^k` first: `⌊x/2⌋ =
+    /// |a|·2^(k-1)` for `k >= 1`). That dividend is below `2^48`, the
+    /// divisor below `2^16`: long division in two 16-bit digits, each a
+    /// 32-bit division (the first remainder, below `2^16`, shifted by 16
+    /// still fits). Tested equal to [`InvArea::new`] for every such `a`.
+    #[inline(always)]
+    pub(crate) fn new_small(a: i32) -> Option<Self> {
+        let mag = a.unsigned_abs();
+        if mag == 0 || mag >= 1 << 16 {
+            return None;
+        }
+        let c = 32 + clz32(mag);
+        let k = c - 32;
+        // 2^(63-k) + ⌊mag/2⌋ = hi·2^16 + lo, hi = 2^(47-k) (+ carry-free:
+        // ⌊mag/2⌋ < 2^15 <= 2^(63-k-16)·... held apart below).
+        let top = 1u32 << (47 - k); // 2^(63-k) >> 16, k in 16..=31
+        let lo = mag >> 1; // below 2^15: the low digit alone
+        let q_hi = top / mag;
+        let r_hi = top - q_hi * mag;
+        let num_lo = (r_hi << 16) | lo;
+        let q_lo = num_lo / mag;
+        let q = ((q_hi as u64) << 16) + q_lo as u64;
+        let m = ((q >> 1) as u32).min(i32::MAX as u32) as i32;
+        Some(Self {
+            m: if a < 0 { -m } else { m },
+            e: 94 - c,
+        })
+    }
+
+    /// For the fast path (`raster::fast`): `Some(k)` when [`InvArea::quot`]
+    /// of a numerator within an `i32` takes its usual high-word case for
+    /// `s` subpixel bits (`sh = e - s` in `33..64`, then `k = sh - 33`):
+    /// decided once per triangle.
+    #[inline(always)]
+    pub(crate) fn high_shift(&self, s: u32) -> Option<u32> {
+        let sh = self.e.wrapping_sub(s);
+        if (33..64).contains(&sh) {
+            Some(sh - 33)
+        } else {
+            None
+        }
+    }
+
+    /// [`InvArea::quot`]`(n, s)` for `n` within an `i32` and `k` from
+    /// [`InvArea::high_shift`]`(s)`: the very value, with one product and
+    /// no normalisation (`t = 0`; `|h| < 2^30` and `k <= 30`, so nothing
+    /// wraps and the result fits an `i32`).
+    #[inline(always)]
+    pub(crate) fn quot_high(&self, n: i32, k: u32) -> i32 {
+        let h = (mul_i32(n, self.m) >> 32) as i32;
+        (h + (1 << k)) >> (k + 1)
     }
 }
 
@@ -755,6 +830,16 @@ impl Lerp for i32 {
 
     type Unweight = i64;
 
+    #[inline(always)]
+    fn fixed_raw(self) -> Option<i32> {
+        Some(self)
+    }
+
+    #[inline(always)]
+    fn from_fixed_raw(v: i32) -> i32 {
+        v
+    }
+
     #[inline]
     fn unweight_factor(q: i32) -> i64 {
         // 2^60 / q, q >= 2^10: at most 2^50.
@@ -820,6 +905,11 @@ macro_rules! float_lerp {
             }
 
             type Unweight = $t;
+
+            #[inline]
+            fn from_fixed_raw(v: i32) -> $t {
+                v as $t
+            }
 
             #[inline]
             fn unweight_factor(q: $t) -> $t {

@@ -62,6 +62,7 @@
 //! before it gets here.
 
 mod edge;
+mod fast;
 mod lerp;
 mod span;
 mod triangle;
@@ -69,6 +70,7 @@ mod walk;
 mod wide;
 
 pub use edge::Edge;
+pub(crate) use fast::{setup_fast, BandMem};
 pub use lerp::{InvArea, Lerp, Recip};
 pub(crate) use span::span_pixels;
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};

@@ -414,7 +414,7 @@ fn row_pixels<L: Lerp, const N: usize, R, D: DepthFormat>(
 /// common passing path does not count (`drawn = len - fails`).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn depth_loop<L: Lerp, const N: usize, R, Z>(
+pub(super) fn depth_loop<L: Lerp, const N: usize, R, Z>(
     row: &mut [R],
     drow: &mut [Z],
     mut z: L,
@@ -479,7 +479,7 @@ fn in_range_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
 /// pixels). The same pixels in the same order, hence the same bytes.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn pair_loop<L: Lerp, const N: usize, R, Z>(
+pub(super) fn pair_loop<L: Lerp, const N: usize, R, Z>(
     row: &mut [R],
     drow: &mut [Z],
     mut z: L,
@@ -522,7 +522,7 @@ fn pair_loop<L: Lerp, const N: usize, R, Z>(
 /// The depth test and write of a pixel whose depth is in range
 /// ([`DepthFormat::span_in_range`]): no clamp.
 #[inline(always)]
-fn in_range_test<L: Lerp, D: DepthFormat>(z: L, zb: &mut D::Raw) -> bool {
+pub(super) fn in_range_test<L: Lerp, D: DepthFormat>(z: L, zb: &mut D::Raw) -> bool {
     let k = D::from_lerp_in_range(z);
     let pass = k < D::to_key(*zb);
     if pass {

@@ -814,3 +814,145 @@ fn triangles_flagged_in_depth_range_convert_without_clamps() {
     // Most triangles with depths inside the margins are flagged.
     assert!(probe.flagged > 100_000, "{} pixels flagged", probe.flagged);
 }
+
+#[test]
+fn inv_area_small_equals_the_general_reciprocal() {
+    // Every doubled area the 32-bit path takes, both signs.
+    for a in 1..1i32 << 16 {
+        for v in [a, -a] {
+            assert_eq!(
+                InvArea::new_small(v),
+                Some(InvArea::new(v as i64)),
+                "a = {v}"
+            );
+        }
+    }
+    assert_eq!(InvArea::new_small(0), None);
+    assert_eq!(InvArea::new_small(1 << 16), None);
+    assert_eq!(InvArea::new_small(i32::MIN), None);
+}
+
+#[test]
+fn first_row_edges_equal_the_general_walker() {
+    let mut rng = Rng(0x5eed_0e06);
+    for sub in [1, 4, 8].map(|b| SubpixelBits::new(b).unwrap()) {
+        let lim = sub.coord_limit();
+        for i in 0..20_000 {
+            // Extreme coordinates on one in eight edges.
+            let r = if i % 8 == 0 { lim } else { 4000 };
+            let (x0, y0) = (rng.range(-r, r + 1), rng.range(-r, r + 1));
+            let (x1, y1) = (
+                rng.range(-r, r + 1),
+                y0 + rng.range(1, r + 1).min(lim - y0).max(1),
+            );
+            let j0 = first_row(y0, sub);
+            // The first row, and rows after it (the general fallback).
+            for j in [j0, j0 + 1, j0 + rng.range(0, 40)] {
+                assert_eq!(
+                    Edge::new_first(x0, y0, x1, y1, j, sub),
+                    Edge::new(x0, y0, x1, y1, j, sub),
+                    "({x0}, {y0}) -> ({x1}, {y1}) row {j}"
+                );
+            }
+        }
+    }
+}
+
+/// `setup_fast` against `setup` for one sorted triangle.
+fn check_setup_fast<const N: usize>(v: [Vertex<i32, N>; 3], sub: SubpixelBits, j0: i32, w: i32) {
+    let [a, b, c] = sort3(v, |v| v.y);
+    let want = setup::<i32, N>(&a, &b, &c, sub, j0, w);
+    let zero = Vals { z: 0, a: [0; N] };
+    let mut out = (Walk::EMPTY, [zero; 3]);
+    let got = setup_fast::<N>(&a, &b, &c, sub, j0, w, &mut out);
+    match want {
+        Some((walk, row, sx, sy)) => {
+            assert!(got, "{a:?} {b:?} {c:?}");
+            assert_eq!(out, (walk, [row, sx, sy]), "{a:?} {b:?} {c:?} j0 {j0}");
+        }
+        None => assert!(!got, "{a:?} {b:?} {c:?}"),
+    }
+}
+
+#[test]
+fn fast_setup_equals_the_general_setup() {
+    let mut rng = Rng(0xfa57_5e70);
+    let sub = SubpixelBits::new(4).unwrap();
+    let lim = sub.coord_limit();
+    for i in 0..60_000 {
+        // Small triangles (the 32-bit path), larger ones, and some at the
+        // coordinate limits (the general fallbacks).
+        let (r, span) = match i % 10 {
+            0 => (lim, lim),
+            1 | 2 => (4000 * 16, 600 * 16),
+            _ => (300 * 16, 24 * 16),
+        };
+        let (cx, cy) = (rng.range(-r, r + 1), rng.range(-r, r + 1));
+        let mut p = || {
+            let x = (cx + rng.range(-span, span + 1)).clamp(-lim, lim);
+            let y = (cy + rng.range(-span, span + 1)).clamp(-lim, lim);
+            (x, y)
+        };
+        let (p0, p1, p2) = (p(), p(), p());
+        // Depths near the ends of the range or anywhere; levels 0..=255.
+        let z = |rng: &mut Rng| match rng.range(0, 4) {
+            0 => rng.range(0, 1 << 16),
+            1 => (1 << 30) - rng.range(0, 1 << 16),
+            2 => rng.range(i32::MIN / 2, i32::MAX / 2) * 2,
+            _ => rng.range(0, 1 << 30),
+        };
+        let l = |rng: &mut Rng| rng.range(0, 256 << 16);
+        let vert = |(x, y): (i32, i32), rng: &mut Rng| Vertex {
+            x,
+            y,
+            z: z(rng),
+            attrs: [l(rng)],
+        };
+        let v = [vert(p0, &mut rng), vert(p1, &mut rng), vert(p2, &mut rng)];
+        let j0 = if i % 3 == 0 {
+            first_row(v[0].y.min(v[1].y).min(v[2].y), sub) + rng.range(0, 8)
+        } else {
+            i32::MIN / 2
+        };
+        let w = [240, 4096, 16][i % 3];
+        check_setup_fast::<1>(v, sub, j0, w);
+        let flat = v.map(|v| Vertex {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+            attrs: [],
+        });
+        check_setup_fast::<0>(flat, sub, j0, w);
+    }
+    // Degenerate and extreme: zero area, flat tops and bottoms, values at
+    // the ends of i32.
+    let vx = |x, y, z, a| Vertex {
+        x,
+        y,
+        z,
+        attrs: [a],
+    };
+    for t in [
+        [vx(0, 0, 0, 0), vx(16, 0, 0, 0), vx(32, 0, 0, 0)],
+        [
+            vx(0, 0, 5, 0),
+            vx(160, 0, 9, 1 << 20),
+            vx(80, 160, 1 << 30, 255 << 16),
+        ],
+        [
+            vx(0, 0, i32::MAX, i32::MIN),
+            vx(16, 16, i32::MIN, i32::MAX),
+            vx(0, 32, 0, 0),
+        ],
+        [
+            vx(-lim, -lim, 0, 0),
+            vx(lim, -lim, 1 << 30, 0),
+            vx(0, lim, 1 << 29, 255 << 16),
+        ],
+        [vx(8, 8, 1, 2), vx(9, 9, 3, 4), vx(8, 40, 5, 6)],
+    ] {
+        for j0 in [i32::MIN / 2, 0, 1, 2] {
+            check_setup_fast::<1>(t, sub, j0, 240);
+        }
+    }
+}

@@ -58,27 +58,27 @@ pub(crate) trait RowSpans<L: Lerp, const N: usize> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Walk {
     /// Left and right edge walkers of the current half.
-    left: Edge,
-    right: Edge,
+    pub(super) left: Edge,
+    pub(super) right: Edge,
     /// The lower short edge, positioned at row `max(mid, first row)`.
-    low: Edge,
+    pub(super) low: Edge,
     /// Next row to walk.
-    j: i32,
+    pub(super) j: i32,
     /// First row of the lower half.
-    mid: i32,
+    pub(super) mid: i32,
     /// Row after the last.
-    end: i32,
+    pub(super) end: i32,
     /// Anchor pixel (the float twins start each row from the anchor).
-    ia: i32,
-    ja: i32,
+    pub(super) ia: i32,
+    pub(super) ja: i32,
     /// The long edge is the left one (the lower short edge replaces the
     /// right one at `mid`).
-    long_left: bool,
+    pub(super) long_left: bool,
     /// The triangle's columns lie within `0..=width`: no clipping.
-    inside: bool,
+    pub(super) inside: bool,
     /// Every pixel's depth converts to 16 bits without a clamp
     /// ([`Lerp::depth16_plane_in_range`]).
-    z16: bool,
+    pub(super) z16: bool,
 }
 
 impl Walk {

@@ -1,0 +1,468 @@
+//! The fixed affine fast path of the band renderer: `i32` values stepped
+//! without perspective (the `fast` profile and its affine relatives), one
+//! fused row kernel per (pixel format, depth format, value count).
+//!
+//! The generic walker ([`Walk::rows`]) hands each span to a sink that
+//! slices the band, checks the depth plane flag and dispatches to the span
+//! stage; here the row loop owns the band buffers:
+//!
+//! - per triangle visit: the clipping and depth-range decisions (made once
+//!   at setup, [`Walk::inside`], [`Walk::z16`]) select one of four loops,
+//!   and the values at column 0 of the first row are one multiply-add per
+//!   value away from the values at pixel (0, 0);
+//! - per row: two edge steps, the `x0 < x1` test, one multiply-add per
+//!   value for the span start, the row offset advanced by the width and
+//!   the column-0 values by their y steps;
+//! - per span: the colour and depth slices (one range check each) and the
+//!   span stage's own pixel loops ([`pair_loop`], [`depth_loop`]), so the
+//!   bytes are those of the generic path.
+//!
+//! Values are the same modulo 2^32 as the generic walker's `row + sx·x0 +
+//! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
+
+use super::span::{depth_loop, in_range_test, pair_loop};
+use super::triangle::first_row;
+use super::walk::{setup, Vals, Walk};
+use super::wide::NO_LONG_MUL;
+use super::{Edge, InvArea, SubpixelBits, Vertex};
+use crate::target::DepthFormat;
+
+/// A band's memory as the fused row kernel sees it: colour and depth
+/// slices of `width`-pixel rows starting at screen row `y0`.
+pub(crate) struct BandMem<'k, 'b, R, Z> {
+    /// Colour, row-major.
+    pub px: &'k mut &'b mut [R],
+    /// Depth, the same layout.
+    pub z: &'k mut Option<&'b mut [Z]>,
+    /// First screen row of the band.
+    pub y0: i32,
+    /// Pixels per row.
+    pub width: i32,
+}
+
+/// The pixels of a span whose depths are in range, in a function of its
+/// own: the row loop keeps its edge walkers and row values in the
+/// callee-saved registers across the call, and the pixel loop has the
+/// others to itself. Returns the pixels written.
+#[inline(never)]
+fn span_inr<const N: usize, R: Copy, D: DepthFormat>(
+    p: &mut [R],
+    d: &mut [D::Raw],
+    z: i32,
+    a: [i32; N],
+    sx: &Vals<i32, N>,
+    color: &impl Fn(&[i32; N]) -> R,
+) -> u32 {
+    p.len() as u32 - pair_loop(p, d, z, sx.z, a, &sx.a, color, in_range_test::<i32, D>)
+}
+
+impl Walk {
+    /// Walks rows from the next one down to `until` (excluded) or the
+    /// triangle's last row, drawing each span into `mem` with `color`
+    /// (values at the pixel centre); returns the pixels written. `row`
+    /// holds the values at pixel (0, 0), `sx`, `sy` their steps.
+    #[inline(always)]
+    pub(crate) fn rows_fused<const N: usize, R: Copy, D: DepthFormat>(
+        &mut self,
+        row: &Vals<i32, N>,
+        sx: &Vals<i32, N>,
+        sy: &Vals<i32, N>,
+        until: i32,
+        mem: &mut BandMem<'_, '_, R, D::Raw>,
+        color: impl Fn(&[i32; N]) -> R,
+    ) -> u32 {
+        let (y0, width) = (mem.y0, mem.width);
+        let px = &mut **mem.px;
+        match mem.z.as_deref_mut() {
+            Some(z) => {
+                let inr = D::plane_in_range(self.z16);
+                match (self.inside, inr) {
+                    (true, true) => self.fused::<N, R, D, false, true>(
+                        row, sx, sy, until, px, z, y0, width, &color,
+                    ),
+                    (true, false) => self.fused::<N, R, D, false, false>(
+                        row, sx, sy, until, px, z, y0, width, &color,
+                    ),
+                    (false, true) => self
+                        .fused::<N, R, D, true, true>(row, sx, sy, until, px, z, y0, width, &color),
+                    (false, false) => self.fused::<N, R, D, true, false>(
+                        row, sx, sy, until, px, z, y0, width, &color,
+                    ),
+                }
+            }
+            None => self.fused_nodepth::<N, R>(row, sx, sy, until, px, y0, width, &color),
+        }
+    }
+
+    /// The depth-tested row loop: `CLIP` clamps spans to the width, `INR`
+    /// takes the depth test without clamps (every depth of the triangle in
+    /// range).
+    #[allow(clippy::too_many_arguments)]
+    #[cfg_attr(
+        all(target_arch = "arm", not(target_has_atomic = "32")),
+        inline(always)
+    )]
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(never)
+    )]
+    fn fused<const N: usize, R: Copy, D: DepthFormat, const CLIP: bool, const INR: bool>(
+        &mut self,
+        row: &Vals<i32, N>,
+        sx: &Vals<i32, N>,
+        sy: &Vals<i32, N>,
+        until: i32,
+        px: &mut [R],
+        z: &mut [D::Raw],
+        y0: i32,
+        width: i32,
+        color: &impl Fn(&[i32; N]) -> R,
+    ) -> u32 {
+        let stop = until.min(self.end);
+        if self.j >= stop {
+            return 0;
+        }
+        // Values at column 0 of row j, and the offset of the row.
+        let mut v = row.add_n(sy, self.j);
+        let mut base = (self.j - y0).wrapping_mul(width) as usize;
+        let mut drawn = 0u32;
+        while self.j < stop {
+            if self.j == self.mid {
+                if self.long_left {
+                    self.right = self.low;
+                } else {
+                    self.left = self.low;
+                }
+            }
+            let r1 = if self.j < self.mid {
+                self.mid.min(stop)
+            } else {
+                stop
+            };
+            let (mut l, mut r) = (self.left, self.right);
+            for _ in self.j..r1 {
+                let (x0, x1) = if CLIP {
+                    (l.x.max(0), r.x.min(width))
+                } else {
+                    (l.x, r.x)
+                };
+                if x0 < x1 {
+                    let s = v.add_n(sx, x0);
+                    let span = base.wrapping_add(x0 as usize)..base.wrapping_add(x1 as usize);
+                    if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
+                        drawn += if INR {
+                            if NO_LONG_MUL {
+                                // ARMv6-M: inline, as the generic walker
+                                // (the call costs more there).
+                                p.len() as u32
+                                    - depth_loop(
+                                        p,
+                                        d,
+                                        s.z,
+                                        sx.z,
+                                        s.a,
+                                        &sx.a,
+                                        color,
+                                        in_range_test::<i32, D>,
+                                    )
+                            } else if let ([q], [zb]) = (&mut *p, &mut *d) {
+                                // One pixel (frequent on small triangles):
+                                // no call (bunny-gouraud raster -0.5 %).
+                                let pass = in_range_test::<i32, D>(s.z, zb);
+                                if pass {
+                                    *q = color(&s.a);
+                                }
+                                pass as u32
+                            } else {
+                                span_inr::<N, R, D>(p, d, s.z, s.a, sx, color)
+                            }
+                        } else {
+                            p.len() as u32
+                                - depth_loop(
+                                    p,
+                                    d,
+                                    s.z,
+                                    sx.z,
+                                    s.a,
+                                    &sx.a,
+                                    color,
+                                    |z, zb: &mut D::Raw| {
+                                        let zd = D::from_lerp(z);
+                                        let pass = zd < *zb;
+                                        if pass {
+                                            *zb = zd;
+                                        }
+                                        pass
+                                    },
+                                )
+                        };
+                    }
+                }
+                l.step();
+                r.step();
+                v = v.add_n(sy, 1);
+                base = base.wrapping_add(width as usize);
+            }
+            self.left = l;
+            self.right = r;
+            self.j = r1;
+        }
+        drawn
+    }
+
+    /// The row loop without depth: every covered pixel written.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn fused_nodepth<const N: usize, R: Copy>(
+        &mut self,
+        row: &Vals<i32, N>,
+        sx: &Vals<i32, N>,
+        sy: &Vals<i32, N>,
+        until: i32,
+        px: &mut [R],
+        y0: i32,
+        width: i32,
+        color: &impl Fn(&[i32; N]) -> R,
+    ) -> u32 {
+        let stop = until.min(self.end);
+        if self.j >= stop {
+            return 0;
+        }
+        let mut v = row.add_n(sy, self.j);
+        let mut base = (self.j - y0).wrapping_mul(width) as usize;
+        let mut drawn = 0u32;
+        while self.j < stop {
+            if self.j == self.mid {
+                if self.long_left {
+                    self.right = self.low;
+                } else {
+                    self.left = self.low;
+                }
+            }
+            let r1 = if self.j < self.mid {
+                self.mid.min(stop)
+            } else {
+                stop
+            };
+            let (mut l, mut r) = (self.left, self.right);
+            for _ in self.j..r1 {
+                let (x0, x1) = (l.x.max(0), r.x.min(width));
+                if x0 < x1 {
+                    let mut a = v.add_n(sx, x0).a;
+                    let span = base.wrapping_add(x0 as usize)..base.wrapping_add(x1 as usize);
+                    if let Some(p) = px.get_mut(span) {
+                        drawn += p.len() as u32;
+                        for q in p.iter_mut() {
+                            *q = color(&a);
+                            for (x, d) in a.iter_mut().zip(sx.a.iter()) {
+                                *x = x.wrapping_add(*d);
+                            }
+                        }
+                    }
+                }
+                l.step();
+                r.step();
+                v = v.add_n(sy, 1);
+                base = base.wrapping_add(width as usize);
+            }
+            self.left = l;
+            self.right = r;
+            self.j = r1;
+        }
+        drawn
+    }
+}
+
+/// [`setup`] for `i32` values: the same walk and values, bit for bit.
+///
+/// On targets with a long multiply (ARMv7-M, hosts) the usual triangle
+/// takes a straight 32-bit path ([`setup32`]); the others, and ARMv6-M,
+/// take [`setup`] itself.
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+pub(crate) fn setup_fast<const N: usize>(
+    a: &Vertex<i32, N>,
+    b: &Vertex<i32, N>,
+    c: &Vertex<i32, N>,
+    sub: SubpixelBits,
+    j0: i32,
+    width: i32,
+    out: &mut (Walk, [Vals<i32, N>; 3]),
+) -> bool {
+    if NO_LONG_MUL {
+        // ARMv6-M: the general setup inline (its 16-bit products).
+        return match setup::<i32, N>(a, b, c, sub, j0, width) {
+            Some((w, r, sx, sy)) => {
+                *out = (w, [r, sx, sy]);
+                true
+            }
+            None => false,
+        };
+    }
+    match setup32(a, b, c, sub, j0, width, out) {
+        Ok(drawn) => drawn,
+        Err(()) => setup_slow(a, b, c, sub, j0, width, out),
+    }
+}
+
+/// [`setup`] out of line: the rare triangles [`setup32`] leaves.
+#[inline(never)]
+#[cold]
+#[allow(clippy::type_complexity)]
+fn setup_slow<const N: usize>(
+    a: &Vertex<i32, N>,
+    b: &Vertex<i32, N>,
+    c: &Vertex<i32, N>,
+    sub: SubpixelBits,
+    j0: i32,
+    width: i32,
+    out: &mut (Walk, [Vals<i32, N>; 3]),
+) -> bool {
+    match setup::<i32, N>(a, b, c, sub, j0, width) {
+        Some((w, r, sx, sy)) => {
+            *out = (w, [r, sx, sy]);
+            true
+        }
+        None => false,
+    }
+}
+
+/// [`Lerp::depth16_plane_in_range`] for `i32` gradients: the same test
+/// (the same bounds on the vertex depths and on `|gx|`, `|gy|`).
+#[inline(always)]
+fn depth16_plane_in_range32(z: [i32; 3], gx: i32, gy: i32) -> bool {
+    const M: u32 = 1 << 15;
+    const LIM: u32 = (65535 << 14) - 2 * M;
+    let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < LIM;
+    ok(z[0]) & ok(z[1]) & ok(z[2]) & (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
+}
+
+/// `true` when `v` fits an `i32`.
+#[inline(always)]
+fn fits(v: i64) -> bool {
+    v as i32 as i64 == v
+}
+
+/// `a · b` in 64 bits (one `SMULL`).
+#[inline(always)]
+fn wide(a: i32, b: i32) -> i64 {
+    a as i64 * b as i64
+}
+
+/// The 32-bit setup: `Err(())` when a bound below fails (the caller then
+/// takes [`setup`]), else exactly [`setup`]'s result. The bounds:
+///
+/// - the subpixel offsets of vertices 1 and 2 from vertex 0 lie below
+///   `2^bxy` in magnitude with `bxy <= 15` (triangles under 2048 pixels a
+///   side at 4 subpixel bits): the doubled area `dx1·dy2 - dx2·dy1` is
+///   below `2·2^30` in magnitude, an `i32`;
+/// - for each value, its differences `v1 - v0`, `v2 - v0` do not wrap and
+///   lie below `2^bv` with `bv + bxy <= 30`: each product of a gradient
+///   numerator `d1·dy2 - d2·dy1`, `d2·dx1 - d1·dx2` is below 2^30, the
+///   numerator below 2^31, an exact `i32`, so [`InvArea::quot`] takes no
+///   normalisation;
+/// - the reciprocal takes [`InvArea::quot`]'s high-word case
+///   ([`InvArea::high_shift`]), and a numerator's quotient is
+///   [`InvArea::quot_high`]'s (within ±2^30);
+/// - the row origin `a0 + ((gx·(h - x0) + gy·(h - y0) + h) >> s)` (`h =
+///   S/2`) is `origin64`'s sum of the same `i64`s (the gradients are
+///   `i32`s, sign-extended), formed by `SMULL`/`SMLAL`.
+///
+/// Tested equal to [`setup`] on random and extreme triangles.
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn setup32<const N: usize>(
+    a: &Vertex<i32, N>,
+    b: &Vertex<i32, N>,
+    c: &Vertex<i32, N>,
+    sub: SubpixelBits,
+    j0: i32,
+    width: i32,
+    out: &mut (Walk, [Vals<i32, N>; 3]),
+) -> Result<bool, ()> {
+    let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
+    let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
+    let bxy = 32 - mxy.leading_zeros();
+    if bxy > 15 {
+        return Err(());
+    }
+    let area2 = dx1 * dy2 - dx2 * dy1;
+    if area2 == 0 {
+        return Ok(false);
+    }
+    let (j_top, j_mid, j_bot) = (
+        first_row(a.y, sub),
+        first_row(b.y, sub),
+        first_row(c.y, sub),
+    );
+    let js = j_top.max(j0);
+    if js >= j_bot {
+        return Ok(false);
+    }
+    let inv = match InvArea::new_small(area2) {
+        Some(inv) => inv,
+        None => InvArea::new(area2 as i64),
+    };
+    let s = sub.get();
+    let k = inv.high_shift(s).ok_or(())?;
+    let h = 1i32 << (s - 1);
+    let (ox, oy) = (h - a.x, h - a.y);
+    // One value: gradients (x, y) and the row origin.
+    let plane = |v0: i32, v1: i32, v2: i32| -> Result<(i32, i32, i32), ()> {
+        let (d1, o1) = v1.overflowing_sub(v0);
+        let (d2, o2) = v2.overflowing_sub(v0);
+        let nx = wide(d1, dy2) - wide(d2, dy1);
+        let ny = wide(d2, dx1) - wide(d1, dx2);
+        let (nx, ny) = (nx as i32, ny as i32);
+        if o1 | o2 | !fits(wide(d1, dy2) - wide(d2, dy1)) | !fits(wide(d2, dx1) - wide(d1, dx2)) {
+            return Err(());
+        }
+        let (gx, gy) = (inv.quot_high(nx, k), inv.quot_high(ny, k));
+        let t = wide(gx, ox) + wide(gy, oy) + h as i64;
+        Ok((gx, gy, v0.wrapping_add((t >> s) as i32)))
+    };
+    let (gx, gy, z0) = plane(a.z, b.z, c.z)?;
+    let z16 = depth16_plane_in_range32([a.z, b.z, c.z], gx, gy);
+    let [row, sx, sy] = &mut out.1;
+    row.z = z0;
+    sx.z = gx;
+    sy.z = gy;
+    for k in 0..N {
+        let (gx, gy, o) = plane(a.attrs[k], b.attrs[k], c.attrs[k])?;
+        if let (Some(r), Some(x), Some(y)) = (row.a.get_mut(k), sx.a.get_mut(k), sy.a.get_mut(k)) {
+            *r = o;
+            *x = gx;
+            *y = gy;
+        }
+    }
+    // The edges from their selected end points (selecting the four
+    // coordinates costs less than selecting two walkers of five fields).
+    let long_left = area2 > 0;
+    let lowp = (b.x, b.y, j_mid.max(js));
+    let (sx0, sy0, sj) = if js < j_mid { (a.x, a.y, js) } else { lowp };
+    let (sx1, sy1) = if js < j_mid { (b.x, b.y) } else { (c.x, c.y) };
+    let (lp, rp) = if long_left {
+        ((a.x, a.y, c.x, c.y, js), (sx0, sy0, sx1, sy1, sj))
+    } else {
+        ((sx0, sy0, sx1, sy1, sj), (a.x, a.y, c.x, c.y, js))
+    };
+    let w = &mut out.0;
+    w.left = Edge::new_first(lp.0, lp.1, lp.2, lp.3, lp.4, sub);
+    w.right = Edge::new_first(rp.0, rp.1, rp.2, rp.3, rp.4, sub);
+    w.low = if j_mid < j_bot {
+        Edge::new_first(b.x, b.y, c.x, c.y, lowp.2, sub)
+    } else {
+        Edge::EMPTY
+    };
+    let sc = sub.scale();
+    let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    w.inside = xmin >= 0 && xmax <= width.saturating_mul(sc);
+    w.j = js;
+    w.mid = j_mid;
+    w.end = j_bot;
+    w.ia = a.x >> s;
+    w.ja = a.y >> s;
+    w.long_left = long_left;
+    w.z16 = z16;
+    Ok(true)
+}
