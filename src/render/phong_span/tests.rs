@@ -56,13 +56,27 @@ fn span_error(c: &Case, n0: [f64; 3], dn: [f64; 3], p0: [f64; 3], dp: [f64; 3], 
     let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
     let (n0, dn, p0, dp) = (q30(n0), q30(dn), q16(p0), q16(dp));
     let mut sp = k.begin(n0, dn, p0, dp, false);
+    // The span loop (`fill`, the renderer's) and `begin`/`next`.
+    let mut filled = std::vec![None; len as usize];
+    k.fill(
+        n0,
+        dn,
+        p0,
+        dp,
+        false,
+        len as u32,
+        |i| i % 7 != 3,
+        |i, c| filled[i as usize] = Some(c),
+    );
     let mut worst = 0f64;
     for i in 0..len {
         if i % 7 == 3 {
             sp.skip();
+            assert_eq!(filled[i as usize], None);
             continue;
         }
         let got = sp.next();
+        let got2 = filled[i as usize].unwrap();
         let n = Vec3::new(
             f64::from(n0[0] + i * dn[0]),
             f64::from(n0[1] + i * dn[1]),
@@ -75,8 +89,10 @@ fn span_error(c: &Case, n0: [f64; 3], dn: [f64; 3], p0: [f64; 3], dp: [f64; 3], 
             f64::from(p0[2] + i * dp[2]) / 65536.0,
         );
         let e = twin.at(n, p);
-        for (g, w) in [got.r, got.g, got.b].into_iter().zip([e.x, e.y, e.z]) {
-            worst = worst.max((f64::from(g) - w * 255.0).abs());
+        for got in [got, got2] {
+            for (g, w) in [got.r, got.g, got.b].into_iter().zip([e.x, e.y, e.z]) {
+                worst = worst.max((f64::from(g) - w * 255.0).abs());
+            }
         }
     }
     worst
