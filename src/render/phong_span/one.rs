@@ -212,7 +212,8 @@ impl<R: Real> PhongKernel<'_, R> {
     ) -> u32 {
         let (mut nn, mut nd1, nd2) = nn;
         let (mut q, mut qd1, qd2) = qm;
-        let mut passed = 0;
+        // Failures counted (the rarer case in a frame), passes derived.
+        let mut failed = 0;
         let c = Colour {
             amb: self.amb19,
             d: l.d4,
@@ -221,7 +222,8 @@ impl<R: Real> PhongKernel<'_, R> {
         for i in i0..i0 + k {
             if test(i) {
                 write(i, self.pixel::<SPEC>(&c, nn, nl, q));
-                passed += 1;
+            } else {
+                failed += 1;
             }
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
@@ -231,7 +233,7 @@ impl<R: Real> PhongKernel<'_, R> {
             }
             nl = nl.wrapping_add(dnl);
         }
-        passed
+        k - failed
     }
 
     /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L` (Q30) and
