@@ -39,8 +39,9 @@
 //! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits); measured on
-//! the firmware's span sweep, 100 instructions a pixel on the M4 (was 167)
-//! and 190 on the M0. Per pixel: `1/|n|` from a 65-entry
+//! the firmware's span sweep, 108 instructions a pixel on the M4 (was 167)
+//! and 209 on the M0: the colours of a chunk come from one copy of that
+//! arithmetic, the depth test and writes from a short loop per format. Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -538,16 +539,13 @@ impl<'s, R: Real> PhongKernel<'s, R> {
 
     /// [`PhongKernel::fill`] for one light, point or with a local viewer:
     /// the state of [`PhongKernel::begin`] for that light alone, in
-    /// locals (no per-span copy of the eight lights' state). Not inlined
-    /// on ARMv6-M: in the renderer's row loop its locals would share a
-    /// stack frame of over 1 KB, which ARMv6-M addresses with three
-    /// instructions a load (dodecahedron frame 11.3 M -> 9.9 M
-    /// instructions there; inlined is faster on the M4: 3.83 -> 3.64 M).
-    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        inline(always)
-    )]
+    /// locals (no per-span copy of the eight lights' state). Not inlined:
+    /// in the renderer's row loop its locals would share a stack frame of
+    /// over 1 KB, which ARMv6-M addresses with three instructions a load
+    /// (dodecahedron frame 11.3 M -> 9.9 M instructions there), and a copy
+    /// per pixel and depth format costs flash (inlined, the M4 frame is 5 %
+    /// faster).
+    #[inline(never)]
     #[allow(clippy::too_many_arguments)]
     fn fill_general_one(
         &self,
@@ -1302,29 +1300,22 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 6> for PhongKernelShader<'_, '_,
 }
 
 /// The span stage's depth test over a row of the depth buffer, depths
-/// `z + i·dz`; `IN`: the span's depths stay within the format's range
-/// ([`DepthFormat::span_in_range`]), so the conversion skips its clamp
-/// (the same bytes).
-struct DepthTest<'d, L, D: DepthFormat, const IN: bool> {
+/// `z + i·dz` ([`DepthFormat::from_lerp`], less-than, as
+/// [`Fill`](crate::raster::Fill)). (The unclamped in-range form the span
+/// stage also has doubled every span loop's code here: +64 KB of flash on
+/// the M4, and no faster.)
+struct DepthTest<'d, L, D: DepthFormat> {
     drow: &'d mut [D::Raw],
     z: L,
     dz: L,
 }
 
-impl<L: Lerp, D: DepthFormat, const IN: bool> DepthTest<'_, L, D, IN> {
+impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
     #[inline(always)]
     fn test(&mut self, i: u32) -> bool {
         let z = self.z;
         self.z = z.add(self.dz);
         match self.drow.get_mut(i as usize) {
-            Some(zb) if IN => {
-                let k = D::from_lerp_in_range(z);
-                let pass = k < D::to_key(*zb);
-                if pass {
-                    *zb = D::from_key(k);
-                }
-                pass
-            }
             Some(zb) => {
                 let zd = D::from_lerp(z);
                 let pass = zd < *zb;
@@ -1339,7 +1330,7 @@ impl<L: Lerp, D: DepthFormat, const IN: bool> DepthTest<'_, L, D, IN> {
 }
 
 /// Runs the kernel's `fill` over a span with the depth test of
-/// [`DepthTest`] (the in-range form when the span allows it) and `put`.
+/// [`DepthTest`] and `put`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
@@ -1352,13 +1343,8 @@ fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     len: u32,
     mut put: impl FnMut(u32, Rgb8),
 ) -> u32 {
-    if D::span_in_range(z, dz, len) {
-        let mut t = DepthTest::<L, D, true> { drow, z, dz };
-        k.fill(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
-    } else {
-        let mut t = DepthTest::<L, D, false> { drow, z, dz };
-        k.fill(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
-    }
+    let mut t = DepthTest::<L, D> { drow, z, dz };
+    k.fill(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the

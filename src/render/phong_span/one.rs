@@ -74,6 +74,32 @@ struct Colour {
     s: [i32; 3],
 }
 
+/// The exact state of a span of one light (`u64` forward differences,
+/// Q60) and its constant 32-bit second differences.
+#[derive(Clone, Copy)]
+struct OneSpan {
+    nn: u64,
+    nn_d1: u64,
+    nn_d2: u64,
+    q: u64,
+    q_d1: u64,
+    q_d2: u64,
+    nl0: i32,
+    dnl: i32,
+    nh0: i32,
+    dnh: i32,
+    nd2: Option<i32>,
+    qd2: Option<i32>,
+    /// `Qm` (Q20 segments) at the next chunk's first pixel.
+    qm_a: i64,
+}
+
+/// `r | g << 8 | b << 16`.
+#[inline(always)]
+fn pack(c: Rgb8) -> u32 {
+    u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16
+}
+
 /// How a chunk runs.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Mode {
@@ -84,9 +110,12 @@ enum Mode {
 
 impl<R: Real> PhongKernel<'_, R> {
     /// The span loop of one directional light, viewer at infinity (module
-    /// docs); `n`, `dn` already flipped for back faces.
+    /// docs); `n`, `dn` already flipped for back faces. The colours of a
+    /// chunk come from [`PhongKernel::one_chunk`] (one copy of the
+    /// arithmetic whatever the pixel and depth formats); this loop, one
+    /// per format, does the depth test and writes.
     #[inline(always)]
-    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    #[allow(clippy::cast_possible_truncation)]
     pub(super) fn fill_one(
         &self,
         l: &KLight,
@@ -96,8 +125,30 @@ impl<R: Real> PhongKernel<'_, R> {
         mut test: impl FnMut(u32) -> bool,
         mut write: impl FnMut(u32, Rgb8),
     ) -> u32 {
-        let mut passed = 0;
-        let (mut nn, mut nn_d1, nn_d2) = quad(&[(n, dn)]);
+        let mut st = self.one_begin(l, n, dn);
+        let mut buf = [0u32; CHUNK as usize];
+        // Failures counted (the rarer case in a frame), passes derived.
+        let mut failed = 0;
+        let mut i = 0u32;
+        while i < len {
+            let k = (len - i).min(CHUNK);
+            self.one_chunk(l, n, dn, &mut st, i, k, &mut buf);
+            for (j, &c) in (i..i + k).zip(buf.iter()) {
+                if test(j) {
+                    write(j, Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8));
+                } else {
+                    failed += 1;
+                }
+            }
+            i += k;
+        }
+        len - failed
+    }
+
+    /// The span's exact state (see the module docs).
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn one_begin(&self, l: &KLight, n: [i32; 3], dn: [i32; 3]) -> OneSpan {
+        let (nn, nn_d1, nn_d2) = quad(&[(n, dn)]);
         let f = if self.spec {
             let (c0, c1) = (cross(n, l.p1), cross(dn, l.p1));
             let (k0, k1) = (lin(n, l.p2), lin(dn, l.p2));
@@ -108,123 +159,130 @@ impl<R: Real> PhongKernel<'_, R> {
         } else {
             [([0; 3], [0; 3]); 2]
         };
-        let (mut q, mut q_d1, q_d2) = quad(&f);
-        let nl0 = lin(n, l.at);
-        let dnl = lin(dn, l.at);
+        let (q, q_d1, q_d2) = quad(&f);
         let (nh0, dnh) = if self.blinn {
             (lin(n, l.p1), lin(dn, l.p1))
         } else {
             (1, 0)
         };
-        // Constant second differences (`d2 >= 0` below 2^63 for steps
-        // of normals below 2^30 per pixel; else every chunk is exact).
-        let nd2 = fit((nn_d2 >> 30) as i64);
-        let qd2 = fit(mul_shr48(q_d2 as i64, self.kf));
-        let mut qm_a = mul_shr48(q as i64, self.kf);
-        let mut i = 0u32;
-        while i < len {
-            let k = (len - i).min(CHUNK);
-            let (nn_b, nn_d1_b) = advance(nn, nn_d1, nn_d2, k);
-            let (q_b, q_d1_b) = advance(q, q_d1, q_d2, k);
-            let qm_b = mul_shr48(q_b as i64, self.kf);
-            let nl = nl0.wrapping_add(dnl.wrapping_mul(i as i32));
-            // |n|² within [1/4, 5/4) over the chunk: below at both ends
-            // (convex: in between too), above `min(ends) - d2·k²/8`.
-            let nn_lo = nn
-                .min(nn_b)
-                .saturating_sub(nn_d2.saturating_mul(u64::from(k * k)) / 8);
-            let nn_ok = nn.max(nn_b) < 5 << 58 && nn_lo >= 1 << 58;
-            let nn32 = ((nn >> 30) as i32, fit((nn_d1 as i64) >> 30), nd2);
-            let mode = if !self.spec {
-                Mode::NoSpec
-            } else {
-                let nh_a = i64::from(nh0) + i64::from(dnh) * i64::from(i);
-                let nh_z = nh_a + i64::from(dnh) * i64::from(k - 1);
-                let lo = qm_a.min(qm_b) - i64::from(qd2.unwrap_or(i32::MAX)) * i64::from(k * k) / 8;
-                if nh_a <= 0 && nh_z <= 0 || lo >= QM_OFF {
-                    Mode::NoSpec
-                } else if nh_a > 0 && nh_z > 0 && qm_a.max(qm_b) <= QM_MAX && qm_a.min(qm_b) >= 0 {
-                    Mode::Spec
-                } else {
-                    Mode::Exact
-                }
-            };
-            let q32 = (qm_a as i32, fit(mul_shr48(q_d1 as i64, self.kf)), qd2);
-            match (mode, nn_ok, nn32, q32) {
-                (Mode::Spec, true, (a, Some(b), Some(c)), (qa, Some(qb), Some(qc))) => {
-                    passed += self.chunk::<true>(
-                        l,
-                        i,
-                        k,
-                        (a, b, c),
-                        (qa, qb, qc),
-                        nl,
-                        dnl,
-                        &mut test,
-                        &mut write,
-                    );
-                }
-                (Mode::NoSpec, true, (a, Some(b), Some(c)), _) => {
-                    passed += self.chunk::<false>(
-                        l,
-                        i,
-                        k,
-                        (a, b, c),
-                        (0, 0, 0),
-                        nl,
-                        dnl,
-                        &mut test,
-                        &mut write,
-                    );
-                }
-                _ => {
-                    for j in i..i + k {
-                        if test(j) {
-                            passed += 1;
-                            let ni =
-                                [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
-                            write(j, self.one_exact(l, ni, n, dn, j));
-                        }
-                    }
-                }
-            }
-            (nn, nn_d1, q, q_d1, qm_a) = (nn_b, nn_d1_b, q_b, q_d1_b, qm_b);
-            i += k;
+        OneSpan {
+            nn,
+            nn_d1,
+            nn_d2,
+            q,
+            q_d1,
+            q_d2,
+            nl0: lin(n, l.at),
+            dnl: lin(dn, l.at),
+            nh0,
+            dnh,
+            // Constant second differences (`d2 >= 0` below 2^63 for steps
+            // of normals below 2^30 per pixel; else every chunk is exact).
+            nd2: fit((nn_d2 >> 30) as i64),
+            qd2: fit(mul_shr48(q_d2 as i64, self.kf)),
+            qm_a: mul_shr48(q as i64, self.kf),
         }
-        passed
     }
 
-    /// `k` pixels from pixel `i0` with 32-bit forward differences of
-    /// `|n|²` (Q30) and, with `SPEC`, `Qm` (Q20 segments).
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments, clippy::cast_sign_loss)]
-    fn chunk<const SPEC: bool>(
+    /// The colours (`r | g << 8 | b << 16`) of the `k` pixels from pixel
+    /// `i` into `buf`, and the state stepped past them.
+    #[inline(never)]
+    #[allow(
+        clippy::too_many_arguments,
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap
+    )]
+    fn one_chunk(
         &self,
         l: &KLight,
-        i0: u32,
+        n: [i32; 3],
+        dn: [i32; 3],
+        st: &mut OneSpan,
+        i: u32,
         k: u32,
-        nn: (i32, i32, i32),
-        qm: (i32, i32, i32),
-        mut nl: i32,
-        dnl: i32,
-        test: &mut impl FnMut(u32) -> bool,
-        write: &mut impl FnMut(u32, Rgb8),
-    ) -> u32 {
-        let (mut nn, mut nd1, nd2) = nn;
-        let (mut q, mut qd1, qd2) = qm;
-        // Failures counted (the rarer case in a frame), passes derived.
-        let mut failed = 0;
+        buf: &mut [u32; CHUNK as usize],
+    ) {
+        let OneSpan {
+            nn,
+            nn_d1,
+            nn_d2,
+            q,
+            q_d1,
+            q_d2,
+            nl0,
+            dnl,
+            nh0,
+            dnh,
+            nd2,
+            qd2,
+            qm_a,
+        } = *st;
+        let (nn_b, nn_d1_b) = advance(nn, nn_d1, nn_d2, k);
+        let (q_b, q_d1_b) = advance(q, q_d1, q_d2, k);
+        let qm_b = mul_shr48(q_b as i64, self.kf);
+        let nl = nl0.wrapping_add(dnl.wrapping_mul(i as i32));
+        // |n|² within [1/4, 5/4) over the chunk: below at both ends
+        // (convex: in between too), above `min(ends) - d2·k²/8`.
+        let nn_lo = nn
+            .min(nn_b)
+            .saturating_sub(nn_d2.saturating_mul(u64::from(k * k)) / 8);
+        let nn_ok = nn.max(nn_b) < 5 << 58 && nn_lo >= 1 << 58;
+        let nn32 = ((nn >> 30) as i32, fit((nn_d1 as i64) >> 30), nd2);
+        let mode = if !self.spec {
+            Mode::NoSpec
+        } else {
+            let nh_a = i64::from(nh0) + i64::from(dnh) * i64::from(i);
+            let nh_z = nh_a + i64::from(dnh) * i64::from(k - 1);
+            let lo = qm_a.min(qm_b) - i64::from(qd2.unwrap_or(i32::MAX)) * i64::from(k * k) / 8;
+            if nh_a <= 0 && nh_z <= 0 || lo >= QM_OFF {
+                Mode::NoSpec
+            } else if nh_a > 0 && nh_z > 0 && qm_a.max(qm_b) <= QM_MAX && qm_a.min(qm_b) >= 0 {
+                Mode::Spec
+            } else {
+                Mode::Exact
+            }
+        };
+        let q32 = (qm_a as i32, fit(mul_shr48(q_d1 as i64, self.kf)), qd2);
         let c = Colour {
             amb: self.amb19,
             d: l.d4,
             s: l.s4,
         };
-        for i in i0..i0 + k {
-            if test(i) {
-                write(i, self.pixel::<SPEC>(&c, nn, nl, q));
-            } else {
-                failed += 1;
+        match (mode, nn_ok, nn32, q32) {
+            (Mode::Spec, true, (a, Some(b), Some(d)), (qa, Some(qb), Some(qc))) => {
+                self.chunk::<true>(&c, k, (a, b, d), (qa, qb, qc), nl, dnl, buf);
             }
+            (Mode::NoSpec, true, (a, Some(b), Some(d)), _) => {
+                self.chunk::<false>(&c, k, (a, b, d), (0, 0, 0), nl, dnl, buf);
+            }
+            _ => {
+                for (j, o) in (i..i + k).zip(buf.iter_mut()) {
+                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
+                    *o = pack(self.one_exact(l, ni, n, dn, j));
+                }
+            }
+        }
+        (st.nn, st.nn_d1, st.q, st.q_d1, st.qm_a) = (nn_b, nn_d1_b, q_b, q_d1_b, qm_b);
+    }
+
+    /// `k` colours with 32-bit forward differences of `|n|²` (Q30) and,
+    /// with `SPEC`, `Qm` (Q20 segments).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn chunk<const SPEC: bool>(
+        &self,
+        c: &Colour,
+        k: u32,
+        nn: (i32, i32, i32),
+        qm: (i32, i32, i32),
+        mut nl: i32,
+        dnl: i32,
+        buf: &mut [u32; CHUNK as usize],
+    ) {
+        let (mut nn, mut nd1, nd2) = nn;
+        let (mut q, mut qd1, qd2) = qm;
+        for o in buf.iter_mut().take(k as usize) {
+            *o = pack(self.pixel::<SPEC>(c, nn, nl, q));
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
             if SPEC {
@@ -233,7 +291,6 @@ impl<R: Real> PhongKernel<'_, R> {
             }
             nl = nl.wrapping_add(dnl);
         }
-        k - failed
     }
 
     /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L` (Q30) and
