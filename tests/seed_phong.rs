@@ -37,8 +37,15 @@ impl<L: Lerp> Spans<L, 3> for Row11<L> {
 /// The crate's normalised interpolated normal at (7, 11), (10, 11) and
 /// (13, 11) for profile `P`: the vertex normals converted with
 /// `Profile::unit`, interpolated by `draw_triangle`, converted back with
-/// `Profile::unit_back` and normalised with `Vec3::normalize`, which is
-/// exactly what the Phong span shader does per pixel.
+/// `Profile::unit_back` and normalised with `Vec3::normalize`. That is
+/// what the per-pixel Phong shader (`render::PhongShader`) does for
+/// `precise`, `f32` and `f64`. `fast` ships other normalisations (the span
+/// kernel's table `1/|n|` for the affine profile, `approx16::unit` for
+/// `fast-pc`), which are internal: the unit test
+/// `render::phong_span::tests::seed_row_11_fast_shaders` runs this very
+/// triangle through both (measured 5.9e-5 and 8.7e-6 from the exact
+/// normal); here `fast` checks the rasterizer's interpolated normal with
+/// the same `normalize` as the others.
 fn row11_normals<P: Profile>() -> [[f64; 3]; 3] {
     let r = |v: f64| P::unit(P::Real::from_f64(v));
     let h = std::f64::consts::FRAC_1_SQRT_2;

@@ -33,8 +33,15 @@
 //! coefficients (`2^-31` per step) enters `Q` multiplied by their small
 //! values there: `w = Q/|n|²` keeps its *relative* accuracy where `x^n`
 //! needs it (`n = 10 000`), and `1/|n|²` needs only ~12 bits. Per span:
-//! `|n|²` and `Q` as exact `i64` forward differences (two adds each per
-//! pixel, no drift), `n·L` linear. Per pixel: `1/|n|` from a 65-entry
+//! `|n|²` and `Q` as exact `u64` forward differences, `n·L` linear. With
+//! one light ([`PhongKernel::fill`], the renderer's loop) they become
+//! 32-bit forward differences re-seeded exactly every 32 pixels (module
+//! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
+//! proven range per chunk, chunks whose `Q` is provably past the table
+//! skip the specular term, the rest per pixel in 64 bits); measured on
+//! the firmware's span sweep, 108 instructions a pixel on the M4 (was 167)
+//! and 209 on the M0: the colours of a chunk come from one copy of that
+//! arithmetic, the depth test and writes from a short loop per format. Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -143,6 +150,9 @@ struct KLight {
     /// `255 · 2^6 ·` the diffuse and specular coefficients per channel.
     d: [u32; 3],
     s: [u32; 3],
+    /// `255 · 2^4 ·` the same (below 2^14): the 32-bit loop's.
+    d4: [i32; 3],
+    s4: [i32; 3],
 }
 
 /// Material, lights and tables of one object for one frame (see the
@@ -158,8 +168,17 @@ pub struct PhongKernel<'s, R> {
     /// All lights directional and the viewer at infinity.
     duff: bool,
     local: bool,
-    /// Specular table, Q15.
-    table: [u16; SPEC_SEGMENTS + 1],
+    /// Specular table, Q15; the two entries past the last segment are 0
+    /// (positions beyond the table give no specular term).
+    table: [u16; SPEC_SEGMENTS + 2],
+    /// Table position per `Q` (Q8): `K = m · SPEC_SEGMENTS / min(m, 8)`
+    /// times 2^8, below 2^26 (`m <= 10 000`).
+    kf: u32,
+    /// `255 · 2^19 ·` ambient per channel plus `2^18` (rounding), for the
+    /// 32-bit loop of one directional light ([`PhongKernel::fill`]).
+    amb19: [i32; 3],
+    /// The ambient colour alone.
+    amb_c: Rgb8,
     /// `Q` (Q28) at or above `2^(15 + sq)`: no specular term.
     sq: u32,
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
@@ -262,6 +281,8 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 };
                 (l, p1, p2)
             };
+            let d4 = diffuse.map(|c| scale255(c, 4) as i32);
+            let s4 = specular.map(|c| scale255(c, 4) as i32);
             let _ = lights.push(KLight {
                 at,
                 point,
@@ -269,6 +290,8 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 p2,
                 d,
                 s,
+                d4,
+                s4,
             });
         }
         let duff = !local && lights.iter().all(|l| !l.point);
@@ -280,16 +303,30 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         }
         .max(1);
         let t_eff = m.min(U_MAX);
-        let mut table = [0u16; SPEC_SEGMENTS + 1];
+        let mut table = [0u16; SPEC_SEGMENTS + 2];
         if spec {
-            for (j, e) in table.iter_mut().enumerate() {
+            // The last entry (u = min(m, 8)) is 0: exactly for m <= 8,
+            // and e^-8 < 2^-11 dropped for larger m.
+            for (j, e) in table.iter_mut().enumerate().take(SPEC_SEGMENTS) {
                 let u = (u64::from(t_eff) * j as u64 / SPEC_SEGMENTS as u64) as u32;
                 *e = approx16::spec_entry(u, m);
             }
-            if t_eff == m {
-                table[SPEC_SEGMENTS] = 0;
-            }
         }
+        // K · 2^8 = m · SEGMENTS · 2^8 / t_eff (m, t_eff Q16): <= 2^7 · 2^8
+        // for m <= 8, m / 2^19 · 2^7 · 2^8 <= 10 000 · 2^4 · 2^8 < 2^26 above.
+        let kf = u32::try_from(
+            (u64::from(m) * ((SPEC_SEGMENTS as u64) << 8))
+                .checked_div(u64::from(t_eff))
+                .unwrap_or(0),
+        )
+        .ok()
+        .filter(|&k| k < 1 << 26)
+        .ok_or(KernelError::Range)?;
+        let amb19 = ambient.map(|a| (scale255(a, 19) as i32).saturating_add(1 << 18));
+        let amb_c = {
+            let l = |a: i32| (a >> 19).clamp(0, 255) as u8;
+            Rgb8::new(l(amb19[0]), l(amb19[1]), l(amb19[2]))
+        };
         // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
         let qlim = (u64::from(t_eff) * (5 << 28) / 4)
             .checked_div(u64::from(m))
@@ -337,6 +374,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             duff,
             local,
             table,
+            kf,
+            amb19,
+            amb_c,
             sq,
             c16,
             cb,
@@ -454,7 +494,8 @@ impl<'s, R: Real> PhongKernel<'s, R> {
     }
 
     /// A whole span of `len` pixels: for each pixel `i` for which
-    /// `test(i)` holds (a depth test), `write(i, colour)`. The same colours
+    /// `test(i)` holds (a depth test), `write(i, colour)`; returns how many
+    /// pixels passed. The same colours
     /// as [`PhongKernel::begin`] and [`PhongSpan::next`]/[`PhongSpan::skip`];
     /// one directional light with the viewer at infinity runs a loop whose
     /// state stays in registers (the span-stage hook the kernel is made
@@ -471,46 +512,124 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         len: u32,
         mut test: impl FnMut(u32) -> bool,
         mut write: impl FnMut(u32, Rgb8),
-    ) {
-        let mut s = self.begin(n, dn, p, dp, back);
+    ) -> u32 {
         if let (true, [l]) = (self.duff, &self.lights[..]) {
-            let (n0, dn0) = (s.n0, s.dn);
-            let (mut nn, mut nn_d1, nn_d2) = (s.nn, s.nn_d1, s.nn_d2);
-            let mut ls = s.l0;
-            for i in 0..len {
-                if test(i) {
-                    let f = (nn >> 32) as i32;
-                    let c = if let Some(r) = rsqrt_n(f) {
-                        let r14 = r >> 2;
-                        let rr14 = (r14 * r14) >> 14;
-                        let mut acc = self.amb;
-                        let nl = ls.nl;
-                        if nl > 0 {
-                            let sp = if self.spec && (!self.blinn || ls.nh > 0) {
-                                self.spec_of((ls.q >> 32) as i32, rr14)
-                            } else {
-                                0
-                            };
-                            add_light(&mut acc, l, nl15(nl, r), sp);
-                        }
-                        Self::level(acc)
-                    } else {
-                        fallback(self.shade, n0, dn0, p, dp, i)
-                    };
-                    write(i, c);
-                }
-                duff_step(&mut ls);
-                step(&mut nn, &mut nn_d1, nn_d2);
-            }
-        } else {
-            for i in 0..len {
-                if test(i) {
-                    write(i, s.next());
-                } else {
-                    s.skip();
-                }
+            let (n, dn) = if back {
+                (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
+            } else {
+                (n, dn)
+            };
+            return self.fill_one(l, n, dn, len, test, write);
+        }
+        if let [l] = &self.lights[..] {
+            return self.fill_general_one(l, n, dn, p, dp, back, len, test, write);
+        }
+        let mut s = self.begin(n, dn, p, dp, back);
+        let mut passed = 0;
+        for i in 0..len {
+            if test(i) {
+                write(i, s.next());
+                passed += 1;
+            } else {
+                s.skip();
             }
         }
+        passed
+    }
+
+    /// [`PhongKernel::fill`] for one light, point or with a local viewer:
+    /// the state of [`PhongKernel::begin`] for that light alone, in
+    /// locals (no per-span copy of the eight lights' state). Not inlined:
+    /// in the renderer's row loop its locals would share a stack frame of
+    /// over 1 KB, which ARMv6-M addresses with three instructions a load
+    /// (dodecahedron frame 11.3 M -> 9.9 M instructions there), and a copy
+    /// per pixel and depth format costs flash (inlined, the M4 frame is 5 %
+    /// faster).
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn fill_general_one(
+        &self,
+        l: &KLight,
+        n: [i32; 3],
+        dn: [i32; 3],
+        p: [i32; 3],
+        dp: [i32; 3],
+        back: bool,
+        len: u32,
+        mut test: impl FnMut(u32) -> bool,
+        mut write: impl FnMut(u32, Rgb8),
+    ) -> u32 {
+        let (n, dn) = if back {
+            (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
+        } else {
+            (n, dn)
+        };
+        let (mut nn, mut nn_d1, nn_d2) = quad(&[(n, dn)]);
+        let mut v = p.map(i32::wrapping_neg);
+        let dv = dp.map(i32::wrapping_neg);
+        let (mut vv, mut vv_d1, vv_d2) = quad(&[(v, dv)]);
+        // As in `begin`: positions and light offsets within ±2^30, steps
+        // within 2^18, else the generic path.
+        let far = |v: i64| v.unsigned_abs() > 1 << 30;
+        let mut slow =
+            dp.iter().any(|&d| d.unsigned_abs() > 1 << 18) || p.iter().any(|&c| far(i64::from(c)));
+        let mut s = LightSpan::default();
+        if l.point {
+            slow |= (0..3).any(|a| far(i64::from(l.at[a]) - i64::from(p[a])));
+            s.l = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
+            s.dl = dv;
+            (s.q, s.q_d1, s.q_d2) = quad(&[(s.l, s.dl)]);
+        }
+        let mut nc = n;
+        let mut passed = 0;
+        for i in 0..len {
+            if test(i) {
+                passed += 1;
+                let c = if slow {
+                    None
+                } else {
+                    self.general_px(&s, l, nc, v, vv, nn)
+                };
+                write(
+                    i,
+                    c.unwrap_or_else(|| fallback(self.shade, n, dn, p, dp, i)),
+                );
+            }
+            step(&mut nn, &mut nn_d1, nn_d2);
+            step(&mut vv, &mut vv_d1, vv_d2);
+            for a in 0..3 {
+                nc[a] = nc[a].wrapping_add(dn[a]);
+                v[a] = v[a].wrapping_add(dv[a]);
+            }
+            general_step(&mut s, l);
+        }
+        passed
+    }
+
+    /// One pixel of one light, point or with a local viewer (`None`:
+    /// `|n|²` outside the table, the generic path's).
+    #[inline(never)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn general_px(
+        &self,
+        s: &LightSpan,
+        l: &KLight,
+        n: [i32; 3],
+        v: [i32; 3],
+        vv: u64,
+        nn: u64,
+    ) -> Option<Rgb8> {
+        let r = rsqrt_n((nn >> 32) as i32)?;
+        let r14 = r >> 2;
+        let rr14 = (r14 * r14) >> 14;
+        let vh = if self.local {
+            unit_of(v, vv)
+        } else {
+            [0, 0, 1 << 30]
+        };
+        let mut acc = self.amb;
+        general_light(self, s, l, n, vh, r, rr14, &mut acc);
+        Some(Self::level(acc))
     }
 
     /// The colour for the accumulated channels (units `255 · 2^13`).
@@ -676,7 +795,8 @@ fn unit_of(v: [i32; 3], vv: u64) -> [i32; 3] {
     }
     let (y, e) = rsqrt64(vv);
     let s = (e - 30).min(31); // e >= 30
-    v.map(|c| shr_low(wmul(c, y), s))
+    let f = |c: i32| shr_low(wmul(c, y), s);
+    [f(v[0]), f(v[1]), f(v[2])]
 }
 
 /// The generic per-pixel path (`Shade::at_q16` on the normalised normal)
@@ -1012,37 +1132,23 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                 let Some(drow) = d.span_mut(y, x0, x1) else {
                     return;
                 };
-                let (z0, dz) = (s.z, s.dz);
-                let mut z = z0;
-                let mut test = |i: u32| {
-                    let pass = match drow.get_mut(i as usize) {
-                        Some(zb) => {
-                            let zd = D::from_lerp(z);
-                            let pass = zd < *zb;
-                            if pass {
-                                *zb = zd;
-                            }
-                            pass
-                        }
-                        None => false,
-                    };
-                    z = z.add(dz);
-                    pass
-                };
+                let (z, dz) = (s.z, s.dz);
+                let count;
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    k.fill(n, dn, p, dp, back, len, &mut test, |i, c| {
+                    let put = |i: u32, c| {
                         if let Some(px) = row.get_mut(i as usize) {
                             *px = enc(c);
-                            *drawn += 1;
                         }
-                    });
+                    };
+                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
                 } else {
                     let t = &mut *self.target;
-                    k.fill(n, dn, p, dp, back, len, &mut test, |i, c| {
+                    let put = |i: u32, c| {
                         t.write_pixel(x0 + i, y, enc(c));
-                        *drawn += 1;
-                    });
+                    };
+                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
                 }
+                *drawn += count;
             }
             None => {
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
@@ -1128,52 +1234,26 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
         let (p, dp) = pp;
         let len = row.len() as u32;
-        let mut drawn = 0u32;
+        let put = |i: u32, c: Rgb8| {
+            if let Some(px) = row.get_mut(i as usize) {
+                *px = F::encode(c);
+            }
+        };
         match drow {
-            Some(drow) => {
-                let mut z = z;
-                let test = |i: u32| {
-                    let pass = match drow.get_mut(i as usize) {
-                        Some(zb) => {
-                            let zd = D::from_lerp(z);
-                            let pass = zd < *zb;
-                            if pass {
-                                *zb = zd;
-                            }
-                            pass
-                        }
-                        None => false,
-                    };
-                    z = z.add(dz);
-                    pass
-                };
-                self.kernel
-                    .fill(n, dn, p, dp, self.back, len, test, |i, c| {
-                        if let Some(px) = row.get_mut(i as usize) {
-                            *px = F::encode(c);
-                            drawn += 1;
-                        }
-                    });
-            }
-            None => {
-                self.kernel.fill(
-                    n,
-                    dn,
-                    p,
-                    dp,
-                    self.back,
-                    len,
-                    |_| true,
-                    |i, c| {
-                        if let Some(px) = row.get_mut(i as usize) {
-                            *px = F::encode(c);
-                            drawn += 1;
-                        }
-                    },
-                );
-            }
+            Some(drow) => depth_fill::<L, D, R>(
+                self.kernel,
+                drow,
+                z,
+                dz,
+                (n, dn, p, dp),
+                self.back,
+                len,
+                put,
+            ),
+            None => self
+                .kernel
+                .fill(n, dn, p, dp, self.back, len, |_| true, put),
         }
-        drawn
     }
 }
 
@@ -1219,6 +1299,54 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 6> for PhongKernelShader<'_, '_,
     }
 }
 
+/// The span stage's depth test over a row of the depth buffer, depths
+/// `z + i·dz` ([`DepthFormat::from_lerp`], less-than, as
+/// [`Fill`](crate::raster::Fill)). (The unclamped in-range form the span
+/// stage also has doubled every span loop's code here: +64 KB of flash on
+/// the M4, and no faster.)
+struct DepthTest<'d, L, D: DepthFormat> {
+    drow: &'d mut [D::Raw],
+    z: L,
+    dz: L,
+}
+
+impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        let z = self.z;
+        self.z = z.add(self.dz);
+        match self.drow.get_mut(i as usize) {
+            Some(zb) => {
+                let zd = D::from_lerp(z);
+                let pass = zd < *zb;
+                if pass {
+                    *zb = zd;
+                }
+                pass
+            }
+            None => false,
+        }
+    }
+}
+
+/// Runs the kernel's `fill` over a span with the depth test of
+/// [`DepthTest`] and `put`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
+    k: &PhongKernel<'_, R>,
+    drow: &mut [D::Raw],
+    z: L,
+    dz: L,
+    (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+    back: bool,
+    len: u32,
+    mut put: impl FnMut(u32, Rgb8),
+) -> u32 {
+    let mut t = DepthTest::<L, D> { drow, z, dz };
+    k.fill(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
+}
+
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
 /// kernel is never made for the float ones).
 #[inline(always)]
@@ -1244,5 +1372,6 @@ impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 6>
     }
 }
 
+mod one;
 #[cfg(test)]
 mod tests;

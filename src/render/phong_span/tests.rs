@@ -56,13 +56,27 @@ fn span_error(c: &Case, n0: [f64; 3], dn: [f64; 3], p0: [f64; 3], dp: [f64; 3], 
     let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
     let (n0, dn, p0, dp) = (q30(n0), q30(dn), q16(p0), q16(dp));
     let mut sp = k.begin(n0, dn, p0, dp, false);
+    // The span loop (`fill`, the renderer's) and `begin`/`next`.
+    let mut filled = std::vec![None; len as usize];
+    k.fill(
+        n0,
+        dn,
+        p0,
+        dp,
+        false,
+        len as u32,
+        |i| i % 7 != 3,
+        |i, c| filled[i as usize] = Some(c),
+    );
     let mut worst = 0f64;
     for i in 0..len {
         if i % 7 == 3 {
             sp.skip();
+            assert_eq!(filled[i as usize], None);
             continue;
         }
         let got = sp.next();
+        let got2 = filled[i as usize].unwrap();
         let n = Vec3::new(
             f64::from(n0[0] + i * dn[0]),
             f64::from(n0[1] + i * dn[1]),
@@ -75,8 +89,10 @@ fn span_error(c: &Case, n0: [f64; 3], dn: [f64; 3], p0: [f64; 3], dp: [f64; 3], 
             f64::from(p0[2] + i * dp[2]) / 65536.0,
         );
         let e = twin.at(n, p);
-        for (g, w) in [got.r, got.g, got.b].into_iter().zip([e.x, e.y, e.z]) {
-            worst = worst.max((f64::from(g) - w * 255.0).abs());
+        for got in [got, got2] {
+            for (g, w) in [got.r, got.g, got.b].into_iter().zip([e.x, e.y, e.z]) {
+                worst = worst.max((f64::from(g) - w * 255.0).abs());
+            }
         }
     }
     worst
@@ -308,4 +324,92 @@ fn rsqrt_n_table() {
     );
     assert_eq!(rsqrt_n((1 << 26) - 1), None);
     assert_eq!(rsqrt_n(5 << 26), None);
+}
+
+/// Seed 000's Phong example (`tests/seed_phong.rs`) through the `fast`
+/// profile's own shaders, which that integration test cannot reach: the
+/// normals of row 11 of the seed's triangle, interpolated by the
+/// rasterizer, then normalised as each shader does per pixel — the span
+/// kernel (`n · 2^16/|n|` from the table [`RS`], affine `fast`) and the
+/// per-pixel shader of `fast-pc` (`approx16::unit` of the Q16 normal) —
+/// against the exact plane normal. Bounds: the kernel's table is within
+/// `2^-12.7` relative for `|n|² >= 1/2` (row 11's normals are at least
+/// 0.707 long; linear interpolation error `h²/8 · (3/4) f^-5/2` over
+/// segments of `h = 1/64`, 1.3e-4 of `1/|n| = 1.41`) plus the Q16 rounding
+/// `2^-17`: 1.2e-4; `approx16::unit` is within `2^-15` plus the Q30 -> Q16
+/// rounding `2^-17` divided by the length (x 1.41): 4.1e-5, allowed 5e-5.
+#[test]
+fn seed_row_11_fast_shaders() {
+    use crate::num::{Fast, Profile, Real};
+    use crate::raster::{draw_triangle, SubpixelBits, Vertex};
+    use crate::target::Window;
+    struct Row11(Vec<[i32; 3]>);
+    impl crate::raster::Spans<i32, 3> for Row11 {
+        fn span(&mut self, s: &Span<i32, 3>) {
+            if s.y == 11 {
+                // (7, 11), (10, 11) and one step past the end, (13, 11).
+                for i in [0, 3, 6] {
+                    self.0.push([0, 1, 2].map(|k| s.a[k] + i * s.da[k]));
+                }
+            }
+        }
+    }
+    let h = core::f64::consts::FRAC_1_SQRT_2;
+    let c = |i: i32| i * 16 + 8;
+    let vert = |x, y, n: [f64; 3]| Vertex {
+        x: c(x),
+        y: c(y),
+        z: Fast::depth(Q16::from_f64(0.5)),
+        attrs: n.map(|v| Fast::unit(Q16::from_f64(v))),
+    };
+    let tri = [
+        vert(9, 15, [1.0, 0.0, 0.0]),
+        vert(3, 3, [h, h, 0.0]),
+        vert(17, 7, [0.0, 0.0, 1.0]),
+    ];
+    let win = Window {
+        width: 32,
+        y0: 0,
+        y1: 32,
+    };
+    let mut row = Row11(Vec::new());
+    draw_triangle(&tri, SubpixelBits::DEFAULT, win, &mut row).unwrap();
+    assert_eq!(row.0.len(), 3);
+    // The exact plane normal (barycentric) at (x, 11), normalised.
+    let plane = |x: f64| {
+        let p = [(9.0, 15.0), (3.0, 3.0), (17.0, 7.0)];
+        let nv = [[1.0, 0.0, 0.0], [h, h, 0.0], [0.0, 0.0, 1.0]];
+        let area = |a: (f64, f64), b: (f64, f64), c: (f64, f64)| {
+            (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)
+        };
+        let q = (x, 11.0);
+        let t = area(p[0], p[1], p[2]);
+        let w = [
+            area(q, p[1], p[2]) / t,
+            area(p[0], q, p[2]) / t,
+            area(p[0], p[1], q) / t,
+        ];
+        unit([0, 1, 2].map(|k| w[0] * nv[0][k] + w[1] * nv[1][k] + w[2] * nv[2][k]))
+    };
+    for (n, x) in row.0.iter().zip([7.0, 10.0, 13.0]) {
+        let want = plane(x);
+        // The kernel: N·X = (n·X) · 2^16/|n| (Q30 · Q16).
+        let r = rsqrt_n((sq3(*n) >> 32) as i32).unwrap();
+        let kernel = n.map(|c| (c as f64 / (1u64 << 30) as f64) * f64::from(r) / 65536.0);
+        // `fast-pc`'s per-pixel shader: `approx16::unit` of the Q16 normal.
+        let n16 = n.map(|c| Fast::unit_back(c).to_fixed_i32(16));
+        let pc = approx16::unit(n16).map(|c| f64::from(c) / 65536.0);
+        let e = |a: [f64; 3]| (0..3).map(|k| (a[k] - want[k]).abs()).fold(0.0, f64::max);
+        std::println!("({x}, 11): kernel {:.2e}, fast-pc {:.2e}", e(kernel), e(pc));
+        for k in 0..3 {
+            assert!(
+                (kernel[k] - want[k]).abs() <= 1.2e-4,
+                "kernel at ({x}, 11): {kernel:?} vs {want:?}"
+            );
+            assert!(
+                (pc[k] - want[k]).abs() <= 5e-5,
+                "fast-pc at ({x}, 11): {pc:?} vs {want:?}"
+            );
+        }
+    }
 }

@@ -1,0 +1,367 @@
+//! One directional light, viewer at infinity: the 32-bit span loop.
+//!
+//! The span is cut into chunks of [`CHUNK`] pixels. At each chunk's first
+//! pixel the exact `u64` forward differences of `|n|²` and `Q` (Q60, as
+//! [`PhongKernel::begin`] makes them) give 32-bit ones: `|n|²` in Q30 and
+//! `Qm = K·Q`, the specular table position before the division by `|n|²`,
+//! in Q20 table segments ([`QM_FRAC`]). Rounding the differences down
+//! costs at most `1 + 31 + 496` units of the last place after 31 steps:
+//! `2^-21` of `|n|²` and `2^-11` of a segment (the table's own
+//! interpolation error is `2^-11` of its range). Per pixel: two adds for
+//! each quadratic, one for the linear `n·L`, `1/|n|` from [`RS`] (one
+//! interpolation), `N·L` one product, the table position `Qm·(1/|n|²)` one
+//! product of 16-bit operands, the table with one interpolation, per
+//! channel two multiply-adds and a clamp: all 32-bit, products of operands
+//! below 2^16 or results below 2^32 (a single `MULS` on ARMv6-M).
+//!
+//! A chunk whose `Qm` leaves the 32-bit range (`Q` far from the highlight
+//! at high shininess) is proven free of specular light by the convexity of
+//! `Q` (`Qm >= min(ends) - d2·k²/8` over `k` pixels) and runs without it;
+//! one that can be proven neither way, or whose `|n|²` leaves `[0, 2)`,
+//! takes [`PhongKernel::one_exact`] per pixel (the same quantities from the
+//! pixel's normal in 64 bits).
+
+use super::{cross, fallback, lin, quad, sq3, KLight, PhongKernel, RS, SPEC_SEGMENTS};
+use crate::num::wide::wmul;
+use crate::num::Real;
+use crate::target::Rgb8;
+
+/// Pixels per chunk.
+pub(super) const CHUNK: u32 = 32;
+/// Fraction bits of `Qm` (table segments) in the 32-bit loop.
+const QM_FRAC: u32 = 20;
+/// `Qm` at or above this many segments (Q20) gives no specular term:
+/// `Qm / |n|² >= SEGMENTS` for `|n|² < 5/4`.
+const QM_OFF: i64 = ((SPEC_SEGMENTS as i64) * 5 / 4 + 1) << QM_FRAC;
+/// Largest `Qm` the 32-bit loop carries (below 2^31).
+const QM_MAX: i64 = (1 << 31) - (1 << 24);
+
+/// `floor(x · k / 2^48)` for `k < 2^31` (two 32x32 products).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+fn mul_shr48(x: i64, k: u32) -> i64 {
+    let hi = (x >> 32) as i32;
+    let lo = x as u32;
+    let ph = wmul(hi, k as i32);
+    let pl = u64::from(lo) * u64::from(k);
+    // floor((ph · 2^32 + pl) / 2^48) = (ph + pl / 2^32) >> 16 (the low
+    // 32 bits of `pl` add less than one unit of 2^-16).
+    (ph + (pl >> 32) as i64) >> 16
+}
+
+/// `v` when it fits `i32`.
+#[inline(always)]
+fn fit(v: i64) -> Option<i32> {
+    i32::try_from(v).ok()
+}
+
+/// The `u64` forward-difference triple advanced by `k` steps.
+#[inline(always)]
+fn advance(v: u64, d1: u64, d2: u64, k: u32) -> (u64, u64) {
+    let k = u64::from(k);
+    let tri = k * k.saturating_sub(1) / 2;
+    (
+        v.wrapping_add(d1.wrapping_mul(k))
+            .wrapping_add(d2.wrapping_mul(tri)),
+        d1.wrapping_add(d2.wrapping_mul(k)),
+    )
+}
+
+/// The colour constants of one light (copied into the loop's locals).
+struct Colour {
+    amb: [i32; 3],
+    d: [i32; 3],
+    s: [i32; 3],
+}
+
+/// The exact state of a span of one light (`u64` forward differences,
+/// Q60) and its constant 32-bit second differences.
+#[derive(Clone, Copy)]
+struct OneSpan {
+    nn: u64,
+    nn_d1: u64,
+    nn_d2: u64,
+    q: u64,
+    q_d1: u64,
+    q_d2: u64,
+    nl0: i32,
+    dnl: i32,
+    nh0: i32,
+    dnh: i32,
+    nd2: Option<i32>,
+    qd2: Option<i32>,
+    /// `Qm` (Q20 segments) at the next chunk's first pixel.
+    qm_a: i64,
+}
+
+/// `r | g << 8 | b << 16`.
+#[inline(always)]
+fn pack(c: Rgb8) -> u32 {
+    u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16
+}
+
+/// How a chunk runs.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Spec,
+    NoSpec,
+    Exact,
+}
+
+impl<R: Real> PhongKernel<'_, R> {
+    /// The span loop of one directional light, viewer at infinity (module
+    /// docs); `n`, `dn` already flipped for back faces. The colours of a
+    /// chunk come from [`PhongKernel::one_chunk`] (one copy of the
+    /// arithmetic whatever the pixel and depth formats); this loop, one
+    /// per format, does the depth test and writes.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    pub(super) fn fill_one(
+        &self,
+        l: &KLight,
+        n: [i32; 3],
+        dn: [i32; 3],
+        len: u32,
+        mut test: impl FnMut(u32) -> bool,
+        mut write: impl FnMut(u32, Rgb8),
+    ) -> u32 {
+        let mut st = self.one_begin(l, n, dn);
+        let mut buf = [0u32; CHUNK as usize];
+        // Failures counted (the rarer case in a frame), passes derived.
+        let mut failed = 0;
+        let mut i = 0u32;
+        while i < len {
+            let k = (len - i).min(CHUNK);
+            self.one_chunk(l, n, dn, &mut st, i, k, &mut buf);
+            for (j, &c) in (i..i + k).zip(buf.iter()) {
+                if test(j) {
+                    write(j, Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8));
+                } else {
+                    failed += 1;
+                }
+            }
+            i += k;
+        }
+        len - failed
+    }
+
+    /// The span's exact state (see the module docs).
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn one_begin(&self, l: &KLight, n: [i32; 3], dn: [i32; 3]) -> OneSpan {
+        let (nn, nn_d1, nn_d2) = quad(&[(n, dn)]);
+        let f = if self.spec {
+            let (c0, c1) = (cross(n, l.p1), cross(dn, l.p1));
+            let (k0, k1) = (lin(n, l.p2), lin(dn, l.p2));
+            [
+                ([c0[0], c0[1], c0[2]], [c1[0], c1[1], c1[2]]),
+                ([k0, 0, 0], [k1, 0, 0]),
+            ]
+        } else {
+            [([0; 3], [0; 3]); 2]
+        };
+        let (q, q_d1, q_d2) = quad(&f);
+        let (nh0, dnh) = if self.blinn {
+            (lin(n, l.p1), lin(dn, l.p1))
+        } else {
+            (1, 0)
+        };
+        OneSpan {
+            nn,
+            nn_d1,
+            nn_d2,
+            q,
+            q_d1,
+            q_d2,
+            nl0: lin(n, l.at),
+            dnl: lin(dn, l.at),
+            nh0,
+            dnh,
+            // Constant second differences (`d2 >= 0` below 2^63 for steps
+            // of normals below 2^30 per pixel; else every chunk is exact).
+            nd2: fit((nn_d2 >> 30) as i64),
+            qd2: fit(mul_shr48(q_d2 as i64, self.kf)),
+            qm_a: mul_shr48(q as i64, self.kf),
+        }
+    }
+
+    /// The colours (`r | g << 8 | b << 16`) of the `k` pixels from pixel
+    /// `i` into `buf`, and the state stepped past them.
+    #[inline(never)]
+    #[allow(
+        clippy::too_many_arguments,
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap
+    )]
+    fn one_chunk(
+        &self,
+        l: &KLight,
+        n: [i32; 3],
+        dn: [i32; 3],
+        st: &mut OneSpan,
+        i: u32,
+        k: u32,
+        buf: &mut [u32; CHUNK as usize],
+    ) {
+        let OneSpan {
+            nn,
+            nn_d1,
+            nn_d2,
+            q,
+            q_d1,
+            q_d2,
+            nl0,
+            dnl,
+            nh0,
+            dnh,
+            nd2,
+            qd2,
+            qm_a,
+        } = *st;
+        let (nn_b, nn_d1_b) = advance(nn, nn_d1, nn_d2, k);
+        let (q_b, q_d1_b) = advance(q, q_d1, q_d2, k);
+        let qm_b = mul_shr48(q_b as i64, self.kf);
+        let nl = nl0.wrapping_add(dnl.wrapping_mul(i as i32));
+        // |n|² within [1/4, 5/4) over the chunk: below at both ends
+        // (convex: in between too), above `min(ends) - d2·k²/8`.
+        let nn_lo = nn
+            .min(nn_b)
+            .saturating_sub(nn_d2.saturating_mul(u64::from(k * k)) / 8);
+        let nn_ok = nn.max(nn_b) < 5 << 58 && nn_lo >= 1 << 58;
+        let nn32 = ((nn >> 30) as i32, fit((nn_d1 as i64) >> 30), nd2);
+        let mode = if !self.spec {
+            Mode::NoSpec
+        } else {
+            let nh_a = i64::from(nh0) + i64::from(dnh) * i64::from(i);
+            let nh_z = nh_a + i64::from(dnh) * i64::from(k - 1);
+            let lo = qm_a.min(qm_b) - i64::from(qd2.unwrap_or(i32::MAX)) * i64::from(k * k) / 8;
+            if nh_a <= 0 && nh_z <= 0 || lo >= QM_OFF {
+                Mode::NoSpec
+            } else if nh_a > 0 && nh_z > 0 && qm_a.max(qm_b) <= QM_MAX && qm_a.min(qm_b) >= 0 {
+                Mode::Spec
+            } else {
+                Mode::Exact
+            }
+        };
+        let q32 = (qm_a as i32, fit(mul_shr48(q_d1 as i64, self.kf)), qd2);
+        let c = Colour {
+            amb: self.amb19,
+            d: l.d4,
+            s: l.s4,
+        };
+        match (mode, nn_ok, nn32, q32) {
+            (Mode::Spec, true, (a, Some(b), Some(d)), (qa, Some(qb), Some(qc))) => {
+                self.chunk::<true>(&c, k, (a, b, d), (qa, qb, qc), nl, dnl, buf);
+            }
+            (Mode::NoSpec, true, (a, Some(b), Some(d)), _) => {
+                self.chunk::<false>(&c, k, (a, b, d), (0, 0, 0), nl, dnl, buf);
+            }
+            _ => {
+                for (j, o) in (i..i + k).zip(buf.iter_mut()) {
+                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
+                    *o = pack(self.one_exact(l, ni, n, dn, j));
+                }
+            }
+        }
+        (st.nn, st.nn_d1, st.q, st.q_d1, st.qm_a) = (nn_b, nn_d1_b, q_b, q_d1_b, qm_b);
+    }
+
+    /// `k` colours with 32-bit forward differences of `|n|²` (Q30) and,
+    /// with `SPEC`, `Qm` (Q20 segments).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn chunk<const SPEC: bool>(
+        &self,
+        c: &Colour,
+        k: u32,
+        nn: (i32, i32, i32),
+        qm: (i32, i32, i32),
+        mut nl: i32,
+        dnl: i32,
+        buf: &mut [u32; CHUNK as usize],
+    ) {
+        let (mut nn, mut nd1, nd2) = nn;
+        let (mut q, mut qd1, qd2) = qm;
+        for o in buf.iter_mut().take(k as usize) {
+            *o = pack(self.pixel::<SPEC>(c, nn, nl, q));
+            nn = nn.wrapping_add(nd1);
+            nd1 = nd1.wrapping_add(nd2);
+            if SPEC {
+                q = q.wrapping_add(qd1);
+                qd1 = qd1.wrapping_add(qd2);
+            }
+            nl = nl.wrapping_add(dnl);
+        }
+    }
+
+    /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L` (Q30) and
+    /// `Qm` (Q20 segments).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+    fn pixel<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q: i32) -> Rgb8 {
+        // 64 segments of 2^24 (Q30) from 1/4.
+        let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
+        let (a, b) = (RS[j], RS[j + 1]);
+        let t = ((nn as u32) >> 8) & 0xFFFF;
+        // 2^16 / |n| (<= 2^17).
+        let r = a - (((a - b) * t) >> 16);
+        if nl <= 0 {
+            return self.amb_c;
+        }
+        // N·L in Q15: (n·L)/|n| <= 1 (within 2^-11 relative: no clamp
+        // needed below, the products stay below 2^30).
+        let nl15 = (((nl as u32) >> 15).wrapping_mul(r) >> 16) as i32;
+        let sp = if SPEC {
+            let r14 = r >> 2;
+            // 2^14 / |n|² <= 2^16.
+            let rr14 = (r14 * r14) >> 14;
+            // Qm in Q7 segments, saturated below 2^15 (256 segments,
+            // beyond the table's 1.25 · 128); the position in Q21
+            // segments below 2^31, saturated at the table's end.
+            let qs = (q >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1) as u32;
+            let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
+            let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
+            let f = (pos >> 5) & 0xFFFF;
+            let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
+            (a - (((a - b) * f) >> 16)) as i32
+        } else {
+            0
+        };
+        let ch = |k: usize| {
+            let acc = c.amb[k] + c.d[k] * nl15 + c.s[k] * sp;
+            (acc >> 19).clamp(0, 255) as u8
+        };
+        Rgb8::new(ch(0), ch(1), ch(2))
+    }
+
+    /// One pixel of normal `n` (Q30) in 64 bits: the chunks the 32-bit
+    /// loop cannot prove (`n0`, `dn`, `i` for the generic fallback).
+    #[cold]
+    #[inline(never)]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    pub(super) fn one_exact(
+        &self,
+        l: &KLight,
+        n: [i32; 3],
+        n0: [i32; 3],
+        dn: [i32; 3],
+        i: u32,
+    ) -> Rgb8 {
+        let nn = sq3(n);
+        let nl = lin(n, l.at);
+        let cl = Colour {
+            amb: self.amb19,
+            d: l.d4,
+            s: l.s4,
+        };
+        if !(1 << 58..5 << 58).contains(&nn) {
+            fallback(self.shade, n0, dn, [0; 3], [0; 3], i)
+        } else if self.spec && (!self.blinn || lin(n, l.p1) > 0) {
+            let k = lin(n, l.p2);
+            let q = sq3(cross(n, l.p1)).wrapping_add(wmul(k, k) as u64);
+            let qm = mul_shr48(q as i64, self.kf).clamp(0, QM_MAX) as i32;
+            self.pixel::<true>(&cl, (nn >> 30) as i32, nl, qm)
+        } else {
+            self.pixel::<false>(&cl, (nn >> 30) as i32, nl, 0)
+        }
+    }
+}
