@@ -119,6 +119,9 @@ pub struct Baked {
     pub triangles: Vec<[u16; 3]>,
     /// Face normals: the core's exact `face_normal` of each triangle.
     pub face_normals: Vec<[i16; 3]>,
+    /// Culling cones, one per vertex ([`vertex_cones`]); empty without
+    /// normals.
+    pub cones: Vec<[i32; 2]>,
 }
 
 /// Welds per-corner normals into one vertex per distinct (position,
@@ -193,6 +196,53 @@ pub fn face_normals(positions: &[[i16; 3]], triangles: &[[u16; 3]]) -> Vec<[i16;
         .collect()
 }
 
+/// The culling cone of each vertex, as `Mesh::with_vertex_cones`
+/// checks it: `d = a · P` (`a` the vertex normal), the largest
+/// `face_plane` slack of its faces, and the smallest spread (Q1.14) that
+/// [`fixshade::mesh::cone_covers`] accepts for every face (from the f64
+/// distance, raised until the exact check passes).
+pub fn vertex_cones(
+    positions: &[[i16; 3]],
+    normals: &[[i16; 3]],
+    triangles: &[[u16; 3]],
+) -> Vec<[i32; 2]> {
+    let mut slack = vec![0i32; positions.len()];
+    let mut spread = vec![0u16; positions.len()];
+    for t in triangles {
+        let [p, q, r] = t.map(|i| positions[usize::from(i)]);
+        let s = fixshade::mesh::face_plane(p, q, r)[1];
+        let n = unit_face_normal(p.map(f64::from), q.map(f64::from), r.map(f64::from));
+        for &v in t {
+            let v = usize::from(v);
+            slack[v] = slack[v].max(s);
+            if s == i32::from(u16::MAX) {
+                // Never decided: no cone needed.
+                continue;
+            }
+            let (Some(n), a) = (n, normals[v]) else {
+                continue;
+            };
+            let d: f64 = (0..3)
+                .map(|k| (n[k] - f64::from(a[k]) / 16384.0).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let mut sp = ((d * 16384.0).ceil() as u16).max(spread[v]);
+            while !fixshade::mesh::cone_covers(a, sp, p, q, r) {
+                sp += 1;
+            }
+            spread[v] = sp;
+        }
+    }
+    (0..positions.len())
+        .map(|v| {
+            let (a, p) = (normals[v], positions[v]);
+            let d: i64 = (0..3).map(|k| i64::from(a[k]) * i64::from(p[k])).sum();
+            let packed = (u32::from(spread[v]) << 16) | slack[v] as u32;
+            [d as i32, packed as i32]
+        })
+        .collect()
+}
+
 /// The core's form of a mesh in f64: positions quantised by
 /// [`quantize_q14`], normals normalised then quantised, per-corner normals
 /// welded ([`weld_corners`]), face normals from the quantised positions.
@@ -213,11 +263,17 @@ pub fn bake_mesh(
         }
     };
     let face_normals = face_normals(&positions, &triangles);
+    let cones = if normals.is_empty() {
+        vec![]
+    } else {
+        vertex_cones(&positions, &normals, &triangles)
+    };
     Baked {
         positions,
         normals,
         triangles,
         face_normals,
+        cones,
     }
 }
 
@@ -251,10 +307,20 @@ pub fn bake_rs(
         s,
         "pub const {name}: Mesh<'static> = match Mesh::new(POSITIONS, TRIANGLES, {normals_arg}) {{"
     );
+    let cones = if b.cones.is_empty() {
+        "mesh".to_string()
+    } else {
+        format!(
+            "match mesh.with_vertex_cones(CONES) {{\n            \
+             Ok(mesh) => mesh,\n            \
+             Err(_) => panic!(\"invalid culling cones of {name}\"),\n        \
+             }}"
+        )
+    };
     let _ = writeln!(
         s,
         "    Ok(mesh) => match mesh.with_face_normals(FACE_NORMALS) {{\n        \
-         Ok(mesh) => mesh,\n        \
+         Ok(mesh) => {cones},\n        \
          Err(_) => panic!(\"invalid face normals of {name}\"),\n    \
          }},\n    \
          Err(_) => panic!(\"invalid built-in mesh {name}\"),\n}};"
@@ -289,18 +355,34 @@ pub fn bake_rs(
         "[i16; 3]",
         &b.face_normals,
     );
+    if !b.cones.is_empty() {
+        table(
+            &mut s,
+            "Culling cones `[d, slack | spread << 16]`, one per vertex (`Mesh::with_vertex_cones`).",
+            "CONES",
+            "[i32; 2]",
+            &b.cones,
+        );
+    }
     s
 }
 
 /// Appends a `#[rustfmt::skip]` constant table, several entries a line.
-fn table<T: std::fmt::Display>(s: &mut String, doc: &str, name: &str, ty: &str, rows: &[[T; 3]]) {
+fn table<T: std::fmt::Display, const N: usize>(
+    s: &mut String,
+    doc: &str,
+    name: &str,
+    ty: &str,
+    rows: &[[T; N]],
+) {
     let _ = write!(
         s,
         "\n/// {doc}\n#[rustfmt::skip]\nconst {name}: &[{ty}] = &[\n"
     );
     let mut line = String::new();
-    for [a, b, c] in rows {
-        let item = format!("[{a}, {b}, {c}],");
+    for row in rows {
+        let cells: Vec<String> = row.iter().map(ToString::to_string).collect();
+        let item = format!("[{}],", cells.join(", "));
         if !line.is_empty() && 4 + line.len() + 1 + item.len() > 100 {
             let _ = writeln!(s, "    {line}");
             line.clear();

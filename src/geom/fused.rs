@@ -73,6 +73,11 @@ pub(crate) struct Fused {
     /// every point of the bounding sphere (proved by [`Fused::new`]): the
     /// depth needs no clamp ([`Fused::project`] with `CLAMP = false`).
     pub(crate) depth_in_range: bool,
+    /// The proven bound (units of `2^-16` subpixel, at most `2^14`) of
+    /// the screen position's error before the final rounding: each
+    /// coordinate is within `1/2 + err16 / 2^16` subpixels of the exact
+    /// projection.
+    pub(crate) err16: u32,
 }
 
 /// `round(v · 2^-s)` (ties up) of `v` for a shift of either sign; `None`
@@ -255,7 +260,8 @@ impl Fused {
         let e1 = (3 * vmax).div_ceil(2);
         let e23 = ((vmax * eps) << 16).saturating_add(ex_term).div_ceil(w_lo);
         let e4 = 1u64 << (16u32.saturating_sub(sh_min));
-        if e1 + e23 + e4 > 1 << 14 {
+        let err16 = e1 + e23 + e4;
+        if err16 > 1 << 14 {
             return None;
         }
         // Depth: S (1 - near/w) = S - S near 2^ew y 2^(lz - 47), as
@@ -303,6 +309,8 @@ impl Fused {
             gsh,
             s30: (sr as u32) << 14,
             depth_in_range,
+            // At most 2^14 (checked above).
+            err16: err16 as u32,
         })
     }
 
@@ -454,7 +462,11 @@ mod tests {
                 .map(|v| (v * 65536.0).round() as i32);
             let center = [0; 3].map(|_| ((u() - 0.5) * 8000.0) as i16);
             let radius = 2000 + (u() * 18000.0) as u32;
-            let bound = Bound { center, radius };
+            let bound = Bound {
+                center,
+                radius,
+                half: [0; 3],
+            };
             let Some(f) = Fused::new(&m, &t, &pj, sub, scale, &bound) else {
                 continue;
             };

@@ -7,6 +7,7 @@
 
 use crate::num::Real;
 
+pub(crate) mod cull;
 pub(crate) mod fused;
 pub(crate) mod q16;
 use core::ops::{Add, Mul, Neg, Sub};

@@ -1,6 +1,7 @@
 //! The [`Mesh`] type: checked references to constant mesh tables.
 
 use super::error::MeshError;
+use super::exact::{cone_covers, face_plane, MAX_AXIS2};
 
 /// Fractional bits of a position coordinate: Q1.14, value = raw / 16384.
 pub const POSITION_FRAC_BITS: u32 = 14;
@@ -45,6 +46,7 @@ pub struct Mesh<'a> {
     triangles: &'a [[u16; 3]],
     normals: &'a [[i16; 3]],
     face_normals: &'a [[i16; 3]],
+    cones: &'a [[i32; 2]],
     bound: Bound,
 }
 
@@ -57,6 +59,9 @@ pub struct Bound {
     pub center: [i16; 3],
     /// Radius, Q1.14 (at most `2^15 · √3 < 56756`).
     pub radius: u32,
+    /// Half extents of the bounding box about `center`, Q1.14: every
+    /// position lies within `center ± half` per axis.
+    pub half: [u16; 3],
 }
 
 impl Bound {
@@ -104,7 +109,20 @@ impl Bound {
         // ⌈√r2⌉: the floor root, plus one unless exact.
         let r = r2.isqrt();
         let radius = if r * r == r2 { r } else { r + 1 } as u32;
-        Self { center, radius }
+        // The farther box side from the (floored) centre: below 2^16.
+        let mut half = [0u16; 3];
+        let mut k = 0;
+        while k < 3 {
+            let up = hi[k] as i32 - center[k] as i32;
+            let down = center[k] as i32 - lo[k] as i32;
+            half[k] = (if up > down { up } else { down }) as u16;
+            k += 1;
+        }
+        Self {
+            center,
+            radius,
+            half,
+        }
     }
 }
 
@@ -173,6 +191,7 @@ impl<'a> Mesh<'a> {
             triangles,
             normals,
             face_normals: &[],
+            cones: &[],
             bound: Bound::of(positions),
         })
     }
@@ -195,6 +214,82 @@ impl<'a> Mesh<'a> {
             face_normals,
             ..self
         })
+    }
+
+    /// The mesh with baked culling cones, one `[d, slack | spread << 16]`
+    /// per vertex, with which the geometry stage skips the vertices all
+    /// of whose faces it can prove back-facing in object space, before
+    /// transforming them. For vertex `v` with position `P` and vertex
+    /// normal `a` (the cone's axis, `|a|² <=` [`MAX_AXIS2`](super::MAX_AXIS2)):
+    ///
+    /// - `d = a · P` exactly (Q2.28, `|d| < 2^30`);
+    /// - `slack` (bits 0..16) at least the [`face_plane`](super::face_plane)
+    ///   slack of every face using `v`, 65 535 when none can be bounded;
+    /// - `spread` (bits 16..32) such that every face using `v` has its unit
+    ///   normal within `spread / 2^14` of `a / 2^14`
+    ///   ([`cone_covers`](super::cone_covers)).
+    ///
+    /// `fixshade bake` and the built-in meshes compute them; this checks
+    /// them against the corners (in a `const` item: at compile time).
+    ///
+    /// # Errors
+    /// [`MeshError::ConeCountMismatch`] unless the mesh has vertex normals
+    /// and one cone per vertex; [`MeshError::ConeMismatch`] naming the first
+    /// vertex whose cone does not hold.
+    pub const fn with_vertex_cones(self, cones: &'a [[i32; 2]]) -> Result<Self, MeshError> {
+        let nv = self.positions.len();
+        if cones.len() != nv || self.normals.len() != nv {
+            return Err(MeshError::ConeCountMismatch {
+                vertices: nv,
+                cones: cones.len(),
+            });
+        }
+        let mut v = 0;
+        while v < nv {
+            let a = self.normals[v];
+            let p = self.positions[v];
+            let aa =
+                a[0] as i64 * a[0] as i64 + a[1] as i64 * a[1] as i64 + a[2] as i64 * a[2] as i64;
+            let d =
+                a[0] as i64 * p[0] as i64 + a[1] as i64 * p[1] as i64 + a[2] as i64 * p[2] as i64;
+            if aa > MAX_AXIS2 || d != cones[v][0] as i64 {
+                return Err(MeshError::ConeMismatch { vertex: v });
+            }
+            v += 1;
+        }
+        let mut t = 0;
+        while t < self.triangles.len() {
+            // Indices were checked by `Mesh::new`.
+            let tri = self.triangles[t];
+            let (p, q, r) = (
+                self.positions[tri[0] as usize],
+                self.positions[tri[1] as usize],
+                self.positions[tri[2] as usize],
+            );
+            let slack = face_plane(p, q, r)[1];
+            let mut k = 0;
+            while k < 3 {
+                let v = tri[k] as usize;
+                let c = cones[v][1];
+                let (s, spread) = (c & 0xFFFF, ((c >> 16) & 0xFFFF) as u16);
+                if s < slack || !cone_covers(self.normals[v], spread, p, q, r) {
+                    return Err(MeshError::ConeMismatch { vertex: v });
+                }
+                k += 1;
+            }
+            t += 1;
+        }
+        Ok(Self { cones, ..self })
+    }
+
+    /// The baked culling cones (one per vertex, see
+    /// [`Mesh::with_vertex_cones`]), if the mesh has them.
+    pub const fn vertex_cones(&self) -> Option<&'a [[i32; 2]]> {
+        if self.cones.is_empty() {
+            None
+        } else {
+            Some(self.cones)
+        }
     }
 
     /// Vertex positions, Q1.14.

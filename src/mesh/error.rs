@@ -34,6 +34,20 @@ pub enum MeshError {
         /// The number of face normals.
         face_normals: usize,
     },
+    /// Culling cones without vertex normals, or not one per vertex
+    /// ([`Mesh::with_vertex_cones`](super::Mesh::with_vertex_cones)).
+    ConeCountMismatch {
+        /// The number of vertices.
+        vertices: usize,
+        /// The number of cones.
+        cones: usize,
+    },
+    /// A vertex's culling cone does not hold for its position, normal or
+    /// faces ([`Mesh::with_vertex_cones`](super::Mesh::with_vertex_cones)).
+    ConeMismatch {
+        /// The first such vertex.
+        vertex: usize,
+    },
     /// [`weld`](super::weld): an output or scratch table is too short.
     OutputTooSmall,
     /// A triangle corner names a normal that does not exist.
@@ -65,6 +79,13 @@ impl fmt::Display for MeshError {
                 triangles,
                 face_normals,
             } => write!(f, "{face_normals} face normals for {triangles} triangles"),
+            Self::ConeCountMismatch { vertices, cones } => write!(
+                f,
+                "{cones} culling cones for {vertices} vertices (vertex normals needed)"
+            ),
+            Self::ConeMismatch { vertex } => {
+                write!(f, "vertex {vertex}: culling cone does not hold")
+            }
             Self::OutputTooSmall => f.write_str("an output or scratch table is too short"),
             Self::NormalIndexOutOfRange { triangle, index } => {
                 write!(

@@ -106,6 +106,9 @@ pub use data::{
     POSITION_FRAC_BITS,
 };
 pub use error::{MeshError, NormalsError};
-pub use exact::{face_normal, isqrt_u64, normalize_q14};
+pub use exact::{
+    cone_covers, face_normal, face_plane, isqrt_u64, normalize_q14, MAX_AXIS2, SLACK_FRAC_BITS,
+    SLACK_LENGTH,
+};
 pub use generate::{generate_normals, Smoothing, MAX_TRIANGLES};
 pub use shapes::{BUNNY, CAN, CUBE, DODECAHEDRON, GRID, SPHERE};

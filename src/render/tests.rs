@@ -875,7 +875,20 @@ fn non_uniform_scale_lights_with_the_inverse_transpose() {
             l.map(|x| x / n)
         };
         let mut worst = 0f64;
-        for (i, n) in shapes::SPHERE.vertex_normals().unwrap().iter().enumerate() {
+        // The vertices of the kept triangles (the others may have been
+        // skipped: their triangles were culled in object space).
+        let mut used = [false; 4000];
+        for t in frame.tris() {
+            for v in t.v {
+                used[usize::from(v) - po.verts.start] = true;
+            }
+        }
+        let normals = shapes::SPHERE.vertex_normals().unwrap();
+        assert!(used.iter().filter(|&&u| u).count() * 3 > normals.len());
+        for (i, n) in normals.iter().enumerate() {
+            if !used[i] {
+                continue;
+            }
             let nq = n.map(|v| f64::from(v) / 16384.0);
             let ne: [f64; 3] =
                 core::array::from_fn(|r| (0..3).map(|k| c(r, k) * nq[k]).sum::<f64>());
@@ -893,5 +906,76 @@ fn non_uniform_scale_lights_with_the_inverse_transpose() {
         run::<F64>(stretch, 0.02, |v| v);
         run::<Precise>(stretch, 1.0, fixed);
         run::<Fast>(stretch, 1.0, fixed);
+    }
+}
+
+/// The bunny benchmark (Gouraud and flat, `fast`): culling in object
+/// space skips the vertices only back faces use, and the prepared
+/// triangles and the frame equal those of the same mesh without culling
+/// planes (every triangle culled by the screen sign).
+#[test]
+fn object_space_culling_keeps_the_frame_and_skips_vertices() {
+    use crate::num::Q16;
+    let b = shapes::BUNNY;
+    let plain = Mesh::new(b.positions(), b.triangles(), b.vertex_normals())
+        .unwrap()
+        .with_face_normals(b.face_normals().unwrap())
+        .unwrap();
+    for shading in [Shading::Gouraud, Shading::Flat] {
+        let run = |mesh: Mesh<'static>| {
+            let objs = [Object {
+                mesh,
+                transform: Affine::IDENTITY,
+                material: Material {
+                    color: Vec3::from_f32([1.0; 3]),
+                    ka: Q16::ONE,
+                    kd: Q16::ONE,
+                    ks: Q16::ZERO,
+                    shininess: Q16::ONE,
+                },
+                shading,
+                cull_backfaces: true,
+            }];
+            let ls = [Light::directional(
+                Vec3::from_f32([1.0; 3]),
+                Q16::from_f32(0.8),
+            )];
+            let s = Scene {
+                camera: Camera::look_at_f32(
+                    [0.0, 0.0, 3.922],
+                    [0.0; 3],
+                    [0.0, 1.0, 0.0],
+                    45.0,
+                    1.0,
+                    Some(10.0),
+                )
+                .unwrap(),
+                objects: &objs,
+                lights: &ls,
+                ambient: Q16::from_f32(0.2),
+                specular: Specular::Phong,
+                viewer: Viewer::Infinite,
+                background: Rgb8::BLACK,
+            };
+            let mut mem = Mem::<i32>::new(2000, 2000);
+            let frame = prepare::<Fast>(&s, 240, 240, mem.ws()).unwrap();
+            let skipped = (0..frame.vertex_count())
+                .filter(|&v| frame.xy(v).unwrap()[0] == i32::MIN + 1)
+                .count();
+            let tris = frame.tris().to_vec();
+            (tris, skipped, full::<Fast>(&s, 240, 240, true))
+        };
+        let (t0, s0, f0) = run(plain);
+        let (t1, s1, f1) = run(b);
+        std::println!(
+            "{shading:?}: {} triangles kept, {s1} of {} vertices skipped",
+            t1.len(),
+            b.vertex_count()
+        );
+        assert_eq!(s0, 0);
+        assert_eq!(t0, t1);
+        assert!(f0 == f1, "{shading:?}: frames differ");
+        assert_eq!(t1.len(), 1498);
+        assert!(s1 > 600, "{shading:?}: {s1}");
     }
 }

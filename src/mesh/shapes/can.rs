@@ -10,7 +10,10 @@ use crate::mesh::Mesh;
 /// cap normal).
 pub const CAN: Mesh<'static> = match Mesh::new(POSITIONS, TRIANGLES, Some(NORMALS)) {
     Ok(mesh) => match mesh.with_face_normals(FACE_NORMALS) {
-        Ok(mesh) => mesh,
+        Ok(mesh) => match mesh.with_vertex_cones(CONES) {
+            Ok(mesh) => mesh,
+            Err(_) => panic!("invalid culling cones of CAN"),
+        },
         Err(_) => panic!("invalid face normals of CAN"),
     },
     Err(_) => panic!("invalid built-in mesh CAN"),
@@ -54,4 +57,16 @@ const FACE_NORMALS: &[[i16; 3]] = &[
     [0, -16384, 0], [-14189, 0, -8192], [-14189, 0, -8192], [0, 16384, 0], [0, -16384, 0],
     [0, 0, -16384], [0, 0, -16384], [0, 16384, 0], [0, -16384, 0], [14189, 0, -8192],
     [14189, 0, -8192], [0, 16384, 0], [0, -16384, 0],
+];
+
+/// Culling cones `[d, slack | spread << 16]`, one per vertex (`Mesh::with_vertex_cones`).
+#[rustfmt::skip]
+const CONES: &[[i32; 2]] = &[
+    [161054720, 555876362], [161054637, 555810826], [161054637, 555810826], [161054720, 555876362],
+    [214745088, 16], [214745088, 16], [214745088, 16], [214745088, 16], [214745088, 16],
+    [214745088, 16], [161054637, 555810826], [161054637, 555810826], [214745088, 16],
+    [214745088, 16], [161054720, 555876362], [161054720, 555876362], [214745088, 16],
+    [214745088, 16], [161054637, 555810826], [161054637, 555810826], [214745088, 16],
+    [214745088, 16], [161054637, 555810826], [161054637, 555810826], [214745088, 16],
+    [214745088, 16],
 ];

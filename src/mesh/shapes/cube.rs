@@ -9,7 +9,10 @@ use crate::mesh::Mesh;
 /// corner.
 pub const CUBE: Mesh<'static> = match Mesh::new(POSITIONS, TRIANGLES, Some(NORMALS)) {
     Ok(mesh) => match mesh.with_face_normals(FACE_NORMALS) {
-        Ok(mesh) => mesh,
+        Ok(mesh) => match mesh.with_vertex_cones(CONES) {
+            Ok(mesh) => mesh,
+            Err(_) => panic!("invalid culling cones of CUBE"),
+        },
         Err(_) => panic!("invalid face normals of CUBE"),
     },
     Err(_) => panic!("invalid built-in mesh CUBE"),
@@ -49,4 +52,13 @@ const NORMALS: &[[i16; 3]] = &[
 const FACE_NORMALS: &[[i16; 3]] = &[
     [16384, 0, 0], [16384, 0, 0], [-16384, 0, 0], [-16384, 0, 0], [0, 16384, 0], [0, 16384, 0],
     [0, -16384, 0], [0, -16384, 0], [0, 0, 16384], [0, 0, 16384], [0, 0, -16384], [0, 0, -16384],
+];
+
+/// Culling cones `[d, slack | spread << 16]`, one per vertex (`Mesh::with_vertex_cones`).
+#[rustfmt::skip]
+const CONES: &[[i32; 2]] = &[
+    [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5],
+    [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5],
+    [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5],
+    [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5], [268435456, 5],
 ];

@@ -39,7 +39,8 @@ fn valid_meshes_and_accessors() {
         mesh.bound(),
         Bound {
             center: [8192; 3],
-            radius: 14189
+            radius: 14189,
+            half: [8192; 3],
         }
     );
     let faces = [[0, 0, 16384], [16384, 0, 0]];
