@@ -155,8 +155,8 @@ const fn edge_up(p: [i16; 3], q: [i16; 3]) -> u64 {
 }
 
 /// The culling plane of the counter-clockwise triangle `a, b, c`, as
-/// `[d, slack]`, baked with the built-in meshes
-/// ([`Mesh::with_face_planes`](super::Mesh::with_face_planes)):
+/// `[d, slack]`; its slack bounds the per-vertex cones baked with the
+/// built-in meshes ([`Mesh::with_vertex_cones`](super::Mesh::with_vertex_cones)):
 ///
 /// - `d = n · a` exactly, with `n` the Q1.14 [`face_normal`] (so
 ///   `|d| <= 16386 · 2^15·√3 < 2^30`);
