@@ -146,6 +146,14 @@ fn find<'a>(ms: &'a Measurements, t: &str, p: &str, s: &str) -> Option<&'a ChipR
         .find(|r| r.target == t && r.profile == p && r.scene == s)
 }
 
+/// Each scene's `fast` result on the M0, with the same scene's on the M4.
+fn fast_scenes(ms: &Measurements) -> impl Iterator<Item = (&ChipResult, Option<&ChipResult>)> {
+    ms.results
+        .iter()
+        .filter(|r| r.target == M0 && r.profile == "fast")
+        .map(|r| (r, find(ms, M4, "fast", &r.scene)))
+}
+
 const M0: &str = "thumbv6m-none-eabi";
 const M4: &str = "thumbv7em-none-eabihf";
 
@@ -154,12 +162,7 @@ fn chip_fast(ms: &Measurements) -> String {
     let mut s = String::from(
         "| scene | thumbv6m insns (est. M0 cycles) | thumbv7em insns | covered px |\n|---|---:|---:|---:|\n",
     );
-    for r in ms
-        .results
-        .iter()
-        .filter(|r| r.target == M0 && r.profile == "fast")
-    {
-        let m4 = find(ms, M4, "fast", &r.scene);
+    for (r, m4) in fast_scenes(ms) {
         s += &format!(
             "| {}, {}×{} | {} ({}) | {} | {} |\n",
             r.scene,
@@ -332,12 +335,7 @@ fn chip_memory(ms: &Measurements) -> String {
         }
     }
     s += "\n| scene | prepared frame B | colour + depth band B | stack B (thumbv6m / thumbv7em) |\n|---|---:|---:|---:|\n";
-    for r in ms
-        .results
-        .iter()
-        .filter(|r| r.target == M0 && r.profile == "fast")
-    {
-        let m4 = find(ms, M4, "fast", &r.scene);
+    for (r, m4) in fast_scenes(ms) {
         s += &format!(
             "| {} | {} | {} | {} / {} |\n",
             r.scene,
@@ -365,12 +363,7 @@ fn chip_split(ms: &Measurements) -> String {
         )
     };
     let per_px = |r: &ChipResult| r.insns / r.covered.max(1);
-    for r in ms
-        .results
-        .iter()
-        .filter(|r| r.target == M0 && r.profile == "fast")
-    {
-        let m4 = find(ms, M4, "fast", &r.scene);
+    for (r, m4) in fast_scenes(ms) {
         s += &format!(
             "| {} | {} | {} | {} | {} / {} | {} |\n",
             r.scene,
