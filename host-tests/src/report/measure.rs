@@ -386,6 +386,14 @@ fn build_run(
             .arg(&elf),
         &format!("qemu {target} {tag}"),
     )?;
+    // What `.ci/firmware` checks for the default build (soft-float, CRCs,
+    // its table) without building and running it again: the ELF (the next
+    // build overwrites cargo's copy) and the firmware's output, beside the
+    // plugin's log.
+    let keep = target_dir.join(format!("elf-{target}-{tag}"));
+    std::fs::copy(&elf, &keep).map_err(|e| CliError::io(&keep, &e))?;
+    let printed = target_dir.join(format!("fw-{target}-{tag}.txt"));
+    std::fs::write(&printed, &out).map_err(|e| CliError::io(&printed, &e))?;
     let log_text = std::fs::read_to_string(&log)
         .map_err(|e| failed(format!("{}: cannot read: {e}", log.display())))?;
     if log_text.contains("insn_count: warning") || !log_text.contains(" warnings 0") {
