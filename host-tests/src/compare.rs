@@ -16,6 +16,7 @@ use crate::core_render::{render_core, CoreError, CoreFrame, CoreProfile};
 use crate::ideal::{self, IdealFrame};
 use crate::image::{diff_heatmap, write_png};
 use crate::metrics::{compare, FrameView, Metrics};
+use crate::output::write_atomically;
 use crate::scene_file::SceneDesc;
 use serde::Serialize;
 use std::fmt;
@@ -158,9 +159,8 @@ impl Comparison {
         write_png(dir.join("diff.png"), w, h, &self.diff_vs_ideal())?;
         write_png(dir.join("diff_float.png"), w, h, &self.diff_vs_float())?;
         let json = serde_json::to_string_pretty(&self.metrics).map_err(std::io::Error::other)?;
-        crate::cli::write_atomically(&dir.join("metrics.json"), |out| {
+        write_atomically(&dir.join("metrics.json"), |out| {
             out.write_all(json.as_bytes())
         })
-        .map_err(|e| std::io::Error::other(e.to_string()))
     }
 }

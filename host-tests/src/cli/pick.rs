@@ -55,15 +55,9 @@ pub struct PickArgs {
     /// measured cycles too.
     #[arg(long)]
     pub measure_firmware: bool,
-    /// The profiles --measure-firmware measures (comma-separated; all by
-    /// default).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        value_name = "NAMES",
-        requires = "measure_firmware"
-    )]
-    pub firmware_profiles: Vec<String>,
+    /// `--firmware-profiles`: what --measure-firmware measures.
+    #[command(flatten)]
+    pub firmware_profiles: super::measure::FirmwareProfilesArgs,
 }
 
 fn positive(name: &str, v: f64) -> Result<f64, CliError> {
@@ -106,8 +100,7 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
     {
         let file = std::path::Path::new(file);
         if args.measure_firmware {
-            let profiles =
-                super::measure::parse_profiles(&args.firmware_profiles, "firmware-profiles")?;
+            let profiles = args.firmware_profiles.profiles()?;
             return pick_file_measured(file, chip, &budget, &m, &profiles);
         }
         return pick_file(file, chip, &budget, &m, &path);

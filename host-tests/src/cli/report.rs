@@ -40,15 +40,9 @@ pub struct ReportArgs {
     /// baked in), build it for both chips and measure it.
     #[arg(long)]
     pub measure_firmware: bool,
-    /// The profiles --measure-firmware measures (comma-separated; all by
-    /// default).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        value_name = "NAMES",
-        requires = "measure_firmware"
-    )]
-    pub firmware_profiles: Vec<String>,
+    /// `--firmware-profiles`: what --measure-firmware measures.
+    #[command(flatten)]
+    pub firmware_profiles: super::measure::FirmwareProfilesArgs,
 }
 
 /// Runs the sweep and writes the report; prints the summary and the files.
@@ -61,10 +55,7 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         measurements: args.measurements.clone(),
         allow_stale: args.allow_stale,
         measure_firmware: args.measure_firmware,
-        firmware_profiles: super::measure::parse_profiles(
-            &args.firmware_profiles,
-            "firmware-profiles",
-        )?,
+        firmware_profiles: args.firmware_profiles.profiles()?,
         scene_files: args.scenes.clone(),
     })?;
     let mut text = String::new();

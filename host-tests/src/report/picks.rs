@@ -16,8 +16,8 @@
 
 use std::collections::BTreeMap;
 
+use super::Error;
 use crate::builtin::load_builtin;
-use crate::cli::CliError;
 use crate::compare::core_view;
 use crate::core_render::CoreProfile;
 use crate::ideal::IdealFrame;
@@ -194,7 +194,7 @@ pub struct SceneChoice {
 ///
 /// # Errors
 /// An unknown name (bad input, listing the known ones).
-pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice, CliError> {
+pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice, Error> {
     let mut names: Vec<String> = Vec::new();
     for r in &m.results {
         if !names.contains(&r.scene) {
@@ -217,7 +217,7 @@ pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice
         Some(n) => {
             let scenes = pick(n);
             if scenes.is_empty() {
-                return Err(CliError::input(format!(
+                return Err(Error::input(format!(
                     "--scene: no firmware measurements for `{n}` (measured: {}; base scenes: {})",
                     names.join(", "),
                     bases.join(", ")
@@ -275,7 +275,7 @@ fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
 pub fn host_errors(
     scenes: &[String],
     profiles: &[CoreProfile],
-) -> Result<BTreeMap<(String, CoreProfile), f64>, CliError> {
+) -> Result<BTreeMap<(String, CoreProfile), f64>, Error> {
     use rayon::prelude::*;
     let jobs: Vec<(String, CoreProfile)> = scenes
         .iter()
@@ -293,14 +293,14 @@ pub fn host_errors(
             let rgb = f.to_rgb8();
             Ok((s.clone(), (f, rgb)))
         })
-        .collect::<Result<_, CliError>>()?;
+        .collect::<Result<_, Error>>()?;
     jobs.par_iter()
         .map(|(s, p)| {
             let d = load_builtin(s)?;
             let frame = super::sweep::rgb_frame(&d, *p)?;
             let (f, rgb) = &ideals[s];
             let m = compare(&core_view(&frame), &ideal_view(f, rgb))
-                .map_err(|e| CliError::input(format!("{s}: {e}")))?;
+                .map_err(|e| Error::input(format!("{s}: {e}")))?;
             Ok(((s.clone(), *p), m.mean_abs_error))
         })
         .collect()
@@ -375,7 +375,7 @@ pub fn user_scene_candidates(
     path: &std::path::Path,
     ms: &Measurements,
     target: Target,
-) -> Result<Vec<Candidate>, CliError> {
+) -> Result<Vec<Candidate>, Error> {
     use rayon::prelude::*;
     let desc = crate::scene_file::SceneDesc::load(path)?;
     let with = |m: Mode| {
@@ -404,7 +404,7 @@ pub fn user_scene_candidates(
         .map(|(p, m, stack)| {
             let f = super::sweep::rgb_frame(&with(m), p)?;
             let e = compare(&core_view(&f), &ideal_view(&phong, &prgb))
-                .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+                .map_err(|e| Error::input(format!("{}: {e}", path.display())))?;
             Ok(Candidate {
                 profile: p,
                 mode: Some(m),
