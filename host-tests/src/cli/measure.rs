@@ -46,6 +46,31 @@ pub struct MeasureArgs {
     pub targets: Vec<String>,
 }
 
+/// `--measurements FILE` and `--allow-stale` of `fixshade report` and
+/// `fixshade pick`: flatten it into their arguments with
+/// `#[command(flatten)]`.
+#[derive(Clone, Debug, Default, Args)]
+pub struct MeasurementsArgs {
+    /// The chip measurements (default: docs/measurements/firmware.json of
+    /// the checkout; refused when stale).
+    #[arg(long, value_name = "FILE")]
+    pub measurements: Option<PathBuf>,
+    /// Use chip measurements made from other sources (their source
+    /// fingerprint differs from the tree's; a report's page says so).
+    #[arg(long)]
+    pub allow_stale: bool,
+}
+
+impl MeasurementsArgs {
+    /// The measurements file: `--measurements`, else the checkout's
+    /// [`chips::DEFAULT_PATH`].
+    pub fn path(&self) -> PathBuf {
+        self.measurements
+            .clone()
+            .unwrap_or_else(|| chips::repo_root().join(chips::DEFAULT_PATH))
+    }
+}
+
 /// `--firmware-profiles NAMES` of `fixshade report` and `fixshade pick`
 /// (with `--measure-firmware` only): flatten it into their arguments with
 /// `#[command(flatten)]`.

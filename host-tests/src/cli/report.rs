@@ -27,13 +27,9 @@ pub struct ReportArgs {
     /// figures are not available.
     #[arg(long, value_name = "FILE")]
     pub firmware_results: Option<PathBuf>,
-    /// The chip measurements (default: docs/measurements/firmware.json of
-    /// the checkout; refused when stale).
-    #[arg(long, value_name = "FILE")]
-    pub measurements: Option<PathBuf>,
-    /// Use chip measurements made from other sources (the page says so).
-    #[arg(long)]
-    pub allow_stale: bool,
+    /// `--measurements` and `--allow-stale`.
+    #[command(flatten)]
+    pub measurements: super::measure::MeasurementsArgs,
     /// Re-measure every profile on both chips under QEMU (needs
     /// qemu-system-arm, gcc and the thumb targets; minutes). With scene
     /// files: generate the firmware for your scenes (their OBJ meshes
@@ -52,8 +48,8 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         quick: args.quick,
         firmware_results: args.firmware_results.clone(),
         progress: true,
-        measurements: args.measurements.clone(),
-        allow_stale: args.allow_stale,
+        measurements: args.measurements.measurements.clone(),
+        allow_stale: args.measurements.allow_stale,
         measure_firmware: args.measure_firmware,
         firmware_profiles: args.firmware_profiles.profiles()?,
         scene_files: args.scenes.clone(),

@@ -385,7 +385,7 @@ impl Measurements {
 /// [`check_fresh`].
 ///
 /// # Errors
-/// Bad input (exit status 2) naming the file and the problem.
+/// [`Error::Input`] naming the file and the problem.
 pub fn load(path: &Path) -> Result<Measurements, Error> {
     let file = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| {

@@ -15,6 +15,7 @@ use fixshade::target::{PixelFormat, Rgb888};
 
 use super::Error;
 use crate::builtin::load_builtin;
+use crate::compare::ideal_view;
 use crate::core_render::{CoreProfile, CoreScene, Renderer};
 use crate::metrics::{compare, FrameView, Metrics};
 
@@ -80,13 +81,7 @@ fn vs_ideal<P: Profile<Real = Q16>>(scene: &str) -> Result<Metrics, Error> {
             covered: &covered,
             object: None,
         },
-        &FrameView {
-            width: ideal.width,
-            height: ideal.height,
-            rgb: &irgb,
-            covered: &ideal.covered,
-            object: None,
-        },
+        &ideal_view(&ideal, &irgb),
     )
     .map_err(|e| Error::input(format!("{scene}: {e}")))
 }
@@ -278,13 +273,7 @@ impl KnobSection {
             let desc = load_builtin(&r.scene)?;
             let ideal = super::sweep::ideal_frame(&desc)?;
             let irgb = ideal.to_rgb8();
-            let iview = FrameView {
-                width: ideal.width,
-                height: ideal.height,
-                rgb: &irgb,
-                covered: &ideal.covered,
-                object: None,
-            };
+            let iview = ideal_view(&ideal, &irgb);
             let err = |p: CoreProfile| -> Result<f64, Error> {
                 let f = super::sweep::rgb_frame(&desc, p)?;
                 Ok(compare(&crate::compare::core_view(&f), &iview)

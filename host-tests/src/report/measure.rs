@@ -773,8 +773,9 @@ fn on_targets<T: Send>(
 /// docs).
 ///
 /// # Errors
-/// A missing tool (bad input); a failed build, run or CRC check (exit
-/// status 1).
+/// A missing tool ([`Error::Input`]); a lock file that cannot be taken
+/// ([`Error::Lock`]); a failed build, run or CRC check
+/// ([`Error::Measurement`]).
 pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     let root = &opts.root;
     let fw = root.join("examples/firmware");
@@ -934,9 +935,10 @@ pub fn user_firmware_scenes(
 /// as the firmware prints them).
 ///
 /// # Errors
-/// A bad scene file or one the firmware cannot take, a missing tool (bad
-/// input); a failed build (e.g. meshes beyond the board's flash), run or
-/// CRC check (exit status 1).
+/// A bad scene file or one the firmware cannot take, a missing tool
+/// ([`Error::Input`], [`Error::Scene`]); a lock file that cannot be taken
+/// ([`Error::Lock`]); a failed build (e.g. meshes beyond the board's
+/// flash), run or CRC check ([`Error::Measurement`]).
 pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Error> {
     let root = &opts.root;
     let fw = root.join("examples/firmware");

@@ -316,7 +316,7 @@ pub struct ReportOutput {
 /// there, by writing and removing a probe file.
 ///
 /// # Errors
-/// An I/O error (exit status 1) naming the folder.
+/// [`Error::Write`] naming the folder.
 pub fn prepare_out_dir(out: &Path) -> Result<(), Error> {
     let img = out.join("img");
     std::fs::create_dir_all(&img).map_err(|e| Error::write(out, e))?;
@@ -366,10 +366,11 @@ fn firmware_profiles(opts: &ReportOptions) -> Vec<crate::core_render::CoreProfil
 /// Runs the sweep and writes the report (see the [module docs](self)).
 ///
 /// # Errors
-/// An unwritable output folder or a failed write (I/O, exit status 1),
-/// a bad firmware results file or a scene the renderers refuse (bad
-/// input, exit status 2). Checked before the sweep starts, except
-/// failures while writing.
+/// [`Error::Write`] for an unwritable output folder or a failed write;
+/// [`Error::Input`] or [`Error::Scene`] for a bad firmware results or
+/// measurements file or a scene the renderers refuse; with
+/// `--measure-firmware`, as [`measure::measure_firmware`]. Checked before
+/// the sweep starts, except failures while writing.
 pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, Error> {
     let started = Instant::now();
     let (ms, ms_file, stale) = chip_measurements(opts)?;

@@ -18,10 +18,10 @@ use std::collections::BTreeMap;
 
 use super::Error;
 use crate::builtin::load_builtin;
-use crate::compare::core_view;
+use crate::compare::{core_view, ideal_view};
 use crate::core_render::CoreProfile;
 use crate::ideal::IdealFrame;
-use crate::metrics::{compare, FrameView};
+use crate::metrics::compare;
 
 use super::chips::{ChipResult, Measurements};
 use super::embedded::Target;
@@ -253,16 +253,6 @@ pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice
                 scenes: chosen,
             })
         }
-    }
-}
-
-fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
-    FrameView {
-        width: f.width,
-        height: f.height,
-        rgb,
-        covered: &f.covered,
-        object: None,
     }
 }
 

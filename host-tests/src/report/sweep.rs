@@ -7,10 +7,10 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::Error;
 use crate::builtin::{builtin_scenes, load_builtin};
-use crate::compare::{core_view, metrics_of};
+use crate::compare::{core_view, ideal_view, metrics_of};
 use crate::core_render::{render_core, CoreFrame, CoreProfile, BAND_ROWS};
 use crate::ideal::{self, IdealFrame};
-use crate::metrics::{compare, FrameView};
+use crate::metrics::compare;
 use crate::scene_file::{PixelFormat, SceneDesc};
 
 use super::timing::{time_frames, Repeats};
@@ -204,16 +204,6 @@ fn mesh_flash(desc: &SceneDesc) -> (usize, usize, usize) {
         }
     }
     (p, t, n)
-}
-
-pub(super) fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
-    FrameView {
-        width: f.width,
-        height: f.height,
-        rgb,
-        covered: &f.covered,
-        object: None,
-    }
 }
 
 /// A colour step in the twin larger than this (levels, any channel) to a
