@@ -16,6 +16,7 @@ use crate::core_render::{render_core, CoreError, CoreFrame, CoreProfile};
 use crate::ideal::{self, IdealFrame};
 use crate::image::{diff_heatmap, write_png};
 use crate::metrics::{compare, FrameView, Metrics};
+use crate::output::write_atomically;
 use crate::scene_file::SceneDesc;
 use serde::Serialize;
 use std::fmt;
@@ -79,6 +80,18 @@ pub fn core_view(f: &CoreFrame) -> FrameView<'_> {
     }
 }
 
+/// A view of an ideal frame for the metrics, with `rgb` its
+/// [`IdealFrame::to_rgb8`] (the caller keeps the pixels).
+pub fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
+    FrameView {
+        width: f.width,
+        height: f.height,
+        rgb,
+        covered: &f.covered,
+        object: None,
+    }
+}
+
 /// Renders `desc` with `profile`, its twin and the ideal reference, and
 /// compares.
 ///
@@ -112,16 +125,10 @@ pub fn metrics_of(
     ideal: &IdealFrame,
 ) -> Result<MetricsPair, CompareError> {
     let irgb = ideal.to_rgb8();
-    let iview = FrameView {
-        width: ideal.width,
-        height: ideal.height,
-        rgb: &irgb,
-        covered: &ideal.covered,
-        object: None,
-    };
     Ok(MetricsPair {
         vs_float: compare(&core_view(fixed), &core_view(float)).map_err(CompareError::Metrics)?,
-        vs_ideal: compare(&core_view(fixed), &iview).map_err(CompareError::Metrics)?,
+        vs_ideal: compare(&core_view(fixed), &ideal_view(ideal, &irgb))
+            .map_err(CompareError::Metrics)?,
     })
 }
 
@@ -129,14 +136,7 @@ impl Comparison {
     /// The heat-map of the profile's frame against the ideal reference.
     pub fn diff_vs_ideal(&self) -> Vec<[u8; 3]> {
         let irgb = self.ideal.to_rgb8();
-        let iview = FrameView {
-            width: self.ideal.width,
-            height: self.ideal.height,
-            rgb: &irgb,
-            covered: &self.ideal.covered,
-            object: None,
-        };
-        diff_heatmap(&core_view(&self.fixed), &iview).unwrap_or_default()
+        diff_heatmap(&core_view(&self.fixed), &ideal_view(&self.ideal, &irgb)).unwrap_or_default()
     }
 
     /// The heat-map of the profile's frame against its float twin.
@@ -158,9 +158,8 @@ impl Comparison {
         write_png(dir.join("diff.png"), w, h, &self.diff_vs_ideal())?;
         write_png(dir.join("diff_float.png"), w, h, &self.diff_vs_float())?;
         let json = serde_json::to_string_pretty(&self.metrics).map_err(std::io::Error::other)?;
-        crate::cli::write_atomically(&dir.join("metrics.json"), |out| {
+        write_atomically(&dir.join("metrics.json"), |out| {
             out.write_all(json.as_bytes())
         })
-        .map_err(|e| std::io::Error::other(e.to_string()))
     }
 }

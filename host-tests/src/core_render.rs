@@ -190,12 +190,48 @@ pub fn model_transform<R: Real>(t: &crate::scene_file::Transform) -> Affine<R> {
     }
 }
 
+/// The arguments of the core's [`Camera::look_at`] for a scene, as
+/// [`CoreScene::new`] converts them (the generated firmware scenes hold
+/// exactly these values).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraInputs<R> {
+    /// Eye position.
+    pub eye: Vec3<R>,
+    /// The point looked at.
+    pub target: Vec3<R>,
+    /// Up direction.
+    pub up: Vec3<R>,
+    /// Vertical field of view in radians.
+    pub fov_y: R,
+    /// Near plane distance.
+    pub near: R,
+    /// Far plane distance, if any.
+    pub far: Option<R>,
+}
+
+/// An object's model transform as [`Affine::from_parts`] takes it: for a
+/// uniformly scaled object it is the transform [`CoreScene`] gives it (the
+/// firmware's scenes store these three values per object).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectParts<R> {
+    /// The scale (the first component of the scene file's scale).
+    pub scale: R,
+    /// Rotation angles in radians about x, y, z.
+    pub rotation: Vec3<R>,
+    /// Translation.
+    pub translation: Vec3<R>,
+}
+
 /// A scene description converted to the core's types for scalar `R`
 /// (values through `R::from_f64`, exactly as the firmware's generated
-/// constants): it owns the objects and lights a [`Scene`] borrows.
+/// constants): it owns the objects and lights a [`Scene`] borrows. The
+/// one conversion from a scene file to the core's types (the renderers,
+/// the timings and the firmware scene generator all use it).
 #[derive(Debug)]
 pub struct CoreScene<'d, R> {
+    camera_in: CameraInputs<R>,
     camera: Camera<R>,
+    parts: Vec<ObjectParts<R>>,
     objects: Vec<Object<'d, R>>,
     lights: Vec<Light<R>>,
     ambient: R,
@@ -210,14 +246,31 @@ impl<'d, R: Real> CoreScene<'d, R> {
     /// [`CoreError::Scene`] for a camera the core refuses.
     pub fn new(desc: &'d SceneDesc) -> Result<Self, CoreError> {
         let c = &desc.camera;
+        let camera_in = CameraInputs {
+            eye: v3(c.eye),
+            target: v3(c.target),
+            up: v3(c.up),
+            fov_y: R::from_f64(c.fov_y_deg.to_radians()),
+            near: R::from_f64(c.near),
+            far: c.far.map(R::from_f64),
+        };
         let camera = Camera::look_at(
-            v3(c.eye),
-            v3(c.target),
-            v3(c.up),
-            R::from_f64(c.fov_y_deg.to_radians()),
-            R::from_f64(c.near),
-            c.far.map(R::from_f64),
+            camera_in.eye,
+            camera_in.target,
+            camera_in.up,
+            camera_in.fov_y,
+            camera_in.near,
+            camera_in.far,
         )?;
+        let parts = desc
+            .objects
+            .iter()
+            .map(|o| ObjectParts {
+                scale: R::from_f64(o.transform.scale[0]),
+                rotation: v3(o.transform.rotation_rad),
+                translation: v3(o.transform.translation),
+            })
+            .collect();
         let objects = desc
             .objects
             .iter()
@@ -253,7 +306,9 @@ impl<'d, R: Real> CoreScene<'d, R> {
             .collect();
         let [r, g, b] = desc.background;
         Ok(Self {
+            camera_in,
             camera,
+            parts,
             objects,
             lights,
             ambient: R::from_f64(desc.ambient),
@@ -263,6 +318,16 @@ impl<'d, R: Real> CoreScene<'d, R> {
             },
             background: Rgb8::new(r, g, b),
         })
+    }
+
+    /// The camera's inputs.
+    pub fn camera_inputs(&self) -> CameraInputs<R> {
+        self.camera_in
+    }
+
+    /// Per object, its transform's parts (see [`ObjectParts`]).
+    pub fn object_parts(&self) -> &[ObjectParts<R>] {
+        &self.parts
     }
 
     /// The scene, borrowing the objects and lights.

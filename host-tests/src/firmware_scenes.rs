@@ -24,19 +24,18 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
+use fixshade::geom::Vec3;
+use fixshade::illum::LightKind;
 use fixshade::mesh::Mesh;
 use fixshade::num::{Fast, Real, Q16};
 use fixshade::render::{prepare, BandState, Layout, Pool, Reach, RenderError, Tri, Workspace};
 
 pub use fixshade::render::Capacity;
-use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
+use fixshade::scene::{Scene, Shading};
+use fixshade::target::{BandBuf, Rgb565Be};
 
 use crate::builtin::load_builtin;
-use crate::core_render::{crc32, BAND_ROWS};
-use crate::ideal::{LightKind as ILightKind, Shading as IShading, SpecularModel};
+use crate::core_render::{crc32, CameraInputs, CoreScene, BAND_ROWS};
 use crate::scene_file::{PixelFormat, SceneDesc, SceneMesh, BUILTIN_MESHES};
 
 /// The built-in scenes the firmware renders, in order.
@@ -75,111 +74,12 @@ pub fn q16_bits(v: f64) -> i32 {
     Q16::from_f64(v).to_bits()
 }
 
-fn v3(v: [f64; 3]) -> Vec3<Q16> {
-    Vec3::new(
-        Q16::from_f64(v[0]),
-        Q16::from_f64(v[1]),
-        Q16::from_f64(v[2]),
-    )
-}
-
 /// The scene `desc` in Q16, exactly as `render_core(desc, Fast)` builds it.
-struct Q16Scene<'m> {
-    camera_in: ([Vec3<Q16>; 3], Q16, Q16, Option<Q16>),
-    objects: Vec<Object<'m, Q16>>,
-    /// Per object: scale, rotation, translation (the `from_parts` inputs).
-    parts: Vec<(Q16, Vec3<Q16>, Vec3<Q16>)>,
-    lights: Vec<Light<Q16>>,
-    ambient: Q16,
-    specular: Specular,
-    background: Rgb8,
-}
-
-fn q16_scene(desc: &SceneDesc) -> Q16Scene<'_> {
-    let c = &desc.camera;
-    let camera_in = (
-        [v3(c.eye), v3(c.target), v3(c.up)],
-        Q16::from_f64(c.fov_y_deg.to_radians()),
-        Q16::from_f64(c.near),
-        c.far.map(Q16::from_f64),
-    );
-    let parts: Vec<_> = desc
-        .objects
-        .iter()
-        .map(|o| {
-            // The firmware's ObjectSpec holds one scale: the scenes in
-            // FIRMWARE_SCENES are scaled uniformly.
-            assert!(o.transform.is_uniform(), "firmware scenes scale uniformly");
-            (
-                Q16::from_f64(o.transform.scale[0]),
-                v3(o.transform.rotation_rad),
-                v3(o.transform.translation),
-            )
-        })
-        .collect();
-    let objects = desc
-        .objects
-        .iter()
-        .zip(&parts)
-        .map(|(o, &(s, r, t))| Object {
-            mesh: o.mesh.mesh(),
-            transform: Affine::from_parts(s, r, t),
-            material: Material {
-                color: v3(o.material.color),
-                ka: Q16::from_f64(o.material.ka),
-                kd: Q16::from_f64(o.material.kd),
-                ks: Q16::from_f64(o.material.ks),
-                shininess: Q16::from_f64(o.material.shininess),
-            },
-            shading: match o.shading {
-                IShading::Flat => Shading::Flat,
-                IShading::Gouraud => Shading::Gouraud,
-                IShading::Phong => Shading::Phong,
-            },
-            cull_backfaces: o.cull_backfaces,
-        })
-        .collect();
-    let lights = desc
-        .lights
-        .iter()
-        .map(|l| Light {
-            kind: match l.kind {
-                ILightKind::Point { position } => LightKind::Point(v3(position)),
-                ILightKind::Directional { direction } => LightKind::Directional(v3(direction)),
-            },
-            intensity: Q16::from_f64(l.intensity),
-            color: v3(l.color),
-        })
-        .collect();
-    let [r, g, b] = desc.background;
-    Q16Scene {
-        camera_in,
-        objects,
-        parts,
-        lights,
-        ambient: Q16::from_f64(desc.ambient),
-        specular: match desc.specular {
-            SpecularModel::Phong => Specular::Phong,
-            SpecularModel::Blinn => Specular::Blinn,
-        },
-        background: Rgb8::new(r, g, b),
-    }
-}
-
-impl Q16Scene<'_> {
-    fn scene(&self) -> Result<Scene<'_, '_, Q16>, String> {
-        let ([eye, target, up], fov, near, far) = self.camera_in;
-        let camera = Camera::look_at(eye, target, up, fov, near, far).map_err(|e| e.to_string())?;
-        Ok(Scene {
-            camera,
-            objects: &self.objects,
-            lights: &self.lights,
-            ambient: self.ambient,
-            specular: self.specular,
-            viewer: Viewer::Local,
-            background: self.background,
-        })
-    }
+///
+/// # Errors
+/// A camera the core refuses.
+fn q16_scene(desc: &SceneDesc) -> Result<CoreScene<'_, Q16>, String> {
+    CoreScene::new(desc).map_err(|e| e.to_string())
 }
 
 /// A `Fast` workspace of the lengths `cap`, on the heap (lengths a host
@@ -404,12 +304,13 @@ impl FirmwareScene {
                 fixshade::scene::MAX_OBJECTS
             ));
         }
-        let q = q16_scene(&desc);
-        let scene = q.scene().map_err(|e| format!("{name}: {e}"))?;
+        let q = q16_scene(&desc).map_err(|e| format!("{name}: {e}"))?;
+        let scene = q.scene();
         let (rooms, capacity) =
             rooms(&scene, desc.width, desc.height).map_err(|e| format!("{name}: {e}"))?;
-        let depth =
-            !(q.objects.len() == 1 && q.objects[0].cull_backfaces && convex(&q.objects[0].mesh));
+        let depth = !(scene.objects.len() == 1
+            && scene.objects[0].cull_backfaces
+            && convex(&scene.objects[0].mesh));
         Ok(Self {
             name,
             desc,
@@ -424,8 +325,8 @@ impl FirmwareScene {
     /// # Errors
     /// The core's error, e.g. [`RenderError::Capacity`].
     pub fn prepare_with(&self, cap: Capacity) -> Result<(), RenderError> {
-        let q = q16_scene(&self.desc);
-        let scene = q.scene().map_err(|_| RenderError::Window)?;
+        let q = q16_scene(&self.desc).map_err(|_| RenderError::Window)?;
+        let scene = q.scene();
         let mut mem = Owned::new(cap);
         prepare::<Fast>(&scene, self.desc.width, self.desc.height, mem.ws()).map(|_| ())
     }
@@ -437,8 +338,8 @@ impl FirmwareScene {
     /// # Errors
     /// The core's error.
     pub fn render_crc(&self) -> Result<HostFrame, String> {
-        let q = q16_scene(&self.desc);
-        let scene = q.scene()?;
+        let q = q16_scene(&self.desc)?;
+        let scene = q.scene();
         render_crc(
             &scene,
             self.desc.width,
@@ -539,10 +440,18 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
 
     for s in scenes {
         let d = &s.desc;
-        let qs = q16_scene(d);
+        let cs = q16_scene(d)?;
+        let qs = cs.scene();
         depth |= s.depth;
         max_objects = max_objects.max(d.objects.len());
-        let ([eye, target, up], fov, near, far) = qs.camera_in;
+        let CameraInputs {
+            eye,
+            target,
+            up,
+            fov_y: fov,
+            near,
+            far,
+        } = cs.camera_inputs();
         writeln!(body, "    SceneSpec {{").unwrap();
         writeln!(body, "        name: {:?},", s.name).unwrap();
         writeln!(body, "        width: {},", d.width).unwrap();
@@ -558,8 +467,12 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
         }
         writeln!(body, "        objects: &[").unwrap();
         let mut cap_expr = String::from("Capacity::EMPTY");
-        for (oi, ((o, obj), &(scale, rot, tr))) in
-            d.objects.iter().zip(&qs.objects).zip(&qs.parts).enumerate()
+        for (oi, ((o, obj), parts)) in d
+            .objects
+            .iter()
+            .zip(qs.objects)
+            .zip(cs.object_parts())
+            .enumerate()
         {
             let mesh = match &o.mesh {
                 SceneMesh::BuiltIn { name, mesh } => {
@@ -655,9 +568,14 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
             let m = &obj.material;
             writeln!(body, "            ObjectSpec {{").unwrap();
             writeln!(body, "                mesh: {mesh},").unwrap();
-            writeln!(body, "                scale: {},", q(scale)).unwrap();
-            writeln!(body, "                rotation: {},", vec(rot)).unwrap();
-            writeln!(body, "                translation: {},", vec(tr)).unwrap();
+            writeln!(body, "                scale: {},", q(parts.scale)).unwrap();
+            writeln!(body, "                rotation: {},", vec(parts.rotation)).unwrap();
+            writeln!(
+                body,
+                "                translation: {},",
+                vec(parts.translation)
+            )
+            .unwrap();
             writeln!(
                 body,
                 "                material: Material {{ color: {}, ka: {}, kd: {}, ks: {}, shininess: {} }},",
@@ -679,7 +597,7 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
         }
         writeln!(body, "        ],").unwrap();
         writeln!(body, "        lights: &[").unwrap();
-        for l in &qs.lights {
+        for l in qs.lights {
             let kind = match l.kind {
                 LightKind::Point(p) => format!("LightKind::Point({})", vec(p)),
                 LightKind::Directional(p) => format!("LightKind::Directional({})", vec(p)),

@@ -20,9 +20,8 @@
 
 use std::fmt;
 use std::fs::File;
-use std::io::{self, BufReader, BufWriter, Write};
+use std::io::{self, BufReader, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::metrics::{pixel_max_diff, FrameView, MetricsError};
 
@@ -58,9 +57,9 @@ fn encode(out: impl Write, width: u32, height: u32, rgb: &[[u8; 3]]) -> io::Resu
     Ok(())
 }
 
-/// Writes an 8-bit RGB PNG. The data goes to a temporary file in the same
-/// folder which is then renamed over `path`, so no half-written file is
-/// ever left at `path`. Fails with `InvalidInput` if `rgb.len()` is not
+/// Writes an 8-bit RGB PNG atomically
+/// ([`write_atomically`](crate::output::write_atomically)): no half-written
+/// file is ever left at `path`. Fails with `InvalidInput` if `rgb.len()` is not
 /// `width * height` or the size is zero (PNG cannot store empty images).
 pub fn write_png(
     path: impl AsRef<Path>,
@@ -75,30 +74,7 @@ pub fn write_png(
             rgb.len()
         )));
     }
-    let name = path
-        .file_name()
-        .ok_or_else(|| invalid(format!("{} has no file name", path.display())))?;
-    // Unique per process and call, so concurrent writers never share it.
-    static NEXT: AtomicU64 = AtomicU64::new(0);
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp{}-{}",
-        name.to_string_lossy(),
-        std::process::id(),
-        NEXT.fetch_add(1, Ordering::Relaxed)
-    ));
-    let result = File::create(&tmp).and_then(|file| {
-        let mut out = BufWriter::new(file);
-        encode(&mut out, width, height, rgb)?;
-        out.into_inner().map_err(|e| e.into_error())?.sync_all()
-    });
-    match result.and_then(|()| std::fs::rename(&tmp, path)) {
-        Ok(()) => Ok(()),
-        Err(e) => {
-            // Best effort: the temporary file may not exist.
-            let _ = std::fs::remove_file(&tmp);
-            Err(e)
-        }
-    }
+    crate::output::write_atomically(path, |out| encode(out, width, height, rgb))
 }
 
 /// Reads a PNG of any colour type and bit depth as 8-bit RGB (palettes and

@@ -11,5 +11,6 @@ pub mod firmware_scenes;
 pub mod ideal;
 pub mod image;
 pub mod metrics;
+pub mod output;
 pub mod report;
 pub mod scene_file;

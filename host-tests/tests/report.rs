@@ -556,3 +556,88 @@ fn the_users_scene_files_are_swept_and_picked_by_ram() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!out2.exists());
 }
+
+/// The lines of `help` that document `--firmware-profiles`: its own line
+/// and the help text under it, up to the next option.
+fn firmware_profiles_help(help: &str) -> Vec<String> {
+    let mut lines = help
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("--firmware-profiles"));
+    let first = lines.next().map(str::to_string);
+    first
+        .into_iter()
+        .chain(
+            lines
+                .take_while(|l| !l.trim_start().starts_with('-') && !l.trim().is_empty())
+                .map(str::to_string),
+        )
+        .collect()
+}
+
+#[test]
+fn firmware_profiles_is_one_option_of_report_and_pick() {
+    let report = run(&["report", "--help"]);
+    let pick = run(&["pick", "--help"]);
+    assert_eq!(report.status.code(), Some(0));
+    assert_eq!(pick.status.code(), Some(0));
+    let report = firmware_profiles_help(&String::from_utf8_lossy(&report.stdout));
+    let pick = firmware_profiles_help(&String::from_utf8_lossy(&pick.stdout));
+    assert!(
+        report
+            .first()
+            .is_some_and(|l| l.contains("--firmware-profiles <NAMES>")),
+        "{report:?}"
+    );
+    assert!(
+        report
+            .iter()
+            .any(|l| l.contains("--measure-firmware measures")),
+        "{report:?}"
+    );
+    assert_eq!(report, pick);
+    // Only with --measure-firmware (a usage error), and unknown names are
+    // refused before any measurement starts, with the same message.
+    let o = run(&["report", "--out", "unused", "--firmware-profiles", "fast"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("--measure-firmware"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!Path::new("unused").exists());
+    let dir = std::env::temp_dir().join(format!("fixshade-fwprofiles-{}", std::process::id()));
+    let out = dir.join("out");
+    for args in [
+        vec![
+            "report",
+            "--out",
+            out.to_str().unwrap(),
+            "--measure-firmware",
+            "--firmware-profiles",
+            "fast,teapot",
+        ],
+        vec![
+            "pick",
+            "--chip",
+            "m0",
+            "--fps",
+            "10",
+            "--allow-stale",
+            "--scene",
+            "mine.toml",
+            "--measure-firmware",
+            "--firmware-profiles",
+            "fast,teapot",
+        ],
+    ] {
+        let o = run(&args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        assert_eq!(
+            stderr, "error: --firmware-profiles: unknown profile `teapot`\n",
+            "{args:?}"
+        );
+        assert!(o.stdout.is_empty(), "{args:?}");
+    }
+    assert!(!out.exists());
+}

@@ -20,7 +20,7 @@ use clap::Args;
 use crate::core_render::{render_core, CoreFrame, CoreProfile};
 use crate::scene_file::SceneDesc;
 
-use super::common::{print_stdout, write_atomically, SceneArgs};
+use super::common::{print_stdout, write_output, SceneArgs};
 use super::error::{CliError, ErrorKind};
 use super::render::parse_profile;
 
@@ -88,7 +88,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         )));
     };
     let mut failed: Option<CliError> = None;
-    let written = write_atomically(&args.out, |out| {
+    let written = write_output(&args.out, |out| {
         let mut enc = gif::Encoder::new(out, w16, h16, &[]).map_err(gif_io)?;
         enc.set_repeat(gif::Repeat::Infinite).map_err(gif_io)?;
         for i in 0..n {

@@ -21,7 +21,7 @@ use clap::Args;
 use crate::bake::{averaged_normals, bake_rs, BakeNormals};
 use crate::scene_file::obj::{crease_normals, normalize_positions, read_obj};
 
-use super::common::{print_stdout, write_atomically};
+use super::common::{print_stdout, write_output};
 use super::error::CliError;
 
 /// Largest `--scale`: positions must stay inside Q1.14's [-2, 2).
@@ -51,7 +51,7 @@ pub struct BakeArgs {
 /// Bakes the model (see the [module docs](self)).
 pub fn run(args: &BakeArgs) -> Result<(), CliError> {
     let (text, counts) = bake(args)?;
-    write_atomically(&args.out, |w| w.write_all(text.as_bytes()))?;
+    write_output(&args.out, |w| w.write_all(text.as_bytes()))?;
     print_stdout(&format!("wrote {}: {counts}\n", args.out.display()))
 }
 

@@ -1,10 +1,8 @@
 //! Helpers shared by the subcommands: choosing a scene and writing output
 //! files atomically.
 
-use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use clap::Args;
 
@@ -39,39 +37,14 @@ impl SceneArgs {
     }
 }
 
-/// Writes `path` through `write`: the data goes to a temporary file in the
-/// same folder which is then renamed over `path`, so `path` is either left
-/// untouched or replaced by the complete output. Failures are
-/// [`ErrorKind::Io`](super::ErrorKind::Io) errors.
-pub fn write_atomically(
+/// Writes a subcommand's output file `path` atomically
+/// ([`crate::output::write_atomically`]); failures are
+/// [`ErrorKind::Io`](super::ErrorKind::Io) errors naming `path`.
+pub fn write_output(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> Result<(), CliError> {
-    let fail = |e: io::Error| CliError::io(path, &e);
-    let name = path
-        .file_name()
-        .ok_or_else(|| fail(io::Error::new(io::ErrorKind::InvalidInput, "no file name")))?;
-    // Unique per process and call.
-    static NEXT: AtomicU64 = AtomicU64::new(0);
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp{}-{}",
-        name.to_string_lossy(),
-        std::process::id(),
-        NEXT.fetch_add(1, Ordering::Relaxed)
-    ));
-    let result = File::create(&tmp).and_then(|file| {
-        let mut out = BufWriter::new(file);
-        write(&mut out)?;
-        out.into_inner().map_err(|e| e.into_error())?.sync_all()
-    });
-    match result.and_then(|()| std::fs::rename(&tmp, path)) {
-        Ok(()) => Ok(()),
-        Err(e) => {
-            // Best effort: the temporary file may not exist.
-            let _ = std::fs::remove_file(&tmp);
-            Err(fail(e))
-        }
-    }
+    crate::output::write_atomically(path, write).map_err(|e| CliError::io(path, &e))
 }
 
 /// Writes `text` to standard output; a closed pipe (as with `| head`) is

@@ -11,7 +11,8 @@ pub enum ErrorKind {
     /// Bad input: a bad scene, OBJ or option (exit status 2, like usage
     /// errors). Nothing was written.
     Input,
-    /// An I/O failure while writing the output (exit status 1).
+    /// A failure while writing the output or measuring, or a pick that
+    /// finds nothing (exit status 1).
     Io,
 }
 
@@ -46,6 +47,21 @@ impl CliError {
         match self.kind {
             ErrorKind::Input => 2,
             ErrorKind::Io => 1,
+        }
+    }
+}
+
+impl From<crate::report::Error> for CliError {
+    /// Bad input (and a measurement lock that cannot be taken) is exit
+    /// status 2; a failed write or measurement 1.
+    fn from(e: crate::report::Error) -> Self {
+        Self {
+            kind: if e.is_input() {
+                ErrorKind::Input
+            } else {
+                ErrorKind::Io
+            },
+            message: e.to_string(),
         }
     }
 }

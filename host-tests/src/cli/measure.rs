@@ -12,7 +12,7 @@ use crate::report::measure::{
     measure_firmware, measure_user_scenes, MeasureOptions, UserMeasureOptions, TARGETS,
 };
 
-use super::common::{print_stdout, write_atomically};
+use super::common::{print_stdout, write_output};
 use super::error::{CliError, ErrorKind};
 
 /// Arguments of `fixshade measure-firmware` (`--write` also rewrites the
@@ -44,6 +44,57 @@ pub struct MeasureArgs {
         requires = "scenes"
     )]
     pub targets: Vec<String>,
+}
+
+/// `--measurements FILE` and `--allow-stale` of `fixshade report` and
+/// `fixshade pick`: flatten it into their arguments with
+/// `#[command(flatten)]`.
+#[derive(Clone, Debug, Default, Args)]
+pub struct MeasurementsArgs {
+    /// The chip measurements (default: docs/measurements/firmware.json of
+    /// the checkout; refused when stale).
+    #[arg(long, value_name = "FILE")]
+    pub measurements: Option<PathBuf>,
+    /// Use chip measurements made from other sources (their source
+    /// fingerprint differs from the tree's; a report's page says so).
+    #[arg(long)]
+    pub allow_stale: bool,
+}
+
+impl MeasurementsArgs {
+    /// The measurements file: `--measurements`, else the checkout's
+    /// [`chips::DEFAULT_PATH`].
+    pub fn path(&self) -> PathBuf {
+        self.measurements
+            .clone()
+            .unwrap_or_else(|| chips::repo_root().join(chips::DEFAULT_PATH))
+    }
+}
+
+/// `--firmware-profiles NAMES` of `fixshade report` and `fixshade pick`
+/// (with `--measure-firmware` only): flatten it into their arguments with
+/// `#[command(flatten)]`.
+#[derive(Clone, Debug, Default, Args)]
+pub struct FirmwareProfilesArgs {
+    /// The profiles --measure-firmware measures (comma-separated; all by
+    /// default).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "NAMES",
+        requires = "measure_firmware"
+    )]
+    pub firmware_profiles: Vec<String>,
+}
+
+impl FirmwareProfilesArgs {
+    /// The profiles named (all when none).
+    ///
+    /// # Errors
+    /// An unknown name (bad input).
+    pub fn profiles(&self) -> Result<Vec<CoreProfile>, CliError> {
+        parse_profiles(&self.firmware_profiles, "firmware-profiles")
+    }
 }
 
 /// The profiles named on a command line (all when none).
@@ -100,7 +151,7 @@ fn run_scenes(args: &MeasureArgs, profiles: Vec<CoreProfile>) -> Result<(), CliE
     }
     match &args.write {
         Some(path) => {
-            write_atomically(path, |out| out.write_all(json.as_bytes()))?;
+            write_output(path, |out| out.write_all(json.as_bytes()))?;
             text.push_str(&format!("wrote {}\n", path.display()));
         }
         None => text.push_str(&json),
@@ -135,7 +186,7 @@ pub fn run(args: &MeasureArgs) -> Result<(), CliError> {
         m.source_fingerprint
     );
     if let Some(path) = &args.write {
-        write_atomically(path, |out| out.write_all(json.as_bytes()))?;
+        write_output(path, |out| out.write_all(json.as_bytes()))?;
         text.push_str(&format!("wrote {}\n", path.display()));
         // The tables generated from it (README, docs/accuracy.md), so one
         // command regenerates every figure: only from a whole measurement

@@ -11,7 +11,7 @@
 //!   its `...Args` struct and `pub fn run(&Args) -> Result<(), CliError>`.
 //! * Shared helpers in [`common`]: [`SceneArgs`] (a scene file or
 //!   `--scene NAME`, flattened into a subcommand's arguments, with
-//!   [`SceneArgs::load`]), [`write_atomically`] (temporary file then
+//!   [`SceneArgs::load`]), [`write_output`] (temporary file then
 //!   rename) and [`print_stdout`].
 //! * [`CliError`] carries the exit status: 2 for bad input ([`ErrorKind::Input`],
 //!   as clap's usage errors), 1 for I/O failures while writing
@@ -19,6 +19,12 @@
 //!   stderr; for scenes `MESSAGE` is `FILE: FIELD: problem`. A failing
 //!   subcommand writes no output file and leaves an existing one
 //!   untouched.
+//!
+//! * Only this module knows messages' exit statuses: the library modules
+//!   return their own errors ([`crate::report::Error`],
+//!   [`crate::scene_file::SceneError`], `std::io::Error`, ...), which
+//!   [`CliError`] maps (its `From` impls; bad input 2, failures 1). No
+//!   module outside `cli` and `bin` imports from `cli`.
 //!
 //! Adding a subcommand: a module with its `Args` struct and `run`, one
 //! [`Command`] variant and its arm in [`Command::run`].
@@ -40,7 +46,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-pub use common::{print_stdout, write_atomically, SceneArgs};
+pub use common::{print_stdout, write_output, SceneArgs};
 pub use error::{CliError, ErrorKind};
 
 /// `fixshade`: scenes, baking and reference rendering for the fixshade

@@ -8,8 +8,6 @@
 //! prints the pick and the runner-up; exit status 1 when nothing fits
 //! (with the closest configuration and by how much it misses).
 
-use std::path::PathBuf;
-
 use clap::Args;
 
 use crate::core_render::CoreProfile;
@@ -43,27 +41,18 @@ pub struct PickArgs {
     /// (`SCENE.toml`) is picked by RAM alone: its cycles are not measured.
     #[arg(long)]
     pub scene: Option<String>,
-    /// The measurements file.
-    #[arg(long, value_name = "FILE")]
-    pub measurements: Option<PathBuf>,
-    /// Use measurements whose source fingerprint differs from the tree's.
-    #[arg(long)]
-    pub allow_stale: bool,
+    /// `--measurements` and `--allow-stale`.
+    #[command(flatten)]
+    pub measurements: super::measure::MeasurementsArgs,
     /// With `--scene SCENE.toml`: generate the firmware for your scene,
     /// build it for the chip's target and measure it under QEMU (needs
     /// qemu-system-arm, gcc and the thumb target), so the pick weighs its
     /// measured cycles too.
     #[arg(long)]
     pub measure_firmware: bool,
-    /// The profiles --measure-firmware measures (comma-separated; all by
-    /// default).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        value_name = "NAMES",
-        requires = "measure_firmware"
-    )]
-    pub firmware_profiles: Vec<String>,
+    /// `--firmware-profiles`: what --measure-firmware measures.
+    #[command(flatten)]
+    pub firmware_profiles: super::measure::FirmwareProfilesArgs,
 }
 
 fn positive(name: &str, v: f64) -> Result<f64, CliError> {
@@ -91,12 +80,9 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
         fps: positive("fps", args.fps)?,
         ram_bytes: positive("ram-kb", args.ram_kb.unwrap_or(chip.ram_kb))? * 1024.0,
     };
-    let path = args
-        .measurements
-        .clone()
-        .unwrap_or_else(|| chips::repo_root().join(chips::DEFAULT_PATH));
+    let path = args.measurements.path();
     let m = chips::load(&path)?;
-    if !args.allow_stale {
+    if !args.measurements.allow_stale {
         chips::check_fresh(&m, &chips::repo_root(), &path.display().to_string())?;
     }
     if let Some(file) = args
@@ -106,8 +92,7 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
     {
         let file = std::path::Path::new(file);
         if args.measure_firmware {
-            let profiles =
-                super::measure::parse_profiles(&args.firmware_profiles, "firmware-profiles")?;
+            let profiles = args.firmware_profiles.profiles()?;
             return pick_file_measured(file, chip, &budget, &m, &profiles);
         }
         return pick_file(file, chip, &budget, &m, &path);
@@ -120,17 +105,10 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
     let choice = choose_scenes(&m, args.scene.as_deref())?;
     let errors = host_errors(&choice.scenes, &CoreProfile::ALL)?;
     let cands = candidates(&m, chip.target, &choice.scenes, &errors);
-    let u = unit(chip.target);
     let text = format!(
-        "chip: {} ({}): {} MHz, {} fps, {:.0} bytes RAM: at most {:.3} M {u} per frame\n\
-         scenes: {} (worst case over: {})\n\
+        "{}scenes: {} (worst case over: {})\n\
          figures: {} ({}, {}); errors: mean absolute error in 8-bit levels against the ideal Phong frame, rendered on this host\n",
-        chip.name,
-        chip.target.title(),
-        budget.mhz,
-        budget.fps,
-        budget.ram_bytes,
-        budget.cycles() / 1e6,
+        budget_line(chip, &budget),
         choice.name,
         choice.scenes.join(", "),
         path.display(),
@@ -144,6 +122,21 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
         chip.target.title()
     );
     print_pick(text, &cands, chip, &budget, &what)
+}
+
+/// The first line of a pick: the chip and what the budget allows per
+/// frame.
+fn budget_line(chip: &crate::report::picks::Chip, budget: &Budget) -> String {
+    format!(
+        "chip: {} ({}): {} MHz, {} fps, {:.0} bytes RAM: at most {:.3} M {} per frame\n",
+        chip.name,
+        chip.target.title(),
+        budget.mhz,
+        budget.fps,
+        budget.ram_bytes,
+        budget.cycles() / 1e6,
+        unit(chip.target),
+    )
 }
 
 /// Prints the pick of `cands` for `budget` after `text`; nothing fits:
@@ -246,16 +239,9 @@ fn pick_file_measured(
     names.dedup();
     let cands = candidates(&um, chip.target, &names, &errors);
     let text = format!(
-        "chip: {} ({}): {} MHz, {} fps, {:.0} bytes RAM: at most {:.3} M {} per frame\n\
-         scene: {} (your scene file), measured: the firmware generated for it, run under QEMU ({}, {})\n\
+        "{}scene: {} (your scene file), measured: the firmware generated for it, run under QEMU ({}, {})\n\
          figures: RAM = colour band + depth band (none for one convex culled object) + storage + pool + stack, as the firmware reports it; errors: mean absolute error in 8-bit levels against the ideal Phong frame, rendered on this host\n",
-        chip.name,
-        chip.target.title(),
-        budget.mhz,
-        budget.fps,
-        budget.ram_bytes,
-        budget.cycles() / 1e6,
-        unit(chip.target),
+        budget_line(chip, budget),
         file.display(),
         um.toolchain,
         um.qemu,

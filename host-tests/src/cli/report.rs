@@ -27,28 +27,18 @@ pub struct ReportArgs {
     /// figures are not available.
     #[arg(long, value_name = "FILE")]
     pub firmware_results: Option<PathBuf>,
-    /// The chip measurements (default: docs/measurements/firmware.json of
-    /// the checkout; refused when stale).
-    #[arg(long, value_name = "FILE")]
-    pub measurements: Option<PathBuf>,
-    /// Use chip measurements made from other sources (the page says so).
-    #[arg(long)]
-    pub allow_stale: bool,
+    /// `--measurements` and `--allow-stale`.
+    #[command(flatten)]
+    pub measurements: super::measure::MeasurementsArgs,
     /// Re-measure every profile on both chips under QEMU (needs
     /// qemu-system-arm, gcc and the thumb targets; minutes). With scene
     /// files: generate the firmware for your scenes (their OBJ meshes
     /// baked in), build it for both chips and measure it.
     #[arg(long)]
     pub measure_firmware: bool,
-    /// The profiles --measure-firmware measures (comma-separated; all by
-    /// default).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        value_name = "NAMES",
-        requires = "measure_firmware"
-    )]
-    pub firmware_profiles: Vec<String>,
+    /// `--firmware-profiles`: what --measure-firmware measures.
+    #[command(flatten)]
+    pub firmware_profiles: super::measure::FirmwareProfilesArgs,
 }
 
 /// Runs the sweep and writes the report; prints the summary and the files.
@@ -58,13 +48,10 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         quick: args.quick,
         firmware_results: args.firmware_results.clone(),
         progress: true,
-        measurements: args.measurements.clone(),
-        allow_stale: args.allow_stale,
+        measurements: args.measurements.measurements.clone(),
+        allow_stale: args.measurements.allow_stale,
         measure_firmware: args.measure_firmware,
-        firmware_profiles: super::measure::parse_profiles(
-            &args.firmware_profiles,
-            "firmware-profiles",
-        )?,
+        firmware_profiles: args.firmware_profiles.profiles()?,
         scene_files: args.scenes.clone(),
     })?;
     let mut text = String::new();

@@ -46,7 +46,7 @@ pub struct ChipSection {
     pub stale: bool,
     /// The scenes the picks and plots use.
     pub scenes: Vec<String>,
-    /// Picks for common parts at [`TABLE_FPS`].
+    /// Picks for common parts at `TABLE_FPS` (10 fps).
     pub picks: Table,
     /// fps at the parts' clocks, every firmware scene and profile.
     pub fps: Table,

@@ -34,7 +34,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::cli::CliError;
+use super::Error;
 use crate::core_render::CoreProfile;
 
 use super::embedded::Target;
@@ -385,11 +385,11 @@ impl Measurements {
 /// [`check_fresh`].
 ///
 /// # Errors
-/// Bad input (exit status 2) naming the file and the problem.
-pub fn load(path: &Path) -> Result<Measurements, CliError> {
+/// [`Error::Input`] naming the file and the problem.
+pub fn load(path: &Path) -> Result<Measurements, Error> {
     let file = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| {
-        CliError::input(format!(
+        Error::input(format!(
             "{file}: cannot read the firmware measurements: {e} (regenerate with `{REGENERATE}`)"
         ))
     })?;
@@ -400,26 +400,26 @@ pub fn load(path: &Path) -> Result<Measurements, CliError> {
 ///
 /// # Errors
 /// As [`load`].
-pub fn parse(text: &str, file: &str) -> Result<Measurements, CliError> {
+pub fn parse(text: &str, file: &str) -> Result<Measurements, Error> {
     let de = &mut serde_json::Deserializer::from_str(text);
     let m: Measurements = serde_path_to_error::deserialize(de).map_err(|e| {
-        CliError::input(format!(
+        Error::input(format!(
             "{file}: malformed firmware measurements at `{}`: {}",
             e.path(),
             e.inner()
         ))
     })?;
     if m.schema != SCHEMA {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{file}: schema {} is not {SCHEMA} (regenerate with `{REGENERATE}`)",
             m.schema
         )));
     }
     if m.results.is_empty() {
-        return Err(CliError::input(format!("{file}: no results")));
+        return Err(Error::input(format!("{file}: no results")));
     }
     for (i, r) in m.results.iter().enumerate() {
-        let bad = |what: String| CliError::input(format!("{file}: results[{i}]: {what}"));
+        let bad = |what: String| Error::input(format!("{file}: results[{i}]: {what}"));
         if r.chip().is_none() {
             return Err(bad(format!("unknown target `{}`", r.target)));
         }
@@ -441,10 +441,10 @@ pub fn parse(text: &str, file: &str) -> Result<Measurements, CliError> {
 /// # Errors
 /// Bad input naming `file`, both fingerprints and the command that
 /// regenerates the file.
-pub fn check_fresh(m: &Measurements, root: &Path, file: &str) -> Result<(), CliError> {
+pub fn check_fresh(m: &Measurements, root: &Path, file: &str) -> Result<(), Error> {
     let now = source_fingerprint(root)?;
     if now != m.source_fingerprint {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{file}: stale firmware measurements: measured from sources {} but the tree's are {now} (core, firmware or toolchain changed); regenerate with `{REGENERATE}`, or pass --allow-stale to use them anyway",
             m.source_fingerprint
         )));
@@ -532,10 +532,10 @@ pub fn source_files(root: &Path) -> Vec<PathBuf> {
 ///
 /// # Errors
 /// Bad input when `root` holds none of the sources (not a checkout).
-pub fn source_fingerprint(root: &Path) -> Result<String, CliError> {
+pub fn source_fingerprint(root: &Path) -> Result<String, Error> {
     let files = source_files(root);
     if !files.iter().any(|f| f.starts_with("src")) {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{}: no fixshade sources here to check the firmware measurements against",
             root.display()
         )));
@@ -616,30 +616,28 @@ mod tests {
         let text = serde_json::to_string_pretty(&m).unwrap();
         assert_eq!(parse(&text, "f.json").unwrap(), m);
         let e = parse("{", "f.json").unwrap_err();
-        assert!(e.message.starts_with("f.json: malformed"), "{}", e.message);
-        assert_eq!(e.exit_status(), 2);
+        assert!(e.to_string().starts_with("f.json: malformed"), "{e}");
+        assert!(e.is_input(), "{e:?}");
         let bad = text.replace("\"insns\": 300", "\"insns\": \"many\"");
         let e = parse(&bad, "f.json").unwrap_err();
-        assert!(e.message.contains("`results[0].insns`"), "{}", e.message);
+        assert!(e.to_string().contains("`results[0].insns`"), "{e}");
         let bad = text.replace("thumbv6m-none-eabi", "thumbv8m");
         let e = parse(&bad, "f.json").unwrap_err();
-        assert!(
-            e.message.contains("unknown target `thumbv8m`"),
-            "{}",
-            e.message
-        );
+        assert!(e.to_string().contains("unknown target `thumbv8m`"), "{e}");
         let bad = text.replace("\"insns\": 300", "\"insns\": 301");
         assert!(parse(&bad, "f.json")
             .unwrap_err()
-            .message
+            .to_string()
             .contains("not geometry 100 + raster 200"));
         let bad = text.replace("\"schema\": 1", "\"schema\": 0");
         assert!(parse(&bad, "f.json")
             .unwrap_err()
-            .message
+            .to_string()
             .contains("schema 0 is not 1"));
         let e = load(Path::new("/nonexistent/firmware.json")).unwrap_err();
-        assert!(e.message.contains("cannot read the firmware measurements"));
+        assert!(e
+            .to_string()
+            .contains("cannot read the firmware measurements"));
     }
 
     #[test]

@@ -16,11 +16,12 @@
 
 use std::collections::BTreeMap;
 
+use super::Error;
 use crate::builtin::{builtin_scenes, load_builtin};
-use crate::cli::CliError;
 use crate::compare::metrics_of;
 use crate::core_render::CoreProfile;
 use crate::ideal::Shading;
+use crate::output::write_atomically;
 
 use super::chips::{ChipResult, Measurements};
 
@@ -74,7 +75,7 @@ pub fn replace_block(text: &str, name: &str, body: &str) -> Option<String> {
 ///
 /// # Errors
 /// An unknown block name, or a scene a renderer refuses (bad input).
-pub fn block(name: &str, ms: &Measurements) -> Result<String, CliError> {
+pub fn block(name: &str, ms: &Measurements) -> Result<String, Error> {
     let body = match name {
         "chip-fast" => chip_fast(ms),
         "chip-profiles" => chip_profiles(ms),
@@ -83,7 +84,7 @@ pub fn block(name: &str, ms: &Measurements) -> Result<String, CliError> {
         "chip-memory" => chip_memory(ms),
         "chip-split" => chip_split(ms),
         "accuracy" => accuracy()?,
-        _ => return Err(CliError::input(format!("no docs block `{name}`"))),
+        _ => return Err(Error::input(format!("no docs block `{name}`"))),
     };
     Ok(format!("\n{body}"))
 }
@@ -97,19 +98,20 @@ pub fn block(name: &str, ms: &Measurements) -> Result<String, CliError> {
 pub fn write_blocks(
     root: &std::path::Path,
     ms: &Measurements,
-) -> Result<Vec<std::path::PathBuf>, CliError> {
+) -> Result<Vec<std::path::PathBuf>, Error> {
     let mut changed = Vec::new();
     for (file, name) in BLOCKS {
         let path = root.join(file);
         let text = std::fs::read_to_string(&path)
-            .map_err(|e| CliError::input(format!("{}: cannot read: {e}", path.display())))?;
+            .map_err(|e| Error::input(format!("{}: cannot read: {e}", path.display())))?;
         let Some(have) = find_block(&text, name) else {
             continue;
         };
         let want = block(name, ms)?;
         if have != want {
             if let Some(new) = replace_block(&text, name, &want) {
-                crate::cli::write_atomically(&path, |out| out.write_all(new.as_bytes()))?;
+                write_atomically(&path, |out| out.write_all(new.as_bytes()))
+                    .map_err(|e| Error::write(&path, e))?;
                 if !changed.contains(&path) {
                     changed.push(path);
                 }
@@ -417,7 +419,7 @@ fn chip_profiles(ms: &Measurements) -> String {
 /// Per profile and scene group (with or without a Phong object), the
 /// maxima over the built-in scenes of the errors against the twin and
 /// the ideal (`docs/accuracy.md`).
-fn accuracy() -> Result<String, CliError> {
+fn accuracy() -> Result<String, Error> {
     use rayon::prelude::*;
     let names: Vec<&str> = builtin_scenes().iter().map(|&(n, _, _)| n).collect();
     // Per scene: the ideal frame and both twins once, then every profile.
@@ -437,7 +439,7 @@ fn accuracy() -> Result<String, CliError> {
                     let twin = &twins[usize::from(p.perspective())];
                     let fixed = super::sweep::rgb_frame(&desc, p)?;
                     let m = metrics_of(&fixed, twin, &ideal)
-                        .map_err(|e| CliError::input(format!("{name}: {e}")))?;
+                        .map_err(|e| Error::input(format!("{name}: {e}")))?;
                     let (f, i) = (&m.vs_float, &m.vs_ideal);
                     Ok((
                         phong,
@@ -454,7 +456,7 @@ fn accuracy() -> Result<String, CliError> {
                 })
                 .collect()
         })
-        .collect::<Result<_, CliError>>()?;
+        .collect::<Result<_, Error>>()?;
     let rows = per_scene.into_iter().flatten();
     let mut max: BTreeMap<(CoreProfile, bool), ([f64; 6], usize)> = BTreeMap::new();
     for (phong, p, v) in rows {

@@ -32,7 +32,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::cli::CliError;
+use super::Error;
 use crate::core_render::CoreProfile;
 
 use super::Mode;
@@ -128,16 +128,16 @@ impl EmbeddedResult {
 }
 
 /// Reads a results file (see the module docs). Errors are bad input.
-pub fn read_firmware_results(path: &Path) -> Result<Vec<EmbeddedResult>, CliError> {
+pub fn read_firmware_results(path: &Path) -> Result<Vec<EmbeddedResult>, Error> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::input(format!("{file}: cannot read firmware results: {e}")))?;
+        .map_err(|e| Error::input(format!("{file}: cannot read firmware results: {e}")))?;
     parse_firmware_results(&text, &file)
 }
 
 /// Parses results text (JSON or `RESULT` lines); `file` names it in
 /// errors.
-pub fn parse_firmware_results(text: &str, file: &str) -> Result<Vec<EmbeddedResult>, CliError> {
+pub fn parse_firmware_results(text: &str, file: &str) -> Result<Vec<EmbeddedResult>, Error> {
     let trimmed = text.trim_start();
     let entries: Vec<Entry> = if trimmed.starts_with('[') || trimmed.starts_with('{') {
         json_entries(text, file)?
@@ -152,33 +152,30 @@ pub fn parse_firmware_results(text: &str, file: &str) -> Result<Vec<EmbeddedResu
                 let mut map = BTreeMap::new();
                 for pair in rest.split_whitespace() {
                     let (k, v) = pair.split_once('=').ok_or_else(|| {
-                        CliError::input(format!(
-                            "{file}: line {}: `{pair}` is not key=value",
-                            i + 1
-                        ))
+                        Error::input(format!("{file}: line {}: `{pair}` is not key=value", i + 1))
                     })?;
                     map.insert(k.to_ascii_lowercase(), v.to_string());
                 }
                 Ok((format!("line {}", i + 1), map))
             })
-            .collect::<Result<_, CliError>>()?
+            .collect::<Result<_, Error>>()?
     };
     if entries.is_empty() {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{file}: no firmware results (expected `RESULT key=value ...` lines or JSON)"
         )));
     }
     entries
         .into_iter()
-        .map(|(at, map)| to_result(&map).map_err(|e| CliError::input(format!("{file}: {at}: {e}"))))
+        .map(|(at, map)| to_result(&map).map_err(|e| Error::input(format!("{file}: {at}: {e}"))))
         .collect()
 }
 
 /// Where an entry was (`line 3`, `results[0]`) and its keys and values.
 type Entry = (String, BTreeMap<String, String>);
 
-fn json_entries(text: &str, file: &str) -> Result<Vec<Entry>, CliError> {
-    let bad = |m: String| CliError::input(format!("{file}: {m}"));
+fn json_entries(text: &str, file: &str) -> Result<Vec<Entry>, Error> {
+    let bad = |m: String| Error::input(format!("{file}: {m}"));
     let value: serde_json::Value =
         serde_json::from_str(text).map_err(|e| bad(format!("not JSON: {e}")))?;
     // `examples/firmware/target/results.json` (written by `.ci/firmware`)
@@ -353,9 +350,9 @@ mod tests {
         ];
         for (text, want) in cases {
             let e = parse_firmware_results(text, "fw.txt").unwrap_err();
-            assert!(e.message.contains(want), "{text}: {}", e.message);
-            assert!(e.message.starts_with("fw.txt: "), "{}", e.message);
-            assert_eq!(e.exit_status(), 2);
+            assert!(e.to_string().contains(want), "{text}: {}", e);
+            assert!(e.to_string().starts_with("fw.txt: "), "{}", e);
+            assert!(e.is_input(), "{e:?}");
         }
     }
 

@@ -13,8 +13,9 @@ use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::SubpixelBits;
 use fixshade::target::{PixelFormat, Rgb888};
 
+use super::Error;
 use crate::builtin::load_builtin;
-use crate::cli::CliError;
+use crate::compare::ideal_view;
 use crate::core_render::{CoreProfile, CoreScene, Renderer};
 use crate::metrics::{compare, FrameView, Metrics};
 
@@ -56,9 +57,9 @@ impl<const B: u32> Profile for FastSub<B> {
 }
 
 /// The frame of built-in `scene` with profile `P` against its ideal frame.
-fn vs_ideal<P: Profile<Real = Q16>>(scene: &str) -> Result<Metrics, CliError> {
+fn vs_ideal<P: Profile<Real = Q16>>(scene: &str) -> Result<Metrics, Error> {
     let desc = load_builtin(scene)?;
-    let cs = CoreScene::<Q16>::new(&desc).map_err(|e| CliError::input(format!("{scene}: {e}")))?;
+    let cs = CoreScene::<Q16>::new(&desc).map_err(|e| Error::input(format!("{scene}: {e}")))?;
     let (w, h) = (desc.width, desc.height);
     let mut r = Renderer::<P, Rgb888>::new(&cs, w, h, 16);
     let (mut rgb, mut covered) = (Vec::new(), Vec::new());
@@ -69,7 +70,7 @@ fn vs_ideal<P: Profile<Real = Q16>>(scene: &str) -> Result<Metrics, CliError> {
         }));
         covered.extend(b.depth().unwrap_or(&[]).iter().map(|&d| d != u16::MAX));
     })
-    .map_err(|e| CliError::input(format!("{scene}: {e}")))?;
+    .map_err(|e| Error::input(format!("{scene}: {e}")))?;
     let ideal = super::sweep::ideal_frame(&desc)?;
     let irgb = ideal.to_rgb8();
     compare(
@@ -80,15 +81,9 @@ fn vs_ideal<P: Profile<Real = Q16>>(scene: &str) -> Result<Metrics, CliError> {
             covered: &covered,
             object: None,
         },
-        &FrameView {
-            width: ideal.width,
-            height: ideal.height,
-            rgb: &irgb,
-            covered: &ideal.covered,
-            object: None,
-        },
+        &ideal_view(&ideal, &irgb),
     )
-    .map_err(|e| CliError::input(format!("{scene}: {e}")))
+    .map_err(|e| Error::input(format!("{scene}: {e}")))
 }
 
 /// The knob section (in `results.json` as `knobs`).
@@ -122,7 +117,7 @@ impl KnobSection {
     ///
     /// # Errors
     /// A scene the host renderers refuse (bad input).
-    pub fn new(ms: &Measurements) -> Result<Option<Self>, CliError> {
+    pub fn new(ms: &Measurements) -> Result<Option<Self>, Error> {
         let Some(scene) = ms.knobs.first().map(|k| k.scene.clone()) else {
             return Ok(None);
         };
@@ -278,17 +273,11 @@ impl KnobSection {
             let desc = load_builtin(&r.scene)?;
             let ideal = super::sweep::ideal_frame(&desc)?;
             let irgb = ideal.to_rgb8();
-            let iview = FrameView {
-                width: ideal.width,
-                height: ideal.height,
-                rgb: &irgb,
-                covered: &ideal.covered,
-                object: None,
-            };
-            let err = |p: CoreProfile| -> Result<f64, CliError> {
+            let iview = ideal_view(&ideal, &irgb);
+            let err = |p: CoreProfile| -> Result<f64, Error> {
                 let f = super::sweep::rgb_frame(&desc, p)?;
                 Ok(compare(&crate::compare::core_view(&f), &iview)
-                    .map_err(|e| CliError::input(format!("{}: {e}", r.scene)))?
+                    .map_err(|e| Error::input(format!("{}: {e}", r.scene)))?
                     .mean_abs_error)
             };
             let (ea, ep) = (err(CoreProfile::Fast)?, err(CoreProfile::FastPc)?);

@@ -18,6 +18,11 @@
 //! is not rebuilt. The default build (`target/TARGET/release`) is not
 //! touched.
 //!
+//! One measurement at a time per machine: each holds an exclusive lock
+//! on [`STAGE_LOCK`] from the plugin's build to its last run (a second one
+//! prints "waiting for another measurement (lock FILE)" and waits; see
+//! [`StageLock`]).
+//!
 //! Needs `qemu-system-arm`, `gcc` and the two Rust targets (`rustup target
 //! add`, pinned by `rust-toolchain.toml`); a missing tool is bad input
 //! (exit status 2) naming it. A failed build or run, a plugin warning, or
@@ -33,7 +38,6 @@ use std::process::Command;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::cli::{CliError, ErrorKind};
 use crate::core_render::{CoreProfile, BAND_ROWS};
 
 use crate::firmware_scenes::{generate_for, FirmwareScene};
@@ -42,7 +46,10 @@ use crate::scene_file::SceneDesc;
 use super::chips::{
     self, Build, ChipResult, KnobResult, Measurements, SpanLoop, REGENERATE, SCHEMA,
 };
-use super::Mode;
+use super::{Error, Mode};
+
+mod lock;
+pub use lock::{waiting_message, StageLock, STAGE_LOCK};
 
 /// The targets, with their QEMU machine and plugin arguments.
 pub const TARGETS: [(&str, &str, &str, &str); 2] = [
@@ -61,17 +68,14 @@ pub struct MeasureOptions {
     pub progress: bool,
 }
 
-fn failed(message: String) -> CliError {
-    CliError {
-        kind: ErrorKind::Io,
-        message,
-    }
+fn failed(message: String) -> Error {
+    Error::Measurement(message)
 }
 
-fn run(cmd: &mut Command, what: &str) -> Result<String, CliError> {
+fn run(cmd: &mut Command, what: &str) -> Result<String, Error> {
     let out = cmd
         .output()
-        .map_err(|e| CliError::input(format!("{what}: cannot run: {e}")))?;
+        .map_err(|e| Error::input(format!("{what}: cannot run: {e}")))?;
     if !out.status.success() {
         let err = String::from_utf8_lossy(&out.stderr);
         let tail: Vec<&str> = err.lines().rev().take(15).collect();
@@ -86,9 +90,9 @@ fn run(cmd: &mut Command, what: &str) -> Result<String, CliError> {
 }
 
 /// The first line a tool prints for `--version`, or bad input naming it.
-fn tool_version(tool: &str, hint: &str) -> Result<String, CliError> {
+fn tool_version(tool: &str, hint: &str) -> Result<String, Error> {
     let out = Command::new(tool).arg("--version").output().map_err(|_| {
-        CliError::input(format!(
+        Error::input(format!(
             "{tool} not found: measuring the firmware needs it ({hint})"
         ))
     })?;
@@ -106,7 +110,7 @@ fn kv<'a>(line: &'a str, key: &str) -> Option<&'a str> {
         .find_map(|w| w.strip_prefix(key)?.strip_prefix('='))
 }
 
-fn num(line: &str, key: &str) -> Result<u64, CliError> {
+fn num(line: &str, key: &str) -> Result<u64, Error> {
     kv(line, key)
         .and_then(|v| v.parse().ok())
         .ok_or_else(|| failed(format!("firmware line without a number `{key}`: {line}")))
@@ -117,7 +121,7 @@ type Sizes = (u64, u64, u64, u64);
 
 /// Section sizes of an ELF32 little-endian file and the names of the
 /// defined symbols.
-fn elf_info(path: &Path) -> Result<(Sizes, Vec<String>), CliError> {
+fn elf_info(path: &Path) -> Result<(Sizes, Vec<String>), Error> {
     let bytes =
         std::fs::read(path).map_err(|e| failed(format!("{}: cannot read: {e}", path.display())))?;
     let bad = || {
@@ -220,7 +224,7 @@ fn host_crcs(
     fw: &Path,
     profile: CoreProfile,
     target_dir: Option<&Path>,
-) -> Result<BTreeMap<String, String>, CliError> {
+) -> Result<BTreeMap<String, String>, Error> {
     let mut cmd = Command::new("cargo");
     if let Some(dir) = target_dir {
         cmd.env("CARGO_TARGET_DIR", dir);
@@ -301,19 +305,19 @@ impl Stage {
 
     /// Copies the fingerprinted sources of `root` to [`STAGE`] (replacing
     /// an earlier copy).
-    fn new(root: &Path) -> Result<Self, CliError> {
+    fn new(root: &Path) -> Result<Self, Error> {
         let src = PathBuf::from(STAGE);
         if src.exists() {
-            std::fs::remove_dir_all(&src).map_err(|e| CliError::io(&src, &e))?;
+            std::fs::remove_dir_all(&src).map_err(|e| Error::write(&src, e))?;
         }
         let mut files = chips::source_files(root);
         files.extend(chips::build_only_files(root));
         for f in &files {
             let to = src.join(f);
             if let Some(dir) = to.parent() {
-                std::fs::create_dir_all(dir).map_err(|e| CliError::io(dir, &e))?;
+                std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))?;
             }
-            std::fs::copy(root.join(f), &to).map_err(|e| CliError::io(&to, &e))?;
+            std::fs::copy(root.join(f), &to).map_err(|e| Error::write(&to, e))?;
         }
         Ok(Self {
             src,
@@ -338,7 +342,7 @@ fn build_run(
     (target, cpu, machine, plugarg): (&str, &str, &str, &str),
     features: Option<&str>,
     tag: &str,
-) -> Result<Run, CliError> {
+) -> Result<Run, Error> {
     let mut cmd = Command::new("cargo");
     cmd.current_dir(stage.src.join("examples/firmware")).args([
         "build",
@@ -361,10 +365,10 @@ fn build_run(
         );
     }
     run(&mut cmd, &format!("cargo build {target} {tag}")).map_err(|e| {
-        if e.message.contains("will not fit in region") || e.message.contains("overflowed by") {
+        let message = e.to_string();
+        if message.contains("will not fit in region") || message.contains("overflowed by") {
             failed(format!(
-                "the firmware for {target} ({tag}) does not fit the board's memory (4 MiB of flash, 4 MiB of RAM: the scenes' meshes and storage are too large): {}",
-                e.message
+                "the firmware for {target} ({tag}) does not fit the board's memory (4 MiB of flash, 4 MiB of RAM: the scenes' meshes and storage are too large): {message}"
             ))
         } else {
             e
@@ -433,7 +437,7 @@ fn measure_one(
     profile: CoreProfile,
     host: &BTreeMap<String, String>,
     user: Option<&BTreeMap<String, Mode>>,
-) -> Result<(Build, Vec<ChipResult>), CliError> {
+) -> Result<(Build, Vec<ChipResult>), Error> {
     let target = t.0;
     let features = format!("profile-{}", profile.name());
     let Run {
@@ -555,7 +559,7 @@ fn measure_one(
 /// The span loops a build printed (`span NAME rows=R long=L short=1`):
 /// the k-th line owns the regions `2·scenes + 2k` (long spans) and `+ 1`
 /// (1-pixel spans).
-fn span_loops(out: &str, regions: &Regions, scenes: usize) -> Result<Vec<SpanLoop>, CliError> {
+fn span_loops(out: &str, regions: &Regions, scenes: usize) -> Result<Vec<SpanLoop>, Error> {
     out.lines()
         .filter(|l| l.starts_with("span "))
         .enumerate()
@@ -584,7 +588,7 @@ fn measure_knobs(
     plugin: &Path,
     t: (&str, &str, &str, &str),
     host: &BTreeMap<String, String>,
-) -> Result<Vec<KnobResult>, CliError> {
+) -> Result<Vec<KnobResult>, Error> {
     let target = t.0;
     let r = build_run(stage, plugin, t, Some("knobs"), "knobs")?;
     let lines: Vec<&str> = r.out.lines().filter(|l| l.starts_with("knob ")).collect();
@@ -644,7 +648,7 @@ fn measure_knobs(
 
 /// host-check `--knobs`: CRCs by `rows/depth/subpixel`, and the pixels
 /// where the 32-bit depth frame differs from the 16-bit one.
-fn host_knobs(fw: &Path) -> Result<(BTreeMap<String, String>, u64), CliError> {
+fn host_knobs(fw: &Path) -> Result<(BTreeMap<String, String>, u64), Error> {
     let out = run(
         Command::new("cargo").current_dir(fw).args([
             "run",
@@ -710,14 +714,14 @@ struct Tools {
 
 /// Checks for QEMU and gcc (bad input naming a missing one) and builds the
 /// counting plugin.
-fn tools(fw: &Path) -> Result<Tools, CliError> {
+fn tools(fw: &Path) -> Result<Tools, Error> {
     let qemu = tool_version("qemu-system-arm", "apt-get install qemu-system-arm")?;
     tool_version("gcc", "apt-get install gcc, for the QEMU plugin")?;
     let toolchain = run(Command::new("rustc").arg("-V").current_dir(fw), "rustc -V")?
         .trim()
         .to_string();
     let plugin_dir = fw.join("target/measure");
-    std::fs::create_dir_all(&plugin_dir).map_err(|e| CliError::io(&plugin_dir, &e))?;
+    std::fs::create_dir_all(&plugin_dir).map_err(|e| Error::write(&plugin_dir, e))?;
     let plugin = plugin_dir.join("insn_count.so");
     run(
         Command::new("gcc")
@@ -754,8 +758,8 @@ fn progress_bar(show: bool, total: u64) -> ProgressBar {
 /// the first error.
 fn on_targets<T: Send>(
     targets: &[(&str, &str, &str, &str)],
-    job: impl Fn((&str, &str, &str, &str)) -> Result<T, CliError> + Sync,
-) -> Result<Vec<T>, CliError> {
+    job: impl Fn((&str, &str, &str, &str)) -> Result<T, Error> + Sync,
+) -> Result<Vec<T>, Error> {
     std::thread::scope(|s| {
         let jobs: Vec<_> = targets
             .iter()
@@ -777,17 +781,21 @@ fn on_targets<T: Send>(
 /// docs).
 ///
 /// # Errors
-/// A missing tool (bad input); a failed build, run or CRC check (exit
-/// status 1).
-pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, CliError> {
+/// A missing tool ([`Error::Input`]); a lock file that cannot be taken
+/// ([`Error::Lock`]); a failed build, run or CRC check
+/// ([`Error::Measurement`]).
+pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     let root = &opts.root;
     let fw = root.join("examples/firmware");
     if !fw.join("Cargo.toml").is_file() {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{}: no firmware here (examples/firmware) to measure",
             root.display()
         )));
     }
+    // Held until the measurement ends (the plugin's build, the staged
+    // copy, the builds and runs): one measurement at a time.
+    let _lock = StageLock::acquire(Path::new(STAGE_LOCK))?;
     let Tools {
         qemu,
         toolchain,
@@ -878,7 +886,7 @@ pub struct UserMeasureOptions {
 /// input, naming the file).
 pub fn user_firmware_scenes(
     files: &[PathBuf],
-) -> Result<(Vec<FirmwareScene>, BTreeMap<String, Mode>), CliError> {
+) -> Result<(Vec<FirmwareScene>, BTreeMap<String, Mode>), Error> {
     let mut scenes = Vec::new();
     let mut modes = BTreeMap::new();
     let mut stems: Vec<String> = Vec::new();
@@ -911,7 +919,7 @@ pub fn user_firmware_scenes(
             }
             let name = format!("{stem}-{}", m.name());
             let fs = FirmwareScene::new(name.clone(), d).map_err(|e| {
-                CliError::input(format!(
+                Error::input(format!(
                     "{}: the firmware cannot render this scene: {e}",
                     f.display()
                 ))
@@ -935,14 +943,15 @@ pub fn user_firmware_scenes(
 /// as the firmware prints them).
 ///
 /// # Errors
-/// A bad scene file or one the firmware cannot take, a missing tool (bad
-/// input); a failed build (e.g. meshes beyond the board's flash), run or
-/// CRC check (exit status 1).
-pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, CliError> {
+/// A bad scene file or one the firmware cannot take, a missing tool
+/// ([`Error::Input`], [`Error::Scene`]); a lock file that cannot be taken
+/// ([`Error::Lock`]); a failed build (e.g. meshes beyond the board's
+/// flash), run or CRC check ([`Error::Measurement`]).
+pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Error> {
     let root = &opts.root;
     let fw = root.join("examples/firmware");
     if !fw.join("Cargo.toml").is_file() {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{}: no firmware here (examples/firmware) to measure",
             root.display()
         )));
@@ -952,7 +961,7 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Cl
         .iter()
         .map(|t| {
             TARGETS.iter().copied().find(|x| x.0 == t).ok_or_else(|| {
-                CliError::input(format!(
+                Error::input(format!(
                     "unknown target `{t}` (known: {})",
                     TARGETS.map(|x| x.0).join(", ")
                 ))
@@ -960,16 +969,19 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Cl
         })
         .collect::<Result<_, _>>()?;
     let (scenes, modes) = user_firmware_scenes(&opts.files)?;
-    let source = generate_for(&scenes).map_err(CliError::input)?;
+    let source = generate_for(&scenes).map_err(Error::input)?;
     let fast_crcs: BTreeMap<String, String> = scenes
         .iter()
         .map(|s| {
             let f = s
                 .render_crc()
-                .map_err(|e| CliError::input(format!("{}: {e}", s.name)))?;
+                .map_err(|e| Error::input(format!("{}: {e}", s.name)))?;
             Ok((s.name.clone(), format!("0x{:08x}", f.crc)))
         })
-        .collect::<Result<_, CliError>>()?;
+        .collect::<Result<_, Error>>()?;
+    // Held until the measurement ends (the plugin's build, the staged
+    // copy, the builds and runs): one measurement at a time.
+    let _lock = StageLock::acquire(Path::new(STAGE_LOCK))?;
     let Tools {
         qemu,
         toolchain,
@@ -978,7 +990,7 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Cl
     let fingerprint = chips::source_fingerprint(root)?;
     let stage = Stage::new(root)?;
     let generated = stage.src.join(crate::firmware_scenes::GENERATED_PATH);
-    std::fs::write(&generated, source).map_err(|e| CliError::io(&generated, &e))?;
+    std::fs::write(&generated, source).map_err(|e| Error::write(&generated, e))?;
     let others = opts
         .profiles
         .iter()

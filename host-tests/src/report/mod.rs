@@ -39,6 +39,7 @@ mod chip_section;
 pub mod chips;
 pub mod docs_tables;
 mod embedded;
+mod error;
 mod knob_section;
 pub mod measure;
 mod page;
@@ -53,12 +54,13 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::cli::{write_atomically, CliError};
 use crate::ideal::Shading;
 use crate::metrics::Metrics;
+use crate::output::write_atomically;
 
 pub use chip_section::{ChipSection, Table};
 pub use embedded::{parse_firmware_results, read_firmware_results, EmbeddedResult, Target};
+pub use error::Error;
 pub use knob_section::{FastSub, KnobSection};
 pub use plot::pareto_front;
 pub use summary::{
@@ -314,14 +316,14 @@ pub struct ReportOutput {
 /// there, by writing and removing a probe file.
 ///
 /// # Errors
-/// An I/O error (exit status 1) naming the folder.
-pub fn prepare_out_dir(out: &Path) -> Result<(), CliError> {
+/// [`Error::Write`] naming the folder.
+pub fn prepare_out_dir(out: &Path) -> Result<(), Error> {
     let img = out.join("img");
-    std::fs::create_dir_all(&img).map_err(|e| CliError::io(out, &e))?;
+    std::fs::create_dir_all(&img).map_err(|e| Error::write(out, e))?;
     for dir in [out, img.as_path()] {
         let probe = dir.join(format!(".fixshade-report-probe-{}", std::process::id()));
-        std::fs::write(&probe, b"probe").map_err(|e| CliError::io(dir, &e))?;
-        std::fs::remove_file(&probe).map_err(|e| CliError::io(dir, &e))?;
+        std::fs::write(&probe, b"probe").map_err(|e| Error::write(dir, e))?;
+        std::fs::remove_file(&probe).map_err(|e| Error::write(dir, e))?;
     }
     Ok(())
 }
@@ -329,9 +331,7 @@ pub fn prepare_out_dir(out: &Path) -> Result<(), CliError> {
 /// The chip measurements of a run: re-measured (`--measure-firmware`),
 /// or read from the file and checked to be fresh (unless allowed stale).
 /// Returns them, the file's name and whether they are stale.
-fn chip_measurements(
-    opts: &ReportOptions,
-) -> Result<(chips::Measurements, String, bool), CliError> {
+fn chip_measurements(opts: &ReportOptions) -> Result<(chips::Measurements, String, bool), Error> {
     let root = chips::repo_root();
     if opts.measure_firmware && opts.scene_files.is_empty() {
         let ms = measure::measure_firmware(&measure::MeasureOptions {
@@ -366,11 +366,12 @@ fn firmware_profiles(opts: &ReportOptions) -> Vec<crate::core_render::CoreProfil
 /// Runs the sweep and writes the report (see the [module docs](self)).
 ///
 /// # Errors
-/// An unwritable output folder or a failed write (I/O, exit status 1),
-/// a bad firmware results file or a scene the renderers refuse (bad
-/// input, exit status 2). Checked before the sweep starts, except
-/// failures while writing.
-pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
+/// [`Error::Write`] for an unwritable output folder or a failed write;
+/// [`Error::Input`] or [`Error::Scene`] for a bad firmware results or
+/// measurements file or a scene the renderers refuse; with
+/// `--measure-firmware`, as [`measure::measure_firmware`]. Checked before
+/// the sweep starts, except failures while writing.
+pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, Error> {
     let started = Instant::now();
     let (ms, ms_file, stale) = chip_measurements(opts)?;
     let embedded = match &opts.firmware_results {
@@ -466,16 +467,13 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, CliError> {
     // Frames of the representative profiles, then the three pages,
     // `index.html` last.
     let frames = page::write_frames(&opts.out, &scenes, &summary)?;
-    let json = serde_json::to_string_pretty(&data).map_err(|e| {
-        CliError::io(
-            &opts.out.join("results.json"),
-            &std::io::Error::other(e.to_string()),
-        )
-    })?;
+    let json = serde_json::to_string_pretty(&data)
+        .map_err(|e| Error::write(&opts.out.join("results.json"), std::io::Error::other(e)))?;
     let mut files = Vec::new();
-    let mut write = |name: &str, text: &str| -> Result<(), CliError> {
+    let mut write = |name: &str, text: &str| -> Result<(), Error> {
         let path = opts.out.join(name);
-        write_atomically(&path, |out| out.write_all(text.as_bytes()))?;
+        write_atomically(&path, |out| out.write_all(text.as_bytes()))
+            .map_err(|e| Error::write(&path, e))?;
         files.push(path);
         Ok(())
     };

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use maud::{html, Markup, PreEscaped, DOCTYPE};
 use std::path::Path;
 
-use crate::cli::CliError;
+use super::Error;
 use crate::compare::{metrics_of, Comparison};
 use crate::core_render::CoreProfile;
 use crate::image::write_png;
@@ -35,7 +35,7 @@ pub fn write_frames(
     out: &Path,
     scenes: &[SweepScene],
     summary: &Summary,
-) -> Result<FrameIndex, CliError> {
+) -> Result<FrameIndex, Error> {
     let mut index = FrameIndex::new();
     for s in scenes {
         for mode in Mode::ALL {
@@ -49,7 +49,7 @@ pub fn write_frames(
             let float = rgb_frame(&desc, profile.twin())?;
             let ideal = ideal_frame(&desc)?;
             let metrics = metrics_of(&fixed, &float, &ideal)
-                .map_err(|e| CliError::input(format!("{}: {e}", desc.source)))?;
+                .map_err(|e| Error::input(format!("{}: {e}", desc.source)))?;
             let c = Comparison {
                 profile,
                 fixed,
@@ -73,7 +73,7 @@ pub fn write_frames(
             for (caption, kind, rgb) in images {
                 let rel = format!("img/{}-{}-{kind}.png", s.name, mode.name());
                 let path = out.join(&rel);
-                write_png(&path, w, h, &rgb).map_err(|e| CliError::io(&path, &e))?;
+                write_png(&path, w, h, &rgb).map_err(|e| Error::write(&path, e))?;
                 list.push((caption, rel));
             }
             index.insert(

@@ -16,12 +16,12 @@
 
 use std::collections::BTreeMap;
 
+use super::Error;
 use crate::builtin::load_builtin;
-use crate::cli::CliError;
-use crate::compare::core_view;
+use crate::compare::{core_view, ideal_view};
 use crate::core_render::CoreProfile;
 use crate::ideal::IdealFrame;
-use crate::metrics::{compare, FrameView};
+use crate::metrics::compare;
 
 use super::chips::{ChipResult, Measurements};
 use super::embedded::Target;
@@ -194,7 +194,7 @@ pub struct SceneChoice {
 ///
 /// # Errors
 /// An unknown name (bad input, listing the known ones).
-pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice, CliError> {
+pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice, Error> {
     let mut names: Vec<String> = Vec::new();
     for r in &m.results {
         if !names.contains(&r.scene) {
@@ -217,7 +217,7 @@ pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice
         Some(n) => {
             let scenes = pick(n);
             if scenes.is_empty() {
-                return Err(CliError::input(format!(
+                return Err(Error::input(format!(
                     "--scene: no firmware measurements for `{n}` (measured: {}; base scenes: {})",
                     names.join(", "),
                     bases.join(", ")
@@ -256,16 +256,6 @@ pub fn choose_scenes(m: &Measurements, name: Option<&str>) -> Result<SceneChoice
     }
 }
 
-fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
-    FrameView {
-        width: f.width,
-        height: f.height,
-        rgb,
-        covered: &f.covered,
-        object: None,
-    }
-}
-
 /// Mean absolute error (levels) of each profile's frame of each firmware
 /// scene against the scene's ideal Phong frame, rendered on the host
 /// from the built-in scene files.
@@ -275,7 +265,7 @@ fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
 pub fn host_errors(
     scenes: &[String],
     profiles: &[CoreProfile],
-) -> Result<BTreeMap<(String, CoreProfile), f64>, CliError> {
+) -> Result<BTreeMap<(String, CoreProfile), f64>, Error> {
     use rayon::prelude::*;
     let jobs: Vec<(String, CoreProfile)> = scenes
         .iter()
@@ -293,14 +283,14 @@ pub fn host_errors(
             let rgb = f.to_rgb8();
             Ok((s.clone(), (f, rgb)))
         })
-        .collect::<Result<_, CliError>>()?;
+        .collect::<Result<_, Error>>()?;
     jobs.par_iter()
         .map(|(s, p)| {
             let d = load_builtin(s)?;
             let frame = super::sweep::rgb_frame(&d, *p)?;
             let (f, rgb) = &ideals[s];
             let m = compare(&core_view(&frame), &ideal_view(f, rgb))
-                .map_err(|e| CliError::input(format!("{s}: {e}")))?;
+                .map_err(|e| Error::input(format!("{s}: {e}")))?;
             Ok(((s.clone(), *p), m.mean_abs_error))
         })
         .collect()
@@ -375,7 +365,7 @@ pub fn user_scene_candidates(
     path: &std::path::Path,
     ms: &Measurements,
     target: Target,
-) -> Result<Vec<Candidate>, CliError> {
+) -> Result<Vec<Candidate>, Error> {
     use rayon::prelude::*;
     let desc = crate::scene_file::SceneDesc::load(path)?;
     let with = |m: Mode| {
@@ -404,7 +394,7 @@ pub fn user_scene_candidates(
         .map(|(p, m, stack)| {
             let f = super::sweep::rgb_frame(&with(m), p)?;
             let e = compare(&core_view(&f), &ideal_view(&phong, &prgb))
-                .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+                .map_err(|e| Error::input(format!("{}: {e}", path.display())))?;
             Ok(Candidate {
                 profile: p,
                 mode: Some(m),

@@ -5,12 +5,12 @@ use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::Error;
 use crate::builtin::{builtin_scenes, load_builtin};
-use crate::cli::CliError;
-use crate::compare::{core_view, metrics_of};
+use crate::compare::{core_view, ideal_view, metrics_of};
 use crate::core_render::{render_core, CoreFrame, CoreProfile, BAND_ROWS};
 use crate::ideal::{self, IdealFrame};
-use crate::metrics::{compare, FrameView};
+use crate::metrics::compare;
 use crate::scene_file::{PixelFormat, SceneDesc};
 
 use super::timing::{time_frames, Repeats};
@@ -83,7 +83,7 @@ pub(crate) fn base_name(name: &str) -> String {
 ///
 /// # Errors
 /// A file that does not load (bad input naming the file and field).
-pub fn scene_files(paths: &[std::path::PathBuf]) -> Result<Vec<SweepScene>, CliError> {
+pub fn scene_files(paths: &[std::path::PathBuf]) -> Result<Vec<SweepScene>, Error> {
     let mut out: Vec<SweepScene> = Vec::new();
     for path in paths {
         let mut desc = SceneDesc::load(path)?;
@@ -116,7 +116,7 @@ pub fn scene_files(paths: &[std::path::PathBuf]) -> Result<Vec<SweepScene>, CliE
 ///
 /// # Errors
 /// A built-in scene that does not load (a bug: bad input).
-pub fn sweep_scenes(quick: bool) -> Result<Vec<SweepScene>, CliError> {
+pub fn sweep_scenes(quick: bool) -> Result<Vec<SweepScene>, Error> {
     let mut groups: Vec<(SceneDesc, Vec<String>, String)> = Vec::new();
     for &(name, description, _) in builtin_scenes() {
         let mut d = load_builtin(name)?;
@@ -206,16 +206,6 @@ fn mesh_flash(desc: &SceneDesc) -> (usize, usize, usize) {
     (p, t, n)
 }
 
-pub(super) fn ideal_view<'a>(f: &'a IdealFrame, rgb: &'a [[u8; 3]]) -> FrameView<'a> {
-    FrameView {
-        width: f.width,
-        height: f.height,
-        rgb,
-        covered: &f.covered,
-        object: None,
-    }
-}
-
 /// A colour step in the twin larger than this (levels, any channel) to a
 /// 4-neighbour makes a pixel an edge pixel.
 pub const EDGE_STEP: u8 = 8;
@@ -264,18 +254,18 @@ pub(super) fn error_places(a: &CoreFrame, b: &CoreFrame) -> ErrorPlaces {
 }
 
 /// The frame of `desc` (in RGB888 for the metrics) with `profile`.
-pub(super) fn rgb_frame(desc: &SceneDesc, profile: CoreProfile) -> Result<CoreFrame, CliError> {
+pub(super) fn rgb_frame(desc: &SceneDesc, profile: CoreProfile) -> Result<CoreFrame, Error> {
     let d = SceneDesc {
         pixel_format: PixelFormat::Rgb888,
         ..desc.clone()
     };
-    render_core(&d, Some(profile)).map_err(|e| CliError::input(format!("{}: {e}", d.source)))
+    render_core(&d, Some(profile)).map_err(|e| Error::input(format!("{}: {e}", d.source)))
 }
 
 /// The ideal frame of `desc`.
-pub(super) fn ideal_frame(desc: &SceneDesc) -> Result<IdealFrame, CliError> {
+pub(super) fn ideal_frame(desc: &SceneDesc) -> Result<IdealFrame, Error> {
     ideal::render(&desc.to_ideal())
-        .map_err(|e| CliError::input(format!("{}: ideal reference: {e}", desc.source)))
+        .map_err(|e| Error::input(format!("{}: ideal reference: {e}", desc.source)))
 }
 
 fn progress_bar(total: u64, show: bool) -> ProgressBar {
@@ -300,7 +290,7 @@ pub fn measure(
     scenes: &[SweepScene],
     repeats: Repeats,
     progress: bool,
-) -> Result<Vec<Record>, CliError> {
+) -> Result<Vec<Record>, Error> {
     use rayon::prelude::*;
     let total = (scenes.len() * Mode::ALL.len() * CoreProfile::ALL.len()) as u64;
     let bar = progress_bar(total, progress);
@@ -310,7 +300,7 @@ pub fn measure(
     let per_scene: Vec<Vec<Record>> = scenes
         .par_iter()
         .map(|s| measure_scene(s, repeats, &bar))
-        .collect::<Result<_, CliError>>()?;
+        .collect::<Result<_, Error>>()?;
     bar.finish_and_clear();
     Ok(per_scene.into_iter().flatten().collect())
 }
@@ -320,7 +310,7 @@ fn measure_scene(
     s: &SweepScene,
     repeats: Repeats,
     bar: &ProgressBar,
-) -> Result<Vec<Record>, CliError> {
+) -> Result<Vec<Record>, Error> {
     let mut records = Vec::new();
     {
         let phong_ideal = ideal_frame(&s.with_mode(Mode::Phong))?;
@@ -352,16 +342,16 @@ fn measure_scene(
                     rgb_frame(&desc, profile)?
                 };
                 let metrics = metrics_of(&fixed, twin, &ideal)
-                    .map_err(|e| CliError::input(format!("{}: {e}", desc.source)))?;
+                    .map_err(|e| Error::input(format!("{}: {e}", desc.source)))?;
                 let vs_ideal_phong =
                     compare(&core_view(&fixed), &ideal_view(&phong_ideal, &phong_rgb))
-                        .map_err(|e| CliError::input(format!("{}: {e}", desc.source)))?;
+                        .map_err(|e| Error::input(format!("{}: {e}", desc.source)))?;
                 let timing = time_frames(&desc, profile, repeats)
-                    .map_err(|e| CliError::input(format!("{}: {e}", desc.source)))?;
+                    .map_err(|e| Error::input(format!("{}: {e}", desc.source)))?;
                 let reference = render_core(&desc, Some(profile))
-                    .map_err(|e| CliError::input(format!("{}: {e}", desc.source)))?;
+                    .map_err(|e| Error::input(format!("{}: {e}", desc.source)))?;
                 if reference.bytes != timing.bytes {
-                    return Err(CliError::input(format!(
+                    return Err(Error::input(format!(
                         "{} {} {}: the timed frame differs from render_core's (report bug)",
                         s.name,
                         mode.name(),
