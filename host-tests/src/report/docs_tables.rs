@@ -243,6 +243,28 @@ fn budget_rows(ms: &Measurements) -> Vec<(String, &'static str, String, String, 
             ));
         }
     }
+    // Memory (issue 13): the prepared bunny Gouraud frame, and the
+    // static RAM of a firmware that renders the bunny (the default
+    // firmware's storage is sized by the bunny, its largest scene).
+    let kb = |b: u64| format!("{} B", thousands(b));
+    for t in [M0, M4] {
+        if let Some(b) = fast(t, "bunny-gouraud") {
+            rows.push((
+                "bunny Gouraud prepared frame".into(),
+                t,
+                kb(b.prepared_bytes),
+                format!("≤ 24 KB = {}", kb(24 * 1024)),
+                b.prepared_bytes <= 24 * 1024,
+            ));
+            rows.push((
+                "static RAM of the firmware with the bunny".into(),
+                t,
+                kb(b.static_ram),
+                format!("≤ 40 KB = {}", kb(40 * 1024)),
+                b.static_ram <= 40 * 1024,
+            ));
+        }
+    }
     let px = |v: f64| format!("{v:.2} /px");
     for (what, t, kernel, budget) in [
         ("flat span", M4, "flat", 8.0),

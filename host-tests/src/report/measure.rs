@@ -290,7 +290,8 @@ struct Stage {
     target_dir: PathBuf,
 }
 
-/// The fixed path of [`Stage`]'s copy.
+/// The fixed path of the measured copy of the sources (one path for every
+/// clone: see the module's notes on reproducible counts).
 pub const STAGE: &str = "/tmp/fixshade-measure-src";
 
 impl Stage {
@@ -395,9 +396,9 @@ fn build_run(
     // build overwrites cargo's copy) and the firmware's output, beside the
     // plugin's log.
     let keep = target_dir.join(format!("elf-{target}-{tag}"));
-    std::fs::copy(&elf, &keep).map_err(|e| CliError::io(&keep, &e))?;
+    std::fs::copy(&elf, &keep).map_err(|e| Error::write(&keep, e))?;
     let printed = target_dir.join(format!("fw-{target}-{tag}.txt"));
-    std::fs::write(&printed, &out).map_err(|e| CliError::io(&printed, &e))?;
+    std::fs::write(&printed, &out).map_err(|e| Error::write(&printed, e))?;
     let log_text = std::fs::read_to_string(&log)
         .map_err(|e| failed(format!("{}: cannot read: {e}", log.display())))?;
     if log_text.contains("insn_count: warning") || !log_text.contains(" warnings 0") {
