@@ -368,13 +368,28 @@ impl EarlyCull {
     /// `gm · slack + rk · spread + bias < 2^30 + 2^29 + 2^26 + 1`. A slack
     /// of 65 535 (faces the bake could not bound) never passes: the
     /// threshold is then at least `2^13 · 65 535 > 2^28 + 2^27`.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn skip(&self, a: [i16; 3], cone: [i32; 2]) -> bool {
-        let ae =
-            i32::from(a[0]) * self.e[0] + i32::from(a[1]) * self.e[1] + i32::from(a[2]) * self.e[2];
+        self.margin(a, cone) < 0
+    }
+
+    /// The threshold less the left side of [`EarlyCull::skip`]'s test:
+    /// negative exactly when the vertex is skipped (one value a vertex
+    /// loop can store as its mark). Within `i32`: the left side lies in
+    /// `(-(2^28 + 2^27), 2^28 + 2^27)`, the threshold in `[0, 2^30 + 2^29
+    /// + 2^26 + 1]` (see `skip`).
+    #[inline(always)]
+    pub(crate) fn margin(&self, a: [i16; 3], cone: [i32; 2]) -> i32 {
         let slack = cone[1] & 0xFFFF;
         let spread = (cone[1] >> 16) & 0xFFFF;
-        (cone[0] >> self.sh) - ae > self.gm * slack + self.rk * spread + self.bias
+        // One sum: threshold + a·E - (d >> sh).
+        self.bias
+            + i32::from(a[0]) * self.e[0]
+            + i32::from(a[1]) * self.e[1]
+            + i32::from(a[2]) * self.e[2]
+            + self.gm * slack
+            + self.rk * spread
+            - (cone[0] >> self.sh)
     }
 }
 
