@@ -790,6 +790,14 @@ mod tests {
     use crate::geom::Vec3;
     use crate::num::{Real, Q16};
 
+    /// Uniform values in `[lo, hi)` from a [`xorshift`] sequence.
+    fn range(mut st: u64) -> impl FnMut(f64, f64) -> f64 {
+        move |lo, hi| {
+            let r = xorshift(&mut st);
+            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
+        }
+    }
+
     fn xorshift(s: &mut u64) -> u64 {
         *s ^= *s << 13;
         *s ^= *s >> 7;
@@ -1011,11 +1019,7 @@ mod tests {
     /// diffuse factors up to the accepted limit and random normals.
     #[test]
     fn level_light_within_its_bound() {
-        let mut st = 0x1e7e_1b0d_u64;
-        let mut f = |lo: f64, hi: f64| {
-            let r = xorshift(&mut st);
-            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
-        };
+        let mut f = range(0x1e7e_1b0d);
         let mut worst = 0f64;
         for _ in 0..2000 {
             let nl = 1 + (f(0.0, 2.999) as usize);
@@ -1074,11 +1078,7 @@ mod tests {
     #[test]
     fn bounded_one_light_is_the_clamped_one() {
         use crate::mesh::MAX_AXIS2;
-        let mut st = 0x0b0d_1e55_u64;
-        let mut f = |lo: f64, hi: f64| {
-            let r = xorshift(&mut st);
-            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
-        };
+        let mut f = range(0x0b0d_1e55);
         let (mut lights, mut clamped) = (0, 0);
         for i in 0..400 {
             let v = [f(-1.0, 1.0), f(-1.0, 1.0), f(-1.0, 1.0)];
@@ -1147,11 +1147,7 @@ mod tests {
     #[test]
     fn object_light_q16_within_its_bound() {
         use crate::geom::Mat3;
-        let mut st = 0x000b_1ec7_5eed_u64;
-        let mut f = |lo: f64, hi: f64| {
-            let r = xorshift(&mut st);
-            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
-        };
+        let mut f = range(0x000b_1ec7_5eed);
         let mut worst = 0f64;
         for _ in 0..400 {
             let a = [f(-3.0, 3.0), f(-3.0, 3.0), f(-3.0, 3.0)];

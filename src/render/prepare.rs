@@ -471,15 +471,22 @@ fn triangles_inside(
         let Some(rows) = rows_in(p, width, height, sub) else {
             continue;
         };
-        let slot = out.get_mut(nt)?;
-        // base + index < u16::MAX (checked by the vertex pass).
-        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
-        slot.rows = rows;
-        slot.color = color(t, back);
-        slot.back = back;
+        put_tri(out.get_mut(nt)?, tri, base, rows, color(t, back), back);
         nt += 1;
     }
     Some(nt)
+}
+
+/// Writes a kept triangle of mesh corners `tri` (prepared vertices from
+/// `base` on) into `slot`, field by field (a whole 14-byte `Tri` built and
+/// copied was a `memcpy` call on the M0).
+#[inline(always)]
+fn put_tri(slot: &mut Tri, tri: &[u16; 3], base: usize, rows: [u16; 2], color: Rgb8, back: bool) {
+    // base + index < u16::MAX (checked by the vertex pass).
+    slot.v = tri.map(|i| (base + usize::from(i)) as u16);
+    slot.rows = rows;
+    slot.color = color;
+    slot.back = back;
 }
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
@@ -528,13 +535,9 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if r0 >= r1 {
             continue;
         }
-        let slot = slots.next()?;
-        // base + index < u16::MAX (checked by the vertex pass); rows within
-        // `0..=height <= 4096`.
-        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
-        slot.rows = [r0 as u16, r1 as u16];
-        slot.color = color(t, back);
-        slot.back = back;
+        // Rows within `0..=height <= 4096`.
+        let rows = [r0 as u16, r1 as u16];
+        put_tri(slots.next()?, tri, base, rows, color(t, back), back);
         nt += 1;
     }
     Some(nt)
