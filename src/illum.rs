@@ -693,6 +693,38 @@ impl OneLight {
         }
         sum.map(|v| v.clamp(0, 255 << 16))
     }
+
+    /// Whether [`OneLight::at_bounded`] equals [`OneLight::at`] for every
+    /// normal of squared length at most `n2` (raw Q1.14): `N·L <= |N| |L|
+    /// < 2^29` (Cauchy-Schwarz, checked as `n2 |L|² < 2^58`) keeps `N·L >>
+    /// 14` below `2^15` (the `min` idle), and a light and ambient term of
+    /// no negative channel keep every sum at least 0 (the lower clamp
+    /// idle).
+    pub(crate) fn bounded(&self, n2: i64) -> bool {
+        let t = &self.t;
+        let l2: i64 = t.l14.iter().map(|&v| i64::from(v) * i64::from(v)).sum();
+        i128::from(n2.max(0)) * i128::from(l2) < 1i128 << 58
+            && self.ambient.iter().all(|&a| a >= 0)
+            && t.dq.iter().all(|&d| d >= 0)
+    }
+
+    /// [`OneLight::at`] without the clamps that [`OneLight::bounded`]
+    /// proves idle: the same values for every normal it covers.
+    #[inline(always)]
+    pub(crate) fn at_bounded<const MONO: bool>(&self, n: [i16; 3]) -> [i32; 3] {
+        let (t, n) = (&self.t, n.map(i32::from));
+        let nl = n[0] * t.l14[0] + n[1] * t.l14[1] + n[2] * t.l14[2];
+        // Below 2^29 (`bounded`): at most 2^15.
+        let nl14 = nl.max(0) >> 14;
+        let mut sum = self.ambient;
+        sum[0] += (nl14 * t.dq[0]) >> 6;
+        if !MONO {
+            sum[1] += (nl14 * t.dq[1]) >> 6;
+            sum[2] += (nl14 * t.dq[2]) >> 6;
+        }
+        // At least 0 (`bounded`).
+        sum.map(|v| v.min(255 << 16))
+    }
 }
 
 /// One light of a [`Shade`] as raw `Q16` bits, for the Phong span kernel
@@ -752,11 +784,19 @@ impl<R: Real> Shade<R> {
 mod tests {
     extern crate std;
     use super::{
-        mul16, mul16_small, raw3, LevelLight, LevelTerm, Light, Material, Shade, Specular, Viewer,
-        SMALL,
+        mul16, mul16_small, raw3, LevelLight, LevelTerm, Light, Material, OneLight, Shade,
+        Specular, Viewer, SMALL,
     };
     use crate::geom::Vec3;
     use crate::num::{Real, Q16};
+
+    /// Uniform values in `[lo, hi)` from a [`xorshift`] sequence.
+    fn range(mut st: u64) -> impl FnMut(f64, f64) -> f64 {
+        move |lo, hi| {
+            let r = xorshift(&mut st);
+            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
+        }
+    }
 
     fn xorshift(s: &mut u64) -> u64 {
         *s ^= *s << 13;
@@ -979,11 +1019,7 @@ mod tests {
     /// diffuse factors up to the accepted limit and random normals.
     #[test]
     fn level_light_within_its_bound() {
-        let mut st = 0x1e7e_1b0d_u64;
-        let mut f = |lo: f64, hi: f64| {
-            let r = xorshift(&mut st);
-            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
-        };
+        let mut f = range(0x1e7e_1b0d);
         let mut worst = 0f64;
         for _ in 0..2000 {
             let nl = 1 + (f(0.0, 2.999) as usize);
@@ -1032,14 +1068,86 @@ mod tests {
         assert!(worst <= 0.02, "{worst}");
     }
 
+    /// [`OneLight::at_bounded`] equals [`OneLight::at`] whenever
+    /// [`OneLight::bounded`] admits the light for normals of squared
+    /// length up to [`MAX_AXIS2`](crate::mesh::MAX_AXIS2): random lights
+    /// (ambient and diffuse up to 1.5, so the upper clamp is often
+    /// reached), random normals of length up to 1.0002 (extreme
+    /// components and the axes included); and `bounded` refuses a light
+    /// whose products could leave the clamps' range.
+    #[test]
+    fn bounded_one_light_is_the_clamped_one() {
+        use crate::mesh::MAX_AXIS2;
+        let mut f = range(0x0b0d_1e55);
+        let (mut lights, mut clamped) = (0, 0);
+        for i in 0..400 {
+            let v = [f(-1.0, 1.0), f(-1.0, 1.0), f(-1.0, 1.0)];
+            let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(0.1);
+            let l14 = v.map(|c| (c / len * 16384.0).round() as i32);
+            let dq = [0; 3].map(|_| (f(0.0, 1.5) * 65536.0 * 255.0 / 256.0) as i32);
+            let ambient = [0; 3].map(|_| (f(0.0, 1.5) * 65536.0) as i32 * 255 / 2);
+            let one = OneLight {
+                ambient,
+                t: LevelTerm { l14, dq },
+            };
+            assert!(one.bounded(MAX_AXIS2), "light {i}");
+            lights += 1;
+            for k in 0..200 {
+                let n: [i16; 3] = match k {
+                    0..=5 => {
+                        let mut n = [0i16; 3];
+                        n[k % 3] = if k < 3 { 16386 } else { -16386 };
+                        n
+                    }
+                    _ => {
+                        let v = [f(-1.0, 1.0), f(-1.0, 1.0), f(-1.0, 1.0)];
+                        let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                        let s = f(0.0, 1.0002) * 16384.0;
+                        let n = v.map(|c| (c / len * s).round() as i16);
+                        let nn: i64 = n.iter().map(|&c| i64::from(c) * i64::from(c)).sum();
+                        if nn > MAX_AXIS2 {
+                            continue;
+                        }
+                        n
+                    }
+                };
+                let want = one.at::<false>(n);
+                assert_eq!(one.at_bounded::<false>(n), want, "light {i} normal {n:?}");
+                assert_eq!(one.at_bounded::<true>(n)[0], want[0]);
+                clamped += usize::from(want.contains(&(255 << 16)));
+            }
+        }
+        assert!(lights == 400 && clamped > 1000, "{lights} {clamped}");
+        // Refused: a negative diffuse factor or ambient term, or normals
+        // long enough for `N·L >> 14` to pass 2^15.
+        let base = OneLight {
+            ambient: [0; 3],
+            t: LevelTerm {
+                l14: [16384, 0, 0],
+                dq: [100; 3],
+            },
+        };
+        assert!(base.bounded(MAX_AXIS2));
+        assert!(!base.bounded(1 << 31));
+        let neg = OneLight {
+            ambient: [-1, 0, 0],
+            ..base
+        };
+        assert!(!neg.bounded(MAX_AXIS2));
+        let neg_dq = OneLight {
+            t: LevelTerm {
+                dq: [100, -1, 100],
+                ..base.t
+            },
+            ..base
+        };
+        assert!(!neg_dq.bounded(MAX_AXIS2));
+    }
+
     #[test]
     fn object_light_q16_within_its_bound() {
         use crate::geom::Mat3;
-        let mut st = 0x000b_1ec7_5eed_u64;
-        let mut f = |lo: f64, hi: f64| {
-            let r = xorshift(&mut st);
-            lo + (hi - lo) * ((r >> 11) as f64 / (1u64 << 53) as f64)
-        };
+        let mut f = range(0x000b_1ec7_5eed);
         let mut worst = 0f64;
         for _ in 0..400 {
             let a = [f(-3.0, 3.0), f(-3.0, 3.0), f(-3.0, 3.0)];

@@ -368,13 +368,28 @@ impl EarlyCull {
     /// `gm · slack + rk · spread + bias < 2^30 + 2^29 + 2^26 + 1`. A slack
     /// of 65 535 (faces the bake could not bound) never passes: the
     /// threshold is then at least `2^13 · 65 535 > 2^28 + 2^27`.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn skip(&self, a: [i16; 3], cone: [i32; 2]) -> bool {
-        let ae =
-            i32::from(a[0]) * self.e[0] + i32::from(a[1]) * self.e[1] + i32::from(a[2]) * self.e[2];
+        self.margin(a, cone) < 0
+    }
+
+    /// The threshold less the left side of [`EarlyCull::skip`]'s test:
+    /// negative exactly when the vertex is skipped (one value a vertex
+    /// loop can store as its mark). Within `i32`: the left side lies in
+    /// `(-(2^28 + 2^27), 2^28 + 2^27)`, the threshold in `[0, 2^30 + 2^29
+    /// + 2^26 + 1]` (see `skip`).
+    #[inline(always)]
+    pub(crate) fn margin(&self, a: [i16; 3], cone: [i32; 2]) -> i32 {
         let slack = cone[1] & 0xFFFF;
         let spread = (cone[1] >> 16) & 0xFFFF;
-        (cone[0] >> self.sh) - ae > self.gm * slack + self.rk * spread + self.bias
+        // One sum: threshold + a·E - (d >> sh).
+        self.bias
+            + i32::from(a[0]) * self.e[0]
+            + i32::from(a[1]) * self.e[1]
+            + i32::from(a[2]) * self.e[2]
+            + self.gm * slack
+            + self.rk * spread
+            - (cone[0] >> self.sh)
     }
 }
 
@@ -383,7 +398,7 @@ mod tests {
     extern crate std;
     use super::*;
     use crate::geom::fused::Fused;
-    use crate::geom::q16::Proj16;
+    use crate::geom::testkit::{proj, rotation, uniform};
     use crate::mesh::{cone_covers, face_normal, face_plane, MAX_AXIS2};
 
     /// Whenever [`EarlyCull::back`] holds, the fused kernel's rounded
@@ -393,35 +408,17 @@ mod tests {
     /// And the test decides most back faces that are not nearly edge-on.
     #[test]
     fn certain_back_faces_are_back_on_screen() {
-        let mut s = 0x5eed_cafe_1234_5678u64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
-        let mut u = move || (next() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut u = uniform(0x5eed_cafe_1234_5678);
         let (mut objects, mut faces, mut back, mut decided, mut edge_on) = (0, 0, 0, 0, 0);
         let (mut clear_back, mut clear_decided) = (0, 0);
         for i in 0..1500 {
             let sub = [4u32, 4, 2, 6][i % 4];
             let k = 80.0 + 500.0 * u();
             let near = [1.0, 0.5, 0.1][i % 3];
-            let pj = Proj16 {
-                k: (k * 65536.0) as i32,
-                near: (near * 65536.0) as i32,
-                cx: 120 << sub,
-                cy: 100 << sub,
-                lim: 8192 << sub,
-            };
+            let pj = proj(k, near, sub, 100);
             let sc = 0.3 + 2.5 * u();
             let (a, b, c) = (6.3 * u(), 6.3 * u(), 6.3 * u());
-            let (sa, ca, sb, cb, sc2, cc) = (a.sin(), a.cos(), b.sin(), b.cos(), c.sin(), c.cos());
-            let r = [
-                [cc * cb, cc * sb * sa - sc2 * ca, cc * sb * ca + sc2 * sa],
-                [sc2 * cb, sc2 * sb * sa + cc * ca, sc2 * sb * ca - cc * sa],
-                [-sb, cb * sa, cb * ca],
-            ];
+            let r = rotation(a, b, c);
             // Mostly uniform, sometimes stretched along one axis.
             let st = if i % 5 == 0 {
                 [1.0, 1.6, 0.7]

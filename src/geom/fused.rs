@@ -411,6 +411,7 @@ fn mul_hi16_u(v: u32, y: u32) -> u32 {
 mod tests {
     extern crate std;
     use super::*;
+    use crate::geom::testkit::{proj, rotation, uniform};
 
     /// The screen position within 1/2 + 1/4 subpixel and the depth within
     /// `2^-13` of the exact projection of the `Q16` matrix's point, on
@@ -419,28 +420,15 @@ mod tests {
     /// the object (and it accepts most on-screen objects).
     #[test]
     fn fused_within_bound() {
-        let mut s = 0x0dd_ba11_cafe_f00du64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
-        let mut u = move || (next() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut u = uniform(0x0dd_ba11_cafe_f00d);
         let (mut accepted, mut worst, mut worst_d) = (0, 0f64, 0f64);
         let mut in_range = 0;
         for i in 0..3000 {
             let sub = [4u32, 4, 2, 6, 8][i % 5];
             let k = 50.0 + 600.0 * u();
             let near = [1.0, 0.5, 0.1, 2.0][i % 4];
-            let (cx, cy) = (120i32 << sub, 100i32 << sub);
-            let pj = Proj16 {
-                k: (k * 65536.0) as i32,
-                near: (near * 65536.0) as i32,
-                cx,
-                cy,
-                lim: 8192 << sub,
-            };
+            let pj = proj(k, near, sub, 100);
+            let (cx, cy) = (pj.cx, pj.cy);
             let far = if i % 3 == 0 {
                 None
             } else {
@@ -449,13 +437,8 @@ mod tests {
             let scale = far.map(|f| (f / (f - near) * 65536.0).round() as i32);
             let sc = 0.2 + 3.0 * u();
             let (a, b, c) = (6.3 * u(), 6.3 * u(), 6.3 * u());
-            let (sa, ca, sb, cb, sc2, cc) = (a.sin(), a.cos(), b.sin(), b.cos(), c.sin(), c.cos());
             // Rz Ry Rx, times the scale.
-            let r = [
-                [cc * cb, cc * sb * sa - sc2 * ca, cc * sb * ca + sc2 * sa],
-                [sc2 * cb, sc2 * sb * sa + cc * ca, sc2 * sb * ca - cc * sa],
-                [-sb, cb * sa, cb * ca],
-            ];
+            let r = rotation(a, b, c);
             let m = r.map(|row| row.map(|v| (v * sc * 65536.0).round() as i32));
             let dist = near + sc * 2.0 + 20.0 * u();
             let t = [(u() - 0.5) * dist * 0.6, (u() - 0.5) * dist * 0.6, -dist]
@@ -543,13 +526,7 @@ mod tests {
     /// The split products equal the wide ones (the Cortex-M0 form).
     #[test]
     fn split_products_are_exact() {
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::geom::testkit::xorshift(0x9e37_79b9_7f4a_7c15);
         for _ in 0..1_000_000 {
             let v = (next() as i32) >> 2; // |v| <= 2^29... and beyond below
             let y = (next() % ((1 << 16) + 1)) as u32;

@@ -10,6 +10,8 @@ use crate::num::Real;
 pub(crate) mod cull;
 pub(crate) mod fused;
 pub(crate) mod q16;
+#[cfg(test)]
+pub(crate) mod testkit;
 use core::ops::{Add, Mul, Neg, Sub};
 
 /// Degrees to radians without floating point: `deg · 71 / 4068` (π/180 as
@@ -432,13 +434,7 @@ mod tests {
     /// every vector of components up to 2 with a length from 1/2.
     #[test]
     fn unit_q16_small_matches_generic() {
-        let mut s = 0x0123_4567_89ab_cdefu64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::geom::testkit::xorshift(0x0123_4567_89ab_cdef);
         let mut taken = 0;
         for i in 0..500_000 {
             let lim: u64 = if i % 3 == 0 { 1 << 18 } else { 1 << 17 };

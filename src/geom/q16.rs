@@ -488,13 +488,7 @@ mod tests {
     #[test]
     fn face_normal_q14_is_exact() {
         use crate::mesh::face_normal;
-        let mut s = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::geom::testkit::xorshift(0x2545_f491_4f6c_dd1d);
         for i in 0..400_000u32 {
             // Edges of every length class: tiny (degenerate-ish), mesh
             // sized, up to the full i16 range (the fallback).
@@ -538,13 +532,7 @@ mod tests {
 
     #[test]
     fn split_row_matches_wide() {
-        let mut s = 0x1234_5678_9abc_def0u64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::geom::testkit::xorshift(0x1234_5678_9abc_def0);
         for i in 0..300_000 {
             let lim: i64 = if i % 2 == 0 { 1 << 24 } else { 1 << 17 };
             let m = [0; 3].map(|_| ((next() % (2 * lim as u64 - 1)) as i64 - (lim - 1)) as i32);
@@ -570,13 +558,7 @@ mod tests {
 
     #[test]
     fn shr_round_clamp_matches_wide() {
-        let mut st = 0x0bad_cafe_1234_5678u64;
-        let mut next = || {
-            st ^= st << 13;
-            st ^= st >> 7;
-            st ^= st << 17;
-            st
-        };
+        let mut next = crate::geom::testkit::xorshift(0x0bad_cafe_1234_5678);
         let lims = [0, 1, 1 << 16, 8192 << 4, 8192 << 8, i32::MAX];
         for i in 0..2_000_000u32 {
             let s = 1 + (next() % 62) as u32;
@@ -621,26 +603,14 @@ mod tests {
     /// `shr_round_clamp` where no clamp acts.
     #[test]
     fn project_inside_matches_project() {
-        let mut st = 0x5eed_0bad_f00d_0001u64;
-        let mut next = || {
-            st ^= st << 13;
-            st ^= st >> 7;
-            st ^= st << 17;
-            st
-        };
+        let mut next = crate::geom::testkit::xorshift(0x5eed_0bad_f00d_0001);
         for (k, near, sub) in [
             (290.0f64, 1.0f64, 4u32),
             (41.6, 0.5, 4),
             (2048.0, 0.1, 4),
             (20.0, 0.01, 8),
         ] {
-            let p = Proj16 {
-                k: (k * 65536.0) as i32,
-                near: (near * 65536.0) as i32,
-                cx: 120 << sub,
-                cy: 120 << sub,
-                lim: 8192 << sub,
-            };
+            let p = crate::geom::testkit::proj(k, near, sub, 120);
             let guard = 4096.0 / k;
             for _ in 0..200_000 {
                 let u = |r: u64| (r >> 11) as f64 / (1u64 << 53) as f64;

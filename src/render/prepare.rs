@@ -45,7 +45,7 @@ use crate::geom::fused::Fused;
 use crate::geom::q16::{face_normal_q14, Proj16, Xform16};
 use crate::geom::{Affine, Vec3};
 use crate::illum::{LevelLight, Light, LightKind, ObjectLight, OneLight, Shade, MAX_LIGHTS};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, MAX_AXIS2};
 use crate::num::approx16;
 use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
 use crate::num::{Profile, Real};
@@ -233,6 +233,7 @@ pub fn prepare<'w, P: Profile>(
         width,
         height,
         bbox: None,
+        rows: None,
         marked: false,
     };
     let mut objects = heapless::Vec::new();
@@ -258,14 +259,38 @@ struct Preparer<'w, P: Profile> {
     object: usize,
     width: u32,
     height: u32,
-    /// The largest x and y (subpixels, as `u32`: negative coordinates
-    /// count as huge) of the current object's prepared vertices, when the
-    /// vertex kernel tracked them.
-    bbox: Option<[u32; 2]>,
+    /// The largest x and y and the smallest y (subpixels, as `u32`:
+    /// negative coordinates count as huge) of the current object's
+    /// prepared vertices, when the vertex kernel tracked them.
+    bbox: Option<[u32; 3]>,
+    /// The rows of the current object when the triangle pass bounded them
+    /// (else they are gathered from its triangles).
+    rows: Option<[u16; 2]>,
     /// The current object's vertices were marked by [`mark_corners`]:
     /// triangles with an [`UNUSED`] corner were culled in object space.
     marked: bool,
 }
+
+/// Whether the fused kernel's projection loop tracks the smallest y too,
+/// so that a visible object's rows come from its vertices' box rather than
+/// a pass over its kept triangles. Measured on the bunny: the pass costs
+/// 14 K instructions on the Cortex-M4, where the tracking costs nothing
+/// measurable (the loop's spills absorb it); on the Cortex-M0 (eight low
+/// registers) the tracking cost 22 K against the pass's 16 K: it keeps
+/// the pass.
+const ROWS_FROM_BOX: bool = !cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// The fewest vertices for which an object's culling in object space
+/// ([`EarlyCull`]) is set up. The set-up (once per object: the eye in
+/// object space, the threshold's bounds, 64- and 128-bit divisions) costs
+/// about 7 K instructions on the Cortex-M4 and 12 K on the Cortex-M0
+/// (measured: 4.6 K + divisions per cube of cubes-and-sphere on the M4);
+/// the test then costs about 20 per vertex and saves about 130 (M4) / 250
+/// (M0) per skipped vertex, about a third of a closed mesh's vertices:
+/// it pays from about 7 000 / (130 / 3 - 20) = 300 vertices on the M4
+/// (12 000 / (250 / 3 - 30) = 225 on the M0). Smaller meshes (the cube,
+/// the dodecahedron) skip it; the frames are the same either way.
+const EARLY_CULL_MIN_VERTICES: usize = 300;
 
 /// `xy[0]` of a prepared vertex outside the clipping planes: never drawn
 /// (its triangles are clipped or dropped), `xy[1]` holds its outcode. No
@@ -446,15 +471,22 @@ fn triangles_inside(
         let Some(rows) = rows_in(p, width, height, sub) else {
             continue;
         };
-        let slot = out.get_mut(nt)?;
-        // base + index < u16::MAX (checked by the vertex pass).
-        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
-        slot.rows = rows;
-        slot.color = color(t, back);
-        slot.back = back;
+        put_tri(out.get_mut(nt)?, tri, base, rows, color(t, back), back);
         nt += 1;
     }
     Some(nt)
+}
+
+/// Writes a kept triangle of mesh corners `tri` (prepared vertices from
+/// `base` on) into `slot`, field by field (a whole 14-byte `Tri` built and
+/// copied was a `memcpy` call on the M0).
+#[inline(always)]
+fn put_tri(slot: &mut Tri, tri: &[u16; 3], base: usize, rows: [u16; 2], color: Rgb8, back: bool) {
+    // base + index < u16::MAX (checked by the vertex pass).
+    slot.v = tri.map(|i| (base + usize::from(i)) as u16);
+    slot.rows = rows;
+    slot.color = color;
+    slot.back = back;
 }
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
@@ -503,13 +535,9 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if r0 >= r1 {
             continue;
         }
-        let slot = slots.next()?;
-        // base + index < u16::MAX (checked by the vertex pass); rows within
-        // `0..=height <= 4096`.
-        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
-        slot.rows = [r0 as u16, r1 as u16];
-        slot.color = color(t, back);
-        slot.back = back;
+        // Rows within `0..=height <= 4096`.
+        let rows = [r0 as u16, r1 as u16];
+        put_tri(slots.next()?, tri, base, rows, color(t, back), back);
         nt += 1;
     }
     Some(nt)
@@ -517,66 +545,51 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
 
 /// The projection loop of the fused kernel: screen positions into `xy`,
 /// depths into the first of every `S` values; returns the largest x and y
-/// as `u32` (a negative coordinate counts as beyond every screen).
-/// `CLAMP = false` only when [`Fused::depth_in_range`].
+/// and the smallest y as `u32` (a negative coordinate counts as beyond
+/// every screen). `CLAMP = false` only when [`Fused::depth_in_range`].
+/// `MARKED`: only the vertices not marked (negative) by [`cull_light`];
+/// the marked ones get [`UNUSED`] and stay out of the box.
 #[inline(always)]
 #[allow(clippy::cast_sign_loss)]
-fn project_loop<const CLAMP: bool, const S: usize, L>(
+fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
     f: &Fused,
     positions: &[[i16; 3]],
     xy: &mut [[i32; 2]],
     vals: &mut [L],
     depth: impl Fn(i32) -> L,
-) -> [u32; 2] {
-    let (mut ux, mut uy) = (0u32, 0u32);
+) -> [u32; 3] {
+    let (mut ux, mut uy, mut ly) = (0u32, 0u32, u32::MAX);
     let verts = positions.iter().zip(xy.iter_mut());
     for ((p, out), v) in verts.zip(vals.chunks_exact_mut(S)) {
-        let (s, d) = f.project::<CLAMP>(*p);
-        *out = s;
-        ux = ux.max(s[0] as u32);
-        uy = uy.max(s[1] as u32);
-        if let Some(first) = v.first_mut() {
-            *first = depth(d);
-        }
-    }
-    [ux, uy]
-}
-
-/// [`project_loop`] over the vertices not marked [`UNUSED`] by
-/// [`cull_light`] (they keep the mark and stay out of the box).
-#[inline(always)]
-#[allow(clippy::cast_sign_loss)]
-fn project_marked<const CLAMP: bool, const S: usize, L>(
-    f: &Fused,
-    positions: &[[i16; 3]],
-    xy: &mut [[i32; 2]],
-    vals: &mut [L],
-    depth: impl Fn(i32) -> L,
-) -> [u32; 2] {
-    let (mut ux, mut uy) = (0u32, 0u32);
-    let verts = positions.iter().zip(xy.iter_mut());
-    for ((p, out), v) in verts.zip(vals.chunks_exact_mut(S)) {
-        // `UNUSED` is the only negative mark (the others are 0).
-        if out[0] < 0 {
+        // A negative mark is a skipped vertex ([`mark_vertices`]): it
+        // gets the one mark the triangle loops know.
+        if MARKED && out[0] < 0 {
+            out[0] = UNUSED;
             continue;
         }
         let (s, d) = f.project::<CLAMP>(*p);
         *out = s;
         ux = ux.max(s[0] as u32);
         uy = uy.max(s[1] as u32);
+        if ROWS_FROM_BOX {
+            ly = ly.min(s[1] as u32);
+        }
         if let Some(first) = v.first_mut() {
             *first = depth(d);
         }
     }
-    [ux, uy]
+    [ux, uy, ly]
 }
 
-/// The marks of [`cull_light`]: [`UNUSED`] or 0 into `xy[0]`. Out of
-/// line, the test's constants in registers.
+/// The marks of [`cull_light`] into `xy[0]`: [`EarlyCull::margin`],
+/// negative exactly for a skipped vertex (the value itself, not a
+/// select: measured 29 -> 21 instructions per vertex on the Cortex-M4).
+/// Out of line, the test's constants in registers.
 #[inline(never)]
 fn mark_vertices(c: EarlyCull, normals: &[[i16; 3]], cones: &[[i32; 2]], xy: &mut [[i32; 2]]) {
     for ((a, cone), out) in normals.iter().zip(cones).zip(xy.iter_mut()) {
-        out[0] = if c.skip(*a, *cone) { UNUSED } else { 0 };
+        // Negative exactly for a skipped vertex.
+        out[0] = c.margin(*a, *cone);
     }
 }
 
@@ -759,6 +772,7 @@ impl<P: Profile> Preparer<'_, P> {
         };
         let t_start = self.nt;
         self.bbox = None;
+        self.rows = None;
         self.marked = false;
         let (place, reach, radius) = placement(&self.view.planes, &mesh, &ctx.mv);
         // Beyond half the scalar's range, an eye-space coordinate or a
@@ -804,15 +818,18 @@ impl<P: Profile> Preparer<'_, P> {
             }
         }
         let tris = t_start..self.nt;
-        let rows = self
-            .ws
-            .tris
-            .get(tris.clone())
-            .unwrap_or(&[])
-            .iter()
-            .fold([u16::MAX, 0], |[lo, hi], t| {
-                [lo.min(t.rows[0]), hi.max(t.rows[1])]
-            });
+        let rows = match self.rows {
+            Some(rows) => rows,
+            None => self
+                .ws
+                .tris
+                .get(tris.clone())
+                .unwrap_or(&[])
+                .iter()
+                .fold([u16::MAX, 0], |[lo, hi], t| {
+                    [lo.min(t.rows[0]), hi.max(t.rows[1])]
+                }),
+        };
         Ok(PreparedObject {
             layout,
             verts: ctx.v_start..self.nv,
@@ -959,9 +976,10 @@ impl<P: Profile> Preparer<'_, P> {
                 .filter(|_| ctx.normals.len() == ctx.positions.len());
             let one = levels.as_ref().and_then(|l| l.one());
             // Back faces decided in object space (culled objects with
-            // baked culling planes, not mirrored).
-            let early = match (ctx.cull, ctx.mesh.vertex_cones()) {
-                (true, Some(_)) => EarlyCull::new(
+            // baked culling cones, not mirrored, large enough to pay for
+            // the set-up), computed only for the layouts that use it.
+            let early = || match (ctx.cull, ctx.mesh.vertex_cones()) {
+                (true, Some(c)) if c.len() >= EARLY_CULL_MIN_VERTICES => EarlyCull::new(
                     m,
                     t,
                     pj.k,
@@ -971,22 +989,40 @@ impl<P: Profile> Preparer<'_, P> {
                 ),
                 _ => None,
             };
-            let e = early.as_ref();
+            // Normals checked by `Mesh::with_vertex_cones` (`|n|² <=
+            // MAX_AXIS2`) under a light that keeps the clamps idle.
+            let bounded = ctx.mesh.vertex_cones().is_some()
+                && one.as_ref().is_some_and(|o| o.bounded(MAX_AXIS2));
             match (ctx.layout, &levels, one) {
+                (Layout::GouraudMono, _, Some(o)) if bounded => {
+                    let e = early();
+                    let l = Some(|n| o.at_bounded::<true>(n));
+                    return self.kernel_fused::<2>(ctx, &f, l, e.as_ref());
+                }
+                (Layout::GouraudRgb, _, Some(o)) if bounded => {
+                    let e = early();
+                    let l = Some(|n| o.at_bounded::<false>(n));
+                    return self.kernel_fused::<4>(ctx, &f, l, e.as_ref());
+                }
                 (Layout::Flat, _, _) => {
-                    return self.kernel_fused::<1>(ctx, &f, None::<fn(_) -> _>, e)
+                    let e = early();
+                    return self.kernel_fused::<1>(ctx, &f, None::<fn(_) -> _>, e.as_ref());
                 }
                 (Layout::GouraudMono, _, Some(o)) => {
-                    return self.kernel_fused::<2>(ctx, &f, Some(|n| o.at::<true>(n)), e)
+                    let e = early();
+                    return self.kernel_fused::<2>(ctx, &f, Some(|n| o.at::<true>(n)), e.as_ref());
                 }
                 (Layout::GouraudMono, Some(l), None) => {
-                    return self.kernel_fused::<2>(ctx, &f, Some(|n| l.at::<true>(n)), e)
+                    let e = early();
+                    return self.kernel_fused::<2>(ctx, &f, Some(|n| l.at::<true>(n)), e.as_ref());
                 }
                 (Layout::GouraudRgb, _, Some(o)) => {
-                    return self.kernel_fused::<4>(ctx, &f, Some(|n| o.at::<false>(n)), e)
+                    let e = early();
+                    return self.kernel_fused::<4>(ctx, &f, Some(|n| o.at::<false>(n)), e.as_ref());
                 }
                 (Layout::GouraudRgb, Some(l), None) => {
-                    return self.kernel_fused::<4>(ctx, &f, Some(|n| l.at::<false>(n)), e)
+                    let e = early();
+                    return self.kernel_fused::<4>(ctx, &f, Some(|n| l.at::<false>(n)), e.as_ref());
                 }
                 _ => {}
             }
@@ -1041,10 +1077,10 @@ impl<P: Profile> Preparer<'_, P> {
         let pos = ctx.positions;
         let depth = P::depth_q30;
         let bbox = match (f.depth_in_range, marked) {
-            (true, false) => project_loop::<false, S, _>(f, pos, xy, vals, depth),
-            (false, false) => project_loop::<true, S, _>(f, pos, xy, vals, depth),
-            (true, true) => project_marked::<false, S, _>(f, pos, xy, vals, depth),
-            (false, true) => project_marked::<true, S, _>(f, pos, xy, vals, depth),
+            (true, false) => project_loop::<false, false, S, _>(f, pos, xy, vals, depth),
+            (false, false) => project_loop::<false, true, S, _>(f, pos, xy, vals, depth),
+            (true, true) => project_loop::<true, false, S, _>(f, pos, xy, vals, depth),
+            (false, true) => project_loop::<true, true, S, _>(f, pos, xy, vals, depth),
         };
         if let (false, Some(l)) = (marked, levels) {
             for (v, nrm) in vals.chunks_exact_mut(S).zip(ctx.normals) {
@@ -1345,7 +1381,7 @@ impl<P: Profile> Preparer<'_, P> {
                 i64::from(self.width) * i64::from(s) - i64::from(s / 2),
                 i64::from(self.height) * i64::from(s),
             );
-            let visible = self.bbox.is_some_and(|[x1, y1]| {
+            let visible = self.bbox.is_some_and(|[x1, y1, _]| {
                 i64::from(x1) <= xl && i64::from(y1) <= yl && xl < 1 << 15 && yl < 1 << 15
             });
             if visible {
@@ -1393,13 +1429,20 @@ impl<P: Profile> Preparer<'_, P> {
                         }
                     },
                 };
-                return match nt {
-                    Some(nt) => {
-                        self.nt = nt;
-                        Ok(())
-                    }
-                    None => Err(self.cap(Part::Triangles)),
+                let Some(nt_new) = nt else {
+                    return Err(self.cap(Part::Triangles));
                 };
+                // The rows of every projected vertex: they hold the rows
+                // of every kept triangle (`first_row` is monotonic; every
+                // y within `0..=height << sub` here), without a pass over
+                // the triangles (1 498 of them: 14 K instructions on the
+                // Cortex-M4).
+                if let (Some([_, y1, y0]), true) = (self.bbox, ROWS_FROM_BOX && nt_new > self.nt) {
+                    let r = |y: u32| first_row(y as i32, sub) as u16;
+                    self.rows = Some([r(y0), r(y1)]);
+                }
+                self.nt = nt_new;
+                return Ok(());
             }
             let nt = triangles_inside(
                 ctx.tris,
