@@ -56,7 +56,7 @@
 //! threshold's factors, lower bounds for their divisors).
 //!
 //! Per vertex the test is 32-bit: `(d >> sh) - a · E_q > gm · slack + rk
-//! · spread + bias` with the baked `d = a · P` (see [`EarlyCull::skip`]
+//! · spread + bias` with the baked `d = a · P` (see [`EarlyCull::margin`]
 //! for the ranges: nothing wraps). Only objects with `det M > 0` use it.
 
 use crate::mesh::{Bound, SLACK_FRAC_BITS, SLACK_LENGTH};
@@ -357,27 +357,27 @@ impl EarlyCull {
         })
     }
 
-    /// Whether every face of the vertex with axis `a` (its normal) and
-    /// cone `[d, slack | spread << 16]`
-    /// ([`Mesh::with_vertex_cones`](crate::mesh::Mesh::with_vertex_cones),
-    /// checked by the mesh) certainly faces away: their rounded screen
-    /// areas are then positive, and the vertex needs no projection.
-    ///
-    /// No overflow: `|d >> sh| < 2^30 >> 2`, `|a · e| < 28 400 · 2^12 <
-    /// 2^27`, so the left side is below `2^28 + 2^27`; the threshold
-    /// `gm · slack + rk · spread + bias < 2^30 + 2^29 + 2^26 + 1`. A slack
-    /// of 65 535 (faces the bake could not bound) never passes: the
-    /// threshold is then at least `2^13 · 65 535 > 2^28 + 2^27`.
+    /// Whether the vertex is skipped: [`EarlyCull::margin`] is negative.
     #[cfg(test)]
     pub(crate) fn skip(&self, a: [i16; 3], cone: [i32; 2]) -> bool {
         self.margin(a, cone) < 0
     }
 
-    /// The threshold less the left side of [`EarlyCull::skip`]'s test:
-    /// negative exactly when the vertex is skipped (one value a vertex
-    /// loop can store as its mark). Within `i32`: the left side lies in
-    /// `(-(2^28 + 2^27), 2^28 + 2^27)`, the threshold in `[0, 2^30 + 2^29
-    /// + 2^26 + 1]` (see `skip`).
+    /// Whether every face of the vertex with axis `a` (its normal) and
+    /// cone `[d, slack | spread << 16]`
+    /// ([`Mesh::with_vertex_cones`](crate::mesh::Mesh::with_vertex_cones),
+    /// checked by the mesh) certainly faces away, as a sign: the threshold
+    /// `gm · slack + rk · spread + bias` less the left side `(d >> sh) - a
+    /// · e`, negative exactly when every face's rounded screen area is
+    /// positive (the vertex then needs no projection). One value a vertex
+    /// loop can store as its mark.
+    ///
+    /// No overflow: `|d >> sh| < 2^30 >> 2`, `|a · e| < 28 400 · 2^12 <
+    /// 2^27`, so the left side is below `2^28 + 2^27`; the threshold is
+    /// below `2^30 + 2^29 + 2^26 + 1`; every partial sum and the result
+    /// below `2^30 + 2^29 + 2^28 + 2^27 + 2^26 + 1 < 2^31`. A slack of 65
+    /// 535 (faces the bake could not bound) never passes: the threshold
+    /// is then at least `2^13 · 65 535 > 2^28 + 2^27`.
     #[inline(always)]
     pub(crate) fn margin(&self, a: [i16; 3], cone: [i32; 2]) -> i32 {
         let slack = cone[1] & 0xFFFF;

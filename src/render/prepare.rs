@@ -8,11 +8,19 @@
 //!
 //! | stage | Cortex-M4 | Cortex-M0 |
 //! |---|---:|---:|
-//! | culling in object space ([`EarlyCull`], 1 839 vertices, 669 skipped) | 29 / vertex | 37 / vertex |
-//! | vertex loops ([`Fused`] projection and depth, then [`OneLight`]) over the 1 170 others | 180 K | 300 K |
+//! | culling in object space ([`EarlyCull`], 1 839 vertices, 669 skipped) | 21 / vertex | 39 / vertex |
+//! | vertex loops ([`Fused`] projection and depth, then [`OneLight`]) over the 1 170 others | 173 K | 291 K |
 //! | triangle loop (`triangles_visible`, faces with a skipped corner dropped first) | 42 / triangle | 64 / triangle |
-//! | per object (sphere, matrices, fused rows, culling constants) | 28 K | 46 K |
-//! | whole geometry | 0.425 M | 0.681 M |
+//! | per object (sphere, matrices, fused rows, culling constants) | 24 K | 46 K |
+//! | whole geometry | 0.390 M | 0.674 M |
+//!
+//! The culling marks are the test's margin itself (negative: skipped;
+//! 29 -> 21 per vertex on the Cortex-M4 against a select of two
+//! constants), and a visible object's rows come from its vertices' box
+//! rather than a pass over its kept triangles (14 K on the Cortex-M4;
+//! [`ROWS_FROM_BOX`]): 0.425 -> 0.390 M. Objects of fewer than
+//! [`EARLY_CULL_MIN_VERTICES`] vertices and Phong objects skip the
+//! culling set-up (cubes-and-sphere: 0.304 -> 0.272 M on the Cortex-M4).
 //!
 //! Culling in object space ([`EarlyCull`]) skips the vertices all of whose
 //! faces are certainly back-facing (their rounded screen area must be
@@ -299,7 +307,7 @@ const EARLY_CULL_MIN_VERTICES: usize = 300;
 const OUTSIDE: i32 = i32::MIN;
 
 /// `xy[0]` of a prepared vertex that no kept triangle needs: every
-/// triangle using it is certainly back-facing ([`EarlyCull::skip`]), and
+/// triangle using it is certainly back-facing ([`EarlyCull::margin`]), and
 /// the vertex pass skips it. Never drawn, never read by the rasterizer; no
 /// projected vertex has it (they are clamped to ±`COORD_LIMIT_PX` pixels).
 const UNUSED: i32 = i32::MIN + 1;
@@ -535,9 +543,14 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if r0 >= r1 {
             continue;
         }
-        // Rows within `0..=height <= 4096`.
-        let rows = [r0 as u16, r1 as u16];
-        put_tri(slots.next()?, tri, base, rows, color(t, back), back);
+        let slot = slots.next()?;
+        // base + index < u16::MAX (checked by the vertex pass); rows within
+        // `0..=height <= 4096`. (Not `put_tri`: the same stores, but the
+        // M0 build of the flat loop measured 28 K instructions slower.)
+        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
+        slot.rows = [r0 as u16, r1 as u16];
+        slot.color = color(t, back);
+        slot.back = back;
         nt += 1;
     }
     Some(nt)
@@ -595,7 +608,7 @@ fn mark_vertices(c: EarlyCull, normals: &[[i16; 3]], cones: &[[i32; 2]], xy: &mu
 
 /// The first vertex loop of a culled object with culling cones: a
 /// vertex whose faces are all certainly back-facing
-/// ([`EarlyCull::skip`], on its normal, the cone's axis) is marked
+/// ([`EarlyCull::margin`], on its normal, the cone's axis) is marked
 /// [`UNUSED`] in `xy[0]`, every other 0. Then the others are lit
 /// (`levels`: the levels of a normal into values `1..S`) in a second
 /// loop: fewer constants live in each.
