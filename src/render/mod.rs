@@ -182,8 +182,10 @@ pub struct PreparedObject {
     pub stride: usize,
     /// Its prepared triangles.
     pub tris: Range<usize>,
-    /// Rows `rows[0]..rows[1]` its triangles can cover (empty when it has
-    /// none): a band outside them skips the object.
+    /// Rows `rows[0]..rows[1]` that hold every row its triangles can cover
+    /// (possibly a few more: for an object wholly on screen, the range of
+    /// its projected vertices; empty when it has no triangle): a band
+    /// outside them skips the object.
     pub rows: [u16; 2],
 }
 
