@@ -510,6 +510,26 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         dp: [i32; 3],
         back: bool,
         len: u32,
+        test: impl FnMut(u32) -> bool,
+        write: impl FnMut(u32, Rgb8),
+    ) -> u32 {
+        let mut sc = PointScratch::new();
+        self.fill_with(&mut sc, n, dn, p, dp, back, len, test, write)
+    }
+
+    /// [`PhongKernel::fill`] with the point loop's buffers kept by the
+    /// caller.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn fill_with(
+        &self,
+        sc: &mut PointScratch,
+        n: [i32; 3],
+        dn: [i32; 3],
+        p: [i32; 3],
+        dp: [i32; 3],
+        back: bool,
+        len: u32,
         mut test: impl FnMut(u32) -> bool,
         mut write: impl FnMut(u32, Rgb8),
     ) -> u32 {
@@ -522,6 +542,29 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             return self.fill_one(l, n, dn, len, test, write);
         }
         if let [l] = &self.lights[..] {
+            if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
+                // Positions and light offsets within ±2^29 over the span,
+                // steps within 2^18 (the point loop's 64-bit set-up).
+                let end = |c: i32, d: i32| i64::from(c) + i64::from(d) * i64::from(len);
+                let near = |v: i64| v.unsigned_abs() < 1 << 29;
+                let ok = (0..3).all(|a| {
+                    let (p0, p1) = (i64::from(p[a]), end(p[a], dp[a]));
+                    let lp = i64::from(l.at[a]);
+                    dp[a].unsigned_abs() <= 1 << 18
+                        && near(p0)
+                        && near(p1)
+                        && near(lp - p0)
+                        && near(lp - p1)
+                });
+                if ok {
+                    let (n, dn) = if back {
+                        (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
+                    } else {
+                        (n, dn)
+                    };
+                    return self.fill_point(sc, l, (n, dn, p, dp), len, test, write);
+                }
+            }
             return self.fill_general_one(l, n, dn, p, dp, back, len, test, write);
         }
         let mut s = self.begin(n, dn, p, dp, back);
@@ -1076,6 +1119,7 @@ pub struct PhongFill<'t, 'd, 'b, 'k, 's, T, D: DepthFormat, R> {
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
     drawn: u32,
+    scratch: PointScratch,
 }
 
 impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
@@ -1103,6 +1147,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             kernel,
             back: false,
             drawn: 0,
+            scratch: PointScratch::new(),
         })
     }
 
@@ -1127,6 +1172,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
         let k = self.kernel;
         let back = self.back;
         let drawn = &mut self.drawn;
+        let sc = &mut self.scratch;
         match self.depth.as_deref_mut() {
             Some(d) => {
                 let Some(drow) = d.span_mut(y, x0, x1) else {
@@ -1140,19 +1186,22 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                             *px = enc(c);
                         }
                     };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count =
+                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
                 } else {
                     let t = &mut *self.target;
                     let put = |i: u32, c| {
                         t.write_pixel(x0 + i, y, enc(c));
                     };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count =
+                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
                 }
                 *drawn += count;
             }
             None => {
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    k.fill(
+                    k.fill_with(
+                        sc,
                         n,
                         dn,
                         p,
@@ -1168,7 +1217,8 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                     );
                 } else {
                     let t = &mut *self.target;
-                    k.fill(
+                    k.fill_with(
+                        sc,
                         n,
                         dn,
                         p,
@@ -1197,6 +1247,7 @@ pub struct PhongKernelShader<'k, 's, R> {
     kernel: &'k PhongKernel<'s, R>,
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
+    scratch: PointScratch,
 }
 
 impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
@@ -1205,6 +1256,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         Self {
             kernel,
             back: false,
+            scratch: PointScratch::new(),
         }
     }
 
@@ -1221,7 +1273,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn fill_row<L: Lerp, F: PixelFormat, D: DepthFormat>(
-        &self,
+        &mut self,
         row: &mut [F::Raw],
         drow: Option<&mut [D::Raw]>,
         z: L,
@@ -1242,6 +1294,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         match drow {
             Some(drow) => depth_fill::<L, D, R>(
                 self.kernel,
+                &mut self.scratch,
                 drow,
                 z,
                 dz,
@@ -1250,9 +1303,17 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
                 len,
                 put,
             ),
-            None => self
-                .kernel
-                .fill(n, dn, p, dp, self.back, len, |_| true, put),
+            None => self.kernel.fill_with(
+                &mut self.scratch,
+                n,
+                dn,
+                p,
+                dp,
+                self.back,
+                len,
+                |_| true,
+                put,
+            ),
         }
     }
 }
@@ -1335,6 +1396,7 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 #[inline(always)]
 fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
+    sc: &mut PointScratch,
     drow: &mut [D::Raw],
     z: L,
     dz: L,
@@ -1344,7 +1406,7 @@ fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     mut put: impl FnMut(u32, Rgb8),
 ) -> u32 {
     let mut t = DepthTest::<L, D> { drow, z, dz };
-    k.fill(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
+    k.fill_with(sc, n, dn, p, dp, back, len, |i| t.test(i), &mut put)
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
@@ -1373,5 +1435,7 @@ impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 6>
 }
 
 mod one;
+mod point;
+use point::PointScratch;
 #[cfg(test)]
 mod tests;

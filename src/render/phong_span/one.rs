@@ -68,10 +68,10 @@ fn advance(v: u64, d1: u64, d2: u64, k: u32) -> (u64, u64) {
 }
 
 /// The colour constants of one light (copied into the loop's locals).
-struct Colour {
-    amb: [i32; 3],
-    d: [i32; 3],
-    s: [i32; 3],
+pub(super) struct Colour {
+    pub(super) amb: [i32; 3],
+    pub(super) d: [i32; 3],
+    pub(super) s: [i32; 3],
 }
 
 /// The exact state of a span of one light (`u64` forward differences,
@@ -96,7 +96,7 @@ struct OneSpan {
 
 /// `r | g << 8 | b << 16`.
 #[inline(always)]
-fn pack(c: Rgb8) -> u32 {
+pub(super) fn pack(c: Rgb8) -> u32 {
     u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16
 }
 
@@ -282,7 +282,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut nn, mut nd1, nd2) = nn;
         let (mut q, mut qd1, qd2) = qm;
         for o in buf.iter_mut().take(k as usize) {
-            *o = pack(self.pixel::<SPEC>(c, nn, nl, q));
+            *o = pack(self.pixel::<SPEC, QM_FRAC>(c, nn, nl, q));
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
             if SPEC {
@@ -294,10 +294,16 @@ impl<R: Real> PhongKernel<'_, R> {
     }
 
     /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L` (Q30) and
-    /// `Qm` (Q20 segments).
+    /// `Qm` (`QF` fraction bits of table segments, `QF >= 7`).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
-    fn pixel<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q: i32) -> Rgb8 {
+    pub(super) fn pixel<const SPEC: bool, const QF: u32>(
+        &self,
+        c: &Colour,
+        nn: i32,
+        nl: i32,
+        q: i32,
+    ) -> Rgb8 {
         // 64 segments of 2^24 (Q30) from 1/4.
         let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
         let (a, b) = (RS[j], RS[j + 1]);
@@ -317,7 +323,7 @@ impl<R: Real> PhongKernel<'_, R> {
             // Qm in Q7 segments, saturated below 2^15 (256 segments,
             // beyond the table's 1.25 · 128); the position in Q21
             // segments below 2^31, saturated at the table's end.
-            let qs = (q >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1) as u32;
+            let qs = (q >> (QF - 7)).clamp(0, (1 << 15) - 1) as u32;
             let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
             let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
             let f = (pos >> 5) & 0xFFFF;
@@ -359,9 +365,9 @@ impl<R: Real> PhongKernel<'_, R> {
             let k = lin(n, l.p2);
             let q = sq3(cross(n, l.p1)).wrapping_add(wmul(k, k) as u64);
             let qm = mul_shr48(q as i64, self.kf).clamp(0, QM_MAX) as i32;
-            self.pixel::<true>(&cl, (nn >> 30) as i32, nl, qm)
+            self.pixel::<true, QM_FRAC>(&cl, (nn >> 30) as i32, nl, qm)
         } else {
-            self.pixel::<false>(&cl, (nn >> 30) as i32, nl, 0)
+            self.pixel::<false, QM_FRAC>(&cl, (nn >> 30) as i32, nl, 0)
         }
     }
 }

@@ -413,3 +413,53 @@ fn seed_row_11_fast_shaders() {
         }
     }
 }
+
+/// The point loop (module `point`): one point light, local viewer,
+/// Phong, shininess below 256, on spans like the firmware's and the
+/// dodecahedron's (a light close to the surface: steps up to 1/20 of
+/// `|l|`), across the highlight: every chunk runs the 32-bit loop, within
+/// 1 level of `f64`.
+#[test]
+fn point_loop_runs() {
+    let mut worst = 0f64;
+    for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
+        for &(lp, p0, dp) in &[
+            ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+            ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.02, 0.0, 0.002]),
+            ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.01, 0.003, -0.004]),
+        ] {
+            let c = Case {
+                mat: Material {
+                    color: v3(1.0, 0.7, 0.5),
+                    ka: q(0.1),
+                    kd: q(0.6),
+                    ks: q(0.9),
+                    shininess: q(n),
+                },
+                lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
+                ambient: q(0.2),
+                specular: Specular::Phong,
+                viewer: Viewer::Local,
+            };
+            let n0 = unit([-0.4, 0.1, 1.0]);
+            let dn = [0.006, 0.0, -0.002];
+            let len = 100;
+            let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
+            let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
+            let span = (q30(n0), q30(dn), q16(p0), q16(dp));
+            for i in (0..len).step_by(point::PCHUNK) {
+                let kk = (len - i).min(point::PCHUNK as u32) as usize;
+                assert!(
+                    k.point_loop_runs(span, i, kk),
+                    "n {n} light {lp:?} chunk {i}"
+                );
+            }
+            let e = span_error(&c, n0, dn, p0, dp, len as i32);
+            worst = worst.max(e);
+        }
+    }
+    std::println!("point loop vs f64: {worst:.3} levels");
+    assert!(worst <= 1.0, "{worst}");
+}
