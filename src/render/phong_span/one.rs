@@ -282,7 +282,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut nn, mut nd1, nd2) = nn;
         let (mut q, mut qd1, qd2) = qm;
         for o in buf.iter_mut().take(k as usize) {
-            *o = pack(self.pixel::<SPEC, QM_FRAC>(c, nn, nl, q));
+            *o = pack(self.pixel::<SPEC>(c, nn, nl, q));
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
             if SPEC {
@@ -294,16 +294,10 @@ impl<R: Real> PhongKernel<'_, R> {
     }
 
     /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L` (Q30) and
-    /// `Qm` (`QF` fraction bits of table segments, `QF >= 7`).
+    /// `Qm` (Q20 segments).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
-    pub(super) fn pixel<const SPEC: bool, const QF: u32>(
-        &self,
-        c: &Colour,
-        nn: i32,
-        nl: i32,
-        q: i32,
-    ) -> Rgb8 {
+    fn pixel<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q: i32) -> Rgb8 {
         // 64 segments of 2^24 (Q30) from 1/4.
         let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
         let (a, b) = (RS[j], RS[j + 1]);
@@ -323,7 +317,7 @@ impl<R: Real> PhongKernel<'_, R> {
             // Qm in Q7 segments, saturated below 2^15 (256 segments,
             // beyond the table's 1.25 · 128); the position in Q21
             // segments below 2^31, saturated at the table's end.
-            let qs = (q >> (QF - 7)).clamp(0, (1 << 15) - 1) as u32;
+            let qs = (q >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1) as u32;
             let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
             let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
             let f = (pos >> 5) & 0xFFFF;
@@ -365,9 +359,9 @@ impl<R: Real> PhongKernel<'_, R> {
             let k = lin(n, l.p2);
             let q = sq3(cross(n, l.p1)).wrapping_add(wmul(k, k) as u64);
             let qm = mul_shr48(q as i64, self.kf).clamp(0, QM_MAX) as i32;
-            self.pixel::<true, QM_FRAC>(&cl, (nn >> 30) as i32, nl, qm)
+            self.pixel::<true>(&cl, (nn >> 30) as i32, nl, qm)
         } else {
-            self.pixel::<false, QM_FRAC>(&cl, (nn >> 30) as i32, nl, 0)
+            self.pixel::<false>(&cl, (nn >> 30) as i32, nl, 0)
         }
     }
 }

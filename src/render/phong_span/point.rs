@@ -46,7 +46,7 @@
 //! (`PhongKernel::general_px`).
 
 use super::one::{pack, Colour};
-use super::{fallback, rsqrt_n, sq3, KLight, LightSpan, PhongKernel};
+use super::{fallback, rsqrt_n, sq3, KLight, LightSpan, PhongKernel, RS, SPEC_SEGMENTS};
 use crate::num::wide::{clz32, wmul};
 use crate::num::Real;
 use crate::target::Rgb8;
@@ -64,22 +64,10 @@ fn mulhi(a: i32, b: i32) -> i32 {
     (wmul(a, b) >> 32) as i32
 }
 
-/// `round(x / 2^s)` (`s > 0`) or `x · 2^-s` (`s <= 0`), `None` past
-/// `i32`.
+/// `round(x / 2^s)` for `s` in `1..64`, `None` past `i32`.
 #[inline(always)]
-fn shr_round(x: i64, s: i32) -> Option<i32> {
-    let v = if s > 0 {
-        let s = s.unsigned_abs().min(63);
-        (x >> (s - 1)).wrapping_add(1) >> 1
-    } else {
-        let s = s.unsigned_abs().min(31);
-        let v = x.wrapping_shl(s);
-        if v >> s != x {
-            return None;
-        }
-        v
-    };
-    i32::try_from(v).ok()
+fn shr_round(x: i64, s: u32) -> Option<i32> {
+    i32::try_from((x >> (s - 1)).wrapping_add(1) >> 1).ok()
 }
 
 /// `(f(0), f(1) - f(0), f(2) - 2 f(1) + f(0))` of `f(i) = (a + i·da)·(b
@@ -102,7 +90,7 @@ fn prod(a: [i32; 3], da: [i32; 3], b: [i32; 3], db: [i32; 3]) -> [i64; 3] {
 /// forward difference over `k` steps, with bounds of its values over them
 /// (`None`: a value may leave `i32`).
 #[inline(always)]
-fn fwd32(c: [i64; 3], s: i32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
+fn fwd32(c: [i64; 3], s: u32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
     let x0 = shr_round(c[0], s)?;
     let x1 = shr_round(c[1], s)?;
     let x2 = shr_round(c[2], s)?;
@@ -123,20 +111,16 @@ fn fwd32(c: [i64; 3], s: i32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
 /// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s` within `2^-6`
 /// (relative): `s (1 + e/2 + 3e²/8 + 5e³/16)` with `e = 1 - b s²` (the
 /// series of `(1 - e)^(-1/2)` to its fourth term: within `0.28 e⁴`, plus
-/// the truncations' `2^-23`).
+/// the truncations' `2^-23`). Products of operands of unknown sign (one
+/// `SMMUL` each on the M4).
 #[inline(always)]
 fn newton(s: i32, b: i32) -> i32 {
-    let y2 = mulhi(s, s); // Q26
-    let e = (1 << 23) - mulhi(b, y2); // Q23
-    let e31 = e << 8; // e · 2^31 (|e| < 1)
-    let e2 = mulhi(e31, e31); // e² · 2^30
-    let e3 = mulhi(e2, e31); // e³ · 2^29
-    let x = e31
-        .wrapping_add(e2)
-        .wrapping_add(e2 >> 1)
-        .wrapping_add(e3 << 1)
-        .wrapping_add(e3 >> 1);
-    s.wrapping_add(mulhi(s, x))
+    let sb = mulhi(s, b); // Q26 of s·b (<= 2^28.5)
+    let e31 = ((1 << 23) - mulhi(sb, s)) << 8; // e · 2^31 (|e| < 1)
+                                               // 3/8 + 5e/16 (Q32), e (3/8 + 5e/16) (Q31), e² (...) (Q30).
+    let inner = 0x6000_0000i32.wrapping_add(e31 >> 1).wrapping_add(e31 >> 3);
+    let e2 = mulhi(e31, mulhi(e31, inner));
+    s.wrapping_add(mulhi(s, e31.wrapping_add(e2 << 2)))
 }
 
 /// A chunk's 32-bit state.
@@ -152,29 +136,43 @@ struct Chunk {
     yv: (i32, i32),
 }
 
-/// The exponent `h` with `x · 4^-h` in `[1/2, 2) · 2^32` (`x >= 1`).
+/// `v` and its step `d` times `2^s`, `s` making the largest component
+/// of `v` lie in `[2^28, 2^29)` (`None`: `v` zero or above `2^29`, or
+/// the step past `i32`).
 #[inline(always)]
-#[allow(clippy::cast_possible_wrap)]
-#[allow(clippy::cast_possible_truncation)]
-fn half_exp(x: u64) -> i32 {
-    // The crate's `clz32` (ARMv6-M: no count-leading-zeros instruction).
-    let (hi, lo) = ((x >> 32) as u32, x as u32);
-    let lz = if hi != 0 { clz32(hi) } else { 32 + clz32(lo) };
-    let bits = 64 - lz as i32;
-    (bits - 32) >> 1
+fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
+    let m = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
+    if m == 0 || m >= 1 << 29 {
+        return None;
+    }
+    let s = clz32(m) - 3;
+    let sh = |x: i32| {
+        let y = x.wrapping_shl(s);
+        (y >> s == x).then_some(y)
+    };
+    Some((
+        [sh(v[0])?, sh(v[1])?, sh(v[2])?],
+        [sh(d[0])?, sh(d[1])?, sh(d[2])?],
+    ))
 }
 
 /// Newton states `(y0 - 2δ, y0 - δ)` from table estimates `y0`, `y1` of
-/// `1/sqrt` at a chunk's first two pixels (`x`: Q29 in `[1/2, 2)` and the
-/// next value), `δ = y1 - y0`: the loop's first two seeds are `y0` and
-/// about `y1` (within `3 · 2^-11.4`).
+/// `1/sqrt` at a chunk's first two pixels (`x`: Q29 in `(1/6, 4)` and the
+/// next value's difference), `δ = y1 - y0`: the loop's first two seeds are
+/// `y0` and about `y1` (within `3 · 2^-11.4`).
 #[inline(always)]
 fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
-    // rsqrt_n: 2^16 / sqrt(x/2) for x/2 in [1/4, 5/4) (Q28), times
-    // 2^13 / sqrt 2 (5793, within 2^-13.8) gives Q29 of 1/sqrt(x).
+    // rsqrt_n: 2^16 / sqrt(f) for f in [1/4, 5/4) (Q28): f = x/4, x, 4x.
     let t = |x: i32| -> Option<i32> {
-        let r = rsqrt_n(x >> 2)?;
-        i32::try_from(r * 5793).ok()
+        let (f, s) = if x >= 1 << 29 {
+            (x >> 3, 12)
+        } else if x >= 1 << 27 {
+            (x >> 1, 13)
+        } else {
+            (x << 1, 14)
+        };
+        let r = rsqrt_n(f)?;
+        i32::try_from(r << s).ok()
     };
     let y0 = t(x0)?;
     let y1 = t(x0.wrapping_add(x1))?;
@@ -182,21 +180,22 @@ fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
     Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
 }
 
-/// Per-pixel values between the passes of a chunk: `1/|l̃|` (Q29), `n·L̂`
-/// (Q30), `n·V̂` (Q30), `L̂·V̂` (Q26).
+/// Per-pixel values between the passes of a chunk: `1/|l̃|` (Q29, then
+/// `G = 1/(|l̃| |ṽ|)` Q28), `n·L̂` (Q30), `(n·L̂)(n·V̂)` (Q28), `L̂·V̂`
+/// (Q26), the colour (`r | g << 8 | b << 16`).
 #[derive(Clone, Copy, Debug, Default)]
 struct Px {
     rl: i32,
     nl: i32,
-    nv: i32,
+    nlnv: i32,
     lv: i32,
+    col: u32,
 }
 
 /// The point loop's buffers (kept by the span stage: no zeroing per span).
 #[derive(Clone, Debug)]
 pub(crate) struct PointScratch {
     px: [Px; PCHUNK],
-    buf: [u32; PCHUNK],
 }
 
 impl PointScratch {
@@ -206,10 +205,10 @@ impl PointScratch {
             px: [Px {
                 rl: 0,
                 nl: 0,
-                nv: 0,
+                nlnv: 0,
                 lv: 0,
+                col: 0,
             }; PCHUNK],
-            buf: [0; PCHUNK],
         }
     }
 }
@@ -234,7 +233,8 @@ impl<R: Real> PhongKernel<'_, R> {
         while i < len {
             let k = (len - i).min(PCHUNK as u32);
             self.point_chunk(sc, l, (n, dn, p, dp), i, k as usize);
-            for (j, &c) in (i..i + k).zip(sc.buf.iter()) {
+            for (j, x) in (i..i + k).zip(sc.px.iter()) {
+                let c = x.col;
                 if test(j) {
                     write(j, Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8));
                 } else {
@@ -246,7 +246,7 @@ impl<R: Real> PhongKernel<'_, R> {
         len - failed
     }
 
-    /// The colours of the `k` pixels from pixel `i` into `sc.buf`.
+    /// The colours of the `k` pixels from pixel `i` into `sc.px`.
     #[inline(never)]
     #[allow(clippy::type_complexity)]
     fn point_chunk(
@@ -267,8 +267,8 @@ impl<R: Real> PhongKernel<'_, R> {
             Some(st) => self.point_run::<false>(&c, &st, k, sc),
             None => {
                 let (n, dn, p, dp) = span;
-                for (j, o) in (i..i + k as u32).zip(sc.buf.iter_mut()) {
-                    *o = pack(self.point_exact(l, n, dn, p, dp, j));
+                for (j, o) in (i..i + k as u32).zip(sc.px.iter_mut()) {
+                    o.col = pack(self.point_exact(l, n, dn, p, dp, j));
                 }
             }
         }
@@ -292,53 +292,53 @@ impl<R: Real> PhongKernel<'_, R> {
         let at = |v: [i32; 3], d: [i32; 3]| {
             [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(i as i32)))
         };
+        // Steps below 2^26 (normal: 1/16 a pixel; l̃, ṽ: below 1/8 of
+        // their largest component): the products below stay within i64.
+        let small = |d: [i32; 3]| d.iter().all(|c| c.unsigned_abs() < 1 << 26);
+        if !small(dn) {
+            return None;
+        }
         let nj = at(n, dn);
         let pj = at(p, dp);
         let vj = pj.map(i32::wrapping_neg);
         let dv = dp.map(i32::wrapping_neg);
         let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
-        let a = prod(nj, dn, nj, dn);
-        let b = prod(lj, dv, lj, dv);
-        let cc = prod(vj, dv, vj, dv);
-        let (b0, c0) = (b[0] as u64, cc[0] as u64);
-        if b0 == 0 || c0 == 0 {
+        let (lt, dlt) = scale(lj, dv)?;
+        let (vt, dvt) = scale(vj, dv)?;
+        if !small(dlt) || !small(dvt) {
             return None;
         }
-        let (hl, hv) = (half_exp(b0), half_exp(c0));
-        let (a32, alo, ahi) = fwd32(a, 30, k)?;
+        let (a32, alo, ahi) = fwd32(prod(nj, dn, nj, dn), 30, k)?;
         // The `1/|n|` table's range, with the drift (248 units) to spare.
         if alo < (1 << 28) + 256 || ahi >= (5 << 28) - 256 {
             return None;
         }
-        let (b32, blo, bhi) = fwd32(b, 2 * hl + 3, k)?;
-        let (c32, clo, chi) = fwd32(cc, 2 * hv + 3, k)?;
-        // |l̃|², |ṽ|² in (1/4, 4) (Q29), and steps of at most 1/16 of the
-        // length: |dl̃|² · 2^8 <= |l̃|² (x.2 = 2 |dl̃|²).
+        // |l̃|², |ṽ|² (Q29, from [1/4, 3) at the first pixel) within (1/6,
+        // 4), and steps of at most 1/16 of the length: |dl̃|² · 2^8 <= |l̃|²
+        // (x.2 = 2 |dl̃|²).
+        let (b32, blo, bhi) = fwd32(prod(lt, dlt, lt, dlt), 29, k)?;
+        let (c32, clo, chi) = fwd32(prod(vt, dvt, vt, dvt), 29, k)?;
         for (x, lo, hi) in [(b32, blo, bhi), (c32, clo, chi)] {
-            if lo <= (1 << 27) + 256 || hi >= (1 << 31) - 256 || i64::from(x.2) << 7 > lo - 256 {
+            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x.2) << 7 > lo - 256
+            {
                 return None;
             }
         }
         // |D̃| <= |n| |l̃| < 1.12 · 2 and |Ẽ| < 1.12 · 2 (Q29), |F̃| < 2 · 2
         // (Q28): within i32 over the chunk (the drift 248 units aside) by
-        // the checks above.
-        let x32 = |c: [i64; 3], s: i32| -> Option<(i32, i32, i32)> {
-            Some((
-                shr_round(c[0], s)?,
-                shr_round(c[1], s)?,
-                shr_round(c[2], s)?,
-            ))
+        // the checks above; the first and second differences wrap
+        // harmlessly (the values are exact modulo 2^32).
+        let x32 = |c: [i64; 3]| -> (i32, i32, i32) {
+            let r = |v: i64| ((v >> 29).wrapping_add(1) >> 1) as i32;
+            (r(c[0]), r(c[1]), r(c[2]))
         };
-        let d32 = x32(prod(nj, dn, lj, dv), hl + 17)?;
-        let e32 = x32(prod(nj, dn, vj, dv), hv + 17)?;
-        let f32_ = x32(prod(lj, dv, vj, dv), hl + hv + 4)?;
         Some(Chunk {
             a: a32,
             b: b32,
             c: c32,
-            d: d32,
-            e: e32,
-            f: f32_,
+            d: x32(prod(nj, dn, lt, dlt)),
+            e: x32(prod(nj, dn, vt, dvt)),
+            f: x32(prod(lt, dlt, vt, dvt)),
             yl: seeds(b32.0, b32.1)?,
             yv: seeds(c32.0, c32.1)?,
         })
@@ -385,9 +385,10 @@ impl<R: Real> PhongKernel<'_, R> {
             let (mut ya, mut yb) = st.yv;
             for o in sc.px.iter_mut().take(k) {
                 let y = newton(yb.wrapping_mul(2).wrapping_sub(ya), x);
-                o.nv = mulhi(e, y) << 4;
-                // G = 1/(|l̃| |ṽ|) < 4 (Q29) in place of 1/|l̃|.
-                o.rl = mulhi(o.rl, y) << 3;
+                // (n·L̂)(n·V̂): Q30 · Q30 -> Q28.
+                o.nlnv = mulhi(o.nl, mulhi(e, y) << 4);
+                // G = 1/(|l̃| |ṽ|) < 6 (Q28) in place of 1/|l̃|.
+                o.rl = mulhi(o.rl, y) << 2;
                 (ya, yb) = (yb, y);
                 x = x.wrapping_add(x1);
                 x1 = x1.wrapping_add(x2);
@@ -396,8 +397,8 @@ impl<R: Real> PhongKernel<'_, R> {
             }
             let (mut f, mut f1, f2) = st.f;
             for o in sc.px.iter_mut().take(k) {
-                // F̃ (Q28) · G (Q29): Q25, as Q26.
-                o.lv = mulhi(f, o.rl) << 1;
+                // F̃ (Q28) · G (Q28): Q24, as Q26.
+                o.lv = mulhi(f, o.rl) << 2;
                 f = f.wrapping_add(f1);
                 f1 = f1.wrapping_add(f2);
             }
@@ -405,19 +406,60 @@ impl<R: Real> PhongKernel<'_, R> {
         // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the colour.
         let kc = (self.kf << 11) as i32;
         let (mut a, mut a1, a2) = st.a;
-        for (o, x) in sc.buf.iter_mut().zip(sc.px.iter()).take(k) {
+        for x in sc.px.iter_mut().take(k) {
             let q = if SPEC {
                 let wa = (a >> 6)
                     .wrapping_add(mulhi(a, x.lv))
-                    .wrapping_sub(mulhi(x.nl, x.nv) >> 3);
-                mulhi(wa.clamp(0, 5 << 22) << 6, kc)
+                    .wrapping_sub(x.nlnv >> 3);
+                // Within [0, 4) (Q24), as Q28: the position K·w·A in Q15
+                // segments (saturated by `pixel` beyond the table).
+                mulhi(wa.clamp(0, (1 << 26) - 1) << 4, kc)
             } else {
                 0
             };
-            *o = pack(self.pixel::<SPEC, 17>(c, a, x.nl, q));
+            x.col = self.point_pixel::<SPEC>(c, a, x.nl, q);
             a = a.wrapping_add(a1);
             a1 = a1.wrapping_add(a2);
         }
+    }
+
+    /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L̂` (Q30) and
+    /// `K·w·A` (Q15 segments): as `PhongKernel::pixel`, without a branch
+    /// on `n·L̂` (the colour of `n·L̂ <= 0` is the ambient term alone).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+    fn point_pixel<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q: i32) -> u32 {
+        // 64 segments of 2^24 (Q30) from 1/4.
+        let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
+        let (a, b) = (RS[j], RS[j + 1]);
+        let t = ((nn as u32) >> 8) & 0xFFFF;
+        // 2^16 / |n| (<= 2^17).
+        let r = a - (((a - b) * t) >> 16);
+        let lit = nl > 0;
+        // N·L in Q15 (as `pixel`).
+        let nl15 = (((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16) as i32;
+        let sp = if SPEC {
+            let r14 = r >> 2;
+            let rr14 = (r14 * r14) >> 14;
+            let qs = (q >> 8).clamp(0, (1 << 15) - 1) as u32;
+            let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
+            let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
+            let f = (pos >> 5) & 0xFFFF;
+            let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
+            let v = (a - (((a - b) * f) >> 16)) as i32;
+            if lit {
+                v
+            } else {
+                0
+            }
+        } else {
+            0
+        };
+        let ch = |k: usize| {
+            let acc = c.amb[k] + c.d[k] * nl15 + c.s[k] * sp;
+            (acc >> 19).clamp(0, 255) as u32
+        };
+        ch(0) | ch(1) << 8 | ch(2) << 16
     }
 
     /// One pixel `j` of the span by the 64-bit per-pixel path.
