@@ -307,9 +307,26 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         if spec {
             // The last entry (u = min(m, 8)) is 0: exactly for m <= 8,
             // and e^-8 < 2^-11 dropped for larger m.
+            // u = t_eff · j / SEGMENTS, floored (a power of two: a shift);
+            // for m >= 8, u = 2^12 j and q = floor(u · 2^16 / m) steps by
+            // the quotient and remainder of 2^28 / m (one division).
+            let step = (m >= U_MAX).then(|| (((1u32 << 28) / m), (1u32 << 28) % m));
+            let (mut q, mut rem) = (0u32, 0u32);
             for (j, e) in table.iter_mut().enumerate().take(SPEC_SEGMENTS) {
-                let u = (u64::from(t_eff) * j as u64 / SPEC_SEGMENTS as u64) as u32;
-                *e = approx16::spec_entry(u, m);
+                let u = ((u64::from(t_eff) * j as u64) >> SPEC_SEGMENTS.trailing_zeros()) as u32;
+                *e = match step {
+                    Some((sq_, sr)) => {
+                        let v = approx16::spec_entry_q(u, m, Some(u64::from(q)));
+                        q += sq_;
+                        rem += sr;
+                        if rem >= m {
+                            q += 1;
+                            rem -= m;
+                        }
+                        v
+                    }
+                    None => approx16::spec_entry(u, m),
+                };
             }
         }
         // K · 2^8 = m · SEGMENTS · 2^8 / t_eff (m, t_eff Q16): <= 2^7 · 2^8
@@ -340,21 +357,18 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         // = c16 · 2^-cb with c16 < 2^16 and c16 <= 2^cb, so that
         // g = (rr14 · c16) >> cb <= 2^16 and pos = qs_s · g <= 2^31.
         let num = u64::from(m) * SPEC_SEGMENTS as u64; // < 2^38
+                                                       // floor(num · 2^e / t_eff) for e <= 24 from one division:
+                                                       // floor(floor(x / d) / 2^k) = floor(x / (d · 2^k)).
+        let top = (num << 24).checked_div(u64::from(t_eff));
         let mut c16 = 0u32;
         let mut cb = 0u32;
         let mut found = false;
         for b in (0..48u32).rev() {
             let e = i64::from(POS_FRAC + sq + b) - 42;
-            let v = if e >= 0 {
-                if e > 24 {
-                    continue;
-                }
-                (num << e).checked_div(u64::from(t_eff)).unwrap_or(u64::MAX)
-            } else {
-                (num >> (-e).min(63))
-                    .checked_div(u64::from(t_eff))
-                    .unwrap_or(u64::MAX)
-            };
+            if e > 24 {
+                continue;
+            }
+            let v = top.map_or(u64::MAX, |t| t.checked_shr((24 - e) as u32).unwrap_or(0));
             if v < 1 << 16 {
                 c16 = v as u32;
                 cb = b;

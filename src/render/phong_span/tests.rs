@@ -463,3 +463,30 @@ fn point_loop_runs() {
     std::println!("point loop vs f64: {worst:.3} levels");
     assert!(worst <= 1.0, "{worst}");
 }
+
+/// The specular table built with the stepped quotient (`PhongKernel::new`)
+/// equals `spec_entry` at every entry, for shininesses around the
+/// branches (8, 32) and up to 10 000.
+#[test]
+fn spec_table_stepped_equals_direct() {
+    for &n in &[
+        1.0, 2.5, 7.99, 8.0, 9.3, 31.0, 32.0, 100.0, 255.5, 4096.0, 10_000.0,
+    ] {
+        let mat = Material {
+            color: v3(1.0, 1.0, 1.0),
+            ka: q(0.1),
+            kd: q(0.5),
+            ks: q(0.5),
+            shininess: q(n),
+        };
+        let lights = [Light::directional(v3(0.0, 0.0, 1.0), q(1.0))];
+        let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+        let k = PhongKernel::new(&shade).unwrap();
+        let m = q(n).to_bits() as u32;
+        let t = m.min(U_MAX);
+        for j in 0..SPEC_SEGMENTS {
+            let u = (u64::from(t) * j as u64 / SPEC_SEGMENTS as u64) as u32;
+            assert_eq!(k.table[j], approx16::spec_entry(u, m), "n {n} entry {j}");
+        }
+    }
+}
