@@ -57,11 +57,39 @@ pub(super) const PCHUNK: usize = 32;
 /// loop runs (`m < 256`, see the module docs).
 pub(super) const KF_MAX: u32 = 1 << 20;
 
-/// `floor(a·b / 2^32)`.
+/// `floor(a·b / 2^32)`, exactly (ARMv6-M: [`mulhi_split`]).
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation)]
 fn mulhi(a: i32, b: i32) -> i32 {
-    (wmul(a, b) >> 32) as i32
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        mulhi_split(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        (wmul(a, b) >> 32) as i32
+    }
+}
+
+/// `floor(a·b / 2^32)` from 16-bit halves in 32-bit arithmetic (the
+/// ARMv6-M path of [`mulhi`], four `MULS`; compiled everywhere so that the
+/// host tests check it): with `a = 2^16 ah + al`, `b = 2^16 bh + bl`,
+/// `m1 = ah bl`, `m2 = al bh` (each within `i32`), the result is `ah bh +
+/// (m1 >> 16) + (m2 >> 16) + ((m1 & 0xFFFF) + (m2 & 0xFFFF) + (al bl >>
+/// 16)) >> 16` (nested floors).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+pub(super) fn mulhi_split(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let lo = ((al as u32 * bl as u32) >> 16) as i32;
+    let (m1, m2) = (ah * bl, al * bh);
+    let t = (m1 & 0xFFFF) + (m2 & 0xFFFF) + lo;
+    ah * bh + (m1 >> 16) + (m2 >> 16) + (t >> 16)
 }
 
 /// `round(x / 2^s)` for `s` in `1..64`, `None` past `i32`.
@@ -94,12 +122,13 @@ fn fwd32(c: [i64; 3], s: u32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
     let x0 = shr_round(c[0], s)?;
     let x1 = shr_round(c[1], s)?;
     let x2 = shr_round(c[2], s)?;
-    // t <= 31: every product below 2^41.
-    let t = k.saturating_sub(1).min(PCHUNK) as i64;
-    let (w0, w1, w2) = (i64::from(x0), i64::from(x1), i64::from(x2));
-    let xe = w0 + w1 * t + w2 * (t * (t - 1) / 2);
+    // t <= 31: every product below 2^41 (`wmul`: no 64-bit multiply
+    // call on ARMv6-M).
+    let t = k.saturating_sub(1).min(PCHUNK) as i32;
+    let w0 = i64::from(x0);
+    let xe = w0 + wmul(x1, t) + wmul(x2, t * (t - 1) / 2);
     // A quadratic leaves its chord by at most |x2|·t²/8.
-    let bow = w2.abs() * t * t / 8;
+    let bow = wmul(x2, t * t).abs() >> 3;
     let lo = w0.min(xe) - bow;
     let hi = w0.max(xe) + bow;
     if lo <= i64::from(i32::MIN) || hi >= i64::from(i32::MAX) {
@@ -262,7 +291,14 @@ impl<R: Real> PhongKernel<'_, R> {
             d: l.d4,
             s: l.s4,
         };
-        match self.point_setup(l, span, i, k) {
+        // Below 4 pixels the 64-bit path costs less than the set-up (M4:
+        // ~360 instructions a pixel against ~1 100 a chunk).
+        let st = if k >= 4 {
+            self.point_setup(l, span, i, k)
+        } else {
+            None
+        };
+        match st {
             Some(st) if self.spec => self.point_run::<true>(&c, &st, k, sc),
             Some(st) => self.point_run::<false>(&c, &st, k, sc),
             None => {
@@ -292,10 +328,11 @@ impl<R: Real> PhongKernel<'_, R> {
         let at = |v: [i32; 3], d: [i32; 3]| {
             [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(i as i32)))
         };
-        // Steps below 2^26 (normal: 1/16 a pixel; l̃, ṽ: below 1/8 of
-        // their largest component): the products below stay within i64.
-        let small = |d: [i32; 3]| d.iter().all(|c| c.unsigned_abs() < 1 << 26);
-        if !small(dn) {
+        // Steps of the normal below 2^29 (1/2 a pixel), of l̃ and ṽ below
+        // 2^26 (1/4 of their largest component): the products below stay
+        // within i64 (|dn|² · 6 < 2^61).
+        let small = |d: [i32; 3], b: u32| d.iter().all(|c| c.unsigned_abs() < 1 << b);
+        if !small(dn, 29) {
             return None;
         }
         let nj = at(n, dn);
@@ -305,7 +342,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
         let (lt, dlt) = scale(lj, dv)?;
         let (vt, dvt) = scale(vj, dv)?;
-        if !small(dlt) || !small(dvt) {
+        if !small(dlt, 26) || !small(dvt, 26) {
             return None;
         }
         let (a32, alo, ahi) = fwd32(prod(nj, dn, nj, dn), 30, k)?;
