@@ -321,9 +321,17 @@ const INV_K: [u32; 17] = {
 /// `m < 32`). Within `2^-11` absolute in all (measured `2^-11.5`; tested against `f64` in
 /// the kernel's tests).
 pub(crate) fn spec_entry(u: u32, m: u32) -> u16 {
+    let q = (u64::from(u) << 16).checked_div(u64::from(m));
+    spec_entry_q(u, m, q)
+}
+
+/// [`spec_entry`] with `q = floor(u · 2^16 / m)` given (`None` for `m =
+/// 0`): the same value, for callers that step `q` without a division.
+#[allow(clippy::cast_possible_truncation)]
+pub(crate) fn spec_entry_q(u: u32, m: u32, q: Option<u64>) -> u16 {
     let v = if m >= 32 << 16 && u <= 8 << 16 {
         // y = u/m in Q16 (<= 2^14).
-        let y = (u64::from(u) << 16).checked_div(u64::from(m)).unwrap_or(0) as u32;
+        let y = q.unwrap_or(0) as u32;
         let mut sum = 1u32 << 16;
         let mut yk = 1u32 << 16;
         for inv in INV_K.iter().skip(2) {
@@ -334,10 +342,7 @@ pub(crate) fn spec_entry(u: u32, m: u32) -> u16 {
         let e = (u64::from(u) * u64::from(sum)) >> 16;
         exp_neg(u32::try_from(e).unwrap_or(u32::MAX))
     } else {
-        let q = (u64::from(u) << 16)
-            .checked_div(u64::from(m))
-            .unwrap_or(1 << 16)
-            .min(1 << 16) as i32;
+        let q = q.unwrap_or(1 << 16).min(1 << 16) as i32;
         pow(ONE - q, i32::try_from(m).unwrap_or(i32::MAX))
     };
     // Q16 -> Q15, rounded; v <= 2^16.

@@ -307,9 +307,26 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         if spec {
             // The last entry (u = min(m, 8)) is 0: exactly for m <= 8,
             // and e^-8 < 2^-11 dropped for larger m.
+            // u = t_eff · j / SEGMENTS, floored (a power of two: a shift);
+            // for m >= 8, u = 2^12 j and q = floor(u · 2^16 / m) steps by
+            // the quotient and remainder of 2^28 / m (one division).
+            let step = (m >= U_MAX).then(|| (((1u32 << 28) / m), (1u32 << 28) % m));
+            let (mut q, mut rem) = (0u32, 0u32);
             for (j, e) in table.iter_mut().enumerate().take(SPEC_SEGMENTS) {
-                let u = (u64::from(t_eff) * j as u64 / SPEC_SEGMENTS as u64) as u32;
-                *e = approx16::spec_entry(u, m);
+                let u = ((u64::from(t_eff) * j as u64) >> SPEC_SEGMENTS.trailing_zeros()) as u32;
+                *e = match step {
+                    Some((sq_, sr)) => {
+                        let v = approx16::spec_entry_q(u, m, Some(u64::from(q)));
+                        q += sq_;
+                        rem += sr;
+                        if rem >= m {
+                            q += 1;
+                            rem -= m;
+                        }
+                        v
+                    }
+                    None => approx16::spec_entry(u, m),
+                };
             }
         }
         // K · 2^8 = m · SEGMENTS · 2^8 / t_eff (m, t_eff Q16): <= 2^7 · 2^8
@@ -340,21 +357,18 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         // = c16 · 2^-cb with c16 < 2^16 and c16 <= 2^cb, so that
         // g = (rr14 · c16) >> cb <= 2^16 and pos = qs_s · g <= 2^31.
         let num = u64::from(m) * SPEC_SEGMENTS as u64; // < 2^38
+                                                       // floor(num · 2^e / t_eff) for e <= 24 from one division:
+                                                       // floor(floor(x / d) / 2^k) = floor(x / (d · 2^k)).
+        let top = (num << 24).checked_div(u64::from(t_eff));
         let mut c16 = 0u32;
         let mut cb = 0u32;
         let mut found = false;
         for b in (0..48u32).rev() {
             let e = i64::from(POS_FRAC + sq + b) - 42;
-            let v = if e >= 0 {
-                if e > 24 {
-                    continue;
-                }
-                (num << e).checked_div(u64::from(t_eff)).unwrap_or(u64::MAX)
-            } else {
-                (num >> (-e).min(63))
-                    .checked_div(u64::from(t_eff))
-                    .unwrap_or(u64::MAX)
-            };
+            if e > 24 {
+                continue;
+            }
+            let v = top.map_or(u64::MAX, |t| t.checked_shr((24 - e) as u32).unwrap_or(0));
             if v < 1 << 16 {
                 c16 = v as u32;
                 cb = b;
@@ -510,6 +524,26 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         dp: [i32; 3],
         back: bool,
         len: u32,
+        test: impl FnMut(u32) -> bool,
+        write: impl FnMut(u32, Rgb8),
+    ) -> u32 {
+        let mut sc = PointScratch::new();
+        self.fill_with(&mut sc, n, dn, p, dp, back, len, test, write)
+    }
+
+    /// [`PhongKernel::fill`] with the point loop's buffers kept by the
+    /// caller.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn fill_with(
+        &self,
+        sc: &mut PointScratch,
+        n: [i32; 3],
+        dn: [i32; 3],
+        p: [i32; 3],
+        dp: [i32; 3],
+        back: bool,
+        len: u32,
         mut test: impl FnMut(u32) -> bool,
         mut write: impl FnMut(u32, Rgb8),
     ) -> u32 {
@@ -522,6 +556,29 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             return self.fill_one(l, n, dn, len, test, write);
         }
         if let [l] = &self.lights[..] {
+            if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
+                // Positions and light offsets within ±2^29 over the span,
+                // steps within 2^18 (the point loop's 64-bit set-up).
+                let end = |c: i32, d: i32| i64::from(c) + i64::from(d) * i64::from(len);
+                let near = |v: i64| v.unsigned_abs() < 1 << 29;
+                let ok = (0..3).all(|a| {
+                    let (p0, p1) = (i64::from(p[a]), end(p[a], dp[a]));
+                    let lp = i64::from(l.at[a]);
+                    dp[a].unsigned_abs() <= 1 << 18
+                        && near(p0)
+                        && near(p1)
+                        && near(lp - p0)
+                        && near(lp - p1)
+                });
+                if ok {
+                    let (n, dn) = if back {
+                        (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
+                    } else {
+                        (n, dn)
+                    };
+                    return self.fill_point(sc, l, (n, dn, p, dp), len, test, write);
+                }
+            }
             return self.fill_general_one(l, n, dn, p, dp, back, len, test, write);
         }
         let mut s = self.begin(n, dn, p, dp, back);
@@ -1076,6 +1133,7 @@ pub struct PhongFill<'t, 'd, 'b, 'k, 's, T, D: DepthFormat, R> {
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
     drawn: u32,
+    scratch: PointScratch,
 }
 
 impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
@@ -1103,6 +1161,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             kernel,
             back: false,
             drawn: 0,
+            scratch: PointScratch::new(),
         })
     }
 
@@ -1127,6 +1186,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
         let k = self.kernel;
         let back = self.back;
         let drawn = &mut self.drawn;
+        let sc = &mut self.scratch;
         match self.depth.as_deref_mut() {
             Some(d) => {
                 let Some(drow) = d.span_mut(y, x0, x1) else {
@@ -1140,19 +1200,22 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                             *px = enc(c);
                         }
                     };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count =
+                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
                 } else {
                     let t = &mut *self.target;
                     let put = |i: u32, c| {
                         t.write_pixel(x0 + i, y, enc(c));
                     };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count =
+                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
                 }
                 *drawn += count;
             }
             None => {
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    k.fill(
+                    k.fill_with(
+                        sc,
                         n,
                         dn,
                         p,
@@ -1168,7 +1231,8 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                     );
                 } else {
                     let t = &mut *self.target;
-                    k.fill(
+                    k.fill_with(
+                        sc,
                         n,
                         dn,
                         p,
@@ -1197,6 +1261,7 @@ pub struct PhongKernelShader<'k, 's, R> {
     kernel: &'k PhongKernel<'s, R>,
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
+    scratch: PointScratch,
 }
 
 impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
@@ -1205,6 +1270,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         Self {
             kernel,
             back: false,
+            scratch: PointScratch::new(),
         }
     }
 
@@ -1221,7 +1287,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn fill_row<L: Lerp, F: PixelFormat, D: DepthFormat>(
-        &self,
+        &mut self,
         row: &mut [F::Raw],
         drow: Option<&mut [D::Raw]>,
         z: L,
@@ -1242,6 +1308,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         match drow {
             Some(drow) => depth_fill::<L, D, R>(
                 self.kernel,
+                &mut self.scratch,
                 drow,
                 z,
                 dz,
@@ -1250,9 +1317,17 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
                 len,
                 put,
             ),
-            None => self
-                .kernel
-                .fill(n, dn, p, dp, self.back, len, |_| true, put),
+            None => self.kernel.fill_with(
+                &mut self.scratch,
+                n,
+                dn,
+                p,
+                dp,
+                self.back,
+                len,
+                |_| true,
+                put,
+            ),
         }
     }
 }
@@ -1335,6 +1410,7 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 #[inline(always)]
 fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
+    sc: &mut PointScratch,
     drow: &mut [D::Raw],
     z: L,
     dz: L,
@@ -1344,7 +1420,7 @@ fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     mut put: impl FnMut(u32, Rgb8),
 ) -> u32 {
     let mut t = DepthTest::<L, D> { drow, z, dz };
-    k.fill(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
+    k.fill_with(sc, n, dn, p, dp, back, len, |i| t.test(i), &mut put)
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
@@ -1373,5 +1449,7 @@ impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 6>
 }
 
 mod one;
+mod point;
+use point::PointScratch;
 #[cfg(test)]
 mod tests;

@@ -68,10 +68,10 @@ fn advance(v: u64, d1: u64, d2: u64, k: u32) -> (u64, u64) {
 }
 
 /// The colour constants of one light (copied into the loop's locals).
-struct Colour {
-    amb: [i32; 3],
-    d: [i32; 3],
-    s: [i32; 3],
+pub(super) struct Colour {
+    pub(super) amb: [i32; 3],
+    pub(super) d: [i32; 3],
+    pub(super) s: [i32; 3],
 }
 
 /// The exact state of a span of one light (`u64` forward differences,
@@ -96,7 +96,7 @@ struct OneSpan {
 
 /// `r | g << 8 | b << 16`.
 #[inline(always)]
-fn pack(c: Rgb8) -> u32 {
+pub(super) fn pack(c: Rgb8) -> u32 {
     u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16
 }
 

@@ -413,3 +413,97 @@ fn seed_row_11_fast_shaders() {
         }
     }
 }
+
+/// The point loop (module `point`): one point light, local viewer,
+/// Phong, shininess below 256, on spans like the firmware's and the
+/// dodecahedron's (a light close to the surface: steps up to 1/20 of
+/// `|l|`), across the highlight: every chunk runs the 32-bit loop, within
+/// 1 level of `f64`.
+#[test]
+fn point_loop_runs() {
+    let mut worst = 0f64;
+    for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
+        for &(lp, p0, dp) in &[
+            ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+            ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.02, 0.0, 0.002]),
+            ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.01, 0.003, -0.004]),
+        ] {
+            let c = Case {
+                mat: Material {
+                    color: v3(1.0, 0.7, 0.5),
+                    ka: q(0.1),
+                    kd: q(0.6),
+                    ks: q(0.9),
+                    shininess: q(n),
+                },
+                lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
+                ambient: q(0.2),
+                specular: Specular::Phong,
+                viewer: Viewer::Local,
+            };
+            let n0 = unit([-0.4, 0.1, 1.0]);
+            let dn = [0.006, 0.0, -0.002];
+            let len = 100;
+            let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
+            let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
+            let span = (q30(n0), q30(dn), q16(p0), q16(dp));
+            for i in (0..len).step_by(point::PCHUNK) {
+                let kk = (len - i).min(point::PCHUNK as u32) as usize;
+                assert!(
+                    k.point_loop_runs(span, i, kk),
+                    "n {n} light {lp:?} chunk {i}"
+                );
+            }
+            let e = span_error(&c, n0, dn, p0, dp, len as i32);
+            worst = worst.max(e);
+        }
+    }
+    std::println!("point loop vs f64: {worst:.3} levels");
+    assert!(worst <= 1.0, "{worst}");
+}
+
+/// The specular table built with the stepped quotient (`PhongKernel::new`)
+/// equals `spec_entry` at every entry, for shininesses around the
+/// branches (8, 32) and up to 10 000.
+#[test]
+fn spec_table_stepped_equals_direct() {
+    for &n in &[
+        1.0, 2.5, 7.99, 8.0, 9.3, 31.0, 32.0, 100.0, 255.5, 4096.0, 10_000.0,
+    ] {
+        let mat = Material {
+            color: v3(1.0, 1.0, 1.0),
+            ka: q(0.1),
+            kd: q(0.5),
+            ks: q(0.5),
+            shininess: q(n),
+        };
+        let lights = [Light::directional(v3(0.0, 0.0, 1.0), q(1.0))];
+        let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+        let k = PhongKernel::new(&shade).unwrap();
+        let m = q(n).to_bits() as u32;
+        let t = m.min(U_MAX);
+        for j in 0..SPEC_SEGMENTS {
+            let u = (u64::from(t) * j as u64 / SPEC_SEGMENTS as u64) as u32;
+            assert_eq!(k.table[j], approx16::spec_entry(u, m), "n {n} entry {j}");
+        }
+    }
+}
+
+/// `point::mulhi_split` (the ARMv6-M high product) equals the exact
+/// `floor(a·b / 2^32)` on random and extreme operands.
+#[test]
+fn mulhi_split_exact() {
+    let mut s = 0x9e37_79b9_7f4a_7c15u64;
+    let mut vals = std::vec![0, 1, -1, i32::MAX, i32::MIN, 0xFFFF, -0x10000, 0x7FFF_0001];
+    for _ in 0..20_000 {
+        vals.push(xorshift(&mut s) as i32);
+        vals.push((xorshift(&mut s) as i32) >> (xorshift(&mut s) % 31));
+    }
+    for w in vals.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let want = ((i64::from(a) * i64::from(b)) >> 32) as i32;
+        assert_eq!(point::mulhi_split(a, b), want, "{a} {b}");
+    }
+}

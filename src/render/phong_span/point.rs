@@ -1,0 +1,530 @@
+//! One point light, local viewer, Phong: the 32-bit span loop.
+//!
+//! With `l = Lp - p` and `v = -p` linear along the span (eye position `p`)
+//! and the normal `n` linear, every scalar the colour needs is a
+//! quadratic in the pixel index: `A = |n|²`, `B = |l|²`, `C = |v|²`,
+//! `D = n·l`, `E = n·v`, `F = l·v`. Then
+//!
+//! ```text
+//! N·L = D / (|n| |l|)
+//! 1 - R·V = w,   w·A = A + G (F·A - 2 D E),   G = 1 / (|l| |v|)
+//! ```
+//!
+//! (`R·V = 2 (N·L)(N·V) - L·V`; per pixel as `w·A = A (1 + L̂·V̂) - 2
+//! (n·L̂)(n·V̂)`). The specular table takes `m·w = m·(w·A)/A` as the
+//! directional loop takes `Q/|n|²`: `1/A` from the table
+//! [`RS`](super::RS) only scales `w` (a relative error), but `1/|l|` and
+//! `1/|v|` enter `w` absolutely (an error `ε` of either moves `w` by
+//! `ε·R·V`), so they come from one step of the series of `(1 -
+//! e)^(-1/2)` per pixel ([`newton`]) seeded by the linear extrapolation of
+//! the two previous pixels' values: with steps of at most `|l|/16` the
+//! seed is within `3·2^-8` (the second difference of `1/|l|` is below
+//! `3 (|dl|/|l|)²` of it), `e = 1 - b s²` within `2^-5.4`, the step within
+//! `0.28 e⁴ = 2^-23.4`, plus truncations of `2^-23`.
+//!
+//! The span is cut into chunks of [`PCHUNK`] pixels; at each chunk's first
+//! pixel the six quadratics are computed exactly in 64 bits from the
+//! pixel's vectors (`l` and `v` scaled by powers of two per chunk so that
+//! `|l̃|²` and `|ṽ|²` start in `[1/2, 2)`), rounded to 32-bit forward
+//! differences (after 31 steps within `0.5 + 15.5 + 232` units of `2^-29`:
+//! `2^-21` relative), and the first two seeds come from the table
+//! [`RS`](super::RS) (`2^-11.4`; the step takes them to `2^-30`). The
+//! error of `w` is then within `2^-19` (forward differences of `D`, `E`,
+//! `F` `3·2^-21`, `1/|l|` and `1/|v|` `2^-22`, products `2^-24` each),
+//! which times the shininess `m < 256` moves the table position by less
+//! than `2^-11` of the specular range: the loop runs for `m < 256` (the
+//! table's scale `K·2^19` below `2^31`), higher shininesses take the
+//! 64-bit per-pixel path. Measured against `f64` in this module's tests
+//! (`random_spans_against_f64`, `highlight_peak_set`, `point_loop_runs`).
+//!
+//! Per pixel (three passes over the chunk, few live values each, all
+//! 32-bit): `1/|l̃|` and `n·L̂`; `1/|ṽ|`, `n·V̂` and `L̂·V̂`; `A`, `w·A`,
+//! then the colour as the directional loop ([`PhongKernel::pixel`]).
+//! Chunks outside the proven ranges (`A` in `[1/4, 5/4)`, `|l̃|²` and
+//! `|ṽ|²` in `(1/4, 4)`, steps of at most 1/16 of `|l|` and `|v|`, every
+//! value within `i32`) take the 64-bit per-pixel path
+//! (`PhongKernel::general_px`).
+
+use super::one::{pack, Colour};
+use super::{fallback, rsqrt_n, sq3, KLight, LightSpan, PhongKernel, RS, SPEC_SEGMENTS};
+use crate::num::wide::{clz32, wmul};
+use crate::num::Real;
+use crate::target::Rgb8;
+
+/// Pixels per chunk.
+pub(super) const PCHUNK: usize = 32;
+/// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
+/// loop runs (`m < 256`, see the module docs).
+pub(super) const KF_MAX: u32 = 1 << 20;
+
+/// `floor(a·b / 2^32)`, exactly (ARMv6-M: [`mulhi_split`]).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn mulhi(a: i32, b: i32) -> i32 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        mulhi_split(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        (wmul(a, b) >> 32) as i32
+    }
+}
+
+/// `floor(a·b / 2^32)` from 16-bit halves in 32-bit arithmetic (the
+/// ARMv6-M path of [`mulhi`], four `MULS`; compiled everywhere so that the
+/// host tests check it): with `a = 2^16 ah + al`, `b = 2^16 bh + bl`,
+/// `m1 = ah bl`, `m2 = al bh` (each within `i32`), the result is `ah bh +
+/// (m1 >> 16) + (m2 >> 16) + ((m1 & 0xFFFF) + (m2 & 0xFFFF) + (al bl >>
+/// 16)) >> 16` (nested floors).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+pub(super) fn mulhi_split(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let lo = ((al as u32 * bl as u32) >> 16) as i32;
+    let (m1, m2) = (ah * bl, al * bh);
+    let t = (m1 & 0xFFFF) + (m2 & 0xFFFF) + lo;
+    ah * bh + (m1 >> 16) + (m2 >> 16) + (t >> 16)
+}
+
+/// `round(x / 2^s)` for `s` in `1..64`, `None` past `i32`.
+#[inline(always)]
+fn shr_round(x: i64, s: u32) -> Option<i32> {
+    i32::try_from((x >> (s - 1)).wrapping_add(1) >> 1).ok()
+}
+
+/// `(f(0), f(1) - f(0), f(2) - 2 f(1) + f(0))` of `f(i) = (a + i·da)·(b
+/// + i·db)`, exact (wrapping: callers keep the true values within `i64`).
+#[inline(always)]
+fn prod(a: [i32; 3], da: [i32; 3], b: [i32; 3], db: [i32; 3]) -> [i64; 3] {
+    let mut c = [0i64; 3];
+    for k in 0..3 {
+        let ab = wmul(a[k], b[k]);
+        let cross = wmul(a[k], db[k]).wrapping_add(wmul(da[k], b[k]));
+        let dd = wmul(da[k], db[k]);
+        c[0] = c[0].wrapping_add(ab);
+        c[1] = c[1].wrapping_add(cross).wrapping_add(dd);
+        c[2] = c[2].wrapping_add(dd.wrapping_mul(2));
+    }
+    c
+}
+
+/// The exact difference triple `c` divided by `2^s` (rounded) as a 32-bit
+/// forward difference over `k` steps, with bounds of its values over them
+/// (`None`: a value may leave `i32`).
+#[inline(always)]
+fn fwd32(c: [i64; 3], s: u32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
+    let x0 = shr_round(c[0], s)?;
+    let x1 = shr_round(c[1], s)?;
+    let x2 = shr_round(c[2], s)?;
+    // t <= 31: every product below 2^41 (`wmul`: no 64-bit multiply
+    // call on ARMv6-M).
+    let t = k.saturating_sub(1).min(PCHUNK) as i32;
+    let w0 = i64::from(x0);
+    let xe = w0 + wmul(x1, t) + wmul(x2, t * (t - 1) / 2);
+    // A quadratic leaves its chord by at most |x2|·t²/8.
+    let bow = wmul(x2, t * t).abs() >> 3;
+    let lo = w0.min(xe) - bow;
+    let hi = w0.max(xe) + bow;
+    if lo <= i64::from(i32::MIN) || hi >= i64::from(i32::MAX) {
+        return None;
+    }
+    Some(((x0, x1, x2), lo, hi))
+}
+
+/// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s` within `2^-6`
+/// (relative): `s (1 + e/2 + 3e²/8 + 5e³/16)` with `e = 1 - b s²` (the
+/// series of `(1 - e)^(-1/2)` to its fourth term: within `0.28 e⁴`, plus
+/// the truncations' `2^-23`). Products of operands of unknown sign (one
+/// `SMMUL` each on the M4).
+#[inline(always)]
+fn newton(s: i32, b: i32) -> i32 {
+    let sb = mulhi(s, b); // Q26 of s·b (<= 2^28.5)
+    let e31 = ((1 << 23) - mulhi(sb, s)) << 8; // e · 2^31 (|e| < 1)
+                                               // 3/8 + 5e/16 (Q32), e (3/8 + 5e/16) (Q31), e² (...) (Q30).
+    let inner = 0x6000_0000i32.wrapping_add(e31 >> 1).wrapping_add(e31 >> 3);
+    let e2 = mulhi(e31, mulhi(e31, inner));
+    s.wrapping_add(mulhi(s, e31.wrapping_add(e2 << 2)))
+}
+
+/// A chunk's 32-bit state.
+struct Chunk {
+    a: (i32, i32, i32),
+    b: (i32, i32, i32),
+    c: (i32, i32, i32),
+    d: (i32, i32, i32),
+    e: (i32, i32, i32),
+    f: (i32, i32, i32),
+    /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29).
+    yl: (i32, i32),
+    yv: (i32, i32),
+}
+
+/// `v` and its step `d` times `2^s`, `s` making the largest component
+/// of `v` lie in `[2^28, 2^29)` (`None`: `v` zero or above `2^29`, or
+/// the step past `i32`).
+#[inline(always)]
+fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
+    let m = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
+    if m == 0 || m >= 1 << 29 {
+        return None;
+    }
+    let s = clz32(m) - 3;
+    let sh = |x: i32| {
+        let y = x.wrapping_shl(s);
+        (y >> s == x).then_some(y)
+    };
+    Some((
+        [sh(v[0])?, sh(v[1])?, sh(v[2])?],
+        [sh(d[0])?, sh(d[1])?, sh(d[2])?],
+    ))
+}
+
+/// Newton states `(y0 - 2δ, y0 - δ)` from table estimates `y0`, `y1` of
+/// `1/sqrt` at a chunk's first two pixels (`x`: Q29 in `(1/6, 4)` and the
+/// next value's difference), `δ = y1 - y0`: the loop's first two seeds are
+/// `y0` and about `y1` (within `3 · 2^-11.4`).
+#[inline(always)]
+fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
+    // rsqrt_n: 2^16 / sqrt(f) for f in [1/4, 5/4) (Q28): f = x/4, x, 4x.
+    let t = |x: i32| -> Option<i32> {
+        let (f, s) = if x >= 1 << 29 {
+            (x >> 3, 12)
+        } else if x >= 1 << 27 {
+            (x >> 1, 13)
+        } else {
+            (x << 1, 14)
+        };
+        let r = rsqrt_n(f)?;
+        i32::try_from(r << s).ok()
+    };
+    let y0 = t(x0)?;
+    let y1 = t(x0.wrapping_add(x1))?;
+    let dl = y1.wrapping_sub(y0);
+    Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
+}
+
+/// Per-pixel values between the passes of a chunk: `1/|l̃|` (Q29, then
+/// `G = 1/(|l̃| |ṽ|)` Q28), `n·L̂` (Q30), `(n·L̂)(n·V̂)` (Q28), `L̂·V̂`
+/// (Q26), the colour (`r | g << 8 | b << 16`).
+#[derive(Clone, Copy, Debug, Default)]
+struct Px {
+    rl: i32,
+    nl: i32,
+    nlnv: i32,
+    lv: i32,
+    col: u32,
+}
+
+/// The point loop's buffers (kept by the span stage: no zeroing per span).
+#[derive(Clone, Debug)]
+pub(crate) struct PointScratch {
+    px: [Px; PCHUNK],
+}
+
+impl PointScratch {
+    /// Zeroed buffers.
+    pub(crate) const fn new() -> Self {
+        Self {
+            px: [Px {
+                rl: 0,
+                nl: 0,
+                nlnv: 0,
+                lv: 0,
+                col: 0,
+            }; PCHUNK],
+        }
+    }
+}
+
+impl<R: Real> PhongKernel<'_, R> {
+    /// [`PhongKernel::fill`] for one point light, a local viewer and the
+    /// Phong model with `kf < KF_MAX` (module docs); `n`, `dn` already
+    /// flipped for back faces.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
+    pub(super) fn fill_point(
+        &self,
+        sc: &mut PointScratch,
+        l: &KLight,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+        mut test: impl FnMut(u32) -> bool,
+        mut write: impl FnMut(u32, Rgb8),
+    ) -> u32 {
+        let mut failed = 0;
+        let mut i = 0u32;
+        while i < len {
+            let k = (len - i).min(PCHUNK as u32);
+            self.point_chunk(sc, l, (n, dn, p, dp), i, k as usize);
+            for (j, x) in (i..i + k).zip(sc.px.iter()) {
+                let c = x.col;
+                if test(j) {
+                    write(j, Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8));
+                } else {
+                    failed += 1;
+                }
+            }
+            i += k;
+        }
+        len - failed
+    }
+
+    /// The colours of the `k` pixels from pixel `i` into `sc.px`.
+    #[inline(never)]
+    #[allow(clippy::type_complexity)]
+    fn point_chunk(
+        &self,
+        sc: &mut PointScratch,
+        l: &KLight,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        i: u32,
+        k: usize,
+    ) {
+        let c = Colour {
+            amb: self.amb19,
+            d: l.d4,
+            s: l.s4,
+        };
+        // Below 4 pixels the 64-bit path costs less than the set-up (M4:
+        // ~360 instructions a pixel against ~1 100 a chunk).
+        let st = if k >= 4 {
+            self.point_setup(l, span, i, k)
+        } else {
+            None
+        };
+        match st {
+            Some(st) if self.spec => self.point_run::<true>(&c, &st, k, sc),
+            Some(st) => self.point_run::<false>(&c, &st, k, sc),
+            None => {
+                let (n, dn, p, dp) = span;
+                for (j, o) in (i..i + k as u32).zip(sc.px.iter_mut()) {
+                    o.col = pack(self.point_exact(l, n, dn, p, dp, j));
+                }
+            }
+        }
+    }
+
+    /// The chunk's 32-bit state at pixel `i` (`None`: outside the proven
+    /// ranges).
+    #[inline(always)]
+    #[allow(
+        clippy::cast_possible_wrap,
+        clippy::cast_sign_loss,
+        clippy::type_complexity
+    )]
+    fn point_setup(
+        &self,
+        l: &KLight,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        i: u32,
+        k: usize,
+    ) -> Option<Chunk> {
+        let at = |v: [i32; 3], d: [i32; 3]| {
+            [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(i as i32)))
+        };
+        // Steps of the normal below 2^29 (1/2 a pixel), of l̃ and ṽ below
+        // 2^26 (1/4 of their largest component): the products below stay
+        // within i64 (|dn|² · 6 < 2^61).
+        let small = |d: [i32; 3], b: u32| d.iter().all(|c| c.unsigned_abs() < 1 << b);
+        if !small(dn, 29) {
+            return None;
+        }
+        let nj = at(n, dn);
+        let pj = at(p, dp);
+        let vj = pj.map(i32::wrapping_neg);
+        let dv = dp.map(i32::wrapping_neg);
+        let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
+        let (lt, dlt) = scale(lj, dv)?;
+        let (vt, dvt) = scale(vj, dv)?;
+        if !small(dlt, 26) || !small(dvt, 26) {
+            return None;
+        }
+        let (a32, alo, ahi) = fwd32(prod(nj, dn, nj, dn), 30, k)?;
+        // The `1/|n|` table's range, with the drift (248 units) to spare.
+        if alo < (1 << 28) + 256 || ahi >= (5 << 28) - 256 {
+            return None;
+        }
+        // |l̃|², |ṽ|² (Q29, from [1/4, 3) at the first pixel) within (1/6,
+        // 4), and steps of at most 1/16 of the length: |dl̃|² · 2^8 <= |l̃|²
+        // (x.2 = 2 |dl̃|²).
+        let (b32, blo, bhi) = fwd32(prod(lt, dlt, lt, dlt), 29, k)?;
+        let (c32, clo, chi) = fwd32(prod(vt, dvt, vt, dvt), 29, k)?;
+        for (x, lo, hi) in [(b32, blo, bhi), (c32, clo, chi)] {
+            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x.2) << 7 > lo - 256
+            {
+                return None;
+            }
+        }
+        // |D̃| <= |n| |l̃| < 1.12 · 2 and |Ẽ| < 1.12 · 2 (Q29), |F̃| < 2 · 2
+        // (Q28): within i32 over the chunk (the drift 248 units aside) by
+        // the checks above; the first and second differences wrap
+        // harmlessly (the values are exact modulo 2^32).
+        let x32 = |c: [i64; 3]| -> (i32, i32, i32) {
+            let r = |v: i64| ((v >> 29).wrapping_add(1) >> 1) as i32;
+            (r(c[0]), r(c[1]), r(c[2]))
+        };
+        Some(Chunk {
+            a: a32,
+            b: b32,
+            c: c32,
+            d: x32(prod(nj, dn, lt, dlt)),
+            e: x32(prod(nj, dn, vt, dvt)),
+            f: x32(prod(lt, dlt, vt, dvt)),
+            yl: seeds(b32.0, b32.1)?,
+            yv: seeds(c32.0, c32.1)?,
+        })
+    }
+
+    /// Whether the chunk of `k` pixels from pixel `i` runs the 32-bit loop
+    /// (the tests' check that it is taken).
+    #[cfg(test)]
+    pub(super) fn point_loop_runs(
+        &self,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        i: u32,
+        k: usize,
+    ) -> bool {
+        self.lights
+            .first()
+            .is_some_and(|l| self.point_setup(l, span, i, k).is_some())
+    }
+
+    /// The chunk's colours (`r | g << 8 | b << 16`) from its state.
+    #[inline(always)]
+    fn point_run<const SPEC: bool>(&self, c: &Colour, st: &Chunk, k: usize, sc: &mut PointScratch) {
+        let k = k.min(PCHUNK);
+        // 1/|l̃| and n·L̂.
+        {
+            let (mut x, mut x1, x2) = st.b;
+            let (mut d, mut d1, d2) = st.d;
+            let (mut ya, mut yb) = st.yl;
+            for o in sc.px.iter_mut().take(k) {
+                let y = newton(yb.wrapping_mul(2).wrapping_sub(ya), x);
+                o.rl = y;
+                o.nl = mulhi(d, y) << 4;
+                (ya, yb) = (yb, y);
+                x = x.wrapping_add(x1);
+                x1 = x1.wrapping_add(x2);
+                d = d.wrapping_add(d1);
+                d1 = d1.wrapping_add(d2);
+            }
+        }
+        // 1/|ṽ|, n·V̂ and L̂·V̂.
+        if SPEC {
+            let (mut x, mut x1, x2) = st.c;
+            let (mut e, mut e1, e2) = st.e;
+            let (mut ya, mut yb) = st.yv;
+            for o in sc.px.iter_mut().take(k) {
+                let y = newton(yb.wrapping_mul(2).wrapping_sub(ya), x);
+                // (n·L̂)(n·V̂): Q30 · Q30 -> Q28.
+                o.nlnv = mulhi(o.nl, mulhi(e, y) << 4);
+                // G = 1/(|l̃| |ṽ|) < 6 (Q28) in place of 1/|l̃|.
+                o.rl = mulhi(o.rl, y) << 2;
+                (ya, yb) = (yb, y);
+                x = x.wrapping_add(x1);
+                x1 = x1.wrapping_add(x2);
+                e = e.wrapping_add(e1);
+                e1 = e1.wrapping_add(e2);
+            }
+            let (mut f, mut f1, f2) = st.f;
+            for o in sc.px.iter_mut().take(k) {
+                // F̃ (Q28) · G (Q28): Q24, as Q26.
+                o.lv = mulhi(f, o.rl) << 2;
+                f = f.wrapping_add(f1);
+                f1 = f1.wrapping_add(f2);
+            }
+        }
+        // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the colour.
+        let kc = (self.kf << 11) as i32;
+        let (mut a, mut a1, a2) = st.a;
+        for x in sc.px.iter_mut().take(k) {
+            let q = if SPEC {
+                let wa = (a >> 6)
+                    .wrapping_add(mulhi(a, x.lv))
+                    .wrapping_sub(x.nlnv >> 3);
+                // Within [0, 4) (Q24), as Q28: the position K·w·A in Q15
+                // segments (saturated by `pixel` beyond the table).
+                mulhi(wa.clamp(0, (1 << 26) - 1) << 4, kc)
+            } else {
+                0
+            };
+            x.col = self.point_pixel::<SPEC>(c, a, x.nl, q);
+            a = a.wrapping_add(a1);
+            a1 = a1.wrapping_add(a2);
+        }
+    }
+
+    /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L̂` (Q30) and
+    /// `K·w·A` (Q15 segments): as `PhongKernel::pixel`, without a branch
+    /// on `n·L̂` (the colour of `n·L̂ <= 0` is the ambient term alone).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+    fn point_pixel<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q: i32) -> u32 {
+        // 64 segments of 2^24 (Q30) from 1/4.
+        let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
+        let (a, b) = (RS[j], RS[j + 1]);
+        let t = ((nn as u32) >> 8) & 0xFFFF;
+        // 2^16 / |n| (<= 2^17).
+        let r = a - (((a - b) * t) >> 16);
+        let lit = nl > 0;
+        // N·L in Q15 (as `pixel`).
+        let nl15 = (((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16) as i32;
+        let sp = if SPEC {
+            let r14 = r >> 2;
+            let rr14 = (r14 * r14) >> 14;
+            let qs = (q >> 8).clamp(0, (1 << 15) - 1) as u32;
+            let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
+            let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
+            let f = (pos >> 5) & 0xFFFF;
+            let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
+            let v = (a - (((a - b) * f) >> 16)) as i32;
+            if lit {
+                v
+            } else {
+                0
+            }
+        } else {
+            0
+        };
+        let ch = |k: usize| {
+            let acc = c.amb[k] + c.d[k] * nl15 + c.s[k] * sp;
+            (acc >> 19).clamp(0, 255) as u32
+        };
+        ch(0) | ch(1) << 8 | ch(2) << 16
+    }
+
+    /// One pixel `j` of the span by the 64-bit per-pixel path.
+    #[cold]
+    #[inline(never)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn point_exact(
+        &self,
+        l: &KLight,
+        n: [i32; 3],
+        dn: [i32; 3],
+        p: [i32; 3],
+        dp: [i32; 3],
+        j: u32,
+    ) -> Rgb8 {
+        let at = |v: [i32; 3], d: [i32; 3]| {
+            [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(j as i32)))
+        };
+        let nj = at(n, dn);
+        let pj = at(p, dp);
+        let vj = pj.map(i32::wrapping_neg);
+        let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
+        let s = LightSpan {
+            l: lj,
+            q: sq3(lj),
+            ..LightSpan::default()
+        };
+        self.general_px(&s, l, nj, vj, sq3(vj), sq3(nj))
+            .unwrap_or_else(|| fallback(self.shade, n, dn, p, dp, j))
+    }
+}
