@@ -23,7 +23,7 @@
 use super::span::{depth_loop, in_range_test, pair_loop};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
-use super::wide::NO_LONG_MUL;
+use super::wide::{mul_i32_i16_soft, NO_DIVIDE, NO_LONG_MUL};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
 use crate::target::DepthFormat;
 
@@ -59,18 +59,18 @@ fn span_inr<const N: usize, R: Copy, D: DepthFormat>(
 impl Walk {
     /// Walks rows from the next one down to `until` (excluded) or the
     /// triangle's last row, drawing each span into `mem` with `color`
-    /// (values at the pixel centre); returns the pixels written. `row`
-    /// holds the values at pixel (0, 0), `sx`, `sy` their steps.
+    /// (values at the pixel centre); returns the pixels written. `vals`
+    /// holds the values at pixel (0, 0) and their steps ([`pack_fixed`]).
     #[inline(always)]
-    pub(crate) fn rows_fused<const N: usize, R: Copy, D: DepthFormat>(
+    pub(crate) fn rows_fused<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
         &mut self,
-        row: &Vals<i32, N>,
-        sx: &Vals<i32, N>,
-        sy: &Vals<i32, N>,
+        vals: &[[i32; 3]; V],
         until: i32,
         mem: &mut BandMem<'_, '_, R, D::Raw>,
         color: impl Fn(&[i32; N]) -> R,
     ) -> u32 {
+        let [row, sx, sy] = unpack_fixed::<N, V>(vals);
+        let (row, sx, sy) = (&row, &sx, &sy);
         let (y0, width) = (mem.y0, mem.width);
         let px = &mut **mem.px;
         match mem.z.as_deref_mut() {
@@ -275,52 +275,76 @@ impl Walk {
 
 /// [`setup`] for `i32` values: the same walk and values, bit for bit.
 ///
-/// On targets with a long multiply (ARMv7-M, hosts) the usual triangle
-/// takes a straight 32-bit path ([`setup32`]); the others, and ARMv6-M,
-/// take [`setup`] itself.
+/// The usual triangle takes a straight 32-bit path ([`setup32`], on
+/// ARMv6-M with 16 × 32-bit products from two `MULS` and the reciprocal
+/// without a division); the others take [`setup`] itself.
 #[inline(always)]
-#[allow(clippy::type_complexity)]
-pub(crate) fn setup_fast<const N: usize>(
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn setup_fast<const N: usize, const V: usize>(
     a: &Vertex<i32, N>,
     b: &Vertex<i32, N>,
     c: &Vertex<i32, N>,
     sub: SubpixelBits,
     j0: i32,
     width: i32,
-    out: &mut (Walk, [Vals<i32, N>; 3]),
+    walk: &mut Walk,
+    vals: &mut [[i32; 3]; V],
 ) -> bool {
-    if NO_LONG_MUL {
-        // ARMv6-M: the general setup inline (its 16-bit products).
-        return match setup::<i32, N>(a, b, c, sub, j0, width) {
-            Some((w, r, sx, sy)) => {
-                *out = (w, [r, sx, sy]);
-                true
-            }
-            None => false,
-        };
-    }
-    match setup32(a, b, c, sub, j0, width, out) {
+    match setup32(a, b, c, sub, j0, width, walk, vals) {
         Ok(drawn) => drawn,
-        Err(()) => setup_slow(a, b, c, sub, j0, width, out),
+        Err(()) => setup_slow(a, b, c, sub, j0, width, walk, vals),
     }
+}
+
+/// Stores row values and steps in a slot's values: entry 0 the depth,
+/// entry `k + 1` attribute `k`, each `[value at pixel (0, 0), x step, y
+/// step]` (entries beyond `N + 1` untouched).
+#[inline(always)]
+pub(crate) fn pack_fixed<const N: usize, const V: usize>(
+    v: &mut [[i32; 3]; V],
+    row: &Vals<i32, N>,
+    sx: &Vals<i32, N>,
+    sy: &Vals<i32, N>,
+) {
+    if let Some(x) = v.get_mut(0) {
+        *x = [row.z, sx.z, sy.z];
+    }
+    for k in 0..N {
+        if let Some(x) = v.get_mut(k + 1) {
+            *x = [row.a[k], sx.a[k], sy.a[k]];
+        }
+    }
+}
+
+/// A slot's values (see [`pack_fixed`]) as row values and steps.
+#[inline(always)]
+pub(crate) fn unpack_fixed<const N: usize, const V: usize>(v: &[[i32; 3]; V]) -> [Vals<i32, N>; 3] {
+    let get = |k: usize, c: usize| v.get(k).map_or(0, |x| x[c]);
+    let f = |c: usize| Vals {
+        z: get(0, c),
+        a: core::array::from_fn(|k| get(k + 1, c)),
+    };
+    [f(0), f(1), f(2)]
 }
 
 /// [`setup`] out of line: the rare triangles [`setup32`] leaves.
 #[inline(never)]
 #[cold]
-#[allow(clippy::type_complexity)]
-fn setup_slow<const N: usize>(
+#[allow(clippy::too_many_arguments)]
+fn setup_slow<const N: usize, const V: usize>(
     a: &Vertex<i32, N>,
     b: &Vertex<i32, N>,
     c: &Vertex<i32, N>,
     sub: SubpixelBits,
     j0: i32,
     width: i32,
-    out: &mut (Walk, [Vals<i32, N>; 3]),
+    walk: &mut Walk,
+    vals: &mut [[i32; 3]; V],
 ) -> bool {
     match setup::<i32, N>(a, b, c, sub, j0, width) {
         Some((w, r, sx, sy)) => {
-            *out = (w, [r, sx, sy]);
+            *walk = w;
+            pack_fixed(vals, &r, &sx, &sy);
             true
         }
         None => false,
@@ -337,17 +361,62 @@ fn depth16_plane_in_range32(z: [i32; 3], gx: i32, gy: i32) -> bool {
     ok(z[0]) & ok(z[1]) & ok(z[2]) & (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
 }
 
+/// What [`setup32`] computes a value's plane from: the vertex offsets
+/// `[dx1, dy1, dx2, dy2]`, the reciprocal of the doubled area and its
+/// high-word shift `k`, the subpixel bits `s`, and the offsets `o = (h -
+/// x0, h - y0)` of the centre of pixel (0, 0) from vertex 0 (`h = S/2`).
+struct Grad {
+    d: [i32; 4],
+    inv: InvArea,
+    k: u32,
+    s: u32,
+    o: [i32; 2],
+}
+
+impl Grad {
+    /// One value's gradients (x, y), its value at the centre of pixel (0,
+    /// 0) and whether the bounds of [`setup32`] hold (else the three
+    /// values mean nothing).
+    #[inline(always)]
+    fn plane(&self, v0: i32, v1: i32, v2: i32) -> (i32, i32, i32, bool) {
+        let [dx1, dy1, dx2, dy2] = self.d;
+        let (d1, o1) = v1.overflowing_sub(v0);
+        let (d2, o2) = v2.overflowing_sub(v0);
+        let nx = wide(d1, dy2) - wide(d2, dy1);
+        let ny = wide(d2, dx1) - wide(d1, dx2);
+        let ok = !(o1 | o2) & fits(nx) & fits(ny);
+        let (gx, gy) = (
+            self.inv.quot_high(nx as i32, self.k),
+            self.inv.quot_high(ny as i32, self.k),
+        );
+        let h = 1i64 << (self.s - 1);
+        let t = wide(gx, self.o[0]) + wide(gy, self.o[1]) + h;
+        (gx, gy, v0.wrapping_add((t >> self.s) as i32), ok)
+    }
+}
+
 /// `true` when `v` fits an `i32`.
 #[inline(always)]
 fn fits(v: i64) -> bool {
     v as i32 as i64 == v
 }
 
-/// `a · b` in 64 bits (one `SMULL`).
+/// `a · b` in 64 bits for `|b| < 2^15` (a coordinate offset of
+/// [`setup32`]): one `SMULL` on ARMv7-M and the hosts, two `MULS` on
+/// ARMv6-M ([`mul_i32_i16_soft`], exact for such `b`; also in test builds,
+/// so that the host tests check the ARMv6-M path).
 #[inline(always)]
 fn wide(a: i32, b: i32) -> i64 {
-    a as i64 * b as i64
+    if SHORT_PRODUCTS {
+        mul_i32_i16_soft(a, b)
+    } else {
+        a as i64 * b as i64
+    }
 }
+
+/// [`setup32`] takes the ARMv6-M products ([`wide`]): on ARMv6-M, and in
+/// test builds.
+const SHORT_PRODUCTS: bool = NO_LONG_MUL || cfg!(test);
 
 /// The 32-bit setup: `Err(())` when a bound below fails (the caller then
 /// takes [`setup`]), else exactly [`setup`]'s result. The bounds:
@@ -366,19 +435,26 @@ fn wide(a: i32, b: i32) -> i64 {
 ///   [`InvArea::quot_high`]'s (within ±2^30);
 /// - the row origin `a0 + ((gx·(h - x0) + gy·(h - y0) + h) >> s)` (`h =
 ///   S/2`) is `origin64`'s sum of the same `i64`s (the gradients are
-///   `i32`s, sign-extended), formed by `SMULL`/`SMLAL`.
+///   `i32`s, sign-extended), formed by `SMULL`/`SMLAL`; on ARMv6-M (and in
+///   test builds) by [`wide`]'s two `MULS` each, which asks `|h - x0|`,
+///   `|h - y0| < 2^15` (vertex 0 within 2047 pixels of the origin at 4
+///   subpixel bits) and the coordinate offsets below `2^15` (above);
+/// - the reciprocal on ARMv6-M by [`InvArea::new`] (a table and Newton
+///   steps, no division call), elsewhere by [`InvArea::new_small`] where
+///   it applies (two `UDIV`): the same value.
 ///
 /// Tested equal to [`setup`] on random and extreme triangles.
 #[inline(always)]
-#[allow(clippy::type_complexity)]
-fn setup32<const N: usize>(
+#[allow(clippy::too_many_arguments)]
+fn setup32<const N: usize, const V: usize>(
     a: &Vertex<i32, N>,
     b: &Vertex<i32, N>,
     c: &Vertex<i32, N>,
     sub: SubpixelBits,
     j0: i32,
     width: i32,
-    out: &mut (Walk, [Vals<i32, N>; 3]),
+    w: &mut Walk,
+    vals: &mut [[i32; 3]; V],
 ) -> Result<bool, ()> {
     let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
     let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
@@ -399,70 +475,102 @@ fn setup32<const N: usize>(
     if js >= j_bot {
         return Ok(false);
     }
-    let inv = match InvArea::new_small(area2) {
+    walk_edges(
+        w,
+        &[[a.x, a.y], [b.x, b.y], [c.x, c.y]],
+        [js, j_mid, j_bot],
+        area2,
+        width,
+        sub,
+    );
+    // ARMv6-M: the division-free reciprocal (`new_small` would take two
+    // library divisions); the same value.
+    let small = if NO_DIVIDE {
+        None
+    } else {
+        InvArea::new_small(area2)
+    };
+    let inv = match small {
         Some(inv) => inv,
         None => InvArea::new(area2 as i64),
     };
     let s = sub.get();
     let k = inv.high_shift(s).ok_or(())?;
     let h = 1i32 << (s - 1);
-    let (ox, oy) = (h - a.x, h - a.y);
-    // One value: gradients (x, y) and the row origin.
-    let plane = |v0: i32, v1: i32, v2: i32| -> Result<(i32, i32, i32), ()> {
-        let (d1, o1) = v1.overflowing_sub(v0);
-        let (d2, o2) = v2.overflowing_sub(v0);
-        let nx = wide(d1, dy2) - wide(d2, dy1);
-        let ny = wide(d2, dx1) - wide(d1, dx2);
-        let (nx, ny) = (nx as i32, ny as i32);
-        if o1 | o2 | !fits(wide(d1, dy2) - wide(d2, dy1)) | !fits(wide(d2, dx1) - wide(d1, dx2)) {
-            return Err(());
-        }
-        let (gx, gy) = (inv.quot_high(nx, k), inv.quot_high(ny, k));
-        let t = wide(gx, ox) + wide(gy, oy) + h as i64;
-        Ok((gx, gy, v0.wrapping_add((t >> s) as i32)))
+    // The offsets of pixel (0, 0)'s centre from vertex 0 are factors of
+    // [`wide`]: below 2^15 in magnitude (vertex 0 within 2047 pixels of
+    // the origin at 4 subpixel bits).
+    if SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15 {
+        return Err(());
+    }
+    let g = Grad {
+        d: [dx1, dy1, dx2, dy2],
+        inv,
+        k,
+        s,
+        o: [h - a.x, h - a.y],
     };
-    let (gx, gy, z0) = plane(a.z, b.z, c.z)?;
+    let (gx, gy, z0, okz) = g.plane(a.z, b.z, c.z);
     let z16 = depth16_plane_in_range32([a.z, b.z, c.z], gx, gy);
-    let [row, sx, sy] = &mut out.1;
-    row.z = z0;
-    sx.z = gx;
-    sy.z = gy;
+    if let Some(v) = vals.get_mut(0) {
+        *v = [z0, gx, gy];
+    }
+    let mut ok = okz;
     for k in 0..N {
-        let (gx, gy, o) = plane(a.attrs[k], b.attrs[k], c.attrs[k])?;
-        if let (Some(r), Some(x), Some(y)) = (row.a.get_mut(k), sx.a.get_mut(k), sy.a.get_mut(k)) {
-            *r = o;
-            *x = gx;
-            *y = gy;
+        let (gx, gy, o, oka) = g.plane(a.attrs[k], b.attrs[k], c.attrs[k]);
+        ok &= oka;
+        if let Some(v) = vals.get_mut(k + 1) {
+            *v = [o, gx, gy];
         }
     }
+    if !ok {
+        return Err(());
+    }
+    w.z16 = z16;
+    Ok(true)
+}
+
+/// The walk of a sorted triangle (vertices `p[0..3]`, `x`, `y` in
+/// subpixels; its doubled area `area2 != 0`) from row `js`: [`setup32`]'s
+/// edges, rows and flags (but [`Walk::z16`]), computed before the value
+/// planes (out of line it cost thumbv7em bunny-gouraud raster 2.328 ->
+/// 2.379 M).
+#[inline(always)]
+fn walk_edges(
+    w: &mut Walk,
+    p: &[[i32; 2]; 3],
+    rows: [i32; 3],
+    area2: i32,
+    width: i32,
+    sub: SubpixelBits,
+) {
+    let [[ax, ay], [bx, by], [cx, cy]] = *p;
+    let [js, j_mid, j_bot] = rows;
     // The edges from their selected end points (selecting the four
     // coordinates costs less than selecting two walkers of five fields).
     let long_left = area2 > 0;
-    let lowp = (b.x, b.y, j_mid.max(js));
-    let (sx0, sy0, sj) = if js < j_mid { (a.x, a.y, js) } else { lowp };
-    let (sx1, sy1) = if js < j_mid { (b.x, b.y) } else { (c.x, c.y) };
+    let lowp = (bx, by, j_mid.max(js));
+    let (sx0, sy0, sj) = if js < j_mid { (ax, ay, js) } else { lowp };
+    let (sx1, sy1) = if js < j_mid { (bx, by) } else { (cx, cy) };
     let (lp, rp) = if long_left {
-        ((a.x, a.y, c.x, c.y, js), (sx0, sy0, sx1, sy1, sj))
+        ((ax, ay, cx, cy, js), (sx0, sy0, sx1, sy1, sj))
     } else {
-        ((sx0, sy0, sx1, sy1, sj), (a.x, a.y, c.x, c.y, js))
+        ((sx0, sy0, sx1, sy1, sj), (ax, ay, cx, cy, js))
     };
-    let w = &mut out.0;
     w.left = Edge::new_first(lp.0, lp.1, lp.2, lp.3, lp.4, sub);
     w.right = Edge::new_first(rp.0, rp.1, rp.2, rp.3, rp.4, sub);
     w.low = if j_mid < j_bot {
-        Edge::new_first(b.x, b.y, c.x, c.y, lowp.2, sub)
+        Edge::new_first(bx, by, cx, cy, lowp.2, sub)
     } else {
         Edge::EMPTY
     };
     let sc = sub.scale();
-    let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    let (xmin, xmax) = (ax.min(bx).min(cx), ax.max(bx).max(cx));
     w.inside = xmin >= 0 && xmax <= width.saturating_mul(sc);
     w.j = js;
     w.mid = j_mid;
     w.end = j_bot;
-    w.ia = a.x >> s;
-    w.ja = a.y >> s;
+    w.ia = ax >> sub.get();
+    w.ja = ay >> sub.get();
     w.long_left = long_left;
-    w.z16 = z16;
-    Ok(true)
 }

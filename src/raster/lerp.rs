@@ -161,6 +161,14 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// The value whose [`Lerp::fixed_raw`] is `v` (`i32`: `v` itself;
     /// floats, which never take the fast path: `v` as a number).
     fn from_fixed_raw(v: i32) -> Self;
+
+    /// The band pool's value storage as raw `i32`s (`Some` for `i32`, the
+    /// very array: the fast path sets a triangle up in its pool slot and
+    /// walks it from there, no copy); `None` for the float twins.
+    #[inline(always)]
+    fn fixed_slots<const V: usize>(_v: &mut [[Self; 3]; V]) -> Option<&mut [[i32; 3]; V]> {
+        None
+    }
 }
 
 /// The reciprocal of a doubled triangle area in fixed point:
@@ -838,6 +846,11 @@ impl Lerp for i32 {
     #[inline(always)]
     fn from_fixed_raw(v: i32) -> i32 {
         v
+    }
+
+    #[inline(always)]
+    fn fixed_slots<const V: usize>(v: &mut [[i32; 3]; V]) -> Option<&mut [[i32; 3]; V]> {
+        Some(v)
     }
 
     #[inline]

@@ -70,6 +70,8 @@ mod walk;
 mod wide;
 
 pub use edge::Edge;
+#[cfg(test)]
+use fast::{pack_fixed, unpack_fixed};
 pub(crate) use fast::{setup_fast, BandMem};
 pub use lerp::{InvArea, Lerp, Recip};
 pub(crate) use span::span_pixels;

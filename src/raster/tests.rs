@@ -862,13 +862,19 @@ fn first_row_edges_equal_the_general_walker() {
 fn check_setup_fast<const N: usize>(v: [Vertex<i32, N>; 3], sub: SubpixelBits, j0: i32, w: i32) {
     let [a, b, c] = sort3(v, |v| v.y);
     let want = setup::<i32, N>(&a, &b, &c, sub, j0, w);
-    let zero = Vals { z: 0, a: [0; N] };
-    let mut out = (Walk::EMPTY, [zero; 3]);
-    let got = setup_fast::<N>(&a, &b, &c, sub, j0, w, &mut out);
+    let (mut walk, mut vals) = (Walk::EMPTY, [[0x5a5a_5a5a; 3]; 4]);
+    let got = setup_fast::<N, 4>(&a, &b, &c, sub, j0, w, &mut walk, &mut vals);
     match want {
-        Some((walk, row, sx, sy)) => {
+        Some((want_walk, row, sx, sy)) => {
             assert!(got, "{a:?} {b:?} {c:?}");
-            assert_eq!(out, (walk, [row, sx, sy]), "{a:?} {b:?} {c:?} j0 {j0}");
+            let mut want_vals = [[0x5a5a_5a5a; 3]; 4];
+            pack_fixed(&mut want_vals, &row, &sx, &sy);
+            assert_eq!(
+                (walk, vals),
+                (want_walk, want_vals),
+                "{a:?} {b:?} {c:?} j0 {j0}"
+            );
+            assert_eq!(unpack_fixed::<N, 4>(&vals), [row, sx, sy]);
         }
         None => assert!(!got, "{a:?} {b:?} {c:?}"),
     }

@@ -27,13 +27,16 @@
 //! Flat and grey Gouraud objects of the fixed affine profiles (`i32`
 //! values, no perspective: [`Lerp::fixed_raw`]) take `Bands::run_fast`:
 //! the same streams, with the setup of `raster::fast` (32-bit where the
-//! triangle's extents allow it, the walk written in place; tested equal to
-//! the general setup) and its fused row kernel (two edge steps, one
-//! multiply-add per value for a span start, the span stage's own pixel
-//! loops), so the bytes are those of the general path. bunny-gouraud
-//! raster (exact QEMU counts, 16-row bands): thumbv7em 2.534 -> 2.271 M
-//! instructions, thumbv6m 4.036 -> 3.932 M. The other layouts and
-//! profiles take `Bands::run`.
+//! triangle's extents allow it, on every target; tested equal to the
+//! general setup), written straight into a free pool slot (no copy when
+//! the triangle continues below the band), and its fused row kernel (two
+//! edge steps, one multiply-add per value for a span start, the span
+//! stage's own pixel loops), so the bytes are those of the general path.
+//! bunny-gouraud raster (exact QEMU counts, 16-row bands): thumbv7em
+//! 2.534 -> 2.272 -> 2.281 M instructions, thumbv6m 4.036 -> 3.938 ->
+//! 3.809 M (the last step: the 32-bit setup on ARMv6-M too, out of line
+//! there, into the pool slot). The other layouts and profiles take
+//! `Bands::run`.
 //!
 //! # Memory
 //! | part | bytes |
@@ -695,7 +698,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
 
     /// [`Bands::run`] for the fixed affine profiles (`i32` values, no
     /// perspective) and shaders of at most one attribute: the fused row
-    /// kernel of `raster::fast` (the same bytes, see there).
+    /// kernel of `raster::fast` (the same bytes, see there). A triangle
+    /// starting in the band is set up straight into a free pool slot (by
+    /// [`fresh_fixed`], a function of its own) and walked from there: no
+    /// copy when it continues below the band.
     #[inline(never)]
     fn run_fast<const N: usize, S, F, D>(
         &mut self,
@@ -711,10 +717,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     {
         let end = po.tris.end as u32;
         let band = t.y0 / self.rows.max(1);
-        let tris = self.frame.tris();
+        let frame = self.frame;
+        let tris = frame.tris();
         let (y0, y1, width) = (t.y0 as i32, t.y1 as i32, t.width as i32);
-        let zero = Vals { z: 0, a: [0; N] };
-        let mut st = (Walk::EMPTY, [zero; 3]);
+        // A triangle that finds no free slot is set up here.
+        let mut scratch = (Walk::EMPTY, [[0i32; 3]; V]);
         loop {
             let Some((ti, src)) = self.take(band, end) else {
                 return Ok(());
@@ -734,32 +741,58 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let Some(slot) = self.pool.slots.get_mut(si) else {
                         return Ok(());
                     };
-                    let (row, sx, sy) = unpack_fixed::<_, N, V>(&slot.vals);
-                    let drawn = draw_fused::<N, S, F, D>(
-                        &mut slot.walk,
-                        &row,
-                        &sx,
-                        &sy,
-                        y1,
-                        &mut mem,
-                        &shader,
-                    );
+                    let Some(vals) = P::Lerp::fixed_slots(&mut slot.vals) else {
+                        return Ok(());
+                    };
+                    let drawn =
+                        draw_fused::<N, V, S, F, D>(&mut slot.walk, vals, y1, &mut mem, &shader);
                     let done = slot.walk.done();
                     self.put_back(si, done);
                     drawn
                 }
                 Src::Fresh => {
-                    if !self.fresh_fast::<N>(po, tri, y0, width, &mut st)? {
-                        continue;
+                    // A free slot when the values fit one.
+                    let si = if N < V && self.free_len > 0 {
+                        self.free_len -= 1;
+                        self.pool.free.get(self.free_len).map(|&s| s as usize)
+                    } else {
+                        None
+                    };
+                    let slot = si.and_then(|s| self.pool.slots.get_mut(s));
+                    let (walk, vals) = match slot {
+                        Some(slot) => match P::Lerp::fixed_slots(&mut slot.vals) {
+                            Some(v) => {
+                                slot.tri = ti as u16;
+                                (&mut slot.walk, v)
+                            }
+                            None => return Ok(()),
+                        },
+                        None => (&mut scratch.0, &mut scratch.1),
+                    };
+                    let set = fresh_fixed::<P, N, V>(frame, po, tri, y0, width, walk, vals);
+                    let drawn = match set {
+                        Ok(Some(true)) => {
+                            self.stats.triangles += 1;
+                            draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
+                        }
+                        Ok(Some(false)) => {
+                            self.stats.triangles += 1;
+                            0
+                        }
+                        Ok(None) => 0,
+                        Err(e) => {
+                            self.stats.triangles += 1;
+                            return Err(e);
+                        }
+                    };
+                    let done = walk.done();
+                    match si {
+                        Some(si) => self.put_back(si, done),
+                        None if !done => self.defer(ti as u16),
+                        None => {}
                     }
-                    let (walk, [row, sx, sy]) = &mut st;
-                    let drawn = draw_fused::<N, S, F, D>(walk, row, sx, sy, y1, &mut mem, &shader);
-                    if !walk.done() {
-                        let f = |v: &Vals<i32, N>| Vals {
-                            z: P::Lerp::from_fixed_raw(v.z),
-                            a: v.a.map(P::Lerp::from_fixed_raw),
-                        };
-                        self.keep::<N>(ti as u16, *walk, &f(row), &f(sx), &f(sy));
+                    if !done {
+                        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
                     }
                     drawn
                 }
@@ -829,59 +862,6 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 self.ring_len += 1;
             }
         }
-    }
-
-    /// [`Bands::fresh`] with the values as raw `i32` (the fixed profiles).
-    #[inline(always)]
-    #[allow(clippy::type_complexity)]
-    fn fresh_fast<const N: usize>(
-        &mut self,
-        po: &PreparedObject,
-        tri: &Tri,
-        j0: i32,
-        width: i32,
-        out: &mut (Walk, [Vals<i32, N>; 3]),
-    ) -> Result<bool, RenderError> {
-        let sub = P::SUBPIXEL_BITS;
-        let ws = &self.frame.ws;
-        let xy = |i: u16| ws.xy.get(i as usize).copied();
-        let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
-            return Ok(false);
-        };
-        let lim = sub.coord_limit();
-        let off = |v: i32| (v.wrapping_add(lim) as u32 > (2 * lim) as u32) as u32;
-        let outside = off(p0[0]) | off(p0[1]) | off(p1[0]) | off(p1[1]) | off(p2[0]) | off(p2[1]);
-        let [(i0, q0), (i1, q1), (i2, q2)] =
-            sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
-        let raw = |v: Option<Vertex<P::Lerp, N>>| -> Option<Vertex<i32, N>> {
-            let v = v?;
-            let mut attrs = [0; N];
-            for (o, a) in attrs.iter_mut().zip(v.attrs.iter()) {
-                *o = a.fixed_raw()?;
-            }
-            Some(Vertex {
-                x: v.x,
-                y: v.y,
-                z: v.z.fixed_raw()?,
-                attrs,
-            })
-        };
-        let (Some(a), Some(b), Some(c)) = (
-            raw(self.frame.vertex::<N>(po, i0, q0)),
-            raw(self.frame.vertex::<N>(po, i1, q1)),
-            raw(self.frame.vertex::<N>(po, i2, q2)),
-        ) else {
-            return Ok(false);
-        };
-        self.stats.triangles += 1;
-        if outside != 0 {
-            let i = [p0, p1, p2]
-                .iter()
-                .position(|&[x, y]| !in_limits(x, y, sub))
-                .unwrap_or(0);
-            return Err(RasterError::OutOfRange(i as u8).into());
-        }
-        Ok(setup_fast::<N>(&a, &b, &c, sub, j0, width, out))
     }
 
     /// Sets up triangle `tri` of object `po` from row `max(first row,
@@ -955,13 +935,20 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 }
             }
         } else {
-            let tail = (self.def_head + self.def_len) % self.n.max(1);
-            if let Some(q) = self.order.get_mut(self.n + tail) {
-                *q = ti;
-                self.def_len += 1;
-            }
+            self.defer(ti);
         }
         self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+    }
+
+    /// Queues a triangle that continues below the band but has no slot:
+    /// set up afresh in the next band.
+    #[inline(always)]
+    fn defer(&mut self, ti: u16) {
+        let tail = (self.def_head + self.def_len) % self.n.max(1);
+        if let Some(q) = self.order.get_mut(self.n + tail) {
+            *q = ti;
+            self.def_len += 1;
+        }
     }
 }
 
@@ -978,34 +965,89 @@ enum Src {
 /// Walks a fixed triangle with the fused row kernel: the shader's
 /// constant colour encoded once, or its colour per pixel.
 #[inline(always)]
-fn draw_fused<const N: usize, S: Shader<i32, N>, F: PixelFormat, D: DepthFormat>(
+fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat, D: DepthFormat>(
     walk: &mut Walk,
-    row: &Vals<i32, N>,
-    sx: &Vals<i32, N>,
-    sy: &Vals<i32, N>,
+    vals: &[[i32; 3]; V],
     until: i32,
     mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
     shader: &S,
 ) -> u32 {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        walk.rows_fused::<N, F::Raw, D>(row, sx, sy, until, mem, |_| raw)
+        walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |_| raw)
     } else {
-        walk.rows_fused::<N, F::Raw, D>(row, sx, sy, until, mem, |a| shader.shade_raw::<F>(a))
+        walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
     }
 }
 
-/// A slot's values as raw `i32` row values and steps.
-#[inline(always)]
-fn unpack_fixed<L: Lerp, const N: usize, const V: usize>(
-    v: &[[L; 3]; V],
-) -> (Vals<i32, N>, Vals<i32, N>, Vals<i32, N>) {
-    let get = |k: usize, c: usize| v.get(k).and_then(|x| x[c].fixed_raw()).unwrap_or(0);
-    let f = |c: usize| Vals {
-        z: get(0, c),
-        a: core::array::from_fn(|k| get(k + 1, c)),
+/// Sets triangle `tri` of object `po` up for the fused row kernel from
+/// row `max(first row, j0)` into `walk` and `vals` (a pool slot's, or the
+/// scratch): `Ok(Some(true))` when it draws rows from there,
+/// `Ok(Some(false))` when it was set up but draws none (`walk` then done),
+/// `Ok(None)` when a vertex is missing. A function of its own on ARMv6-M
+/// (its live state then does not share the eight low registers with the
+/// row loop's); inlined elsewhere (out of line, thumbv7em bunny-gouraud
+/// raster took 2.317 -> 2.351 M).
+#[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    inline(always)
+)]
+fn fresh_fixed<P: Profile, const N: usize, const V: usize>(
+    frame: &Frame<'_, P>,
+    po: &PreparedObject,
+    tri: &Tri,
+    j0: i32,
+    width: i32,
+    walk: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+) -> Result<Option<bool>, RenderError> {
+    let sub = P::SUBPIXEL_BITS;
+    let ws = &frame.ws;
+    let xy = |i: u16| ws.xy.get(i as usize).copied();
+    let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
+        *walk = Walk::EMPTY;
+        return Ok(None);
     };
-    (f(0), f(1), f(2))
+    let lim = sub.coord_limit();
+    let off = |v: i32| (v.wrapping_add(lim) as u32 > (2 * lim) as u32) as u32;
+    let outside = off(p0[0]) | off(p0[1]) | off(p1[0]) | off(p1[1]) | off(p2[0]) | off(p2[1]);
+    let [(i0, q0), (i1, q1), (i2, q2)] =
+        sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
+    let raw = |v: Option<Vertex<P::Lerp, N>>| -> Option<Vertex<i32, N>> {
+        let v = v?;
+        let mut attrs = [0; N];
+        for (o, a) in attrs.iter_mut().zip(v.attrs.iter()) {
+            *o = a.fixed_raw()?;
+        }
+        Some(Vertex {
+            x: v.x,
+            y: v.y,
+            z: v.z.fixed_raw()?,
+            attrs,
+        })
+    };
+    let (Some(a), Some(b), Some(c)) = (
+        raw(frame.vertex::<N>(po, i0, q0)),
+        raw(frame.vertex::<N>(po, i1, q1)),
+        raw(frame.vertex::<N>(po, i2, q2)),
+    ) else {
+        *walk = Walk::EMPTY;
+        return Ok(None);
+    };
+    if outside != 0 {
+        *walk = Walk::EMPTY;
+        let i = [p0, p1, p2]
+            .iter()
+            .position(|&[x, y]| !in_limits(x, y, sub))
+            .unwrap_or(0);
+        return Err(RasterError::OutOfRange(i as u8).into());
+    }
+    let set = setup_fast::<N, V>(&a, &b, &c, sub, j0, width, walk, vals);
+    if !set {
+        *walk = Walk::EMPTY;
+    }
+    Ok(Some(set))
 }
 
 /// A slot's values as the walker's row values and steps.
