@@ -53,7 +53,14 @@
 //! roots come from the table of [`approx16::rsqrt_newton`] (one Newton
 //! step: `2^-29` relative), which makes unit `L` and `V` in `Q30` with
 //! three products each; the specular base is then the same sum of squares
-//! (`L + V` and `L - V` per pixel). No general normalisation.
+//! (`L + V` and `L - V` per pixel). No general normalisation. One point
+//! light with a local viewer and the Phong model at shininess below 256
+//! ([`PhongKernel::fill`], the renderer's loop) runs the 32-bit loop of
+//! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
+//! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
+//! `1/|v|` by a series step seeded from the two previous pixels; measured
+//! on the firmware's span sweep, 211 instructions a pixel on the M4 (was
+//! 517) and 817 on the M0 (was 1 357).
 //!
 //! # Accuracy (tests in this module)
 //! Against the same model in `f64` on the same inputs, per channel: within
