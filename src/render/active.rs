@@ -878,8 +878,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     ) -> Result<Option<(Walk, Vals<P::Lerp, N>, Vals<P::Lerp, N>, Vals<P::Lerp, N>)>, RenderError>
     {
         let sub = P::SUBPIXEL_BITS;
-        let ws = &self.frame.ws;
-        let xy = |i: u16| ws.xy.get(i as usize).copied();
+        let frame = self.frame;
+        let xy = |i: u16| frame.xy(usize::from(i));
         let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
             return Ok(None);
         };
@@ -1003,8 +1003,7 @@ fn fresh_fixed<P: Profile, const N: usize, const V: usize>(
     vals: &mut [[i32; 3]; V],
 ) -> Result<Option<bool>, RenderError> {
     let sub = P::SUBPIXEL_BITS;
-    let ws = &frame.ws;
-    let xy = |i: u16| ws.xy.get(i as usize).copied();
+    let xy = |i: u16| frame.xy(usize::from(i));
     let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
         *walk = Walk::EMPTY;
         return Ok(None);

@@ -8,7 +8,7 @@ use crate::illum::Shade;
 use crate::num::{approx16, Profile, Real};
 use crate::raster::{
     draw_sorted, in_limits, sort3, Fill, Flat, Gouraud, GouraudMono, Persp, RasterError, Shader,
-    Spans, Vertex,
+    Spans,
 };
 use crate::scene::{Scene, SceneError};
 use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
@@ -98,27 +98,6 @@ pub struct RenderStats {
 }
 
 impl<P: Profile> Frame<'_, P> {
-    /// Vertex `i` of `po`, whose screen position `[x, y]` the caller
-    /// fetched.
-    pub(super) fn vertex<const N: usize>(
-        &self,
-        po: &PreparedObject,
-        i: u16,
-        [x, y]: [i32; 2],
-    ) -> Option<Vertex<P::Lerp, N>> {
-        let i = i as usize;
-        let base = po.val_base + i.checked_sub(po.verts.start)? * po.stride;
-        let vals = self.ws.vals.get(base..base + 1 + N)?;
-        let mut attrs = [vals[0]; N];
-        attrs.copy_from_slice(&vals[1..]);
-        Some(Vertex {
-            x,
-            y,
-            z: vals[0],
-            attrs,
-        })
-    }
-
     fn draw_object<const N: usize, T, D, S>(
         &self,
         po: &PreparedObject,
@@ -152,7 +131,7 @@ impl<P: Profile> Frame<'_, P> {
         if po.rows[1] <= y0 || po.rows[0] >= y1 {
             return Ok(());
         }
-        for tri in self.ws.tris.get(po.tris.clone()).unwrap_or(&[]) {
+        for tri in self.object_tris(po) {
             // Reject triangles outside the band before fetching attributes.
             if tri.rows[1] <= y0 || tri.rows[0] >= y1 {
                 continue;
@@ -161,7 +140,7 @@ impl<P: Profile> Frame<'_, P> {
             // vertices) before the vertices are fetched; the coordinate
             // limits checked in the triangle's own order (the error names
             // the vertex).
-            let xy = |i: u16| self.ws.xy.get(i as usize).copied();
+            let xy = |i: u16| self.xy(usize::from(i));
             let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
                 continue;
             };
@@ -177,7 +156,7 @@ impl<P: Profile> Frame<'_, P> {
             ) else {
                 continue;
             };
-            per_tri(fill, tri);
+            per_tri(fill, &tri);
             stats.triangles += 1;
             if let Some(i) = out {
                 return Err(RasterError::OutOfRange(i as u8).into());

@@ -74,7 +74,7 @@ pub use prepare::prepare;
 pub use storage::{Capacity, Reach, Storage};
 
 use crate::num::Profile;
-use crate::raster::RasterError;
+use crate::raster::{RasterError, Vertex};
 use crate::scene::{SceneError, Shading, MAX_OBJECTS};
 use crate::target::{BufferError, Rgb8};
 use core::fmt;
@@ -237,9 +237,47 @@ impl<P: Profile> Frame<'_, P> {
         self.ws.tris.get(..self.triangle_count()).unwrap_or(&[])
     }
 
-    /// Screen position of a prepared vertex (subpixels).
+    /// Prepared triangle `i` (an index below [`Self::triangle_count`]).
+    #[inline(always)]
+    pub fn tri(&self, i: usize) -> Option<Tri> {
+        self.tris().get(i).copied()
+    }
+
+    /// The prepared triangles of object `po`, in order.
+    #[inline(always)]
+    pub fn object_tris(&self, po: &PreparedObject) -> impl Iterator<Item = Tri> + '_ {
+        self.tris()
+            .get(po.tris.clone())
+            .unwrap_or(&[])
+            .iter()
+            .copied()
+    }
+
+    /// Screen position of prepared vertex `v` (subpixels).
     pub fn xy(&self, v: usize) -> Option<[i32; 2]> {
         self.ws.xy.get(v).copied()
+    }
+
+    /// Prepared vertex `i` of object `po` (depth and the first `N`
+    /// interpolated values), whose screen position `[x, y]` the caller
+    /// fetched ([`Self::xy`]); `None` when `i` is not one of `po`'s.
+    pub fn vertex<const N: usize>(
+        &self,
+        po: &PreparedObject,
+        i: u16,
+        [x, y]: [i32; 2],
+    ) -> Option<Vertex<P::Lerp, N>> {
+        let i = usize::from(i);
+        let base = po.val_base + i.checked_sub(po.verts.start)? * po.stride;
+        let vals = self.ws.vals.get(base..base + 1 + N)?;
+        let mut attrs = [vals[0]; N];
+        attrs.copy_from_slice(&vals[1..]);
+        Some(Vertex {
+            x,
+            y,
+            z: vals[0],
+            attrs,
+        })
     }
 }
 
