@@ -27,16 +27,22 @@
 extern crate std;
 
 mod crc;
+// With the feature `dodeca`, its whole-set constants are unused.
+#[cfg_attr(feature = "dodeca", allow(dead_code))]
 #[rustfmt::skip]
 mod generated;
 pub mod knobs;
 pub mod profiled;
 pub mod spec;
 
+pub mod alone;
+
+#[cfg(feature = "dodeca")]
+pub use alone::dodeca::{CAPACITY, DEPTH, SCENES, WIDTH};
 pub use crc::Crc32;
-pub use generated::{
-    CAPACITY, DEPTH, MAX_OBJECTS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES, WIDTH,
-};
+#[cfg(not(feature = "dodeca"))]
+pub use generated::{CAPACITY, DEPTH, SCENES, WIDTH};
+pub use generated::{MAX_OBJECTS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES};
 pub use spec::{ObjectSpec, SceneSpec};
 
 use core::fmt;
@@ -44,8 +50,14 @@ use fixshade::num::{Fast, Profile};
 use fixshade::render::{Capacity, Pool, RenderError, Storage, Workspace};
 use fixshade::target::{BandBuf, BufferError, Rgb565Be};
 
-/// Rows per band.
+/// Rows per band: 16 ([`alone::dodeca::BAND_ROWS`] with the feature
+/// `dodeca`).
+#[cfg(not(feature = "dodeca"))]
 pub const BAND_ROWS: u32 = 16;
+/// Rows per band: 16 ([`alone::dodeca::BAND_ROWS`] with the feature
+/// `dodeca`).
+#[cfg(feature = "dodeca")]
+pub const BAND_ROWS: u32 = alone::dodeca::BAND_ROWS;
 /// Pixels per band buffer: the widest scene's width × [`BAND_ROWS`]
 /// (3 840 at 240 pixels).
 pub const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
@@ -149,15 +161,22 @@ pub type SceneStorage =
 /// Active triangles the firmware keeps from band to band: 64, or every
 /// triangle of the storage when fewer (the scene tests check that every
 /// built-in scene sets each triangle up once with it: the bunny keeps
-/// at most 55).
-pub const POOL_SLOTS: usize = if CAPACITY.triangles < 64 {
+/// at most 55); with the feature `dodeca`, [`alone::dodeca::POOL_SLOTS`].
+pub const POOL_SLOTS: usize = if cfg!(feature = "dodeca") {
+    alone::dodeca::POOL_SLOTS
+} else if CAPACITY.triangles < 64 {
     CAPACITY.triangles
 } else {
     64
 };
 /// Values a pool slot holds: 8, every layout (dodeca-phong-n100 has 7:
-/// depth, normal, eye position; its `-pc` profiles 8).
-pub const POOL_VALUES: usize = 8;
+/// depth, normal, eye position; its `-pc` profiles 8); with the feature
+/// `dodeca`, [`alone::dodeca::POOL_VALUES`].
+pub const POOL_VALUES: usize = if cfg!(feature = "dodeca") {
+    alone::dodeca::POOL_VALUES
+} else {
+    8
+};
 /// The firmware's pool of active triangles.
 pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
 
