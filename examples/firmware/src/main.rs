@@ -293,7 +293,10 @@ fn span_region<const N: usize, S: Shader<i32, N>>(
 
 /// Measures the span loops alone (see the crate docs): flat, Gouraud
 /// (one grey level) and Phong (normal only, one directional light with
-/// a specular term), each with a long and a 1-pixel span per row.
+/// a specular term), each with a long and a 1-pixel span per row. Not
+/// inlined: its locals (shades, kernels) stay out of `main`'s stack frame
+/// while the scenes render.
+#[inline(never)]
 fn span_loops(mem: &mut Memory) -> Result<(), FrameError> {
     let material = Material {
         color: Vec3::new(q3(900), q3(700), q3(500)),

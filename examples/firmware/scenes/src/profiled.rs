@@ -140,6 +140,10 @@ pub type ProfilePool<P> = Pool<<P as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
 ///
 /// # Errors
 /// Buffers shorter than a band, or a render error.
+// Not inlined: the band loop's locals (band state, shades, kernels) then
+// take a stack frame of their own, apart from the geometry's, whose
+// deepest calls (the object pass) no longer stack upon them.
+#[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
     frame: &Frame<'_, P>,
