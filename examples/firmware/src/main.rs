@@ -183,7 +183,7 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         SCENE_WIDTH,
         SCENE_WIDTH,
         BAND_ROWS,
-        DEPTH_PIXELS > 0,
+        fixshade_scenes::DEPTH,
     );
     hprintln!(
         "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
@@ -203,17 +203,8 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
     }
     for spec in SCENES.iter() {
         paint_stack();
-        let (ws, order) = mem.storage.split();
-        let stats = render_frame(
-            spec,
-            ws,
-            &mut mem.pixels[..],
-            spec.depth.then_some(&mut mem.depth[..]),
-            order,
-            mem.pool,
-            &mut Markers,
-        )
-        .map_err(|e| Failure::Frame(spec.name, e))?;
+        let stats = scene_frame(spec, mem.pixels, mem.depth, mem.storage, mem.pool)
+            .map_err(|e| Failure::Frame(spec.name, e))?;
         let stack = stack_used();
         let chip = ChipFields {
             storage_bytes: fixshade_scenes::storage_bytes::<Fast>(spec),
@@ -233,10 +224,37 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
     // The span loops write a 240-pixel band and its depth band: not in a
     // build whose scenes are narrower or need no depth band (one convex
     // object each: a build for other scenes than the built-in ones).
-    if DEPTH_PIXELS >= (WIDTH * BAND_ROWS) as usize {
+    if fixshade_scenes::DEPTH && BAND_PIXELS >= (WIDTH * BAND_ROWS) as usize {
         span_loops(mem).map_err(|e| Failure::Frame("span-loops", e))?;
     }
     Ok(())
+}
+
+/// One frame of `spec` ([`render_frame`]) from the static memory. Not
+/// inlined: its geometry locals (the scene's parts, the prepared frame's
+/// object list) then take a stack frame of their own, not one in `main`
+/// under the start-up check's `prepare` (which stacked both: 4 KB more).
+/// The statics are passed one by one (not in [`Memory`]): from its one
+/// call site the optimiser then sees them, and their alignment (the band
+/// clears' word-wide `memset`s).
+#[inline(never)]
+fn scene_frame(
+    spec: &fixshade_scenes::SceneSpec,
+    pixels: &mut [Pixel; BAND_PIXELS],
+    depth: &mut [u16; DEPTH_PIXELS],
+    storage: &mut FrameStorage,
+    pool: &mut BandPool,
+) -> Result<fixshade_scenes::FrameStats, FrameError> {
+    let (ws, order) = storage.split();
+    render_frame(
+        spec,
+        ws,
+        &mut pixels[..],
+        spec.depth.then_some(&mut depth[..]),
+        order,
+        pool,
+        &mut Markers,
+    )
 }
 
 /// Width of the span-loop regions' band (their spans are [`SPAN_LONG`]
