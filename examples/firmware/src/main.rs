@@ -44,7 +44,7 @@ use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
 use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader, Storage};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
-    check, render_frame, BandPool, ChipFields, FrameError, Pixel, Probe, SceneLine, BAND_PIXELS,
+    check, render_frame_in, BandPool, ChipFields, FrameError, Pixel, Probe, SceneLine, BAND_PIXELS,
     BAND_ROWS, CAPACITY, DEPTH_PIXELS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES, SCENES,
     WIDTH as SCENE_WIDTH,
 };
@@ -230,7 +230,7 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
     Ok(())
 }
 
-/// One frame of `spec` ([`render_frame`]) from the static memory. Not
+/// One frame of `spec` ([`render_frame_in`]) from the static memory. Not
 /// inlined: its geometry locals (the scene's parts, the prepared frame's
 /// object list) then take a stack frame of their own, not one in `main`
 /// under the start-up check's `prepare` (which stacked both: 4 KB more).
@@ -246,11 +246,11 @@ fn scene_frame(
     pool: &mut BandPool,
 ) -> Result<fixshade_scenes::FrameStats, FrameError> {
     let (ws, order) = storage.split();
-    render_frame(
+    render_frame_in(
         spec,
         ws,
         &mut pixels[..],
-        spec.depth.then_some(&mut depth[..]),
+        &mut depth[..],
         order,
         pool,
         &mut Markers,

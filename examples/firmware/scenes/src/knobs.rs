@@ -6,7 +6,7 @@
 //! `Fast` profile with another subpixel precision (every other quantity as
 //! `Fast`'s).
 
-use crate::profiled::{raster_bands, ProfilePool};
+use crate::profiled::{raster_bands_in, ProfilePool};
 use crate::{FrameError, FrameStats, Pixel, Probe, SceneSpec, WIDTH};
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::SubpixelBits;
@@ -71,6 +71,28 @@ pub fn render_frame_knobs<P: Profile, D: DepthFormat, Q: Probe>(
     pool: &mut ProfilePool<P>,
     probe: &mut Q,
 ) -> Result<FrameStats, FrameError> {
+    let with_depth = depth.is_some();
+    let depth = depth.unwrap_or(&mut []);
+    render_frame_knobs_in::<P, D, Q>(
+        spec, ws, pixels, depth, with_depth, rows, order, pool, probe,
+    )
+}
+
+/// [`render_frame_knobs`] with the depth band as a slice and whether to
+/// use it (see [`crate::render_frame_in`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
+    spec: &SceneSpec,
+    ws: Workspace<'_, P::Lerp>,
+    pixels: &mut [Pixel],
+    depth: &mut [D::Raw],
+    with_depth: bool,
+    rows: u32,
+    order: &mut [u16],
+    pool: &mut ProfilePool<P>,
+    probe: &mut Q,
+) -> Result<FrameStats, FrameError> {
     let rows = rows.max(1);
     // Geometry.
     probe.resume();
@@ -85,7 +107,9 @@ pub fn render_frame_knobs<P: Profile, D: DepthFormat, Q: Probe>(
     probe.pause();
     probe.close();
     let (scene, frame) = prepared?;
-    raster_bands::<P, D, Q>(&frame, &scene, pixels, depth, rows, order, pool, probe)
+    raster_bands_in::<P, D, Q>(
+        &frame, &scene, pixels, depth, with_depth, rows, order, pool, probe,
+    )
 }
 
 #[cfg(test)]

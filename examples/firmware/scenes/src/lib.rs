@@ -294,6 +294,28 @@ pub fn render_frame<P: Probe>(
     profiled::render_frame_with::<Fast, P>(spec, ws, pixels, depth, order, pool, probe)
 }
 
+/// [`render_frame`] with the depth band given whole (at least
+/// `BAND_PIXELS` values when the build has one, [`DEPTH`]) and used when
+/// the scene needs it ([`SceneSpec::depth`]): what the firmware calls
+/// with its static bands, whose addresses (and alignment, for the band
+/// clears) the optimiser then sees through to the band loop.
+///
+/// # Errors
+/// As [`render_frame`].
+pub fn render_frame_in<P: Probe>(
+    spec: &SceneSpec,
+    ws: Workspace<'_, i32>,
+    pixels: &mut [Pixel],
+    depth: &mut [u16],
+    order: &mut [u16],
+    pool: &mut BandPool,
+    probe: &mut P,
+) -> Result<FrameStats, FrameError> {
+    knobs::render_frame_knobs_in::<Fast, fixshade::target::Depth16, P>(
+        spec, ws, pixels, depth, spec.depth, BAND_ROWS, order, pool, probe,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

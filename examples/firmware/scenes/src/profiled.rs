@@ -140,11 +140,8 @@ pub type ProfilePool<P> = Pool<<P as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
 ///
 /// # Errors
 /// Buffers shorter than a band, or a render error.
-// Not inlined: the band loop's locals (band state, shades, kernels) then
-// take a stack frame of their own, apart from the geometry's, whose
-// deepest calls (the object pass) no longer stack upon them.
-#[inline(never)]
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
     frame: &Frame<'_, P>,
     scene: &Scene<'_, '_, P::Real>,
@@ -155,6 +152,34 @@ pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
     pool: &mut ProfilePool<P>,
     probe: &mut Q,
 ) -> Result<FrameStats, FrameError> {
+    let with_depth = depth.is_some();
+    let depth = depth.unwrap_or(&mut []);
+    raster_bands_in::<P, D, Q>(
+        frame, scene, pixels, depth, with_depth, rows, order, pool, probe,
+    )
+}
+
+/// [`raster_bands`] with the depth band as a slice and whether to use it
+/// (the firmware passes its static band and the scene's need: the
+/// optimiser then sees the static, and its alignment, in the band
+/// clears).
+// Not inlined: the band loop's locals (band state, shades, kernels) then
+// take a stack frame of their own, apart from the geometry's, whose
+// deepest calls (the object pass) no longer stack upon them.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn raster_bands_in<P: Profile, D: DepthFormat, Q: Probe>(
+    frame: &Frame<'_, P>,
+    scene: &Scene<'_, '_, P::Real>,
+    pixels: &mut [Pixel],
+    depth: &mut [D::Raw],
+    with_depth: bool,
+    rows: u32,
+    order: &mut [u16],
+    pool: &mut ProfilePool<P>,
+    probe: &mut Q,
+) -> Result<FrameStats, FrameError> {
+    let depth = with_depth.then_some(depth);
     let mut stats = FrameStats {
         vertices: frame.vertex_count() as u32,
         triangles: frame.triangle_count() as u32,
