@@ -42,13 +42,23 @@
 //! | part | bytes |
 //! |------|-------|
 //! | order scratch ([`BandState`]) | 4 per prepared triangle (`2 ×` [`Frame::triangle_count`] `u16`: the order, and the queue of triangles that found the pool full) |
-//! | pool slot ([`Pool::SLOT_BYTES`]) | 88 (edge walkers, rows, triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
+//! | pool slot ([`Pool::SLOT_BYTES`]) | 64 (the walk packed: three edge walkers of 16 bytes, five 16-bit rows, the flags, the triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
 //!
-//! With `i32` values: 116 bytes per active triangle for `V = 2` (depth
-//! and a grey level), 140 for `V = 4`, 188 for `V = 8` (any layout). The
-//! bunny at 240×240 in 16-row bands keeps at most 55 triangles at once
-//! ([`Bands::active_peak`]): a pool of 64 slots of 8 values is 12 032
-//! bytes, and the order scratch for its 1 498 triangles 5 992 bytes.
+//! With `i32` values: 88 bytes per active triangle for `V = 2` (depth
+//! and a grey level), 112 for `V = 4`, 160 for `V = 8` (any layout). A
+//! slot keeps the walk packed (`raster::PackedWalk`: columns, whole
+//! steps and rows in `i16`), unpacked to walk a band and packed again
+//! after it; a walk that does not pack (a column beyond ±32 767, only
+//! for slivers near the rasterizer's coordinate limits) is set up afresh
+//! in the next band instead, like a triangle that found the pool full.
+//! Packing costs about 110 instructions per kept or resumed visit
+//! (thumbv7em bunny-gouraud raster, 64 slots of 8 values: 2.281 ->
+//! 2.361 M; 352 triangles cross a band border) and saves 24 bytes a
+//! slot. The bunny at 240×240 in 16-row bands keeps at most 55
+//! triangles at once ([`Bands::active_peak`]): 55 slots of 2 values are
+//! 5 060 bytes and set every triangle up once; the firmware's 32 slots
+//! (2 944 bytes) set 105 triangles up twice. The order scratch for its
+//! 1 498 triangles is 5 992 bytes.
 
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader};
@@ -58,7 +68,7 @@ use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
 use crate::raster::{
     in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud, GouraudMono, Lerp,
-    Persp, RasterError, RowSpans, Shader, Vals, Vertex, Walk,
+    PackedWalk, Persp, RasterError, RowSpans, Shader, Vals, Vertex, Walk,
 };
 use crate::scene::{Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -67,7 +77,7 @@ use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
 #[derive(Clone, Copy, Debug)]
 pub struct Slot<L, const V: usize> {
     tri: u16,
-    walk: Walk,
+    walk: PackedWalk,
     /// Per value (depth first): the value at pixel (0, 0) (floats: at
     /// the anchor), its step per pixel along x, along y (none of them
     /// changes while the triangle is walked).
@@ -100,7 +110,7 @@ impl<L: Lerp, const CAP: usize, const V: usize> Pool<L, CAP, V> {
         Self {
             slots: [Slot {
                 tri: 0,
-                walk: Walk::EMPTY,
+                walk: PackedWalk::EMPTY,
                 vals: [[L::ZERO; 3]; V],
             }; CAP],
             ring: [0; CAP],
@@ -676,9 +686,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         return Ok(());
                     };
                     let (row, sx, sy) = unpack::<_, N, V>(&slot.vals);
-                    slot.walk.rows(&row, &sx, &sy, y1, width, &mut k);
-                    let done = slot.walk.done();
-                    self.put_back(si, done);
+                    let mut walk = slot.walk.unpack();
+                    walk.rows(&row, &sx, &sy, y1, width, &mut k);
+                    self.put_back(si, ti as u16, &walk);
                 }
                 Src::Fresh => {
                     let fresh = self.fresh::<N>(po, tri, t.y0 as i32, width)?;
@@ -741,13 +751,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let Some(slot) = self.pool.slots.get_mut(si) else {
                         return Ok(());
                     };
+                    let mut walk = slot.walk.unpack();
                     let Some(vals) = P::Lerp::fixed_slots(&mut slot.vals) else {
                         return Ok(());
                     };
-                    let drawn =
-                        draw_fused::<N, V, S, F, D>(&mut slot.walk, vals, y1, &mut mem, &shader);
-                    let done = slot.walk.done();
-                    self.put_back(si, done);
+                    let drawn = draw_fused::<N, V, S, F, D>(&mut walk, vals, y1, &mut mem, &shader);
+                    self.put_back(si, ti as u16, &walk);
                     drawn
                 }
                 Src::Fresh => {
@@ -759,16 +768,17 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         None
                     };
                     let slot = si.and_then(|s| self.pool.slots.get_mut(s));
-                    let (walk, vals) = match slot {
+                    let vals = match slot {
                         Some(slot) => match P::Lerp::fixed_slots(&mut slot.vals) {
                             Some(v) => {
                                 slot.tri = ti as u16;
-                                (&mut slot.walk, v)
+                                v
                             }
                             None => return Ok(()),
                         },
-                        None => (&mut scratch.0, &mut scratch.1),
+                        None => &mut scratch.1,
                     };
+                    let walk = &mut scratch.0;
                     let set = fresh_fixed::<P, N, V>(frame, po, tri, y0, width, walk, vals);
                     let drawn = match set {
                         Ok(Some(true)) => {
@@ -787,7 +797,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     };
                     let done = walk.done();
                     match si {
-                        Some(si) => self.put_back(si, done),
+                        Some(si) => self.put_back(si, ti as u16, walk),
                         None if !done => self.defer(ti as u16),
                         None => {}
                     }
@@ -846,20 +856,31 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         }
     }
 
-    /// Returns a resumed slot: to the free stack when its triangle is
-    /// done, else to the ring's tail for the next band.
+    /// Returns slot `si` of triangle `ti` after its walk `walk` in this
+    /// band: to the free stack when the triangle is done, else with the
+    /// walk packed into it to the ring's tail for the next band (or, when
+    /// the walk does not pack, [`Walk::pack`], to the free stack with the
+    /// triangle queued to be set up afresh).
     #[inline(always)]
-    fn put_back(&mut self, si: usize, done: bool) {
-        if done {
-            if let Some(f) = self.pool.free.get_mut(self.free_len) {
-                *f = si as u16;
-                self.free_len += 1;
+    fn put_back(&mut self, si: usize, ti: u16, walk: &Walk) {
+        let packed = if walk.done() { None } else { walk.pack() };
+        match (packed, self.pool.slots.get_mut(si)) {
+            (Some(p), Some(slot)) => {
+                slot.walk = p;
+                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                if let Some(r) = self.pool.ring.get_mut(tail) {
+                    *r = si as u16;
+                    self.ring_len += 1;
+                }
             }
-        } else {
-            let tail = (self.ring_head + self.ring_len) % CAP.max(1);
-            if let Some(r) = self.pool.ring.get_mut(tail) {
-                *r = si as u16;
-                self.ring_len += 1;
+            _ => {
+                if let Some(f) = self.pool.free.get_mut(self.free_len) {
+                    *f = si as u16;
+                    self.free_len += 1;
+                }
+                if !walk.done() {
+                    self.defer(ti);
+                }
             }
         }
     }
@@ -921,12 +942,17 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         sx: &Vals<P::Lerp, N>,
         sy: &Vals<P::Lerp, N>,
     ) {
-        if N < V && self.free_len > 0 {
+        let packed = if N < V && self.free_len > 0 {
+            walk.pack()
+        } else {
+            None
+        };
+        if let Some(packed) = packed {
             self.free_len -= 1;
             let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
             if let Some(slot) = self.pool.slots.get_mut(si as usize) {
                 slot.tri = ti;
-                slot.walk = walk;
+                slot.walk = packed;
                 pack::<_, N, V>(&mut slot.vals, row, sx, sy);
                 let tail = (self.ring_head + self.ring_len) % CAP.max(1);
                 if let Some(r) = self.pool.ring.get_mut(tail) {
