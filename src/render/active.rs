@@ -28,8 +28,10 @@
 //! values, no perspective: [`Lerp::fixed_raw`]) take `Bands::run_fast`:
 //! the same streams, with the setup of `raster::fast` (32-bit where the
 //! triangle's extents allow it, on every target; tested equal to the
-//! general setup), written straight into a free pool slot (no copy when
-//! the triangle continues below the band), and its fused row kernel (two
+//! general setup), written into a scratch walk and values (packed into a
+//! free pool slot only when the triangle continues below the band: the
+//! setup writing straight into a slot measured no faster), and its fused
+//! row kernel (two
 //! edge steps, one multiply-add per value for a span start, the span
 //! stage's own pixel loops), so the bytes are those of the general path.
 //! bunny-gouraud raster (exact QEMU counts, 16-row bands): thumbv7em
@@ -47,18 +49,22 @@
 //! With `i32` values: 88 bytes per active triangle for `V = 2` (depth
 //! and a grey level), 112 for `V = 4`, 160 for `V = 8` (any layout). A
 //! slot keeps the walk packed (`raster::PackedWalk`: columns, whole
-//! steps and rows in `i16`), unpacked to walk a band and packed again
-//! after it; a walk that does not pack (a column beyond ±32 767, only
-//! for slivers near the rasterizer's coordinate limits) is set up afresh
-//! in the next band instead, like a triangle that found the pool full.
-//! Packing costs about 110 instructions per kept or resumed visit
-//! (thumbv7em bunny-gouraud raster, 64 slots of 8 values: 2.281 ->
-//! 2.361 M; 352 triangles cross a band border) and saves 24 bytes a
-//! slot. The bunny at 240×240 in 16-row bands keeps at most 55
-//! triangles at once ([`Bands::active_peak`]): 55 slots of 2 values are
-//! 5 060 bytes and set every triangle up once; the firmware's 32 slots
-//! (2 944 bytes) set 105 triangles up twice. The order scratch for its
-//! 1 498 triangles is 5 992 bytes.
+//! steps and rows in `i16`): a triangle starting in a band is set up and
+//! walked in a scratch walk and packed into a free slot (with its values)
+//! only when it continues below the band; a resumed one is unpacked for
+//! the band and packed again. A walk that does not pack (a column beyond
+//! ±32 767, only for slivers near the rasterizer's coordinate limits) is
+//! set up afresh in the next band instead, like a triangle that found the
+//! pool full.
+//!
+//! The bunny at 240×240 in 16-row bands crosses band borders 352 times
+//! and keeps at most 55 triangles at once ([`Bands::active_peak`]). In
+//! the firmware (exact QEMU counts, bunny-gouraud raster, thumbv7em):
+//! unpacked slots of 8 values, 64 slots (12 032 bytes), 2.281 M
+//! instructions; packed slots of 2 values, 56 slots (5 152 bytes, every
+//! triangle set up once), 2.297 M; 32 slots (2 944 bytes, the firmware's
+//! pool: 105 triangles set up a second time), 2.354 M (thumbv6m 3.810 ->
+//! 3.942 M). The order scratch for its 1 498 triangles is 5 992 bytes.
 
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader};
@@ -709,9 +715,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// [`Bands::run`] for the fixed affine profiles (`i32` values, no
     /// perspective) and shaders of at most one attribute: the fused row
     /// kernel of `raster::fast` (the same bytes, see there). A triangle
-    /// starting in the band is set up straight into a free pool slot (by
-    /// [`fresh_fixed`], a function of its own) and walked from there: no
-    /// copy when it continues below the band.
+    /// starting in the band is set up in a scratch walk and values (by
+    /// [`fresh_fixed`]), walked from there and kept in a free slot when it
+    /// continues below the band ([`Bands::keep_fixed`]); a resumed one is
+    /// unpacked from its slot for the band and packed back.
     #[inline(never)]
     fn run_fast<const N: usize, S, F, D>(
         &mut self,
@@ -760,25 +767,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     drawn
                 }
                 Src::Fresh => {
-                    // A free slot when the values fit one.
-                    let si = if N < V && self.free_len > 0 {
-                        self.free_len -= 1;
-                        self.pool.free.get(self.free_len).map(|&s| s as usize)
-                    } else {
-                        None
-                    };
-                    let slot = si.and_then(|s| self.pool.slots.get_mut(s));
-                    let vals = match slot {
-                        Some(slot) => match P::Lerp::fixed_slots(&mut slot.vals) {
-                            Some(v) => {
-                                slot.tri = ti as u16;
-                                v
-                            }
-                            None => return Ok(()),
-                        },
-                        None => &mut scratch.1,
-                    };
-                    let walk = &mut scratch.0;
+                    // Set up and walked in the scratch; kept in a slot
+                    // when it continues below the band.
+                    let (walk, vals) = (&mut scratch.0, &mut scratch.1);
                     let set = fresh_fixed::<P, N, V>(frame, po, tri, y0, width, walk, vals);
                     let drawn = match set {
                         Ok(Some(true)) => {
@@ -795,14 +786,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                             return Err(e);
                         }
                     };
-                    let done = walk.done();
-                    match si {
-                        Some(si) => self.put_back(si, ti as u16, walk),
-                        None if !done => self.defer(ti as u16),
-                        None => {}
-                    }
-                    if !done {
-                        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+                    if !walk.done() {
+                        self.keep_fixed::<N>(ti as u16, walk, vals);
                     }
                     drawn
                 }
@@ -962,6 +947,44 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             }
         } else {
             self.defer(ti);
+        }
+        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+    }
+
+    /// [`Bands::keep`] for the fast path: the walk packed and the values
+    /// copied into a free slot, or the triangle queued.
+    #[inline(always)]
+    fn keep_fixed<const N: usize>(&mut self, ti: u16, walk: &Walk, vals: &[[i32; 3]; V]) {
+        let packed = if N < V && self.free_len > 0 {
+            walk.pack()
+        } else {
+            None
+        };
+        let slot = match packed {
+            Some(p) => {
+                self.free_len -= 1;
+                let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
+                self.pool
+                    .slots
+                    .get_mut(si as usize)
+                    .map(|slot| (si, p, slot))
+            }
+            None => None,
+        };
+        match slot {
+            Some((si, p, slot)) => {
+                slot.tri = ti;
+                slot.walk = p;
+                if let Some(v) = P::Lerp::fixed_slots(&mut slot.vals) {
+                    *v = *vals;
+                }
+                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                if let Some(r) = self.pool.ring.get_mut(tail) {
+                    *r = si;
+                    self.ring_len += 1;
+                }
+            }
+            None => self.defer(ti),
         }
         self.peak = self.peak.max(CAP - self.free_len + self.def_len);
     }
