@@ -163,8 +163,9 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     fn from_fixed_raw(v: i32) -> Self;
 
     /// The band pool's value storage as raw `i32`s (`Some` for `i32`, the
-    /// very array: the fast path sets a triangle up in its pool slot and
-    /// walks it from there, no copy); `None` for the float twins.
+    /// very array: the fast path keeps a triangle's values there and
+    /// walks a resumed one from there, no copy); `None` for the float
+    /// twins.
     #[inline(always)]
     fn fixed_slots<const V: usize>(_v: &mut [[Self; 3]; V]) -> Option<&mut [[i32; 3]; V]> {
         None

@@ -28,8 +28,10 @@
 //! values, no perspective: [`Lerp::fixed_raw`]) take `Bands::run_fast`:
 //! the same streams, with the setup of `raster::fast` (32-bit where the
 //! triangle's extents allow it, on every target; tested equal to the
-//! general setup), written straight into a free pool slot (no copy when
-//! the triangle continues below the band), and its fused row kernel (two
+//! general setup), written into a scratch walk and values (packed into a
+//! free pool slot only when the triangle continues below the band: the
+//! setup writing straight into a slot measured no faster), and its fused
+//! row kernel (two
 //! edge steps, one multiply-add per value for a span start, the span
 //! stage's own pixel loops), so the bytes are those of the general path.
 //! bunny-gouraud raster (exact QEMU counts, 16-row bands): thumbv7em
@@ -42,13 +44,27 @@
 //! | part | bytes |
 //! |------|-------|
 //! | order scratch ([`BandState`]) | 4 per prepared triangle (`2 ×` [`Frame::triangle_count`] `u16`: the order, and the queue of triangles that found the pool full) |
-//! | pool slot ([`Pool::SLOT_BYTES`]) | 88 (edge walkers, rows, triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
+//! | pool slot ([`Pool::SLOT_BYTES`]) | 64 (the walk packed: three edge walkers of 16 bytes, five 16-bit rows, the flags, the triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
 //!
-//! With `i32` values: 116 bytes per active triangle for `V = 2` (depth
-//! and a grey level), 140 for `V = 4`, 188 for `V = 8` (any layout). The
-//! bunny at 240×240 in 16-row bands keeps at most 55 triangles at once
-//! ([`Bands::active_peak`]): a pool of 64 slots of 8 values is 12 032
-//! bytes, and the order scratch for its 1 498 triangles 5 992 bytes.
+//! With `i32` values: 88 bytes per active triangle for `V = 2` (depth
+//! and a grey level), 112 for `V = 4`, 160 for `V = 8` (any layout). A
+//! slot keeps the walk packed (`raster::PackedWalk`: columns, whole
+//! steps and rows in `i16`): a triangle starting in a band is set up and
+//! walked in a scratch walk and packed into a free slot (with its values)
+//! only when it continues below the band; a resumed one is unpacked for
+//! the band and packed again. A walk that does not pack (a column beyond
+//! ±32 767, only for slivers near the rasterizer's coordinate limits) is
+//! set up afresh in the next band instead, like a triangle that found the
+//! pool full.
+//!
+//! The bunny at 240×240 in 16-row bands crosses band borders 352 times
+//! and keeps at most 55 triangles at once ([`Bands::active_peak`]). In
+//! the firmware (exact QEMU counts, bunny-gouraud raster, thumbv7em):
+//! unpacked slots of 8 values, 64 slots (12 032 bytes), 2.281 M
+//! instructions; packed slots of 2 values, 56 slots (5 152 bytes, every
+//! triangle set up once), 2.297 M; 32 slots (2 944 bytes, the firmware's
+//! pool: 105 triangles set up a second time), 2.354 M (thumbv6m 3.810 ->
+//! 3.942 M). The order scratch for its 1 498 triangles is 5 992 bytes.
 
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader};
@@ -58,7 +74,7 @@ use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
 use crate::raster::{
     in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud, GouraudMono, Lerp,
-    Persp, RasterError, RowSpans, Shader, Vals, Vertex, Walk,
+    PackedWalk, Persp, RasterError, RowSpans, Shader, Vals, Vertex, Walk,
 };
 use crate::scene::{Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -67,7 +83,7 @@ use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
 #[derive(Clone, Copy, Debug)]
 pub struct Slot<L, const V: usize> {
     tri: u16,
-    walk: Walk,
+    walk: PackedWalk,
     /// Per value (depth first): the value at pixel (0, 0) (floats: at
     /// the anchor), its step per pixel along x, along y (none of them
     /// changes while the triangle is walked).
@@ -100,7 +116,7 @@ impl<L: Lerp, const CAP: usize, const V: usize> Pool<L, CAP, V> {
         Self {
             slots: [Slot {
                 tri: 0,
-                walk: Walk::EMPTY,
+                walk: PackedWalk::EMPTY,
                 vals: [[L::ZERO; 3]; V],
             }; CAP],
             ring: [0; CAP],
@@ -676,9 +692,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         return Ok(());
                     };
                     let (row, sx, sy) = unpack::<_, N, V>(&slot.vals);
-                    slot.walk.rows(&row, &sx, &sy, y1, width, &mut k);
-                    let done = slot.walk.done();
-                    self.put_back(si, done);
+                    let mut walk = slot.walk.unpack();
+                    walk.rows(&row, &sx, &sy, y1, width, &mut k);
+                    self.put_back(si, ti as u16, &walk);
                 }
                 Src::Fresh => {
                     let fresh = self.fresh::<N>(po, tri, t.y0 as i32, width)?;
@@ -699,9 +715,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// [`Bands::run`] for the fixed affine profiles (`i32` values, no
     /// perspective) and shaders of at most one attribute: the fused row
     /// kernel of `raster::fast` (the same bytes, see there). A triangle
-    /// starting in the band is set up straight into a free pool slot (by
-    /// [`fresh_fixed`], a function of its own) and walked from there: no
-    /// copy when it continues below the band.
+    /// starting in the band is set up in a scratch walk and values (by
+    /// [`fresh_fixed`]), walked from there and kept in a free slot when it
+    /// continues below the band ([`Bands::keep_fixed`]); a resumed one is
+    /// unpacked from its slot for the band and packed back.
     #[inline(never)]
     fn run_fast<const N: usize, S, F, D>(
         &mut self,
@@ -741,34 +758,18 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let Some(slot) = self.pool.slots.get_mut(si) else {
                         return Ok(());
                     };
+                    let mut walk = slot.walk.unpack();
                     let Some(vals) = P::Lerp::fixed_slots(&mut slot.vals) else {
                         return Ok(());
                     };
-                    let drawn =
-                        draw_fused::<N, V, S, F, D>(&mut slot.walk, vals, y1, &mut mem, &shader);
-                    let done = slot.walk.done();
-                    self.put_back(si, done);
+                    let drawn = draw_fused::<N, V, S, F, D>(&mut walk, vals, y1, &mut mem, &shader);
+                    self.put_back(si, ti as u16, &walk);
                     drawn
                 }
                 Src::Fresh => {
-                    // A free slot when the values fit one.
-                    let si = if N < V && self.free_len > 0 {
-                        self.free_len -= 1;
-                        self.pool.free.get(self.free_len).map(|&s| s as usize)
-                    } else {
-                        None
-                    };
-                    let slot = si.and_then(|s| self.pool.slots.get_mut(s));
-                    let (walk, vals) = match slot {
-                        Some(slot) => match P::Lerp::fixed_slots(&mut slot.vals) {
-                            Some(v) => {
-                                slot.tri = ti as u16;
-                                (&mut slot.walk, v)
-                            }
-                            None => return Ok(()),
-                        },
-                        None => (&mut scratch.0, &mut scratch.1),
-                    };
+                    // Set up and walked in the scratch; kept in a slot
+                    // when it continues below the band.
+                    let (walk, vals) = (&mut scratch.0, &mut scratch.1);
                     let set = fresh_fixed::<P, N, V>(frame, po, tri, y0, width, walk, vals);
                     let drawn = match set {
                         Ok(Some(true)) => {
@@ -785,14 +786,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                             return Err(e);
                         }
                     };
-                    let done = walk.done();
-                    match si {
-                        Some(si) => self.put_back(si, done),
-                        None if !done => self.defer(ti as u16),
-                        None => {}
-                    }
-                    if !done {
-                        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+                    if !walk.done() {
+                        self.keep_fixed::<N>(ti as u16, walk, vals);
                     }
                     drawn
                 }
@@ -846,20 +841,31 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         }
     }
 
-    /// Returns a resumed slot: to the free stack when its triangle is
-    /// done, else to the ring's tail for the next band.
+    /// Returns slot `si` of triangle `ti` after its walk `walk` in this
+    /// band: to the free stack when the triangle is done, else with the
+    /// walk packed into it to the ring's tail for the next band (or, when
+    /// the walk does not pack, [`Walk::pack`], to the free stack with the
+    /// triangle queued to be set up afresh).
     #[inline(always)]
-    fn put_back(&mut self, si: usize, done: bool) {
-        if done {
-            if let Some(f) = self.pool.free.get_mut(self.free_len) {
-                *f = si as u16;
-                self.free_len += 1;
+    fn put_back(&mut self, si: usize, ti: u16, walk: &Walk) {
+        let packed = if walk.done() { None } else { walk.pack() };
+        match (packed, self.pool.slots.get_mut(si)) {
+            (Some(p), Some(slot)) => {
+                slot.walk = p;
+                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                if let Some(r) = self.pool.ring.get_mut(tail) {
+                    *r = si as u16;
+                    self.ring_len += 1;
+                }
             }
-        } else {
-            let tail = (self.ring_head + self.ring_len) % CAP.max(1);
-            if let Some(r) = self.pool.ring.get_mut(tail) {
-                *r = si as u16;
-                self.ring_len += 1;
+            _ => {
+                if let Some(f) = self.pool.free.get_mut(self.free_len) {
+                    *f = si as u16;
+                    self.free_len += 1;
+                }
+                if !walk.done() {
+                    self.defer(ti);
+                }
             }
         }
     }
@@ -921,12 +927,17 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         sx: &Vals<P::Lerp, N>,
         sy: &Vals<P::Lerp, N>,
     ) {
-        if N < V && self.free_len > 0 {
+        let packed = if N < V && self.free_len > 0 {
+            walk.pack()
+        } else {
+            None
+        };
+        if let Some(packed) = packed {
             self.free_len -= 1;
             let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
             if let Some(slot) = self.pool.slots.get_mut(si as usize) {
                 slot.tri = ti;
-                slot.walk = walk;
+                slot.walk = packed;
                 pack::<_, N, V>(&mut slot.vals, row, sx, sy);
                 let tail = (self.ring_head + self.ring_len) % CAP.max(1);
                 if let Some(r) = self.pool.ring.get_mut(tail) {
@@ -936,6 +947,44 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             }
         } else {
             self.defer(ti);
+        }
+        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+    }
+
+    /// [`Bands::keep`] for the fast path: the walk packed and the values
+    /// copied into a free slot, or the triangle queued.
+    #[inline(always)]
+    fn keep_fixed<const N: usize>(&mut self, ti: u16, walk: &Walk, vals: &[[i32; 3]; V]) {
+        let packed = if N < V && self.free_len > 0 {
+            walk.pack()
+        } else {
+            None
+        };
+        let slot = match packed {
+            Some(p) => {
+                self.free_len -= 1;
+                let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
+                self.pool
+                    .slots
+                    .get_mut(si as usize)
+                    .map(|slot| (si, p, slot))
+            }
+            None => None,
+        };
+        match slot {
+            Some((si, p, slot)) => {
+                slot.tri = ti;
+                slot.walk = p;
+                if let Some(v) = P::Lerp::fixed_slots(&mut slot.vals) {
+                    *v = *vals;
+                }
+                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                if let Some(r) = self.pool.ring.get_mut(tail) {
+                    *r = si;
+                    self.ring_len += 1;
+                }
+            }
+            None => self.defer(ti),
         }
         self.peak = self.peak.max(CAP - self.free_len + self.def_len);
     }

@@ -769,13 +769,16 @@ fn band_of_equals_the_division() {
 #[test]
 fn band_state_memory_is_as_documented() {
     use core::mem::size_of;
-    // Walk: three edge walkers of 20 bytes, 5 words and 2 flags = 82; with
-    // the triangle index 84, 88 aligned; then 12 bytes per value.
-    assert_eq!(Pool::<i32, 1, 2>::SLOT_BYTES, 88 + 24);
-    assert_eq!(Pool::<i32, 1, 4>::SLOT_BYTES, 88 + 48);
-    assert_eq!(Pool::<i32, 1, 8>::SLOT_BYTES, 88 + 96);
+    // The packed walk: three edge walkers of 16 bytes, five 16-bit rows
+    // and a flag byte = 59, 60 aligned; with the triangle index 62, 64
+    // aligned; then 12 bytes per value.
+    assert_eq!(size_of::<crate::raster::PackedWalk>(), 60);
+    assert_eq!(Pool::<i32, 1, 2>::SLOT_BYTES, 64 + 24);
+    assert_eq!(Pool::<i32, 1, 4>::SLOT_BYTES, 64 + 48);
+    assert_eq!(Pool::<i32, 1, 8>::SLOT_BYTES, 64 + 96);
     // The pool adds two u16 list entries per slot.
-    assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (88 + 96 + 4));
+    assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (64 + 96 + 4));
+    assert_eq!(size_of::<Pool<i32, 32, 2>>(), 32 * (64 + 24 + 4));
 }
 
 /// The bounding sphere decides once per object: wholly inside (no
@@ -978,4 +981,54 @@ fn object_space_culling_keeps_the_frame_and_skips_vertices() {
         assert_eq!(t1.len(), 1498);
         assert!(s1 > 600, "{shading:?}: {s1}");
     }
+}
+
+/// A triangle whose upper edge runs 4 400 pixels across within two
+/// subpixel rows (a whole step per row beyond ±32 767 columns): after
+/// its first row its walk does not pack into a pool slot, so with
+/// one-row bands it is set up again in the next band, even with slots to
+/// spare; the bytes are those of the full frame (fast path: `Fast`; general
+/// path: `F64`).
+#[test]
+fn walks_that_do_not_pack_are_set_up_again_with_the_same_bytes() {
+    // Raw Q1.14 positions scaled by 200: A (-200, 0.0517) and B (200,
+    // 0.0395), 0.13 pixels apart around the centre of row 23; C below.
+    const POS: [[i16; 3]; 3] = [[-16384, 1, 0], [16384, 0, 0], [0, -3000, 0]];
+    fn run<P: Profile>(shading: Shading) {
+        let mesh = Mesh::new(&POS, &[[0, 2, 1]], None).unwrap();
+        let f = P::Real::from_f32;
+        let objs = [Object {
+            mesh,
+            transform: Affine::from_parts(
+                f(200.0),
+                Vec3::ZERO,
+                Vec3::new(f(0.0), f(0.03953), f(0.0)),
+            ),
+            material: material(0.0),
+            shading,
+            cull_backfaces: false,
+        }];
+        let ls = lights();
+        let s = scene(&objs, &ls, [0.0, 0.0, 6.0]);
+        let (w, h) = (64, 48);
+        let whole = full::<P>(&s, w, h, true);
+        let bg = Rgb565Be::encode_bytes(s.background);
+        // Rows 23 (partly) to 47 covered, row 22 not.
+        let row = |y: usize| &whole[y * 2 * w as usize..(y + 1) * 2 * w as usize];
+        assert!(row(22).chunks(2).all(|c| c == bg), "{}", P::NAME);
+        assert!(row(23).chunks(2).any(|c| c != bg), "{}", P::NAME);
+        assert!(row(24).chunks(2).all(|c| c != bg), "{}", P::NAME);
+        for rows in [1, 7] {
+            let (out, stats, n) = banded_with::<P, 256, 8>(&s, w, h, rows, true);
+            assert_eq!(out, whole, "{} rows {rows}", P::NAME);
+            assert_eq!(n, 1);
+            // One-row bands: set up in row 23's band and again in row
+            // 24's (then in its lower half, it packs); 7-row bands reach
+            // the next border (row 28) in the lower half.
+            let setups = if rows == 1 { 2 } else { 1 };
+            assert_eq!(stats.triangles, setups, "{} rows {rows}", P::NAME);
+        }
+    }
+    run::<Fast>(Shading::Flat);
+    run::<F64>(Shading::Flat);
 }

@@ -115,15 +115,15 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{NoProbe, SCENES};
+    use crate::{NoProbe, POOL_SLOTS, SCENES};
     use fixshade::target::Depth16;
     use std::{boxed::Box, vec};
 
     /// Every band height gives the same frame, and with the active
-    /// triangle list every prepared triangle is set up once, bands of 16
-    /// rows and more; 4-row bands keep more triangles active at a border
-    /// than the 64 slots hold, so a few are set up again (the pool's
-    /// fallback: same bytes).
+    /// triangle list every prepared triangle is set up once when the
+    /// pool's slots hold the triangles kept across a border; the bunny
+    /// may keep more than the firmware's slots in some band heights, so
+    /// some are set up again (the pool's fallback: same bytes).
     #[test]
     fn every_band_height_renders_the_same_frame_with_one_setup_per_triangle() {
         let spec = SCENES.iter().find(|s| s.name == KNOB_SCENE).unwrap();
@@ -147,9 +147,13 @@ mod tests {
                 &mut NoProbe,
             )
             .unwrap();
-            assert!(s.setups >= s.triangles, "{rows} rows");
-            if rows >= 16 {
+            // Once each while the pool holds every triangle carried across
+            // a border (the whole frame as one band at least); else the
+            // ones that found it full are set up again in the next band.
+            if s.active_peak as usize <= POOL_SLOTS || rows == 240 {
                 assert_eq!(s.setups, s.triangles, "{rows} rows");
+            } else {
+                assert!(s.setups > s.triangles, "{rows} rows");
             }
             if let Some(l) = last {
                 assert_eq!(
