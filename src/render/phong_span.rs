@@ -184,8 +184,8 @@ pub struct PhongKernel<'s, R> {
     /// `255 · 2^19 ·` ambient per channel plus `2^18` (rounding), for the
     /// 32-bit loop of one directional light ([`PhongKernel::fill`]).
     amb19: [i32; 3],
-    /// The ambient colour alone.
-    amb_c: Rgb8,
+    /// The ambient colour alone (`r | g << 8 | b << 16`).
+    amb_p: u32,
     /// `Q` (Q28) at or above `2^(15 + sq)`: no specular term.
     sq: u32,
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
@@ -347,9 +347,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         .filter(|&k| k < 1 << 26)
         .ok_or(KernelError::Range)?;
         let amb19 = ambient.map(|a| (scale255(a, 19) as i32).saturating_add(1 << 18));
-        let amb_c = {
+        let amb_p = {
             let l = |a: i32| (a >> 19).clamp(0, 255) as u8;
-            Rgb8::new(l(amb19[0]), l(amb19[1]), l(amb19[2]))
+            pack(Rgb8::new(l(amb19[0]), l(amb19[1]), l(amb19[2])))
         };
         // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
         let qlim = (u64::from(t_eff) * (5 << 28) / 4)
@@ -397,7 +397,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             table,
             kf,
             amb19,
-            amb_c,
+            amb_p,
             sq,
             c16,
             cb,
@@ -534,17 +534,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         test: impl FnMut(u32) -> bool,
         write: impl FnMut(u32, Rgb8),
     ) -> u32 {
-        let mut sc = PointScratch::new();
-        self.fill_with(&mut sc, n, dn, p, dp, back, len, test, write)
+        self.fill_with(n, dn, p, dp, back, len, test, write)
     }
 
-    /// [`PhongKernel::fill`] with the point loop's buffers kept by the
-    /// caller.
+    /// [`PhongKernel::fill`] (the span stages' entry).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn fill_with(
         &self,
-        sc: &mut PointScratch,
         n: [i32; 3],
         dn: [i32; 3],
         p: [i32; 3],
@@ -583,7 +580,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                     } else {
                         (n, dn)
                     };
-                    return self.fill_point(sc, l, (n, dn, p, dp), len, test, write);
+                    return self.fill_point(l, (n, dn, p, dp), len, test, write);
                 }
             }
             return self.fill_general_one(l, n, dn, p, dp, back, len, test, write);
@@ -1140,7 +1137,6 @@ pub struct PhongFill<'t, 'd, 'b, 'k, 's, T, D: DepthFormat, R> {
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
     drawn: u32,
-    scratch: PointScratch,
 }
 
 impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
@@ -1168,7 +1164,6 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             kernel,
             back: false,
             drawn: 0,
-            scratch: PointScratch::new(),
         })
     }
 
@@ -1193,7 +1188,6 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
         let k = self.kernel;
         let back = self.back;
         let drawn = &mut self.drawn;
-        let sc = &mut self.scratch;
         match self.depth.as_deref_mut() {
             Some(d) => {
                 let Some(drow) = d.span_mut(y, x0, x1) else {
@@ -1207,22 +1201,19 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                             *px = enc(c);
                         }
                     };
-                    count =
-                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
                 } else {
                     let t = &mut *self.target;
                     let put = |i: u32, c| {
                         t.write_pixel(x0 + i, y, enc(c));
                     };
-                    count =
-                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
                 }
                 *drawn += count;
             }
             None => {
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
                     k.fill_with(
-                        sc,
                         n,
                         dn,
                         p,
@@ -1239,7 +1230,6 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                 } else {
                     let t = &mut *self.target;
                     k.fill_with(
-                        sc,
                         n,
                         dn,
                         p,
@@ -1268,7 +1258,6 @@ pub struct PhongKernelShader<'k, 's, R> {
     kernel: &'k PhongKernel<'s, R>,
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
-    scratch: PointScratch,
 }
 
 impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
@@ -1277,7 +1266,6 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         Self {
             kernel,
             back: false,
-            scratch: PointScratch::new(),
         }
     }
 
@@ -1315,7 +1303,6 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         match drow {
             Some(drow) => depth_fill::<L, D, R>(
                 self.kernel,
-                &mut self.scratch,
                 drow,
                 z,
                 dz,
@@ -1324,17 +1311,9 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
                 len,
                 put,
             ),
-            None => self.kernel.fill_with(
-                &mut self.scratch,
-                n,
-                dn,
-                p,
-                dp,
-                self.back,
-                len,
-                |_| true,
-                put,
-            ),
+            None => self
+                .kernel
+                .fill_with(n, dn, p, dp, self.back, len, |_| true, put),
         }
     }
 }
@@ -1417,7 +1396,6 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 #[inline(always)]
 fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
-    sc: &mut PointScratch,
     drow: &mut [D::Raw],
     z: L,
     dz: L,
@@ -1427,7 +1405,7 @@ fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     mut put: impl FnMut(u32, Rgb8),
 ) -> u32 {
     let mut t = DepthTest::<L, D> { drow, z, dz };
-    k.fill_with(sc, n, dn, p, dp, back, len, |i| t.test(i), &mut put)
+    k.fill_with(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
@@ -1455,8 +1433,58 @@ impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 6>
     }
 }
 
+/// Pixels per chunk of the 32-bit span loops (modules `one` and
+/// `point`): their forward differences are re-seeded exactly at each
+/// chunk's first pixel.
+const CHUNK: usize = 32;
+
+/// The span driver of the 32-bit loops: `chunk(i, k, buf)` puts the
+/// colours (`r | g << 8 | b << 16`) of the `k <= CHUNK` pixels from pixel
+/// `i` into `buf`; the driver runs `test` and `write` over them (one
+/// short loop per pixel and depth format) and returns how many pixels
+/// passed. Not inlined: the buffer (128 bytes, zeroed once a span) lives
+/// in its own frame, so the span stages of the other shaders do not
+/// carry it on their stack.
+#[inline(never)]
+fn drive(
+    len: u32,
+    mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]),
+    mut test: impl FnMut(u32) -> bool,
+    mut write: impl FnMut(u32, Rgb8),
+) -> u32 {
+    let mut buf = [0u32; CHUNK];
+    // Failures counted (the rarer case in a frame), passes derived.
+    let mut failed = 0;
+    let mut i = 0u32;
+    while i < len {
+        let k = (len - i).min(CHUNK as u32);
+        chunk(i, k, &mut buf);
+        for (j, &c) in (i..i + k).zip(buf.iter()) {
+            if test(j) {
+                write(j, unpack(c));
+            } else {
+                failed += 1;
+            }
+        }
+        i += k;
+    }
+    len - failed
+}
+
+/// `r | g << 8 | b << 16`.
+#[inline(always)]
+fn pack(c: Rgb8) -> u32 {
+    u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16
+}
+
+/// The colour of `r | g << 8 | b << 16`.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn unpack(c: u32) -> Rgb8 {
+    Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)
+}
+
 mod one;
 mod point;
-use point::PointScratch;
 #[cfg(test)]
 mod tests;
