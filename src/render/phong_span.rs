@@ -154,12 +154,14 @@ struct KLight {
     /// Blinn `H`) and `P2` (Phong `(L-V)/√2`), Q30.
     p1: [i32; 3],
     p2: [i32; 3],
-    /// `255 · 2^6 ·` the diffuse and specular coefficients per channel.
+    /// `255 · 2^6 ·` the diffuse and specular coefficients per channel
+    /// (below 2^16).
     d: [u32; 3],
     s: [u32; 3],
-    /// `255 · 2^4 ·` the same (below 2^14): the 32-bit loop's.
-    d4: [i32; 3],
-    s4: [i32; 3],
+    /// `255 · 2^4 ·` the same (below 2^14): the 32-bit loop's (narrow:
+    /// the kernel lives in the renderer's frame).
+    d4: [i16; 3],
+    s4: [i16; 3],
 }
 
 /// Material, lights and tables of one object for one frame (see the
@@ -259,10 +261,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 let mut o = [0u32; 3];
                 for (o, &c) in o.iter_mut().zip(c.iter()) {
                     let v = scale255(c, 6);
-                    *o = u32::try_from(v)
-                        .ok()
-                        .filter(|&v| v < 1 << 16)
-                        .ok_or(KernelError::Range)?;
+                    *o = u16::try_from(v).map_err(|_| KernelError::Range)?.into();
                 }
                 Ok(o)
             };
@@ -288,8 +287,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 };
                 (l, p1, p2)
             };
-            let d4 = diffuse.map(|c| scale255(c, 4) as i32);
-            let s4 = specular.map(|c| scale255(c, 4) as i32);
+            // scale255(c, 4) <= scale255(c, 6) / 4 + 1 < 2^14.
+            let d4 = diffuse.map(|c| scale255(c, 4) as i16);
+            let s4 = specular.map(|c| scale255(c, 4) as i16);
             let _ = lights.push(KLight {
                 at,
                 point,
@@ -1196,7 +1196,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                 let (z, dz) = (s.z, s.dz);
                 let count;
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    let put = |i: u32, c| {
+                    let put = move |i: u32, c| {
                         if let Some(px) = row.get_mut(i as usize) {
                             *px = enc(c);
                         }
@@ -1204,7 +1204,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                     count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
                 } else {
                     let t = &mut *self.target;
-                    let put = |i: u32, c| {
+                    let put = move |i: u32, c| {
                         t.write_pixel(x0 + i, y, enc(c));
                     };
                     count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
@@ -1221,7 +1221,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         back,
                         len,
                         |_| true,
-                        |i, c| {
+                        move |i, c| {
                             if let Some(px) = row.get_mut(i as usize) {
                                 *px = enc(c);
                             }
@@ -1237,7 +1237,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         back,
                         len,
                         |_| true,
-                        |i, c| {
+                        move |i, c| {
                             t.write_pixel(x0 + i, y, enc(c));
                         },
                     );
@@ -1295,7 +1295,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
         let (p, dp) = pp;
         let len = row.len() as u32;
-        let put = |i: u32, c: Rgb8| {
+        let put = move |i: u32, c: Rgb8| {
             if let Some(px) = row.get_mut(i as usize) {
                 *px = F::encode(c);
             }
@@ -1402,10 +1402,10 @@ fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
     back: bool,
     len: u32,
-    mut put: impl FnMut(u32, Rgb8),
+    put: impl FnMut(u32, Rgb8),
 ) -> u32 {
     let mut t = DepthTest::<L, D> { drow, z, dz };
-    k.fill_with(n, dn, p, dp, back, len, |i| t.test(i), &mut put)
+    k.fill_with(n, dn, p, dp, back, len, move |i| t.test(i), put)
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
@@ -1445,7 +1445,7 @@ const CHUNK: usize = 32;
 /// passed. Not inlined: the buffer (128 bytes, zeroed once a span) lives
 /// in its own frame, so the span stages of the other shaders do not
 /// carry it on their stack.
-#[inline(never)]
+#[inline(always)]
 fn drive(
     len: u32,
     mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]),

@@ -80,8 +80,8 @@ impl Colour {
     pub(super) fn of<R>(k: &PhongKernel<'_, R>, l: &KLight) -> Self {
         Self {
             amb: k.amb19,
-            d: l.d4,
-            s: l.s4,
+            d: l.d4.map(i32::from),
+            s: l.s4.map(i32::from),
         }
     }
 }

@@ -192,7 +192,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
     /// Phong model with `kf < KF_MAX` (module docs); `n`, `dn` already
     /// flipped for back faces.
-    #[inline(always)]
+    #[inline(never)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
     pub(super) fn fill_point(
         &self,
