@@ -1442,9 +1442,9 @@ const CHUNK: usize = 32;
 /// colours (`r | g << 8 | b << 16`) of the `k <= CHUNK` pixels from pixel
 /// `i` into `buf`; the driver runs `test` and `write` over them (one
 /// short loop per pixel and depth format) and returns how many pixels
-/// passed. Not inlined: the buffer (128 bytes, zeroed once a span) lives
-/// in its own frame, so the span stages of the other shaders do not
-/// carry it on their stack.
+/// passed. The buffer (128 bytes) is zeroed once a span; the point loop
+/// calls the driver from a function of its own (not inlined), so that
+/// its buffers stay off the renderer's frame.
 #[inline(always)]
 fn drive(
     len: u32,

@@ -191,7 +191,9 @@ const GROUP: usize = 16;
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
     /// Phong model with `kf < KF_MAX` (module docs); `n`, `dn` already
-    /// flipped for back faces.
+    /// flipped for back faces. Not inlined: its buffers (the driver's
+    /// colours and [`Px`]s, 256 bytes) live in its own frame and
+    /// `point_chunk`'s, not in the renderer's, whatever the layout drawn.
     #[inline(never)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
     pub(super) fn fill_point(
