@@ -39,9 +39,11 @@
 //! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits); measured on
-//! the firmware's span sweep, 108 instructions a pixel on the M4 (was 167)
-//! and 209 on the M0: the colours of a chunk come from one copy of that
-//! arithmetic, the depth test and writes from a short loop per format. Per pixel: `1/|n|` from a 65-entry
+//! the firmware's span sweep, 107 instructions a pixel on the M4 (was 167)
+//! and 208 on the M0: the colours of a chunk come from one copy of that
+//! arithmetic, the depth test and writes from a short loop per format
+//! (the span driver both 32-bit loops share). Per pixel: `1/|n|` from a
+//! 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -59,8 +61,11 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 211 instructions a pixel on the M4 (was
-//! 517) and 817 on the M0 (was 1 357).
+//! on the firmware's span sweep, 219 instructions a pixel on the M4 (was
+//! 517) and 798 on the M0 (was 1 357); its buffers (256 bytes) live in
+//! its own frames, zeroed once a span and a chunk, so that the other
+//! shaders' span stages do not carry them (the 640 bytes kept by the
+//! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
 //!
 //! # Accuracy (tests in this module)
 //! Against the same model in `f64` on the same inputs, per channel: within
