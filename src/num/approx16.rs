@@ -336,6 +336,11 @@ pub(crate) fn spec_entry_q(u: u32, m: u32, q: Option<u64>) -> u16 {
         let mut yk = 1u32 << 16;
         for inv in INV_K.iter().skip(2) {
             yk = (yk * y) >> 16; // <= 2^14 · 2^16
+            if yk == 0 {
+                // Every later term is 0 too (the same sum, sooner: at
+                // shininess 100 after 5 terms of 15).
+                break;
+            }
             sum += (yk * *inv) >> 16; // yk < 2^16, inv <= 2^15
         }
         // E = u · sum, Q16; u <= 2^19, sum < 2^17 (sum < 1.16).

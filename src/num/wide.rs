@@ -39,6 +39,42 @@ pub(crate) fn wmul_split(a: i32, b: i32) -> i64 {
     (i64::from(hi) << 32) + (mid << 16) + i64::from(lo)
 }
 
+/// `floor(a·b / 2^32)`, exactly (ARMv6-M: [`mulhi_split`]; elsewhere
+/// one high-half multiply, `SMMUL` on the M4).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+pub(crate) fn mulhi(a: i32, b: i32) -> i32 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        mulhi_split(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        (wmul(a, b) >> 32) as i32
+    }
+}
+
+/// `floor(a·b / 2^32)` from 16-bit halves in 32-bit arithmetic (the
+/// ARMv6-M path of [`mulhi`], four `MULS`, beside [`wmul_split`];
+/// compiled everywhere so that the host tests check it): with `a = 2^16
+/// ah + al`, `b = 2^16 bh + bl`, `m1 = ah bl`, `m2 = al bh` (each within
+/// `i32`), the result is `ah bh + (m1 >> 16) + (m2 >> 16) + ((m1 &
+/// 0xFFFF) + (m2 & 0xFFFF) + (al bl >> 16)) >> 16` (nested floors).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+pub(crate) fn mulhi_split(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let lo = ((al as u32 * bl as u32) >> 16) as i32;
+    let (m1, m2) = (ah * bl, al * bh);
+    let t = (m1 & 0xFFFF) + (m2 & 0xFFFF) + lo;
+    ah * bh + (m1 >> 16) + (m2 >> 16) + (t >> 16)
+}
+
 /// Largest operand magnitude of [`mul16_small`]'s second factor: 2.
 pub(crate) const SMALL: u32 = 1 << 17;
 
@@ -152,7 +188,8 @@ pub(crate) fn clz32_soft(x: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::{det_sign, det_sign_small, wmul, wmul_split};
+    extern crate std;
+    use super::{det_sign, det_sign_small, mulhi, mulhi_split, wmul, wmul_split};
 
     #[test]
     fn det_sign_is_exact() {
@@ -250,6 +287,31 @@ mod tests {
             let a = (s >> 32) as u32 as i32;
             let b = s as u32 as i32;
             assert_eq!(wmul_split(a, b), i64::from(a) * i64::from(b), "{a} {b}");
+        }
+    }
+
+    /// `mulhi_split` (the ARMv6-M high product) equals the exact
+    /// `floor(a·b / 2^32)` on random and extreme operands.
+    #[test]
+    fn mulhi_split_exact() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        let mut vals = std::vec![0, 1, -1, i32::MAX, i32::MIN, 0xFFFF, -0x10000, 0x7FFF_0001];
+        for _ in 0..20_000 {
+            vals.push(next() as i32);
+            let (a, b) = (next(), next());
+            vals.push((a as i32) >> (b % 31));
+        }
+        for w in vals.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let want = ((i64::from(a) * i64::from(b)) >> 32) as i32;
+            assert_eq!(mulhi_split(a, b), want, "{a} {b}");
+            assert_eq!(mulhi(a, b), want, "{a} {b}");
         }
     }
 }

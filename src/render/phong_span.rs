@@ -39,9 +39,11 @@
 //! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits); measured on
-//! the firmware's span sweep, 108 instructions a pixel on the M4 (was 167)
-//! and 209 on the M0: the colours of a chunk come from one copy of that
-//! arithmetic, the depth test and writes from a short loop per format. Per pixel: `1/|n|` from a 65-entry
+//! the firmware's span sweep, 107 instructions a pixel on the M4 (was 167)
+//! and 208 on the M0: the colours of a chunk come from one copy of that
+//! arithmetic, the depth test and writes from a short loop per format
+//! (the span driver both 32-bit loops share). Per pixel: `1/|n|` from a
+//! 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -59,8 +61,11 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 211 instructions a pixel on the M4 (was
-//! 517) and 817 on the M0 (was 1 357).
+//! on the firmware's span sweep, 219 instructions a pixel on the M4 (was
+//! 517) and 798 on the M0 (was 1 357); its buffers (256 bytes) live in
+//! its own frames, zeroed once a span and a chunk, so that the other
+//! shaders' span stages do not carry them (the 640 bytes kept by the
+//! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
 //!
 //! # Accuracy (tests in this module)
 //! Against the same model in `f64` on the same inputs, per channel: within
@@ -154,12 +159,14 @@ struct KLight {
     /// Blinn `H`) and `P2` (Phong `(L-V)/√2`), Q30.
     p1: [i32; 3],
     p2: [i32; 3],
-    /// `255 · 2^6 ·` the diffuse and specular coefficients per channel.
+    /// `255 · 2^6 ·` the diffuse and specular coefficients per channel
+    /// (below 2^16).
     d: [u32; 3],
     s: [u32; 3],
-    /// `255 · 2^4 ·` the same (below 2^14): the 32-bit loop's.
-    d4: [i32; 3],
-    s4: [i32; 3],
+    /// `255 · 2^4 ·` the same (below 2^14): the 32-bit loop's (narrow:
+    /// the kernel lives in the renderer's frame).
+    d4: [i16; 3],
+    s4: [i16; 3],
 }
 
 /// Material, lights and tables of one object for one frame (see the
@@ -184,8 +191,8 @@ pub struct PhongKernel<'s, R> {
     /// `255 · 2^19 ·` ambient per channel plus `2^18` (rounding), for the
     /// 32-bit loop of one directional light ([`PhongKernel::fill`]).
     amb19: [i32; 3],
-    /// The ambient colour alone.
-    amb_c: Rgb8,
+    /// The ambient colour alone (`r | g << 8 | b << 16`).
+    amb_p: u32,
     /// `Q` (Q28) at or above `2^(15 + sq)`: no specular term.
     sq: u32,
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
@@ -259,10 +266,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 let mut o = [0u32; 3];
                 for (o, &c) in o.iter_mut().zip(c.iter()) {
                     let v = scale255(c, 6);
-                    *o = u32::try_from(v)
-                        .ok()
-                        .filter(|&v| v < 1 << 16)
-                        .ok_or(KernelError::Range)?;
+                    *o = u16::try_from(v).map_err(|_| KernelError::Range)?.into();
                 }
                 Ok(o)
             };
@@ -288,8 +292,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 };
                 (l, p1, p2)
             };
-            let d4 = diffuse.map(|c| scale255(c, 4) as i32);
-            let s4 = specular.map(|c| scale255(c, 4) as i32);
+            // scale255(c, 4) <= scale255(c, 6) / 4 + 1 < 2^14.
+            let d4 = diffuse.map(|c| scale255(c, 4) as i16);
+            let s4 = specular.map(|c| scale255(c, 4) as i16);
             let _ = lights.push(KLight {
                 at,
                 point,
@@ -347,9 +352,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         .filter(|&k| k < 1 << 26)
         .ok_or(KernelError::Range)?;
         let amb19 = ambient.map(|a| (scale255(a, 19) as i32).saturating_add(1 << 18));
-        let amb_c = {
+        let amb_p = {
             let l = |a: i32| (a >> 19).clamp(0, 255) as u8;
-            Rgb8::new(l(amb19[0]), l(amb19[1]), l(amb19[2]))
+            pack(Rgb8::new(l(amb19[0]), l(amb19[1]), l(amb19[2])))
         };
         // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
         let qlim = (u64::from(t_eff) * (5 << 28) / 4)
@@ -397,7 +402,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             table,
             kf,
             amb19,
-            amb_c,
+            amb_p,
             sq,
             c16,
             cb,
@@ -534,17 +539,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         test: impl FnMut(u32) -> bool,
         write: impl FnMut(u32, Rgb8),
     ) -> u32 {
-        let mut sc = PointScratch::new();
-        self.fill_with(&mut sc, n, dn, p, dp, back, len, test, write)
+        self.fill_with(n, dn, p, dp, back, len, test, write)
     }
 
-    /// [`PhongKernel::fill`] with the point loop's buffers kept by the
-    /// caller.
+    /// [`PhongKernel::fill`] (the span stages' entry).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn fill_with(
         &self,
-        sc: &mut PointScratch,
         n: [i32; 3],
         dn: [i32; 3],
         p: [i32; 3],
@@ -583,7 +585,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                     } else {
                         (n, dn)
                     };
-                    return self.fill_point(sc, l, (n, dn, p, dp), len, test, write);
+                    return self.fill_point(l, (n, dn, p, dp), len, test, write);
                 }
             }
             return self.fill_general_one(l, n, dn, p, dp, back, len, test, write);
@@ -1140,7 +1142,6 @@ pub struct PhongFill<'t, 'd, 'b, 'k, 's, T, D: DepthFormat, R> {
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
     drawn: u32,
-    scratch: PointScratch,
 }
 
 impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
@@ -1168,7 +1169,6 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             kernel,
             back: false,
             drawn: 0,
-            scratch: PointScratch::new(),
         })
     }
 
@@ -1193,7 +1193,6 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
         let k = self.kernel;
         let back = self.back;
         let drawn = &mut self.drawn;
-        let sc = &mut self.scratch;
         match self.depth.as_deref_mut() {
             Some(d) => {
                 let Some(drow) = d.span_mut(y, x0, x1) else {
@@ -1202,27 +1201,24 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                 let (z, dz) = (s.z, s.dz);
                 let count;
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    let put = |i: u32, c| {
+                    let put = move |i: u32, c| {
                         if let Some(px) = row.get_mut(i as usize) {
                             *px = enc(c);
                         }
                     };
-                    count =
-                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
                 } else {
                     let t = &mut *self.target;
-                    let put = |i: u32, c| {
+                    let put = move |i: u32, c| {
                         t.write_pixel(x0 + i, y, enc(c));
                     };
-                    count =
-                        depth_fill::<L, D, R>(k, sc, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
                 }
                 *drawn += count;
             }
             None => {
                 if let Some(row) = self.target.span_mut(y, x0, x1) {
                     k.fill_with(
-                        sc,
                         n,
                         dn,
                         p,
@@ -1230,7 +1226,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         back,
                         len,
                         |_| true,
-                        |i, c| {
+                        move |i, c| {
                             if let Some(px) = row.get_mut(i as usize) {
                                 *px = enc(c);
                             }
@@ -1239,7 +1235,6 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                 } else {
                     let t = &mut *self.target;
                     k.fill_with(
-                        sc,
                         n,
                         dn,
                         p,
@@ -1247,7 +1242,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         back,
                         len,
                         |_| true,
-                        |i, c| {
+                        move |i, c| {
                             t.write_pixel(x0 + i, y, enc(c));
                         },
                     );
@@ -1268,7 +1263,6 @@ pub struct PhongKernelShader<'k, 's, R> {
     kernel: &'k PhongKernel<'s, R>,
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
-    scratch: PointScratch,
 }
 
 impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
@@ -1277,7 +1271,6 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         Self {
             kernel,
             back: false,
-            scratch: PointScratch::new(),
         }
     }
 
@@ -1307,7 +1300,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
         let (p, dp) = pp;
         let len = row.len() as u32;
-        let put = |i: u32, c: Rgb8| {
+        let put = move |i: u32, c: Rgb8| {
             if let Some(px) = row.get_mut(i as usize) {
                 *px = F::encode(c);
             }
@@ -1315,7 +1308,6 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         match drow {
             Some(drow) => depth_fill::<L, D, R>(
                 self.kernel,
-                &mut self.scratch,
                 drow,
                 z,
                 dz,
@@ -1324,17 +1316,9 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
                 len,
                 put,
             ),
-            None => self.kernel.fill_with(
-                &mut self.scratch,
-                n,
-                dn,
-                p,
-                dp,
-                self.back,
-                len,
-                |_| true,
-                put,
-            ),
+            None => self
+                .kernel
+                .fill_with(n, dn, p, dp, self.back, len, |_| true, put),
         }
     }
 }
@@ -1417,17 +1401,16 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 #[inline(always)]
 fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
-    sc: &mut PointScratch,
     drow: &mut [D::Raw],
     z: L,
     dz: L,
     (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
     back: bool,
     len: u32,
-    mut put: impl FnMut(u32, Rgb8),
+    put: impl FnMut(u32, Rgb8),
 ) -> u32 {
     let mut t = DepthTest::<L, D> { drow, z, dz };
-    k.fill_with(sc, n, dn, p, dp, back, len, |i| t.test(i), &mut put)
+    k.fill_with(n, dn, p, dp, back, len, move |i| t.test(i), put)
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
@@ -1455,8 +1438,58 @@ impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 6>
     }
 }
 
+/// Pixels per chunk of the 32-bit span loops (modules `one` and
+/// `point`): their forward differences are re-seeded exactly at each
+/// chunk's first pixel.
+const CHUNK: usize = 32;
+
+/// The span driver of the 32-bit loops: `chunk(i, k, buf)` puts the
+/// colours (`r | g << 8 | b << 16`) of the `k <= CHUNK` pixels from pixel
+/// `i` into `buf`; the driver runs `test` and `write` over them (one
+/// short loop per pixel and depth format) and returns how many pixels
+/// passed. The buffer (128 bytes) is zeroed once a span; the point loop
+/// calls the driver from a function of its own (not inlined), so that
+/// its buffers stay off the renderer's frame.
+#[inline(always)]
+fn drive(
+    len: u32,
+    mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]),
+    mut test: impl FnMut(u32) -> bool,
+    mut write: impl FnMut(u32, Rgb8),
+) -> u32 {
+    let mut buf = [0u32; CHUNK];
+    // Failures counted (the rarer case in a frame), passes derived.
+    let mut failed = 0;
+    let mut i = 0u32;
+    while i < len {
+        let k = (len - i).min(CHUNK as u32);
+        chunk(i, k, &mut buf);
+        for (j, &c) in (i..i + k).zip(buf.iter()) {
+            if test(j) {
+                write(j, unpack(c));
+            } else {
+                failed += 1;
+            }
+        }
+        i += k;
+    }
+    len - failed
+}
+
+/// `r | g << 8 | b << 16`.
+#[inline(always)]
+fn pack(c: Rgb8) -> u32 {
+    u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16
+}
+
+/// The colour of `r | g << 8 | b << 16`.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn unpack(c: u32) -> Rgb8 {
+    Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)
+}
+
 mod one;
 mod point;
-use point::PointScratch;
 #[cfg(test)]
 mod tests;

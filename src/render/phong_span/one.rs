@@ -21,13 +21,13 @@
 //! takes [`PhongKernel::one_exact`] per pixel (the same quantities from the
 //! pixel's normal in 64 bits).
 
-use super::{cross, fallback, lin, quad, sq3, KLight, PhongKernel, RS, SPEC_SEGMENTS};
+use super::{
+    cross, drive, fallback, lin, pack, quad, sq3, KLight, PhongKernel, CHUNK, RS, SPEC_SEGMENTS,
+};
 use crate::num::wide::wmul;
 use crate::num::Real;
 use crate::target::Rgb8;
 
-/// Pixels per chunk.
-pub(super) const CHUNK: u32 = 32;
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 const QM_FRAC: u32 = 20;
 /// `Qm` at or above this many segments (Q20) gives no specular term:
@@ -74,6 +74,18 @@ pub(super) struct Colour {
     pub(super) s: [i32; 3],
 }
 
+impl Colour {
+    /// The constants of light `l` of kernel `k`.
+    #[inline(always)]
+    pub(super) fn of<R>(k: &PhongKernel<'_, R>, l: &KLight) -> Self {
+        Self {
+            amb: k.amb19,
+            d: l.d4.map(i32::from),
+            s: l.s4.map(i32::from),
+        }
+    }
+}
+
 /// The exact state of a span of one light (`u64` forward differences,
 /// Q60) and its constant 32-bit second differences.
 #[derive(Clone, Copy)]
@@ -94,12 +106,6 @@ struct OneSpan {
     qm_a: i64,
 }
 
-/// `r | g << 8 | b << 16`.
-#[inline(always)]
-pub(super) fn pack(c: Rgb8) -> u32 {
-    u32::from(c.r) | u32::from(c.g) << 8 | u32::from(c.b) << 16
-}
-
 /// How a chunk runs.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Mode {
@@ -112,37 +118,25 @@ impl<R: Real> PhongKernel<'_, R> {
     /// The span loop of one directional light, viewer at infinity (module
     /// docs); `n`, `dn` already flipped for back faces. The colours of a
     /// chunk come from [`PhongKernel::one_chunk`] (one copy of the
-    /// arithmetic whatever the pixel and depth formats); this loop, one
-    /// per format, does the depth test and writes.
+    /// arithmetic whatever the pixel and depth formats); the span driver
+    /// (`drive`, one per format) does the depth test and writes.
     #[inline(always)]
-    #[allow(clippy::cast_possible_truncation)]
     pub(super) fn fill_one(
         &self,
         l: &KLight,
         n: [i32; 3],
         dn: [i32; 3],
         len: u32,
-        mut test: impl FnMut(u32) -> bool,
-        mut write: impl FnMut(u32, Rgb8),
+        test: impl FnMut(u32) -> bool,
+        write: impl FnMut(u32, Rgb8),
     ) -> u32 {
         let mut st = self.one_begin(l, n, dn);
-        let mut buf = [0u32; CHUNK as usize];
-        // Failures counted (the rarer case in a frame), passes derived.
-        let mut failed = 0;
-        let mut i = 0u32;
-        while i < len {
-            let k = (len - i).min(CHUNK);
-            self.one_chunk(l, n, dn, &mut st, i, k, &mut buf);
-            for (j, &c) in (i..i + k).zip(buf.iter()) {
-                if test(j) {
-                    write(j, Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8));
-                } else {
-                    failed += 1;
-                }
-            }
-            i += k;
-        }
-        len - failed
+        drive(
+            len,
+            |i, k, buf| self.one_chunk(l, n, dn, &mut st, i, k, buf),
+            test,
+            write,
+        )
     }
 
     /// The span's exact state (see the module docs).
@@ -200,7 +194,7 @@ impl<R: Real> PhongKernel<'_, R> {
         st: &mut OneSpan,
         i: u32,
         k: u32,
-        buf: &mut [u32; CHUNK as usize],
+        buf: &mut [u32; CHUNK],
     ) {
         let OneSpan {
             nn,
@@ -243,11 +237,7 @@ impl<R: Real> PhongKernel<'_, R> {
             }
         };
         let q32 = (qm_a as i32, fit(mul_shr48(q_d1 as i64, self.kf)), qd2);
-        let c = Colour {
-            amb: self.amb19,
-            d: l.d4,
-            s: l.s4,
-        };
+        let c = Colour::of(self, l);
         match (mode, nn_ok, nn32, q32) {
             (Mode::Spec, true, (a, Some(b), Some(d)), (qa, Some(qb), Some(qc))) => {
                 self.chunk::<true>(&c, k, (a, b, d), (qa, qb, qc), nl, dnl, buf);
@@ -258,7 +248,7 @@ impl<R: Real> PhongKernel<'_, R> {
             _ => {
                 for (j, o) in (i..i + k).zip(buf.iter_mut()) {
                     let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
-                    *o = pack(self.one_exact(l, ni, n, dn, j));
+                    *o = self.one_exact(l, ni, n, dn, j);
                 }
             }
         }
@@ -277,12 +267,12 @@ impl<R: Real> PhongKernel<'_, R> {
         qm: (i32, i32, i32),
         mut nl: i32,
         dnl: i32,
-        buf: &mut [u32; CHUNK as usize],
+        buf: &mut [u32; CHUNK],
     ) {
         let (mut nn, mut nd1, nd2) = nn;
         let (mut q, mut qd1, qd2) = qm;
         for o in buf.iter_mut().take(k as usize) {
-            *o = pack(self.pixel::<SPEC>(c, nn, nl, q));
+            *o = self.colour::<SPEC, true>(c, nn, nl, q >> (QM_FRAC - 7));
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
             if SPEC {
@@ -293,31 +283,41 @@ impl<R: Real> PhongKernel<'_, R> {
         }
     }
 
-    /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L` (Q30) and
-    /// `Qm` (Q20 segments).
+    /// One pixel's colour (`r | g << 8 | b << 16`) from `|n|²` (Q30,
+    /// within `[1/4, 5/4)`), `n·L` (Q30) and the table position before
+    /// the division by `|n|²`, `q7` (Q7 segments: the directional loop's
+    /// `Qm`, the point loop's `K·w·A`); the colour of `n·L <= 0` is the
+    /// ambient term alone (`BRANCH`: returned early, else computed
+    /// without a branch). The per-pixel arithmetic of both 32-bit loops.
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
-    fn pixel<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q: i32) -> Rgb8 {
+    pub(super) fn colour<const SPEC: bool, const BRANCH: bool>(
+        &self,
+        c: &Colour,
+        nn: i32,
+        nl: i32,
+        q7: i32,
+    ) -> u32 {
         // 64 segments of 2^24 (Q30) from 1/4.
         let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
         let (a, b) = (RS[j], RS[j + 1]);
         let t = ((nn as u32) >> 8) & 0xFFFF;
         // 2^16 / |n| (<= 2^17).
         let r = a - (((a - b) * t) >> 16);
-        if nl <= 0 {
-            return self.amb_c;
+        if BRANCH && nl <= 0 {
+            return self.amb_p;
         }
         // N·L in Q15: (n·L)/|n| <= 1 (within 2^-11 relative: no clamp
         // needed below, the products stay below 2^30).
-        let nl15 = (((nl as u32) >> 15).wrapping_mul(r) >> 16) as i32;
-        let sp = if SPEC {
+        let nl15 = (((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16) as i32;
+        let sp = if SPEC && (BRANCH || nl > 0) {
             let r14 = r >> 2;
             // 2^14 / |n|² <= 2^16.
             let rr14 = (r14 * r14) >> 14;
-            // Qm in Q7 segments, saturated below 2^15 (256 segments,
-            // beyond the table's 1.25 · 128); the position in Q21
-            // segments below 2^31, saturated at the table's end.
-            let qs = (q >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1) as u32;
+            // The position (Q7 segments) saturated below 2^15 (256
+            // segments, beyond the table's 1.25 · 128); divided by |n|²
+            // in Q21 segments below 2^31, saturated at the table's end.
+            let qs = q7.clamp(0, (1 << 15) - 1) as u32;
             let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
             let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
             let f = (pos >> 5) & 0xFFFF;
@@ -328,9 +328,9 @@ impl<R: Real> PhongKernel<'_, R> {
         };
         let ch = |k: usize| {
             let acc = c.amb[k] + c.d[k] * nl15 + c.s[k] * sp;
-            (acc >> 19).clamp(0, 255) as u8
+            (acc >> 19).clamp(0, 255) as u32
         };
-        Rgb8::new(ch(0), ch(1), ch(2))
+        ch(0) | ch(1) << 8 | ch(2) << 16
     }
 
     /// One pixel of normal `n` (Q30) in 64 bits: the chunks the 32-bit
@@ -345,23 +345,19 @@ impl<R: Real> PhongKernel<'_, R> {
         n0: [i32; 3],
         dn: [i32; 3],
         i: u32,
-    ) -> Rgb8 {
+    ) -> u32 {
         let nn = sq3(n);
         let nl = lin(n, l.at);
-        let cl = Colour {
-            amb: self.amb19,
-            d: l.d4,
-            s: l.s4,
-        };
+        let cl = Colour::of(self, l);
         if !(1 << 58..5 << 58).contains(&nn) {
-            fallback(self.shade, n0, dn, [0; 3], [0; 3], i)
+            pack(fallback(self.shade, n0, dn, [0; 3], [0; 3], i))
         } else if self.spec && (!self.blinn || lin(n, l.p1) > 0) {
             let k = lin(n, l.p2);
             let q = sq3(cross(n, l.p1)).wrapping_add(wmul(k, k) as u64);
             let qm = mul_shr48(q as i64, self.kf).clamp(0, QM_MAX) as i32;
-            self.pixel::<true>(&cl, (nn >> 30) as i32, nl, qm)
+            self.colour::<true, true>(&cl, (nn >> 30) as i32, nl, qm >> (QM_FRAC - 7))
         } else {
-            self.pixel::<false>(&cl, (nn >> 30) as i32, nl, 0)
+            self.colour::<false, true>(&cl, (nn >> 30) as i32, nl, 0)
         }
     }
 }

@@ -39,58 +39,23 @@
 //!
 //! Per pixel (three passes over the chunk, few live values each, all
 //! 32-bit): `1/|l̃|` and `n·L̂`; `1/|ṽ|`, `n·V̂` and `L̂·V̂`; `A`, `w·A`,
-//! then the colour as the directional loop ([`PhongKernel::pixel`]).
+//! then the colour as the directional loop ([`PhongKernel::colour`]).
 //! Chunks outside the proven ranges (`A` in `[1/4, 5/4)`, `|l̃|²` and
 //! `|ṽ|²` in `(1/4, 4)`, steps of at most 1/16 of `|l|` and `|v|`, every
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
 
-use super::one::{pack, Colour};
-use super::{fallback, rsqrt_n, sq3, KLight, LightSpan, PhongKernel, RS, SPEC_SEGMENTS};
-use crate::num::wide::{clz32, wmul};
+use super::one::Colour;
+use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, PhongKernel, CHUNK};
+use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
 use crate::target::Rgb8;
 
-/// Pixels per chunk.
-pub(super) const PCHUNK: usize = 32;
+/// Pixels per chunk (the span driver's).
+pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
 /// loop runs (`m < 256`, see the module docs).
 pub(super) const KF_MAX: u32 = 1 << 20;
-
-/// `floor(a·b / 2^32)`, exactly (ARMv6-M: [`mulhi_split`]).
-#[inline(always)]
-#[allow(clippy::cast_possible_truncation)]
-fn mulhi(a: i32, b: i32) -> i32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
-    {
-        mulhi_split(a, b)
-    }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-    {
-        (wmul(a, b) >> 32) as i32
-    }
-}
-
-/// `floor(a·b / 2^32)` from 16-bit halves in 32-bit arithmetic (the
-/// ARMv6-M path of [`mulhi`], four `MULS`; compiled everywhere so that the
-/// host tests check it): with `a = 2^16 ah + al`, `b = 2^16 bh + bl`,
-/// `m1 = ah bl`, `m2 = al bh` (each within `i32`), the result is `ah bh +
-/// (m1 >> 16) + (m2 >> 16) + ((m1 & 0xFFFF) + (m2 & 0xFFFF) + (al bl >>
-/// 16)) >> 16` (nested floors).
-#[inline(always)]
-#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
-pub(super) fn mulhi_split(a: i32, b: i32) -> i32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    let lo = ((al as u32 * bl as u32) >> 16) as i32;
-    let (m1, m2) = (ah * bl, al * bh);
-    let t = (m1 & 0xFFFF) + (m2 & 0xFFFF) + lo;
-    ah * bh + (m1 >> 16) + (m2 >> 16) + (t >> 16)
-}
 
 /// `round(x / 2^s)` for `s` in `1..64`, `None` past `i32`.
 #[inline(always)]
@@ -209,88 +174,56 @@ fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
     Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
 }
 
-/// Per-pixel values between the passes of a chunk: `1/|l̃|` (Q29, then
-/// `G = 1/(|l̃| |ṽ|)` Q28), `n·L̂` (Q30), `(n·L̂)(n·V̂)` (Q28), `L̂·V̂`
-/// (Q26), the colour (`r | g << 8 | b << 16`).
+/// Per-pixel values between the passes of a chunk: `g`, first `1/|l̃|`
+/// (Q29), then `G = 1/(|l̃| |ṽ|)` (Q28), then `L̂·V̂` (Q26); `nlnv`,
+/// `(n·L̂)(n·V̂)` (Q28). (`n·L̂`, Q30, waits in the colour's place.)
 #[derive(Clone, Copy, Debug, Default)]
 struct Px {
-    rl: i32,
-    nl: i32,
+    g: i32,
     nlnv: i32,
-    lv: i32,
-    col: u32,
 }
 
-/// The point loop's buffers (kept by the span stage: no zeroing per span).
-#[derive(Clone, Debug)]
-pub(crate) struct PointScratch {
-    px: [Px; PCHUNK],
-}
-
-impl PointScratch {
-    /// Zeroed buffers.
-    pub(crate) const fn new() -> Self {
-        Self {
-            px: [Px {
-                rl: 0,
-                nl: 0,
-                nlnv: 0,
-                lv: 0,
-                col: 0,
-            }; PCHUNK],
-        }
-    }
-}
+/// Pixels a group of the point loop's passes (the values between passes
+/// of a group are kept in [`Px`]s: 128 bytes of stack, zeroed once a
+/// chunk).
+const GROUP: usize = 16;
 
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
     /// Phong model with `kf < KF_MAX` (module docs); `n`, `dn` already
-    /// flipped for back faces.
-    #[inline(always)]
+    /// flipped for back faces. Not inlined: its buffers (the driver's
+    /// colours and [`Px`]s, 256 bytes) live in its own frame and
+    /// `point_chunk`'s, not in the renderer's, whatever the layout drawn.
+    #[inline(never)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
     pub(super) fn fill_point(
         &self,
-        sc: &mut PointScratch,
         l: &KLight,
-        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
         len: u32,
-        mut test: impl FnMut(u32) -> bool,
-        mut write: impl FnMut(u32, Rgb8),
+        test: impl FnMut(u32) -> bool,
+        write: impl FnMut(u32, Rgb8),
     ) -> u32 {
-        let mut failed = 0;
-        let mut i = 0u32;
-        while i < len {
-            let k = (len - i).min(PCHUNK as u32);
-            self.point_chunk(sc, l, (n, dn, p, dp), i, k as usize);
-            for (j, x) in (i..i + k).zip(sc.px.iter()) {
-                let c = x.col;
-                if test(j) {
-                    write(j, Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8));
-                } else {
-                    failed += 1;
-                }
-            }
-            i += k;
-        }
-        len - failed
+        drive(
+            len,
+            |i, k, buf| self.point_chunk(l, span, i, k as usize, buf),
+            test,
+            write,
+        )
     }
 
-    /// The colours of the `k` pixels from pixel `i` into `sc.px`.
+    /// The colours of the `k` pixels from pixel `i` into `buf`.
     #[inline(never)]
     #[allow(clippy::type_complexity)]
     fn point_chunk(
         &self,
-        sc: &mut PointScratch,
         l: &KLight,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
         i: u32,
         k: usize,
+        buf: &mut [u32; CHUNK],
     ) {
-        let c = Colour {
-            amb: self.amb19,
-            d: l.d4,
-            s: l.s4,
-        };
+        let c = Colour::of(self, l);
         // Below 4 pixels the 64-bit path costs less than the set-up (M4:
         // ~360 instructions a pixel against ~1 100 a chunk).
         let st = if k >= 4 {
@@ -299,12 +232,12 @@ impl<R: Real> PhongKernel<'_, R> {
             None
         };
         match st {
-            Some(st) if self.spec => self.point_run::<true>(&c, &st, k, sc),
-            Some(st) => self.point_run::<false>(&c, &st, k, sc),
+            Some(st) if self.spec => self.point_run::<true>(&c, &st, k, buf),
+            Some(st) => self.point_run::<false>(&c, &st, k, buf),
             None => {
                 let (n, dn, p, dp) = span;
-                for (j, o) in (i..i + k as u32).zip(sc.px.iter_mut()) {
-                    o.col = pack(self.point_exact(l, n, dn, p, dp, j));
+                for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
+                    *o = pack(self.point_exact(l, n, dn, p, dp, j));
                 }
             }
         }
@@ -395,108 +328,82 @@ impl<R: Real> PhongKernel<'_, R> {
             .is_some_and(|l| self.point_setup(l, span, i, k).is_some())
     }
 
-    /// The chunk's colours (`r | g << 8 | b << 16`) from its state.
+    /// The chunk's colours (`r | g << 8 | b << 16`) from its state, in
+    /// groups of [`GROUP`] pixels (four passes each, few live values a
+    /// pass; the values between passes in a small array zeroed once a
+    /// chunk, `n·L̂` in the colour's place).
     #[inline(always)]
-    fn point_run<const SPEC: bool>(&self, c: &Colour, st: &Chunk, k: usize, sc: &mut PointScratch) {
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+    fn point_run<const SPEC: bool>(
+        &self,
+        c: &Colour,
+        st: &Chunk,
+        k: usize,
+        col: &mut [u32; CHUNK],
+    ) {
         let k = k.min(PCHUNK);
-        // 1/|l̃| and n·L̂.
-        {
-            let (mut x, mut x1, x2) = st.b;
-            let (mut d, mut d1, d2) = st.d;
-            let (mut ya, mut yb) = st.yl;
-            for o in sc.px.iter_mut().take(k) {
-                let y = newton(yb.wrapping_mul(2).wrapping_sub(ya), x);
-                o.rl = y;
-                o.nl = mulhi(d, y) << 4;
-                (ya, yb) = (yb, y);
-                x = x.wrapping_add(x1);
-                x1 = x1.wrapping_add(x2);
+        let mut px = [Px::default(); GROUP];
+        let (mut xb, mut xb1, xb2) = st.b;
+        let (mut d, mut d1, d2) = st.d;
+        let (mut la, mut lb) = st.yl;
+        let (mut xc, mut xc1, xc2) = st.c;
+        let (mut e, mut e1, e2) = st.e;
+        let (mut va, mut vb) = st.yv;
+        let (mut f, mut f1, f2) = st.f;
+        let (mut a, mut a1, a2) = st.a;
+        let kc = (self.kf << 11) as i32;
+        for cg in col.get_mut(..k).unwrap_or_default().chunks_mut(GROUP) {
+            // 1/|l̃| and n·L̂.
+            for (o, nl) in px.iter_mut().zip(cg.iter_mut()) {
+                let y = newton(lb.wrapping_mul(2).wrapping_sub(la), xb);
+                o.g = y;
+                *nl = (mulhi(d, y) << 4) as u32;
+                (la, lb) = (lb, y);
+                xb = xb.wrapping_add(xb1);
+                xb1 = xb1.wrapping_add(xb2);
                 d = d.wrapping_add(d1);
                 d1 = d1.wrapping_add(d2);
             }
-        }
-        // 1/|ṽ|, n·V̂ and L̂·V̂.
-        if SPEC {
-            let (mut x, mut x1, x2) = st.c;
-            let (mut e, mut e1, e2) = st.e;
-            let (mut ya, mut yb) = st.yv;
-            for o in sc.px.iter_mut().take(k) {
-                let y = newton(yb.wrapping_mul(2).wrapping_sub(ya), x);
-                // (n·L̂)(n·V̂): Q30 · Q30 -> Q28.
-                o.nlnv = mulhi(o.nl, mulhi(e, y) << 4);
-                // G = 1/(|l̃| |ṽ|) < 6 (Q28) in place of 1/|l̃|.
-                o.rl = mulhi(o.rl, y) << 2;
-                (ya, yb) = (yb, y);
-                x = x.wrapping_add(x1);
-                x1 = x1.wrapping_add(x2);
-                e = e.wrapping_add(e1);
-                e1 = e1.wrapping_add(e2);
+            // 1/|ṽ|, n·V̂ and L̂·V̂.
+            if SPEC {
+                for (o, &nl) in px.iter_mut().zip(cg.iter()) {
+                    let y = newton(vb.wrapping_mul(2).wrapping_sub(va), xc);
+                    // (n·L̂)(n·V̂): Q30 · Q30 -> Q28.
+                    o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
+                    // G = 1/(|l̃| |ṽ|) < 6 (Q28) in place of 1/|l̃|.
+                    o.g = mulhi(o.g, y) << 2;
+                    (va, vb) = (vb, y);
+                    xc = xc.wrapping_add(xc1);
+                    xc1 = xc1.wrapping_add(xc2);
+                    e = e.wrapping_add(e1);
+                    e1 = e1.wrapping_add(e2);
+                }
+                for o in px.iter_mut().take(cg.len()) {
+                    // F̃ (Q28) · G (Q28): Q24, as Q26 (in place of G).
+                    o.g = mulhi(f, o.g) << 2;
+                    f = f.wrapping_add(f1);
+                    f1 = f1.wrapping_add(f2);
+                }
             }
-            let (mut f, mut f1, f2) = st.f;
-            for o in sc.px.iter_mut().take(k) {
-                // F̃ (Q28) · G (Q28): Q24, as Q26.
-                o.lv = mulhi(f, o.rl) << 2;
-                f = f.wrapping_add(f1);
-                f1 = f1.wrapping_add(f2);
+            // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the colour.
+            for (x, o) in px.iter().zip(cg.iter_mut()) {
+                let nl = *o as i32;
+                let q = if SPEC {
+                    let wa = (a >> 6)
+                        .wrapping_add(mulhi(a, x.g))
+                        .wrapping_sub(x.nlnv >> 3);
+                    // Within [0, 4) (Q24), as Q28: the position K·w·A in
+                    // Q15 segments (saturated by `colour` beyond the
+                    // table).
+                    mulhi(wa.clamp(0, (1 << 26) - 1) << 4, kc)
+                } else {
+                    0
+                };
+                *o = self.colour::<SPEC, false>(c, a, nl, q >> 8);
+                a = a.wrapping_add(a1);
+                a1 = a1.wrapping_add(a2);
             }
         }
-        // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the colour.
-        let kc = (self.kf << 11) as i32;
-        let (mut a, mut a1, a2) = st.a;
-        for x in sc.px.iter_mut().take(k) {
-            let q = if SPEC {
-                let wa = (a >> 6)
-                    .wrapping_add(mulhi(a, x.lv))
-                    .wrapping_sub(x.nlnv >> 3);
-                // Within [0, 4) (Q24), as Q28: the position K·w·A in Q15
-                // segments (saturated by `pixel` beyond the table).
-                mulhi(wa.clamp(0, (1 << 26) - 1) << 4, kc)
-            } else {
-                0
-            };
-            x.col = self.point_pixel::<SPEC>(c, a, x.nl, q);
-            a = a.wrapping_add(a1);
-            a1 = a1.wrapping_add(a2);
-        }
-    }
-
-    /// One pixel from `|n|²` (Q30, within `[1/4, 5/4)`), `n·L̂` (Q30) and
-    /// `K·w·A` (Q15 segments): as `PhongKernel::pixel`, without a branch
-    /// on `n·L̂` (the colour of `n·L̂ <= 0` is the ambient term alone).
-    #[inline(always)]
-    #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
-    fn point_pixel<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q: i32) -> u32 {
-        // 64 segments of 2^24 (Q30) from 1/4.
-        let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
-        let (a, b) = (RS[j], RS[j + 1]);
-        let t = ((nn as u32) >> 8) & 0xFFFF;
-        // 2^16 / |n| (<= 2^17).
-        let r = a - (((a - b) * t) >> 16);
-        let lit = nl > 0;
-        // N·L in Q15 (as `pixel`).
-        let nl15 = (((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16) as i32;
-        let sp = if SPEC {
-            let r14 = r >> 2;
-            let rr14 = (r14 * r14) >> 14;
-            let qs = (q >> 8).clamp(0, (1 << 15) - 1) as u32;
-            let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
-            let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
-            let f = (pos >> 5) & 0xFFFF;
-            let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
-            let v = (a - (((a - b) * f) >> 16)) as i32;
-            if lit {
-                v
-            } else {
-                0
-            }
-        } else {
-            0
-        };
-        let ch = |k: usize| {
-            let acc = c.amb[k] + c.d[k] * nl15 + c.s[k] * sp;
-            (acc >> 19).clamp(0, 255) as u32
-        };
-        ch(0) | ch(1) << 8 | ch(2) << 16
     }
 
     /// One pixel `j` of the span by the 64-bit per-pixel path.
