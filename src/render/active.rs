@@ -554,7 +554,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         }
                         continue;
                     }
-                    let sh = PhongShader::<P>::new(&shade, false);
+                    let sh = PhongShader::<P>::for_object(&shade, sc, obj);
                     if P::PERSPECTIVE {
                         let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.set_back(t.back);
                         if normal {

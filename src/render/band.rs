@@ -1,6 +1,7 @@
 //! Rasterizing a prepared frame into a band (or a whole frame).
 
 use super::phong_span::{PhongFill, PhongKernel};
+use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, RenderError, Tri};
 use crate::geom::Vec3;
@@ -10,7 +11,7 @@ use crate::raster::{
     draw_sorted, in_limits, sort3, Fill, Flat, Gouraud, GouraudMono, Persp, RasterError, Shader,
     Spans, Vertex,
 };
-use crate::scene::{Scene, SceneError};
+use crate::scene::{Object, Scene, SceneError};
 use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
 
 /// Per-pixel Phong shading: the interpolated normal (and position)
@@ -25,6 +26,7 @@ use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
 pub struct PhongShader<'a, P: Profile> {
     shade: &'a Shade<P::Real>,
     back: bool,
+    pos: PosFrame<P::Real>,
 }
 
 impl<'a, P: Profile> PhongShader<'a, P> {
@@ -35,7 +37,26 @@ impl<'a, P: Profile> PhongShader<'a, P> {
     /// normal and the eye-space position in [`Profile::coord`] form (6
     /// values).
     pub fn new(shade: &'a Shade<P::Real>, back: bool) -> Self {
-        Self { shade, back }
+        Self {
+            shade,
+            back,
+            pos: PosFrame::identity(),
+        }
+    }
+
+    /// The shader of a prepared object: positions in the object's
+    /// [`PosFrame`] (`render::position`), front faces first.
+    pub(super) fn for_object(
+        shade: &'a Shade<P::Real>,
+        scene: &Scene<'_, '_, P::Real>,
+        obj: &Object<'_, P::Real>,
+    ) -> Self {
+        let mv = scene.camera.view.then_after(&obj.transform);
+        Self {
+            shade,
+            back: false,
+            pos: PosFrame::new::<P>(&obj.mesh, &mv),
+        }
     }
 
     /// Draws back faces (flipped normal) or front faces.
@@ -76,11 +97,7 @@ impl<P: Profile> Shader<P::Lerp, 3> for PhongShader<'_, P> {
 impl<P: Profile> Shader<P::Lerp, 6> for PhongShader<'_, P> {
     #[inline]
     fn shade(&self, a: &[P::Lerp; 6]) -> Rgb8 {
-        let p = Vec3::new(
-            P::coord_back(a[3]),
-            P::coord_back(a[4]),
-            P::coord_back(a[5]),
-        );
+        let p = self.pos.load::<P>([a[3], a[4], a[5]]);
         self.color(a, p)
     }
 }
@@ -249,10 +266,7 @@ impl<P: Profile> Frame<'_, P> {
                         scene.viewer,
                     )
                     .map_err(|_| SceneError::TooManyLights)?;
-                    let sh = PhongShader::<P> {
-                        shade: &shade,
-                        back: false,
-                    };
+                    let sh = PhongShader::<P>::for_object(&shade, scene, obj);
                     // The span kernel (`phong_span`) for the affine Q16
                     // profiles, built only for objects in this window.
                     let kernel = if P::PERSPECTIVE
