@@ -729,11 +729,12 @@ fn precise_vs_twin(s: &Spec<'_>, y0: u32, y1: u32) -> (u8, usize) {
 /// `precise` at the limits (issue 15, part 5): a Phong sphere on a
 /// 1600 × 1200 screen under eight point lights (`Ip = 0.3`, `ks = 0.6`),
 /// shininess 10 000, Phong and Blinn, against its `f64` twin: within 1
-/// level (rows 480..492, where the highlights of the lights to the
+/// level (rows 483..490, where the highlights of the lights to the
 /// right lie: the whole frame takes 10 s in a debug build).
 ///
 /// Before the per-object position frame (`render/position.rs`) these rows
-/// were 3 (Phong) and 2 (Blinn) levels off, 35 pixels more than one: the
+/// were 3 levels off (Phong; measured, the test failing), the whole frame
+/// 3 (Phong) and 2 (Blinn) levels, 41 and 27 pixels more than one off: the
 /// eye-space position, interpolated as absolute `Q16` coordinates
 /// stepped by gradients rounded to whole `2^-16` units, drifted by up to
 /// `k · 2^-17` units `k` pixels from a triangle's anchor, and at
@@ -764,9 +765,9 @@ fn precise_phong_sphere_1600x1200_eight_lights_n10000() {
                 [1.0; 3],
             ));
         }
-        let (d, n) = precise_vs_twin(&s, 480, 492);
+        let (d, n) = precise_vs_twin(&s, 483, 490);
         println!("{specular:?}: precise {d} levels from f64 over {n} pixels");
-        assert!(n > 8000, "the band holds the sphere: {n}");
+        assert!(n > 4000, "the band holds the sphere: {n}");
         assert!(d <= 1, "{specular:?}: precise {d} levels from f64");
     }
 }
@@ -775,12 +776,14 @@ fn precise_phong_sphere_1600x1200_eight_lights_n10000() {
 /// square of two triangles filling it (spans of up to 4096 pixels within
 /// one triangle), corner normals tilted outwards, four point lights
 /// 0.3 units above it (`Ip = 1`, `ks = 1`), shininess 100 and 10 000,
-/// Phong and Blinn: within 1 level of the `f64` twin on rows 2000..2006.
+/// Phong and Blinn: within 1 level of the `f64` twin on rows 2000..2003.
 ///
-/// Before the position frame, 15 levels (Blinn, n = 100) and 2 (the
-/// others) on rows 1990..2010, half the pixels more than one level off
-/// (the lights 0.3 units away turn `L` by `δ/0.3` for a position error
-/// `δ` of up to `2048 · 2^-16` units mid-span).
+/// Before the position frame: 2 levels on these rows (Phong, n = 100,
+/// the first case; measured, the test failing), and on rows 1990..2010
+/// up to 15 (Blinn, n = 100) with 15 to 30 % of the pixels more than one
+/// level off (the lights 0.3 units away turn `L` by `δ/0.3` for a
+/// position error `δ` of up to `k · 2^-17` units, `k` up to 6000 pixels
+/// from the anchor). After: `r/d` = 4.7 (`r` 1.4, `d` 0.3), `F` = 28.
 #[test]
 fn precise_phong_4096_px_spans_lights_near() {
     for specular in [
@@ -802,9 +805,9 @@ fn precise_phong_4096_px_spans_lights_near() {
                     [1.0; 3],
                 ));
             }
-            let (d, covered) = precise_vs_twin(&s, 2000, 2006);
+            let (d, covered) = precise_vs_twin(&s, 2000, 2003);
             println!("{specular:?} n {n}: precise {d} levels from f64 over {covered} pixels");
-            assert!(covered > 20_000, "the square fills the band: {covered}");
+            assert!(covered > 10_000, "the square fills the band: {covered}");
             assert!(d <= 1, "{specular:?} n {n}: precise {d} levels from f64");
         }
     }
