@@ -51,11 +51,16 @@ impl<'a, P: Profile> PhongShader<'a, P> {
         scene: &Scene<'_, '_, P::Real>,
         obj: &Object<'_, P::Real>,
     ) -> Self {
-        let mv = scene.camera.view.then_after(&obj.transform);
+        // Only the profiles that frame positions pay for the transform.
+        let pos = if P::POSITION_FRAME {
+            PosFrame::new::<P>(&obj.mesh, &scene.camera.view.then_after(&obj.transform))
+        } else {
+            PosFrame::identity()
+        };
         Self {
             shade,
             back: false,
-            pos: PosFrame::new::<P>(&obj.mesh, &mv),
+            pos,
         }
     }
 

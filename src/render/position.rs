@@ -141,7 +141,9 @@ impl<R: Real> PosFrame<R> {
     /// The stored form of eye-space point `p`.
     #[inline(always)]
     pub(crate) fn store<P: Profile<Real = R>>(&self, p: Vec3<R>) -> [P::Lerp; 3] {
-        if !self.framed {
+        // The profile's constant first: other profiles compile to
+        // `Profile::coord` alone.
+        if !P::POSITION_FRAME || !self.framed {
             return [P::coord(p.x), P::coord(p.y), P::coord(p.z)];
         }
         let d = p - self.origin;
@@ -152,7 +154,7 @@ impl<R: Real> PosFrame<R> {
     /// made them, interpolated).
     #[inline(always)]
     pub(crate) fn load<P: Profile<Real = R>>(&self, a: [P::Lerp; 3]) -> Vec3<R> {
-        if !self.framed {
+        if !P::POSITION_FRAME || !self.framed {
             return Vec3::new(
                 P::coord_back(a[0]),
                 P::coord_back(a[1]),
