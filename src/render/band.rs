@@ -11,7 +11,7 @@ use crate::raster::{
     draw_sorted, in_limits, sort3, Fill, Flat, Gouraud, GouraudMono, Persp, RasterError, Shader,
     Spans, Vertex,
 };
-use crate::scene::{Object, Scene, SceneError};
+use crate::scene::{Scene, SceneError};
 use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
 
 /// Per-pixel Phong shading: the interpolated normal (and position)
@@ -26,7 +26,7 @@ use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
 pub struct PhongShader<'a, P: Profile> {
     shade: &'a Shade<P::Real>,
     back: bool,
-    pos: PosFrame<P::Real>,
+    pos: Option<&'a PosFrame<P::Real>>,
 }
 
 impl<'a, P: Profile> PhongShader<'a, P> {
@@ -40,23 +40,17 @@ impl<'a, P: Profile> PhongShader<'a, P> {
         Self {
             shade,
             back,
-            pos: PosFrame::identity(),
+            pos: None,
         }
     }
 
-    /// The shader of a prepared object: positions in the object's
-    /// [`PosFrame`] (`render::position`), front faces first.
+    /// The shader of a prepared object whose positions are stored in
+    /// `pos` ([`PosFrame::of_object`], `render::position`), front faces
+    /// first.
     pub(super) fn for_object(
         shade: &'a Shade<P::Real>,
-        scene: &Scene<'_, '_, P::Real>,
-        obj: &Object<'_, P::Real>,
+        pos: Option<&'a PosFrame<P::Real>>,
     ) -> Self {
-        // Only the profiles that frame positions pay for the transform.
-        let pos = if P::POSITION_FRAME {
-            PosFrame::new::<P>(&obj.mesh, &scene.camera.view.then_after(&obj.transform))
-        } else {
-            PosFrame::identity()
-        };
         Self {
             shade,
             back: false,
@@ -102,7 +96,7 @@ impl<P: Profile> Shader<P::Lerp, 3> for PhongShader<'_, P> {
 impl<P: Profile> Shader<P::Lerp, 6> for PhongShader<'_, P> {
     #[inline]
     fn shade(&self, a: &[P::Lerp; 6]) -> Rgb8 {
-        let p = self.pos.load::<P>([a[3], a[4], a[5]]);
+        let p = PosFrame::load::<P>(self.pos, [a[3], a[4], a[5]]);
         self.color(a, p)
     }
 }
@@ -271,7 +265,8 @@ impl<P: Profile> Frame<'_, P> {
                         scene.viewer,
                     )
                     .map_err(|_| SceneError::TooManyLights)?;
-                    let sh = PhongShader::<P>::for_object(&shade, scene, obj);
+                    let frame = PosFrame::of_object::<P>(scene, obj);
+                    let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
                     // The span kernel (`phong_span`) for the affine Q16
                     // profiles, built only for objects in this window.
                     let kernel = if P::PERSPECTIVE

@@ -55,6 +55,7 @@ use crate::geom::{Affine, Vec3};
 use crate::mesh::Mesh;
 use crate::num::{Profile, Real, COORD_FRAC_BITS};
 use crate::raster::Lerp;
+use crate::scene::{Object, Scene};
 
 /// Largest fraction bits of a framed position (the scalar conversions'
 /// limit, [`Real::to_fixed_i32`]).
@@ -132,37 +133,52 @@ impl<R: Real> PosFrame<R> {
         }
     }
 
+    /// The frame of a scene's object, for the profiles that keep one
+    /// (else `None`, without computing anything).
+    pub(crate) fn of_object<P: Profile<Real = R>>(
+        scene: &Scene<'_, '_, R>,
+        obj: &Object<'_, R>,
+    ) -> Option<Self> {
+        P::POSITION_FRAME
+            .then(|| Self::new::<P>(&obj.mesh, &scene.camera.view.then_after(&obj.transform)))
+    }
+
     /// Fraction bits of the stored coordinates.
     #[cfg(test)]
     pub(crate) fn frac(&self) -> u32 {
         self.frac
     }
 
-    /// The stored form of eye-space point `p`.
+    /// The stored form of eye-space point `p` in `frame` (`None`:
+    /// [`Profile::coord`]'s, the only form of the profiles without
+    /// [`Profile::POSITION_FRAME`], which keep no frame: their callers
+    /// pass `None`, so the frame costs them no stack).
     #[inline(always)]
-    pub(crate) fn store<P: Profile<Real = R>>(&self, p: Vec3<R>) -> [P::Lerp; 3] {
-        // The profile's constant first: other profiles compile to
-        // `Profile::coord` alone.
-        if !P::POSITION_FRAME || !self.framed {
-            return [P::coord(p.x), P::coord(p.y), P::coord(p.z)];
+    pub(crate) fn store<P: Profile<Real = R>>(frame: Option<&Self>, p: Vec3<R>) -> [P::Lerp; 3] {
+        match frame {
+            Some(f) if P::POSITION_FRAME && f.framed => {
+                let d = p - f.origin;
+                [d.x, d.y, d.z].map(|v| P::Lerp::from_fixed_raw(v.to_fixed_i32(f.frac)))
+            }
+            _ => [P::coord(p.x), P::coord(p.y), P::coord(p.z)],
         }
-        let d = p - self.origin;
-        [d.x, d.y, d.z].map(|v| P::Lerp::from_fixed_raw(v.to_fixed_i32(self.frac)))
     }
 
     /// The eye-space point of stored values `a` (as [`PosFrame::store`]
-    /// made them, interpolated).
+    /// made them in `frame`, interpolated).
     #[inline(always)]
-    pub(crate) fn load<P: Profile<Real = R>>(&self, a: [P::Lerp; 3]) -> Vec3<R> {
-        if !P::POSITION_FRAME || !self.framed {
-            return Vec3::new(
+    pub(crate) fn load<P: Profile<Real = R>>(frame: Option<&Self>, a: [P::Lerp; 3]) -> Vec3<R> {
+        match frame {
+            Some(f) if P::POSITION_FRAME && f.framed => {
+                let v = |l: P::Lerp| R::from_fixed_i32(l.fixed_raw().unwrap_or(0), f.frac);
+                f.origin + Vec3::new(v(a[0]), v(a[1]), v(a[2]))
+            }
+            _ => Vec3::new(
                 P::coord_back(a[0]),
                 P::coord_back(a[1]),
                 P::coord_back(a[2]),
-            );
+            ),
         }
-        let v = |l: P::Lerp| R::from_fixed_i32(l.fixed_raw().unwrap_or(0), self.frac);
-        self.origin + Vec3::new(v(a[0]), v(a[1]), v(a[2]))
     }
 }
 
@@ -191,7 +207,7 @@ mod tests {
         let f = PosFrame::new::<Precise>(&shapes::SPHERE, &eye(1.0, [0.1, -0.2, -3.0]));
         assert_eq!(f.frac(), 28);
         let p = Vec3::new(Q32::from_f64(0.7), Q32::from_f64(-0.9), Q32::from_f64(-2.6));
-        let back = f.load::<Precise>(f.store::<Precise>(p));
+        let back = PosFrame::load::<Precise>(Some(&f), PosFrame::store::<Precise>(Some(&f), p));
         for (a, b) in [(back.x, p.x), (back.y, p.y), (back.z, p.z)] {
             assert!((a - b).abs().to_f64() <= 2f64.powi(-29), "{a:?} {b:?}");
         }
@@ -212,7 +228,10 @@ mod tests {
             Q32::from_f64(-2.25),
             Q32::from_f64(-7.0),
         );
-        assert_eq!(big.store::<Precise>(p), [p.x, p.y, p.z].map(Precise::coord));
+        assert_eq!(
+            PosFrame::store::<Precise>(Some(&big), p),
+            [p.x, p.y, p.z].map(Precise::coord)
+        );
         let m = |a: f64| crate::num::Q16::from_f64(a);
         let v = Vec3::new(m(0.3), m(0.2), m(0.1));
         let fast = PosFrame::new::<Fast>(

@@ -699,8 +699,9 @@ struct ObjCtx<'a, 'm, R> {
     fast: Option<Xform16>,
     /// The integer normal transform (`Q16`).
     fast_n: Option<Xform16>,
-    /// How Phong positions are stored (`render::position`).
-    pos: PosFrame<R>,
+    /// How Phong positions are stored (`render::position`; `None` for
+    /// the profiles without a frame).
+    pos: Option<&'a PosFrame<R>>,
 }
 
 impl<P: Profile> Preparer<'_, P> {
@@ -751,6 +752,8 @@ impl<P: Profile> Preparer<'_, P> {
         } else {
             None
         };
+        // Only the profiles that frame positions keep a frame.
+        let frame = P::POSITION_FRAME.then(|| PosFrame::new::<P>(&mesh, &mv));
         let ctx = ObjCtx {
             mesh,
             tris: mesh.triangles(),
@@ -761,7 +764,7 @@ impl<P: Profile> Preparer<'_, P> {
             },
             fast: Xform16::new(&mv),
             fast_n: Xform16::new(&nm),
-            pos: PosFrame::new::<P>(&mesh, &mv),
+            pos: frame.as_ref(),
             mv,
             nm,
             shade: &shade,
@@ -1241,7 +1244,7 @@ impl<P: Profile> Preparer<'_, P> {
                     *v = P::unit(x);
                 }
                 if ctx.layout == Layout::PhongPosition {
-                    let p = ctx.pos.store::<P>(pos);
+                    let p = PosFrame::store::<P>(ctx.pos, pos);
                     for (v, x) in vals.iter_mut().skip(4).zip(p) {
                         *v = x;
                     }
