@@ -11,8 +11,8 @@
 //! and a highlight of shininess `n` changes by up to `0.61·√n` per radian
 //! (the slope of `cos^n θ` at `θ = 1/√n`): 61 at `n = 10 000`, so a
 //! 1600 × 1200 Phong sphere under eight lights of `Ip·ks = 0.18` measured
-//! 3 levels from its `f64` twin in `precise` (torus and sphere frames of
-//! issue 15: up to 20), while the same frame at 400 × 300 stayed within 1.
+//! 3 levels from its `f64` twin in `precise` (issue 15 reports up to 20
+//! on a torus), while the same frame at 400 × 300 stayed within 1.
 //!
 //! Profiles with [`Profile::POSITION_FRAME`] (`precise`) therefore store
 //! `p - c`, with `c` the eye-space centre of the mesh's bounding sphere,
