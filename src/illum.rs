@@ -8,6 +8,12 @@
 //! `C` is the material colour, `Lc` the light colour; the specular term
 //! takes the *light's* colour, so a red object under a white light gets a
 //! white highlight. The specular term is counted only where `N·L > 0`.
+//! At shininess 0 it is `max(0, R·V)^0 = 1` there, also where `R·V <= 0`
+//! (`0^0 = 1`, as [`Real::powf`] defines it): one rule in the core's
+//! profiles (the span kernel leaves shininess below 1 to this code), the
+//! ideal renderer (`f64::powf`) and the tests' `f64` reference
+//! (`tests/common/mod.rs`, `phong_f64`; the case `N·L > 0 > R·V` at `n = 0`
+//! is in `tests/bad_input.rs`).
 //! Each channel is clamped to `[0, 1]` after the summation. `L` points
 //! from the shaded point to the light (point light) or is the light's
 //! direction (directional light); `V` points to the eye (local viewer) or

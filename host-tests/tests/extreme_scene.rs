@@ -694,20 +694,55 @@ fn band_height_overflow_is_an_error() {
     );
 }
 
+/// Renders rows `y0..y1` of `s` with profile `P` (a window of the frame:
+/// the same pixels a whole frame has there), with 32-bit depth; the
+/// colours and coverage.
+fn window<P: Profile>(s: &Spec<'_>, y0: u32, y1: u32) -> (Vec<[u8; 3]>, Vec<bool>) {
+    use fixshade::render::prepare;
+    use fixshade::target::{Depth32, DepthBuffer, FrameBuf, Rgb888, Target};
+    let (camera, lights, objects) = s.core::<P::Real>();
+    let scene = s.scene(camera, &lights, &objects);
+    let mut mem = Mem::<P::Lerp>::new(2_000, 2_000);
+    let frame = prepare::<P>(&scene, s.width, s.height, mem.ws()).unwrap();
+    let n = (s.width * (y1 - y0)) as usize;
+    let mut px = vec![[0u8; 3]; n];
+    let mut z = vec![0u32; n];
+    {
+        let mut fb = FrameBuf::<Rgb888>::band(&mut px, s.width, y0, y1).unwrap();
+        fb.clear(scene.background);
+        let mut db = DepthBuffer::<Depth32>::new(&mut z, s.width, y0, y1).unwrap();
+        frame.render(&scene, &mut fb, Some(&mut db)).unwrap();
+    }
+    (px, z.iter().map(|&d| d != u32::MAX).collect())
+}
+
+/// `precise` against its `f64` twin on rows `y0..y1` of `s`: the same
+/// coverage; the largest channel difference and how many pixels are
+/// covered.
+fn precise_vs_twin(s: &Spec<'_>, y0: u32, y1: u32) -> (u8, usize) {
+    let (twin, tc) = window::<F64>(s, y0, y1);
+    let (p, pc) = window::<Precise>(s, y0, y1);
+    assert_eq!(pc, tc, "same coverage");
+    max_diff_covered(&p, &pc, &twin, &tc)
+}
+
 /// `precise` at the limits (issue 15, part 5): a Phong sphere on a
-/// 1600 × 1200 screen, eight point lights, shininess 10 000, Phong and
-/// Blinn, against its `f64` twin: within 1 level.
+/// 1600 × 1200 screen under eight point lights (`Ip = 0.3`, `ks = 0.6`),
+/// shininess 10 000, Phong and Blinn, against its `f64` twin: within 1
+/// level (rows 483..490, where the highlights of the lights to the
+/// right lie: the whole frame takes 10 s in a debug build).
 ///
-/// Fails today: the eye-space position (layout `PhongPosition`,
-/// `COORD_FRAC_BITS` = 16) steps by its per-pixel gradient rounded to a
-/// whole raw unit (`Lerp::step`, `i32` gradients in raw units per pixel),
-/// so along a span of `k` pixels it drifts by up to `k/2 · 2^-16` eye
-/// units (0.006 units at 800 pixels), which turns `L` and `V` by about
-/// that over the light's distance: ~2·10^-3 rad against a highlight
-/// 10^-2 rad wide at n = 10 000. The fix is in `src/raster/` (gradients
-/// with fraction bits below the raw unit, see the Phong report).
+/// Before the per-object position frame (`render/position.rs`) these rows
+/// were 3 levels off (Phong; measured, the test failing), the whole frame
+/// 3 (Phong) and 2 (Blinn) levels, 41 and 27 pixels more than one off: the
+/// eye-space position, interpolated as absolute `Q16` coordinates
+/// stepped by gradients rounded to whole `2^-16` units, drifted by up to
+/// `k · 2^-17` units `k` pixels from a triangle's anchor, and at
+/// `n = 10 000` a highlight's level moves by `255 · Ip·ks · 61` per radian
+/// of `L` or `V`. Now the positions are stored relative to the sphere's
+/// centre with 28 fraction bits (radius bound ~1.02: `2^28 · 1.02 <=
+/// 2^29`): measured 0 levels from the twin over the whole frame.
 #[test]
-#[ignore = "needs the raster fix (sub-unit fraction bits in the attribute steps), see the phong report / issue 15"]
 fn precise_phong_sphere_1600x1200_eight_lights_n10000() {
     for specular in [
         fixshade::illum::Specular::Phong,
@@ -730,9 +765,50 @@ fn precise_phong_sphere_1600x1200_eight_lights_n10000() {
                 [1.0; 3],
             ));
         }
-        let reference = s.render::<F64>().unwrap();
-        let d = diff::<Precise>(&s, &reference);
-        println!("{specular:?}: precise {d} levels from f64");
+        let (d, n) = precise_vs_twin(&s, 483, 490);
+        println!("{specular:?}: precise {d} levels from f64 over {n} pixels");
+        assert!(n > 4000, "the band holds the sphere: {n}");
         assert!(d <= 1, "{specular:?}: precise {d} levels from f64");
+    }
+}
+
+/// `precise` on a 4096-pixel screen (the largest, `MAX_SCREEN`): a
+/// square of two triangles filling it (spans of up to 4096 pixels within
+/// one triangle), corner normals tilted outwards, four point lights
+/// 0.3 units above it (`Ip = 1`, `ks = 1`), shininess 100 and 10 000,
+/// Phong and Blinn: within 1 level of the `f64` twin on rows 2000..2003.
+///
+/// Before the position frame: 2 levels on these rows (Phong, n = 100,
+/// the first case; measured, the test failing), and on rows 1990..2010
+/// up to 15 (Blinn, n = 100) with 15 to 30 % of the pixels more than one
+/// level off (the lights 0.3 units away turn `L` by `δ/0.3` for a
+/// position error `δ` of up to `k · 2^-17` units, `k` up to 6000 pixels
+/// from the anchor). After: `r/d` = 4.7 (`r` 1.4, `d` 0.3), `F` = 28.
+#[test]
+fn precise_phong_4096_px_spans_lights_near() {
+    for specular in [
+        fixshade::illum::Specular::Phong,
+        fixshade::illum::Specular::Blinn,
+    ] {
+        for n in [100.0, 1e4] {
+            let mut s = Spec::new(4096, 4096, [0.0, 0.0, 1.8]);
+            s.ambient = 0.1;
+            s.specular = specular;
+            let mut o = ObjSpec::new(quad(&TILTED), Shading::Phong);
+            (o.ka, o.kd, o.ks, o.shininess) = (0.2, 0.3, 1.0, n);
+            s.objects.push(o);
+            for k in 0..4 {
+                let a = f64::from(k) * std::f64::consts::FRAC_PI_2 + 0.3;
+                s.lights.push((
+                    LightSpec::Point([0.5 * a.cos(), 0.5 * a.sin(), 0.3]),
+                    1.0,
+                    [1.0; 3],
+                ));
+            }
+            let (d, covered) = precise_vs_twin(&s, 2000, 2003);
+            println!("{specular:?} n {n}: precise {d} levels from f64 over {covered} pixels");
+            assert!(covered > 10_000, "the square fills the band: {covered}");
+            assert!(d <= 1, "{specular:?} n {n}: precise {d} levels from f64");
+        }
     }
 }

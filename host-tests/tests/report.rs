@@ -240,9 +240,10 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
     assert!(data.summary.iter().any(|l| l.starts_with("Which pixels")));
     assert_eq!(
         html.matches("<svg").count(),
-        3 + 2 * 3 + 2 * 2 + 2 + 4,
-        "three plots for the host and per chip (errors vs ideal, twin, ideal Phong against mean cost), the chip section's error vs cycles and vs RAM per chip, M0 fixed point and soft-float side by side, one per knob"
+        3 + 2 * 3 + 2 * 2 + 2 + 4 + 1,
+        "three plots for the host and per chip (errors vs ideal, twin, ideal Phong against mean cost), the chip section's error vs cycles and vs RAM per chip, M0 fixed point and soft-float side by side, one per knob, the Phong kernel's table sizes"
     );
+    assert!(html.contains("Phong kernel: table sizes against error"));
     assert!(html.contains("Pareto front"));
     assert!(!html.contains("Embedded figures are not available"));
     assert_eq!(html.contains("in a debug build"), cfg!(debug_assertions));
@@ -267,6 +268,10 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
     assert!(md.contains("## Summary"));
     assert!(md.contains(&data.summary[1]));
     assert!(md.contains("| Phong | fast-pc |"));
+    assert!(md.contains("| 64 (shipped) |") && md.contains("| 128 (shipped) |"));
+    let tables = data.tables.as_ref().expect("the table-size sweep");
+    assert_eq!(tables.rsqrt.len(), 7);
+    assert_eq!(tables.spec.len(), 7);
     // No temporary files left.
     let leftovers: Vec<String> = std::fs::read_dir(&out)
         .unwrap()

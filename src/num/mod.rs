@@ -20,3 +20,4 @@ pub use self::profile::{
     DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
 };
 pub use self::real::Real;
+pub use self::tables::{rsqrt_quarter_table, spec_table};

@@ -60,6 +60,14 @@ pub trait Profile: Copy + Debug + Default + 'static {
     /// the classic Gouraud and Phong). Depth is affine in screen space
     /// either way.
     const PERSPECTIVE: bool = false;
+    /// Phong's interpolated eye-space positions stored per object relative
+    /// to the centre of its bounding sphere, with as many fraction bits as
+    /// its radius leaves (up to 30), instead of absolute [`Profile::coord`]
+    /// values: the rounded steps of the rasterizer then drift by `2^-12`
+    /// of the object's size over 4096 pixels rather than `2^-5` units
+    /// (see `render::position`). Affine fixed profiles only (`precise`);
+    /// the others keep [`Profile::coord`].
+    const POSITION_FRAME: bool = false;
 
     /// A colour level in `[0, 1]` (not clamped) as an interpolated value.
     fn level(r: Self::Real) -> Self::Lerp;
@@ -89,7 +97,7 @@ pub trait Profile: Copy + Debug + Default + 'static {
 }
 
 macro_rules! fixed_profile {
-    ($name:ident, $real:ty, $label:literal, $pc:literal, $doc:literal) => {
+    ($name:ident, $real:ty, $label:literal, $pc:literal, $frame:literal, $doc:literal) => {
         #[doc = $doc]
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         pub struct $name;
@@ -99,6 +107,7 @@ macro_rules! fixed_profile {
             type Lerp = i32;
             const NAME: &'static str = $label;
             const PERSPECTIVE: bool = $pc;
+            const POSITION_FRAME: bool = $frame;
 
             #[inline]
             fn level(r: $real) -> i32 {
@@ -152,6 +161,7 @@ fixed_profile!(
     Q16,
     "fast",
     false,
+    false,
     "Fixed point for the Cortex-M0: Q16.16 scalars, `i32` interpolation."
 );
 fixed_profile!(
@@ -159,6 +169,7 @@ fixed_profile!(
     Q32,
     "precise",
     false,
+    true,
     "Fixed point with more bits: Q32.32 scalars, `i32` interpolation."
 );
 fixed_profile!(
@@ -166,6 +177,7 @@ fixed_profile!(
     Q16,
     "fast-pc",
     true,
+    false,
     "[`Fast`] with perspective-correct interpolation."
 );
 fixed_profile!(
@@ -173,6 +185,7 @@ fixed_profile!(
     Q32,
     "precise-pc",
     true,
+    false,
     "[`Precise`] with perspective-correct interpolation."
 );
 

@@ -250,11 +250,77 @@ pub(crate) const SIN: [u64; 65] = [
     0x8000000000000000,
 ];
 
+/// The Phong span kernel's `1/|n|` table with `E` entries (`E - 1`
+/// segments, a power of two from 4 to 2^12): `1/sqrt(f)` in Q16 at `f =
+/// 1/4 + j/(E - 1)`, `j` in `0..E` (the kernel interpolates it over
+/// `|n|² ∈ [1/4, 5/4)`), each the floor of the square root of
+/// `floor(2^36 · S / (S + 4j))` (that is `(2 r)²`, `S = E - 1`), halved
+/// and rounded up: within `2^-16` of `2^16 / sqrt(f)`.
+///
+/// The kernel ships `E = 65` ([`crate::render::RSQRT_N`] + 1); other sizes
+/// are for the table-size sweep of the report (`fixshade report`), whose
+/// model of the kernel's lookup is tested equal to the kernel at 65. An
+/// `E` outside the range gives a table of zeros (no panic at compile
+/// time or run time).
+pub const fn rsqrt_quarter_table<const E: usize>() -> [u32; E] {
+    let mut t = [0u32; E];
+    let s = E.wrapping_sub(1);
+    if s < 4 || s > 1 << 12 || !s.is_power_of_two() {
+        return t;
+    }
+    let s = s as u64;
+    let mut j = 0;
+    while j < E {
+        // (2 r)^2 = 2^36 · S / (S + 4 j) <= 2^38: r below 2^18.
+        let v = ((1u64 << 36) * s) / (s + 4 * j as u64);
+        let mut lo = 0u64;
+        let mut hi = 1u64 << 21;
+        while lo < hi {
+            let mid = (lo + hi).div_ceil(2);
+            if mid * mid <= v {
+                lo = mid;
+            } else {
+                hi = mid - 1;
+            }
+        }
+        t[j] = lo.div_ceil(2) as u32;
+        j += 1;
+    }
+    t
+}
+
+/// The Phong span kernel's specular table with `E` entries (`E - 2`
+/// segments, a power of two from 4 to 2^12) for the exponent `m` (Q16,
+/// `m > 0`: the shininess, halved for Blinn): entry `j < E - 2` is
+/// `(1 - u/m)^m` in Q15 at `u = floor(min(m, 8) · j / (E - 2))` (Q16)
+/// (`approx16::spec_entry`, within `2^-11`), the last two are 0 (the
+/// table ends where the term drops below `e^-8 < 2^-11`, or at `u = m`
+/// where it is 0).
+///
+/// The kernel ships `E = 130` ([`crate::render::SPEC_SEGMENTS`] + 2),
+/// built when it is made for a shininess; other sizes are for the
+/// report's table-size sweep (see [`rsqrt_quarter_table`]). An `E` or
+/// `m` outside the range gives a table of zeros.
+pub fn spec_table<const E: usize>(m: u32) -> [u16; E] {
+    let mut t = [0u16; E];
+    let s = E.wrapping_sub(2);
+    if !(4..=1 << 12).contains(&s) || !s.is_power_of_two() || m == 0 {
+        return t;
+    }
+    // The table's reach: u up to min(m, 8) (Q16).
+    let t_eff = m.min(8 << 16);
+    for (j, e) in t.iter_mut().enumerate().take(s) {
+        let u = ((u64::from(t_eff) * j as u64) >> s.trailing_zeros()) as u32;
+        *e = super::approx16::spec_entry(u, m);
+    }
+    t
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
 
-    use super::{EXP2, LOG_INV, LOG_T, RSQRT, SIN};
+    use super::{rsqrt_quarter_table, spec_table, EXP2, LOG_INV, LOG_T, RSQRT, SIN};
 
     /// `|a - b| <= tol` for a table entry and an `f64` reference.
     fn near(entry: u64, reference: f64, tol: f64) -> bool {
@@ -288,5 +354,49 @@ mod tests {
         assert_eq!(LOG_T[64], 1 << 62);
         assert_eq!(EXP2[0], 1 << 63);
         assert_eq!(SIN[64], 1 << 63);
+    }
+
+    /// The builders at other sizes: the `1/|n|` table within `2^-16` of
+    /// `2^16 / sqrt(f)` (plus the half unit of its rounding), the
+    /// specular table within `2^-11` of `(1 - u/m)^m`, nonsense sizes all
+    /// zeros.
+    #[test]
+    fn builders_at_other_sizes() {
+        fn rs<const E: usize>() {
+            let t = rsqrt_quarter_table::<E>();
+            let s = (E - 1) as f64;
+            for (j, &e) in t.iter().enumerate() {
+                let want = 65536.0 / (0.25 + j as f64 / s).sqrt();
+                assert!(
+                    (f64::from(e) - want).abs() <= 1.0,
+                    "E {E} j {j}: {e} {want}"
+                );
+            }
+        }
+        rs::<17>();
+        rs::<65>();
+        rs::<1025>();
+        assert!(rsqrt_quarter_table::<64>().iter().all(|&e| e == 0));
+        assert!(rsqrt_quarter_table::<0>().is_empty());
+        fn sp<const E: usize>(n: f64) {
+            let m = (n * 65536.0) as u32;
+            let t = spec_table::<E>(m);
+            let s = E - 2;
+            let (mf, tf) = (f64::from(m) / 65536.0, f64::from(m.min(8 << 16)) / 65536.0);
+            for (j, &e) in t.iter().enumerate().take(s) {
+                let u = (tf * j as f64 / s as f64 * 65536.0).floor() / 65536.0;
+                let want = (1.0 - u / mf).max(0.0).powf(mf);
+                let got = f64::from(e) / 32768.0;
+                assert!((got - want).abs() <= 1.0 / 2048.0, "E {E} n {n} j {j}");
+            }
+            assert_eq!(t[s..], [0, 0]);
+        }
+        for n in [0.5, 1.0, 3.3, 100.0, 10_000.0] {
+            sp::<18>(n);
+            sp::<130>(n);
+            sp::<1026>(n);
+        }
+        assert!(spec_table::<130>(0).iter().all(|&e| e == 0));
+        assert!(spec_table::<131>(1 << 20).iter().all(|&e| e == 0));
     }
 }

@@ -68,6 +68,7 @@
 
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader};
+use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{Frame, Layout, Part, PreparedObject, RenderError, RenderStats, Tri};
 use crate::illum::{Light, Shade, MAX_LIGHTS};
@@ -570,7 +571,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         }
                         continue;
                     }
-                    let sh = PhongShader::<P>::new(&shade, false);
+                    let frame = PosFrame::of_object::<P>(sc, obj);
+                    let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
                     if P::PERSPECTIVE {
                         let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.set_back(t.back);
                         if normal {

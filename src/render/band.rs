@@ -1,6 +1,7 @@
 //! Rasterizing a prepared frame into a band (or a whole frame).
 
 use super::phong_span::{PhongFill, PhongKernel};
+use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, RenderError, Tri};
 use crate::geom::Vec3;
@@ -25,6 +26,7 @@ use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
 pub struct PhongShader<'a, P: Profile> {
     shade: &'a Shade<P::Real>,
     back: bool,
+    pos: Option<&'a PosFrame<P::Real>>,
 }
 
 impl<'a, P: Profile> PhongShader<'a, P> {
@@ -35,7 +37,25 @@ impl<'a, P: Profile> PhongShader<'a, P> {
     /// normal and the eye-space position in [`Profile::coord`] form (6
     /// values).
     pub fn new(shade: &'a Shade<P::Real>, back: bool) -> Self {
-        Self { shade, back }
+        Self {
+            shade,
+            back,
+            pos: None,
+        }
+    }
+
+    /// The shader of a prepared object whose positions are stored in
+    /// `pos` ([`PosFrame::of_object`], `render::position`), front faces
+    /// first.
+    pub(super) fn for_object(
+        shade: &'a Shade<P::Real>,
+        pos: Option<&'a PosFrame<P::Real>>,
+    ) -> Self {
+        Self {
+            shade,
+            back: false,
+            pos,
+        }
     }
 
     /// Draws back faces (flipped normal) or front faces.
@@ -76,11 +96,7 @@ impl<P: Profile> Shader<P::Lerp, 3> for PhongShader<'_, P> {
 impl<P: Profile> Shader<P::Lerp, 6> for PhongShader<'_, P> {
     #[inline]
     fn shade(&self, a: &[P::Lerp; 6]) -> Rgb8 {
-        let p = Vec3::new(
-            P::coord_back(a[3]),
-            P::coord_back(a[4]),
-            P::coord_back(a[5]),
-        );
+        let p = PosFrame::load::<P>(self.pos, [a[3], a[4], a[5]]);
         self.color(a, p)
     }
 }
@@ -228,10 +244,8 @@ impl<P: Profile> Frame<'_, P> {
                         scene.viewer,
                     )
                     .map_err(|_| SceneError::TooManyLights)?;
-                    let sh = PhongShader::<P> {
-                        shade: &shade,
-                        back: false,
-                    };
+                    let frame = PosFrame::of_object::<P>(scene, obj);
+                    let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
                     // The span kernel (`phong_span`) for the affine Q16
                     // profiles, built only for objects in this window.
                     let kernel = if P::PERSPECTIVE

@@ -62,6 +62,7 @@ mod active;
 mod band;
 pub mod clip;
 mod phong_span;
+mod position;
 mod prepare;
 mod storage;
 

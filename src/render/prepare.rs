@@ -47,6 +47,7 @@
 //! this data layout is its loads: 3 + 6 + 3 bounds checks.
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
+use super::position::PosFrame;
 use super::{Frame, Layout, Part, PreparedObject, RenderError, Tri, Workspace};
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
@@ -698,6 +699,9 @@ struct ObjCtx<'a, 'm, R> {
     fast: Option<Xform16>,
     /// The integer normal transform (`Q16`).
     fast_n: Option<Xform16>,
+    /// How Phong positions are stored (`render::position`; `None` for
+    /// the profiles without a frame).
+    pos: Option<&'a PosFrame<R>>,
 }
 
 impl<P: Profile> Preparer<'_, P> {
@@ -748,6 +752,8 @@ impl<P: Profile> Preparer<'_, P> {
         } else {
             None
         };
+        // Only the profiles that frame positions keep a frame.
+        let frame = P::POSITION_FRAME.then(|| PosFrame::new::<P>(&mesh, &mv));
         let ctx = ObjCtx {
             mesh,
             tris: mesh.triangles(),
@@ -758,6 +764,7 @@ impl<P: Profile> Preparer<'_, P> {
             },
             fast: Xform16::new(&mv),
             fast_n: Xform16::new(&nm),
+            pos: frame.as_ref(),
             mv,
             nm,
             shade: &shade,
@@ -1237,9 +1244,9 @@ impl<P: Profile> Preparer<'_, P> {
                     *v = P::unit(x);
                 }
                 if ctx.layout == Layout::PhongPosition {
-                    let p = [pos.x, pos.y, pos.z];
+                    let p = PosFrame::store::<P>(ctx.pos, pos);
                     for (v, x) in vals.iter_mut().skip(4).zip(p) {
-                        *v = P::coord(x);
+                        *v = x;
                     }
                 }
             }

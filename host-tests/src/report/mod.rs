@@ -47,6 +47,7 @@ pub mod picks;
 mod plot;
 mod summary;
 mod sweep;
+pub mod table_sweep;
 mod timing;
 
 use std::path::{Path, PathBuf};
@@ -301,6 +302,9 @@ pub struct ReportData {
     pub chips: Option<ChipSection>,
     /// The knob sweeps (when the measurements have them).
     pub knobs: Option<KnobSection>,
+    /// The Phong kernel's table-size sweep ([`table_sweep`]).
+    #[serde(default)]
+    pub tables: Option<table_sweep::TableSweep>,
 }
 
 /// What a run wrote.
@@ -462,6 +466,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<ReportOutput, Error> {
         summary: summary.lines(),
         chips: Some(chips),
         knobs,
+        tables: Some(table_sweep::TableSweep::run()),
     };
 
     // Frames of the representative profiles, then the three pages,

@@ -375,6 +375,7 @@ pub fn html(data: &ReportData, summary: &Summary, frames: &FrameIndex) -> String
                 p.note { (run_text(data)) }
                 @if let Some(chips) = &data.chips { (chips.html()) }
                 @if let Some(knobs) = &data.knobs { (knobs.html()) }
+                @if let Some(tables) = &data.tables { (tables.html()) }
                 h2 id="summary" { "Summary" }
                 ul.summary { @for line in picks { li { (line) } } }
                 h3 { "Where the fixed profiles lose accuracy" }
@@ -450,6 +451,10 @@ pub fn markdown(data: &ReportData, summary: &Summary) -> String {
     }
     if let Some(knobs) = &data.knobs {
         s.push_str(&knobs.markdown());
+        s.push('\n');
+    }
+    if let Some(tables) = &data.tables {
+        s.push_str(&tables.markdown());
         s.push('\n');
     }
     s.push_str("## Summary\n\n");
