@@ -49,7 +49,7 @@ use super::chips::{
 use super::{Error, Mode};
 
 mod lock;
-pub use lock::{waiting_message, StageLock, STAGE_LOCK};
+pub use lock::{waiting_message, StageLock, LOCK_FD_ENV, STAGE_LOCK};
 
 /// The targets, with their QEMU machine and plugin arguments.
 pub const TARGETS: [(&str, &str, &str, &str); 2] = [
