@@ -2,7 +2,7 @@
 //! coverage test.
 
 extern crate std;
-use std::{string::String, vec, vec::Vec};
+use std::{vec, vec::Vec};
 
 use super::*;
 use crate::target::{
@@ -28,22 +28,6 @@ impl Counter {
             count: vec![0; n],
             last: vec![0; n],
         }
-    }
-
-    fn ascii(&self) -> String {
-        let mut s = String::new();
-        for y in 0..self.h {
-            for x in 0..self.w {
-                let c = self.count[(y * self.w + x) as usize];
-                s.push(match c {
-                    0 => '.',
-                    1 => '#',
-                    _ => '2',
-                });
-            }
-            s.push('\n');
-        }
-        s
     }
 }
 
@@ -406,54 +390,58 @@ fn fans_around_a_point_are_watertight() {
     }
 }
 
-fn picture(tri: [(i32, i32); 3], w: u32, h: u32) -> String {
-    let mut t = Counter::new(w, h);
-    draw_flat(&mut t, &tri.map(|(x, y)| v(x, y))).unwrap();
-    t.ascii()
+/// Draws `tri` (flat white) into a `W x H` [`MockTarget`](crate::target::MockTarget),
+/// the public test target users draw their pictures with, and compares it
+/// with `picture` (`#` drawn once, `.` never; overdraw and writes outside
+/// fail too).
+fn assert_picture<const W: usize, const H: usize>(tri: [(i32, i32); 3], picture: &[&str]) {
+    let mut t = crate::target::MockTarget::<W, H>::new();
+    let mut f = Fill::<_, Depth16, _>::new(&mut t, None, Flat(Rgb8::WHITE)).unwrap();
+    f.draw(&tri.map(|(x, y)| v(x, y)), SUB).unwrap();
+    if let Err(e) = t.check_pattern(picture) {
+        panic!("{tri:?}: {e}");
+    }
 }
 
 #[test]
 fn ascii_small_triangles() {
     // Right triangle with its legs on pixel boundaries.
-    assert_eq!(
-        picture([(0, 0), (6 * 16, 0), (0, 6 * 16)], 7, 7),
-        "#####..\n####...\n###....\n##.....\n#......\n.......\n.......\n"
+    assert_picture::<7, 7>(
+        [(0, 0), (6 * 16, 0), (0, 6 * 16)],
+        &[
+            "#####..", "####...", "###....", "##.....", "#......", ".......", ".......",
+        ],
     );
     // Vertices on pixel centres: the top and left edges are in, the
     // bottom and right out.
-    assert_eq!(
-        picture([(c(1), c(1)), (c(5), c(1)), (c(1), c(5))], 7, 7),
-        ".......\n.####..\n.###...\n.##....\n.#.....\n.......\n.......\n"
+    assert_picture::<7, 7>(
+        [(c(1), c(1)), (c(5), c(1)), (c(1), c(5))],
+        &[
+            ".......", ".####..", ".###...", ".##....", ".#.....", ".......", ".......",
+        ],
     );
     // The same triangle mirrored: its vertical edge is now on the right,
     // so column 5 is out.
-    assert_eq!(
-        picture([(c(5), c(1)), (c(5), c(5)), (c(1), c(1))], 7, 7),
-        ".......\n.####..\n..###..\n...##..\n....#..\n.......\n.......\n"
+    assert_picture::<7, 7>(
+        [(c(5), c(1)), (c(5), c(5)), (c(1), c(1))],
+        &[
+            ".......", ".####..", "..###..", "...##..", "....#..", ".......", ".......",
+        ],
     );
 }
 
 #[test]
 fn ascii_thin_and_degenerate_triangles() {
     // One pixel thin: a sliver 2 subpixels wide around column 3's centres.
-    assert_eq!(
-        picture([(c(3) - 1, 0), (c(3) + 1, 0), (c(3), 6 * 16)], 7, 6),
-        "...#...\n...#...\n...#...\n...#...\n...#...\n...#...\n"
+    assert_picture::<7, 6>(
+        [(c(3) - 1, 0), (c(3) + 1, 0), (c(3), 6 * 16)],
+        &["...#..."; 6],
     );
     // Zero area: collinear points and a repeated point draw nothing.
-    assert_eq!(
-        picture([(0, 0), (50, 50), (100, 100)], 7, 7),
-        ".......\n".repeat(7)
-    );
-    assert_eq!(
-        picture([(c(2), c(2)), (c(2), c(2)), (c(5), c(1))], 7, 7),
-        ".......\n".repeat(7)
-    );
+    assert_picture::<7, 7>([(0, 0), (50, 50), (100, 100)], &["......."; 7]);
+    assert_picture::<7, 7>([(c(2), c(2)), (c(2), c(2)), (c(5), c(1))], &["......."; 7]);
     // A thin horizontal sliver between two rows' centres covers nothing.
-    assert_eq!(
-        picture([(0, 17), (100, 17), (50, 23)], 7, 3),
-        ".......\n".repeat(3)
-    );
+    assert_picture::<7, 3>([(0, 17), (100, 17), (50, 23)], &["......."; 3]);
 }
 
 #[test]

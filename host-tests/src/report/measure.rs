@@ -49,7 +49,7 @@ use super::chips::{
 use super::{Error, Mode};
 
 mod lock;
-pub use lock::{waiting_message, StageLock, STAGE_LOCK};
+pub use lock::{waiting_message, StageLock, LOCK_FD_ENV, STAGE_LOCK};
 
 /// The targets, with their QEMU machine and plugin arguments.
 pub const TARGETS: [(&str, &str, &str, &str); 2] = [
@@ -304,27 +304,64 @@ impl Stage {
         }
     }
 
-    /// Copies the fingerprinted sources of `root` to [`STAGE`] (replacing
-    /// an earlier copy).
+    /// Copies the fingerprinted sources of `root` to [`STAGE`] (see
+    /// [`sync_copy`]: a file whose staged copy already holds its content
+    /// keeps it, and its time, so cargo does not rebuild what was built
+    /// from it, e.g. the core after `cli_firmware`'s measurement).
     fn new(root: &Path) -> Result<Self, Error> {
         let src = PathBuf::from(STAGE);
-        if src.exists() {
-            std::fs::remove_dir_all(&src).map_err(|e| Error::write(&src, e))?;
-        }
         let mut files = chips::source_files(root);
         files.extend(chips::build_only_files(root));
-        for f in &files {
-            let to = src.join(f);
-            if let Some(dir) = to.parent() {
-                std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))?;
-            }
-            std::fs::copy(root.join(f), &to).map_err(|e| Error::write(&to, e))?;
-        }
+        sync_copy(root, &files, &src)?;
         Ok(Self {
             src,
             target_dir: root.join("examples/firmware/target"),
         })
     }
+}
+
+/// Makes `dest` hold exactly `files` (relative paths) of `root`: a file
+/// whose copy in `dest` has the same content is left alone (its
+/// modification time too: cargo decides freshness by it), any other is
+/// written anew (a new time: rebuilt), and files in `dest` that are not in
+/// `files` are removed. Content, not time, decides, so a staged file that
+/// another checkout or a user's scene (the generated scenes file) changed
+/// is always rewritten.
+fn sync_copy(root: &Path, files: &[PathBuf], dest: &Path) -> Result<(), Error> {
+    fn existing(dir: &Path, rel: &Path, out: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir.join(rel)) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let p = rel.join(e.file_name());
+            match e.file_type() {
+                Ok(t) if t.is_dir() => existing(dir, &p, out),
+                Ok(_) => out.push(p),
+                Err(_) => {}
+            }
+        }
+    }
+    let wanted: std::collections::BTreeSet<&Path> = files.iter().map(PathBuf::as_path).collect();
+    let mut old = Vec::new();
+    existing(dest, Path::new(""), &mut old);
+    for f in old.iter().filter(|f| !wanted.contains(f.as_path())) {
+        let p = dest.join(f);
+        std::fs::remove_file(&p).map_err(|e| Error::write(&p, e))?;
+    }
+    for f in files {
+        let from = root.join(f);
+        let data = std::fs::read(&from)
+            .map_err(|e| failed(format!("{}: cannot read: {e}", from.display())))?;
+        let to = dest.join(f);
+        if std::fs::read(&to).is_ok_and(|d| d == data) {
+            continue;
+        }
+        if let Some(dir) = to.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))?;
+        }
+        std::fs::write(&to, &data).map_err(|e| Error::write(&to, e))?;
+    }
+    Ok(())
 }
 
 /// Cargo's home (`CARGO_HOME`, else `~/.cargo`), where registry sources
@@ -1060,6 +1097,39 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Er
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_staged_copy_keeps_unchanged_files_and_their_times() {
+        let base = std::env::temp_dir().join(format!("fixshade-sync-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        let (root, dest) = (base.join("root"), base.join("stage"));
+        std::fs::create_dir_all(root.join("src/sub")).unwrap();
+        std::fs::write(root.join("src/a.rs"), "a").unwrap();
+        std::fs::write(root.join("src/sub/b.rs"), "b").unwrap();
+        let files = [PathBuf::from("src/a.rs"), PathBuf::from("src/sub/b.rs")];
+        sync_copy(&root, &files, &dest).unwrap();
+        std::fs::write(dest.join("src/stale.rs"), "gone").unwrap();
+        let time = |p: &str| std::fs::metadata(dest.join(p)).unwrap().modified().unwrap();
+        let (a0, b0) = (time("src/a.rs"), time("src/sub/b.rs"));
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        // b changes (as the generated scenes file does for a user's scene);
+        // a does not.
+        std::fs::write(root.join("src/sub/b.rs"), "b2").unwrap();
+        sync_copy(&root, &files, &dest).unwrap();
+        assert_eq!(time("src/a.rs"), a0, "an unchanged file keeps its time");
+        assert!(time("src/sub/b.rs") > b0, "a changed file is written anew");
+        assert_eq!(
+            std::fs::read_to_string(dest.join("src/sub/b.rs")).unwrap(),
+            "b2"
+        );
+        assert!(!dest.join("src/stale.rs").exists(), "files not staged go");
+        // The staged file changed behind our back (same length, another
+        // content): rewritten.
+        std::fs::write(dest.join("src/a.rs"), "x").unwrap();
+        sync_copy(&root, &files, &dest).unwrap();
+        assert_eq!(std::fs::read_to_string(dest.join("src/a.rs")).unwrap(), "a");
+        let _ = std::fs::remove_dir_all(&base);
+    }
 
     #[test]
     fn soft_float_names_are_found() {
