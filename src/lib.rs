@@ -24,6 +24,12 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 
+// The `armv6m` alias comes from build.rs: a build without it (a copy of the
+// sources that left the build script out) would take the ARMv7-M paths on a
+// Cortex-M0 and call the compiler's 64-bit helpers.
+#[cfg(all(target_arch = "arm", not(target_has_atomic = "32"), not(armv6m)))]
+compile_error!("the `armv6m` cfg alias is missing: build.rs did not run");
+
 pub mod geom;
 pub mod illum;
 pub mod mesh;

@@ -43,20 +43,11 @@ pub(crate) struct Fused {
     /// The coefficients (14 more fraction bits than the rows, below
     /// `2^31`; read on every target but ARMv6-M) and their halves
     /// `a >> 14`, `a & 0x3FFF` (read on ARMv6-M).
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        allow(dead_code)
-    )]
+    #[cfg_attr(armv6m, allow(dead_code))]
     a: [[i32; 3]; 3],
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        allow(dead_code)
-    )]
+    #[cfg_attr(not(armv6m), allow(dead_code))]
     hi: [[i32; 3]; 3],
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        allow(dead_code)
-    )]
+    #[cfg_attr(not(armv6m), allow(dead_code))]
     lo: [[i32; 3]; 3],
     b: [i32; 3],
     /// Screen centre, subpixels.
@@ -318,7 +309,7 @@ impl Fused {
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
     fn row(&self, k: usize, c: [i32; 3]) -> i32 {
-        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        #[cfg(armv6m)]
         {
             // Σ (2^14 h + l) c / 2^14, floored: Σ h c + (Σ l c) >> 14 (each
             // sum below 2^31, see `new`): 32-bit products only.
@@ -329,7 +320,7 @@ impl Fused {
                 + ((l[0] * c[0] + l[1] * c[1] + l[2] * c[2]) >> 14)
                 + self.b[k]
         }
-        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        #[cfg(not(armv6m))]
         {
             // The same value with 64-bit products of the whole
             // coefficients (below 2^31).
@@ -379,7 +370,7 @@ impl Fused {
     clippy::cast_possible_truncation
 )]
 fn mul_hi16(v: i32, y: u32) -> i32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         // v = 2^16 h + l: v y / 2^16 = h y + l y / 2^16, h y a multiple
         // of nothing to floor; |h y| < 2^30, l y < 2^32.
@@ -387,7 +378,7 @@ fn mul_hi16(v: i32, y: u32) -> i32 {
         let l = (v as u32) & 0xFFFF;
         h * y as i32 + ((l * y) >> 16) as i32
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         ((i64::from(v) * i64::from(y)) >> 16) as i32
     }
@@ -397,11 +388,11 @@ fn mul_hi16(v: i32, y: u32) -> i32 {
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation)]
 fn mul_hi16_u(v: u32, y: u32) -> u32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         (v >> 16) * y + (((v & 0xFFFF) * y) >> 16)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         ((u64::from(v) * u64::from(y)) >> 16) as u32
     }

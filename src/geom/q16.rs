@@ -18,22 +18,13 @@ const M_LIMIT: u32 = 1 << 24;
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Xform16 {
     /// The linear part (read by [`row_wide`]: every target but ARMv6-M).
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        allow(dead_code)
-    )]
+    #[cfg_attr(armv6m, allow(dead_code))]
     m: [[i32; 3]; 3],
     /// `m >> 14` and `m & 0x3FFF`, the halves of [`row_split_pre`] (the
     /// ARMv6-M path), split once per transform rather than per product.
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        allow(dead_code)
-    )]
+    #[cfg_attr(not(armv6m), allow(dead_code))]
     mh: [[i32; 3]; 3],
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        allow(dead_code)
-    )]
+    #[cfg_attr(not(armv6m), allow(dead_code))]
     ml: [[i32; 3]; 3],
     t: [i32; 3],
 }
@@ -42,11 +33,11 @@ impl Xform16 {
     /// `round(Σ m_kj c_j / 2^14)` exactly (ties up), for `|m_kj| < 2^24`.
     #[inline(always)]
     fn row(&self, k: usize, c: [i16; 3]) -> i32 {
-        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        #[cfg(armv6m)]
         {
             row_split_pre(&self.mh[k], &self.ml[k], c)
         }
-        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        #[cfg(not(armv6m))]
         {
             row_wide(&self.m[k], c)
         }
@@ -55,10 +46,7 @@ impl Xform16 {
 
 /// [`Xform16::row`] with `i64` products.
 #[inline(always)]
-#[cfg_attr(
-    all(target_arch = "arm", not(target_has_atomic = "32")),
-    allow(dead_code)
-)]
+#[cfg_attr(armv6m, allow(dead_code))]
 #[allow(clippy::cast_possible_truncation)]
 fn row_wide(m: &[i32; 3], c: [i16; 3]) -> i32 {
     let s = i64::from(m[0]) * i64::from(c[0])
@@ -78,10 +66,7 @@ fn row_split(m: &[i32; 3], c: [i16; 3]) -> i32 {
 
 /// [`row_split`] with the halves `mh = m >> 14`, `ml = m & 0x3FFF` given.
 #[inline(always)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(armv6m), allow(dead_code))]
 fn row_split_pre(mh: &[i32; 3], ml: &[i32; 3], c: [i16; 3]) -> i32 {
     let c = c.map(i32::from);
     let a = mh[0] * c[0] + mh[1] * c[1] + mh[2] * c[2];

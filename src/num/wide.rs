@@ -10,11 +10,11 @@
 /// `a · b` exactly, as `i64`.
 #[inline(always)]
 pub(crate) fn wmul(a: i32, b: i32) -> i64 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         wmul_split(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         i64::from(a) * i64::from(b)
     }
@@ -24,10 +24,7 @@ pub(crate) fn wmul(a: i32, b: i32) -> i64 {
 /// [`wmul`]; compiled everywhere so that the host tests check it).
 #[inline(always)]
 #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(armv6m), allow(dead_code))]
 pub(crate) fn wmul_split(a: i32, b: i32) -> i64 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
@@ -44,11 +41,11 @@ pub(crate) fn wmul_split(a: i32, b: i32) -> i64 {
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation)]
 pub(crate) fn mulhi(a: i32, b: i32) -> i32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         mulhi_split(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         (wmul(a, b) >> 32) as i32
     }
@@ -62,10 +59,7 @@ pub(crate) fn mulhi(a: i32, b: i32) -> i32 {
 /// 0xFFFF) + (m2 & 0xFFFF) + (al bl >> 16)) >> 16` (nested floors).
 #[inline(always)]
 #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(armv6m), allow(dead_code))]
 pub(crate) fn mulhi_split(a: i32, b: i32) -> i32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
@@ -102,7 +96,7 @@ pub(crate) fn mul16_small(a: i32, b: i32) -> i32 {
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation)]
 pub(crate) fn det_sign(a: i32, b: i32, c: i32, d: i32) -> i32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         if let Some(s) = det_sign_small(a, b, c, d) {
             return s;
@@ -121,10 +115,7 @@ pub(crate) fn det_sign(a: i32, b: i32, c: i32, d: i32) -> i32 {
 /// 2^16), rather than an absolute value and a comparison per operand.
 #[inline(always)]
 #[allow(clippy::cast_sign_loss)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(armv6m), allow(dead_code))]
 pub(crate) fn det_sign_small(a: i32, b: i32, c: i32, d: i32) -> Option<i32> {
     let off = |v: i32| v.wrapping_add(1 << 15) as u32;
     if off(a) | off(b) | off(c) | off(d) < 1 << 16 {
@@ -143,11 +134,11 @@ pub(crate) fn wmul64(a: i64, b: i64) -> i128 {
 /// Leading zeros of a `u32` (32 for 0).
 #[inline(always)]
 pub(crate) fn clz32(x: u32) -> u32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         clz32_soft(x)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         x.leading_zeros()
     }
@@ -167,10 +158,7 @@ static CLZ8: [u8; 256] = {
 /// Leading zeros from the top non-zero byte and a 256-entry table (two
 /// comparisons and one load, instead of a five-step binary search).
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn clz32_soft(x: u32) -> u32 {
     let byte = |v: u32| CLZ8[(v as u8) as usize] as u32;
     if x >= 1 << 16 {

@@ -98,14 +98,8 @@ impl Walk {
     /// takes the depth test without clamps (every depth of the triangle in
     /// range).
     #[allow(clippy::too_many_arguments)]
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        inline(always)
-    )]
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        inline(never)
-    )]
+    #[cfg_attr(armv6m, inline(always))]
+    #[cfg_attr(not(armv6m), inline(never))]
     fn fused<const N: usize, R: Copy, D: DepthFormat, const CLIP: bool, const INR: bool>(
         &mut self,
         row: &Vals<i32, N>,

@@ -549,10 +549,7 @@ where
     // and reloaded): bunny-gouraud raster -0.4 %, span loops flat 15 -> 14
     // and Gouraud 28 -> 26 insns/px. On ARMv7E-M the same inlining cost
     // 4 % (register pressure in the scanline loop): a call there.
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        inline(always)
-    )]
+    #[cfg_attr(armv6m, inline(always))]
     fn span(&mut self, s: &Span<L, N>) {
         if let Some(c) = self.shader.constant() {
             let raw = T::Format::encode(c);

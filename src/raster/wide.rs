@@ -16,7 +16,7 @@
 
 /// `true` on ARMv6-M (no long multiply): callers choose 32-bit formulations
 /// of 64-bit formulas there (same values).
-pub(crate) const NO_LONG_MUL: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+pub(crate) const NO_LONG_MUL: bool = cfg!(armv6m);
 
 /// `true` on ARMv6-M, which has no divide instruction either: a 32-bit
 /// division is a library call of some fifty instructions there.
@@ -74,11 +74,11 @@ pub(crate) fn small_floor_divmod(n: i32, d: i32) -> Option<(i32, i32)> {
 /// `a · b`, exact.
 #[inline(always)]
 pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         mul_u32_soft(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         a as u64 * b as u64
     }
@@ -86,10 +86,7 @@ pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
 
 /// `a · b` from four 16 × 16-bit products (ARMv6-M's `MULS` is 32 × 32 → 32).
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn mul_u32_soft(a: u32, b: u32) -> u64 {
     let (a0, a1) = (a & 0xffff, a >> 16);
     let (b0, b1) = (b & 0xffff, b >> 16);
@@ -107,11 +104,11 @@ pub(crate) fn mul_u32_soft(a: u32, b: u32) -> u64 {
 /// `a · b`, exact (signed).
 #[inline(always)]
 pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         mul_i32_soft(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         a as i64 * b as i64
     }
@@ -123,11 +120,11 @@ pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
 /// the plain product. Callers check the range of `b`.
 #[inline(always)]
 pub(crate) fn mul_i32_i16(a: i32, b: i32) -> i64 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         mul_i32_i16_soft(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         a as i64 * b as i64
     }
@@ -135,10 +132,7 @@ pub(crate) fn mul_i32_i16(a: i32, b: i32) -> i64 {
 
 /// [`mul_i32_i16`] from two 32-bit products.
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn mul_i32_i16_soft(a: i32, b: i32) -> i64 {
     let hi = (a >> 16) * b;
     let lo = (a & 0xffff) * b;
@@ -154,10 +148,7 @@ pub(crate) fn fits_i16(v: i32) -> bool {
 /// Signed product from the unsigned one: `a·b = ua·ub - 2^32·(ub·[a<0] +
 /// ua·[b<0])` (mod 2^64), with `ua`, `ub` the two's-complement bit patterns.
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn mul_i32_soft(a: i32, b: i32) -> i64 {
     let (ua, ub) = (a as u32, b as u32);
     let p = mul_u32_soft(ua, ub);
@@ -196,11 +187,11 @@ pub(crate) fn clz64(x: u64) -> u32 {
 /// `x >> s` for `s < 64`.
 #[inline(always)]
 pub(crate) fn shr64(x: u64, s: u32) -> u64 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         shr64_soft(x, s)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         x >> (s & 63)
     }
@@ -208,10 +199,7 @@ pub(crate) fn shr64(x: u64, s: u32) -> u64 {
 
 /// `x >> s` (`s < 64`) on 32-bit halves.
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn shr64_soft(x: u64, s: u32) -> u64 {
     let (hi, lo) = ((x >> 32) as u32, x as u32);
     let s = s & 63;
@@ -227,11 +215,11 @@ pub(crate) fn shr64_soft(x: u64, s: u32) -> u64 {
 /// `x << s` for `s < 64` (bits shifted out are lost).
 #[inline(always)]
 pub(crate) fn shl64(x: u64, s: u32) -> u64 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         shl64_soft(x, s)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         x << (s & 63)
     }
@@ -239,10 +227,7 @@ pub(crate) fn shl64(x: u64, s: u32) -> u64 {
 
 /// `x << s` (`s < 64`) on 32-bit halves.
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn shl64_soft(x: u64, s: u32) -> u64 {
     let (hi, lo) = ((x >> 32) as u32, x as u32);
     let s = s & 63;

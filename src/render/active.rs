@@ -1039,11 +1039,8 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
 /// (its live state then does not share the eight low registers with the
 /// row loop's); inlined elsewhere (out of line, thumbv7em bunny-gouraud
 /// raster took 2.317 -> 2.351 M).
-#[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    inline(always)
-)]
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline(always))]
 fn fresh_fixed<P: Profile, const N: usize, const V: usize>(
     frame: &Frame<'_, P>,
     po: &PreparedObject,

@@ -287,7 +287,7 @@ struct Preparer<'w, P: Profile> {
 /// measurable (the loop's spills absorb it); on the Cortex-M0 (eight low
 /// registers) the tracking cost 22 K against the pass's 16 K: it keeps
 /// the pass.
-const ROWS_FROM_BOX: bool = !cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+const ROWS_FROM_BOX: bool = !cfg!(armv6m);
 
 /// The fewest vertices for which an object's culling in object space
 /// ([`EarlyCull`]) is set up. The set-up (once per object: the eye in

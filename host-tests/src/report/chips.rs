@@ -508,7 +508,7 @@ pub fn build_only_files(root: &Path) -> Vec<PathBuf> {
 /// maps, sources, scenes, QEMU plugin), sorted.
 pub fn source_files(root: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
-    for f in ["Cargo.toml", "rust-toolchain.toml"] {
+    for f in ["Cargo.toml", "build.rs", "rust-toolchain.toml"] {
         if root.join(f).is_file() {
             out.push(PathBuf::from(f));
         }
