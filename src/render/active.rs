@@ -978,7 +978,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 slot.tri = ti;
                 slot.walk = p;
                 if let Some(v) = P::Lerp::fixed_slots(&mut slot.vals) {
-                    *v = *vals;
+                    // The depth and the N values in use, not the whole slot.
+                    for (d, s) in v.iter_mut().zip(vals).take(N + 1) {
+                        *d = *s;
+                    }
                 }
                 let tail = (self.ring_head + self.ring_len) % CAP.max(1);
                 if let Some(r) = self.pool.ring.get_mut(tail) {
