@@ -306,6 +306,25 @@ impl<R: Real> Mat3<R> {
             .fold(R::ZERO, R::max)
     }
 
+    /// An upper bound of how far the matrix stretches a vector (its
+    /// spectral norm): the square root of the largest row sum of
+    /// magnitudes of `MᵀM`, computed on `M` divided by its largest entry
+    /// (entries up to 1, so `MᵀM` does not saturate) and scaled back.
+    /// `None` for the zero matrix.
+    pub(crate) fn stretch(&self) -> Option<R> {
+        let m = self.max_abs();
+        if m == R::ZERO {
+            return None;
+        }
+        let t = self
+            .transpose()
+            .rows
+            .map(|r| Vec3::new(r.x.div(m), r.y.div(m), r.z.div(m)));
+        let g = |i: usize, j: usize| t[i].dot(t[j]).abs();
+        let row = |i: usize| g(i, 0) + g(i, 1) + g(i, 2);
+        Some(m * row(0).max(row(1)).max(row(2)).sqrt())
+    }
+
     /// How this linear part of a model-view transform acts on normals:
     /// `(k, s, uniform)`. `k` is the matrix to apply to an object-space
     /// normal before normalising it; `uniform` tells whether the matrix

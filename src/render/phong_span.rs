@@ -103,28 +103,8 @@ const U_MAX: u32 = 8 << 16;
 
 /// `1/sqrt(f)` in Q16 for `f = 1/4 + j/64`, `j` in `0..=64`: `2^19 /
 /// sqrt(16 + j)`, floor of the square root of the floor (within `2^-16`
-/// absolute).
-const RS: [u32; RSQRT_N + 1] = {
-    let mut t = [0u32; RSQRT_N + 1];
-    let mut j = 0;
-    while j <= RSQRT_N {
-        // (2 r)^2 = 2^40 / (16 + j); r rounded from 2r.
-        let v = (1u64 << 40) / (16 + j as u64);
-        let mut lo = 0u64;
-        let mut hi = 1u64 << 21;
-        while lo < hi {
-            let mid = (lo + hi).div_ceil(2);
-            if mid * mid <= v {
-                lo = mid;
-            } else {
-                hi = mid - 1;
-            }
-        }
-        t[j] = lo.div_ceil(2) as u32;
-        j += 1;
-    }
-    t
-};
+/// absolute): [`crate::num::rsqrt_quarter_table`] at 65 entries.
+const RS: [u32; RSQRT_N + 1] = crate::num::rsqrt_quarter_table::<{ RSQRT_N + 1 }>();
 
 /// Why a kernel could not be made (the caller keeps the generic path).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -98,20 +98,10 @@ impl<R: Real> PosFrame<R> {
         if c.x.abs() >= half || c.y.abs() >= half || c.z.abs() >= half {
             return id;
         }
-        // The largest stretch of M: at most the square root of the
-        // largest row sum of magnitudes of MᵀM (computed on M divided by
-        // its largest entry, as the bounding-sphere test of `prepare`).
-        let m = mv.m.max_abs();
-        if m == R::ZERO {
+        // The largest stretch of M (see `Mat3::stretch`).
+        let Some(stretch) = mv.m.stretch() else {
             return id;
-        }
-        let t = mv.m.transpose();
-        let t = t
-            .rows
-            .map(|r| Vec3::new(r.x.div(m), r.y.div(m), r.z.div(m)));
-        let g = |i: usize, j: usize| t[i].dot(t[j]).abs();
-        let row = |i: usize| g(i, 0) + g(i, 1) + g(i, 2);
-        let stretch = m * row(0).max(row(1)).max(row(2)).sqrt();
+        };
         // The radius (Q1.14, below 2^16) stretched, plus 1/64 relative
         // and 2^-10 units for the rounding of the vertices' transform.
         let r0 = R::from_fixed_i32(b.radius.min(1 << 16) as i32, 14) * stretch;

@@ -331,19 +331,10 @@ pub(super) fn sphere<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R
 fn placement<R: Real>(planes: &Planes<R>, mesh: &Mesh<'_>, mv: &Affine<R>) -> (Sphere, R, R) {
     let b = mesh.bound();
     let c = mv.point(Vec3::from_q14(b.center));
-    // The stretch of the largest entry's multiple (no saturation: `MᵀM`
-    // of a matrix with entries up to 1).
-    let m = mv.m.max_abs();
-    if m == R::ZERO {
+    // How far the linear part stretches the radius (see `Mat3::stretch`).
+    let Some(stretch) = mv.m.stretch() else {
         return (Sphere::Across, R::MAX, R::MAX);
-    }
-    let t = mv.m.transpose();
-    let t = t
-        .rows
-        .map(|r| Vec3::new(r.x.div(m), r.y.div(m), r.z.div(m)));
-    let g = |i: usize, j: usize| t[i].dot(t[j]).abs();
-    let row = |i: usize| g(i, 0) + g(i, 1) + g(i, 2);
-    let stretch = m * row(0).max(row(1)).max(row(2)).sqrt();
+    };
     let r0 = R::from_fixed_i32(b.radius.min(1 << 16) as i32, 14) * stretch;
     let r = r0 + r0.mul_i32(1).div(R::from_i32(64)) + R::from_ratio(1, 64);
     if r >= R::MAX.half()

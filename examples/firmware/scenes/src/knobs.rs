@@ -112,7 +112,8 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
     )
 }
 
-#[cfg(test)]
+// The knob scene (the bunny) is not in the `dodeca` build.
+#[cfg(all(test, not(feature = "dodeca")))]
 mod tests {
     use super::*;
     use crate::{NoProbe, POOL_SLOTS, SCENES};
