@@ -492,32 +492,25 @@ impl TableSweep {
             .map(|c| c.normals.iter().map(|&n| reference(c, n)).collect())
             .collect();
         let samples = set.iter().map(|c| c.normals.len() * 3).sum();
-        let rsqrt: Vec<SizeRow> = SIZES
-            .iter()
-            .map(|&s| {
-                let e = set_error(&set, &refs, s, SPEC_SEGMENTS);
-                SizeRow {
-                    segments: s,
-                    entries: s + 1,
-                    bytes: 4 * (s + 1),
-                    max: e.map(|e| e.0),
-                    mean: e.map(|e| e.1),
-                }
-            })
-            .collect();
-        let spec: Vec<SizeRow> = SIZES
-            .iter()
-            .map(|&s| {
-                let e = set_error(&set, &refs, RSQRT_N, s);
-                SizeRow {
-                    segments: s,
-                    entries: s + 2,
-                    bytes: 2 * (s + 2),
-                    max: e.map(|e| e.0),
-                    mean: e.map(|e| e.1),
-                }
-            })
-            .collect();
+        // One row per size: `s` segments of a table of `s + extra`
+        // entries of `width` bytes, measured with the other table shipped.
+        let rows = |extra: usize, width: usize, error: &dyn Fn(usize) -> Option<(f64, f64)>| {
+            SIZES
+                .iter()
+                .map(|&s| {
+                    let e = error(s);
+                    SizeRow {
+                        segments: s,
+                        entries: s + extra,
+                        bytes: width * (s + extra),
+                        max: e.map(|e| e.0),
+                        mean: e.map(|e| e.1),
+                    }
+                })
+                .collect::<Vec<SizeRow>>()
+        };
+        let rsqrt = rows(1, 4, &|s| set_error(&set, &refs, s, SPEC_SEGMENTS));
+        let spec = rows(2, 2, &|s| set_error(&set, &refs, RSQRT_N, s));
         let series = |name: &str, rows: &[SizeRow], f: fn(&SizeRow) -> Option<f64>| -> Series {
             (
                 name.to_string(),
