@@ -12,6 +12,7 @@
 
 mod common;
 
+use common::rng::Rng;
 use common::{phong_f64, Lamp, Mat, WHITE};
 use fixshade::illum::{Shade, Specular, Viewer};
 use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
@@ -190,22 +191,14 @@ fn table() -> Vec<Case> {
     t
 }
 
-/// Deterministic pseudo-random numbers (xorshift64*), uniform in [0, 1).
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn dir(&mut self) -> [f64; 3] {
-        loop {
-            let v = [0, 1, 2].map(|_| 2.0 * self.f() - 1.0);
-            let l = v.iter().map(|c| c * c).sum::<f64>();
-            if l > 0.01 && l < 1.0 {
-                return unit(v);
-            }
+/// A random direction, uniform on the unit sphere (rejection sampling in
+/// the cube, away from the centre).
+fn random_dir(rng: &mut Rng) -> [f64; 3] {
+    loop {
+        let v = [0, 1, 2].map(|_| 2.0 * rng.f() - 1.0);
+        let l = v.iter().map(|c| c * c).sum::<f64>();
+        if l > 0.01 && l < 1.0 {
+            return unit(v);
         }
     }
 }
@@ -216,7 +209,7 @@ fn random(count: usize) -> Vec<Case> {
     let mut rng = Rng(0x5eed_0001);
     let mut out = vec![];
     for i in 0..count {
-        let mut n = rng.dir();
+        let mut n = random_dir(&mut rng);
         n[2] = n[2].abs().max(0.2);
         let n = unit(n);
         let p = [rng.f() - 0.5, rng.f() - 0.5, -2.0 - 2.0 * rng.f()];

@@ -6,14 +6,13 @@
 //! nearest vertex 0 is within `(n + 2)·(½ + |g|·2^-30)` raw units, `|g|` the
 //! larger gradient per pixel.
 
-mod support;
-
+use crate::support::rng::Rng;
+use crate::support::{covers, Counter};
 use fixshade::raster::{
     draw_triangle, Fill, Flat, GouraudMono, Lerp, RasterError, Span, Spans, SubpixelBits, Vertex,
     ATTR_LIMIT, DEPTH_ONE,
 };
 use fixshade::target::{Depth16, Depth32, DepthBuffer, DepthFormat, FrameBuf, Gray8, Rgb8, Window};
-use support::{covers, Counter};
 
 fn sub(bits: u32) -> SubpixelBits {
     SubpixelBits::new(bits).unwrap()
@@ -174,20 +173,6 @@ fn triangles_one_subpixel_wide() {
     }
     assert!(covered > 300, "the slivers hit pixel centres: {covered}");
     println!("1-subpixel slivers: {covered} pixels, worst error {worst} raw units");
-}
-
-/// Deterministic pseudo-random numbers (xorshift64*).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn f(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// Slivers with aspect ratio 10^4: 4000 pixels long, 0.4 pixel high, at

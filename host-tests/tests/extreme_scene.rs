@@ -9,14 +9,12 @@
 //! boundary of the ideal coverage mask (it has a 4-neighbour of the other
 //! coverage). A disagreement anywhere else is a hole or a spill.
 
-mod support;
-
+use crate::support::*;
 use fixshade::mesh::{shapes, Mesh};
 use fixshade::num::{F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, F32, F64};
 use fixshade::render::RenderError;
 use fixshade::scene::{SceneError, Shading};
 use fixshade::target::{BandBuf, BufferError, Rgb565Be};
-use support::*;
 
 const W: u32 = 64;
 const H: u32 = 48;

@@ -8,15 +8,10 @@ use fixshade_host::ideal::{
     Vertex,
 };
 
-#[path = "ideal/coverage.rs"]
 mod coverage;
-#[path = "ideal/errors.rs"]
 mod errors;
-#[path = "ideal/geometry.rs"]
 mod geometry;
-#[path = "ideal/reference.rs"]
 mod reference;
-#[path = "ideal/shading.rs"]
 mod shading;
 
 /// A camera at `eye` looking at `target` with `+y` up.

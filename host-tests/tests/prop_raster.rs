@@ -3,14 +3,12 @@
 //! coverage, watertight shared edges, and fixed-point Gouraud within the
 //! bound the `raster` module docs state.
 
-mod support;
-
+use crate::support::{covers, Counter};
 use fixshade::raster::{
     draw_triangle, Fill, Flat, GouraudMono, Lerp, RasterError, Span, Spans, SubpixelBits, Vertex,
 };
 use fixshade::target::{Depth16, FrameBuf, Gray8, Rgb8, Window};
 use proptest::prelude::*;
-use support::{covers, Counter};
 
 fn flat(t: &mut Counter, tri: &[(i64, i64); 3], s: SubpixelBits) -> Result<(), RasterError> {
     let mut f = Fill::<_, Depth16, _>::new(t, None, Flat(Rgb8::WHITE)).unwrap();

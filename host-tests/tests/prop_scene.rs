@@ -5,8 +5,7 @@
 //! huge values) never panic and never make the rasterizer refuse a
 //! triangle.
 
-mod support;
-
+use crate::support::*;
 use fixshade::geom::{Affine, Mat3, Vec3};
 use fixshade::illum::Specular;
 use fixshade::mesh::{shapes, Mesh};
@@ -14,7 +13,6 @@ use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, Rea
 use fixshade::render::RenderError;
 use fixshade::scene::{Camera, Shading};
 use proptest::prelude::*;
-use support::*;
 
 const W: u32 = 40;
 const H: u32 = 30;

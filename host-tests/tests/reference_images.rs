@@ -1,9 +1,9 @@
 //! Reference images: every built-in scene, reduced to 64 pixels on its
 //! longer side, rendered by the core with the fixed profiles, compared
 //! exactly (bit for bit: fixed point is the same on every machine) with
-//! `tests/images/core-SCENE-PROFILE.png`. `MAKE_REF=1 cargo test --test
-//! reference_images` rewrites them; a mismatch writes expected | mask |
-//! actual to `tests/diff/` (ignored by git).
+//! `tests/images/core-SCENE-PROFILE.png`. `MAKE_REF=1 cargo test -p
+//! fixshade-host --test all reference_images` rewrites them; a mismatch
+//! writes expected | mask | actual to `tests/diff/` (ignored by git).
 
 use fixshade_host::builtin::{builtin_scenes, load_builtin};
 use fixshade_host::core_render::{render_core, CoreProfile};

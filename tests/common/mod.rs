@@ -3,6 +3,8 @@
 //! and image comparisons.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod rng;
+
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;

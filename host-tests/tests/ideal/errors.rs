@@ -2,7 +2,7 @@
 
 use fixshade_host::ideal::{render, IdealError, IdealScene, LightKind, Shading};
 
-use crate::{camera, light, matte, object, scene, square, tri};
+use super::{camera, light, matte, object, scene, square, tri};
 
 /// A small valid scene with one light and one square.
 fn valid() -> IdealScene {

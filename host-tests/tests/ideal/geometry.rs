@@ -2,7 +2,7 @@
 
 use fixshade_host::ideal::{render, Shading};
 
-use crate::{camera, covered, matte, object, scene, square, tri};
+use super::{camera, covered, matte, object, scene, square, tri};
 
 /// Pixels `(x, y)` with `x0 <= x <= x1` and `y0 <= y <= y1`, row-major.
 fn block(x0: u32, y0: u32, x1: u32, y1: u32) -> Vec<(u32, u32)> {
@@ -99,7 +99,7 @@ fn clockwise_triangle_is_culled_and_both_sides_match_without_culling() {
     let render_one = |t, shading, cull| {
         let mut s = scene(24, 24, cam.clone());
         s.lights
-            .push(crate::light(fixshade_host::ideal::LightKind::Directional {
+            .push(super::light(fixshade_host::ideal::LightKind::Directional {
                 direction: [0.3, 0.2, 1.0],
             }));
         s.objects.push(object(vec![t], shading, matte(), cull));

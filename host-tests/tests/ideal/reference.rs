@@ -5,7 +5,7 @@
 use fixshade_host::ideal::{render, IdealScene, Light, LightKind, Shading, Vertex};
 use fixshade_host::image::check_reference;
 
-use crate::{camera, material, object, scene, tri};
+use super::{camera, material, object, scene, tri};
 
 /// Cross product.
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

@@ -4,7 +4,7 @@ use fixshade_host::ideal::{
     illuminate, render, to_level, IdealFrame, IdealScene, LightKind, Shading, SpecularModel,
 };
 
-use crate::{camera, color_at, covered, light, material, object, scene, square, tri};
+use super::{camera, color_at, covered, light, material, object, scene, square, tri};
 
 /// Asserts two colours agree to `tol` per channel.
 fn close(got: [f64; 3], want: [f64; 3], tol: f64) {

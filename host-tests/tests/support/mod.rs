@@ -2,7 +2,11 @@
 //! memory, a counting target, whole-frame and banded renders, and one scene
 //! description that builds both a core [`Scene`] for any profile and the
 //! matching [`IdealScene`] for the independent f64 reference.
-#![allow(dead_code)] // each test crate uses a different part
+#![allow(dead_code)] // each test module uses a different part
+
+/// The tests' pseudo-random numbers: the core's tests' generator.
+#[path = "../../../tests/common/rng.rs"]
+pub mod rng;
 
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
