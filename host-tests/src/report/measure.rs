@@ -373,7 +373,10 @@ fn cargo_home() -> Option<PathBuf> {
 }
 
 /// Builds the firmware for `target` with `features` (the default build
-/// without) and runs it under QEMU with the counting plugin.
+/// without) and runs it under QEMU with the counting plugin. Only the
+/// measured binary (`fixshade-firmware`): without `--bin`, cargo also
+/// built and LTO-linked the animation (`fixshade-animate`) for every
+/// feature set, a link per profile and target that nothing ran.
 fn build_run(
     stage: &Stage,
     plugin: &Path,
@@ -388,6 +391,8 @@ fn build_run(
         "--release",
         "--target",
         target,
+        "--bin",
+        "fixshade-firmware",
     ]);
     let target_dir = &stage.target_dir;
     if let Some(f) = features {
