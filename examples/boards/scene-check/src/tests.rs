@@ -1,28 +1,7 @@
 use fixshade::num::Fast;
 use fixshade::render::{prepare, BandState, Frame, Tri, Workspace};
 use fixshade::target::{BandBuf, Depth16, DepthFormat, Gray8, PixelFormat, Rgb565Be};
-
-/// CRC-32 (ISO-HDLC: reflected polynomial 0xEDB88320, initial and final
-/// XOR all ones), the firmware's frame checksum.
-fn crc32(bytes: impl IntoIterator<Item = u8>, crc: u32) -> u32 {
-    let mut c = !crc;
-    for b in bytes {
-        c ^= u32::from(b);
-        for _ in 0..8 {
-            c = if c & 1 != 0 {
-                (c >> 1) ^ 0xEDB8_8320
-            } else {
-                c >> 1
-            };
-        }
-    }
-    !c
-}
-
-#[test]
-fn crc32_of_the_check_string() {
-    assert_eq!(crc32(*b"123456789", 0), 0xCBF4_3926);
-}
+use fixshade_scenes::Crc32;
 
 /// What one frame of a turn used.
 #[derive(Debug, Default, Clone, Copy)]
@@ -53,8 +32,10 @@ fn bands<F: PixelFormat, const CAP: usize, const V: usize>(
     let mut state = BandState::new(order, pool);
     let mut bands = frame.bands(scene, &mut state, rows).unwrap();
     let mut u = Use::default();
+    // The firmware's frame checksum (CRC-32/ISO-HDLC, from the `crc` crate).
+    let mut crc = Crc32::new();
     while bands.next_band(&mut band).unwrap().is_some() {
-        u.crc = crc32(band.bytes(), u.crc);
+        crc.update(band.bytes());
         u.covered += band
             .depth()
             .unwrap()
@@ -62,6 +43,7 @@ fn bands<F: PixelFormat, const CAP: usize, const V: usize>(
             .filter(|&&d| d != Depth16::CLEAR)
             .count() as u32;
     }
+    u.crc = crc.finish();
     u.peak = bands.active_peak();
     u.setups = bands.stats().triangles;
     u.pixels = bands.stats().pixels;
