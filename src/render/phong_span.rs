@@ -171,8 +171,6 @@ pub struct PhongKernel<'s, R> {
     /// `255 · 2^19 ·` ambient per channel plus `2^18` (rounding), for the
     /// 32-bit loop of one directional light ([`PhongKernel::fill`]).
     amb19: [i32; 3],
-    /// The ambient colour alone (`r | g << 8 | b << 16`).
-    amb_p: u32,
     /// `Q` (Q28) at or above `2^(15 + sq)`: no specular term.
     sq: u32,
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
@@ -332,10 +330,6 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         .filter(|&k| k < 1 << 26)
         .ok_or(KernelError::Range)?;
         let amb19 = ambient.map(|a| (scale255(a, 19) as i32).saturating_add(1 << 18));
-        let amb_p = {
-            let l = |a: i32| (a >> 19).clamp(0, 255) as u8;
-            pack(Rgb8::new(l(amb19[0]), l(amb19[1]), l(amb19[2])))
-        };
         // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
         let qlim = (u64::from(t_eff) * (5 << 28) / 4)
             .checked_div(u64::from(m))
@@ -382,7 +376,6 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             table,
             kf,
             amb19,
-            amb_p,
             sq,
             c16,
             cb,
