@@ -178,6 +178,60 @@ pub struct PhongKernel<'s, R> {
     cb: u32,
 }
 
+/// A specular table kept from one kernel to the next of the same
+/// shininess ([`PhongKernel::new_cached`]): the renderer keeps one per
+/// frame, so that its bands do not rebuild it (128 entries from
+/// `approx16::spec_entry_q` per kernel).
+#[derive(Clone, Debug)]
+pub struct SpecCache {
+    /// The table's `m` (Q16: the shininess, halved for Blinn) as its
+    /// high and low halves: 2-byte alignment, so that the renderer's
+    /// state keeps its other fields where they were (a 4-byte field
+    /// moved them on the M0, beyond its short load offsets).
+    m: [u16; 2],
+    table: [u16; SPEC_SEGMENTS + 2],
+}
+
+impl SpecCache {
+    /// The key of `m`.
+    #[allow(clippy::cast_possible_truncation)]
+    fn key(m: u32) -> [u16; 2] {
+        [(m >> 16) as u16, m as u16]
+    }
+}
+
+/// The specular table of `m` (Q16, `>= 1`; see [`PhongKernel`]'s
+/// `table`).
+#[allow(clippy::cast_possible_truncation)]
+fn spec_table(m: u32) -> [u16; SPEC_SEGMENTS + 2] {
+    let t_eff = m.min(U_MAX);
+    let mut table = [0u16; SPEC_SEGMENTS + 2];
+    // The last entry (u = min(m, 8)) is 0: exactly for m <= 8,
+    // and e^-8 < 2^-11 dropped for larger m.
+    // u = t_eff · j / SEGMENTS, floored (a power of two: a shift);
+    // for m >= 8, u = 2^12 j and q = floor(u · 2^16 / m) steps by
+    // the quotient and remainder of 2^28 / m (one division).
+    let step = (m >= U_MAX).then(|| (((1u32 << 28) / m), (1u32 << 28) % m));
+    let (mut q, mut rem) = (0u32, 0u32);
+    for (j, e) in table.iter_mut().enumerate().take(SPEC_SEGMENTS) {
+        let u = ((u64::from(t_eff) * j as u64) >> SPEC_SEGMENTS.trailing_zeros()) as u32;
+        *e = match step {
+            Some((sq_, sr)) => {
+                let v = approx16::spec_entry_q(u, m, Some(u64::from(q)));
+                q += sq_;
+                rem += sr;
+                if rem >= m {
+                    q += 1;
+                    rem -= m;
+                }
+                v
+            }
+            None => approx16::spec_entry(u, m),
+        };
+    }
+    table
+}
+
 /// `round(v · 255 · 2^k / 2^16)` for a Q16 coefficient `v >= 0`.
 fn scale255(v: i32, k: u32) -> u64 {
     let v = u64::from(v.max(0).unsigned_abs());
@@ -220,6 +274,19 @@ impl<'s, R: Real> PhongKernel<'s, R> {
     /// for a coefficient above 4 or a shininess below 1 with a specular
     /// term.
     pub fn new(shade: &'s Shade<R>) -> Result<Self, KernelError> {
+        Self::new_cached(shade, &mut None)
+    }
+
+    /// [`PhongKernel::new`] taking its specular table from `cache` when
+    /// that holds the table of the same shininess, else building it and
+    /// keeping it there (the same kernel either way).
+    ///
+    /// # Errors
+    /// As [`PhongKernel::new`].
+    pub fn new_cached(
+        shade: &'s Shade<R>,
+        cache: &mut Option<SpecCache>,
+    ) -> Result<Self, KernelError> {
         let (ambient, terms, shin, spec, model, viewer) =
             shade.raw_q16().ok_or(KernelError::Profile)?;
         let blinn = model == Specular::Blinn;
@@ -293,32 +360,17 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         }
         .max(1);
         let t_eff = m.min(U_MAX);
-        let mut table = [0u16; SPEC_SEGMENTS + 2];
-        if spec {
-            // The last entry (u = min(m, 8)) is 0: exactly for m <= 8,
-            // and e^-8 < 2^-11 dropped for larger m.
-            // u = t_eff · j / SEGMENTS, floored (a power of two: a shift);
-            // for m >= 8, u = 2^12 j and q = floor(u · 2^16 / m) steps by
-            // the quotient and remainder of 2^28 / m (one division).
-            let step = (m >= U_MAX).then(|| (((1u32 << 28) / m), (1u32 << 28) % m));
-            let (mut q, mut rem) = (0u32, 0u32);
-            for (j, e) in table.iter_mut().enumerate().take(SPEC_SEGMENTS) {
-                let u = ((u64::from(t_eff) * j as u64) >> SPEC_SEGMENTS.trailing_zeros()) as u32;
-                *e = match step {
-                    Some((sq_, sr)) => {
-                        let v = approx16::spec_entry_q(u, m, Some(u64::from(q)));
-                        q += sq_;
-                        rem += sr;
-                        if rem >= m {
-                            q += 1;
-                            rem -= m;
-                        }
-                        v
-                    }
-                    None => approx16::spec_entry(u, m),
-                };
+        let table = match cache {
+            _ if !spec => [0u16; SPEC_SEGMENTS + 2],
+            Some(c) if c.m == SpecCache::key(m) => c.table,
+            _ => {
+                let c = cache.insert(SpecCache {
+                    m: SpecCache::key(m),
+                    table: spec_table(m),
+                });
+                c.table
             }
-        }
+        };
         // K · 2^8 = m · SEGMENTS · 2^8 / t_eff (m, t_eff Q16): <= 2^7 · 2^8
         // for m <= 8, m / 2^19 · 2^7 · 2^8 <= 10 000 · 2^4 · 2^8 < 2^26 above.
         let kf = u32::try_from(
