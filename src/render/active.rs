@@ -67,7 +67,7 @@
 //! 3.942 M). The order scratch for its 1 498 triangles is 5 992 bytes.
 
 use super::band::PhongShader;
-use super::phong_span::{PhongKernel, PhongKernelShader};
+use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{Frame, Layout, Part, PreparedObject, RenderError, RenderStats, Tri};
@@ -250,6 +250,9 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     /// was full).
     peak: usize,
     stats: RenderStats,
+    /// The Phong kernel's specular table, built once a frame per
+    /// shininess rather than once a band.
+    spec_cache: Option<SpecCache>,
 }
 
 impl<'w, P: Profile> Frame<'w, P> {
@@ -304,6 +307,7 @@ impl<'w, P: Profile> Frame<'w, P> {
             def_len: 0,
             peak: 0,
             stats: RenderStats::default(),
+            spec_cache: None,
         })
     }
 
@@ -558,7 +562,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let kernel = if P::PERSPECTIVE {
                         None
                     } else {
-                        PhongKernel::new(&shade).ok()
+                        PhongKernel::new_cached(&shade, &mut self.spec_cache).ok()
                     };
                     if let Some(k) = &kernel {
                         let sh = PhongKernelShader::new(k);

@@ -69,7 +69,8 @@ mod storage;
 pub use active::{BandState, Bands, Pool, Slot};
 pub use band::{PhongShader, RenderStats};
 pub use phong_span::{
-    KernelError, PhongFill, PhongKernel, PhongKernelShader, PhongSpan, RSQRT_N, SPEC_SEGMENTS,
+    KernelError, PhongFill, PhongKernel, PhongKernelShader, PhongSpan, SpecCache, RSQRT_N,
+    SPEC_SEGMENTS,
 };
 pub use prepare::prepare;
 pub use storage::{Capacity, Reach, Storage};

@@ -1,7 +1,11 @@
 //! The Phong span kernel: per-span set-up, per-pixel table lookups.
 //!
-//! [`PhongKernel`] is made once per object per frame from a [`Shade`]
-//! (material and lights in eye space) of the `Q16` profiles; per span,
+//! [`PhongKernel`] is made per object (the band renderer: once a band)
+//! from a [`Shade`] (material and lights in eye space) of the `Q16`
+//! profiles, its specular table taken from a [`SpecCache`] when one of
+//! the same shininess is at hand (the band renderer keeps one a frame:
+//! measured on the dodecahedron Phong frame's 10 bands, 52 972
+//! instructions less on the M4, 145 435 on the M0); per span,
 //! [`PhongKernel::begin`] takes the interpolated normal (`Q30` raw, the
 //! layout's [`UNIT_FRAC_BITS`](crate::num::UNIT_FRAC_BITS)) and eye
 //! position (`Q16` raw) at the span's first pixel and their steps per
@@ -39,10 +43,13 @@
 //! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits); measured on
-//! the firmware's span sweep, 107 instructions a pixel on the M4 (was 167)
-//! and 208 on the M0: the colours of a chunk come from one copy of that
-//! arithmetic, the depth test and writes from a short loop per format
-//! (the span driver both 32-bit loops share). Per pixel: `1/|n|` from a
+//! the firmware's span sweep, 104.88 instructions a pixel on the M4 (was
+//! 167, then 106.97 before the two passes below) and 198.87 on the M0
+//! (was 207.96): the colours of a chunk come from one copy of that
+//! arithmetic in two passes (the light terms `N·L` and the specular
+//! factor, packed, then the three channels: fewer values live in each),
+//! the depth test and writes from a short loop per format (the span
+//! driver both 32-bit loops share). Per pixel: `1/|n|` from a
 //! 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
@@ -171,13 +178,65 @@ pub struct PhongKernel<'s, R> {
     /// `255 · 2^19 ·` ambient per channel plus `2^18` (rounding), for the
     /// 32-bit loop of one directional light ([`PhongKernel::fill`]).
     amb19: [i32; 3],
-    /// The ambient colour alone (`r | g << 8 | b << 16`).
-    amb_p: u32,
     /// `Q` (Q28) at or above `2^(15 + sq)`: no specular term.
     sq: u32,
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
     c16: u32,
     cb: u32,
+}
+
+/// A specular table kept from one kernel to the next of the same
+/// shininess ([`PhongKernel::new_cached`]): the renderer keeps one per
+/// frame, so that its bands do not rebuild it (128 entries from
+/// `approx16::spec_entry_q` per kernel).
+#[derive(Clone, Debug)]
+pub struct SpecCache {
+    /// The table's `m` (Q16: the shininess, halved for Blinn) as its
+    /// high and low halves: 2-byte alignment, so that the renderer's
+    /// state keeps its other fields where they were (a 4-byte field
+    /// moved them on the M0, beyond its short load offsets).
+    m: [u16; 2],
+    table: [u16; SPEC_SEGMENTS + 2],
+}
+
+impl SpecCache {
+    /// The key of `m`.
+    #[allow(clippy::cast_possible_truncation)]
+    fn key(m: u32) -> [u16; 2] {
+        [(m >> 16) as u16, m as u16]
+    }
+}
+
+/// The specular table of `m` (Q16, `>= 1`; see [`PhongKernel`]'s
+/// `table`).
+#[allow(clippy::cast_possible_truncation)]
+fn spec_table(m: u32) -> [u16; SPEC_SEGMENTS + 2] {
+    let t_eff = m.min(U_MAX);
+    let mut table = [0u16; SPEC_SEGMENTS + 2];
+    // The last entry (u = min(m, 8)) is 0: exactly for m <= 8,
+    // and e^-8 < 2^-11 dropped for larger m.
+    // u = t_eff · j / SEGMENTS, floored (a power of two: a shift);
+    // for m >= 8, u = 2^12 j and q = floor(u · 2^16 / m) steps by
+    // the quotient and remainder of 2^28 / m (one division).
+    let step = (m >= U_MAX).then(|| (((1u32 << 28) / m), (1u32 << 28) % m));
+    let (mut q, mut rem) = (0u32, 0u32);
+    for (j, e) in table.iter_mut().enumerate().take(SPEC_SEGMENTS) {
+        let u = ((u64::from(t_eff) * j as u64) >> SPEC_SEGMENTS.trailing_zeros()) as u32;
+        *e = match step {
+            Some((sq_, sr)) => {
+                let v = approx16::spec_entry_q(u, m, Some(u64::from(q)));
+                q += sq_;
+                rem += sr;
+                if rem >= m {
+                    q += 1;
+                    rem -= m;
+                }
+                v
+            }
+            None => approx16::spec_entry(u, m),
+        };
+    }
+    table
 }
 
 /// `round(v · 255 · 2^k / 2^16)` for a Q16 coefficient `v >= 0`.
@@ -222,6 +281,19 @@ impl<'s, R: Real> PhongKernel<'s, R> {
     /// for a coefficient above 4 or a shininess below 1 with a specular
     /// term.
     pub fn new(shade: &'s Shade<R>) -> Result<Self, KernelError> {
+        Self::new_cached(shade, &mut None)
+    }
+
+    /// [`PhongKernel::new`] taking its specular table from `cache` when
+    /// that holds the table of the same shininess, else building it and
+    /// keeping it there (the same kernel either way).
+    ///
+    /// # Errors
+    /// As [`PhongKernel::new`].
+    pub fn new_cached(
+        shade: &'s Shade<R>,
+        cache: &mut Option<SpecCache>,
+    ) -> Result<Self, KernelError> {
         let (ambient, terms, shin, spec, model, viewer) =
             shade.raw_q16().ok_or(KernelError::Profile)?;
         let blinn = model == Specular::Blinn;
@@ -295,32 +367,17 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         }
         .max(1);
         let t_eff = m.min(U_MAX);
-        let mut table = [0u16; SPEC_SEGMENTS + 2];
-        if spec {
-            // The last entry (u = min(m, 8)) is 0: exactly for m <= 8,
-            // and e^-8 < 2^-11 dropped for larger m.
-            // u = t_eff · j / SEGMENTS, floored (a power of two: a shift);
-            // for m >= 8, u = 2^12 j and q = floor(u · 2^16 / m) steps by
-            // the quotient and remainder of 2^28 / m (one division).
-            let step = (m >= U_MAX).then(|| (((1u32 << 28) / m), (1u32 << 28) % m));
-            let (mut q, mut rem) = (0u32, 0u32);
-            for (j, e) in table.iter_mut().enumerate().take(SPEC_SEGMENTS) {
-                let u = ((u64::from(t_eff) * j as u64) >> SPEC_SEGMENTS.trailing_zeros()) as u32;
-                *e = match step {
-                    Some((sq_, sr)) => {
-                        let v = approx16::spec_entry_q(u, m, Some(u64::from(q)));
-                        q += sq_;
-                        rem += sr;
-                        if rem >= m {
-                            q += 1;
-                            rem -= m;
-                        }
-                        v
-                    }
-                    None => approx16::spec_entry(u, m),
-                };
+        let table = match cache {
+            _ if !spec => [0u16; SPEC_SEGMENTS + 2],
+            Some(c) if c.m == SpecCache::key(m) => c.table,
+            _ => {
+                let c = cache.insert(SpecCache {
+                    m: SpecCache::key(m),
+                    table: spec_table(m),
+                });
+                c.table
             }
-        }
+        };
         // K · 2^8 = m · SEGMENTS · 2^8 / t_eff (m, t_eff Q16): <= 2^7 · 2^8
         // for m <= 8, m / 2^19 · 2^7 · 2^8 <= 10 000 · 2^4 · 2^8 < 2^26 above.
         let kf = u32::try_from(
@@ -332,10 +389,6 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         .filter(|&k| k < 1 << 26)
         .ok_or(KernelError::Range)?;
         let amb19 = ambient.map(|a| (scale255(a, 19) as i32).saturating_add(1 << 18));
-        let amb_p = {
-            let l = |a: i32| (a >> 19).clamp(0, 255) as u8;
-            pack(Rgb8::new(l(amb19[0]), l(amb19[1]), l(amb19[2])))
-        };
         // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
         let qlim = (u64::from(t_eff) * (5 << 28) / 4)
             .checked_div(u64::from(m))
@@ -382,7 +435,6 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             table,
             kf,
             amb19,
-            amb_p,
             sq,
             c16,
             cb,

@@ -258,7 +258,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// `k` colours with 32-bit forward differences of `|n|²` (Q30) and,
     /// with `SPEC`, `Qm` (Q20 segments).
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
+    #[allow(clippy::too_many_arguments, clippy::cast_possible_wrap)]
     fn chunk<const SPEC: bool>(
         &self,
         c: &Colour,
@@ -271,8 +271,12 @@ impl<R: Real> PhongKernel<'_, R> {
     ) {
         let (mut nn, mut nd1, nd2) = nn;
         let (mut q, mut qd1, qd2) = qm;
-        for o in buf.iter_mut().take(k as usize) {
-            *o = self.colour::<SPEC, true>(c, nn, nl, q >> (QM_FRAC - 7));
+        let buf = buf.get_mut(..k as usize).unwrap_or_default();
+        // Two passes (fewer live values each): the terms `N·L` and the
+        // specular factor (packed: both below 2^16), then the channels.
+        for o in buf.iter_mut() {
+            let (nl15, sp) = self.terms::<SPEC>(nn, nl, q >> (QM_FRAC - 7));
+            *o = (nl15 & 0xFFFF) | sp << 16;
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
             if SPEC {
@@ -281,36 +285,41 @@ impl<R: Real> PhongKernel<'_, R> {
             }
             nl = nl.wrapping_add(dnl);
         }
+        for o in buf.iter_mut() {
+            *o = Self::channels(c, (*o & 0xFFFF) as i32, (*o >> 16) as i32);
+        }
     }
 
     /// One pixel's colour (`r | g << 8 | b << 16`) from `|n|²` (Q30,
     /// within `[1/4, 5/4)`), `n·L` (Q30) and the table position before
     /// the division by `|n|²`, `q7` (Q7 segments: the directional loop's
-    /// `Qm`, the point loop's `K·w·A`); the colour of `n·L <= 0` is the
-    /// ambient term alone (`BRANCH`: returned early, else computed
-    /// without a branch). The per-pixel arithmetic of both 32-bit loops.
+    /// `Qm`, the point loop's `K·w·A`): [`PhongKernel::channels`] of
+    /// [`PhongKernel::terms`].
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    pub(super) fn colour<const SPEC: bool>(&self, c: &Colour, nn: i32, nl: i32, q7: i32) -> u32 {
+        let (nl15, sp) = self.terms::<SPEC>(nn, nl, q7);
+        Self::channels(c, nl15 as i32, sp as i32)
+    }
+
+    /// One pixel's light terms from `|n|²`, `n·L` and `q7` (as
+    /// [`PhongKernel::colour`]): `N·L` in Q15 (`nl15 <= 2^15 (1 + 2^-11)`,
+    /// below 2^16; 0 for `n·L <= 0`) and the specular factor in Q15 (the
+    /// table's, `<= 2^15`; 0 for `n·L <= 0`). The per-pixel arithmetic of
+    /// both 32-bit loops, before the channels.
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
-    pub(super) fn colour<const SPEC: bool, const BRANCH: bool>(
-        &self,
-        c: &Colour,
-        nn: i32,
-        nl: i32,
-        q7: i32,
-    ) -> u32 {
+    pub(super) fn terms<const SPEC: bool>(&self, nn: i32, nl: i32, q7: i32) -> (u32, u32) {
         // 64 segments of 2^24 (Q30) from 1/4.
         let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
         let (a, b) = (RS[j], RS[j + 1]);
         let t = ((nn as u32) >> 8) & 0xFFFF;
         // 2^16 / |n| (<= 2^17).
         let r = a - (((a - b) * t) >> 16);
-        if BRANCH && nl <= 0 {
-            return self.amb_p;
-        }
         // N·L in Q15: (n·L)/|n| <= 1 (within 2^-11 relative: no clamp
         // needed below, the products stay below 2^30).
-        let nl15 = (((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16) as i32;
-        let sp = if SPEC && (BRANCH || nl > 0) {
+        let nl15 = ((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16;
+        let sp = if SPEC && nl > 0 {
             let r14 = r >> 2;
             // 2^14 / |n|² <= 2^16.
             let rr14 = (r14 * r14) >> 14;
@@ -322,10 +331,19 @@ impl<R: Real> PhongKernel<'_, R> {
             let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
             let f = (pos >> 5) & 0xFFFF;
             let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
-            (a - (((a - b) * f) >> 16)) as i32
+            a - (((a - b) * f) >> 16)
         } else {
             0
         };
+        (nl15, sp)
+    }
+
+    /// The colour (`r | g << 8 | b << 16`) of the light terms of
+    /// [`PhongKernel::terms`]: per channel ambient plus diffuse times
+    /// `N·L` plus specular times the factor, clamped to `0..=255`.
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss)]
+    pub(super) fn channels(c: &Colour, nl15: i32, sp: i32) -> u32 {
         let ch = |k: usize| {
             let acc = c.amb[k] + c.d[k] * nl15 + c.s[k] * sp;
             (acc >> 19).clamp(0, 255) as u32
@@ -355,9 +373,9 @@ impl<R: Real> PhongKernel<'_, R> {
             let k = lin(n, l.p2);
             let q = sq3(cross(n, l.p1)).wrapping_add(wmul(k, k) as u64);
             let qm = mul_shr48(q as i64, self.kf).clamp(0, QM_MAX) as i32;
-            self.colour::<true, true>(&cl, (nn >> 30) as i32, nl, qm >> (QM_FRAC - 7))
+            self.colour::<true>(&cl, (nn >> 30) as i32, nl, qm >> (QM_FRAC - 7))
         } else {
-            self.colour::<false, true>(&cl, (nn >> 30) as i32, nl, 0)
+            self.colour::<false>(&cl, (nn >> 30) as i32, nl, 0)
         }
     }
 }

@@ -399,7 +399,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 } else {
                     0
                 };
-                *o = self.colour::<SPEC, false>(c, a, nl, q >> 8);
+                *o = self.colour::<SPEC>(c, a, nl, q >> 8);
                 a = a.wrapping_add(a1);
                 a1 = a1.wrapping_add(a2);
             }

@@ -490,3 +490,44 @@ fn spec_table_stepped_equals_direct() {
         }
     }
 }
+
+/// A kernel made through the specular-table cache equals the kernel made
+/// afresh: with an empty cache, a cache of another shininess (rebuilt and
+/// replaced) and one of the same shininess (taken), for Phong and Blinn.
+#[test]
+fn spec_cache_same_kernel() {
+    let light = Light::directional(v3(0.3, 0.4, 0.866), q(1.0));
+    let shade = |n: f64, s: Specular| {
+        let mat = Material {
+            color: v3(0.9, 0.7, 0.5),
+            ka: q(0.1),
+            kd: q(0.7),
+            ks: q(0.5),
+            shininess: q(n),
+        };
+        Shade::new(&mat, q(0.2), &[light], s, Viewer::Infinite).unwrap()
+    };
+    let mut cache = None;
+    for s in [Specular::Phong, Specular::Blinn] {
+        for n in [20.0, 20.0, 800.0, 3.0, 3.0, 10_000.0] {
+            let sh = shade(n, s);
+            let fresh = PhongKernel::new(&sh).unwrap();
+            let cached = PhongKernel::new_cached(&sh, &mut cache).unwrap();
+            assert_eq!(fresh.table, cached.table, "n = {n}");
+            assert_eq!(fresh.kf, cached.kf);
+            let m = if s == Specular::Blinn { n / 2.0 } else { n };
+            assert_eq!(
+                cache.as_ref().map(|c| c.m),
+                Some(SpecCache::key((m * 65536.0) as u32))
+            );
+            // The same pixels along a span across the highlight.
+            let n0 = [-(1 << 28), 1 << 27, 1 << 30];
+            let dn = [1 << 22, 0, -(1 << 20)];
+            let mut a = fresh.begin(n0, dn, [0; 3], [0; 3], false);
+            let mut b = cached.begin(n0, dn, [0; 3], [0; 3], false);
+            for _ in 0..64 {
+                assert_eq!(a.next(), b.next());
+            }
+        }
+    }
+}
