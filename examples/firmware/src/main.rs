@@ -221,10 +221,14 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
             }
         );
     }
-    // The span loops write a 240-pixel band and its depth band: not in a
-    // build whose scenes are narrower or need no depth band (one convex
-    // object each: a build for other scenes than the built-in ones).
-    if fixshade_scenes::DEPTH && BAND_PIXELS >= (WIDTH * BAND_ROWS) as usize {
+    // The span loops write 16 rows of a 240-pixel band and its depth
+    // band: not in a build whose scenes are narrower, need no depth band
+    // (one convex object each: a build for other scenes than the built-in
+    // ones) or whose bands are shorter (the bunny alone: 8 rows).
+    if fixshade_scenes::DEPTH
+        && BAND_ROWS >= SPAN_ROWS
+        && BAND_PIXELS >= (WIDTH * BAND_ROWS) as usize
+    {
         span_loops(mem).map_err(|e| Failure::Frame("span-loops", e))?;
     }
     Ok(())

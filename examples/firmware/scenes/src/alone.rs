@@ -146,11 +146,65 @@ pub mod dodeca {
         + core::mem::size_of::<DodecaPool>();
 }
 
+/// The bunny Gouraud benchmark scene alone (feature `bunny`): the
+/// firmware the RAM budget of a prepared bunny frame is measured in.
+/// Storage for one Gouraud object with a grey level (two values per
+/// vertex: [`bunny::CAPACITY`] is the scene's own), a depth band (the
+/// bunny is not convex), 8-row bands and a pool sized by the measured
+/// peak of active triangles:
+///
+/// | part | bytes |
+/// |------|------:|
+/// | colour band: 240 px × 8 rows × 2 (RGB565) | 3 840 |
+/// | depth band: 240 px × 8 rows × 2 (16-bit) | 3 840 |
+/// | storage: 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (14 + 4) | 95 556 |
+/// | pool: 62 slots of 2 values, 88 + 4 bytes each ([`bunny::BunnyPool`]) | 5 704 |
+/// | total | 108 940 |
+///
+/// The budget is 40 KB = 40 960 bytes; the storage alone exceeds it (the
+/// tests check these figures).
+pub mod bunny {
+    use super::SceneSpec;
+    use fixshade::render::{Capacity, Pool};
+
+    const PREFIX: &str = "bunny-gouraud";
+    const N: usize = super::count(PREFIX);
+    const PICKED: [SceneSpec; N] = super::pick::<N>(PREFIX);
+
+    /// The bunny Gouraud scene.
+    pub static SCENES: [SceneSpec; N] = PICKED;
+    /// Its storage.
+    pub const CAPACITY: Capacity = super::capacity(&PICKED);
+    /// Whether it needs a depth band (yes: the bunny is not convex).
+    pub const DEPTH: bool = super::depth(&PICKED);
+    /// Its width, pixels: the colour band's width.
+    pub const WIDTH: u32 = super::width(&PICKED);
+    /// Rows per band: 8 (3 840 bytes of colour band and as many of depth
+    /// band at 240 pixels; the frame is the same for every band height).
+    pub const BAND_ROWS: u32 = 8;
+    /// Active triangles kept from band to band: 62, the peak in 8-row
+    /// bands (checked by the tests; 55 in 16-row bands); fewer slots would
+    /// only set some triangles up again (the same bytes).
+    pub const POOL_SLOTS: usize = 62;
+    /// Values a slot holds: 2 (depth and grey level).
+    pub const POOL_VALUES: usize = 2;
+    /// The pool of such a firmware.
+    pub type BunnyPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
+    /// Bytes of the colour band.
+    pub const BAND_BYTES: usize = (WIDTH * BAND_ROWS) as usize * 2;
+    /// Bytes the firmware's statics hold for the scene: the colour band,
+    /// the depth band, the storage and the pool.
+    pub const STATIC_BYTES: usize = BAND_BYTES
+        + if DEPTH { BAND_BYTES } else { 0 }
+        + CAPACITY.bytes(4)
+        + core::mem::size_of::<BunnyPool>();
+}
+
 #[cfg(test)]
 mod tests {
     use super::dodeca;
     use crate::profiled::raster_bands;
-    use crate::{generated, Pixel};
+    use crate::Pixel;
     use fixshade::num::Fast;
     use fixshade::render::{prepare, Storage};
     use fixshade::target::Depth16;
@@ -180,14 +234,15 @@ mod tests {
     /// scene, in the dodeca build's band height and in 16-row bands (the
     /// peak measured with the default build's larger pool: with a pool of
     /// at least the peak, each triangle is set up once), and the same
-    /// frame in both.
+    /// frame in both. (Not in the `bunny` build: its pool holds 2 values.)
     #[test]
+    #[cfg(not(feature = "bunny"))]
     fn the_dodeca_pool_holds_every_active_triangle() {
         const C: fixshade::render::Capacity = dodeca::CAPACITY;
         let mut st = Box::new(Storage::<i32, { C.vertices }, { C.values }, { C.triangles }>::new());
         let mut pool = Box::new(crate::BandPool::new());
         for spec in dodeca::SCENES.iter() {
-            let full = generated::SCENES
+            let full = crate::generated::SCENES
                 .iter()
                 .find(|s| s.name == spec.name)
                 .unwrap();
@@ -216,5 +271,72 @@ mod tests {
             }
             assert_eq!(crcs[0], crcs[1], "{}", spec.name);
         }
+    }
+
+    /// The bunny alone: its prepared frame (exact bytes), the pool's peak
+    /// in 8-row bands (each triangle set up once), the same frame as in
+    /// 16-row bands, and its static RAM. (Not in the `dodeca` build: its
+    /// pool has 12 slots.)
+    #[test]
+    #[cfg(not(feature = "dodeca"))]
+    fn the_bunny_alone_and_its_prepared_frame() {
+        use super::bunny;
+        let names: std::vec::Vec<_> = bunny::SCENES.iter().map(|s| s.name).collect();
+        assert_eq!(names, ["bunny-gouraud"]);
+        const { assert!(bunny::DEPTH) };
+        assert_eq!(bunny::WIDTH, 240);
+        assert_eq!(bunny::BAND_BYTES, 3840);
+        // 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (14 + 4).
+        assert_eq!(bunny::CAPACITY.bytes(4), 1839 * 16 + 3674 * 18);
+        assert_eq!(bunny::CAPACITY.bytes(4), 95_556);
+        assert_eq!(
+            core::mem::size_of::<bunny::BunnyPool>(),
+            bunny::POOL_SLOTS * 92
+        );
+        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 95_556 + 62 * 92);
+        assert_eq!(bunny::STATIC_BYTES, 108_940);
+        const C: fixshade::render::Capacity = bunny::CAPACITY;
+        let mut st = Box::new(Storage::<i32, { C.vertices }, { C.values }, { C.triangles }>::new());
+        // The build's pool: 56 slots by default (the peak it reports is
+        // the bunny build's need), 62 with the feature `bunny`.
+        let mut pool = Box::new(crate::BandPool::new());
+        let spec = &bunny::SCENES[0];
+        let mut crcs = vec![];
+        for rows in [bunny::BAND_ROWS, 16] {
+            let parts = crate::profiled::Parts::<fixshade::num::Q16>::new(spec);
+            let scene = parts.scene(spec, parts.camera.unwrap());
+            let (ws, order) = st.split();
+            let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
+            // 1 839 vertices × (8 bytes xy + 2 values × 4) + 1 498 kept
+            // triangles × 14.
+            assert_eq!(frame.vertex_count(), 1839);
+            assert_eq!(frame.triangle_count(), 1498);
+            assert_eq!(frame.bytes_used(), 1839 * 16 + 1498 * 14);
+            assert_eq!(frame.bytes_used(), 50_396);
+            let mut px = vec![[0u8; 2] as Pixel; (spec.width * rows) as usize];
+            let mut z = vec![0u16; (spec.width * rows) as usize];
+            let s = raster_bands::<Fast, Depth16, _>(
+                &frame,
+                &scene,
+                &mut px,
+                Some(&mut z),
+                rows,
+                order,
+                &mut pool,
+                &mut crate::NoProbe,
+            )
+            .unwrap();
+            if rows == bunny::BAND_ROWS {
+                // 62 triangles active at once in 8-row bands: the 56 slots
+                // of the default build set 8 up twice, the bunny build's
+                // 62 each once.
+                assert_eq!(s.active_peak as usize, bunny::POOL_SLOTS, "{s:?}");
+                let again = if cfg!(feature = "bunny") { 0 } else { 8 };
+                assert_eq!(s.setups, s.triangles + again, "{s:?}");
+            }
+            crcs.push(s.crc);
+        }
+        assert_eq!(crcs[0], crcs[1]);
+        assert_eq!(crcs[0], 0x1a5e_2025);
     }
 }

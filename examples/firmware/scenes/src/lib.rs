@@ -27,8 +27,9 @@
 extern crate std;
 
 mod crc;
-// With the feature `dodeca`, its whole-set constants are unused.
-#[cfg_attr(feature = "dodeca", allow(dead_code))]
+// With the feature `dodeca` or `bunny`, its whole-set constants are
+// unused.
+#[cfg_attr(any(feature = "dodeca", feature = "bunny"), allow(dead_code))]
 #[rustfmt::skip]
 mod generated;
 pub mod knobs;
@@ -37,10 +38,12 @@ pub mod spec;
 
 pub mod alone;
 
+#[cfg(all(feature = "bunny", not(feature = "dodeca")))]
+pub use alone::bunny::{CAPACITY, DEPTH, SCENES, WIDTH};
 #[cfg(feature = "dodeca")]
 pub use alone::dodeca::{CAPACITY, DEPTH, SCENES, WIDTH};
 pub use crc::Crc32;
-#[cfg(not(feature = "dodeca"))]
+#[cfg(not(any(feature = "dodeca", feature = "bunny")))]
 pub use generated::{CAPACITY, DEPTH, SCENES, WIDTH};
 pub use generated::{MAX_OBJECTS, MESH_NORMAL_BYTES, MESH_SHAPE_BYTES};
 pub use spec::{ObjectSpec, SceneSpec};
@@ -51,13 +54,14 @@ use fixshade::render::{Capacity, Pool, RenderError, Storage, Workspace};
 use fixshade::target::{BandBuf, BufferError, Rgb565Be};
 
 /// Rows per band: 16 ([`alone::dodeca::BAND_ROWS`] with the feature
-/// `dodeca`).
-#[cfg(not(feature = "dodeca"))]
-pub const BAND_ROWS: u32 = 16;
-/// Rows per band: 16 ([`alone::dodeca::BAND_ROWS`] with the feature
-/// `dodeca`).
-#[cfg(feature = "dodeca")]
-pub const BAND_ROWS: u32 = alone::dodeca::BAND_ROWS;
+/// `dodeca`, [`alone::bunny::BAND_ROWS`] with `bunny`).
+pub const BAND_ROWS: u32 = if cfg!(feature = "dodeca") {
+    alone::dodeca::BAND_ROWS
+} else if cfg!(feature = "bunny") {
+    alone::bunny::BAND_ROWS
+} else {
+    16
+};
 /// Pixels per band buffer: the widest scene's width × [`BAND_ROWS`]
 /// (3 840 at 240 pixels).
 pub const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
@@ -160,7 +164,8 @@ pub type SceneStorage =
 
 /// Active triangles the firmware keeps from band to band: 56, or every
 /// triangle of the storage when fewer; with the feature `dodeca`,
-/// [`alone::dodeca::POOL_SLOTS`]. A slot is `Pool::<i32, _, V>::SLOT_BYTES`
+/// [`alone::dodeca::POOL_SLOTS`], with `bunny`
+/// [`alone::bunny::POOL_SLOTS`]. A slot is `Pool::<i32, _, V>::SLOT_BYTES`
 /// = 64 + 12·V bytes (edge walks packed in 16 bits). The bunny at 240×240
 /// in 16-row bands keeps up to 55 triangles at once (`active_peak`), so 56
 /// slots set every built-in scene's triangles up once (the scene tests
@@ -168,6 +173,8 @@ pub type SceneStorage =
 /// border are set up afresh in the next band (the same bytes, more setups).
 pub const POOL_SLOTS: usize = if cfg!(feature = "dodeca") {
     alone::dodeca::POOL_SLOTS
+} else if cfg!(feature = "bunny") {
+    alone::bunny::POOL_SLOTS
 } else if CAPACITY.triangles < 56 {
     CAPACITY.triangles
 } else {
@@ -175,9 +182,12 @@ pub const POOL_SLOTS: usize = if cfg!(feature = "dodeca") {
 };
 /// Values a pool slot holds: 8, every layout (dodeca-phong-n100 has 7:
 /// depth, normal, eye position; its `-pc` profiles 8); with the feature
-/// `dodeca`, [`alone::dodeca::POOL_VALUES`].
+/// `dodeca`, [`alone::dodeca::POOL_VALUES`], with `bunny`
+/// [`alone::bunny::POOL_VALUES`].
 pub const POOL_VALUES: usize = if cfg!(feature = "dodeca") {
     alone::dodeca::POOL_VALUES
+} else if cfg!(feature = "bunny") {
+    alone::bunny::POOL_VALUES
 } else {
     8
 };
