@@ -24,7 +24,7 @@ fn quad() -> [[Vertex<i32, 3>; 3]; 2] {
 }
 
 fn spans(cr: &mut Criterion) {
-    let mut px = vec![[0u8; 2]; (W * W) as usize];
+    let mut px = vec![0u16; (W * W) as usize];
     let mut z = vec![0u16; (W * W) as usize];
     let tris = quad();
     let mut g = cr.benchmark_group("span_fill_240x240");

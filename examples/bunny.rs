@@ -59,7 +59,7 @@ fn run<P: Profile>(out: &str, shading: Shading) -> Result<(), Box<dyn Error>> {
         tris: &mut tris,
     };
     let frame = prepare::<P>(&scene, W, W, ws)?;
-    let mut band = vec![[0u8; 2]; (W * 16) as usize];
+    let mut band = vec![0u16; (W * 16) as usize];
     let mut z = vec![0u16; (W * 16) as usize];
     let mut rgb = Vec::new();
     let mut buf = BandBuf::<Rgb565Be>::new(&mut band, Some(&mut z), W, 16)?;

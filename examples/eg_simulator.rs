@@ -81,7 +81,7 @@ fn render_to<C: PixelColor + FromShaded>(
         tris: &mut tris,
     };
     let frame = prepare::<Fast>(&scene, w, h, ws)?;
-    let mut pixels = vec![[0u8; 2]; (w * 16) as usize];
+    let mut pixels = vec![0u16; (w * 16) as usize];
     let mut depth = vec![0u16; (w * 16) as usize];
     let mut band = BandBuf::<Rgb565Be>::new(&mut pixels, Some(&mut depth), w, 16)?;
     let (mut order, mut pool) = ([0u16; 128], Pool::<i32, 32, 8>::new());

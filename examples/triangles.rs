@@ -14,7 +14,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let out = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "triangles.png".into());
-    let mut px = vec![[0u8; 2]; (W * W) as usize];
+    let mut px = vec![0u16; (W * W) as usize];
     let mut z = vec![0u16; (W * W) as usize];
     let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, W, W)?;
     fb.clear(Rgb8::new(16, 16, 32));

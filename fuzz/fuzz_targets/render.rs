@@ -141,7 +141,7 @@ fn screen(b: &mut Bytes<'_>) {
     let ntris = 1 + b.u8() % 6;
     let mode = b.u8();
     let depth_kind = b.u8() % 3;
-    let mut px = vec![[0u8; 2]; n];
+    let mut px = vec![0u16; n];
     let mut z16 = vec![0u16; n];
     let mut z32 = vec![0u32; n];
     let mut fb = FrameBuf::<Rgb565Be>::band(&mut px, width, y0, y1).expect("valid band");
@@ -415,7 +415,7 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     let y0 = u32::from(b.u8()) % (h + 1);
     let y1 = y0 + u32::from(b.u8()) % (h - y0 + 1);
     let n = (w * (y1 - y0)) as usize;
-    let mut px = vec![[0u8; 2]; n];
+    let mut px = vec![0u16; n];
     let mut fb = FrameBuf::<Rgb565Be>::band(&mut px, w, y0, y1).expect("valid band");
     fb.clear(scene.background);
     let r = match b.u8() % 4 {
@@ -457,7 +457,7 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     } else {
         b.u8() as usize
     };
-    let mut band = vec![[0u8; 2]; len];
+    let mut band = vec![0u16; len];
     let mut zb = vec![0u16; len];
     let depth = if b.bool() { Some(&mut zb[..]) } else { None };
     let Ok(mut buf) = BandBuf::<Rgb565Be>::new(&mut band, depth, w, rows) else {

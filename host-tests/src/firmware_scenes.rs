@@ -223,7 +223,7 @@ fn render_crc(
 ) -> Result<HostFrame, RenderError> {
     let mut mem = Owned::new(cap);
     let frame = prepare::<Fast>(scene, w, h, mem.ws())?;
-    let mut band = vec![[0u8; 2]; (w * BAND_ROWS) as usize];
+    let mut band = vec![0u16; (w * BAND_ROWS) as usize];
     let mut z = vec![0u16; (w * BAND_ROWS) as usize];
     let mut buf = BandBuf::<Rgb565Be>::new(&mut band, depth.then_some(&mut z[..]), w, BAND_ROWS)?;
     let mut order = vec![0u16; 2 * cap.triangles];

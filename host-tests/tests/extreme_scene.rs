@@ -678,11 +678,11 @@ fn tiny_screens_and_one_row_bands() {
 #[test]
 fn band_height_overflow_is_an_error() {
     for rows in [1 << 26, 1 << 27, u32::MAX, 0] {
-        let mut px: Vec<[u8; 2]> = vec![];
+        let mut px: Vec<u16> = vec![];
         let r = BandBuf::<Rgb565Be>::new(&mut px, None, W, rows);
         assert_eq!(r.unwrap_err(), BufferError::BadWindow, "rows {rows}");
     }
-    let mut px: Vec<[u8; 2]> = vec![];
+    let mut px: Vec<u16> = vec![];
     assert_eq!(
         BandBuf::<Rgb565Be>::new(&mut px, None, W, 16).unwrap_err(),
         BufferError::WrongLength {

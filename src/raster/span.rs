@@ -34,6 +34,25 @@ pub trait Shader<L: Lerp, const N: usize> {
         let _ = (a, da, len);
     }
 
+    /// `true` when [`Shader::shade_raw_in_range`] gives
+    /// [`Shader::shade_raw`]'s bytes at every pixel of a span whose
+    /// attributes start at `a` and step by `da` for `len` pixels (the
+    /// span loop's wrapping additions included): the span stage then
+    /// shades without clamps. Checked once per span, at its two ends.
+    /// Default: `false`.
+    #[inline(always)]
+    fn span_in_range(&self, a: &[L; N], da: &[L; N], len: u32) -> bool {
+        let _ = (a, da, len);
+        false
+    }
+
+    /// [`Shader::shade_raw`] for a span for which
+    /// [`Shader::span_in_range`] holds. Default: `shade_raw`.
+    #[inline(always)]
+    fn shade_raw_in_range<F: PixelFormat>(&self, a: &[L; N]) -> F::Raw {
+        self.shade_raw::<F>(a)
+    }
+
     /// `Some(colour)` when the colour does not depend on the attributes:
     /// the span stage then encodes it once per span instead of once per
     /// pixel.
@@ -102,6 +121,48 @@ impl<L: Lerp> Shader<L, 1> for GouraudMono {
     #[inline(always)]
     fn shade_raw<F: PixelFormat>(&self, a: &[L; 1]) -> F::Raw {
         F::encode_grey(level(a[0]))
+    }
+
+    /// Fixed values ([`Lerp::EXACT_STEPS`]) whose rounded levels lie in
+    /// `0..=255` at both ends of the span, without wrapping in between
+    /// ([`levels_in_range`]).
+    #[inline(always)]
+    fn span_in_range(&self, a: &[L; 1], da: &[L; 1], len: u32) -> bool {
+        L::EXACT_STEPS && levels_in_range(a[0].round_int(0), da[0].round_int(0), len)
+    }
+
+    /// The level without its clamp: `round_int` truncated to 8 bits, the
+    /// clamped level when it lies in `0..=255`.
+    #[inline(always)]
+    fn shade_raw_in_range<F: PixelFormat>(&self, a: &[L; 1]) -> F::Raw {
+        F::encode_grey(a[0].round_int(LEVEL_FRAC_BITS) as u8)
+    }
+}
+
+/// `true` when every level `round(v + k·s)` (fixed, `2^16` a level;
+/// rounding half up as [`Lerp::round_int`]), `0 <= k < n`, lies in
+/// `0..=255` and the `i32` additions of the span loop do not wrap: with
+/// `r = v + 2^15` (the rounding offset) in `[0, 256·2^16)` and the offset
+/// of the last pixel `|s|·(n - 1)` below `2^31` (`n - 1 < 2^8` and `|s| <
+/// 2^23`, or `n - 1 < 2^16` and `|s| < 2^15`: the product in a `u32`,
+/// `r` plus it below `2^24 + 2^31`, no wrap), the last rounded value
+/// `r + s·(n - 1)` in the same range too; the levels in between lie
+/// between the two ends (a linear sequence). Conservative: `false` only
+/// selects the clamping loop.
+#[inline(always)]
+fn levels_in_range(v: i32, s: i32, n: u32) -> bool {
+    const LIM: u32 = 256 << LEVEL_FRAC_BITS;
+    let r = v.wrapping_add(1 << (LEVEL_FRAC_BITS - 1)) as u32;
+    let (m, sa) = (n.wrapping_sub(1), s.unsigned_abs());
+    let small = (m < 1 << 8 && sa < 1 << 23) || (m < 1 << 16 && sa < 1 << 15);
+    if r >= LIM || n == 0 || !small {
+        return false;
+    }
+    let off = sa * m;
+    if s >= 0 {
+        r + off < LIM
+    } else {
+        off <= r
     }
 }
 
@@ -214,7 +275,7 @@ impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
             self.depth.as_deref_mut(),
             &mut self.drawn,
         );
-        fill_span::<L, N, T, D>(target, depth, drawn, s, color);
+        fill_span::<L, N, T, D>(target, depth, drawn, s, &color, false, &color);
     }
 }
 
@@ -226,13 +287,20 @@ impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
 /// format's range ([`DepthFormat::span_in_range`], checked once per span at
 /// its two ends, on spans of at least [`SHORT_SPAN`] pixels) the per-pixel
 /// conversion skips its clamp. The same bytes either way.
+///
+/// `color_inr` is the colour for the spans whose attributes the caller
+/// found in range ([`Shader::span_in_range`], `inr`), taken with the
+/// depths in range.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
     target: &mut T,
     depth: Option<&mut DepthBuffer<'_, D>>,
     drawn: &mut u32,
     s: &Span<L, N>,
-    color: impl Fn(&[L; N]) -> <T::Format as PixelFormat>::Raw,
+    color: &impl Fn(&[L; N]) -> <T::Format as PixelFormat>::Raw,
+    inr: bool,
+    color_inr: &impl Fn(&[L; N]) -> <T::Format as PixelFormat>::Raw,
 ) {
     let Span {
         y,
@@ -261,10 +329,12 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
             };
             if let Some(row) = row {
                 let fails = if len >= SHORT_SPAN && D::span_in_range(z, dz, len) {
-                    if NO_LONG_MUL || N > 1 {
+                    if N > 1 {
                         pair_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
+                    } else if inr {
+                        in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, color_inr)
                     } else {
-                        in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, &color)
+                        in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, color)
                     }
                 } else {
                     depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
@@ -452,10 +522,13 @@ pub(super) fn depth_loop<L: Lerp, const N: usize, R, Z>(
 /// function of its own on ARMv7-M and the host: inlined next to the
 /// clamping loop of the short spans, its depth step lost its register to
 /// a stack reload on ARMv7-M; the call costs bunny-gouraud raster 0.6 %.
-/// ARMv6-M, whose span stage is inlined into the scanline loop, inlines
-/// the loop instead (a call cost 1.2 % there), and so do spans of more
-/// than one attribute (their outlined loop spilled its steps:
-/// dodeca-gouraud raster +11 % on the M4).
+/// ARMv6-M calls it too since the band renderer's fast path no longer
+/// goes through [`Fill`] (with the pixels stored as `u16`s and the
+/// unclamped Gouraud levels, [`Shader::span_in_range`]: span loops on
+/// thumbv6m Gouraud 22.67 -> 20.96 instructions a pixel, flat 11.67 ->
+/// 11.77; dodeca-gouraud raster 483 180 -> 463 907). Spans of more than
+/// one attribute inline [`pair_loop`] instead (their outlined loop
+/// spilled its steps: dodeca-gouraud raster +11 % on the M4).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn in_range_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
@@ -555,17 +628,25 @@ where
             let raw = T::Format::encode(c);
             self.fill(s, |_| raw);
         } else {
-            self.shader
-                .begin_span(&s.a, &s.da, s.x1.saturating_sub(s.x0));
+            let len = s.x1.saturating_sub(s.x0);
+            self.shader.begin_span(&s.a, &s.da, len);
             let shader = &self.shader;
-            // Safe split borrow: the closure only reads the shader.
+            // ARMv6-M only: on ARMv7-M the clamp is one `USAT`, and the
+            // unclamped level took one more instruction (span loops
+            // Gouraud 12.21 -> 12.38 instructions a pixel).
+            let inr = NO_LONG_MUL
+                && N == 1
+                && len >= SHORT_SPAN
+                && shader.span_in_range(&s.a, &s.da, len);
+            // Safe split borrow: the closures only read the shader.
             let shade = |a: &[L; N]| shader.shade_raw::<T::Format>(a);
+            let shade_inr = |a: &[L; N]| shader.shade_raw_in_range::<T::Format>(a);
             let (target, depth, drawn) = (
                 &mut *self.target,
                 self.depth.as_deref_mut(),
                 &mut self.drawn,
             );
-            fill_span::<L, N, T, D>(target, depth, drawn, s, shade);
+            fill_span::<L, N, T, D>(target, depth, drawn, s, &shade, inr, &shade_inr);
         }
     }
 }
@@ -595,3 +676,74 @@ impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
 /// (about 2.5 pixels per span): M4 3.171 -> 3.132 M instructions, M0
 /// 5.149 -> 5.108 M; 4 to 6 are within 0.1 % of each other.
 const SHORT_SPAN: u32 = 5;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::target::Rgb565Be;
+
+    /// Every level of a span for which [`levels_in_range`] holds, stepped
+    /// as the span loop steps it: the unclamped colour equals the clamped
+    /// one, and the values do not wrap.
+    fn check(v: i32, s: i32, n: u32) -> bool {
+        let ok = levels_in_range(v, s, n);
+        if ok {
+            let mut a = v;
+            for k in 0..n {
+                let exact = v as i64 + s as i64 * k as i64;
+                assert_eq!(a as i64, exact, "wrapped: {v} {s} {n} at {k}");
+                let l = (exact + (1 << 15)) >> 16;
+                assert!((0..=255).contains(&l), "level {l}: {v} {s} {n} at {k}");
+                assert_eq!(
+                    GouraudMono.shade_raw_in_range::<Rgb565Be>(&[a]),
+                    Shader::<i32, 1>::shade_raw::<Rgb565Be>(&GouraudMono, &[a])
+                );
+                a = a.add(s);
+            }
+        }
+        ok
+    }
+
+    #[test]
+    fn gouraud_levels_in_range_need_no_clamp() {
+        // The span table's Gouraud span: level 40, +1/4 a pixel.
+        assert!(check(40 << 16, 1 << 14, 200));
+        // Both ends exactly at the rounding limits: -0.5 and 255.5 - 2^-16.
+        assert!(check(-(1 << 15), 0, 1));
+        assert!(check((255 << 16) + (1 << 15) - 1, 0, 1));
+        assert!(!check(-(1 << 15) - 1, 0, 1));
+        assert!(!check((255 << 16) + (1 << 15), 0, 1));
+        // Up to level 255.499 and down to level 0 at the last pixel.
+        assert!(check(0, (255 << 16) / 199, 200));
+        assert!(check(
+            (255 << 16) + (1 << 15) - 1,
+            -((255 << 16) / 199),
+            200
+        ));
+        // One step past the end: 250 + 9 (the 10th pixel) is 259.
+        assert!(!check(250 << 16, 1 << 16, 10));
+        assert!(!check(5 << 16, -(1 << 16), 10));
+        // Steps beyond the bounds (conservative) and an empty span.
+        assert!(!check(0, 1 << 23, 2));
+        assert!(check(0, (1 << 23) - 1, 2));
+        assert!(!check(0, 1 << 15, 1 << 16));
+        assert!(!check(0, 0, 0));
+        // Random spans, near and far from the bounds.
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let mut taken = 0;
+        for i in 0..20_000 {
+            let r = next();
+            let v = (r as i32) >> (r >> 59);
+            let s = ((r >> 32) as i32) >> ((r >> 40) % 32);
+            let n = (next() % if i % 2 == 0 { 300 } else { 70_000 }) as u32;
+            taken += check(v, s, n) as u32;
+        }
+        assert!(taken > 100, "{taken}");
+    }
+}

@@ -84,7 +84,7 @@ fn lights<R: Real>() -> [Light<R>; 2] {
 fn full<P: Profile>(s: &Scene<'_, 'static, P::Real>, w: u32, h: u32, depth: bool) -> Vec<u8> {
     let mut mem = Mem::<P::Lerp>::new(12_000, 12_000);
     let frame = prepare::<P>(s, w, h, mem.ws()).unwrap();
-    let mut px = vec![[0u8; 2]; (w * h) as usize];
+    let mut px = vec![0u16; (w * h) as usize];
     let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, w, h).unwrap();
     fb.clear(s.background);
     let mut z = vec![0u16; (w * h) as usize];
@@ -119,7 +119,7 @@ fn banded_with<P: Profile, const CAP: usize, const V: usize>(
 ) -> (Vec<u8>, RenderStats, usize) {
     let mut mem = Mem::<P::Lerp>::new(12_000, 12_000);
     let frame = prepare::<P>(s, w, h, mem.ws()).unwrap();
-    let mut px = vec![[0u8; 2]; (w * rows) as usize];
+    let mut px = vec![0u16; (w * rows) as usize];
     let mut z = vec![0u16; (w * rows) as usize];
     let mut band = BandBuf::<Rgb565Be>::new(&mut px, depth.then_some(&mut z[..]), w, rows).unwrap();
     let mut order = vec![0u16; 2 * frame.triangle_count()];
@@ -343,7 +343,7 @@ trait Encode {
 }
 impl Encode for Rgb565Be {
     fn encode_bytes(c: Rgb8) -> [u8; 2] {
-        <Rgb565Be as crate::target::PixelFormat>::encode(c)
+        crate::target::RawPixel::bytes(<Rgb565Be as crate::target::PixelFormat>::encode(c))
     }
 }
 
@@ -663,7 +663,7 @@ fn capacity_and_scene_errors_are_values() {
     // A target of another width is refused.
     let mut mem = Mem::<i32>::new(1000, 1000);
     let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
-    let mut px = vec![[0u8; 2]; 32 * 64];
+    let mut px = vec![0u16; 32 * 64];
     let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, 32, 64).unwrap();
     assert_eq!(
         frame.render::<_, Depth16>(&s, &mut fb, None).unwrap_err(),
@@ -672,7 +672,7 @@ fn capacity_and_scene_errors_are_values() {
     // Zero-size frames are fine and empty.
     let mut mem = Mem::<i32>::new(1000, 1000);
     let frame = prepare::<Fast>(&s, 0, 0, mem.ws()).unwrap();
-    let mut px: Vec<[u8; 2]> = vec![];
+    let mut px: Vec<u16> = vec![];
     let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, 0, 0).unwrap();
     assert_eq!(
         frame
@@ -697,12 +697,8 @@ fn double_buffered_bands_equal_the_full_frame() {
     let mut mem = Mem::<i32>::new(12_000, 12_000);
     let frame = prepare::<Fast>(&s, w, h, mem.ws()).unwrap();
     let n = (w * rows) as usize;
-    let (mut p0, mut z0, mut p1, mut z1) = (
-        vec![[0u8; 2]; n],
-        vec![0u16; n],
-        vec![[0u8; 2]; n],
-        vec![0u16; n],
-    );
+    let (mut p0, mut z0, mut p1, mut z1) =
+        (vec![0u16; n], vec![0u16; n], vec![0u16; n], vec![0u16; n]);
     let mut bufs = [
         BandBuf::<Rgb565Be>::new(&mut p0, Some(&mut z0), w, rows).unwrap(),
         BandBuf::<Rgb565Be>::new(&mut p1, Some(&mut z1), w, rows).unwrap(),

@@ -1,7 +1,9 @@
 //! A band buffer: the colour and (optional) depth memory of one band of
 //! rows, moved down the screen by the band renderer.
 
-use super::{check_window, BufferError, Depth16, DepthFormat, FrameBuf, PixelFormat, Rgb8, Window};
+use super::{
+    check_window, BufferError, Depth16, DepthFormat, FrameBuf, PixelFormat, RawPixel, Rgb8, Window,
+};
 
 /// The memory of one band of `rows` rows of a `width`-pixel screen: colour
 /// in format `F`, and depth in format `D` or none (drawing in triangle
@@ -90,9 +92,7 @@ impl<'a, F: PixelFormat, D: DepthFormat> BandBuf<'a, F, D> {
 
     /// The band's bytes, row-major, exactly as stored (for a display).
     pub fn bytes(&self) -> impl Iterator<Item = u8> + '_ {
-        self.pixels()
-            .iter()
-            .flat_map(|p| p.as_ref().iter().copied())
+        self.pixels().iter().flat_map(|p| RawPixel::bytes(*p))
     }
 
     /// The band's depth values, when it has a depth band.

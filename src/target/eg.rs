@@ -343,7 +343,7 @@ mod tests {
 
     #[test]
     fn a_band_lands_on_its_rows_in_one_fill() {
-        let mut buf = [[0u8; 2]; 8 * 3];
+        let mut buf = [0u16; 8 * 3];
         let mut band = FrameBuf::<Rgb565Be>::band(&mut buf, 8, 5, 8).unwrap();
         band.clear(Rgb8::new(255, 128, 8));
         band.write_pixel(2, 6, Rgb565Be::encode(Rgb8::new(0, 255, 0)));

@@ -107,7 +107,7 @@ fn run(mem: &mut Mem) -> Result<(), FrameError> {
 
 #[entry]
 fn main() -> ! {
-    static mut PIXELS: [Pixel; MAX_BAND_PIXELS] = [[0; 2]; MAX_BAND_PIXELS];
+    static mut PIXELS: [Pixel; MAX_BAND_PIXELS] = [0; MAX_BAND_PIXELS];
     static mut DEPTH16: [u16; MAX_BAND_PIXELS] = [0; MAX_BAND_PIXELS];
     static mut DEPTH32: [u32; MAX_BAND_PIXELS] = [0; MAX_BAND_PIXELS];
     static mut STORAGE: SceneStorage = SceneStorage::EMPTY;

@@ -448,7 +448,7 @@ fn phong_kernel_spans(
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once),
     // in .bss.
-    static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
+    static mut PIXELS: [Pixel; BAND_PIXELS] = [0; BAND_PIXELS];
     static mut DEPTH: [u16; DEPTH_PIXELS] = [0; DEPTH_PIXELS];
     static mut STORAGE: FrameStorage = FrameStorage::EMPTY;
     static mut POOL: BandPool = BandPool::new();

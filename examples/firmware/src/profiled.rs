@@ -45,7 +45,7 @@ type FrameStorage = Storage<L, { CAP.vertices }, { CAP.values }, { CAP.triangles
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once).
-    static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
+    static mut PIXELS: [Pixel; BAND_PIXELS] = [0; BAND_PIXELS];
     static mut DEPTH: [u16; DEPTH_PIXELS] = [0; DEPTH_PIXELS];
     static mut STORAGE: FrameStorage = FrameStorage::EMPTY;
     static mut POOL: ProfilePool<P> = ProfilePool::<P>::new();

@@ -157,11 +157,11 @@ impl Line {
 }
 
 /// FNV-1a over the band's bytes (a cheap checksum to print).
-fn fnv1a(h: u32, bytes: &[[u8; 2]]) -> u32 {
-    bytes
+fn fnv1a(h: u32, pixels: &[u16]) -> u32 {
+    pixels
         .iter()
-        .flatten()
-        .fold(h, |h, &b| (h ^ u32::from(b)).wrapping_mul(0x0100_0193))
+        .flat_map(|p| p.to_ne_bytes())
+        .fold(h, |h, b| (h ^ u32::from(b)).wrapping_mul(0x0100_0193))
 }
 
 /// What one frame produced.
@@ -177,7 +177,7 @@ struct Stats {
 fn frame(
     f: i32,
     ws: Workspace<'_, L>,
-    band: &mut [[u8; 2]],
+    band: &mut [u16],
     depth: &mut [u16],
     order: &mut [u16],
     pool: &mut Pool<L, POOL, 8>,
@@ -296,7 +296,7 @@ fn main() -> ! {
     static mut XY: [[i32; 2]; MAX_VERTS] = [[0; 2]; MAX_VERTS];
     static mut VALS: [L; MAX_VALS] = [0; MAX_VALS];
     static mut TRIS: [Tri; MAX_TRIS] = [Tri::EMPTY; MAX_TRIS];
-    static mut BAND: [[u8; 2]; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
+    static mut BAND: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     // The band state: triangle order and active pool.
     static mut BAND_STATE: ([u16; 2 * MAX_TRIS], Pool<L, POOL, 8>) =

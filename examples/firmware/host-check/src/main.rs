@@ -76,7 +76,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         }
     }
     let mut ws = Owned::<i32>::new(CAPACITY);
-    let mut px = vec![[0u8; 2]; BAND_PIXELS];
+    let mut px = vec![0u16; BAND_PIXELS];
     let mut z = vec![0u16; DEPTH_PIXELS];
     let mut pool = Box::new(BandPool::new());
     println!("fixshade-host-check target=host profile=fast");
@@ -122,7 +122,7 @@ fn whole_frame(
     let scene = spec.scene(spec.camera()?, &objects);
     let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws.ws())?;
     let n = (spec.width * spec.height) as usize;
-    let mut px: Vec<Pixel> = vec![[0; 2]; n];
+    let mut px: Vec<Pixel> = vec![0; n];
     let mut z = vec![0u16; n];
     let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, spec.width, spec.height)?;
     fb.clear(scene.background);
@@ -130,7 +130,7 @@ fn whole_frame(
     frame.render(&scene, &mut fb, Some(&mut db))?;
     let mut crc = Crc32::new();
     crc.update(fb.bytes());
-    let mut banded_px = vec![[0u8; 2]; BAND_PIXELS];
+    let mut banded_px = vec![0u16; BAND_PIXELS];
     let mut banded_z = vec![0u16; DEPTH_PIXELS];
     let mut pool = Box::new(BandPool::new());
     let (w, order) = ws.split();
@@ -175,7 +175,7 @@ fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
     use fixshade_scenes::profiled::render_frame_with;
     let mut ws = Owned::<P::Lerp>::new(fixshade_scenes::capacity_for::<P>());
     let mut pool = Box::new(fixshade_scenes::profiled::ProfilePool::<P>::new());
-    let mut px = vec![[0u8; 2]; BAND_PIXELS];
+    let mut px = vec![0u16; BAND_PIXELS];
     let mut z = vec![0u16; DEPTH_PIXELS];
     println!("fixshade-host-check target=host profile={}", P::NAME);
     for spec in SCENES.iter() {
@@ -212,7 +212,7 @@ fn knobs() -> Result<(), Box<dyn Error>> {
         .find(|s| s.name == KNOB_SCENE)
         .ok_or("no knob scene")?;
     let mut ws = Owned::<i32>::new(CAPACITY);
-    let mut px = vec![[0u8; 2]; MAX_BAND_PIXELS];
+    let mut px = vec![0u16; MAX_BAND_PIXELS];
     let mut z16 = vec![0u16; MAX_BAND_PIXELS];
     let mut z32 = vec![0u32; MAX_BAND_PIXELS];
     println!("fixshade-host-check target=host knobs scene={KNOB_SCENE}");

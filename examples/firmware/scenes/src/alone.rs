@@ -253,7 +253,7 @@ mod tests {
                 let scene = parts.scene(spec, parts.camera.unwrap());
                 let (ws, order) = st.split();
                 let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
-                let mut px = vec![[0u8; 2] as Pixel; (spec.width * rows) as usize];
+                let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
                 let s = raster_bands::<Fast, Depth16, _>(
                     &frame,
                     &scene,
@@ -313,7 +313,7 @@ mod tests {
             assert_eq!(frame.triangle_count(), 1498);
             assert_eq!(frame.bytes_used(), 1839 * 16 + 1498 * 14);
             assert_eq!(frame.bytes_used(), 50_396);
-            let mut px = vec![[0u8; 2] as Pixel; (spec.width * rows) as usize];
+            let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
             let mut z = vec![0u16; (spec.width * rows) as usize];
             let s = raster_bands::<Fast, Depth16, _>(
                 &frame,

@@ -131,7 +131,7 @@ mod tests {
         // The core's bound holds for every subpixel precision: finer
         // subpixels keep more thin triangles, never more than the mesh's.
         let mut st = Box::new(crate::SceneStorage::new());
-        let mut px = vec![[0u8; 2]; MAX_BAND_PIXELS];
+        let mut px = vec![0u16; MAX_BAND_PIXELS];
         let mut z = vec![0u16; MAX_BAND_PIXELS];
         let mut pool = Box::new(ProfilePool::<Fast>::new());
         let mut last: Option<FrameStats> = None;

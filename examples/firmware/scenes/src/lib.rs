@@ -70,7 +70,7 @@ pub const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
 pub const DEPTH_PIXELS: usize = if DEPTH { BAND_PIXELS } else { 0 };
 
 /// One stored pixel: RGB565, big-endian.
-pub type Pixel = [u8; 2];
+pub type Pixel = u16;
 /// A band of the frame, with its 16-bit depth band.
 pub type Band<'a> = BandBuf<'a, Rgb565Be>;
 
@@ -345,7 +345,7 @@ mod tests {
         let scene = spec.scene(spec.camera().unwrap(), &objects);
         let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
         let n = (spec.width * spec.height) as usize;
-        let mut px = vec![[0u8; 2]; n];
+        let mut px = vec![0u16; n];
         let mut z = vec![0u16; n];
         let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, spec.width, spec.height).unwrap();
         fb.clear(scene.background);
@@ -361,7 +361,7 @@ mod tests {
     fn bands_equal_the_whole_frame() {
         let mut st = Box::new(SceneStorage::new());
         let mut whole = Box::new(SceneStorage::new());
-        let mut px = vec![[0u8; 2]; BAND_PIXELS];
+        let mut px = vec![0u16; BAND_PIXELS];
         // Small enough for an array in the `dodeca` build (no depth band).
         #[allow(clippy::useless_vec)]
         let mut z = vec![0u16; DEPTH_PIXELS];

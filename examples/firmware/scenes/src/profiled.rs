@@ -267,7 +267,7 @@ mod tests {
             vals: &mut vals,
             tris: &mut tris,
         };
-        let mut px = vec![[0u8; 2]; BAND_PIXELS];
+        let mut px = vec![0u16; BAND_PIXELS];
         let mut z = vec![0u16; BAND_PIXELS];
         let mut order = vec![0u16; 2 * n.triangles];
         let mut pool = Box::new(ProfilePool::<P>::new());
@@ -288,7 +288,7 @@ mod tests {
         let mut st = Box::new(crate::SceneStorage::new());
         for spec in SCENES.iter() {
             let (ws, order) = st.split();
-            let mut px = vec![[0u8; 2]; BAND_PIXELS];
+            let mut px = vec![0u16; BAND_PIXELS];
             let mut z = vec![0u16; BAND_PIXELS];
             let mut pool = Box::new(BandPool::new());
             let want = render_frame(
