@@ -207,7 +207,7 @@ fn run(mem: &mut Memory) -> Result<(), (&'static str, u32, FrameError)> {
 
 #[entry]
 fn main() -> ! {
-    static mut PIXELS: [Pixel; BAND_PIXELS] = [[0; 2]; BAND_PIXELS];
+    static mut PIXELS: [Pixel; BAND_PIXELS] = [0; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     static mut STORAGE: SceneStorage = SceneStorage::EMPTY;
     static mut POOL: BandPool = BandPool::new();
