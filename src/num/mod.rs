@@ -4,6 +4,7 @@ pub(crate) mod approx16;
 mod approx32;
 mod fixed_point;
 mod float;
+mod isqrt;
 mod profile;
 mod real;
 mod tables;
@@ -15,6 +16,8 @@ mod accuracy;
 mod edge_tests;
 
 pub use self::fixed_point::{Q16, Q32};
+pub use self::isqrt::isqrt_u64;
+pub(crate) use self::isqrt::{isqrt_rem_u128, isqrt_rem_u64};
 pub use self::profile::{
     F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, COORD_FRAC_BITS, COORD_FRAC_BITS_PC,
     DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,

@@ -13,10 +13,10 @@
 //! multiplications, so the Cortex-M0, which has no divide instruction,
 //! pays for one division per triangle, none per scanline or pixel.
 
-use super::wide::{
-    clz32, clz64, fits_i16, mul_i32, mul_i32_i16, mul_u32, shl64, shr64, NO_DIVIDE, NO_LONG_MUL,
-};
 use super::SubpixelBits;
+use crate::num::wide::{
+    clz32, clz64, fits_i16, mul_i32_i16, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL,
+};
 use core::fmt::Debug;
 
 /// A quantity the rasterizer interpolates: an `i32` fixed-point raw value,
@@ -242,8 +242,8 @@ impl Recip {
             (lo << c, 32 + c)
         };
         let v = top >> 1; // top 31 bits: mag ≈ v · 2^(33 - z)
-        let p = mul_u32(v, self.m); // < 2^63
-                                    // result = p · 2^(33 - z + s - k) = p >> sh, rounded half up
+        let p = wmul_u32(v, self.m); // < 2^63
+                                     // result = p · 2^(33 - z + s - k) = p >> sh, rounded half up
         let sh = (self.k + z) as i32 - 33 - s as i32;
         let r: u64 = if sh >= 33 {
             // (p >> (sh - 1)) from the high word only.
@@ -289,7 +289,7 @@ impl Recip {
         if e >= 32 {
             return self.mul_shift(num as i64, s);
         }
-        let h = (mul_u32(num.unsigned_abs(), self.m) >> 32) as u32 >> e;
+        let h = (wmul_u32(num.unsigned_abs(), self.m) >> 32) as u32 >> e;
         // h < 2^31 (n·m < 2^63): no carry.
         let r = ((h >> 1) + (h & 1)) as i64;
         if (num < 0) != self.negative {
@@ -356,7 +356,7 @@ impl InvArea {
             }
         };
         // |p| < 2^31 · 2^31.
-        let p = mul_i32(nt, self.m);
+        let p = wmul(nt, self.m);
         let sh = self.e as i32 - s as i32 - t as i32;
         if (33..64).contains(&sh) {
             // The usual case, from the high word alone: rounding half up
@@ -445,7 +445,7 @@ impl InvArea {
     /// wraps and the result fits an `i32`).
     #[inline(always)]
     pub(crate) fn quot_high(&self, n: i32, k: u32) -> i32 {
-        let h = (mul_i32(n, self.m) >> 32) as i32;
+        let h = (wmul(n, self.m) >> 32) as i32;
         (h + (1 << k)) >> (k + 1)
     }
 }
@@ -541,16 +541,16 @@ fn recip63_newton(x: u32) -> u64 {
     let r1 = (r0 as i32).wrapping_add((r0 as i32).wrapping_mul(e0 >> 9) >> 22) as u32;
     // E = 2^63 - x·r1·2^16, |E| < 2^49.2, so E >> 19 fits an i32.
     let e19 = if NO_LONG_MUL {
-        e19_halves(mul_u32(x, r1))
+        e19_halves(wmul_u32(x, r1))
     } else {
-        e19_wide(mul_u32(x, r1))
+        e19_wide(wmul_u32(x, r1))
     };
-    let c = mul_i32(r1 as i32, e19) >> 28; // R·ε, |c| < 2^20
-    let c2 = mul_i32(c as i32, e19) >> 44; // R·ε²
+    let c = wmul(r1 as i32, e19) >> 28; // R·ε, |c| < 2^20
+    let c2 = wmul(c as i32, e19) >> 44; // R·ε²
     let q = (((r1 as i64) << 16) + c + c2).clamp(1 << 31, u32::MAX as i64) as u32;
     let n = (1u64 << 63) + (x / 2) as u64;
     // |q - quotient| <= 2: the remainder is small and signed.
-    let mut rem = n.wrapping_sub(mul_u32(q, x)) as i64;
+    let mut rem = n.wrapping_sub(wmul_u32(q, x)) as i64;
     let mut q = q as u64;
     while rem < 0 {
         q -= 1;
@@ -612,10 +612,7 @@ fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
             mul_i32_i16(d2, dx1) - mul_i32_i16(d1, dx2),
         );
     }
-    (
-        mul_i32(d1, dy2) - mul_i32(d2, dy1),
-        mul_i32(d2, dx1) - mul_i32(d1, dx2),
-    )
+    (wmul(d1, dy2) - wmul(d2, dy1), wmul(d2, dx1) - wmul(d1, dx2))
 }
 
 /// Upper end (excluded) of the depths whose 16-bit value needs no clamp:

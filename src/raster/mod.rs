@@ -67,7 +67,6 @@ mod lerp;
 mod span;
 mod triangle;
 mod walk;
-mod wide;
 
 pub use edge::Edge;
 #[cfg(test)]
