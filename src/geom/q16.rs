@@ -1,6 +1,6 @@
 //! Integer kernels of the `fast` profiles' vertex path: raw Q16.16 values
-//! in `i32`, mesh data in Q1.14 (`i16`). Used when
-//! [`Real::Q16_KERNELS`] is set; every kernel is exact integer arithmetic
+//! in `i32`, mesh data in Q1.14 (`i16`). Used for the scalars that run
+//! them ([`Real::q16_kernels`]); every kernel is exact integer arithmetic
 //! up to one stated rounding, so all targets compute the same bits (the
 //! ARMv6-M variants are tested against the generic ones).
 
@@ -78,10 +78,8 @@ impl Xform16 {
     /// The integer form of `a`, or `None` when the scalar is not `Q16` or
     /// an entry of the linear part reaches 256.
     pub(crate) fn new<R: Real>(a: &Affine<R>) -> Option<Self> {
-        if !R::Q16_KERNELS {
-            return None;
-        }
-        let raw = |v: R| v.to_fixed_i32(16);
+        let q = R::q16_kernels()?;
+        let raw = |v: R| q.raw(v);
         let m = a.m.rows.map(|r| [raw(r.x), raw(r.y), raw(r.z)]);
         if m.iter().flatten().any(|v| v.unsigned_abs() >= M_LIMIT) {
             return None;

@@ -22,5 +22,5 @@ pub use self::profile::{
     F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, COORD_FRAC_BITS, COORD_FRAC_BITS_PC,
     DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
 };
-pub use self::real::Real;
+pub use self::real::{Q16Kernels, Real};
 pub use self::tables::{rsqrt_quarter_table, spec_table};
