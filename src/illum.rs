@@ -287,7 +287,7 @@ impl<R: Real> Shade<R> {
     /// For `Q16` ([`Real::q16_kernels`]) without a specular term the
     /// diffuse sum runs on raw integers with 32-bit products, bit for bit
     /// the generic result. (Vertex and face lighting keep the generic
-    /// path with a specular term: [`Shade::at_q16`] there moved
+    /// path with a specular term: `Shade::at_q16` there moved
     /// `dodeca-flat-n100`'s mean error against the `f64` twin to 0.14
     /// level, above its 0.08 budget; the per-pixel Phong shader uses it.)
     pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
