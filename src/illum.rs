@@ -33,19 +33,11 @@ use crate::num::wide::wmul;
 use crate::num::Real;
 use core::fmt;
 
-/// Whether [`Shade::at`] (vertex and face lighting) runs
-/// [`Shade::at_q16`] for `Q16`: off, because a flat face whose level ends
-/// one step from the `f64` twin's counts over its whole area
-/// (`dodeca-flat-n100` measured a 0.14-level mean error against the
-/// twin, above its 0.08 budget). The per-pixel Phong shader
-/// (`render::PhongShader`) does use `at_q16`: on every built-in Phong
-/// scene it measured closer to the twin than the generic path.
-const USE_Q16_SHADE: bool = false;
-
 /// Raw Q16 one.
 const ONE16: i32 = 1 << 16;
 
-/// Raw Q16 bits of a `Q16` (exact; only called when `R::Q16_KERNELS`).
+/// Raw Q16 bits of a scalar, rounded (exact for `Q16`, the scalar of the
+/// integer kernels, [`Real::q16_kernels`]).
 #[inline(always)]
 fn raw<R: Real>(v: R) -> i32 {
     v.to_fixed_i32(16)
@@ -292,17 +284,18 @@ impl<R: Real> Shade<R> {
     /// The colour at eye-space point `p` with unit normal `n`, each channel
     /// clamped to `[0, 1]`.
     ///
-    /// For `Q16` ([`Real::Q16_KERNELS`]) without a specular term the
+    /// For `Q16` ([`Real::q16_kernels`]) without a specular term the
     /// diffuse sum runs on raw integers with 32-bit products, bit for bit
-    /// the generic result.
+    /// the generic result. (Vertex and face lighting keep the generic
+    /// path with a specular term: `Shade::at_q16` there moved
+    /// `dodeca-flat-n100`'s mean error against the `f64` twin to 0.14
+    /// level, above its 0.08 budget; the per-pixel Phong shader uses it.)
     pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
-        if R::Q16_KERNELS && !self.has_specular {
-            if let Some(c) = self.diffuse_q16(raw3(n), p) {
-                return Vec3::new(
-                    R::from_fixed_i32(c[0], 16),
-                    R::from_fixed_i32(c[1], 16),
-                    R::from_fixed_i32(c[2], 16),
-                );
+        if let Some(q) = R::q16_kernels() {
+            if !self.has_specular {
+                if let Some(c) = self.diffuse_q16(raw3(n), p) {
+                    return Vec3::new(q.from_raw(c[0]), q.from_raw(c[1]), q.from_raw(c[2]));
+                }
             }
         }
         self.at_generic(n, p)
@@ -354,14 +347,6 @@ impl<R: Real> Shade<R> {
 
     /// [`Shade::at`] by the generic scalar code.
     fn at_generic(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
-        if R::Q16_KERNELS && USE_Q16_SHADE {
-            let c = self.at_q16(raw3(n), raw3(p));
-            return Vec3::new(
-                R::from_fixed_i32(c[0], 16),
-                R::from_fixed_i32(c[1], 16),
-                R::from_fixed_i32(c[2], 16),
-            );
-        }
         let mut sum = self.ambient;
         // V only matters for the specular term: no normalisation without it.
         let v = match (self.has_specular, self.viewer) {
@@ -503,7 +488,7 @@ impl<R: Real> Shade<R> {
         for t in &self.terms {
             // The Q16 products `diffuse · N·L` by `mul16_small`: diffuse
             // below 256 (else the eye-space path lights the object).
-            if R::Q16_KERNELS && big3(t.diffuse, (1 << 24) - 1) {
+            if R::q16_kernels().is_some() && big3(t.diffuse, (1 << 24) - 1) {
                 return None;
             }
             let l = kt.apply(t.at);
@@ -529,13 +514,13 @@ impl<R: Real> ObjectLight<R> {
     /// `N·L'` of Q1.14 normal `n` (reversed when `flip`).
     #[inline(always)]
     fn nl(t: &ObjTerm<R>, n: [i16; 3], flip: bool) -> R {
-        let nl = if R::Q16_KERNELS {
+        let nl = if let Some(q) = R::q16_kernels() {
             // |n_k| <= 2^15, |l14_k| <= 2^14 (unit L'): each product
             // below 2^29 and the sum below 3 · 2^29 (no overflow).
             let l = t.l14;
             let s = i32::from(n[0]) * l[0] + i32::from(n[1]) * l[1] + i32::from(n[2]) * l[2];
             // Q28 to Q16, rounded (ties up).
-            R::from_fixed_i32((s + (1 << 11)) >> 12, 16)
+            q.from_raw((s + (1 << 11)) >> 12)
         } else {
             Vec3::from_q14(n).dot(t.l)
         };
@@ -557,13 +542,13 @@ impl<R: Real> ObjectLight<R> {
             if nl <= R::ZERO {
                 continue;
             }
-            if R::Q16_KERNELS {
+            if let Some(q) = R::q16_kernels() {
                 // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| <
                 // 2^24 checked when built, |N·L| <= 2^17 for unit vectors).
-                let nlr = raw(nl);
+                let nlr = q.raw(nl);
                 if nlr.unsigned_abs() <= SMALL {
                     let d = raw3(t.diffuse);
-                    let p = |c: i32| R::from_fixed_i32(mul16_small(c, nlr), 16);
+                    let p = |c: i32| q.from_raw(mul16_small(c, nlr));
                     if mono {
                         sum.x += p(d[0]);
                     } else {
@@ -593,9 +578,7 @@ impl<R: Real> ObjectLight<R> {
     /// normal, or `None` unless `R` is `Q16` and every diffuse factor is
     /// below `2^8 / 255 ≈ 1.004` (brighter lights use [`ObjectLight::at`]).
     pub(crate) fn levels(&self) -> Option<LevelLight> {
-        if !R::Q16_KERNELS {
-            return None;
-        }
+        R::q16_kernels()?;
         #[allow(clippy::cast_possible_truncation)]
         let ambient =
             raw3(self.ambient).map(|a| (i64::from(a) * 255).clamp(-(1 << 29), 1 << 29) as i32);
@@ -749,7 +732,7 @@ pub(crate) struct RawTerm {
 
 impl<R: Real> Shade<R> {
     /// The folded material and lights as raw `Q16` bits (`None` unless
-    /// `R` is `Q16`, [`Real::Q16_KERNELS`]): ambient, lights, shininess
+    /// `R` is `Q16`, [`Real::q16_kernels`]): ambient, lights, shininess
     /// (Q16), whether the specular term is on, its model and the viewer.
     #[allow(clippy::type_complexity)]
     pub(crate) fn raw_q16(
@@ -762,9 +745,7 @@ impl<R: Real> Shade<R> {
         Specular,
         Viewer,
     )> {
-        if !R::Q16_KERNELS {
-            return None;
-        }
+        R::q16_kernels()?;
         let mut terms = heapless::Vec::new();
         for t in &self.terms {
             // Never fails: as many terms as `self.terms` holds.

@@ -127,7 +127,7 @@ fn screen(b: &mut Bytes<'_>) {
         Ok(s) => s,
         Err(e) => {
             assert!(!(1..=8).contains(&bits));
-            assert_eq!(e, RasterError::BadSubpixelBits);
+            assert_eq!(RasterError::from(e), RasterError::BadSubpixelBits);
             return;
         }
     };

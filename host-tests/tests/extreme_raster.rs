@@ -618,9 +618,10 @@ fn bands_one_row_high_equal_the_full_frame() {
 /// is black, far above 255 white; NaN (and infinite vertex values, whose
 /// gradients are NaN) black.
 ///
-/// This found a bug (by fuzzing), fixed in `raster/lerp.rs`: rounding a
-/// float below `i32::MIN` overflowed (`i32::MIN - 1`: a panic in debug
-/// builds, white instead of black in release).
+/// This found a bug (by fuzzing), fixed in `src/num/lerp.rs` (then
+/// `raster/lerp.rs`): rounding a float below `i32::MIN` overflowed
+/// (`i32::MIN - 1`: a panic in debug builds, white instead of black in
+/// release).
 #[test]
 fn float_attributes_beyond_i32_clamp_to_the_levels() {
     for (v, want) in [

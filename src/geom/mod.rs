@@ -5,7 +5,7 @@
 //! generic over the profile's scalar, so a fixed-point firmware builds its
 //! matrices with fixed-point trigonometry ([`Real::sin_cos`]) and no float.
 
-use crate::num::Real;
+use crate::num::{Q16Kernels, Real};
 
 pub(crate) mod cull;
 pub(crate) mod fused;
@@ -23,24 +23,15 @@ pub fn radians<R: Real>(deg: R) -> R {
     deg.mul_i32(71).div(R::from_i32(4068))
 }
 
-/// Whether [`Vec3::normalize`] uses the integer kernel for `Q16`: off for
-/// now (with it, `dodeca-flat-n100`'s fast mean error measured 0.139,
-/// above its 0.08 budget: face levels one step from the twin's).
-const Q16_UNIT_NORMALIZE: bool = false;
-
 /// [`Vec3::normalize`] for `Q16` in 32-bit arithmetic, bit for bit: the
 /// same rounded products ([`mul16_small`](crate::num::wide::mul16_small))
 /// and the same `rsqrt` (the zero vector stays zero); `None` (the generic code runs) unless every
 /// component and `1/|v|` are at most 2 in magnitude (vectors of length
 /// 1/2 to 2: normals, light directions).
 #[inline]
-fn unit_q16_small<R: Real>(v: Vec3<R>) -> Option<Vec3<R>> {
+fn unit_q16_small<R: Real>(q: Q16Kernels<R>, v: Vec3<R>) -> Option<Vec3<R>> {
     use crate::num::wide::{mul16_small, SMALL};
-    let r = [
-        v.x.to_fixed_i32(16),
-        v.y.to_fixed_i32(16),
-        v.z.to_fixed_i32(16),
-    ];
+    let r = [q.raw(v.x), q.raw(v.y), q.raw(v.z)];
     if r.iter().any(|c| c.unsigned_abs() > SMALL) {
         return None;
     }
@@ -51,9 +42,9 @@ fn unit_q16_small<R: Real>(v: Vec3<R>) -> Option<Vec3<R>> {
         return None;
     }
     Some(Vec3::new(
-        R::from_fixed_i32(mul16_small(r[0], k), 16),
-        R::from_fixed_i32(mul16_small(r[1], k), 16),
-        R::from_fixed_i32(mul16_small(r[2], k), 16),
+        q.from_raw(mul16_small(r[0], k)),
+        q.from_raw(mul16_small(r[1], k)),
+        q.from_raw(mul16_small(r[2], k)),
     ))
 }
 
@@ -144,18 +135,6 @@ impl<R: Real> Vec3<R> {
     /// largest component magnitude, so it still comes out of unit length.
     #[inline]
     pub fn normalize(self) -> Self {
-        if R::Q16_KERNELS && Q16_UNIT_NORMALIZE {
-            let u = crate::num::approx16::unit([
-                self.x.to_fixed_i32(16),
-                self.y.to_fixed_i32(16),
-                self.z.to_fixed_i32(16),
-            ]);
-            return Self::new(
-                R::from_fixed_i32(u[0], 16),
-                R::from_fixed_i32(u[1], 16),
-                R::from_fixed_i32(u[2], 16),
-            );
-        }
         let l2 = self.length_sq();
         if l2 >= R::MAX {
             // Saturated (fixed) or overflowed (float): the rare slow path.
@@ -172,10 +151,8 @@ impl<R: Real> Vec3<R> {
     /// `normalize` so that the rasterizer's code is not changed).
     #[inline]
     pub(crate) fn normalize_geom(self) -> Self {
-        if R::Q16_KERNELS {
-            if let Some(u) = unit_q16_small(self) {
-                return u;
-            }
+        if let Some(u) = R::q16_kernels().and_then(|q| unit_q16_small(q, self)) {
+            return u;
         }
         self.normalize()
     }
@@ -460,7 +437,7 @@ mod tests {
             let c = [0; 3].map(|_| Q16::from_bits((next() % (2 * lim + 1)) as i32 - lim as i32));
             let v = Vec3::new(c[0], c[1], c[2]);
             let generic = v.scale(v.length_sq().rsqrt());
-            if let Some(u) = unit_q16_small(v) {
+            if let Some(u) = unit_q16_small(Q16::q16_kernels().unwrap(), v) {
                 assert_eq!(u, generic, "{v:?}");
                 taken += 1;
             } else {
@@ -471,6 +448,6 @@ mod tests {
         }
         assert!(taken > 200_000);
         let z = Vec3::<Q16>::ZERO;
-        assert_eq!(unit_q16_small(z), Some(z));
+        assert_eq!(unit_q16_small(Q16::q16_kernels().unwrap(), z), Some(z));
     }
 }

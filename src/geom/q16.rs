@@ -1,12 +1,12 @@
 //! Integer kernels of the `fast` profiles' vertex path: raw Q16.16 values
-//! in `i32`, mesh data in Q1.14 (`i16`). Used when
-//! [`Real::Q16_KERNELS`] is set; every kernel is exact integer arithmetic
+//! in `i32`, mesh data in Q1.14 (`i16`). Used for the scalars that run
+//! them ([`Real::q16_kernels`]); every kernel is exact integer arithmetic
 //! up to one stated rounding, so all targets compute the same bits (the
 //! ARMv6-M variants are tested against the generic ones).
 
 use super::Affine;
 use crate::num::approx16::{recip_mant, rsqrt_newton};
-use crate::num::wide::{clz32, wmul};
+use crate::num::wide::{clz32, wmul, wmul_u32};
 use crate::num::Real;
 
 /// Largest matrix entry magnitude (exclusive) of the integer transform:
@@ -78,10 +78,8 @@ impl Xform16 {
     /// The integer form of `a`, or `None` when the scalar is not `Q16` or
     /// an entry of the linear part reaches 256.
     pub(crate) fn new<R: Real>(a: &Affine<R>) -> Option<Self> {
-        if !R::Q16_KERNELS {
-            return None;
-        }
-        let raw = |v: R| v.to_fixed_i32(16);
+        let q = R::q16_kernels()?;
+        let raw = |v: R| q.raw(v);
         let m = a.m.rows.map(|r| [raw(r.x), raw(r.y), raw(r.z)]);
         if m.iter().flatten().any(|v| v.unsigned_abs() >= M_LIMIT) {
             return None;
@@ -172,17 +170,6 @@ fn sq_u32(x: u32) -> u64 {
     (u64::from(h * h) << 32) + (u64::from(h * l) << 17) + u64::from(l * l)
 }
 
-/// `a · b` exactly, from 16-bit halves (no 64-bit multiply on the
-/// Cortex-M0).
-#[inline(always)]
-fn mul_u32(a: u32, b: u32) -> u64 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    (u64::from(ah * bh) << 32)
-        + ((u64::from(ah * bl) + u64::from(al * bh)) << 16)
-        + u64::from(al * bl)
-}
-
 /// `q · x` exactly for `q < 2^16`, `x < 2^32` (two 32-bit products).
 #[inline(always)]
 fn mul_u16_u32(q: u32, x: u32) -> u64 {
@@ -239,7 +226,7 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
     };
     let y = rsqrt_newton(m); // <= 2^31
     #[allow(clippy::cast_possible_truncation)]
-    let my = mul_u32(m, y);
+    let my = wmul_u32(m, y);
     #[allow(clippy::cast_possible_truncation)]
     let mut len = if up { my >> 30 } else { my >> 31 } as u32;
     // Within a few units (2^-29 relative of at most 2^32, and the dropped
@@ -262,7 +249,7 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
     let half = u64::from(len >> 1);
     let q = |sk: u32| -> u32 {
         // s 2^14 / len = s r 2^lz / 2^47 (s < 2^31, r <= 2^30).
-        let p = mul_u32(sk, r);
+        let p = wmul_u32(sk, r);
         // The shift from the high half (p < 2^61): `p >> 46` or `p >> 45`
         // written on `u64` were merged into one variable 64-bit shift, an
         // `__aeabi_llsr` call on the M0.

@@ -2,28 +2,7 @@
 //!
 //! The error analysis is in the [module docs](super#arithmetic-and-error-bounds).
 
-/// ⌊√n⌋, exactly, for every u64 (bit-by-bit, 32 steps, no division).
-pub const fn isqrt_u64(n: u64) -> u64 {
-    if n < 2 {
-        return n;
-    }
-    // Highest power of four not above n.
-    let mut bit = 1u64 << ((63 - n.leading_zeros()) & !1);
-    let mut rest = n;
-    // Invariant: `root` is the root found so far, shifted left by the
-    // number of bit pairs still to process.
-    let mut root = 0u64;
-    while bit != 0 {
-        if rest >= root + bit {
-            rest -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    root
-}
+pub use crate::num::isqrt_u64;
 
 /// `round(v · 2^frac / |v|)` per component, half away from zero, for
 /// `frac <= 30`; `None` for the zero vector. Each magnitude is at most

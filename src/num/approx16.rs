@@ -59,32 +59,12 @@ pub(crate) fn rsqrt(b: i32) -> i32 {
     i32::try_from(r).unwrap_or(i32::MAX)
 }
 
-/// Floor square root of `v` and the remainder `v - root^2`.
-pub(crate) fn isqrt_u64(v: u64) -> (u64, u64) {
-    let mut rem = v;
-    let mut root = 0u64;
-    let mut bit = 1u64 << 62;
-    while bit > v {
-        bit >>= 2;
-    }
-    while bit != 0 {
-        if rem >= root + bit {
-            rem -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    (root, rem)
-}
-
 /// `sqrt(x)` on Q16 bits, correctly rounded; `x <= 0` gives 0.
 pub(crate) fn sqrt(b: i32) -> i32 {
     if b <= 0 {
         return 0;
     }
-    let (root, rem) = isqrt_u64(u64::from(b.unsigned_abs()) << 16);
+    let (root, rem) = super::isqrt_rem_u64(u64::from(b.unsigned_abs()) << 16);
     let root = if rem > root { root + 1 } else { root };
     i32::try_from(root).unwrap_or(i32::MAX)
 }

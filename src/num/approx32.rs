@@ -64,32 +64,12 @@ pub(crate) fn rsqrt(b: i64) -> i64 {
     i64::try_from(r).unwrap_or(i64::MAX)
 }
 
-/// Floor square root of `v` and the remainder `v - root^2`.
-fn isqrt_u128(v: u128) -> (u128, u128) {
-    let mut rem = v;
-    let mut root = 0u128;
-    let mut bit = 1u128 << 126;
-    while bit > v {
-        bit >>= 2;
-    }
-    while bit != 0 {
-        if rem >= root + bit {
-            rem -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    (root, rem)
-}
-
 /// `sqrt(x)` on Q32 bits, correctly rounded; `x <= 0` gives 0.
 pub(crate) fn sqrt(b: i64) -> i64 {
     if b <= 0 {
         return 0;
     }
-    let (root, rem) = isqrt_u128(u128::from(b.unsigned_abs()) << 32);
+    let (root, rem) = super::isqrt_rem_u128(u128::from(b.unsigned_abs()) << 32);
     let root = if rem > root { root + 1 } else { root };
     i64::try_from(root).unwrap_or(i64::MAX)
 }

@@ -10,7 +10,7 @@ use core::ops::{Add, AddAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 use fixed::types::{I16F16, I32F32};
 
-use super::real::Real;
+use super::real::{Q16Kernels, Real};
 use super::wide::{wmul, wmul64};
 use super::{approx16, approx32};
 
@@ -178,7 +178,10 @@ macro_rules! fixed_real {
             const MAX: Self = Self::from_bits(<$raw>::MAX);
             const MIN: Self = Self::from_bits(<$raw>::MIN);
             const EPSILON: Self = Self::from_bits(1);
-            const Q16_KERNELS: bool = $kern;
+            #[inline(always)]
+            fn q16_kernels() -> Option<Q16Kernels<Self>> {
+                $kern
+            }
 
             fn from_f32(v: f32) -> Self {
                 Self::from_float(f64::from(v))
@@ -275,13 +278,13 @@ fixed_real!(
     /// Q16.16 fixed point (`fixed::types::I16F16`), the `fast` profile for
     /// Cortex-M0: range `[-32768, 32768)`, resolution 2^-16. Operators
     /// saturate; per-pixel kernels stay mostly in 32-bit integers.
-    Q16, I16F16, i32, i64, 16, approx16, wmul, true
+    Q16, I16F16, i32, i64, 16, approx16, wmul, Some(Q16Kernels::new())
 );
 
 fixed_real!(
     /// Q32.32 fixed point (`fixed::types::I32F32`), the `precise` profile:
     /// range `[-2^31, 2^31)`, resolution 2^-32. Operators saturate.
-    Q32, I32F32, i64, i128, 32, approx32, wmul64, false
+    Q32, I32F32, i64, i128, 32, approx32, wmul64, None
 );
 
 #[cfg(test)]

@@ -4,8 +4,12 @@ pub(crate) mod approx16;
 mod approx32;
 mod fixed_point;
 mod float;
+mod isqrt;
+mod lerp;
 mod profile;
 mod real;
+mod recip;
+mod subpixel;
 mod tables;
 pub(crate) mod wide;
 
@@ -15,9 +19,14 @@ mod accuracy;
 mod edge_tests;
 
 pub use self::fixed_point::{Q16, Q32};
+pub use self::isqrt::isqrt_u64;
+pub(crate) use self::isqrt::{isqrt_rem_u128, isqrt_rem_u64};
+pub use self::lerp::{Lerp, ATTR_LIMIT, DEPTH_ONE, LEVEL_FRAC_BITS};
 pub use self::profile::{
     F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, COORD_FRAC_BITS, COORD_FRAC_BITS_PC,
     DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
 };
-pub use self::real::Real;
+pub use self::real::{Q16Kernels, Real};
+pub use self::recip::{InvArea, Recip};
+pub use self::subpixel::{BadSubpixelBits, SubpixelBits, COORD_LIMIT_PX};
 pub use self::tables::{rsqrt_quarter_table, spec_table};

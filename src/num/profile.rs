@@ -26,8 +26,8 @@
 //! ([`SubpixelBits::DEFAULT`], 1/16 pixel), so they cover the same pixels
 //! and differ only in the values they compute.
 
+use super::{Lerp, SubpixelBits, LEVEL_FRAC_BITS};
 use super::{Real, Q16, Q32};
-use crate::raster::{Lerp, SubpixelBits, LEVEL_FRAC_BITS};
 use core::fmt::Debug;
 
 /// Fraction bits of an interpolated fixed-point unit-vector component.

@@ -20,6 +20,7 @@
 //! sweeps.
 
 use core::fmt::Debug;
+use core::marker::PhantomData;
 use core::ops::{Add, AddAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// A real-number scalar: fixed point ([`Q16`](super::Q16),
@@ -52,14 +53,16 @@ pub trait Real:
     /// Resolution: one ulp for fixed types, `f32::EPSILON`/`f64::EPSILON`
     /// for floats.
     const EPSILON: Self;
-    /// `true` for [`Q16`](super::Q16) only: the geometry and lighting then
-    /// run the integer kernels of the `fast` profiles (32-bit products
-    /// where ranges allow, exact widening products elsewhere, table
-    /// reciprocals instead of division), reading and writing raw Q16.16
-    /// values through [`to_fixed_i32`](Real::to_fixed_i32) and
-    /// [`from_fixed_i32`](Real::from_fixed_i32) with 16 fraction bits, which
-    /// are exact for `Q16`. The other types run the generic code.
-    const Q16_KERNELS: bool = false;
+
+    /// The integer kernels of the `fast` profiles, chosen by type: `Some`
+    /// for [`Q16`](super::Q16) only (its witness, [`Q16Kernels`], reads
+    /// and writes raw Q16.16 values exactly), `None` for the other types,
+    /// which run the generic code. A constant of the type: each
+    /// monomorphised caller keeps one of its two paths.
+    #[inline(always)]
+    fn q16_kernels() -> Option<Q16Kernels<Self>> {
+        None
+    }
 
     /// Saturating conversion, rounded to nearest; NaN maps to
     /// [`ZERO`](Real::ZERO), infinities saturate.
@@ -146,4 +149,42 @@ pub trait Real:
     /// 8-bit level: `clamp(self, 0, 1) * 255` rounded to nearest (NaN gives
     /// 0).
     fn to_level(self) -> u8;
+}
+
+/// The witness that a scalar type runs the integer kernels of the `fast`
+/// profiles (32-bit products where ranges allow, exact widening products
+/// elsewhere, table reciprocals instead of division): its values are raw
+/// Q16.16 bits, which [`raw`](Q16Kernels::raw) and
+/// [`from_raw`](Q16Kernels::from_raw) read and write exactly. Only
+/// [`Real::q16_kernels`] of [`Q16`](super::Q16) hands one out (it cannot be
+/// built outside `num`), so an integer path taken with it cannot run on
+/// another scalar.
+#[derive(Debug)]
+pub struct Q16Kernels<R>(PhantomData<R>);
+
+impl<R> Clone for Q16Kernels<R> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<R> Copy for Q16Kernels<R> {}
+
+impl<R: Real> Q16Kernels<R> {
+    /// The witness (for `Q16` only).
+    pub(super) const fn new() -> Self {
+        Self(PhantomData)
+    }
+
+    /// The raw Q16.16 bits of `v` (exact).
+    #[inline(always)]
+    pub fn raw(self, v: R) -> i32 {
+        v.to_fixed_i32(16)
+    }
+
+    /// The value of raw Q16.16 bits `b` (exact).
+    #[inline(always)]
+    pub fn from_raw(self, b: i32) -> R {
+        R::from_fixed_i32(b, 16)
+    }
 }

@@ -1,7 +1,7 @@
 //! The edge walker: an exact integer DDA (Bresenham's method).
 
-use super::wide::{mul_i32, small_floor_divmod, NO_DIVIDE};
 use super::SubpixelBits;
+use crate::num::wide::{small_floor_divmod, wmul, NO_DIVIDE};
 
 /// Walks one triangle edge downwards, one scanline at a time, giving for
 /// each row the first column whose pixel centre lies at or to the right of
@@ -82,7 +82,7 @@ impl Edge {
             // numerator in 64 bits, divided in 32 bits when it fits.
             // |t| < 2^22 + 2^8 for rows and vertices within the limits.
             let n = match i32::try_from(t) {
-                Ok(t) => mul_i32(x0 - s / 2, dy) + mul_i32(t, dx),
+                Ok(t) => wmul(x0 - s / 2, dy) + wmul(t, dx),
                 Err(_) => (x0 - s / 2) as i64 * dy as i64 + t * dx as i64,
             };
             match i32::try_from(n) {

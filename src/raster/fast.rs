@@ -23,8 +23,8 @@
 use super::span::{depth_loop, in_range_test, pair_loop};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
-use super::wide::{mul_i32_i16_soft, NO_DIVIDE, NO_LONG_MUL};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
+use crate::num::wide::{mul_i32_i16_soft, NO_DIVIDE, NO_LONG_MUL};
 use crate::target::DepthFormat;
 
 /// A band's memory as the fused row kernel sees it: colour and depth

@@ -63,113 +63,25 @@
 
 mod edge;
 mod fast;
-mod lerp;
 mod span;
 mod triangle;
 mod walk;
-mod wide;
 
 pub use edge::Edge;
 #[cfg(test)]
 use fast::{pack_fixed, unpack_fixed};
 pub(crate) use fast::{setup_fast, BandMem};
-pub use lerp::{InvArea, Lerp, Recip};
 pub(crate) use span::span_pixels;
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
 pub(crate) use triangle::{draw_sorted, first_row, in_limits, sort3};
 pub use triangle::{draw_triangle, Span, Spans};
 pub(crate) use walk::{setup, PackedWalk, RowSpans, Vals, Walk};
 
+pub use crate::num::{
+    BadSubpixelBits, InvArea, Lerp, Recip, SubpixelBits, ATTR_LIMIT, COORD_LIMIT_PX, DEPTH_ONE,
+    LEVEL_FRAC_BITS,
+};
 use core::fmt;
-
-/// Largest vertex coordinate magnitude, in pixels: 8192 (2^13).
-pub const COORD_LIMIT_PX: i32 = 1 << 13;
-
-/// Largest magnitude of a fixed-point (`i32`) attribute value: 2^30.
-pub const ATTR_LIMIT: i32 = 1 << 30;
-
-/// Fraction bits of a fixed-point colour level: a level `l` in `0..=255` is
-/// the raw value `l · 2^16`.
-pub const LEVEL_FRAC_BITS: u32 = 16;
-
-/// Fixed-point depth: `d` in `[0, 1]` is the raw value `d · 2^30`.
-pub const DEPTH_ONE: i32 = 1 << 30;
-
-/// Number of subpixel bits: vertices are snapped to `1/2^bits` of a pixel.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct SubpixelBits(u32);
-
-impl SubpixelBits {
-    /// 4 bits: 1/16 of a pixel, the default.
-    pub const DEFAULT: Self = Self(4);
-    /// Fewest bits: 1 (pixel centres need the half).
-    pub const MIN: u32 = 1;
-    /// Most bits: 8 (see the numeric limits above).
-    pub const MAX: u32 = 8;
-
-    /// Validated subpixel bits.
-    ///
-    /// # Errors
-    /// [`RasterError::BadSubpixelBits`] outside `1..=8`.
-    pub const fn new(bits: u32) -> Result<Self, RasterError> {
-        if bits < Self::MIN || bits > Self::MAX {
-            Err(RasterError::BadSubpixelBits)
-        } else {
-            Ok(Self(bits))
-        }
-    }
-
-    /// The number of bits.
-    pub const fn get(self) -> u32 {
-        self.0
-    }
-
-    /// Subpixels per pixel, `2^bits`.
-    pub const fn scale(self) -> i32 {
-        1 << self.0
-    }
-
-    /// Largest subpixel coordinate magnitude: `COORD_LIMIT_PX · 2^bits`.
-    pub const fn coord_limit(self) -> i32 {
-        COORD_LIMIT_PX << self.0
-    }
-
-    /// Converts a pixel coordinate to subpixels, rounding to nearest
-    /// (halves away from zero) and saturating at the coordinate limit; NaN
-    /// maps to 0. Saturated coordinates are then rejected by the
-    /// rasterizer rather than drawn in a wrong place.
-    pub fn from_f32(self, px: f32) -> i32 {
-        self.from_f64(px as f64)
-    }
-
-    /// As [`SubpixelBits::from_f32`], for `f64`.
-    pub fn from_f64(self, px: f64) -> i32 {
-        let lim = self.coord_limit() as f64 + 1.0;
-        let v = px * self.scale() as f64;
-        if v.is_nan() {
-            0
-        } else if v >= lim {
-            lim as i32
-        } else if v <= -lim {
-            -(lim as i32)
-        } else {
-            // Round half away from zero without std.
-            let r = if v >= 0.0 { v + 0.5 } else { v - 0.5 };
-            r as i32
-        }
-    }
-
-    /// Converts whole pixels to subpixels, saturating.
-    pub const fn from_px(self, px: i32) -> i32 {
-        px.saturating_mul(self.scale())
-    }
-}
-
-impl Default for SubpixelBits {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
 
 /// One triangle corner in screen space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -221,6 +133,12 @@ impl fmt::Display for RasterError {
 }
 
 impl core::error::Error for RasterError {}
+
+impl From<BadSubpixelBits> for RasterError {
+    fn from(_: BadSubpixelBits) -> Self {
+        Self::BadSubpixelBits
+    }
+}
 
 #[cfg(test)]
 mod tests;

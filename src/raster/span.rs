@@ -6,8 +6,8 @@
 //! and stores it in the target's format. Rows come from the target's and
 //! depth buffer's fast paths ([`Target::row_mut`]) when they have them.
 
-use super::wide::NO_LONG_MUL;
 use super::{Lerp, RasterError, Span, Spans, Vals, LEVEL_FRAC_BITS};
+use crate::num::wide::NO_LONG_MUL;
 use crate::target::{span_range, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 
 /// Computes a pixel's colour from its interpolated attributes.

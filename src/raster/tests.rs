@@ -632,8 +632,12 @@ fn bands_give_the_same_bytes_as_the_full_frame() {
 
 #[test]
 fn subpixel_bits_are_validated_and_conversions_saturate() {
-    assert_eq!(SubpixelBits::new(0), Err(RasterError::BadSubpixelBits));
-    assert_eq!(SubpixelBits::new(9), Err(RasterError::BadSubpixelBits));
+    assert_eq!(SubpixelBits::new(0), Err(BadSubpixelBits));
+    assert_eq!(SubpixelBits::new(9), Err(BadSubpixelBits));
+    assert_eq!(
+        RasterError::from(BadSubpixelBits),
+        RasterError::BadSubpixelBits
+    );
     let s = SubpixelBits::new(8).unwrap();
     assert_eq!(s.from_f32(1.5), 384);
     assert_eq!(s.from_f32(-1.5), -384);

@@ -21,8 +21,8 @@
 //! without clipping; the others clamp each span to `0..width`.
 
 use super::triangle::first_row;
-use super::wide::{fits_i16, mul_i32, NO_LONG_MUL};
 use super::{Edge, Lerp, SubpixelBits, Vertex};
+use crate::num::wide::{fits_i16, wmul, NO_LONG_MUL};
 
 /// Depth and attributes together, stepped as one.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -211,7 +211,7 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
     let area2 = if NO_LONG_MUL && d.iter().all(|&v| fits_i16(v)) {
         (d[0] * d[3] - d[2] * d[1]) as i64
     } else {
-        mul_i32(d[0], d[3]) - mul_i32(d[2], d[1])
+        wmul(d[0], d[3]) - wmul(d[2], d[1])
     };
     if area2 == 0 {
         return None;

@@ -257,7 +257,7 @@ fn unit30(v: [i64; 3]) -> [i32; 3] {
     let sh = s.leading_zeros() & !1;
     let big = s << sh; // >= 2^126
     let top = (big >> 64) as u64; // >= 2^62
-    let (root, _) = approx16::isqrt_u64(top); // |v| · 2^(sh/2 - 32) ~ 2^31
+    let root = crate::num::isqrt_u64(top); // |v| · 2^(sh/2 - 32) ~ 2^31
     let root = root.max(1);
     v.map(|c| {
         // c · 2^30 / |v| = c · 2^(30 + sh/2 - 32) / root

@@ -222,13 +222,15 @@ pub fn prepare<'w, P: Profile>(
     };
     let sub = P::SUBPIXEL_BITS.get();
     let view = View {
-        fast: (P::Real::Q16_KERNELS && sub <= 15).then(|| Proj16 {
-            k: view.k.to_fixed_i32(16),
-            near: view.planes.near.to_fixed_i32(16),
-            cx: view.cx.to_fixed_i32(sub),
-            cy: view.cy.to_fixed_i32(sub),
-            lim: COORD_LIMIT_PX << sub,
-        }),
+        fast: P::Real::q16_kernels()
+            .filter(|_| sub <= 15)
+            .map(|q| Proj16 {
+                k: q.raw(view.k),
+                near: q.raw(view.planes.near),
+                cx: view.cx.to_fixed_i32(sub),
+                cy: view.cy.to_fixed_i32(sub),
+                lim: COORD_LIMIT_PX << sub,
+            }),
         ..view
     };
     let lights = eye_lights(scene)?;

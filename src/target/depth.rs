@@ -25,7 +25,7 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     /// Converts an interpolated depth: `from_d30(z.depth30())`, with a
     /// faster path where the format allows.
     #[inline(always)]
-    fn from_lerp<L: crate::raster::Lerp>(z: L) -> Self::Raw {
+    fn from_lerp<L: crate::num::Lerp>(z: L) -> Self::Raw {
         Self::from_d30(z.depth30())
     }
 
@@ -34,13 +34,13 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     /// a span (and the span loop's additions do not wrap): the span stage
     /// then converts without saturating. `false` by default.
     #[inline(always)]
-    fn span_in_range<L: crate::raster::Lerp>(z: L, dz: L, n: u32) -> bool {
+    fn span_in_range<L: crate::num::Lerp>(z: L, dz: L, n: u32) -> bool {
         let _ = (z, dz, n);
         false
     }
 
     /// `true` when a triangle whose depths convert to 16 bits without a
-    /// clamp (`z16`, [`crate::raster::Lerp::depth16_plane_in_range`]) has
+    /// clamp (`z16`, [`crate::num::Lerp::depth16_plane_in_range`]) has
     /// every span in range as [`DepthFormat::span_in_range`] says (then
     /// not asked per span). `false` by default.
     #[inline(always)]
@@ -55,7 +55,7 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     /// Defaults: unused (`span_in_range` is `false`), so they only need to
     /// be consistent.
     #[inline(always)]
-    fn from_lerp_in_range<L: crate::raster::Lerp>(z: L) -> u32 {
+    fn from_lerp_in_range<L: crate::num::Lerp>(z: L) -> u32 {
         let _ = z;
         0
     }
@@ -95,12 +95,12 @@ impl DepthFormat for Depth16 {
     }
 
     #[inline(always)]
-    fn from_lerp<L: crate::raster::Lerp>(z: L) -> u16 {
+    fn from_lerp<L: crate::num::Lerp>(z: L) -> u16 {
         z.depth16()
     }
 
     #[inline(always)]
-    fn span_in_range<L: crate::raster::Lerp>(z: L, dz: L, n: u32) -> bool {
+    fn span_in_range<L: crate::num::Lerp>(z: L, dz: L, n: u32) -> bool {
         z.depth16_span_in_range(dz, n)
     }
 
@@ -110,7 +110,7 @@ impl DepthFormat for Depth16 {
     }
 
     #[inline(always)]
-    fn from_lerp_in_range<L: crate::raster::Lerp>(z: L) -> u32 {
+    fn from_lerp_in_range<L: crate::num::Lerp>(z: L) -> u32 {
         // At most 65534 in range: the key is the stored value.
         z.depth16_unclamped()
     }
@@ -265,5 +265,31 @@ mod tests {
         d.move_to(6).unwrap();
         assert_eq!(d.get(1, 6), Some(u16::MAX));
         assert!(DepthBuffer::<Depth32>::new(&mut [0u32; 5], 3, 0, 2).is_err());
+    }
+
+    #[test]
+    fn fast_depth16_equals_the_general_conversion() {
+        use crate::num::Lerp;
+        let mut z = i32::MIN;
+        for _ in 0..200_000 {
+            assert_eq!(z.depth16(), Depth16::from_d30(z.depth30()), "{z}");
+            z = z.wrapping_add(21_467 + (z as u32 % 977) as i32);
+        }
+        for z in [
+            -1,
+            0,
+            1,
+            (1 << 14) - 1,
+            1 << 14,
+            (65534 << 14) - 1,
+            65534 << 14,
+            (1 << 30) - (1 << 14) - 1,
+            (1 << 30) - (1 << 14),
+            (1 << 30) - 1,
+            1 << 30,
+            i32::MAX,
+        ] {
+            assert_eq!(z.depth16(), Depth16::from_d30(z.depth30()), "{z}");
+        }
     }
 }

@@ -49,6 +49,31 @@ use fixshade_scenes::{
     WIDTH as SCENE_WIDTH,
 };
 
+/// Prints the `scene` line of a frame just rendered with profile `P`:
+/// its figures and the chip's (the profile's storage for the scene, a
+/// band pool of `pool_bytes`, the stack used since the last
+/// [`paint_stack`], the static RAM).
+fn print_scene<P: Profile>(
+    spec: &fixshade_scenes::SceneSpec,
+    stats: &fixshade_scenes::FrameStats,
+    pool_bytes: usize,
+) {
+    let chip = ChipFields {
+        storage_bytes: fixshade_scenes::storage_bytes::<P>(spec),
+        pool_bytes,
+        stack: stack_used(),
+        static_ram: static_ram(),
+    };
+    hprintln!(
+        "{}",
+        SceneLine {
+            spec,
+            stats,
+            chip: Some(chip)
+        }
+    );
+}
+
 /// Executes the marker instruction `yield`: a hint that QEMU runs as a
 /// no-op and that rustc never emits, so the counting plugin can toggle on
 /// it. cortex-m 0.7 has no wrapper for it.
@@ -205,21 +230,7 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         paint_stack();
         let stats = scene_frame(spec, mem.pixels, mem.depth, mem.storage, mem.pool)
             .map_err(|e| Failure::Frame(spec.name, e))?;
-        let stack = stack_used();
-        let chip = ChipFields {
-            storage_bytes: fixshade_scenes::storage_bytes::<Fast>(spec),
-            pool_bytes: core::mem::size_of::<BandPool>(),
-            stack,
-            static_ram: static_ram(),
-        };
-        hprintln!(
-            "{}",
-            SceneLine {
-                spec,
-                stats: &stats,
-                chip: Some(chip)
-            }
-        );
+        print_scene::<Fast>(spec, &stats, core::mem::size_of::<BandPool>());
     }
     // The span loops write 16 rows of a 240-pixel band and its depth
     // band: not in a build whose scenes are narrower, need no depth band

@@ -14,9 +14,7 @@ use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::Profile;
 use fixshade::render::{Capacity, Storage};
 use fixshade_scenes::profiled::{check_with, render_frame_with, ProfilePool};
-use fixshade_scenes::{
-    capacity_for, ChipFields, Pixel, SceneLine, BAND_PIXELS, BAND_ROWS, DEPTH_PIXELS, SCENES, WIDTH,
-};
+use fixshade_scenes::{capacity_for, Pixel, BAND_PIXELS, BAND_ROWS, DEPTH_PIXELS, SCENES, WIDTH};
 
 #[cfg(feature = "profile-precise")]
 type P = fixshade::num::Precise;
@@ -107,21 +105,7 @@ fn run(
             &mut super::Markers,
         )
         .map_err(|e| (spec.name, e))?;
-        let stack = super::stack_used();
-        let chip = ChipFields {
-            storage_bytes: fixshade_scenes::storage_bytes::<P>(spec),
-            pool_bytes: core::mem::size_of::<ProfilePool<P>>(),
-            stack,
-            static_ram: super::static_ram(),
-        };
-        hprintln!(
-            "{}",
-            SceneLine {
-                spec,
-                stats: &stats,
-                chip: Some(chip)
-            }
-        );
+        super::print_scene::<P>(spec, &stats, core::mem::size_of::<ProfilePool<P>>());
     }
     Ok(())
 }

@@ -1,33 +1,5 @@
 use super::{error_ulps, Rng};
-use crate::mesh::{face_normal, isqrt_u64, normalize_q14, Crease};
-
-fn check_isqrt(n: u64) {
-    let r = u128::from(isqrt_u64(n));
-    assert!(
-        r * r <= u128::from(n) && (r + 1) * (r + 1) > u128::from(n),
-        "isqrt({n}) = {r}"
-    );
-}
-
-#[test]
-fn isqrt_is_exact() {
-    for n in 0..5000 {
-        check_isqrt(n);
-    }
-    for k in [1u64, 2, 3, 65535, 65536, 1 << 31, (1 << 32) - 1] {
-        for n in [k * k - 1, k * k, k * k + 1, k * k + 2 * k] {
-            check_isqrt(n);
-        }
-    }
-    check_isqrt(u64::MAX);
-    assert_eq!(isqrt_u64(u64::MAX), u64::from(u32::MAX));
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    for _ in 0..20000 {
-        let n = rng.next();
-        check_isqrt(n);
-        check_isqrt(n >> (n % 64));
-    }
-}
+use crate::mesh::{face_normal, normalize_q14, Crease};
 
 #[test]
 fn normalize_q14_bounds_and_symmetry() {

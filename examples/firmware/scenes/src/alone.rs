@@ -203,7 +203,7 @@ pub mod bunny {
 #[cfg(test)]
 mod tests {
     use super::dodeca;
-    use crate::profiled::raster_bands;
+    use crate::profiled::{depth_in, raster_bands_in};
     use crate::Pixel;
     use fixshade::num::Fast;
     use fixshade::render::{prepare, Storage};
@@ -254,11 +254,13 @@ mod tests {
                 let (ws, order) = st.split();
                 let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
                 let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
-                let s = raster_bands::<Fast, Depth16, _>(
+                let (z, with_depth) = depth_in(None);
+                let s = raster_bands_in::<Fast, Depth16, _>(
                     &frame,
                     &scene,
                     &mut px,
-                    None,
+                    z,
+                    with_depth,
                     rows,
                     order,
                     &mut pool,
@@ -315,11 +317,12 @@ mod tests {
             assert_eq!(frame.bytes_used(), 50_396);
             let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
             let mut z = vec![0u16; (spec.width * rows) as usize];
-            let s = raster_bands::<Fast, Depth16, _>(
+            let s = raster_bands_in::<Fast, Depth16, _>(
                 &frame,
                 &scene,
                 &mut px,
-                Some(&mut z),
+                &mut z,
+                true,
                 rows,
                 order,
                 &mut pool,

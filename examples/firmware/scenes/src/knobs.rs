@@ -6,7 +6,7 @@
 //! `Fast` profile with another subpixel precision (every other quantity as
 //! `Fast`'s).
 
-use crate::profiled::{raster_bands_in, ProfilePool};
+use crate::profiled::{depth_in, raster_bands_in, ProfilePool};
 use crate::{FrameError, FrameStats, Pixel, Probe, SceneSpec, WIDTH};
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::SubpixelBits;
@@ -71,8 +71,7 @@ pub fn render_frame_knobs<P: Profile, D: DepthFormat, Q: Probe>(
     pool: &mut ProfilePool<P>,
     probe: &mut Q,
 ) -> Result<FrameStats, FrameError> {
-    let with_depth = depth.is_some();
-    let depth = depth.unwrap_or(&mut []);
+    let (depth, with_depth) = depth_in(depth);
     render_frame_knobs_in::<P, D, Q>(
         spec, ws, pixels, depth, with_depth, rows, order, pool, probe,
     )

@@ -132,37 +132,25 @@ pub fn render_frame_with<P: Profile, Q: Probe>(
 /// benchmark's capacities, values of `P`'s type).
 pub type ProfilePool<P> = Pool<<P as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
 
+/// A depth band given as an `Option` in the form the `_in` functions
+/// take: the slice (empty for `None`) and whether to use it.
+#[inline(always)]
+pub(crate) fn depth_in<T>(depth: Option<&mut [T]>) -> (&mut [T], bool) {
+    let with_depth = depth.is_some();
+    (depth.unwrap_or(&mut []), with_depth)
+}
+
 /// The raster part of a frame: the band state, then band by band (clear,
 /// render) in bands of `rows` rows with the depth format `D` (or no depth
-/// band: `depth` `None`; covered pixels are then the fragments drawn,
+/// band: `with_depth` false; covered pixels are then the fragments drawn,
 /// each pixel at most once), each band bracketed by `probe`, its bytes
-/// added to the CRC.
+/// added to the CRC. The depth band is a slice and whether to use it (the
+/// firmware passes its static band and the scene's need: the optimiser
+/// then sees the static, and its alignment, in the band clears;
+/// [`depth_in`] makes the pair from an `Option`).
 ///
 /// # Errors
 /// Buffers shorter than a band, or a render error.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub fn raster_bands<P: Profile, D: DepthFormat, Q: Probe>(
-    frame: &Frame<'_, P>,
-    scene: &Scene<'_, '_, P::Real>,
-    pixels: &mut [Pixel],
-    depth: Option<&mut [D::Raw]>,
-    rows: u32,
-    order: &mut [u16],
-    pool: &mut ProfilePool<P>,
-    probe: &mut Q,
-) -> Result<FrameStats, FrameError> {
-    let with_depth = depth.is_some();
-    let depth = depth.unwrap_or(&mut []);
-    raster_bands_in::<P, D, Q>(
-        frame, scene, pixels, depth, with_depth, rows, order, pool, probe,
-    )
-}
-
-/// [`raster_bands`] with the depth band as a slice and whether to use it
-/// (the firmware passes its static band and the scene's need: the
-/// optimiser then sees the static, and its alignment, in the band
-/// clears).
 // Not inlined: the band loop's locals (band state, shades, kernels) then
 // take a stack frame of their own, apart from the geometry's, whose
 // deepest calls (the object pass) no longer stack upon them.

@@ -1,0 +1,783 @@
+//! The reciprocal of a triangle's doubled area, without a division per
+//! gradient: [`Recip`] (general, 64-bit numerators) and [`InvArea`] (the
+//! `i32` interpolation's gradients), from one exact `round(2^63 / x)`
+//! ([`recip63`]: a table-seeded Newton iteration on ARMv6-M, two hardware
+//! divisions elsewhere).
+
+use super::wide::{clz32, clz64, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL};
+
+/// The reciprocal of a doubled triangle area in fixed point:
+/// `1/|a| ≈ m · 2^-k`, `m` rounded to 32 significant bits.
+///
+/// Error: `a` is first truncated to 32 significant bits (relative error
+/// < 2^-31) and `m` rounded (< 2^-32), and a numerator it multiplies is
+/// truncated to 31 significant bits (< 2^-31): a product is within a
+/// relative 2^-30 of the exact quotient, plus ½ of its last place from the
+/// final rounding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Recip {
+    /// `round(2^63 / norm)` for the normalised magnitude, in `[2^31,
+    /// 2^32)` (a power-of-two magnitude, whose reciprocal would be 2^32,
+    /// is kept as `2^31` with `k` one less: the same value).
+    m: u32,
+    k: u32,
+    negative: bool,
+}
+
+impl Recip {
+    /// The reciprocal of `a` (`a != 0`; zero gives a reciprocal of 1/1
+    /// rather than a panic, and the rasterizer never asks for it).
+    ///
+    /// No division: `m` comes from a table-seeded Newton iteration and an
+    /// exact remainder correction (`recip63`), so it is the very value
+    /// `round(2^63 / norm)` a division would give, on every target.
+    pub fn new(a: i64) -> Self {
+        let negative = a < 0;
+        let mag = a.unsigned_abs().max(1);
+        let n = 63 - clz64(mag); // 2^n <= mag < 2^(n+1)
+        let norm = if n >= 31 {
+            shr64(mag, n - 31)
+        } else {
+            shl64(mag, 31 - n)
+        }; // in [2^31, 2^32)
+        let m = recip63(norm as u32);
+        // m <= 2^32; m == 2^32 only for norm == 2^31: halve it exactly.
+        let (m, k) = if m > u32::MAX as u64 {
+            ((m >> 1) as u32, 31 + n)
+        } else {
+            (m as u32, 32 + n)
+        };
+        Self { m, k, negative }
+    }
+
+    /// `round(num · 2^s / a)` within the error stated on [`Recip`];
+    /// saturates at `i64` bounds.
+    ///
+    /// The numerator is normalised to its top 31 bits `v` (one leading-zero
+    /// count over the 64-bit value; exact when it has at most 31
+    /// significant bits), multiplied once (`v·m`, 32 × 32 → 64 bits) and
+    /// shifted right with rounding; when the quotient is below 2^31, only
+    /// the high word of the product takes part (the usual case in the
+    /// rasterizer).
+    #[inline]
+    pub fn mul_shift(&self, num: i64, s: u32) -> i64 {
+        if num == 0 {
+            return 0;
+        }
+        let neg = (num < 0) != self.negative;
+        let mag = num.unsigned_abs();
+        let (hi, lo) = ((mag >> 32) as u32, mag as u32);
+        // top: mag shifted left by z leading zeros (its bit 31 set).
+        let (top, z) = if hi != 0 {
+            let c = clz32(hi);
+            ((hi << c) | ((lo >> 1) >> (31 - c)), c)
+        } else {
+            let c = clz32(lo);
+            (lo << c, 32 + c)
+        };
+        let v = top >> 1; // top 31 bits: mag ≈ v · 2^(33 - z)
+        let p = wmul_u32(v, self.m); // < 2^63
+                                     // result = p · 2^(33 - z + s - k) = p >> sh, rounded half up
+        let sh = (self.k + z) as i32 - 33 - s as i32;
+        let r: u64 = if sh >= 33 {
+            // (p >> (sh - 1)) from the high word only.
+            let e = (sh - 33) as u32;
+            let h = if e >= 32 { 0 } else { (p >> 32) as u32 >> e };
+            ((h >> 1) + (h & 1)) as u64
+        } else if sh >= 1 {
+            let h = shr64(p, (sh - 1) as u32);
+            (h >> 1) + (h & 1)
+        } else {
+            let up = (-sh) as u32;
+            if up >= 63 || clz64(p) <= up {
+                i64::MAX as u64
+            } else {
+                shl64(p, up)
+            }
+        };
+        let r = r.min(i64::MAX as u64) as i64;
+        if neg {
+            -r
+        } else {
+            r
+        }
+    }
+}
+
+impl Recip {
+    /// [`Recip::mul_shift`] of a numerator within an `i32`: the same value,
+    /// with one 32 × 32 → 64-bit product and no normalisation.
+    ///
+    /// Why the same: a magnitude `n <= 2^31` loses no bit when
+    /// [`Recip::mul_shift`] normalises it to 31 bits (`v = n·2^(c-1)` for
+    /// `c >= 1` leading zeros; `n = 2^31` has a zero bit 0), so its
+    /// rounded `p >> sh` equals `round(n·m / 2^(k - s))`, which for
+    /// `e = k - s - 33` in `0..32` is `(h >> 1) + (h & 1)` with `h =
+    /// ⌊n·m / 2^32⌋ >> e` (the high word alone holds every bit down to
+    /// the rounding bit). Other shifts (areas below about `2^(s+1)` or
+    /// beyond `2^(s+32)`) take [`Recip::mul_shift`]. Tested equal on
+    /// random and extreme values.
+    #[inline(always)]
+    pub fn mul_shift_i32(&self, num: i32, s: u32) -> i64 {
+        let e = self.k.wrapping_sub(s).wrapping_sub(33);
+        if e >= 32 {
+            return self.mul_shift(num as i64, s);
+        }
+        let h = (wmul_u32(num.unsigned_abs(), self.m) >> 32) as u32 >> e;
+        // h < 2^31 (n·m < 2^63): no carry.
+        let r = ((h >> 1) + (h & 1)) as i64;
+        if (num < 0) != self.negative {
+            -r
+        } else {
+            r
+        }
+    }
+}
+
+/// The reciprocal of a doubled triangle area for the gradients of `i32`
+/// values: `1/a ≈ m · 2^-e`, `|m|` in `[2^30, 2^31)` with the sign of `a`.
+///
+/// A gradient is then one 32 × 32 → 64-bit product and a rounding shift
+/// ([`InvArea::quot`]): `⌊n_t · m / 2^(e - s - t) + ½⌋`, where `n_t` keeps
+/// the top 31 bits of the numerator (`t = 0` whenever it fits
+/// an `i32`, the usual case). The same integer function on every target
+/// (the reciprocal from `recip63`, exact everywhere).
+///
+/// Error: `|a|` is truncated to 32 significant bits (relative < 2^-31),
+/// `m` is within 1 of `2^62 / norm` (< 2^-30), `n_t` (`|n| / 2^t`
+/// truncated, with the sign of `n`) loses less than one of its units
+/// (< 2^-30 relative, only when `t > 0`) and the rounding half a unit:
+/// `|quot - n·2^s/a| <= ½ + |n·2^s/a| · 2^-28`. Tested
+/// against exact quotients on random and extreme values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InvArea {
+    m: i32,
+    e: u32,
+}
+
+impl InvArea {
+    /// The reciprocal of `a` (`a != 0`; zero is taken as 1, and the
+    /// rasterizer never asks for it).
+    pub fn new(a: i64) -> Self {
+        let mag = a.unsigned_abs().max(1);
+        let c = clz64(mag); // 2^(63-c) <= mag < 2^(64-c)
+        let norm = if c >= 32 {
+            shl64(mag, c - 32)
+        } else {
+            shr64(mag, 32 - c)
+        } as u32; // in [2^31, 2^32)
+                  // round(2^63 / norm) in (2^31, 2^32], halved: within 1 of 2^62/norm.
+        let m = ((recip63(norm) >> 1) as u32).min(i32::MAX as u32) as i32;
+        // 1/|a| ≈ 1/(norm · 2^(32-c)) ≈ m · 2^-(62 + 32 - c)
+        Self {
+            m: if a < 0 { -m } else { m },
+            e: 94 - c,
+        }
+    }
+
+    /// `n · 2^s / a`, rounded, within the error stated on [`InvArea`]
+    /// (saturating at `i64` bounds for quotients beyond them).
+    #[inline(always)]
+    pub fn quot(&self, n: i64, s: u32) -> i64 {
+        let (nt, t) = match i32::try_from(n) {
+            Ok(v) => (v, 0),
+            Err(_) => {
+                // 32 to 64 significant bits: keep the top 31 (truncated
+                // toward zero).
+                let t = 33 - clz64(n.unsigned_abs());
+                let m = shr64(n.unsigned_abs(), t) as i32;
+                (if n < 0 { -m } else { m }, t)
+            }
+        };
+        // |p| < 2^31 · 2^31.
+        let p = wmul(nt, self.m);
+        let sh = self.e as i32 - s as i32 - t as i32;
+        if (33..64).contains(&sh) {
+            // The usual case, from the high word alone: rounding half up
+            // commutes with dropping the low word (whole units of 2^32
+            // are added). |h| < 2^30, the half unit at most 2^30.
+            let h = (p >> 32) as i32;
+            ((h + (1 << (sh - 33))) >> (sh - 32)) as i64
+        } else if sh >= 64 {
+            // |p| < 2^62: below half a unit.
+            0
+        } else if sh >= 1 {
+            // |p| + 2^(sh-1) < 2^63.
+            (p + (1 << (sh - 1))) >> sh
+        } else {
+            let up = (-sh) as u32;
+            if up >= 62 {
+                if p < 0 {
+                    i64::MIN
+                } else if p > 0 {
+                    i64::MAX
+                } else {
+                    0
+                }
+            } else {
+                p.saturating_mul(1 << up)
+            }
+        }
+    }
+}
+
+impl InvArea {
+    /// [`InvArea::new`] for `0 < |a| < 2^16` (doubled areas below 256
+    /// pixels² at 4 subpixel bits: nearly every triangle of a small
+    /// display), by two 32-bit divisions (ARMv7-M's `UDIV`; the hosts'
+    /// divider): the very value. `None` for other areas.
+    ///
+    /// Why the same: with `c` the leading zeros of `|a|` in 64 bits (`c >=
+    /// 48`) and `k = c - 32`, `new` takes the reciprocal of `x = |a|·2^k`,
+    /// `⌊(2^63 + ⌊x/2⌋) / x⌋`, which is `⌊(2^(63-k) + ⌊|a|/2⌋) / |a|⌋`
+    /// (dividing numerator and divisor by `2^k` first: `⌊x/2⌋ =
+    /// |a|·2^(k-1)` for `k >= 1`). That dividend is below `2^48`, the
+    /// divisor below `2^16`: long division in two 16-bit digits, each a
+    /// 32-bit division (the first remainder, below `2^16`, shifted by 16
+    /// still fits). Tested equal to [`InvArea::new`] for every such `a`.
+    #[inline(always)]
+    pub(crate) fn new_small(a: i32) -> Option<Self> {
+        let mag = a.unsigned_abs();
+        if mag == 0 || mag >= 1 << 16 {
+            return None;
+        }
+        let c = 32 + clz32(mag);
+        let k = c - 32;
+        // 2^(63-k) + ⌊mag/2⌋ = hi·2^16 + lo, hi = 2^(47-k) (+ carry-free:
+        // ⌊mag/2⌋ < 2^15 <= 2^(63-k-16)·... held apart below).
+        let top = 1u32 << (47 - k); // 2^(63-k) >> 16, k in 16..=31
+        let lo = mag >> 1; // below 2^15: the low digit alone
+        let q_hi = top / mag;
+        let r_hi = top - q_hi * mag;
+        let num_lo = (r_hi << 16) | lo;
+        let q_lo = num_lo / mag;
+        let q = ((q_hi as u64) << 16) + q_lo as u64;
+        let m = ((q >> 1) as u32).min(i32::MAX as u32) as i32;
+        Some(Self {
+            m: if a < 0 { -m } else { m },
+            e: 94 - c,
+        })
+    }
+
+    /// For the fast path (`raster::fast`): `Some(k)` when [`InvArea::quot`]
+    /// of a numerator within an `i32` takes its usual high-word case for
+    /// `s` subpixel bits (`sh = e - s` in `33..64`, then `k = sh - 33`):
+    /// decided once per triangle.
+    #[inline(always)]
+    pub(crate) fn high_shift(&self, s: u32) -> Option<u32> {
+        let sh = self.e.wrapping_sub(s);
+        if (33..64).contains(&sh) {
+            Some(sh - 33)
+        } else {
+            None
+        }
+    }
+
+    /// [`InvArea::quot`]`(n, s)` for `n` within an `i32` and `k` from
+    /// [`InvArea::high_shift`]`(s)`: the very value, with one product and
+    /// no normalisation (`t = 0`; `|h| < 2^30` and `k <= 30`, so nothing
+    /// wraps and the result fits an `i32`).
+    #[inline(always)]
+    pub(crate) fn quot_high(&self, n: i32, k: u32) -> i32 {
+        let h = (wmul(n, self.m) >> 32) as i32;
+        (h + (1 << k)) >> (k + 1)
+    }
+}
+
+/// Seeds of the reciprocal: `round(2^23 / (128 + i + ½))` for the top
+/// eight bits `128 + i` of a normalised divisor (relative error < 2^-8).
+static RECIP_SEED: [u16; 128] = {
+    let mut t = [0u16; 128];
+    let mut i = 0;
+    while i < 128 {
+        let d = 2 * (128 + i as u32) + 1;
+        t[i] = (2 * (1u32 << 24) / d).div_ceil(2) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// `floor((2^63 + floor(x/2)) / x)` (that is `2^63 / x` rounded half up) for
+/// `x` in `[2^31, 2^32)`, without a division.
+///
+/// A seed of 8 bits from [`RECIP_SEED`], one Newton step in 32 bits
+/// (`r1 ≈ 2^47 / x`, relative error below 2^-13.5), one third-order step
+/// `q = R·(1 + ε + ε²)` with `R = r1·2^16` and `ε = 1 - x·R/2^63`, then the
+/// exact remainder `2^63 + x/2 - q·x` moves `q` to the quotient. Checked
+/// for every `x` in the range: at most two correction steps, and the
+/// intermediate bounds noted below hold (`|E >> 19| < 6·10^8`).
+///
+/// On ARMv7-M (a 32-bit hardware divider) the same quotient by two 32-bit
+/// divisions instead ([`recip63_udiv`]).
+fn recip63(x: u32) -> u64 {
+    if NO_DIVIDE {
+        recip63_newton(x)
+    } else if cfg!(target_arch = "arm") {
+        recip63_udiv(x)
+    } else {
+        // One instruction on the host's 64-bit divider.
+        ((1u64 << 63) + (x / 2) as u64) / (x as u64).max(1 << 31)
+    }
+}
+
+/// [`recip63`] by long division in base 2^16 with two 32-bit divisions
+/// (Knuth's algorithm D as in Hacker's Delight's `divlu`): the dividend
+/// `2^63 + ⌊x/2⌋` is `2^31·2^32 + ⌊x/2⌋` and the divisor `x` is already
+/// normalised (bit 31 set, `x > 2^31`), so the quotient fits 32 bits and
+/// each digit `q1`, `q0` is estimated from the divisor's top half `vn1`
+/// (`>= 2^15`) and corrected at most twice. Bounds: `rhat < vn1 < 2^16`
+/// whenever `rhat·2^16 + un` is formed, and a digit is multiplied by
+/// `vn0 < 2^16` only once below 2^16: every intermediate fits a `u32`.
+/// Exact: the very value of the 64-bit division, tested against it.
+fn recip63_udiv(x: u32) -> u64 {
+    if x <= 1 << 31 {
+        return 1 << 32;
+    }
+    const B: u32 = 1 << 16;
+    let (vn1, vn0) = ((x >> 16).max(1), x & 0xffff);
+    let u0 = x / 2;
+    let (un1, un0) = (u0 >> 16, u0 & 0xffff);
+    // First digit of (2^31·2^16 + un1) / x.
+    let mut q1 = (1u32 << 31) / vn1;
+    let mut rhat = (1u32 << 31) - q1 * vn1;
+    while q1 >= B || q1 * vn0 > (rhat << 16) + un1 {
+        q1 -= 1;
+        rhat += vn1;
+        if rhat >= B {
+            break;
+        }
+    }
+    // The remainder (below x) modulo 2^32: 2^31·2^16 vanishes.
+    let un21 = un1.wrapping_sub(q1.wrapping_mul(x));
+    let mut q0 = un21 / vn1;
+    let mut rhat = un21 - q0 * vn1;
+    while q0 >= B || q0 * vn0 > (rhat << 16) + un0 {
+        q0 -= 1;
+        rhat += vn1;
+        if rhat >= B {
+            break;
+        }
+    }
+    ((q1 as u64) << 16) + q0 as u64
+}
+
+/// [`recip63`] without a division (the Cortex-M0 has no divider, the M4 only
+/// a 32-bit one: a `u64` division is a library call of hundreds of
+/// instructions on both).
+fn recip63_newton(x: u32) -> u64 {
+    if x <= 1 << 31 {
+        return 1 << 32;
+    }
+    let xh = x >> 16;
+    let r0 = RECIP_SEED[((x >> 24) & 127) as usize] as u32;
+    // xh·r0 is within 2^31·(1 ± 2^-8): e0 within ±2^23, r0·(e0 >> 9) < 2^30.
+    let e0 = (1u32 << 31).wrapping_sub(xh.wrapping_mul(r0)) as i32;
+    let r1 = (r0 as i32).wrapping_add((r0 as i32).wrapping_mul(e0 >> 9) >> 22) as u32;
+    // E = 2^63 - x·r1·2^16, |E| < 2^49.2, so E >> 19 fits an i32.
+    let e19 = if NO_LONG_MUL {
+        e19_halves(wmul_u32(x, r1))
+    } else {
+        e19_wide(wmul_u32(x, r1))
+    };
+    let c = wmul(r1 as i32, e19) >> 28; // R·ε, |c| < 2^20
+    let c2 = wmul(c as i32, e19) >> 44; // R·ε²
+    let q = (((r1 as i64) << 16) + c + c2).clamp(1 << 31, u32::MAX as i64) as u32;
+    let n = (1u64 << 63) + (x / 2) as u64;
+    // |q - quotient| <= 2: the remainder is small and signed.
+    let mut rem = n.wrapping_sub(wmul_u32(q, x)) as i64;
+    let mut q = q as u64;
+    while rem < 0 {
+        q -= 1;
+        rem += x as i64;
+    }
+    while rem >= x as i64 {
+        q += 1;
+        rem -= x as i64;
+    }
+    q
+}
+
+/// `((2^63 - p·2^16) as i64 >> 19) as i32` (bits 19..50 of the wrapping
+/// difference), as written.
+#[inline(always)]
+fn e19_wide(p: u64) -> i32 {
+    ((1u64 << 63).wrapping_sub(p << 16) as i64 >> 19) as i32
+}
+
+/// [`e19_wide`] on 32-bit halves, the same bits: LLVM turns the 64-bit
+/// form into a call of `__aeabi_lmul` by a constant on ARMv6-M.
+#[inline(always)]
+fn e19_halves(p: u64) -> i32 {
+    let (ph, pl) = ((p >> 32) as u32, p as u32);
+    // v = p << 16 (mod 2^64); e = 2^63 - v (mod 2^64).
+    let (vh, vl) = ((ph << 16) | (pl >> 16), pl << 16);
+    let el = 0u32.wrapping_sub(vl);
+    let eh = (1u32 << 31).wrapping_sub(vh).wrapping_sub((vl != 0) as u32);
+    ((el >> 19) | (eh << 13)) as i32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn recip_products_within_stated_error() {
+        let areas = [
+            1i64,
+            2,
+            3,
+            7,
+            255,
+            4096,
+            99_991,
+            1 << 31,
+            (1 << 45) - 3,
+            -5,
+            -123_456_789,
+        ];
+        let nums = [
+            1i64,
+            -1,
+            3,
+            1000,
+            -77_777,
+            1 << 40,
+            (1 << 54) - 1,
+            -(1 << 53) + 17,
+        ];
+        for &a in &areas {
+            let r = Recip::new(a);
+            for &n in &nums {
+                for s in [0u32, 4, 8] {
+                    let exact = (n as f64) * (1u64 << s) as f64 / a as f64;
+                    if exact.abs() > 9.0e18 {
+                        continue;
+                    }
+                    let got = r.mul_shift(n, s) as f64;
+                    let bound = 0.5 + exact.abs() * (1.0 / (1u64 << 30) as f64) + 1e-6;
+                    assert!(
+                        (got - exact).abs() <= bound,
+                        "a={a} n={n} s={s}: got {got}, exact {exact}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The previous `mul_shift` (64-bit shifts, `m` up to 2^32), kept as
+    /// the reference the lean version must equal bit for bit.
+    fn mul_shift_reference(a: i64, num: i64, s: u32) -> i64 {
+        if num == 0 {
+            return 0;
+        }
+        let negative = a < 0;
+        let amag = a.unsigned_abs().max(1);
+        let n = 63 - amag.leading_zeros();
+        let norm = if n >= 31 {
+            amag >> (n - 31)
+        } else {
+            amag << (31 - n)
+        };
+        let m = ((1u64 << 63) + norm / 2) / norm;
+        let k = 32 + n;
+        let neg = (num < 0) != negative;
+        let mag = num.unsigned_abs();
+        let bits = 64 - mag.leading_zeros();
+        let t = bits.saturating_sub(31);
+        let v = (mag >> t) as u32;
+        let p = if m > u32::MAX as u64 {
+            (v as u64) << 32
+        } else {
+            v as u64 * m
+        };
+        let up = t as i32 + s as i32 - k as i32;
+        let r: u64 = if up >= 0 {
+            if up >= 63 || p.leading_zeros() <= up as u32 {
+                i64::MAX as u64
+            } else {
+                p << up
+            }
+        } else {
+            let sh = (-up) as u32;
+            if sh >= 64 {
+                0
+            } else {
+                let h = p >> (sh - 1);
+                (h >> 1) + (h & 1)
+            }
+        };
+        let r = r.min(i64::MAX as u64) as i64;
+        if neg {
+            -r
+        } else {
+            r
+        }
+    }
+
+    #[test]
+    fn lean_mul_shift_equals_the_reference() {
+        let mut g = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let specials = [
+            1i64,
+            -1,
+            2,
+            3,
+            1 << 20,
+            -(1 << 31),
+            1 << 45,
+            (1 << 45) - 1,
+            i64::MAX,
+            i64::MIN + 1,
+        ];
+        for i in 0..200_000u32 {
+            let (x, y) = (next(), next());
+            let a = if i % 50 == 0 {
+                specials[(x % specials.len() as u64) as usize]
+            } else {
+                ((x as i64) >> (x % 63)).max(i64::MIN + 1)
+            };
+            let num = if i % 37 == 0 {
+                specials[(y % specials.len() as u64) as usize]
+            } else {
+                ((y as i64) >> (y % 64)).max(i64::MIN + 1)
+            };
+            if a == 0 {
+                continue;
+            }
+            let r = Recip::new(a);
+            for s in [0u32, 1, 4, 8] {
+                assert_eq!(
+                    r.mul_shift(num, s),
+                    mul_shift_reference(a, num, s),
+                    "a={a} num={num} s={s}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn e19_on_halves_equals_the_wide_form() {
+        let mut g = 0x9e37_79b9_7f4a_7c15u64;
+        for i in 0..100_000u32 {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            let p = g >> (i % 64);
+            assert_eq!(e19_halves(p), e19_wide(p), "{p:#x}");
+        }
+        for p in [
+            0u64,
+            1,
+            0xffff,
+            0x1_0000,
+            u64::MAX,
+            1 << 47,
+            (1 << 48) - 1,
+            1 << 63,
+        ] {
+            assert_eq!(e19_halves(p), e19_wide(p), "{p:#x}");
+        }
+    }
+
+    #[test]
+    fn recip63_is_the_rounded_quotient() {
+        // Every x was checked once (2^31 values, a few seconds); here a
+        // stride that visits every seed interval, plus the ends.
+        let check = |x: u32| {
+            let want = ((1u64 << 63) + (x / 2) as u64) / x as u64;
+            assert_eq!(recip63(x), want, "x={x}");
+            assert_eq!(recip63_newton(x), want, "x={x}");
+            assert_eq!(recip63_udiv(x), want, "x={x}");
+        };
+        for x in [
+            1u32 << 31,
+            (1 << 31) + 1,
+            (1 << 31) + 2,
+            u32::MAX,
+            u32::MAX - 1,
+            0xc000_0000,
+            0xbfff_ffff,
+        ] {
+            check(x);
+        }
+        let mut x = 1u32 << 31;
+        while let Some(n) = x.checked_add(997) {
+            check(x);
+            x = n;
+        }
+        // Every top half of the divisor (the digit estimates of
+        // recip63_udiv) with the extreme low halves.
+        for vn1 in 0x8000u32..=0xffff {
+            for vn0 in [0u32, 1, 2, 0x7fff, 0x8000, 0xfffe, 0xffff] {
+                let x = (vn1 << 16) | vn0;
+                if x > 1 << 31 {
+                    check(x);
+                }
+            }
+        }
+        // Every seed boundary and its neighbours.
+        for top in 128u32..256 {
+            for d in [0u32, 1, 2, 0xffff, 0x10000] {
+                check((top << 24) | d);
+                check(((top << 24) | 0x00ff_ffff) - d);
+            }
+        }
+    }
+
+    /// `n·2^s/a` (from the exact product in i128).
+    fn exact_quot(n: i64, s: u32, a: i64) -> f64 {
+        ((n as i128) << s) as f64 / a as f64
+    }
+
+    #[test]
+    fn inv_area_quotients_within_stated_error() {
+        let mut g = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let mut areas = [0i64; 2015];
+        let fixed = [1i64, -1, 2, 3, 7, 255, 4096, 99_991, 1 << 31, (1 << 31) - 1];
+        let fixed2 = [
+            (1 << 32) + 1,
+            (1 << 37) - 1,
+            -(1 << 37) + 3,
+            -5,
+            -123_456_789,
+        ];
+        for (i, a) in areas.iter_mut().enumerate() {
+            let r = next();
+            let rand = ((r >> 1) as i64 >> (26 + r % 37)).max(1) * if r & 1 == 0 { 1 } else { -1 };
+            *a = *fixed
+                .get(i)
+                .or(fixed2.get(i.wrapping_sub(10)))
+                .unwrap_or(&rand);
+        }
+        let mut nums = [0i64; 213];
+        let fixed = [
+            0i64,
+            1,
+            -1,
+            3,
+            1000,
+            -77_777,
+            i32::MAX as i64,
+            i32::MIN as i64,
+        ];
+        let fixed2 = [
+            1 << 31,
+            -(1 << 31) - 1,
+            1 << 40,
+            (1 << 54) - 1,
+            -(1 << 53) + 17,
+        ];
+        for (i, n) in nums.iter_mut().enumerate() {
+            let r = next();
+            let rand = (r as i64) >> (10 + r % 50);
+            *n = *fixed
+                .get(i)
+                .or(fixed2.get(i.wrapping_sub(8)))
+                .unwrap_or(&rand);
+        }
+        for &a in &areas {
+            let r = InvArea::new(a);
+            for &n in &nums {
+                for s in [0u32, 4, 8] {
+                    let exact = exact_quot(n, s, a);
+                    if exact.abs() > 4.0e18 {
+                        continue;
+                    }
+                    let got = r.quot(n, s) as f64;
+                    let rel = exact.abs() * (1.0 / (1u64 << 28) as f64);
+                    assert!(
+                        (got - exact).abs() <= 0.5 + rel,
+                        "a={a} n={n} s={s}: got {got}, exact {exact}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn mul_shift_i32_equals_mul_shift() {
+        let mut g = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g
+        };
+        let nums = [
+            0i32,
+            1,
+            -1,
+            2,
+            3,
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
+            1 << 30,
+            -(1 << 30),
+        ];
+        let areas = [
+            1i64,
+            -1,
+            2,
+            3,
+            16,
+            17,
+            255,
+            256,
+            257,
+            1 << 20,
+            (1 << 31) - 1,
+            1 << 31,
+            1 << 40,
+            (1 << 45) - 1,
+            -(1 << 45),
+        ];
+        for &a in &areas {
+            let r = Recip::new(a);
+            for &n in &nums {
+                for s in 1..=8 {
+                    assert_eq!(
+                        r.mul_shift_i32(n, s),
+                        r.mul_shift(n as i64, s),
+                        "a={a} n={n} s={s}"
+                    );
+                }
+            }
+        }
+        for i in 0..200_000u32 {
+            let x = next();
+            let a = ((x as i64) >> (19 + x % 45)).max(1) * if x & 1 == 0 { 1 } else { -1 };
+            let y = next();
+            let n = (y as i32) >> (y % 32);
+            let s = 1 + i % 8;
+            let r = Recip::new(a);
+            assert_eq!(
+                r.mul_shift_i32(n, s),
+                r.mul_shift(n as i64, s),
+                "a={a} n={n} s={s}"
+            );
+        }
+    }
+
+    #[test]
+    fn recip_exact_on_small_values() {
+        // Quotients that are exact small integers come out exact.
+        let r = Recip::new(-12);
+        assert_eq!(r.mul_shift(24, 4), -32);
+        assert_eq!(Recip::new(3).mul_shift(9, 0), 3);
+        assert_eq!(Recip::new(1).mul_shift(-(1 << 40), 8), -(1 << 48));
+        assert_eq!(Recip::new(0).mul_shift(5, 0), 5);
+    }
+}
