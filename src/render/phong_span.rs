@@ -571,7 +571,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         test: impl FnMut(u32) -> bool,
         write: impl FnMut(u32, Rgb8),
     ) -> u32 {
-        self.fill_with(n, dn, p, dp, back, len, test, write)
+        self.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
     }
 
     /// [`PhongKernel::fill`] (the span stages' entry).
@@ -585,8 +585,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         dp: [i32; 3],
         back: bool,
         len: u32,
-        mut test: impl FnMut(u32) -> bool,
-        mut write: impl FnMut(u32, Rgb8),
+        mut out: impl Out,
     ) -> u32 {
         if let (true, [l]) = (self.duff, &self.lights[..]) {
             let (n, dn) = if back {
@@ -594,7 +593,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             } else {
                 (n, dn)
             };
-            return self.fill_one(l, n, dn, len, test, write);
+            return self.fill_one(l, n, dn, len, out);
         }
         if let [l] = &self.lights[..] {
             if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
@@ -617,16 +616,16 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                     } else {
                         (n, dn)
                     };
-                    return self.fill_point(l, (n, dn, p, dp), len, test, write);
+                    return self.fill_point(l, (n, dn, p, dp), len, out);
                 }
             }
-            return self.fill_general_one(l, n, dn, p, dp, back, len, test, write);
+            return self.fill_general_one(l, n, dn, p, dp, back, len, out);
         }
         let mut s = self.begin(n, dn, p, dp, back);
         let mut passed = 0;
         for i in 0..len {
-            if test(i) {
-                write(i, s.next());
+            if out.test(i) {
+                out.write(i, s.next());
                 passed += 1;
             } else {
                 s.skip();
@@ -654,8 +653,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         dp: [i32; 3],
         back: bool,
         len: u32,
-        mut test: impl FnMut(u32) -> bool,
-        mut write: impl FnMut(u32, Rgb8),
+        mut out: impl Out,
     ) -> u32 {
         let (n, dn) = if back {
             (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
@@ -681,14 +679,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         let mut nc = n;
         let mut passed = 0;
         for i in 0..len {
-            if test(i) {
+            if out.test(i) {
                 passed += 1;
                 let c = if slow {
                     None
                 } else {
                     self.general_px(&s, l, nc, v, vv, nn)
                 };
-                write(
+                out.write(
                     i,
                     c.unwrap_or_else(|| fallback(self.shade, n, dn, p, dp, i)),
                 );
@@ -1224,64 +1222,44 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
         let enc = <T::Format as PixelFormat>::encode;
         let k = self.kernel;
         let back = self.back;
-        let drawn = &mut self.drawn;
-        match self.depth.as_deref_mut() {
-            Some(d) => {
-                let Some(drow) = d.span_mut(y, x0, x1) else {
-                    return;
-                };
-                let (z, dz) = (s.z, s.dz);
-                let count;
-                if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    let put = move |i: u32, c| {
-                        if let Some(px) = row.get_mut(i as usize) {
-                            *px = enc(c);
-                        }
+        let span = (n, dn, p, dp);
+        let drow = match self.depth.as_deref_mut() {
+            Some(d) => match d.span_mut(y, x0, x1) {
+                Some(drow) => Some(drow),
+                None => return,
+            },
+            None => None,
+        };
+        let count = if let Some(row) = self.target.span_mut(y, x0, x1) {
+            row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back)
+        } else {
+            let t = &mut *self.target;
+            let write = move |i: u32, c| t.write_pixel(x0 + i, y, enc(c));
+            match drow {
+                Some(drow) => {
+                    let mut d = DepthTest::<L, D> {
+                        drow,
+                        z: s.z,
+                        dz: s.dz,
                     };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
-                } else {
-                    let t = &mut *self.target;
-                    let put = move |i: u32, c| {
-                        t.write_pixel(x0 + i, y, enc(c));
-                    };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    let test = move |i| d.test(i);
+                    k.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
                 }
-                *drawn += count;
+                None => k.fill_with(
+                    n,
+                    dn,
+                    p,
+                    dp,
+                    back,
+                    len,
+                    FnOut {
+                        test: |_| true,
+                        write,
+                    },
+                ),
             }
-            None => {
-                if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    k.fill_with(
-                        n,
-                        dn,
-                        p,
-                        dp,
-                        back,
-                        len,
-                        |_| true,
-                        move |i, c| {
-                            if let Some(px) = row.get_mut(i as usize) {
-                                *px = enc(c);
-                            }
-                        },
-                    );
-                } else {
-                    let t = &mut *self.target;
-                    k.fill_with(
-                        n,
-                        dn,
-                        p,
-                        dp,
-                        back,
-                        len,
-                        |_| true,
-                        move |i, c| {
-                            t.write_pixel(x0 + i, y, enc(c));
-                        },
-                    );
-                }
-                *drawn += len;
-            }
-        }
+        };
+        self.drawn += count;
     }
 }
 
@@ -1331,27 +1309,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         let n = [raw(a[0]), raw(a[1]), raw(a[2])];
         let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
         let (p, dp) = pp;
-        let len = row.len() as u32;
-        let put = move |i: u32, c: Rgb8| {
-            if let Some(px) = row.get_mut(i as usize) {
-                *px = F::encode(c);
-            }
-        };
-        match drow {
-            Some(drow) => depth_fill::<L, D, R>(
-                self.kernel,
-                drow,
-                z,
-                dz,
-                (n, dn, p, dp),
-                self.back,
-                len,
-                put,
-            ),
-            None => self
-                .kernel
-                .fill_with(n, dn, p, dp, self.back, len, |_| true, put),
-        }
+        row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, (n, dn, p, dp), self.back)
     }
 }
 
@@ -1427,22 +1385,143 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
     }
 }
 
-/// Runs the kernel's `fill` over a span with the depth test of
-/// [`DepthTest`] and `put`.
+/// Runs the kernel's `fill` over a span's row slice `row` and its depth
+/// slice `drow` (the same length; depths `z + i·dz`, the test of
+/// [`DepthTest`]) through [`RowOut`]; returns the pixels written.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
+fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
-    drow: &mut [D::Raw],
+    row: &mut [F::Raw],
+    drow: Option<&mut [D::Raw]>,
     z: L,
     dz: L,
     (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
     back: bool,
-    len: u32,
-    put: impl FnMut(u32, Rgb8),
 ) -> u32 {
-    let mut t = DepthTest::<L, D> { drow, z, dz };
-    k.fill_with(n, dn, p, dp, back, len, move |i| t.test(i), put)
+    let len = row.len() as u32;
+    let in_range = D::span_in_range(z, dz, len);
+    let out = RowOut::<L, F, D> {
+        row,
+        depth: drow.map(|drow| DepthTest { drow, z, dz }),
+        in_range,
+    };
+    k.fill_with(n, dn, p, dp, back, len, out)
+}
+
+/// Where the kernel's colours go: the depth test and the write of one
+/// pixel after another (pixels in order, each tested once), and of a
+/// chunk of packed colours (`r | g << 8 | b << 16`) at once.
+trait Out {
+    /// The depth test of pixel `i` (its depth stored when it passes).
+    fn test(&mut self, i: u32) -> bool;
+    /// Writes pixel `i`.
+    fn write(&mut self, i: u32, c: Rgb8);
+    /// Tests and writes the pixels of `cols` from pixel `i`, the colour
+    /// of a passing pixel `col(c)` for its entry `c`; returns how many
+    /// failed.
+    #[inline(always)]
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+        let mut failed = 0;
+        for (j, &c) in (i..).zip(cols.iter()) {
+            if self.test(j) {
+                self.write(j, unpack(col(c)));
+            } else {
+                failed += 1;
+            }
+        }
+        failed
+    }
+}
+
+/// [`Out`] of a test and a write closure ([`PhongKernel::fill`]).
+struct FnOut<T, W> {
+    test: T,
+    write: W,
+}
+
+impl<T: FnMut(u32) -> bool, W: FnMut(u32, Rgb8)> Out for FnOut<T, W> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        (self.test)(i)
+    }
+
+    #[inline(always)]
+    fn write(&mut self, i: u32, c: Rgb8) {
+        (self.write)(i, c);
+    }
+}
+
+/// [`Out`] of a span's row slice and, with a depth buffer, its depth
+/// slice: a chunk is one loop over the three slices zipped (no index
+/// checks per pixel), without the depth clamp when the span's depths
+/// are in range ([`DepthFormat::span_in_range`]: the same values).
+struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
+    row: &'r mut [F::Raw],
+    depth: Option<DepthTest<'d, L, D>>,
+    in_range: bool,
+}
+
+impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        match &mut self.depth {
+            Some(d) => d.test(i),
+            None => true,
+        }
+    }
+
+    #[inline(always)]
+    fn write(&mut self, i: u32, c: Rgb8) {
+        if let Some(px) = self.row.get_mut(i as usize) {
+            *px = F::encode(c);
+        }
+    }
+
+    #[inline(always)]
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+        let (i, k) = (i as usize, cols.len());
+        let Some(row) = self.row.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let Some(d) = &mut self.depth else {
+            for (px, &c) in row.iter_mut().zip(cols.iter()) {
+                *px = F::encode(unpack(col(c)));
+            }
+            return 0;
+        };
+        let Some(drow) = d.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let (mut z, dz) = (d.z, d.dz);
+        let mut failed = 0;
+        let px = row.iter_mut().zip(drow.iter_mut()).zip(cols.iter());
+        if self.in_range {
+            for ((px, zb), &c) in px {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    *px = F::encode(unpack(col(c)));
+                } else {
+                    failed += 1;
+                }
+                z = z.add(dz);
+            }
+        } else {
+            for ((px, zb), &c) in px {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    *px = F::encode(unpack(col(c)));
+                } else {
+                    failed += 1;
+                }
+                z = z.add(dz);
+            }
+        }
+        d.z = z;
+        failed
+    }
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
@@ -1477,17 +1556,21 @@ const CHUNK: usize = 32;
 
 /// The span driver of the 32-bit loops: `chunk(i, k, buf)` puts the
 /// colours (`r | g << 8 | b << 16`) of the `k <= CHUNK` pixels from pixel
-/// `i` into `buf`; the driver runs `test` and `write` over them (one
-/// short loop per pixel and depth format) and returns how many pixels
+/// `i` into `buf` and returns `false`, or their light terms, returning
+/// `true`: then the colour of a passing pixel is `terms` of its entry
+/// (the channels computed only for the pixels that pass, in the same loop
+/// as the depth test and the write). The driver gives them to `out`
+/// ([`Out::chunk`]: one short loop per pixel and depth format) and
+/// returns how many pixels
 /// passed. The buffer (128 bytes) is zeroed once a span; the point loop
 /// calls the driver from a function of its own (not inlined), so that
 /// its buffers stay off the renderer's frame.
 #[inline(always)]
 fn drive(
     len: u32,
-    mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]),
-    mut test: impl FnMut(u32) -> bool,
-    mut write: impl FnMut(u32, Rgb8),
+    mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
+    terms: impl Fn(u32) -> u32,
+    out: &mut impl Out,
 ) -> u32 {
     let mut buf = [0u32; CHUNK];
     // Failures counted (the rarer case in a frame), passes derived.
@@ -1495,14 +1578,13 @@ fn drive(
     let mut i = 0u32;
     while i < len {
         let k = (len - i).min(CHUNK as u32);
-        chunk(i, k, &mut buf);
-        for (j, &c) in (i..i + k).zip(buf.iter()) {
-            if test(j) {
-                write(j, unpack(c));
-            } else {
-                failed += 1;
-            }
-        }
+        let t = chunk(i, k, &mut buf);
+        let b = buf.get(..k as usize).unwrap_or_default();
+        failed += if t {
+            out.chunk(i, b, &terms)
+        } else {
+            out.chunk(i, b, |c| c)
+        };
         i += k;
     }
     len - failed

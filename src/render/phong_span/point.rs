@@ -46,7 +46,7 @@
 //! (`PhongKernel::general_px`).
 
 use super::one::Colour;
-use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, PhongKernel, CHUNK};
+use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
 use crate::target::Rgb8;
@@ -201,14 +201,16 @@ impl<R: Real> PhongKernel<'_, R> {
         l: &KLight,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
         len: u32,
-        test: impl FnMut(u32) -> bool,
-        write: impl FnMut(u32, Rgb8),
+        mut out: impl Out,
     ) -> u32 {
         drive(
             len,
-            |i, k, buf| self.point_chunk(l, span, i, k as usize, buf),
-            test,
-            write,
+            |i, k, buf| {
+                self.point_chunk(l, span, i, k as usize, buf);
+                false
+            },
+            |c| c,
+            &mut out,
         )
     }
 
