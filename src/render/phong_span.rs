@@ -1400,14 +1400,25 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     back: bool,
 ) -> u32 {
     let len = row.len() as u32;
-    let in_range = D::span_in_range(z, dz, len);
-    let out = RowOut::<L, F, D> {
-        row,
-        depth: drow.map(|drow| DepthTest { drow, z, dz }),
-        in_range,
-    };
-    k.fill_with(n, dn, p, dp, back, len, out)
+    match drow {
+        Some(drow) => {
+            // Checked only for spans long enough to repay the check.
+            let in_range = len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
+            let out = RowOut::<L, F, D> {
+                row,
+                depth: DepthTest { drow, z, dz },
+                in_range,
+            };
+            k.fill_with(n, dn, p, dp, back, len, out)
+        }
+        None => k.fill_with(n, dn, p, dp, back, len, RowNoDepth::<F> { row }),
+    }
 }
+
+/// Spans of at least this many pixels check whether their depths are in
+/// range ([`DepthFormat::span_in_range`]) for [`RowOut`]'s loop without
+/// the depth clamp.
+const IN_RANGE_SPAN: u32 = 8;
 
 /// Where the kernel's colours go: the depth test and the write of one
 /// pixel after another (pixels in order, each tested once), and of a
@@ -1452,23 +1463,15 @@ impl<T: FnMut(u32) -> bool, W: FnMut(u32, Rgb8)> Out for FnOut<T, W> {
     }
 }
 
-/// [`Out`] of a span's row slice and, with a depth buffer, its depth
-/// slice: a chunk is one loop over the three slices zipped (no index
-/// checks per pixel), without the depth clamp when the span's depths
-/// are in range ([`DepthFormat::span_in_range`]: the same values).
-struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
+/// [`Out`] of a span's row slice without a depth buffer.
+struct RowNoDepth<'r, F: PixelFormat> {
     row: &'r mut [F::Raw],
-    depth: Option<DepthTest<'d, L, D>>,
-    in_range: bool,
 }
 
-impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+impl<F: PixelFormat> Out for RowNoDepth<'_, F> {
     #[inline(always)]
-    fn test(&mut self, i: u32) -> bool {
-        match &mut self.depth {
-            Some(d) => d.test(i),
-            None => true,
-        }
+    fn test(&mut self, _i: u32) -> bool {
+        true
     }
 
     #[inline(always)]
@@ -1484,12 +1487,43 @@ impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
         let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        let Some(d) = &mut self.depth else {
-            for (px, &c) in row.iter_mut().zip(cols.iter()) {
-                *px = F::encode(unpack(col(c)));
-            }
-            return 0;
+        for (px, &c) in row.iter_mut().zip(cols.iter()) {
+            *px = F::encode(unpack(col(c)));
+        }
+        0
+    }
+}
+
+/// [`Out`] of a span's row slice and its depth slice: a chunk is one
+/// loop over the three slices zipped (no index checks per pixel),
+/// without the depth clamp when the span's depths are in range
+/// ([`DepthFormat::span_in_range`]: the same values).
+struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
+    row: &'r mut [F::Raw],
+    depth: DepthTest<'d, L, D>,
+    in_range: bool,
+}
+
+impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        self.depth.test(i)
+    }
+
+    #[inline(always)]
+    fn write(&mut self, i: u32, c: Rgb8) {
+        if let Some(px) = self.row.get_mut(i as usize) {
+            *px = F::encode(c);
+        }
+    }
+
+    #[inline(always)]
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+        let (i, k) = (i as usize, cols.len());
+        let Some(row) = self.row.get_mut(i..i + k) else {
+            return k as u32;
         };
+        let d = &mut self.depth;
         let Some(drow) = d.drow.get_mut(i..i + k) else {
             return k as u32;
         };
