@@ -207,6 +207,10 @@ impl<P: Profile> Frame<'_, P> {
         let lights = eye_lights(scene)?;
         let mut stats = RenderStats::default();
         let mut depth = depth;
+        // The Phong kernels' specular table, kept from one object to the
+        // next of the same shininess (built once a call, not once an
+        // object).
+        let mut spec_cache = None;
         for (po, obj) in self.objects.iter().zip(scene.objects.iter()) {
             let d = depth.as_deref_mut();
             match po.layout {
@@ -254,7 +258,7 @@ impl<P: Profile> Frame<'_, P> {
                     {
                         None
                     } else {
-                        PhongKernel::new(&shade).ok()
+                        PhongKernel::new_cached(&shade, &mut spec_cache).ok()
                     };
                     if let Some(k) = &kernel {
                         let mut f = PhongFill::new(&mut *target, d, k)?;

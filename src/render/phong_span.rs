@@ -43,14 +43,16 @@
 //! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits); measured on
-//! the firmware's span sweep, 104.88 instructions a pixel on the M4 (was
-//! 167, then 106.97 before the two passes below) and 198.87 on the M0
-//! (was 207.96): the colours of a chunk come from one copy of that
-//! arithmetic in two passes (the light terms `N·L` and the specular
-//! factor, packed, then the three channels: fewer values live in each),
-//! the depth test and writes from a short loop per format (the span
-//! driver both 32-bit loops share). Per pixel: `1/|n|` from a
-//! 65-entry
+//! the firmware's span sweep, 94.63 instructions a pixel on the M4 (was
+//! 167, 106.97, then 104.88 with the channels in a second pass over the
+//! chunk and the depth test on indexed slices) and 187.56 on the M0 (was
+//! 207.96, then 198.87): the light terms of a chunk (`N·L` and the
+//! specular factor, packed) come from one copy of that arithmetic, the
+//! three channels from the span driver both 32-bit loops share, per
+//! passing pixel, in the loop of the depth test and the write (one per
+//! pixel and depth format, over the row, depth and term slices zipped,
+//! without the depth clamp on spans of 8 pixels or more whose depths are
+//! in range). Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -68,8 +70,9 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 219 instructions a pixel on the M4 (was
-//! 517) and 798 on the M0 (was 1 357); its buffers (256 bytes) live in
+//! on the firmware's span sweep, 205.85 instructions a pixel on the M4
+//! (was 517, then 219.06 with the channels in its own last pass) and
+//! 780.22 on the M0 (was 1 357, then 797.56); its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
@@ -571,7 +574,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         test: impl FnMut(u32) -> bool,
         write: impl FnMut(u32, Rgb8),
     ) -> u32 {
-        self.fill_with(n, dn, p, dp, back, len, test, write)
+        self.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
     }
 
     /// [`PhongKernel::fill`] (the span stages' entry).
@@ -585,8 +588,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         dp: [i32; 3],
         back: bool,
         len: u32,
-        mut test: impl FnMut(u32) -> bool,
-        mut write: impl FnMut(u32, Rgb8),
+        mut out: impl Out,
     ) -> u32 {
         if let (true, [l]) = (self.duff, &self.lights[..]) {
             let (n, dn) = if back {
@@ -594,7 +596,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             } else {
                 (n, dn)
             };
-            return self.fill_one(l, n, dn, len, test, write);
+            return self.fill_one(l, n, dn, len, out);
         }
         if let [l] = &self.lights[..] {
             if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
@@ -617,16 +619,16 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                     } else {
                         (n, dn)
                     };
-                    return self.fill_point(l, (n, dn, p, dp), len, test, write);
+                    return self.fill_point(l, (n, dn, p, dp), len, out);
                 }
             }
-            return self.fill_general_one(l, n, dn, p, dp, back, len, test, write);
+            return self.fill_general_one(l, n, dn, p, dp, back, len, out);
         }
         let mut s = self.begin(n, dn, p, dp, back);
         let mut passed = 0;
         for i in 0..len {
-            if test(i) {
-                write(i, s.next());
+            if out.test(i) {
+                out.write(i, s.next());
                 passed += 1;
             } else {
                 s.skip();
@@ -654,8 +656,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         dp: [i32; 3],
         back: bool,
         len: u32,
-        mut test: impl FnMut(u32) -> bool,
-        mut write: impl FnMut(u32, Rgb8),
+        mut out: impl Out,
     ) -> u32 {
         let (n, dn) = if back {
             (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
@@ -681,14 +682,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         let mut nc = n;
         let mut passed = 0;
         for i in 0..len {
-            if test(i) {
+            if out.test(i) {
                 passed += 1;
                 let c = if slow {
                     None
                 } else {
                     self.general_px(&s, l, nc, v, vv, nn)
                 };
-                write(
+                out.write(
                     i,
                     c.unwrap_or_else(|| fallback(self.shade, n, dn, p, dp, i)),
                 );
@@ -1224,64 +1225,44 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
         let enc = <T::Format as PixelFormat>::encode;
         let k = self.kernel;
         let back = self.back;
-        let drawn = &mut self.drawn;
-        match self.depth.as_deref_mut() {
-            Some(d) => {
-                let Some(drow) = d.span_mut(y, x0, x1) else {
-                    return;
-                };
-                let (z, dz) = (s.z, s.dz);
-                let count;
-                if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    let put = move |i: u32, c| {
-                        if let Some(px) = row.get_mut(i as usize) {
-                            *px = enc(c);
-                        }
+        let span = (n, dn, p, dp);
+        let drow = match self.depth.as_deref_mut() {
+            Some(d) => match d.span_mut(y, x0, x1) {
+                Some(drow) => Some(drow),
+                None => return,
+            },
+            None => None,
+        };
+        let count = if let Some(row) = self.target.span_mut(y, x0, x1) {
+            row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back)
+        } else {
+            let t = &mut *self.target;
+            let write = move |i: u32, c| t.write_pixel(x0 + i, y, enc(c));
+            match drow {
+                Some(drow) => {
+                    let mut d = DepthTest::<L, D> {
+                        drow,
+                        z: s.z,
+                        dz: s.dz,
                     };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
-                } else {
-                    let t = &mut *self.target;
-                    let put = move |i: u32, c| {
-                        t.write_pixel(x0 + i, y, enc(c));
-                    };
-                    count = depth_fill::<L, D, R>(k, drow, z, dz, (n, dn, p, dp), back, len, put);
+                    let test = move |i| d.test(i);
+                    k.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
                 }
-                *drawn += count;
+                None => k.fill_with(
+                    n,
+                    dn,
+                    p,
+                    dp,
+                    back,
+                    len,
+                    FnOut {
+                        test: |_| true,
+                        write,
+                    },
+                ),
             }
-            None => {
-                if let Some(row) = self.target.span_mut(y, x0, x1) {
-                    k.fill_with(
-                        n,
-                        dn,
-                        p,
-                        dp,
-                        back,
-                        len,
-                        |_| true,
-                        move |i, c| {
-                            if let Some(px) = row.get_mut(i as usize) {
-                                *px = enc(c);
-                            }
-                        },
-                    );
-                } else {
-                    let t = &mut *self.target;
-                    k.fill_with(
-                        n,
-                        dn,
-                        p,
-                        dp,
-                        back,
-                        len,
-                        |_| true,
-                        move |i, c| {
-                            t.write_pixel(x0 + i, y, enc(c));
-                        },
-                    );
-                }
-                *drawn += len;
-            }
-        }
+        };
+        self.drawn += count;
     }
 }
 
@@ -1331,27 +1312,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         let n = [raw(a[0]), raw(a[1]), raw(a[2])];
         let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
         let (p, dp) = pp;
-        let len = row.len() as u32;
-        let put = move |i: u32, c: Rgb8| {
-            if let Some(px) = row.get_mut(i as usize) {
-                *px = F::encode(c);
-            }
-        };
-        match drow {
-            Some(drow) => depth_fill::<L, D, R>(
-                self.kernel,
-                drow,
-                z,
-                dz,
-                (n, dn, p, dp),
-                self.back,
-                len,
-                put,
-            ),
-            None => self
-                .kernel
-                .fill_with(n, dn, p, dp, self.back, len, |_| true, put),
-        }
+        row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, (n, dn, p, dp), self.back)
     }
 }
 
@@ -1427,22 +1388,177 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
     }
 }
 
-/// Runs the kernel's `fill` over a span with the depth test of
-/// [`DepthTest`] and `put`.
+/// Runs the kernel's `fill` over a span's row slice `row` and its depth
+/// slice `drow` (the same length; depths `z + i·dz`, the test of
+/// [`DepthTest`]) through [`RowOut`]; returns the pixels written.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn depth_fill<L: Lerp, D: DepthFormat, R: Real>(
+fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
-    drow: &mut [D::Raw],
+    row: &mut [F::Raw],
+    drow: Option<&mut [D::Raw]>,
     z: L,
     dz: L,
     (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
     back: bool,
-    len: u32,
-    put: impl FnMut(u32, Rgb8),
 ) -> u32 {
-    let mut t = DepthTest::<L, D> { drow, z, dz };
-    k.fill_with(n, dn, p, dp, back, len, move |i| t.test(i), put)
+    let len = row.len() as u32;
+    match drow {
+        Some(drow) => {
+            // Checked only for spans long enough to repay the check.
+            let in_range = len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
+            let out = RowOut::<L, F, D> {
+                row,
+                depth: DepthTest { drow, z, dz },
+                in_range,
+            };
+            k.fill_with(n, dn, p, dp, back, len, out)
+        }
+        None => k.fill_with(n, dn, p, dp, back, len, RowNoDepth::<F> { row }),
+    }
+}
+
+/// Spans of at least this many pixels check whether their depths are in
+/// range ([`DepthFormat::span_in_range`]) for [`RowOut`]'s loop without
+/// the depth clamp.
+const IN_RANGE_SPAN: u32 = 8;
+
+/// Where the kernel's colours go: the depth test and the write of one
+/// pixel after another (pixels in order, each tested once), and of a
+/// chunk of packed colours (`r | g << 8 | b << 16`) at once.
+trait Out {
+    /// The depth test of pixel `i` (its depth stored when it passes).
+    fn test(&mut self, i: u32) -> bool;
+    /// Writes pixel `i`.
+    fn write(&mut self, i: u32, c: Rgb8);
+    /// Tests and writes the pixels of `cols` from pixel `i`, the colour
+    /// of a passing pixel `col(c)` for its entry `c`; returns how many
+    /// failed.
+    #[inline(always)]
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+        let mut failed = 0;
+        for (j, &c) in (i..).zip(cols.iter()) {
+            if self.test(j) {
+                self.write(j, unpack(col(c)));
+            } else {
+                failed += 1;
+            }
+        }
+        failed
+    }
+}
+
+/// [`Out`] of a test and a write closure ([`PhongKernel::fill`]).
+struct FnOut<T, W> {
+    test: T,
+    write: W,
+}
+
+impl<T: FnMut(u32) -> bool, W: FnMut(u32, Rgb8)> Out for FnOut<T, W> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        (self.test)(i)
+    }
+
+    #[inline(always)]
+    fn write(&mut self, i: u32, c: Rgb8) {
+        (self.write)(i, c);
+    }
+}
+
+/// [`Out`] of a span's row slice without a depth buffer.
+struct RowNoDepth<'r, F: PixelFormat> {
+    row: &'r mut [F::Raw],
+}
+
+impl<F: PixelFormat> Out for RowNoDepth<'_, F> {
+    #[inline(always)]
+    fn test(&mut self, _i: u32) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    fn write(&mut self, i: u32, c: Rgb8) {
+        if let Some(px) = self.row.get_mut(i as usize) {
+            *px = F::encode(c);
+        }
+    }
+
+    #[inline(always)]
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+        let (i, k) = (i as usize, cols.len());
+        let Some(row) = self.row.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        for (px, &c) in row.iter_mut().zip(cols.iter()) {
+            *px = F::encode(unpack(col(c)));
+        }
+        0
+    }
+}
+
+/// [`Out`] of a span's row slice and its depth slice: a chunk is one
+/// loop over the three slices zipped (no index checks per pixel),
+/// without the depth clamp when the span's depths are in range
+/// ([`DepthFormat::span_in_range`]: the same values).
+struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
+    row: &'r mut [F::Raw],
+    depth: DepthTest<'d, L, D>,
+    in_range: bool,
+}
+
+impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        self.depth.test(i)
+    }
+
+    #[inline(always)]
+    fn write(&mut self, i: u32, c: Rgb8) {
+        if let Some(px) = self.row.get_mut(i as usize) {
+            *px = F::encode(c);
+        }
+    }
+
+    #[inline(always)]
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+        let (i, k) = (i as usize, cols.len());
+        let Some(row) = self.row.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let d = &mut self.depth;
+        let Some(drow) = d.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let (mut z, dz) = (d.z, d.dz);
+        let mut failed = 0;
+        let px = row.iter_mut().zip(drow.iter_mut()).zip(cols.iter());
+        if self.in_range {
+            for ((px, zb), &c) in px {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    *px = F::encode(unpack(col(c)));
+                } else {
+                    failed += 1;
+                }
+                z = z.add(dz);
+            }
+        } else {
+            for ((px, zb), &c) in px {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    *px = F::encode(unpack(col(c)));
+                } else {
+                    failed += 1;
+                }
+                z = z.add(dz);
+            }
+        }
+        d.z = z;
+        failed
+    }
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
@@ -1477,17 +1593,21 @@ const CHUNK: usize = 32;
 
 /// The span driver of the 32-bit loops: `chunk(i, k, buf)` puts the
 /// colours (`r | g << 8 | b << 16`) of the `k <= CHUNK` pixels from pixel
-/// `i` into `buf`; the driver runs `test` and `write` over them (one
-/// short loop per pixel and depth format) and returns how many pixels
+/// `i` into `buf` and returns `false`, or their light terms, returning
+/// `true`: then the colour of a passing pixel is `terms` of its entry
+/// (the channels computed only for the pixels that pass, in the same loop
+/// as the depth test and the write). The driver gives them to `out`
+/// ([`Out::chunk`]: one short loop per pixel and depth format) and
+/// returns how many pixels
 /// passed. The buffer (128 bytes) is zeroed once a span; the point loop
 /// calls the driver from a function of its own (not inlined), so that
 /// its buffers stay off the renderer's frame.
 #[inline(always)]
 fn drive(
     len: u32,
-    mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]),
-    mut test: impl FnMut(u32) -> bool,
-    mut write: impl FnMut(u32, Rgb8),
+    mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
+    terms: impl Fn(u32) -> u32,
+    out: &mut impl Out,
 ) -> u32 {
     let mut buf = [0u32; CHUNK];
     // Failures counted (the rarer case in a frame), passes derived.
@@ -1495,14 +1615,13 @@ fn drive(
     let mut i = 0u32;
     while i < len {
         let k = (len - i).min(CHUNK as u32);
-        chunk(i, k, &mut buf);
-        for (j, &c) in (i..i + k).zip(buf.iter()) {
-            if test(j) {
-                write(j, unpack(c));
-            } else {
-                failed += 1;
-            }
-        }
+        let t = chunk(i, k, &mut buf);
+        let b = buf.get(..k as usize).unwrap_or_default();
+        failed += if t {
+            out.chunk(i, b, &terms)
+        } else {
+            out.chunk(i, b, |c| c)
+        };
         i += k;
     }
     len - failed

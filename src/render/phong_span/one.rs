@@ -22,11 +22,11 @@
 //! pixel's normal in 64 bits).
 
 use super::{
-    cross, drive, fallback, lin, pack, quad, sq3, KLight, PhongKernel, CHUNK, RS, SPEC_SEGMENTS,
+    cross, drive, fallback, lin, pack, quad, sq3, KLight, Out, PhongKernel, CHUNK, RS,
+    SPEC_SEGMENTS,
 };
 use crate::num::wide::wmul;
 use crate::num::Real;
-use crate::target::Rgb8;
 
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 const QM_FRAC: u32 = 20;
@@ -127,15 +127,15 @@ impl<R: Real> PhongKernel<'_, R> {
         n: [i32; 3],
         dn: [i32; 3],
         len: u32,
-        test: impl FnMut(u32) -> bool,
-        write: impl FnMut(u32, Rgb8),
+        mut out: impl Out,
     ) -> u32 {
         let mut st = self.one_begin(l, n, dn);
+        let c = Colour::of(self, l);
         drive(
             len,
             |i, k, buf| self.one_chunk(l, n, dn, &mut st, i, k, buf),
-            test,
-            write,
+            |t| Self::channels(&c, (t & 0xFFFF) as i32, (t >> 16) as i32),
+            &mut out,
         )
     }
 
@@ -178,8 +178,9 @@ impl<R: Real> PhongKernel<'_, R> {
         }
     }
 
-    /// The colours (`r | g << 8 | b << 16`) of the `k` pixels from pixel
-    /// `i` into `buf`, and the state stepped past them.
+    /// The light terms (`N·L | sp << 16`, [`PhongKernel::terms`]: returns
+    /// `true`) or the colours (`r | g << 8 | b << 16`: `false`) of the `k`
+    /// pixels from pixel `i` into `buf`, and the state stepped past them.
     #[inline(never)]
     #[allow(
         clippy::too_many_arguments,
@@ -195,7 +196,7 @@ impl<R: Real> PhongKernel<'_, R> {
         i: u32,
         k: u32,
         buf: &mut [u32; CHUNK],
-    ) {
+    ) -> bool {
         let OneSpan {
             nn,
             nn_d1,
@@ -237,31 +238,33 @@ impl<R: Real> PhongKernel<'_, R> {
             }
         };
         let q32 = (qm_a as i32, fit(mul_shr48(q_d1 as i64, self.kf)), qd2);
-        let c = Colour::of(self, l);
-        match (mode, nn_ok, nn32, q32) {
+        let terms = match (mode, nn_ok, nn32, q32) {
             (Mode::Spec, true, (a, Some(b), Some(d)), (qa, Some(qb), Some(qc))) => {
-                self.chunk::<true>(&c, k, (a, b, d), (qa, qb, qc), nl, dnl, buf);
+                self.chunk::<true>(k, (a, b, d), (qa, qb, qc), nl, dnl, buf);
+                true
             }
             (Mode::NoSpec, true, (a, Some(b), Some(d)), _) => {
-                self.chunk::<false>(&c, k, (a, b, d), (0, 0, 0), nl, dnl, buf);
+                self.chunk::<false>(k, (a, b, d), (0, 0, 0), nl, dnl, buf);
+                true
             }
             _ => {
                 for (j, o) in (i..i + k).zip(buf.iter_mut()) {
                     let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
                     *o = self.one_exact(l, ni, n, dn, j);
                 }
+                false
             }
-        }
+        };
         (st.nn, st.nn_d1, st.q, st.q_d1, st.qm_a) = (nn_b, nn_d1_b, q_b, q_d1_b, qm_b);
+        terms
     }
 
-    /// `k` colours with 32-bit forward differences of `|n|²` (Q30) and,
-    /// with `SPEC`, `Qm` (Q20 segments).
+    /// `k` light terms (`N·L | sp << 16`) with 32-bit forward differences
+    /// of `|n|²` (Q30) and, with `SPEC`, `Qm` (Q20 segments).
     #[inline(always)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_wrap)]
     fn chunk<const SPEC: bool>(
         &self,
-        c: &Colour,
         k: u32,
         nn: (i32, i32, i32),
         qm: (i32, i32, i32),
@@ -272,8 +275,8 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut nn, mut nd1, nd2) = nn;
         let (mut q, mut qd1, qd2) = qm;
         let buf = buf.get_mut(..k as usize).unwrap_or_default();
-        // Two passes (fewer live values each): the terms `N·L` and the
-        // specular factor (packed: both below 2^16), then the channels.
+        // The terms `N·L` and the specular factor (packed: both below
+        // 2^16); the channels are the driver's, per passing pixel.
         for o in buf.iter_mut() {
             let (nl15, sp) = self.terms::<SPEC>(nn, nl, q >> (QM_FRAC - 7));
             *o = (nl15 & 0xFFFF) | sp << 16;
@@ -284,9 +287,6 @@ impl<R: Real> PhongKernel<'_, R> {
                 qd1 = qd1.wrapping_add(qd2);
             }
             nl = nl.wrapping_add(dnl);
-        }
-        for o in buf.iter_mut() {
-            *o = Self::channels(c, (*o & 0xFFFF) as i32, (*o >> 16) as i32);
         }
     }
 

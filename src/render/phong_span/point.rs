@@ -39,14 +39,15 @@
 //!
 //! Per pixel (three passes over the chunk, few live values each, all
 //! 32-bit): `1/|l̃|` and `n·L̂`; `1/|ṽ|`, `n·V̂` and `L̂·V̂`; `A`, `w·A`,
-//! then the colour as the directional loop ([`PhongKernel::colour`]).
+//! then the light terms as the directional loop ([`PhongKernel::terms`]),
+//! whose channels the span driver computes per passing pixel.
 //! Chunks outside the proven ranges (`A` in `[1/4, 5/4)`, `|l̃|²` and
 //! `|ṽ|²` in `(1/4, 4)`, steps of at most 1/16 of `|l|` and `|v|`, every
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
 
 use super::one::Colour;
-use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, PhongKernel, CHUNK};
+use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
 use crate::target::Rgb8;
@@ -201,18 +202,20 @@ impl<R: Real> PhongKernel<'_, R> {
         l: &KLight,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
         len: u32,
-        test: impl FnMut(u32) -> bool,
-        write: impl FnMut(u32, Rgb8),
+        mut out: impl Out,
     ) -> u32 {
+        let c = Colour::of(self, l);
         drive(
             len,
             |i, k, buf| self.point_chunk(l, span, i, k as usize, buf),
-            test,
-            write,
+            |t| Self::channels(&c, (t & 0xFFFF) as i32, (t >> 16) as i32),
+            &mut out,
         )
     }
 
-    /// The colours of the `k` pixels from pixel `i` into `buf`.
+    /// The light terms (`N·L | sp << 16`, [`PhongKernel::terms`]: returns
+    /// `true`) or the colours (`r | g << 8 | b << 16`: `false`) of the `k`
+    /// pixels from pixel `i` into `buf`.
     #[inline(never)]
     #[allow(clippy::type_complexity)]
     fn point_chunk(
@@ -222,8 +225,7 @@ impl<R: Real> PhongKernel<'_, R> {
         i: u32,
         k: usize,
         buf: &mut [u32; CHUNK],
-    ) {
-        let c = Colour::of(self, l);
+    ) -> bool {
         // Below 4 pixels the 64-bit path costs less than the set-up (M4:
         // ~360 instructions a pixel against ~1 100 a chunk).
         let st = if k >= 4 {
@@ -232,13 +234,20 @@ impl<R: Real> PhongKernel<'_, R> {
             None
         };
         match st {
-            Some(st) if self.spec => self.point_run::<true>(&c, &st, k, buf),
-            Some(st) => self.point_run::<false>(&c, &st, k, buf),
+            Some(st) if self.spec => {
+                self.point_run::<true>(&st, k, buf);
+                true
+            }
+            Some(st) => {
+                self.point_run::<false>(&st, k, buf);
+                true
+            }
             None => {
                 let (n, dn, p, dp) = span;
                 for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
                     *o = pack(self.point_exact(l, n, dn, p, dp, j));
                 }
+                false
             }
         }
     }
@@ -334,13 +343,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// chunk, `n·L̂` in the colour's place).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run<const SPEC: bool>(
-        &self,
-        c: &Colour,
-        st: &Chunk,
-        k: usize,
-        col: &mut [u32; CHUNK],
-    ) {
+    fn point_run<const SPEC: bool>(&self, st: &Chunk, k: usize, col: &mut [u32; CHUNK]) {
         let k = k.min(PCHUNK);
         let mut px = [Px::default(); GROUP];
         let (mut xb, mut xb1, xb2) = st.b;
@@ -385,7 +388,8 @@ impl<R: Real> PhongKernel<'_, R> {
                     f1 = f1.wrapping_add(f2);
                 }
             }
-            // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the colour.
+            // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the light
+            // terms (the channels are the driver's, per passing pixel).
             for (x, o) in px.iter().zip(cg.iter_mut()) {
                 let nl = *o as i32;
                 let q = if SPEC {
@@ -399,7 +403,8 @@ impl<R: Real> PhongKernel<'_, R> {
                 } else {
                     0
                 };
-                *o = self.colour::<SPEC>(c, a, nl, q >> 8);
+                let (nl15, sp) = self.terms::<SPEC>(a, nl, q >> 8);
+                *o = (nl15 & 0xFFFF) | sp << 16;
                 a = a.wrapping_add(a1);
                 a1 = a1.wrapping_add(a2);
             }
