@@ -6,16 +6,16 @@
 //! [`dodeca`]: the dodecahedron scenes (feature `dodeca` of this crate
 //! and of the firmware, `cargo build --release --features dodeca` in
 //! `examples/firmware`). One convex object with back faces culled needs
-//! no depth band; its 36 triangles need 1 368 bytes of storage at most
+//! no depth band; its 36 triangles need 1 188 bytes of storage at most
 //! (Phong with the eye position, the widest of the three), so the static
 //! RAM is the colour band, that storage and the pool:
 //!
 //! | part | bytes |
 //! |------|------:|
 //! | colour band: 160 px × 8 rows × 2 (RGB565) | 2 560 |
-//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 1 368 |
+//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 1 188 |
 //! | pool: 12 slots of 7 values ([`dodeca::DodecaPool`]) | `size_of` (about 2 100) |
-//! | total, within the 8 KB = 8 192 bytes budget | about 6 100 |
+//! | total, within the 8 KB = 8 192 bytes budget | about 5 900 |
 //!
 //! (The tests check the sum against 8 192 bytes less 512 for the rest of
 //! the firmware's `.data` and `.bss`; `.ci/firmware` checks the ELF's.)
@@ -272,7 +272,7 @@ mod tests {
         const { assert!(!dodeca::DEPTH) };
         assert_eq!(dodeca::WIDTH, 160);
         assert_eq!(dodeca::BAND_BYTES, 2560);
-        assert_eq!(dodeca::CAPACITY.bytes(4), 1368);
+        assert_eq!(dodeca::CAPACITY.bytes(4), 1188);
         // The statics other than storage, pool and band (a few hundred
         // bytes) must fit in what is left of 8 KB.
         const { assert!(dodeca::STATIC_BYTES <= 8192 - 512) };
