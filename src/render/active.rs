@@ -388,12 +388,8 @@ fn sort_by_band<P: Profile>(
             .map_or(0, |v| frame.tri_first_row(v));
         band_of(u32::from(r).min(4095), rows, shift, m).min(last)
     };
-    let Some((lo, hi)) = order.split_at_mut_checked(n) else {
-        return None;
-    };
-    let Some(hi) = hi.get_mut(..n) else {
-        return None;
-    };
+    let (lo, hi) = order.split_at_mut_checked(n)?;
+    let hi = hi.get_mut(..n)?;
     if last < 1 << RADIX_BITS {
         for (i, k) in hi.iter_mut().enumerate() {
             *k = key(i as u16) as u16;
