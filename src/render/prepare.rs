@@ -291,9 +291,11 @@ struct Preparer<'w, P: Profile> {
 /// a pass over its kept triangles. Measured on the bunny: the pass costs
 /// 14 K instructions on the Cortex-M4, where the tracking costs nothing
 /// measurable (the loop's spills absorb it); on the Cortex-M0 (eight low
-/// registers) the tracking cost 22 K against the pass's 16 K: it keeps
-/// the pass.
-const ROWS_FROM_BOX: bool = !cfg!(armv6m);
+/// registers) the tracking cost 22 K against the pass's 16 K when the
+/// triangles stored their rows; recomputed from the vertices' y (6-byte
+/// triangles) the pass cost more (bunny Gouraud geometry 740 383
+/// instructions on the M0): every target tracks.
+const ROWS_FROM_BOX: bool = true;
 
 /// The fewest vertices for which an object's culling in object space
 /// ([`EarlyCull`]) is set up. The set-up (once per object: the eye in
