@@ -53,10 +53,12 @@ fn run<P: Profile>(out: &str, shading: Shading) -> Result<(), Box<dyn Error>> {
         vec![P::Lerp::default(); 32000],
         vec![Tri::default(); 8000],
     );
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
+        colors: &mut colors,
     };
     let frame = prepare::<P>(&scene, W, W, ws)?;
     let mut band = vec![0u16; (W * 16) as usize];

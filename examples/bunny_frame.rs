@@ -19,6 +19,7 @@ struct Mem<L> {
     xy: Vec<[i32; 2]>,
     vals: Vec<L>,
     tris: Vec<Tri>,
+    colors: Vec<fixshade::target::Rgb8>,
     band: Vec<u16>,
     z: Vec<u16>,
     order: Vec<u16>,
@@ -31,6 +32,7 @@ fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -
         xy: &mut m.xy,
         vals: &mut m.vals,
         tris: &mut m.tris,
+        colors: &mut m.colors,
     };
     let frame = prepare::<P>(scene, 240, 240, ws).expect("prepare");
     let mut crc = 0u32;
@@ -84,6 +86,7 @@ fn run<P: Profile>() {
         xy: vec![[0; 2]; 4000],
         vals: vec![P::Lerp::default(); 16000],
         tris: vec![Tri::default(); 4000],
+        colors: vec![fixshade::target::Rgb8::BLACK; 4000],
         band: vec![0; 240 * 16],
         z: vec![0; 240 * 16],
         order: vec![0; 8000],

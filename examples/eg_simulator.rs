@@ -75,10 +75,12 @@ fn render_to<C: PixelColor + FromShaded>(
         background: Rgb8::BLACK,
     };
     let (mut xy, mut vals, mut tris) = ([[0; 2]; 64], [0i32; 64 * 7], [Tri::default(); 64]);
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
+        colors: &mut colors,
     };
     let frame = prepare::<Fast>(&scene, w, h, ws)?;
     let mut pixels = vec![0u16; (w * 16) as usize];

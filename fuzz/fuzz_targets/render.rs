@@ -396,10 +396,12 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     let mut xy = vec![[0i32; 2]; verts];
     let mut vals = vec![P::Lerp::default(); cap(b, 6000 * 8)];
     let mut tris = vec![Tri::default(); cap(b, 8000)];
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; cap(b, 8000)];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
+        colors: &mut colors,
     };
     let frame = match prepare::<P>(&scene, w, h, ws) {
         Ok(f) => f,

@@ -442,6 +442,7 @@ pub struct Renderer<P: Profile, F: CorePixelFormat> {
     xy: Vec<[i32; 2]>,
     vals: Vec<P::Lerp>,
     tris: Vec<Tri>,
+    colors: Vec<fixshade::target::Rgb8>,
     band: Vec<F::Raw>,
     depth: Vec<u16>,
     order: Vec<u16>,
@@ -461,6 +462,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
             xy: vec![[0; 2]; verts],
             vals: vec![P::Lerp::default(); verts * 8],
             tris: vec![Tri::default(); tris],
+            colors: vec![fixshade::target::Rgb8::BLACK; tris],
             band: vec![F::Raw::default(); band_len],
             depth: vec![0; band_len],
             order: vec![0; 2 * tris],
@@ -487,6 +489,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
+            colors: &mut self.colors,
         };
         let frame = prepare::<P>(scene, w, h, ws)?;
         let mut stats = FrameStats {

@@ -89,6 +89,7 @@ struct Owned {
     xy: Vec<[i32; 2]>,
     vals: Vec<i32>,
     tris: Vec<Tri>,
+    colors: Vec<fixshade::target::Rgb8>,
 }
 
 impl Owned {
@@ -97,6 +98,7 @@ impl Owned {
             xy: vec![[0; 2]; cap.vertices],
             vals: vec![0; cap.values],
             tris: vec![Tri::default(); cap.triangles],
+            colors: vec![fixshade::target::Rgb8::BLACK; cap.triangles],
         }
     }
 
@@ -105,6 +107,7 @@ impl Owned {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
+            colors: &mut self.colors,
         }
     }
 }

@@ -78,10 +78,12 @@ fn core_mask<P: Profile>(pos: &'static [[i16; 3]; 3]) -> Vec<bool> {
         vec![P::Lerp::default(); 32],
         vec![Tri::default(); 32],
     );
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
+        colors: &mut colors,
     };
     let frame = prepare::<P>(&scene, W, H, ws).unwrap();
     assert!(frame.vertex_count() > 3, "the triangle was clipped");

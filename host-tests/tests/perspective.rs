@@ -66,10 +66,12 @@ fn core_frame<P: Profile>(shading: Shading) -> Vec<[u8; 3]> {
         vec![P::Lerp::default(); 512],
         vec![Tri::default(); 64],
     );
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
+        colors: &mut colors,
     };
     let frame = prepare::<P>(&scene, W, H, ws).unwrap();
     let mut px = vec![[0u8; 3]; (W * H) as usize];

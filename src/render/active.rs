@@ -70,7 +70,7 @@ use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
-use super::{Frame, Layout, Part, PreparedObject, RenderError, RenderStats, Tri};
+use super::{Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats};
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
 use crate::raster::{
@@ -194,12 +194,12 @@ const RADIX_BITS: u32 = 6;
 /// let scene = Scene { camera, objects: &objects, lights: &lights, ambient: q(1, 1),
 ///                     specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
 /// let (mut xy, mut vals, mut tris) = ([[0; 2]; 64], [0i32; 64 * 7], [Tri::default(); 64]);
-/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris };
+/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris, colors: &mut [] };
 /// let frame = prepare::<Fast>(&scene, 96, 96, ws)?;
 ///
 /// // Two band buffers of 8 rows: one is rendered while the other is sent.
-/// let (mut p0, mut z0) = ([[0u8; 2]; 96 * 8], [0u16; 96 * 8]);
-/// let (mut p1, mut z1) = ([[0u8; 2]; 96 * 8], [0u16; 96 * 8]);
+/// let (mut p0, mut z0) = ([0u16; 96 * 8], [0u16; 96 * 8]);
+/// let (mut p1, mut z1) = ([0u16; 96 * 8], [0u16; 96 * 8]);
 /// let mut bufs = [
 ///     BandBuf::<Rgb565Be>::new(&mut p0, Some(&mut z0), 96, 8)?,
 ///     BandBuf::<Rgb565Be>::new(&mut p1, Some(&mut z1), 96, 8)?,
@@ -235,6 +235,10 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     /// End of the entries of the order starting in the current band (or
     /// above).
     band_end: usize,
+    /// End of each band's entries of the order, when the sort found them
+    /// (at most `2^RADIX_BITS` bands), so that a band's run needs no
+    /// triangle's rows again.
+    ends: Option<[u16; 1 << RADIX_BITS]>,
     /// Pool ring: first entry, entries of the band above still to resume,
     /// entries in all.
     ring_head: usize,
@@ -286,7 +290,7 @@ impl<'w, P: Profile> Frame<'w, P> {
         for (i, f) in pool.free.iter_mut().enumerate() {
             *f = (CAP - 1 - i) as u16;
         }
-        sort_by_band(self.tris(), order, rows, self.height);
+        let ends = sort_by_band(self, order, rows, self.height);
         Ok(Bands {
             frame: self,
             scene,
@@ -298,6 +302,7 @@ impl<'w, P: Profile> Frame<'w, P> {
             n,
             cursor: 0,
             band_end: 0,
+            ends,
             ring_head: 0,
             ring_cur: 0,
             ring_len: 0,
@@ -361,42 +366,62 @@ pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
     }
 }
 
-/// Orders the indices of `tris` by the band of their first row, stably,
-/// into `order[..n]` (`order[n..2n]` is scratch): one counting-sort pass
-/// for up to 64 bands, two (by the low and the high 6 bits) for more.
-fn sort_by_band(tris: &[Tri], order: &mut [u16], rows: u32, height: u32) {
-    let n = tris.len();
+/// Orders the indices of `frame`'s triangles by the band of their first
+/// row, stably, into `order[..n]` (`order[n..2n]` is scratch): one
+/// counting-sort pass for up to 64 bands (each triangle's band computed
+/// once, from its vertices' rows, kept in the scratch for the pass; the
+/// end of each band's entries returned), two (by the low and the high 6
+/// bits) for more.
+fn sort_by_band<P: Profile>(
+    frame: &Frame<'_, P>,
+    order: &mut [u16],
+    rows: u32,
+    height: u32,
+) -> Option<[u16; 1 << RADIX_BITS]> {
+    let n = frame.triangle_count();
     let (shift, m) = band_consts(rows);
     let last = height.div_ceil(rows.max(1)).saturating_sub(1);
     // Rows lie within the screen (at most 4096): keys below 2^12.
-    let key = |t: &Tri| band_of((t.rows[0] as u32).min(4095), rows, shift, m).min(last);
-    let Some((lo, hi)) = order.split_at_mut_checked(n) else {
-        return;
+    let key = |i: u16| {
+        let r = frame
+            .tri_vertices(usize::from(i))
+            .map_or(0, |v| frame.tri_first_row(v));
+        band_of(u32::from(r).min(4095), rows, shift, m).min(last)
     };
-    let Some(hi) = hi.get_mut(..n) else {
-        return;
-    };
+    let (lo, hi) = order.split_at_mut_checked(n)?;
+    let hi = hi.get_mut(..n)?;
     if last < 1 << RADIX_BITS {
-        counting_pass(tris, 0..n as u16, lo, |t| key(t));
+        for (i, k) in hi.iter_mut().enumerate() {
+            *k = key(i as u16) as u16;
+        }
+        let keys: &[u16] = hi;
+        let k = |i: u16| keys.get(usize::from(i)).map_or(0, |&k| u32::from(k));
+        let count = counting_pass(0..n as u16, lo, k);
+        let mut ends = [0u16; 1 << RADIX_BITS];
+        for (e, c) in ends.iter_mut().zip(count.iter()) {
+            *e = *c;
+        }
+        Some(ends)
     } else {
         let mask = (1 << RADIX_BITS) - 1;
-        counting_pass(tris, 0..n as u16, hi, |t| key(t) & mask);
+        counting_pass(0..n as u16, hi, |i| key(i) & mask);
         let src: &[u16] = hi;
-        counting_pass(tris, src.iter().copied(), lo, |t| key(t) >> RADIX_BITS);
+        counting_pass(src.iter().copied(), lo, |i| key(i) >> RADIX_BITS);
+        None
     }
 }
 
 /// One stable counting-sort pass of the indices `src` by `key` (below
-/// 64) into `dst`.
+/// 64) into `dst`; returns the counts after it, `count[b]` the end of key
+/// `b`'s entries.
 #[inline(always)]
 fn counting_pass(
-    tris: &[Tri],
     src: impl Iterator<Item = u16> + Clone,
     dst: &mut [u16],
-    key: impl Fn(&Tri) -> u32,
-) {
+    key: impl Fn(u16) -> u32,
+) -> [u16; (1 << RADIX_BITS) + 1] {
     let mut count = [0u16; (1 << RADIX_BITS) + 1];
-    let k = |i: u16| tris.get(i as usize).map_or(0, |t| key(t) as usize & 63);
+    let k = |i: u16| key(i) as usize & 63;
     for i in src.clone() {
         if let Some(c) = count.get_mut(k(i) + 1) {
             *c += 1;
@@ -415,6 +440,7 @@ fn counting_pass(
             *c += 1;
         }
     }
+    count
 }
 
 /// The row kernel's sink: a band's colour and depth slices and a shader.
@@ -511,11 +537,20 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let band_index = y0 / self.rows.max(1);
         // The triangles starting in this band: the next run of the order
         // (each triangle's band found once per frame, here).
-        let mut k = self.cursor;
-        while k < self.n && self.bucket_at(k, band_index) != NONE {
-            k += 1;
-        }
-        self.band_end = k;
+        self.band_end = match &self.ends {
+            // Bands past the last hold no start (keys are clamped to it).
+            Some(ends) => ends
+                .get(band_index as usize)
+                .map_or(self.n, |&e| usize::from(e))
+                .max(self.cursor),
+            None => {
+                let mut k = self.cursor;
+                while k < self.n && self.bucket_at(k, band_index) != NONE {
+                    k += 1;
+                }
+                k
+            }
+        };
         let frame = self.frame;
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
@@ -566,8 +601,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     };
                     if let Some(k) = &kernel {
                         let sh = PhongKernelShader::new(k);
-                        let set =
-                            |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &Tri| s.back = t.back;
+                        let set = |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| {
+                            s.back = t.back
+                        };
                         if normal {
                             self.run::<3, _, _, _>(po, &mut t, sh, set)?;
                         } else {
@@ -578,14 +614,16 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let frame = PosFrame::of_object::<P>(sc, obj);
                     let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
                     if P::PERSPECTIVE {
-                        let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.set_back(t.back);
+                        let set = |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| {
+                            s.0.set_back(t.back)
+                        };
                         if normal {
                             self.run::<4, _, _, _>(po, &mut t, Persp(sh), set)?;
                         } else {
                             self.run::<7, _, _, _>(po, &mut t, Persp(sh), set)?;
                         }
                     } else {
-                        let set = |s: &mut PhongShader<'_, P>, t: &Tri| s.set_back(t.back);
+                        let set = |s: &mut PhongShader<'_, P>, t: &PreparedTri| s.set_back(t.back);
                         if normal {
                             self.run::<3, _, _, _>(po, &mut t, sh, set)?;
                         } else {
@@ -638,16 +676,22 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let Some(&i) = self.order.get(k) else {
             return NONE;
         };
-        let tris = self.frame.tris();
         let (shift, m) = band_consts(self.rows);
         let last = self
             .frame
             .height
             .div_ceil(self.rows.max(1))
             .saturating_sub(1);
-        match tris.get(i as usize) {
-            Some(t)
-                if band_of((t.rows[0] as u32).min(4095), self.rows, shift, m).min(last) <= band =>
+        match self.frame.tri_vertices(usize::from(i)) {
+            Some(v)
+                if band_of(
+                    u32::from(self.frame.tri_first_row(v)).min(4095),
+                    self.rows,
+                    shift,
+                    m,
+                )
+                .min(last)
+                    <= band =>
             {
                 i as u32
             }
@@ -664,7 +708,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         po: &PreparedObject,
         t: &mut Target<'_, F, D>,
         mut shader: S,
-        per_tri: impl Fn(&mut S, &Tri),
+        per_tri: impl Fn(&mut S, &PreparedTri),
     ) -> Result<(), RenderError>
     where
         S: Shader<P::Lerp, N>,
@@ -673,16 +717,15 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     {
         let end = po.tris.end as u32;
         let band = t.y0 / self.rows.max(1);
-        let tris = self.frame.tris();
         let (y1, width) = (t.y1 as i32, t.width as i32);
         loop {
             let Some((ti, src)) = self.take(band, end) else {
                 return Ok(());
             };
-            let Some(tri) = tris.get(ti as usize) else {
+            let Some(tri) = self.frame.tri(po, ti as usize) else {
                 return Ok(());
             };
-            per_tri(&mut shader, tri);
+            per_tri(&mut shader, &tri);
             let mut k = Kernel::<F, D, S> {
                 px: &mut t.px,
                 z: &mut t.z,
@@ -703,7 +746,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     self.put_back(si, ti as u16, &walk);
                 }
                 Src::Fresh => {
-                    let fresh = self.fresh::<N>(po, tri, t.y0 as i32, width)?;
+                    let fresh = self.fresh::<N>(po, &tri, t.y0 as i32, width)?;
                     let Some((mut walk, row, sx, sy)) = fresh else {
                         self.stats.pixels += k.drawn;
                         continue;
@@ -731,7 +774,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         po: &PreparedObject,
         t: &mut Target<'_, F, D>,
         mut shader: S,
-        per_tri: impl Fn(&mut S, &Tri),
+        per_tri: impl Fn(&mut S, &PreparedTri),
     ) -> Result<(), RenderError>
     where
         S: Shader<i32, N>,
@@ -741,7 +784,6 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let end = po.tris.end as u32;
         let band = t.y0 / self.rows.max(1);
         let frame = self.frame;
-        let tris = frame.tris();
         let (y0, y1, width) = (t.y0 as i32, t.y1 as i32, t.width as i32);
         // A triangle that finds no free slot is set up here.
         let mut scratch = (Walk::EMPTY, [[0i32; 3]; V]);
@@ -749,10 +791,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             let Some((ti, src)) = self.take(band, end) else {
                 return Ok(());
             };
-            let Some(tri) = tris.get(ti as usize) else {
+            let Some(tri) = frame.tri(po, ti as usize) else {
                 return Ok(());
             };
-            per_tri(&mut shader, tri);
+            per_tri(&mut shader, &tri);
             let mut mem = BandMem::<F::Raw, D::Raw> {
                 px: &mut t.px,
                 z: &mut t.z,
@@ -776,7 +818,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     // Set up and walked in the scratch; kept in a slot
                     // when it continues below the band.
                     let (walk, vals) = (&mut scratch.0, &mut scratch.1);
-                    let set = fresh_fixed::<P, N, V>(frame, po, tri, y0, width, walk, vals);
+                    let set = fresh_fixed::<P, N, V>(frame, po, &tri, y0, width, walk, vals);
                     let drawn = match set {
                         Ok(Some(true)) => {
                             self.stats.triangles += 1;
@@ -884,7 +926,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     fn fresh<const N: usize>(
         &mut self,
         po: &PreparedObject,
-        tri: &Tri,
+        tri: &PreparedTri,
         j0: i32,
         width: i32,
     ) -> Result<Option<(Walk, Vals<P::Lerp, N>, Vals<P::Lerp, N>, Vals<P::Lerp, N>)>, RenderError>
@@ -1051,7 +1093,7 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
 fn fresh_fixed<P: Profile, const N: usize, const V: usize>(
     frame: &Frame<'_, P>,
     po: &PreparedObject,
-    tri: &Tri,
+    tri: &PreparedTri,
     j0: i32,
     width: i32,
     walk: &mut Walk,

@@ -3,7 +3,7 @@
 use super::phong_span::{PhongFill, PhongKernel};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
-use super::{Frame, Layout, PreparedObject, RenderError, Tri};
+use super::{Frame, Layout, PreparedObject, PreparedTri, RenderError};
 use crate::geom::Vec3;
 use crate::illum::Shade;
 use crate::num::{approx16, Profile, Real};
@@ -119,7 +119,7 @@ impl<P: Profile> Frame<'_, P> {
         po: &PreparedObject,
         fill: &mut Fill<'_, '_, '_, T, D, S>,
         stats: &mut RenderStats,
-        mut per_tri: impl FnMut(&mut S, &Tri),
+        mut per_tri: impl FnMut(&mut S, &PreparedTri),
     ) -> Result<(), RenderError>
     where
         T: Target,
@@ -137,7 +137,7 @@ impl<P: Profile> Frame<'_, P> {
         win: crate::target::Window,
         fill: &mut F,
         stats: &mut RenderStats,
-        mut per_tri: impl FnMut(&mut F, &Tri),
+        mut per_tri: impl FnMut(&mut F, &PreparedTri),
     ) -> Result<(), RenderError> {
         let sub = P::SUBPIXEL_BITS;
         let (y0, y1) = (
@@ -149,7 +149,8 @@ impl<P: Profile> Frame<'_, P> {
         }
         for tri in self.object_tris(po) {
             // Reject triangles outside the band before fetching attributes.
-            if tri.rows[1] <= y0 || tri.rows[0] >= y1 {
+            let rows = self.tri_rows(tri.v);
+            if rows[1] <= y0 || rows[0] >= y1 {
                 continue;
             }
             // The vertex indices sorted by y (as `draw_triangle` sorts its
@@ -263,8 +264,9 @@ impl<P: Profile> Frame<'_, P> {
                     if let Some(k) = &kernel {
                         let mut f = PhongFill::new(&mut *target, d, k)?;
                         let w = f.window();
-                        let set = |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
-                                   t: &Tri| f.back = t.back;
+                        let set =
+                            |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
+                             t: &PreparedTri| f.back = t.back;
                         if po.layout == Layout::PhongNormal {
                             self.draw_spans::<3, _>(po, w, &mut f, &mut stats, set)?;
                         } else {
@@ -273,7 +275,8 @@ impl<P: Profile> Frame<'_, P> {
                         stats.pixels += f.drawn();
                     } else if P::PERSPECTIVE {
                         let mut f = Fill::new(target, d, Persp(sh))?;
-                        let set = |s: &mut Persp<PhongShader<'_, P>>, t: &Tri| s.0.back = t.back;
+                        let set =
+                            |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| s.0.back = t.back;
                         if po.layout == Layout::PhongNormal {
                             self.draw_object::<4, _, _, _>(po, &mut f, &mut stats, set)?;
                         } else {
@@ -282,7 +285,7 @@ impl<P: Profile> Frame<'_, P> {
                         stats.pixels += f.drawn();
                     } else {
                         let mut f = Fill::new(target, d, sh)?;
-                        let set = |s: &mut PhongShader<'_, P>, t: &Tri| s.back = t.back;
+                        let set = |s: &mut PhongShader<'_, P>, t: &PreparedTri| s.back = t.back;
                         if po.layout == Layout::PhongNormal {
                             self.draw_object::<3, _, _, _>(po, &mut f, &mut stats, set)?;
                         } else {

@@ -26,7 +26,7 @@
 //! | stride, Gouraud | 2 (depth, grey level) or 4 (depth, red, green, blue) |
 //! | stride, Phong | 4 (depth, normal), or 7 (depth, normal, eye position) when a point light or the local viewer needs the position |
 //! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
-//! | per prepared triangle | 14 ([`Tri`]) |
+//! | per prepared triangle | 6 ([`Tri`]), and 3 (an [`Rgb8`] colour) in a flat object |
 //! | band state ([`BandState`]) | 4 per prepared triangle (order scratch) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
 //!
 //! A prepared vertex is made per mesh vertex (one per distinct position
@@ -82,34 +82,59 @@ use crate::target::{BufferError, Rgb8};
 use core::fmt;
 use core::ops::Range;
 
-/// One prepared triangle: three prepared-vertex indices, the rows whose
-/// pixel centres it can cover, the flat colour (flat shading) and whether
-/// it is a back face drawn two-sided.
+/// Prepared vertices a frame can hold: `2^15` = 32 768 (indices below
+/// it fit the 15 low bits of a [`Tri`]'s `u16`s; bit 15 of the first
+/// marks a back face).
+pub const MAX_VERTICES: usize = 1 << 15;
+
+/// Bit 15 of a [`Tri`]'s first index: a back face.
+const BACK: u16 = 1 << 15;
+
+/// One prepared triangle as stored: three prepared-vertex indices, 6
+/// bytes. Bit 15 of the first marks a back face (of an object drawn
+/// two-sided), so vertex indices stay below [`MAX_VERTICES`]. The rows a
+/// triangle can cover are recomputed from its vertices' `y`
+/// ([`Frame::tri_rows`]); a flat triangle's colour lies in
+/// [`Workspace::colors`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Tri {
-    /// Prepared vertices.
-    pub v: [u16; 3],
-    /// Rows `rows[0]..rows[1]` of the screen whose centres lie within the
-    /// triangle's vertical extent (the rows the rasterizer visits), clamped
-    /// to the screen: a band skips the triangle with two comparisons. A
-    /// prepared triangle always has `rows[0] < rows[1]`; triangles that
-    /// cover no pixel centre of the screen are not kept.
-    pub rows: [u16; 2],
-    /// Colour of a flat-shaded triangle.
-    pub color: Rgb8,
-    /// A back face (of an object drawn two-sided): Phong flips its normal.
-    pub back: bool,
-}
+pub struct Tri([u16; 3]);
 
 impl Tri {
     /// An unused slot (for workspace arrays in `static`s: `Default` is not
     /// `const`).
-    pub const EMPTY: Self = Self {
-        v: [0; 3],
-        rows: [0; 2],
-        color: Rgb8::BLACK,
-        back: false,
-    };
+    pub const EMPTY: Self = Self([0; 3]);
+
+    /// Vertices `v` (each below [`MAX_VERTICES`]), a back face or not.
+    #[inline(always)]
+    pub const fn new(v: [u16; 3], back: bool) -> Self {
+        Self([v[0] | if back { BACK } else { 0 }, v[1], v[2]])
+    }
+
+    /// The prepared vertices.
+    #[inline(always)]
+    pub const fn v(self) -> [u16; 3] {
+        [self.0[0] & !BACK, self.0[1], self.0[2]]
+    }
+
+    /// A back face (of an object drawn two-sided): Phong flips its normal.
+    #[inline(always)]
+    pub const fn back(self) -> bool {
+        self.0[0] & BACK != 0
+    }
+}
+
+/// One prepared triangle as read ([`Frame::tri`]): three prepared-vertex
+/// indices, the flat colour (flat shading; black otherwise) and whether
+/// it is a back face drawn two-sided. Stored as a [`Tri`] and, for
+/// a flat object, a colour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PreparedTri {
+    /// Prepared vertices.
+    pub v: [u16; 3],
+    /// Colour of a flat-shaded triangle.
+    pub color: Rgb8,
+    /// A back face (of an object drawn two-sided): Phong flips its normal.
+    pub back: bool,
 }
 
 /// Caller-provided memory for a prepared frame: slices the caller brings
@@ -124,6 +149,9 @@ pub struct Workspace<'a, L> {
     pub vals: &'a mut [L],
     /// Prepared triangles.
     pub tris: &'a mut [Tri],
+    /// Colours of the prepared triangles of flat objects, one per
+    /// triangle, object after object.
+    pub colors: &'a mut [Rgb8],
 }
 
 /// How an object's prepared vertices are laid out and shaded.
@@ -184,11 +212,26 @@ pub struct PreparedObject {
     pub stride: usize,
     /// Its prepared triangles.
     pub tris: Range<usize>,
+    /// Index of its first triangle's colour in [`Workspace::colors`] (flat
+    /// objects; the others have none).
+    pub color_base: usize,
     /// Rows `rows[0]..rows[1]` that hold every row its triangles can cover
     /// (possibly a few more: for an object wholly on screen, the range of
     /// its projected vertices; empty when it has no triangle): a band
     /// outside them skips the object.
     pub rows: [u16; 2],
+}
+
+impl PreparedObject {
+    /// Flat-triangle colours it holds (its triangles when flat, else
+    /// none).
+    pub fn color_count(&self) -> usize {
+        if self.layout == Layout::Flat {
+            self.tris.len()
+        } else {
+            0
+        }
+    }
 }
 
 /// A prepared frame: the workspace filled for one scene.
@@ -216,8 +259,13 @@ impl<P: Profile> Frame<'_, P> {
         self.objects.last().map_or(0, |o| o.tris.end)
     }
 
-    /// Bytes of workspace in use (vertices, values and triangles, without
-    /// the scratch).
+    /// Flat-triangle colours in use.
+    fn color_count(&self) -> usize {
+        self.objects.iter().map(PreparedObject::color_count).sum()
+    }
+
+    /// Bytes of workspace in use (vertices, values, triangles and flat
+    /// colours, without the scratch).
     pub fn bytes_used(&self) -> usize {
         let vals = self
             .objects
@@ -226,6 +274,7 @@ impl<P: Profile> Frame<'_, P> {
         self.vertex_count() * 8
             + vals * core::mem::size_of::<P::Lerp>()
             + self.triangle_count() * core::mem::size_of::<Tri>()
+            + self.color_count() * core::mem::size_of::<Rgb8>()
     }
 
     /// Screen width and height the frame was prepared for.
@@ -233,26 +282,68 @@ impl<P: Profile> Frame<'_, P> {
         (self.width, self.height)
     }
 
-    /// The prepared triangles.
-    pub fn tris(&self) -> &[Tri] {
-        // Never short (prepare filled them); no panic branch.
-        self.ws.tris.get(..self.triangle_count()).unwrap_or(&[])
+    /// Prepared triangle `i` of object `po` (an index in `po.tris`).
+    #[inline(always)]
+    pub fn tri(&self, po: &PreparedObject, i: usize) -> Option<PreparedTri> {
+        let p = *self.ws.tris.get(i)?;
+        let color = if po.layout == Layout::Flat {
+            let c = po.color_base + i.checked_sub(po.tris.start)?;
+            self.ws.colors.get(c).copied()?
+        } else {
+            Rgb8::BLACK
+        };
+        Some(PreparedTri {
+            v: p.v(),
+            color,
+            back: p.back(),
+        })
     }
 
-    /// Prepared triangle `i` (an index below [`Self::triangle_count`]).
+    /// The prepared vertices of triangle `i` (an index below
+    /// [`Self::triangle_count`]).
     #[inline(always)]
-    pub fn tri(&self, i: usize) -> Option<Tri> {
-        self.tris().get(i).copied()
+    pub fn tri_vertices(&self, i: usize) -> Option<[u16; 3]> {
+        self.ws.tris.get(i).map(|p| p.v())
+    }
+
+    /// Rows `rows[0]..rows[1]` of the screen whose centres lie within the
+    /// vertical extent of the triangle of vertices `v` (the rows the
+    /// rasterizer visits), clamped to the screen: recomputed from the
+    /// vertices' `y`, the same rows `prepare` kept the triangle for (a
+    /// kept triangle has `rows[0] < rows[1]`).
+    #[inline(always)]
+    pub fn tri_rows(&self, v: [u16; 3]) -> [u16; 2] {
+        let y = |k: usize| self.xy(usize::from(v[k])).map_or(0, |p| p[1]);
+        let (a, b, c) = (y(0), y(1), y(2));
+        let sub = P::SUBPIXEL_BITS;
+        // `max`/`min` rather than `clamp` (no panic branch); the height is
+        // at most `MAX_SCREEN` = 4096 rows.
+        let h = self.height.min(u32::from(u16::MAX)) as i32;
+        let r = |y: i32| crate::raster::first_row(y, sub).max(0).min(h) as u16;
+        [r(a.min(b).min(c)), r(a.max(b).max(c))]
+    }
+
+    /// The first row of [`Self::tri_rows`] alone.
+    #[inline(always)]
+    pub fn tri_first_row(&self, v: [u16; 3]) -> u16 {
+        let y = |k: usize| self.xy(usize::from(v[k])).map_or(0, |p| p[1]);
+        let h = self.height.min(u32::from(u16::MAX)) as i32;
+        let top = y(0).min(y(1)).min(y(2));
+        crate::raster::first_row(top, P::SUBPIXEL_BITS)
+            .max(0)
+            .min(h) as u16
     }
 
     /// The prepared triangles of object `po`, in order.
     #[inline(always)]
-    pub fn object_tris(&self, po: &PreparedObject) -> impl Iterator<Item = Tri> + '_ {
-        self.tris()
-            .get(po.tris.clone())
-            .unwrap_or(&[])
-            .iter()
-            .copied()
+    pub fn object_tris(&self, po: &PreparedObject) -> impl Iterator<Item = PreparedTri> + '_ {
+        let po = po.clone();
+        po.tris.clone().map_while(move |i| self.tri(&po, i))
+    }
+
+    /// Every prepared triangle, object after object.
+    pub fn tris(&self) -> impl Iterator<Item = PreparedTri> + '_ {
+        self.objects.iter().flat_map(|po| self.object_tris(po))
     }
 
     /// Screen position of prepared vertex `v` (subpixels).
@@ -293,6 +384,8 @@ pub enum Part {
     Values,
     /// [`Workspace::tris`].
     Triangles,
+    /// [`Workspace::colors`].
+    Colors,
     /// The order scratch of a [`BandState`] (shorter than two entries per
     /// prepared triangle).
     Order,

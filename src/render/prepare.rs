@@ -48,7 +48,7 @@
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
-use super::{Frame, Layout, Part, PreparedObject, RenderError, Tri, Workspace};
+use super::{Frame, Layout, Part, PreparedObject, RenderError, Tri, Workspace, MAX_VERTICES};
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
 use crate::geom::q16::{face_normal_q14, Proj16, Xform16};
@@ -240,6 +240,8 @@ pub fn prepare<'w, P: Profile>(
         nv: 0,
         nval: 0,
         nt: 0,
+        nc: 0,
+        t_start: 0,
         object: 0,
         width,
         height,
@@ -267,6 +269,10 @@ struct Preparer<'w, P: Profile> {
     nv: usize,
     nval: usize,
     nt: usize,
+    /// Flat-triangle colours in use.
+    nc: usize,
+    /// The current object's first triangle.
+    t_start: usize,
     object: usize,
     width: u32,
     height: u32,
@@ -287,9 +293,11 @@ struct Preparer<'w, P: Profile> {
 /// a pass over its kept triangles. Measured on the bunny: the pass costs
 /// 14 K instructions on the Cortex-M4, where the tracking costs nothing
 /// measurable (the loop's spills absorb it); on the Cortex-M0 (eight low
-/// registers) the tracking cost 22 K against the pass's 16 K: it keeps
-/// the pass.
-const ROWS_FROM_BOX: bool = !cfg!(armv6m);
+/// registers) the tracking cost 22 K against the pass's 16 K when the
+/// triangles stored their rows; recomputed from the vertices' y (6-byte
+/// triangles) the pass cost more (bunny Gouraud geometry 740 383
+/// instructions on the M0): every target tracks.
+const ROWS_FROM_BOX: bool = true;
 
 /// The fewest vertices for which an object's culling in object space
 /// ([`EarlyCull`]) is set up. The set-up (once per object: the eye in
@@ -438,9 +446,11 @@ fn rows_in(xy: [[i32; 2]; 3], width: u32, height: u32, sub: SubpixelBits) -> Opt
 /// The triangle loop of an object wholly inside the planes whose back
 /// faces are culled or drawn with its own vertices (every layout but
 /// two-sided Gouraud): the kept triangles appended to `out` from `nt` on,
-/// `color(t, back)` giving a flat colour. Bit for bit what the general
-/// loop keeps; a free function over slices, so that its state stays in
-/// registers. Returns the new count, or `None` when `out` is full.
+/// `color(k, t, back)` storing the flat colour of the `k`-th kept triangle,
+/// mesh triangle `t` (false when the colours are full; a no-op for the
+/// other layouts). Bit for bit what the general loop keeps; a free
+/// function over slices, so that its state stays in registers. Returns the
+/// new count, or `None` when `out` or the colours are full.
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 fn triangles_inside(
@@ -452,8 +462,9 @@ fn triangles_inside(
     (width, height): (u32, u32),
     sub: SubpixelBits,
     (cull, marked): (bool, bool),
-    mut color: impl FnMut(usize, bool) -> Rgb8,
+    mut color: impl FnMut(usize, usize, bool) -> bool,
 ) -> Option<usize> {
+    let nt0 = nt;
     for (t, tri) in tris.iter().enumerate() {
         let p = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or([0; 2]));
         if marked && (p[0][0] == UNUSED || p[1][0] == UNUSED || p[2][0] == UNUSED) {
@@ -470,25 +481,24 @@ fn triangles_inside(
         if back && cull {
             continue;
         }
-        let Some(rows) = rows_in(p, width, height, sub) else {
+        if rows_in(p, width, height, sub).is_none() {
             continue;
-        };
-        put_tri(out.get_mut(nt)?, tri, base, rows, color(t, back), back);
+        }
+        if !color(nt - nt0, t, back) {
+            return None;
+        }
+        put_tri(out.get_mut(nt)?, tri, base, back);
         nt += 1;
     }
     Some(nt)
 }
 
 /// Writes a kept triangle of mesh corners `tri` (prepared vertices from
-/// `base` on) into `slot`, field by field (a whole 14-byte `Tri` built and
-/// copied was a `memcpy` call on the M0).
+/// `base` on) into `slot`.
 #[inline(always)]
-fn put_tri(slot: &mut Tri, tri: &[u16; 3], base: usize, rows: [u16; 2], color: Rgb8, back: bool) {
-    // base + index < u16::MAX (checked by the vertex pass).
-    slot.v = tri.map(|i| (base + usize::from(i)) as u16);
-    slot.rows = rows;
-    slot.color = color;
-    slot.back = back;
+fn put_tri(slot: &mut Tri, tri: &[u16; 3], base: usize, back: bool) {
+    // base + index < MAX_VERTICES (checked by the vertex pass).
+    *slot = Tri::new(tri.map(|i| (base + usize::from(i)) as u16), back);
 }
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
@@ -507,8 +517,9 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
     out: &mut [Tri],
     mut nt: usize,
     sub: SubpixelBits,
-    mut color: impl FnMut(usize, bool) -> Rgb8,
+    mut color: impl FnMut(usize, usize, bool) -> bool,
 ) -> Option<usize> {
+    let nt0 = nt;
     let mut slots = out.get_mut(nt..)?.iter_mut();
     for (t, tri) in tris.iter().enumerate() {
         if MARKED {
@@ -538,13 +549,10 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
             continue;
         }
         let slot = slots.next()?;
-        // base + index < u16::MAX (checked by the vertex pass); rows within
-        // `0..=height <= 4096`. (Not `put_tri`: the same stores, but the
-        // M0 build of the flat loop measured 28 K instructions slower.)
-        slot.v = tri.map(|i| (base + usize::from(i)) as u16);
-        slot.rows = [r0 as u16, r1 as u16];
-        slot.color = color(t, back);
-        slot.back = back;
+        if !color(nt - nt0, t, back) {
+            return None;
+        }
+        put_tri(slot, tri, base, back);
         nt += 1;
     }
     Some(nt)
@@ -784,6 +792,8 @@ impl<P: Profile> Preparer<'_, P> {
             v_start: self.nv,
         };
         let t_start = self.nt;
+        self.t_start = t_start;
+        let color_base = self.nc;
         self.bbox = None;
         self.rows = None;
         self.marked = false;
@@ -833,22 +843,18 @@ impl<P: Profile> Preparer<'_, P> {
         let tris = t_start..self.nt;
         let rows = match self.rows {
             Some(rows) => rows,
-            None => self
-                .ws
-                .tris
-                .get(tris.clone())
-                .unwrap_or(&[])
-                .iter()
-                .fold([u16::MAX, 0], |[lo, hi], t| {
-                    [lo.min(t.rows[0]), hi.max(t.rows[1])]
-                }),
+            None => self.rows_of_tris(tris.clone()),
         };
+        if layout == Layout::Flat {
+            self.nc = color_base + tris.len();
+        }
         Ok(PreparedObject {
             layout,
             verts: ctx.v_start..self.nv,
             val_base: ctx.val_base,
             stride: ctx.stride,
             tris,
+            color_base,
             rows: if rows[0] < rows[1] { rows } else { [0; 2] },
         })
     }
@@ -925,7 +931,7 @@ impl<P: Profile> Preparer<'_, P> {
         let n = ctx.positions.len();
         let stride = ctx.layout.stride_for(P::PERSPECTIVE);
         let end = ctx.v_start + n;
-        if end >= usize::from(u16::MAX) || end > self.ws.xy.len() {
+        if end >= MAX_VERTICES || end > self.ws.xy.len() {
             return Err(self.cap(Part::Vertices));
         }
         if ctx.val_base + n * stride > self.ws.vals.len() {
@@ -1062,7 +1068,7 @@ impl<P: Profile> Preparer<'_, P> {
     ) -> Result<(), RenderError> {
         let n = ctx.positions.len();
         let end = ctx.v_start + n;
-        if end >= usize::from(u16::MAX) {
+        if end >= MAX_VERTICES {
             return Err(self.cap(Part::Vertices));
         }
         let Some(xy) = self.ws.xy.get_mut(ctx.v_start..end) else {
@@ -1123,7 +1129,7 @@ impl<P: Profile> Preparer<'_, P> {
         type R<P> = <P as Profile>::Real;
         let n = ctx.positions.len();
         let end = ctx.v_start + n;
-        if end >= usize::from(u16::MAX) {
+        if end >= MAX_VERTICES {
             return Err(self.cap(Part::Vertices));
         }
         let Some(xy) = self.ws.xy.get_mut(ctx.v_start..end) else {
@@ -1254,7 +1260,7 @@ impl<P: Profile> Preparer<'_, P> {
         cv: &ClipVert<P::Real>,
     ) -> Result<u16, RenderError> {
         let i = self.nv;
-        if i >= usize::from(u16::MAX) || i >= self.ws.xy.len() {
+        if i >= MAX_VERTICES || i >= self.ws.xy.len() {
             return Err(self.cap(Part::Vertices));
         }
         let stride = ctx.layout.stride_for(P::PERSPECTIVE);
@@ -1265,20 +1271,47 @@ impl<P: Profile> Preparer<'_, P> {
         self.store(ctx, i, base, cv);
         self.nv += 1;
         self.nval = base + stride;
-        // i < u16::MAX: fits.
+        // i < MAX_VERTICES: fits.
         Ok(i as u16)
     }
 
-    /// Keeps `tri` when it can cover a pixel centre of the screen, with
-    /// the rows it can cover (the rows the rasterizer would visit).
-    fn push_tri(&mut self, tri: Tri) -> Result<(), RenderError> {
-        let xy = tri
-            .v
-            .map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+    /// Keeps the triangle of vertices `v` when it can cover a pixel
+    /// centre of the screen (`color`: its colour when flat).
+    fn push_tri(
+        &mut self,
+        v: [u16; 3],
+        color: Option<Rgb8>,
+        back: bool,
+    ) -> Result<(), RenderError> {
+        let xy = v.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
         match self.rows_of(xy) {
-            Some(rows) => self.store_tri(tri.v, rows, tri.color, tri.back),
+            Some(_) => self.store_tri(v, color, back),
             None => Ok(()),
         }
+    }
+
+    /// The rows of the triangles `tris` (the union of the rows each can
+    /// cover; `[u16::MAX, 0]` for none).
+    fn rows_of_tris(&self, tris: core::ops::Range<usize>) -> [u16; 2] {
+        let xy = &*self.ws.xy;
+        let (sub, h) = (
+            P::SUBPIXEL_BITS,
+            self.height.min(u32::from(u16::MAX)) as i32,
+        );
+        let mut lo = i32::MAX;
+        let mut hi = i32::MIN;
+        for t in self.ws.tris.get(tris).unwrap_or(&[]) {
+            let y = t.v().map(|v| xy.get(usize::from(v)).map_or(0, |p| p[1]));
+            lo = lo.min(y[0].min(y[1]).min(y[2]));
+            hi = hi.max(y[0].max(y[1]).max(y[2]));
+        }
+        if lo > hi {
+            return [u16::MAX, 0];
+        }
+        // `first_row` is monotonic: the rows of the extreme `y`s, clamped
+        // as each triangle's are (`max`/`min`: no panic branch).
+        let r = |y: i32| first_row(y, sub).max(0).min(h) as u16;
+        [r(lo), r(hi)]
     }
 
     /// The rows a triangle with corners at `xy` can cover (the rows the
@@ -1289,23 +1322,26 @@ impl<P: Profile> Preparer<'_, P> {
         rows_in(xy, self.width, self.height, P::SUBPIXEL_BITS)
     }
 
-    /// Appends a kept triangle. Field by field: the 14-byte `Tri` built
-    /// and copied whole was a `memcpy` call on the M0 (64 instructions).
+    /// Appends a kept triangle, and its colour when `color` is given (a
+    /// flat object's).
     #[inline(always)]
     fn store_tri(
         &mut self,
         v: [u16; 3],
-        rows: [u16; 2],
-        color: Rgb8,
+        color: Option<Rgb8>,
         back: bool,
     ) -> Result<(), RenderError> {
         let Some(slot) = self.ws.tris.get_mut(self.nt) else {
             return Err(self.cap(Part::Triangles));
         };
-        slot.v = v;
-        slot.rows = rows;
-        slot.color = color;
-        slot.back = back;
+        *slot = Tri::new(v, back);
+        if let Some(color) = color {
+            let c = self.nc + (self.nt - self.t_start);
+            let Some(c) = self.ws.colors.get_mut(c) else {
+                return Err(self.cap(Part::Colors));
+            };
+            *c = color;
+        }
         self.nt += 1;
         Ok(())
     }
@@ -1397,10 +1433,28 @@ impl<P: Profile> Preparer<'_, P> {
             let visible = self.bbox.is_some_and(|[x1, y1, _]| {
                 i64::from(x1) <= xl && i64::from(y1) <= yl && xl < 1 << 15 && yl < 1 << 15
             });
+            // Flat: the colours from the object's first on.
+            let full = |ws: &Workspace<'_, P::Lerp>, nt: usize, nc: usize| {
+                if flat && ws.colors.len().saturating_sub(nc) < ws.tris.len().saturating_sub(nt) {
+                    Part::Colors
+                } else {
+                    Part::Triangles
+                }
+            };
             if visible {
                 let col = |t, back| Self::flat_color(ctx, t, back);
-                let black = |_, _| Rgb8::BLACK;
+                // Stores the colour of kept triangle `k` into `cs`.
+                fn put<'a>(
+                    cs: &'a mut [Rgb8],
+                    mut col: impl FnMut(usize, bool) -> Rgb8 + 'a,
+                ) -> impl FnMut(usize, usize, bool) -> bool + 'a {
+                    move |k, t, back| {
+                        let c = col(t, back);
+                        cs.get_mut(k).map(|s| *s = c).is_some()
+                    }
+                }
                 let (tris, out, nt) = (ctx.tris, &mut *self.ws.tris, self.nt);
+                let cs = self.ws.colors.get_mut(self.nc..).unwrap_or(&mut []);
                 // Baked face normals under one light: the colour inline
                 // (the same as `flat_color`).
                 let one = match (flat, ctx.one, ctx.mesh.face_normals()) {
@@ -1410,10 +1464,13 @@ impl<P: Profile> Preparer<'_, P> {
                 let grey = ctx.grey;
                 // (Marked vertices only on culled objects.)
                 let marked = self.marked && ctx.cull;
+                let none = |_, _, _| true;
                 let nt = match (ctx.cull, flat, one) {
                     (true, true, Some((o, faces))) => {
-                        let c = |t: usize, back| {
-                            one_color(&o, grey, faces.get(t).copied().unwrap_or([0; 3]), back)
+                        let c = |k: usize, t: usize, back| {
+                            let c =
+                                one_color(&o, grey, faces.get(t).copied().unwrap_or([0; 3]), back);
+                            cs.get_mut(k).map(|s| *s = c).is_some()
                         };
                         if marked {
                             triangles_visible::<true, true>(tris, base, xy, out, nt, sub, c)
@@ -1423,27 +1480,30 @@ impl<P: Profile> Preparer<'_, P> {
                     }
                     (cull, flat, _) => match (cull, flat, marked) {
                         (true, true, false) => {
-                            triangles_visible::<true, false>(tris, base, xy, out, nt, sub, col)
+                            let c = put(cs, col);
+                            triangles_visible::<true, false>(tris, base, xy, out, nt, sub, c)
                         }
                         (true, true, true) => {
-                            triangles_visible::<true, true>(tris, base, xy, out, nt, sub, col)
+                            let c = put(cs, col);
+                            triangles_visible::<true, true>(tris, base, xy, out, nt, sub, c)
                         }
                         (true, false, false) => {
-                            triangles_visible::<true, false>(tris, base, xy, out, nt, sub, black)
+                            triangles_visible::<true, false>(tris, base, xy, out, nt, sub, none)
                         }
                         (true, false, true) => {
-                            triangles_visible::<true, true>(tris, base, xy, out, nt, sub, black)
+                            triangles_visible::<true, true>(tris, base, xy, out, nt, sub, none)
                         }
                         (false, true, _) => {
-                            triangles_visible::<false, false>(tris, base, xy, out, nt, sub, col)
+                            let c = put(cs, col);
+                            triangles_visible::<false, false>(tris, base, xy, out, nt, sub, c)
                         }
                         (false, false, _) => {
-                            triangles_visible::<false, false>(tris, base, xy, out, nt, sub, black)
+                            triangles_visible::<false, false>(tris, base, xy, out, nt, sub, none)
                         }
                     },
                 };
                 let Some(nt_new) = nt else {
-                    return Err(self.cap(Part::Triangles));
+                    return Err(self.cap(full(&self.ws, self.nt, self.nc)));
                 };
                 // The rows of every projected vertex: they hold the rows
                 // of every kept triangle (`first_row` is monotonic; every
@@ -1457,6 +1517,7 @@ impl<P: Profile> Preparer<'_, P> {
                 self.nt = nt_new;
                 return Ok(());
             }
+            let colors = self.ws.colors.get_mut(self.nc..).unwrap_or(&mut []);
             let nt = triangles_inside(
                 ctx.tris,
                 base,
@@ -1466,12 +1527,12 @@ impl<P: Profile> Preparer<'_, P> {
                 (self.width, self.height),
                 P::SUBPIXEL_BITS,
                 (ctx.cull, self.marked && ctx.cull),
-                |t, back| {
-                    if flat {
-                        Self::flat_color(ctx, t, back)
-                    } else {
-                        Rgb8::BLACK
-                    }
+                |k, t, back| {
+                    !flat
+                        || colors
+                            .get_mut(k)
+                            .map(|c| *c = Self::flat_color(ctx, t, back))
+                            .is_some()
                 },
             );
             return match nt {
@@ -1479,11 +1540,11 @@ impl<P: Profile> Preparer<'_, P> {
                     self.nt = nt;
                     Ok(())
                 }
-                None => Err(self.cap(Part::Triangles)),
+                None => Err(self.cap(full(&self.ws, self.nt, self.nc))),
             };
         }
         for (t, tri) in ctx.tris.iter().enumerate() {
-            // base + index < u16::MAX (checked by the vertex pass).
+            // base + index < MAX_VERTICES (checked by the vertex pass).
             let vs = tri.map(|i| (base + usize::from(i)) as u16);
             let xy = vs.map(|v| self.ws.xy.get(usize::from(v)).copied().unwrap_or([0; 2]));
             if !INSIDE && (xy[0][0] == OUTSIDE || xy[1][0] == OUTSIDE || xy[2][0] == OUTSIDE) {
@@ -1511,15 +1572,15 @@ impl<P: Profile> Preparer<'_, P> {
                     continue;
                 }
             }
-            let Some(rows) = self.rows_of(xy) else {
+            if self.rows_of(xy).is_none() {
                 continue;
-            };
+            }
             let color = if ctx.layout == Layout::Flat {
-                Self::flat_color(ctx, t, back)
+                Some(Self::flat_color(ctx, t, back))
             } else {
-                Rgb8::BLACK
+                None
             };
-            self.store_tri(vs, rows, color, back)?;
+            self.store_tri(vs, color, back)?;
         }
         Ok(())
     }
@@ -1534,13 +1595,7 @@ impl<P: Profile> Preparer<'_, P> {
             let cv = Self::clip_vert(ctx, usize::from(vi[c]), true);
             vs[c] = self.emit(ctx, &cv)?;
         }
-        let color = Self::flat_color(ctx, t, true);
-        self.push_tri(Tri {
-            v: vs,
-            color,
-            back: true,
-            ..Tri::EMPTY
-        })
+        self.push_tri(vs, None, true)
     }
 
     /// A triangle with a corner outside the planes: dropped when all are
@@ -1575,17 +1630,12 @@ impl<P: Profile> Preparer<'_, P> {
         if n < 3 {
             return Ok(());
         }
-        let color = Self::flat_color(ctx, t, back);
+        let color = (ctx.layout == Layout::Flat).then(|| Self::flat_color(ctx, t, back));
         let first = self.emit(ctx, &poly[0])?;
         let mut prev = self.emit(ctx, &poly[1])?;
         for q in poly.iter().take(n).skip(2) {
             let cur = self.emit(ctx, q)?;
-            self.push_tri(Tri {
-                v: [first, prev, cur],
-                color,
-                back,
-                ..Tri::EMPTY
-            })?;
+            self.push_tri([first, prev, cur], color, back)?;
             prev = cur;
         }
         Ok(())

@@ -3,10 +3,12 @@
 use super::{Layout, Tri, Workspace};
 use crate::mesh::Mesh;
 use crate::raster::Lerp;
+use crate::target::Rgb8;
 
 /// Lengths of a prepared frame's parts: vertices (`Workspace::xy`),
-/// values (`Workspace::vals`) and triangles (`Workspace::tris`, and two
-/// order entries each for the band renderer).
+/// values (`Workspace::vals`), triangles (`Workspace::tris`, and two
+/// order entries each for the band renderer) and flat triangles' colours
+/// (`Workspace::colors`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Capacity {
     /// Prepared vertices.
@@ -15,6 +17,8 @@ pub struct Capacity {
     pub values: usize,
     /// Prepared triangles.
     pub triangles: usize,
+    /// Colours of prepared triangles of flat objects.
+    pub colors: usize,
 }
 
 /// Where an object lies and how its back faces are drawn: what its
@@ -40,10 +44,12 @@ impl Capacity {
         vertices: 0,
         values: 0,
         triangles: 0,
+        colors: 0,
     };
 
     /// Room for `meshes`, one object each, in any shading mode (8 values
-    /// per vertex: the widest layout with the perspective weight), inside
+    /// per vertex: the widest layout with the perspective weight; a colour
+    /// per triangle: flat), inside
     /// the clipping planes with back faces culled or not Gouraud
     /// ([`Reach::Inside`]).
     pub const fn of(meshes: &[&Mesh<'_>]) -> Self {
@@ -52,6 +58,7 @@ impl Capacity {
         while i < meshes.len() {
             c = c.object(meshes[i], Layout::PhongPosition, Reach::Inside);
             c.values = c.values.saturating_add(meshes[i].vertex_count());
+            c.colors = c.colors.saturating_add(meshes[i].triangle_count());
             i += 1;
         }
         c
@@ -79,6 +86,10 @@ impl Capacity {
                 .values
                 .saturating_add(vertices.saturating_mul(layout.stride())),
             triangles: self.triangles.saturating_add(triangles),
+            colors: match layout {
+                Layout::Flat => self.colors.saturating_add(triangles),
+                _ => self.colors,
+            },
         }
     }
 
@@ -105,26 +116,36 @@ impl Capacity {
             vertices: m(self.vertices, o.vertices),
             values: m(self.values, o.values),
             triangles: m(self.triangles, o.triangles),
+            colors: m(self.colors, o.colors),
         }
     }
 
     /// Bytes of a [`Storage`] of these lengths with `value_bytes`-byte
-    /// values: 8 per vertex, `value_bytes` per value, 14 + 4 (order) per
-    /// triangle.
+    /// values: 8 per vertex, `value_bytes` per value, 6 + 4 (order) per
+    /// triangle, 3 per colour (with the arrays' padding to 4-byte
+    /// alignment: the colours' bytes rounded up to a multiple of 4, as
+    /// `size_of` counts them after the other parts).
     pub const fn bytes(self, value_bytes: usize) -> usize {
+        let colors = self
+            .colors
+            .saturating_mul(core::mem::size_of::<Rgb8>())
+            .saturating_add(3)
+            & !3;
+        let tris = self
+            .triangles
+            .saturating_mul(core::mem::size_of::<Tri>() + 4);
         self.vertices
             .saturating_mul(8)
             .saturating_add(self.values.saturating_mul(value_bytes))
-            .saturating_add(
-                self.triangles
-                    .saturating_mul(core::mem::size_of::<Tri>() + 4),
-            )
+            .saturating_add(tris)
+            .saturating_add(colors)
     }
 }
 
 /// A prepared frame's memory as arrays: `V` vertices, `N` values of type
-/// `L` and `T` triangles (with the band renderer's order scratch, two
-/// entries per triangle), sized by the compiler from a [`Capacity`].
+/// `L`, `T` triangles (with the band renderer's order scratch, two
+/// entries per triangle) and `C` flat-triangle colours, sized by the
+/// compiler from a [`Capacity`].
 /// `const` ([`Self::EMPTY`]): it may live in a `static` (in `.bss`).
 ///
 /// Storage sized by the compiler: a prepared frame's memory as arrays
@@ -136,8 +157,11 @@ impl Capacity {
 /// use fixshade::render::{Capacity, Storage};
 ///
 /// const CAP: Capacity = Capacity::of(&[&CUBE, &CUBE]);
-/// type CubeStorage = Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
+/// type CubeStorage =
+///     Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }, { CAP.colors }>;
 /// static STORAGE: CubeStorage = CubeStorage::EMPTY;
+/// // The same type, written with the macro:
+/// static SAME: fixshade::storage!(i32, CAP) = CubeStorage::EMPTY;
 /// assert_eq!(CAP.triangles, 2 * CUBE.triangle_count());
 /// ```
 ///
@@ -170,20 +194,24 @@ impl Capacity {
 /// view). A storage smaller than what a frame uses makes `prepare` return
 /// [`RenderError::Capacity`](super::RenderError::Capacity), never a panic.
 #[derive(Clone, Debug)]
-pub struct Storage<L, const V: usize, const N: usize, const T: usize> {
+pub struct Storage<L, const V: usize, const N: usize, const T: usize, const C: usize> {
     xy: [[i32; 2]; V],
     vals: [L; N],
     tris: [Tri; T],
     order: [[u16; 2]; T],
+    colors: [Rgb8; C],
 }
 
-impl<L: Lerp, const V: usize, const N: usize, const T: usize> Storage<L, V, N, T> {
+impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize>
+    Storage<L, V, N, T, C>
+{
     /// Empty storage.
     pub const EMPTY: Self = Self {
         xy: [[0; 2]; V],
         vals: [L::ZERO; N],
         tris: [Tri::EMPTY; T],
         order: [[0; 2]; T],
+        colors: [Rgb8::BLACK; C],
     };
 
     /// The lengths.
@@ -191,10 +219,16 @@ impl<L: Lerp, const V: usize, const N: usize, const T: usize> Storage<L, V, N, T
         vertices: V,
         values: N,
         triangles: T,
+        colors: C,
     };
 
     /// Bytes it takes.
     pub const BYTES: usize = core::mem::size_of::<Self>();
+
+    /// The lengths ([`Self::CAPACITY`]).
+    pub const fn capacity(&self) -> Capacity {
+        Self::CAPACITY
+    }
 
     /// Empty storage ([`Self::EMPTY`]).
     pub const fn new() -> Self {
@@ -214,13 +248,41 @@ impl<L: Lerp, const V: usize, const N: usize, const T: usize> Storage<L, V, N, T
                 xy: &mut self.xy,
                 vals: &mut self.vals,
                 tris: &mut self.tris,
+                colors: &mut self.colors,
             },
             self.order.as_flattened_mut(),
         )
     }
 }
 
-impl<L: Lerp, const V: usize, const N: usize, const T: usize> Default for Storage<L, V, N, T> {
+/// The [`Storage`] of a [`Capacity`] constant: `storage!(i32, CAP)` is
+/// `Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }, {
+/// CAP.colors }>`.
+///
+/// ```
+/// use fixshade::mesh::CUBE;
+/// use fixshade::render::Capacity;
+///
+/// const CAP: Capacity = Capacity::of(&[&CUBE]);
+/// static STORAGE: fixshade::storage!(i32, CAP) = <fixshade::storage!(i32, CAP)>::EMPTY;
+/// assert_eq!(STORAGE.capacity(), CAP);
+/// ```
+#[macro_export]
+macro_rules! storage {
+    ($l:ty, $cap:path) => {
+        $crate::render::Storage<
+            $l,
+            { $cap.vertices },
+            { $cap.values },
+            { $cap.triangles },
+            { $cap.colors },
+        >
+    };
+}
+
+impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize> Default
+    for Storage<L, V, N, T, C>
+{
     fn default() -> Self {
         Self::EMPTY
     }
@@ -288,7 +350,7 @@ mod tests {
     }
 
     const CUBE_GREY: Capacity = Capacity::EMPTY.object(&CUBE, Layout::GouraudMono, Reach::Inside);
-    type Grey = Storage<i32, { CUBE_GREY.vertices }, { CUBE_GREY.values }, { CUBE_GREY.triangles }>;
+    type Grey = crate::storage!(i32, CUBE_GREY);
 
     #[test]
     fn capacities_follow_the_table() {
@@ -298,7 +360,8 @@ mod tests {
             Capacity {
                 vertices: v,
                 values: 2 * v,
-                triangles: t
+                triangles: t,
+                colors: 0
             }
         );
         let c = Capacity::EMPTY.object(&CUBE, Layout::GouraudRgb, Reach::TwoSided);
@@ -308,8 +371,8 @@ mod tests {
         );
         let c = Capacity::EMPTY.object(&CUBE, Layout::Flat, Reach::Clipped);
         assert_eq!(
-            (c.vertices, c.values, c.triangles),
-            (v + 9 * t, v + 9 * t, 7 * t)
+            (c.vertices, c.values, c.triangles, c.colors),
+            (v + 9 * t, v + 9 * t, 7 * t, 7 * t)
         );
         let all = Capacity::of(&[&BUNNY, &CUBE]);
         assert_eq!(
@@ -317,14 +380,15 @@ mod tests {
             Capacity {
                 vertices: BUNNY.vertex_count() + v,
                 values: 8 * (BUNNY.vertex_count() + v),
-                triangles: BUNNY.triangle_count() + t
+                triangles: BUNNY.triangle_count() + t,
+                colors: BUNNY.triangle_count() + t
             }
         );
         assert_eq!(CUBE_GREY.perspective().values, 3 * v);
         assert_eq!(
             Grey::BYTES,
             CUBE_GREY.bytes(4),
-            "8 per vertex, 4 per value, 18 per triangle"
+            "8 per vertex, 4 per value, 10 per triangle"
         );
         assert_eq!(CUBE_GREY.max(all), all);
         // Beyond `usize`: saturated, never wrapped to a small capacity.
@@ -332,6 +396,7 @@ mod tests {
             vertices: usize::MAX - 1,
             values: usize::MAX - 1,
             triangles: usize::MAX / 2,
+            colors: 0,
         };
         let c = huge
             .object(&CUBE, Layout::PhongPosition, Reach::Clipped)
@@ -355,8 +420,13 @@ mod tests {
         let frame = prepare::<Fast>(&s, 64, 64, st.workspace()).unwrap();
         assert_eq!(frame.vertex_count(), CUBE.vertex_count());
         assert!(frame.triangle_count() > 0);
-        type Short =
-            Storage<i32, { CUBE_GREY.vertices }, { CUBE_GREY.values - 1 }, { CUBE_GREY.triangles }>;
+        type Short = Storage<
+            i32,
+            { CUBE_GREY.vertices },
+            { CUBE_GREY.values - 1 },
+            { CUBE_GREY.triangles },
+            { CUBE_GREY.colors },
+        >;
         let mut short = Box::new(Short::new());
         assert_eq!(
             prepare::<Fast>(&s, 64, 64, short.workspace()).unwrap_err(),
@@ -374,12 +444,7 @@ mod tests {
             })
         ));
         const PC: Capacity = CUBE_GREY.perspective();
-        let mut pc = Box::new(Storage::<
-            i32,
-            { PC.vertices },
-            { PC.values },
-            { PC.triangles },
-        >::new());
+        let mut pc = Box::new(<crate::storage!(i32, PC)>::new());
         prepare::<FastPc>(&s, 64, 64, pc.workspace()).unwrap();
     }
 
@@ -399,7 +464,7 @@ mod tests {
         const C: Capacity = Capacity::EMPTY
             .object(&CUBE, Layout::GouraudRgb, Reach::TwoSided)
             .object(&CUBE, Layout::GouraudRgb, Reach::Clipped);
-        let mut st = Box::new(Storage::<i32, { C.vertices }, { C.values }, { C.triangles }>::new());
+        let mut st = Box::new(<crate::storage!(i32, C)>::new());
         let (ws, order) = st.split();
         assert_eq!(order.len(), 2 * C.triangles);
         let frame = prepare::<Fast>(&s, 64, 64, ws).unwrap();
@@ -410,12 +475,7 @@ mod tests {
         const IN: Capacity = Capacity::EMPTY
             .object(&CUBE, Layout::GouraudRgb, Reach::Inside)
             .object(&CUBE, Layout::GouraudRgb, Reach::Inside);
-        let mut small = Box::new(Storage::<
-            i32,
-            { IN.vertices },
-            { IN.values },
-            { IN.triangles },
-        >::new());
+        let mut small = Box::new(<crate::storage!(i32, IN)>::new());
         assert!(matches!(
             prepare::<Fast>(&s, 64, 64, small.workspace()),
             Err(RenderError::Capacity {

@@ -18,6 +18,7 @@ struct Mem<L> {
     xy: Vec<[i32; 2]>,
     vals: Vec<L>,
     tris: Vec<Tri>,
+    colors: Vec<Rgb8>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -26,6 +27,7 @@ impl<L: Copy + Default> Mem<L> {
             xy: vec![[0; 2]; verts],
             vals: vec![L::default(); verts * 7],
             tris: vec![Tri::default(); tris],
+            colors: vec![Rgb8::BLACK; tris],
         }
     }
     fn ws(&mut self) -> Workspace<'_, L> {
@@ -33,6 +35,7 @@ impl<L: Copy + Default> Mem<L> {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
+            colors: &mut self.colors,
         }
     }
 }
@@ -424,7 +427,8 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 
 #[test]
 fn memory_figures_are_as_documented() {
-    assert_eq!(core::mem::size_of::<Tri>(), 14);
+    assert_eq!(core::mem::size_of::<Tri>(), 6);
+    assert_eq!(core::mem::size_of::<Rgb8>(), 3);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
@@ -456,7 +460,7 @@ fn memory_figures_are_as_documented() {
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
-    assert_eq!(frame.bytes_used(), 1839 * (8 + 2 * 4) + t * 14);
+    assert_eq!(frame.bytes_used(), 1839 * (8 + 2 * 4) + t * 6);
     // Phong with a point light and a local viewer carries positions.
     let objs = [object::<crate::num::Q16>(
         shapes::CUBE,
@@ -961,7 +965,7 @@ fn object_space_culling_keeps_the_frame_and_skips_vertices() {
             let skipped = (0..frame.vertex_count())
                 .filter(|&v| frame.xy(v).unwrap()[0] == i32::MIN + 1)
                 .count();
-            let tris = frame.tris().to_vec();
+            let tris = frame.tris().collect::<Vec<_>>();
             (tris, skipped, full::<Fast>(&s, 240, 240, true))
         };
         let (t0, s0, f0) = run(plain);

@@ -206,10 +206,12 @@ pub fn with_scene<P: Profile, T>(
     let mut xy = vec![[0i32; 2]; verts];
     let mut vals = vec![P::Lerp::default(); verts * 7];
     let mut tri_buf = vec![Tri::default(); 4 * tris + 16];
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; tri_buf.len()];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tri_buf,
+        colors: &mut colors,
     };
     let frame = prepare::<P>(scene, w, h, ws).expect("prepare");
     let mut px = vec![[0u8; 3]; (w * h) as usize];

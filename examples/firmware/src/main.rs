@@ -41,7 +41,7 @@ use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
-use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader, Storage};
+use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
     check, render_frame_in, BandPool, ChipFields, FrameError, Pixel, Probe, SceneLine, BAND_PIXELS,
@@ -178,7 +178,7 @@ const CAP: Capacity = if cfg!(feature = "tiny-workspace") {
 };
 
 /// The prepared frame's storage, sized by the compiler.
-type FrameStorage = Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
+type FrameStorage = fixshade::storage!(i32, CAP);
 
 /// Static memory: the band buffers (no depth band when no scene needs
 /// one), the prepared frame's storage and the active triangles.

@@ -12,7 +12,7 @@
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::Profile;
-use fixshade::render::{Capacity, Storage};
+use fixshade::render::Capacity;
 use fixshade_scenes::profiled::{check_with, render_frame_with, ProfilePool};
 use fixshade_scenes::{capacity_for, Pixel, BAND_PIXELS, BAND_ROWS, DEPTH_PIXELS, SCENES, WIDTH};
 
@@ -38,7 +38,7 @@ type L = <P as Profile>::Lerp;
 const CAP: Capacity = capacity_for::<P>();
 
 /// The prepared frame's storage, sized by the compiler.
-type FrameStorage = Storage<L, { CAP.vertices }, { CAP.values }, { CAP.triangles }>;
+type FrameStorage = fixshade::storage!(L, CAP);
 
 #[entry]
 fn main() -> ! {

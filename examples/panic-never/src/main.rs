@@ -296,6 +296,8 @@ fn main() -> ! {
     static mut XY: [[i32; 2]; MAX_VERTS] = [[0; 2]; MAX_VERTS];
     static mut VALS: [L; MAX_VALS] = [0; MAX_VALS];
     static mut TRIS: [Tri; MAX_TRIS] = [Tri::EMPTY; MAX_TRIS];
+    static mut COLORS: [fixshade::target::Rgb8; MAX_TRIS] =
+        [fixshade::target::Rgb8::BLACK; MAX_TRIS];
     static mut BAND: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     // The band state: triangle order and active pool.
@@ -318,6 +320,7 @@ fn main() -> ! {
             xy: &mut XY[..],
             vals: &mut VALS[..],
             tris: &mut TRIS[..],
+            colors: &mut COLORS[..],
         };
         match frame(
             f,

@@ -24,6 +24,7 @@ pub struct Mem<L> {
     pub xy: Vec<[i32; 2]>,
     pub vals: Vec<L>,
     pub tris: Vec<Tri>,
+    pub colors: Vec<fixshade::target::Rgb8>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -34,6 +35,7 @@ impl<L: Copy + Default> Mem<L> {
             xy: vec![[0; 2]; verts],
             vals: vec![L::default(); verts * 8],
             tris: vec![Tri::default(); tris],
+            colors: vec![fixshade::target::Rgb8::BLACK; tris],
         }
     }
 
@@ -42,6 +44,7 @@ impl<L: Copy + Default> Mem<L> {
             xy: &mut self.xy,
             vals: &mut self.vals,
             tris: &mut self.tris,
+            colors: &mut self.colors,
         }
     }
 }

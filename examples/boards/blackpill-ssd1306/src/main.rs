@@ -66,6 +66,7 @@ fn main() -> ! {
     let mut xy = [[0i32; 2]; VERTICES];
     let mut vals = [0i32; VALUES];
     let mut tris = [Tri::EMPTY; TRIANGLES];
+    let mut colors = [fixshade::target::Rgb8::BLACK; TRIANGLES];
     let mut order = [0u16; ORDER];
     let mut pool = BandPool::new();
     let mut band = match BandBuf::<Gray8>::new(&mut pixels, Some(&mut depth), W, ROWS) {
@@ -87,6 +88,7 @@ fn main() -> ! {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
+            colors: &mut colors,
         };
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,

@@ -32,7 +32,7 @@ use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::{SpiBus, MODE_0};
 use fixshade::num::Fast;
 use fixshade::render::{prepare, BandState, Tri, Workspace};
-use fixshade::target::{BandBuf, Rgb565Be};
+use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 use fugit::RateExtU32;
 use hal::dma::{single_buffer, Channel, DMAExt, CH0};
 use hal::gpio::bank0::{Gpio16, Gpio18, Gpio19};
@@ -55,7 +55,9 @@ const XTAL_FREQ_HZ: u32 = 12_000_000;
 
 mod scene;
 
-use scene::{BandPool, BAND_PX, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
+use scene::{
+    BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W,
+};
 
 type Mosi = Pin<Gpio19, FunctionSpi, PullDown>;
 type Sck = Pin<Gpio18, FunctionSpi, PullDown>;
@@ -213,11 +215,12 @@ fn main() -> ! {
     };
     let mut spare: Option<Band> = Some(b);
     let mut next: Option<Band> = Some(a);
-    let (Some(depth), Some(xy), Some(vals), Some(tris), Some(order), Some(pool)) = (
+    let (Some(depth), Some(xy), Some(vals), Some(tris), Some(colors), Some(order), Some(pool)) = (
         cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
         cortex_m::singleton!(: [[i32; 2]; VERTICES] = [[0; 2]; VERTICES]),
         cortex_m::singleton!(: [i32; VALUES] = [0; VALUES]),
         cortex_m::singleton!(: [Tri; TRIANGLES] = [Tri::EMPTY; TRIANGLES]),
+        cortex_m::singleton!(: [Rgb8; COLORS] = [Rgb8::BLACK; COLORS]),
         cortex_m::singleton!(: [u16; ORDER] = [0; ORDER]),
         cortex_m::singleton!(: BandPool = BandPool::new()),
     ) else {
@@ -238,6 +241,7 @@ fn main() -> ! {
             xy: &mut xy[..],
             vals: &mut vals[..],
             tris: &mut tris[..],
+            colors: &mut colors[..],
         };
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,

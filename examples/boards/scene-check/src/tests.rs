@@ -111,6 +111,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     let mut xy = vec![[0i32; 2]; VERTICES];
     let mut vals = vec![0i32; VALUES];
     let mut tris = vec![Tri::EMPTY; TRIANGLES];
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; TRIANGLES];
     let mut order = vec![0u16; ORDER];
     let mut pool = Box::new(BandPool::new());
     let camera = camera().unwrap();
@@ -124,6 +125,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
+            colors: &mut colors,
         };
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
         let u = bands::<Rgb565Be, POOL_SLOTS, POOL_VALUES>(
@@ -147,6 +149,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
+            colors: &mut colors,
         };
         let f = firmware_frame(i as u32, ws, &mut order);
         assert_eq!(
@@ -178,6 +181,7 @@ fn blackpill_turn_fits() {
     let mut xy = [[0i32; 2]; VERTICES];
     let mut vals = [0i32; VALUES];
     let mut tris = [Tri::EMPTY; TRIANGLES];
+    let mut colors = [fixshade::target::Rgb8::BLACK; TRIANGLES];
     let mut order = [0u16; ORDER];
     let mut pool = BandPool::new();
     let camera = camera().unwrap();
@@ -191,6 +195,7 @@ fn blackpill_turn_fits() {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
+            colors: &mut colors,
         };
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
         let u =

@@ -27,6 +27,7 @@ struct Owned<L> {
     xy: Vec<[i32; 2]>,
     vals: Vec<L>,
     tris: Vec<Tri>,
+    colors: Vec<fixshade::target::Rgb8>,
     order: Vec<u16>,
 }
 
@@ -36,6 +37,7 @@ impl<L: fixshade::raster::Lerp> Owned<L> {
             xy: vec![[0; 2]; n.vertices],
             vals: vec![L::ZERO; n.values],
             tris: vec![Tri::default(); n.triangles],
+            colors: vec![fixshade::target::Rgb8::BLACK; n.colors],
             order: vec![0; 2 * n.triangles],
         }
     }
@@ -50,6 +52,7 @@ impl<L: fixshade::raster::Lerp> Owned<L> {
                 xy: &mut self.xy,
                 vals: &mut self.vals,
                 tris: &mut self.tris,
+                colors: &mut self.colors,
             },
             &mut self.order,
         )

@@ -6,16 +6,16 @@
 //! [`dodeca`]: the dodecahedron scenes (feature `dodeca` of this crate
 //! and of the firmware, `cargo build --release --features dodeca` in
 //! `examples/firmware`). One convex object with back faces culled needs
-//! no depth band; its 36 triangles need 1 368 bytes of storage at most
+//! no depth band; its 36 triangles need 1 188 bytes of storage at most
 //! (Phong with the eye position, the widest of the three), so the static
 //! RAM is the colour band, that storage and the pool:
 //!
 //! | part | bytes |
 //! |------|------:|
 //! | colour band: 160 px × 8 rows × 2 (RGB565) | 2 560 |
-//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 1 368 |
+//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 1 188 |
 //! | pool: 12 slots of 7 values ([`dodeca::DodecaPool`]) | `size_of` (about 2 100) |
-//! | total, within the 8 KB = 8 192 bytes budget | about 6 100 |
+//! | total, within the 8 KB = 8 192 bytes budget | about 5 900 |
 //!
 //! (The tests check the sum against 8 192 bytes less 512 for the rest of
 //! the firmware's `.data` and `.bss`; `.ci/firmware` checks the ELF's.)
@@ -106,98 +106,146 @@ const fn width(scenes: &[SceneSpec]) -> u32 {
     w
 }
 
-/// The dodecahedron scenes alone (feature `dodeca`).
-pub mod dodeca {
-    use super::SceneSpec;
-    use fixshade::render::{Capacity, Pool};
-
-    const PREFIX: &str = "dodeca-";
-    const N: usize = super::count(PREFIX);
-    const PICKED: [SceneSpec; N] = super::pick::<N>(PREFIX);
-
-    /// The dodecahedron scenes, in the firmware's order.
-    pub static SCENES: [SceneSpec; N] = PICKED;
-    /// Their storage.
-    pub const CAPACITY: Capacity = super::capacity(&PICKED);
+/// What a firmware built for some of the scenes alone holds, derived from
+/// the scenes and the band and pool chosen for them ([`Alone::of`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Alone {
+    /// The scenes' storage (each part's largest).
+    pub capacity: Capacity,
     /// Whether one needs a depth band (not one convex object culled).
-    pub const DEPTH: bool = super::depth(&PICKED);
+    pub depth: bool,
     /// The widest, pixels: the colour band's width.
-    pub const WIDTH: u32 = super::width(&PICKED);
-    /// Rows per band: 8 (a 2 560-byte colour band at 160 pixels; the
-    /// frame is the same for every band height).
-    pub const BAND_ROWS: u32 = 8;
-    /// Active triangles kept from band to band: at most 10 cross a band
-    /// border in these scenes (checked by the tests, with 8- and 16-row
-    /// bands); fewer slots would only set some triangles up again (the
-    /// same bytes).
-    pub const POOL_SLOTS: usize = 12;
-    /// Values a slot holds: 7 (depth, normal and eye position of
-    /// `dodeca-phong-n100`).
-    pub const POOL_VALUES: usize = 7;
-    /// The pool of such a firmware.
-    pub type DodecaPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
-    /// Bytes of the colour band.
-    pub const BAND_BYTES: usize = (WIDTH * BAND_ROWS) as usize * 2;
+    pub width: u32,
+    /// Bytes of the colour band: `width × band rows × 2` (RGB565).
+    pub band_bytes: usize,
     /// Bytes the firmware's statics hold for the scenes: the colour band,
-    /// the depth band (none), the storage and the pool.
-    pub const STATIC_BYTES: usize = BAND_BYTES
-        + if DEPTH { BAND_BYTES } else { 0 }
-        + CAPACITY.bytes(4)
-        + core::mem::size_of::<DodecaPool>();
+    /// the depth band (as many bytes, 16-bit depth, when `depth`), the
+    /// storage ([`Capacity::bytes`] with 4-byte values) and the pool.
+    pub static_bytes: usize,
 }
 
-/// The bunny Gouraud benchmark scene alone (feature `bunny`): the
-/// firmware the RAM budget of a prepared bunny frame is measured in.
-/// Storage for one Gouraud object with a grey level (two values per
-/// vertex: [`bunny::CAPACITY`] is the scene's own), a depth band (the
-/// bunny is not convex), 8-row bands and a pool sized by the measured
-/// peak of active triangles:
-///
-/// | part | bytes |
-/// |------|------:|
-/// | colour band: 240 px × 8 rows × 2 (RGB565) | 3 840 |
-/// | depth band: 240 px × 8 rows × 2 (16-bit) | 3 840 |
-/// | storage: 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (14 + 4) | 95 556 |
-/// | pool: 62 slots of 2 values, 88 + 4 bytes each ([`bunny::BunnyPool`]) | 5 704 |
-/// | total | 108 940 |
-///
-/// The budget is 40 KB = 40 960 bytes; the storage alone exceeds it (the
-/// tests check these figures).
-pub mod bunny {
-    use super::SceneSpec;
-    use fixshade::render::{Capacity, Pool};
+impl Alone {
+    /// The firmware of `scenes` in bands of `band_rows` rows with a pool
+    /// of `pool_bytes` bytes.
+    pub const fn of(scenes: &[SceneSpec], band_rows: u32, pool_bytes: usize) -> Self {
+        let (capacity, depth, width) = (capacity(scenes), depth(scenes), width(scenes));
+        let band_bytes = (width * band_rows) as usize * 2;
+        Self {
+            capacity,
+            depth,
+            width,
+            band_bytes,
+            static_bytes: band_bytes
+                + if depth { band_bytes } else { 0 }
+                + capacity.bytes(4)
+                + pool_bytes,
+        }
+    }
+}
 
-    const PREFIX: &str = "bunny-gouraud";
-    const N: usize = super::count(PREFIX);
-    const PICKED: [SceneSpec; N] = super::pick::<N>(PREFIX);
+/// A module of the scenes whose name starts with a prefix, with the band
+/// height and pool chosen for them and what follows ([`Alone::of`]):
+/// `SCENES`, `BAND_ROWS`, `POOL_SLOTS`, `POOL_VALUES`, the pool type,
+/// `FIRMWARE` and its parts `CAPACITY`, `DEPTH`, `WIDTH`, `BAND_BYTES`,
+/// `STATIC_BYTES`.
+macro_rules! alone {
+    (
+        $(#[$doc:meta])*
+        pub mod $name:ident {
+            prefix: $prefix:literal,
+            $(#[$rows_doc:meta])* band_rows: $rows:expr,
+            $(#[$slots_doc:meta])* pool_slots: $slots:expr,
+            $(#[$values_doc:meta])* pool_values: $values:expr,
+            $(#[$pool_doc:meta])* pool: $pool:ident,
+        }
+    ) => {
+        $(#[$doc])*
+        pub mod $name {
+            use super::{Alone, SceneSpec};
+            use fixshade::render::{Capacity, Pool};
 
-    /// The bunny Gouraud scene.
-    pub static SCENES: [SceneSpec; N] = PICKED;
-    /// Its storage.
-    pub const CAPACITY: Capacity = super::capacity(&PICKED);
-    /// Whether it needs a depth band (yes: the bunny is not convex).
-    pub const DEPTH: bool = super::depth(&PICKED);
-    /// Its width, pixels: the colour band's width.
-    pub const WIDTH: u32 = super::width(&PICKED);
-    /// Rows per band: 8 (3 840 bytes of colour band and as many of depth
-    /// band at 240 pixels; the frame is the same for every band height).
-    pub const BAND_ROWS: u32 = 8;
-    /// Active triangles kept from band to band: 62, the peak in 8-row
-    /// bands (checked by the tests; 55 in 16-row bands); fewer slots would
-    /// only set some triangles up again (the same bytes).
-    pub const POOL_SLOTS: usize = 62;
-    /// Values a slot holds: 2 (depth and grey level).
-    pub const POOL_VALUES: usize = 2;
-    /// The pool of such a firmware.
-    pub type BunnyPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
-    /// Bytes of the colour band.
-    pub const BAND_BYTES: usize = (WIDTH * BAND_ROWS) as usize * 2;
-    /// Bytes the firmware's statics hold for the scene: the colour band,
-    /// the depth band, the storage and the pool.
-    pub const STATIC_BYTES: usize = BAND_BYTES
-        + if DEPTH { BAND_BYTES } else { 0 }
-        + CAPACITY.bytes(4)
-        + core::mem::size_of::<BunnyPool>();
+            const N: usize = super::count($prefix);
+            const PICKED: [SceneSpec; N] = super::pick::<N>($prefix);
+
+            /// The scenes, in the firmware's order.
+            pub static SCENES: [SceneSpec; N] = PICKED;
+            $(#[$rows_doc])*
+            pub const BAND_ROWS: u32 = $rows;
+            $(#[$slots_doc])*
+            pub const POOL_SLOTS: usize = $slots;
+            $(#[$values_doc])*
+            pub const POOL_VALUES: usize = $values;
+            $(#[$pool_doc])*
+            pub type $pool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
+            /// The firmware's statics for the scenes.
+            pub const FIRMWARE: Alone =
+                Alone::of(&PICKED, BAND_ROWS, core::mem::size_of::<$pool>());
+            /// Their storage ([`Alone::capacity`]).
+            pub const CAPACITY: Capacity = FIRMWARE.capacity;
+            /// Whether one needs a depth band ([`Alone::depth`]).
+            pub const DEPTH: bool = FIRMWARE.depth;
+            /// The widest, pixels ([`Alone::width`]).
+            pub const WIDTH: u32 = FIRMWARE.width;
+            /// Bytes of the colour band ([`Alone::band_bytes`]).
+            pub const BAND_BYTES: usize = FIRMWARE.band_bytes;
+            /// Bytes of the statics for the scenes ([`Alone::static_bytes`]).
+            pub const STATIC_BYTES: usize = FIRMWARE.static_bytes;
+        }
+    };
+}
+
+alone! {
+    /// The dodecahedron scenes alone (feature `dodeca`).
+    pub mod dodeca {
+        prefix: "dodeca-",
+        /// Rows per band: 8 (a 2 560-byte colour band at 160 pixels; the
+        /// frame is the same for every band height).
+        band_rows: 8,
+        /// Active triangles kept from band to band: at most 10 cross a band
+        /// border in these scenes (checked by the tests, with 8- and 16-row
+        /// bands); fewer slots would only set some triangles up again (the
+        /// same bytes).
+        pool_slots: 12,
+        /// Values a slot holds: 7 (depth, normal and eye position of
+        /// `dodeca-phong-n100`).
+        pool_values: 7,
+        /// The pool of such a firmware.
+        pool: DodecaPool,
+    }
+}
+
+alone! {
+    /// The bunny Gouraud benchmark scene alone (feature `bunny`): the
+    /// firmware the RAM budget of a prepared bunny frame is measured in.
+    /// Storage for one Gouraud object with a grey level (two values per
+    /// vertex: [`bunny::CAPACITY`] is the scene's own), a depth band (the
+    /// bunny is not convex), 8-row bands and a pool sized by the measured
+    /// peak of active triangles:
+    ///
+    /// | part | bytes |
+    /// |------|------:|
+    /// | colour band: 240 px × 8 rows × 2 (RGB565) | 3 840 |
+    /// | depth band: 240 px × 8 rows × 2 (16-bit) | 3 840 |
+    /// | storage: 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (6 + 4) | 66 164 |
+    /// | pool: 62 slots of 2 values, 88 + 4 bytes each ([`bunny::BunnyPool`]) | 5 704 |
+    /// | total | 79 548 |
+    ///
+    /// The budget is 40 KB = 40 960 bytes; the storage alone exceeds it (the
+    /// tests check these figures).
+    pub mod bunny {
+        prefix: "bunny-gouraud",
+        /// Rows per band: 8 (3 840 bytes of colour band and as many of depth
+        /// band at 240 pixels; the frame is the same for every band height).
+        band_rows: 8,
+        /// Active triangles kept from band to band: 62, the peak in 8-row
+        /// bands (checked by the tests; 55 in 16-row bands); fewer slots would
+        /// only set some triangles up again (the same bytes).
+        pool_slots: 62,
+        /// Values a slot holds: 2 (depth and grey level).
+        pool_values: 2,
+        /// The pool of such a firmware.
+        pool: BunnyPool,
+    }
 }
 
 #[cfg(test)]
@@ -206,7 +254,7 @@ mod tests {
     use crate::profiled::{depth_in, raster_bands_in};
     use crate::Pixel;
     use fixshade::num::Fast;
-    use fixshade::render::{prepare, Storage};
+    use fixshade::render::prepare;
     use fixshade::target::Depth16;
     use std::{boxed::Box, vec};
 
@@ -224,7 +272,7 @@ mod tests {
         const { assert!(!dodeca::DEPTH) };
         assert_eq!(dodeca::WIDTH, 160);
         assert_eq!(dodeca::BAND_BYTES, 2560);
-        assert_eq!(dodeca::CAPACITY.bytes(4), 1368);
+        assert_eq!(dodeca::CAPACITY.bytes(4), 1188);
         // The statics other than storage, pool and band (a few hundred
         // bytes) must fit in what is left of 8 KB.
         const { assert!(dodeca::STATIC_BYTES <= 8192 - 512) };
@@ -239,7 +287,7 @@ mod tests {
     #[cfg(not(feature = "bunny"))]
     fn the_dodeca_pool_holds_every_active_triangle() {
         const C: fixshade::render::Capacity = dodeca::CAPACITY;
-        let mut st = Box::new(Storage::<i32, { C.vertices }, { C.values }, { C.triangles }>::new());
+        let mut st = Box::new(<fixshade::storage!(i32, C)>::new());
         let mut pool = Box::new(crate::BandPool::new());
         for spec in dodeca::SCENES.iter() {
             let full = crate::generated::SCENES
@@ -288,17 +336,17 @@ mod tests {
         const { assert!(bunny::DEPTH) };
         assert_eq!(bunny::WIDTH, 240);
         assert_eq!(bunny::BAND_BYTES, 3840);
-        // 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (14 + 4).
-        assert_eq!(bunny::CAPACITY.bytes(4), 1839 * 16 + 3674 * 18);
-        assert_eq!(bunny::CAPACITY.bytes(4), 95_556);
+        // 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (6 + 4).
+        assert_eq!(bunny::CAPACITY.bytes(4), 1839 * 16 + 3674 * 10);
+        assert_eq!(bunny::CAPACITY.bytes(4), 66_164);
         assert_eq!(
             core::mem::size_of::<bunny::BunnyPool>(),
             bunny::POOL_SLOTS * 92
         );
-        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 95_556 + 62 * 92);
-        assert_eq!(bunny::STATIC_BYTES, 108_940);
+        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 66_164 + 62 * 92);
+        assert_eq!(bunny::STATIC_BYTES, 79_548);
         const C: fixshade::render::Capacity = bunny::CAPACITY;
-        let mut st = Box::new(Storage::<i32, { C.vertices }, { C.values }, { C.triangles }>::new());
+        let mut st = Box::new(<fixshade::storage!(i32, C)>::new());
         // The build's pool: 56 slots by default (the peak it reports is
         // the bunny build's need), 62 with the feature `bunny`.
         let mut pool = Box::new(crate::BandPool::new());
@@ -310,11 +358,11 @@ mod tests {
             let (ws, order) = st.split();
             let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
             // 1 839 vertices × (8 bytes xy + 2 values × 4) + 1 498 kept
-            // triangles × 14.
+            // triangles × 6.
             assert_eq!(frame.vertex_count(), 1839);
             assert_eq!(frame.triangle_count(), 1498);
-            assert_eq!(frame.bytes_used(), 1839 * 16 + 1498 * 14);
-            assert_eq!(frame.bytes_used(), 50_396);
+            assert_eq!(frame.bytes_used(), 1839 * 16 + 1498 * 6);
+            assert_eq!(frame.bytes_used(), 38_412);
             let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
             let mut z = vec![0u16; (spec.width * rows) as usize];
             let s = raster_bands_in::<Fast, Depth16, _>(

@@ -50,7 +50,7 @@ pub use spec::{ObjectSpec, SceneSpec};
 
 use core::fmt;
 use fixshade::num::{Fast, Profile};
-use fixshade::render::{Capacity, Pool, RenderError, Storage, Workspace};
+use fixshade::render::{Capacity, Pool, RenderError, Workspace};
 use fixshade::target::{BandBuf, BufferError, Rgb565Be};
 
 /// Rows per band: 16 ([`alone::dodeca::BAND_ROWS`] with the feature
@@ -159,8 +159,7 @@ impl fmt::Display for SceneLine<'_> {
 
 /// The `Fast` storage of the scenes (sized by the compiler from their
 /// meshes: see `generated.rs`).
-pub type SceneStorage =
-    Storage<i32, { CAPACITY.vertices }, { CAPACITY.values }, { CAPACITY.triangles }>;
+pub type SceneStorage = fixshade::storage!(i32, CAPACITY);
 
 /// Active triangles the firmware keeps from band to band: 56, or every
 /// triangle of the storage when fewer; with the feature `dodeca`,
@@ -403,16 +402,19 @@ mod tests {
                 vec![0i32; c.values],
                 vec![fixshade::render::Tri::EMPTY; c.triangles],
             );
+            let mut colors = vec![fixshade::target::Rgb8::BLACK; c.colors];
             let ws = Workspace {
                 xy: &mut xy[..],
                 vals: &mut vals[..],
                 tris: &mut tris[..],
+                colors: &mut colors[..],
             };
             check(spec, ws).unwrap();
             let short = Workspace {
                 xy: &mut xy[..c.vertices - 1],
                 vals: &mut vals[..],
                 tris: &mut tris[..],
+                colors: &mut colors[..],
             };
             let e = check(spec, short).unwrap_err();
             assert_eq!(

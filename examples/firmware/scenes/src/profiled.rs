@@ -250,10 +250,12 @@ mod tests {
             vec![<P::Lerp as fixshade::raster::Lerp>::ZERO; n.values],
             vec![Tri::default(); n.triangles],
         );
+        let mut colors = vec![fixshade::target::Rgb8::BLACK; n.colors];
         let ws = Workspace {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
+            colors: &mut colors,
         };
         let mut px = vec![0u16; BAND_PIXELS];
         let mut z = vec![0u16; BAND_PIXELS];
