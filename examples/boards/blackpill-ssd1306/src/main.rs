@@ -31,7 +31,7 @@ use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 
 mod scene;
 
-use scene::{BandPool, BAND_PX, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
+use scene::{BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
@@ -66,7 +66,7 @@ fn main() -> ! {
     let mut xy = [[0i32; 2]; VERTICES];
     let mut vals = [0i32; VALUES];
     let mut tris = [Tri::EMPTY; TRIANGLES];
-    let mut colors = [fixshade::target::Rgb8::BLACK; TRIANGLES];
+    let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];
     let mut order = [0u16; ORDER];
     let mut pool = BandPool::new();
     let mut band = match BandBuf::<Gray8>::new(&mut pixels, Some(&mut depth), W, ROWS) {

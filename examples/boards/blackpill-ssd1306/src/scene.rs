@@ -36,6 +36,8 @@ pub const VERTICES: usize = CAPACITY.vertices;
 pub const VALUES: usize = CAPACITY.values;
 /// Triangles of the workspace.
 pub const TRIANGLES: usize = CAPACITY.triangles;
+/// Flat-triangle colours (none: the dodecahedron is shaded Phong).
+pub const COLORS: usize = CAPACITY.colors;
 /// The band renderer's order scratch: 2 `u16` per prepared triangle.
 pub const ORDER: usize = 2 * TRIANGLES;
 

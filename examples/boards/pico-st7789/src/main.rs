@@ -55,15 +55,16 @@ const XTAL_FREQ_HZ: u32 = 12_000_000;
 
 mod scene;
 
-use scene::{
-    BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W,
-};
+use scene::{BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
 
 type Mosi = Pin<Gpio19, FunctionSpi, PullDown>;
 type Sck = Pin<Gpio18, FunctionSpi, PullDown>;
 type Dc = Pin<Gpio16, FunctionSioOutput, PullDown>;
 type Bus = hal::spi::Spi<Enabled, pac::SPI0, (Mosi, Sck), 8>;
-type Band = &'static mut [u8; 2 * BAND_PX];
+/// A band buffer as the DMA sends it: the bytes of `BAND_PX` RGB565
+/// pixels (`u16`s stored in the display's byte order, big-endian), a
+/// byte view of a `u16` array (`bytemuck`: same memory, no copy).
+type Band = &'static mut [u8];
 
 /// `mipidsi`'s display interface over the SPI bus, with DMA for bands.
 ///
@@ -208,13 +209,13 @@ fn main() -> ! {
     // Memory: two band buffers for the DMA, the depth band (shared: only
     // the band being rendered uses it), the workspace, the band state.
     let (Some(a), Some(b)) = (
-        cortex_m::singleton!(: [u8; 2 * BAND_PX] = [0; 2 * BAND_PX]),
-        cortex_m::singleton!(: [u8; 2 * BAND_PX] = [0; 2 * BAND_PX]),
+        cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
+        cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
     ) else {
         defmt::panic!("band buffers taken twice");
     };
-    let mut spare: Option<Band> = Some(b);
-    let mut next: Option<Band> = Some(a);
+    let mut spare: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(b));
+    let mut next: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(a));
     let (Some(depth), Some(xy), Some(vals), Some(tris), Some(colors), Some(order), Some(pool)) = (
         cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
         cortex_m::singleton!(: [[i32; 2]; VERTICES] = [[0; 2]; VERTICES]),
@@ -260,7 +261,11 @@ fn main() -> ! {
             // The next band into this buffer while the other one (the
             // band above) is still going out by DMA.
             let rendered = {
-                let (pixels, _) = buf.as_chunks_mut::<2>();
+                // The same memory as `u16` pixels (it was a `u16` array:
+                // aligned, an even length).
+                let Ok(pixels) = bytemuck::try_cast_slice_mut::<u8, u16>(&mut buf[..]) else {
+                    defmt::panic!("band buffer not a u16 array");
+                };
                 match BandBuf::<Rgb565Be>::new(pixels, Some(&mut depth[..]), W, ROWS) {
                     Ok(mut band) => bands.next_band(&mut band),
                     Err(e) => defmt::panic!("band buffer: {}", e),

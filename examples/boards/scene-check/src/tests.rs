@@ -162,7 +162,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     assert_eq!(most.peak, PICO_PEAK);
     assert_eq!(
         (most.vertices, most.triangles, most.bytes),
-        (1839, 1574, 51_460)
+        (1839, 1574, 38_868)
     );
     assert_eq!(
         [turn[0].crc, turn[1].crc, turn[2].crc],
@@ -181,7 +181,7 @@ fn blackpill_turn_fits() {
     let mut xy = [[0i32; 2]; VERTICES];
     let mut vals = [0i32; VALUES];
     let mut tris = [Tri::EMPTY; TRIANGLES];
-    let mut colors = [fixshade::target::Rgb8::BLACK; TRIANGLES];
+    let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];
     let mut order = [0u16; ORDER];
     let mut pool = BandPool::new();
     let camera = camera().unwrap();
@@ -214,7 +214,7 @@ fn blackpill_turn_fits() {
         );
     }
     assert_eq!(most.peak, BLACKPILL_PEAK);
-    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2412));
+    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2_268));
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
     assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
     assert_eq!(most.pixels, 2488);
@@ -228,13 +228,16 @@ const BLACKPILL_PEAK: usize = 12;
 #[test]
 fn memory_figures() {
     use core::mem::size_of;
-    let ws = |v: usize, vals: usize, t: usize| v * 8 + vals * 4 + t * size_of::<Tri>();
+    let ws = |v: usize, vals: usize, t: usize, c: usize| {
+        v * 8 + vals * 4 + t * size_of::<Tri>() + c * size_of::<fixshade::target::Rgb8>()
+    };
     let pico = (
         size_of::<crate::pico::BandPool>(),
         ws(
             crate::pico::VERTICES,
             crate::pico::VALUES,
             crate::pico::TRIANGLES,
+            crate::pico::COLORS,
         ),
         2 * crate::pico::ORDER,
     );
@@ -244,10 +247,11 @@ fn memory_figures() {
             crate::blackpill::VERTICES,
             crate::blackpill::VALUES,
             crate::blackpill::TRIANGLES,
+            crate::blackpill::COLORS,
         ),
         2 * crate::blackpill::ORDER,
     );
     println!("pool, workspace, order bytes: pico {pico:?}, blackpill {blackpill:?}");
-    assert_eq!(pico, (9_280, 95_572, 14_696));
-    assert_eq!(blackpill, (2_624, 2_664, 144));
+    assert_eq!(pico, (9_280, 66_180, 14_696));
+    assert_eq!(blackpill, (2_624, 2_376, 144));
 }
