@@ -125,7 +125,7 @@ impl<L: Lerp> Shader<L, 1> for GouraudMono {
 
     /// Fixed values ([`Lerp::EXACT_STEPS`]) whose rounded levels lie in
     /// `0..=255` at both ends of the span, without wrapping in between
-    /// ([`levels_in_range`]).
+    /// (`levels_in_range`).
     #[inline(always)]
     fn span_in_range(&self, a: &[L; 1], da: &[L; 1], len: u32) -> bool {
         L::EXACT_STEPS && levels_in_range(a[0].round_int(0), da[0].round_int(0), len)
