@@ -24,7 +24,10 @@ pub struct MeasureArgs {
     #[arg(long, value_name = "FILE", conflicts_with = "check")]
     pub write: Option<PathBuf>,
     /// Re-measure and fail (exit status 1) when any figure differs from
-    /// FILE's.
+    /// FILE's. With --profiles, only those profiles' figures are
+    /// re-measured and compared; FILE must still have been measured from
+    /// these sources (its source fingerprint, toolchain and QEMU equal to
+    /// the checkout's), so the other profiles' figures are current too.
     #[arg(long, value_name = "FILE")]
     pub check: Option<PathBuf>,
     /// Only these profiles (comma-separated; all by default).
@@ -162,6 +165,7 @@ fn run_scenes(args: &MeasureArgs, profiles: Vec<CoreProfile>) -> Result<(), CliE
 /// Measures, then writes or checks.
 pub fn run(args: &MeasureArgs) -> Result<(), CliError> {
     let profiles = parse_profiles(&args.profiles, "profiles")?;
+    let names: Vec<&str> = profiles.iter().map(|p| p.name()).collect();
     if !args.scenes.is_empty() {
         return run_scenes(args, profiles);
     }
@@ -207,7 +211,7 @@ pub fn run(args: &MeasureArgs) -> Result<(), CliError> {
         }
     }
     if let (Some(path), Some(old)) = (&args.check, committed) {
-        let diff = old.differences(&m);
+        let diff = old.restricted_to(&names).differences(&m);
         if !diff.is_empty() {
             return Err(CliError {
                 kind: ErrorKind::Io,
@@ -220,8 +224,14 @@ pub fn run(args: &MeasureArgs) -> Result<(), CliError> {
             });
         }
         text.push_str(&format!(
-            "{}: every figure agrees with a fresh measurement\n",
-            path.display()
+            "{}: every figure {}agrees with a fresh measurement (sources {})\n",
+            path.display(),
+            if args.profiles.is_empty() {
+                String::new()
+            } else {
+                format!("of {} ", names.join(", "))
+            },
+            m.source_fingerprint
         ));
     }
     if args.write.is_none() && args.check.is_none() {

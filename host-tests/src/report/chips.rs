@@ -287,6 +287,29 @@ pub struct Measurements {
     pub knob_depth32_vs_depth16_pixels: u64,
 }
 
+    /// The same measurements with only the results and builds of
+    /// `profiles` (by name; the knobs and the header stay): what a partial
+    /// re-measurement (`measure-firmware --check FILE --profiles ...`) is
+    /// compared with.
+    pub fn restricted_to(&self, profiles: &[&str]) -> Self {
+        let keep = |p: &String| profiles.contains(&p.as_str());
+        Self {
+            builds: self
+                .builds
+                .iter()
+                .filter(|b| keep(&b.profile))
+                .cloned()
+                .collect(),
+            results: self
+                .results
+                .iter()
+                .filter(|r| keep(&r.profile))
+                .cloned()
+                .collect(),
+            ..self.clone()
+        }
+    }
+
 impl Measurements {
     /// The figures that differ from `other`'s, one line each (empty when
     /// they agree).
@@ -656,6 +679,31 @@ mod tests {
         );
         assert!(d[0].contains("insns 300 -> 350"), "{}", d[0]);
         assert!(d[0].contains("insns_raster 200 -> 250"), "{}", d[0]);
+    }
+
+    #[test]
+    fn a_partial_check_compares_only_its_profiles_and_the_sources() {
+        let mut committed = sample();
+        let mut precise = committed.results[0].clone();
+        precise.profile = "precise".into();
+        committed.results.push(precise);
+        // A re-measurement of `fast` alone.
+        let mut fresh = sample();
+        assert_eq!(committed.differences(&fresh).len(), 1, "precise is missing");
+        assert!(committed
+            .restricted_to(&["fast"])
+            .differences(&fresh)
+            .is_empty());
+        // Its figures are still compared...
+        fresh.results[0].insns_raster += 1;
+        let d = committed.restricted_to(&["fast"]).differences(&fresh);
+        assert_eq!(d.len(), 1, "{d:?}");
+        assert!(d[0].contains("insns_raster 200 -> 201"), "{}", d[0]);
+        // ...and so are the sources the whole file was measured from.
+        fresh.results[0].insns_raster -= 1;
+        fresh.source_fingerprint = "fnv1a64:1".into();
+        let d = committed.restricted_to(&["fast"]).differences(&fresh);
+        assert_eq!(d, ["source_fingerprint: fnv1a64:0 -> fnv1a64:1"]);
     }
 
     #[test]
