@@ -287,6 +287,7 @@ pub struct Measurements {
     pub knob_depth32_vs_depth16_pixels: u64,
 }
 
+impl Measurements {
     /// The same measurements with only the results and builds of
     /// `profiles` (by name; the knobs and the header stay): what a partial
     /// re-measurement (`measure-firmware --check FILE --profiles ...`) is
@@ -310,7 +311,6 @@ pub struct Measurements {
         }
     }
 
-impl Measurements {
     /// The figures that differ from `other`'s, one line each (empty when
     /// they agree).
     pub fn differences(&self, other: &Self) -> Vec<String> {
