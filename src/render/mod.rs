@@ -28,6 +28,7 @@
 //! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
 //! | per prepared triangle | 6 ([`Tri`]), and 3 (an [`Rgb8`] colour) in a flat object |
 //! | band state ([`BandState`]) | 4 per prepared triangle (order scratch) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
+//! | the [`Frame`]'s object list (in the frame value itself: the caller's stack) | 20 per [`PreparedObject`], [`MAX_OBJECTS`] = 32 of them: 640 |
 //!
 //! A prepared vertex is made per mesh vertex (one per distinct position
 //! and normal), in one linear pass, so shared vertices are transformed and
