@@ -28,6 +28,7 @@
 //! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
 //! | per prepared triangle | 6 ([`Tri`]), and 3 (an [`Rgb8`] colour) in a flat object |
 //! | band state ([`BandState`]) | 4 per prepared triangle (order scratch) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
+//! | the [`Frame`]'s object list (in the frame value itself: the caller's stack) | 20 per [`PreparedObject`], [`MAX_OBJECTS`] = 32 of them: 640 |
 //!
 //! A prepared vertex is made per mesh vertex (one per distinct position
 //! and normal), in one linear pass, so shared vertices are transformed and
@@ -86,6 +87,13 @@ use core::ops::Range;
 /// it fit the 15 low bits of a [`Tri`]'s `u16`s; bit 15 of the first
 /// marks a back face).
 pub const MAX_VERTICES: usize = 1 << 15;
+
+/// Prepared triangles a frame can hold: `u16::MAX` = 65 535 (the band
+/// renderer orders them by `u16` index; [`PreparedObject::tris`] holds
+/// them as a `u16` range). [`prepare`] uses at most this many entries of
+/// [`Workspace::tris`] and [`Workspace::colors`]: a frame that needs more
+/// is a [`RenderError::Capacity`] error ([`Part::Triangles`]).
+pub const MAX_TRIANGLES: usize = u16::MAX as usize;
 
 /// Bit 15 of a [`Tri`]'s first index: a back face.
 const BACK: u16 = 1 << 15;
@@ -199,22 +207,25 @@ impl Layout {
     }
 }
 
-/// One object of a prepared frame.
+/// One object of a prepared frame: 20 bytes (indices as `u16`: below
+/// [`MAX_VERTICES`] vertices and [`MAX_TRIANGLES`] triangles; values
+/// below `MAX_VERTICES × 8`), so that a frame's object list
+/// ([`MAX_OBJECTS`] of them) stays small on the stack.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PreparedObject {
     /// Layout of its vertices.
     pub layout: Layout,
-    /// Its prepared vertices.
-    pub verts: Range<usize>,
-    /// Index of its first value in [`Workspace::vals`].
-    pub val_base: usize,
     /// Values per prepared vertex.
-    pub stride: usize,
+    pub stride: u8,
+    /// Its prepared vertices.
+    pub verts: Range<u16>,
+    /// Index of its first value in [`Workspace::vals`].
+    pub val_base: u32,
     /// Its prepared triangles.
-    pub tris: Range<usize>,
+    pub tris: Range<u16>,
     /// Index of its first triangle's colour in [`Workspace::colors`] (flat
     /// objects; the others have none).
-    pub color_base: usize,
+    pub color_base: u16,
     /// Rows `rows[0]..rows[1]` that hold every row its triangles can cover
     /// (possibly a few more: for an object wholly on screen, the range of
     /// its projected vertices; empty when it has no triangle): a band
@@ -251,12 +262,12 @@ impl<P: Profile> Frame<'_, P> {
 
     /// Prepared vertices in use.
     pub fn vertex_count(&self) -> usize {
-        self.objects.last().map_or(0, |o| o.verts.end)
+        self.objects.last().map_or(0, |o| usize::from(o.verts.end))
     }
 
     /// Prepared triangles in use.
     pub fn triangle_count(&self) -> usize {
-        self.objects.last().map_or(0, |o| o.tris.end)
+        self.objects.last().map_or(0, |o| usize::from(o.tris.end))
     }
 
     /// Flat-triangle colours in use.
@@ -264,17 +275,18 @@ impl<P: Profile> Frame<'_, P> {
         self.objects.iter().map(PreparedObject::color_count).sum()
     }
 
-    /// Bytes of workspace in use (vertices, values, triangles and flat
-    /// colours, without the scratch).
+    /// Bytes of workspace in use: the prepared vertices' positions,
+    /// values, triangles and flat colours, each counted at its stored
+    /// size (`size_of`), without the band renderer's order scratch.
     pub fn bytes_used(&self) -> usize {
-        let vals = self
-            .objects
-            .last()
-            .map_or(0, |o| o.val_base + o.verts.len() * o.stride);
-        self.vertex_count() * 8
-            + vals * core::mem::size_of::<P::Lerp>()
-            + self.triangle_count() * core::mem::size_of::<Tri>()
-            + self.color_count() * core::mem::size_of::<Rgb8>()
+        use core::mem::size_of;
+        let vals = self.objects.last().map_or(0, |o| {
+            o.val_base as usize + o.verts.len() * usize::from(o.stride)
+        });
+        self.vertex_count() * size_of::<[i32; 2]>()
+            + vals * size_of::<P::Lerp>()
+            + self.triangle_count() * size_of::<Tri>()
+            + self.color_count() * size_of::<Rgb8>()
     }
 
     /// Screen width and height the frame was prepared for.
@@ -287,7 +299,7 @@ impl<P: Profile> Frame<'_, P> {
     pub fn tri(&self, po: &PreparedObject, i: usize) -> Option<PreparedTri> {
         let p = *self.ws.tris.get(i)?;
         let color = if po.layout == Layout::Flat {
-            let c = po.color_base + i.checked_sub(po.tris.start)?;
+            let c = usize::from(po.color_base) + i.checked_sub(usize::from(po.tris.start))?;
             self.ws.colors.get(c).copied()?
         } else {
             Rgb8::BLACK
@@ -338,7 +350,9 @@ impl<P: Profile> Frame<'_, P> {
     #[inline(always)]
     pub fn object_tris(&self, po: &PreparedObject) -> impl Iterator<Item = PreparedTri> + '_ {
         let po = po.clone();
-        po.tris.clone().map_while(move |i| self.tri(&po, i))
+        po.tris
+            .clone()
+            .map_while(move |i| self.tri(&po, usize::from(i)))
     }
 
     /// Every prepared triangle, object after object.
@@ -361,7 +375,8 @@ impl<P: Profile> Frame<'_, P> {
         [x, y]: [i32; 2],
     ) -> Option<Vertex<P::Lerp, N>> {
         let i = usize::from(i);
-        let base = po.val_base + i.checked_sub(po.verts.start)? * po.stride;
+        let base = po.val_base as usize
+            + i.checked_sub(usize::from(po.verts.start))? * usize::from(po.stride);
         let vals = self.ws.vals.get(base..base + 1 + N)?;
         let mut attrs = [vals[0]; N];
         attrs.copy_from_slice(&vals[1..]);

@@ -48,7 +48,9 @@
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
-use super::{Frame, Layout, Part, PreparedObject, RenderError, Tri, Workspace, MAX_VERTICES};
+use super::{
+    Frame, Layout, Part, PreparedObject, RenderError, Tri, Workspace, MAX_TRIANGLES, MAX_VERTICES,
+};
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
 use crate::geom::q16::{face_normal_q14, Proj16, Xform16};
@@ -234,6 +236,22 @@ pub fn prepare<'w, P: Profile>(
         ..view
     };
     let lights = eye_lights(scene)?;
+    // At most `MAX_TRIANGLES` triangles (and as many flat colours): their
+    // indices are `u16` in the object list and the band order.
+    let Workspace {
+        xy,
+        vals,
+        tris,
+        colors,
+    } = ws;
+    let nt = tris.len().min(MAX_TRIANGLES);
+    let nc = colors.len().min(MAX_TRIANGLES);
+    let ws = Workspace {
+        xy,
+        vals,
+        tris: tris.get_mut(..nt).unwrap_or_default(),
+        colors: colors.get_mut(..nc).unwrap_or_default(),
+    };
     let mut p = Preparer::<P> {
         ws,
         view,
@@ -848,13 +866,16 @@ impl<P: Profile> Preparer<'_, P> {
         if layout == Layout::Flat {
             self.nc = color_base + tris.len();
         }
+        // Vertices below `MAX_VERTICES` (2^15), values below 8 per
+        // vertex (2^18), triangles and colours below `MAX_TRIANGLES` (the
+        // workspace's parts are cut to it): every index fits.
         Ok(PreparedObject {
             layout,
-            verts: ctx.v_start..self.nv,
-            val_base: ctx.val_base,
-            stride: ctx.stride,
-            tris,
-            color_base,
+            stride: ctx.stride as u8,
+            verts: ctx.v_start as u16..self.nv as u16,
+            val_base: ctx.val_base as u32,
+            tris: tris.start as u16..tris.end as u16,
+            color_base: color_base as u16,
             rows: if rows[0] < rows[1] { rows } else { [0; 2] },
         })
     }

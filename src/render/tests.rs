@@ -429,6 +429,7 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 fn memory_figures_are_as_documented() {
     assert_eq!(core::mem::size_of::<Tri>(), 6);
     assert_eq!(core::mem::size_of::<Rgb8>(), 3);
+    assert_eq!(core::mem::size_of::<PreparedObject>(), 20);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
@@ -883,7 +884,7 @@ fn non_uniform_scale_lights_with_the_inverse_transpose() {
         let mut used = [false; 4000];
         for t in frame.tris() {
             for v in t.v {
-                used[usize::from(v) - po.verts.start] = true;
+                used[usize::from(v - po.verts.start)] = true;
             }
         }
         let normals = shapes::SPHERE.vertex_normals().unwrap();
@@ -898,7 +899,7 @@ fn non_uniform_scale_lights_with_the_inverse_transpose() {
             let len = (ne[0] * ne[0] + ne[1] * ne[1] + ne[2] * ne[2]).sqrt();
             let nl = (0..3).map(|k| ne[k] / len * ln[k]).sum::<f64>().max(0.0);
             let want = 255.0 * (0.2 + 0.8 * nl).min(1.0);
-            let v = frame.ws.vals[po.val_base + i * po.stride + 1];
+            let v = frame.ws.vals[po.val_base as usize + i * usize::from(po.stride) + 1];
             let got = lv(v);
             worst = worst.max((got - want).abs());
         }
