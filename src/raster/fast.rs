@@ -14,13 +14,16 @@
 //!   value for the span start, the row offset advanced by the width and
 //!   the column-0 values by their y steps;
 //! - per span: the colour and depth slices (one range check each) and the
-//!   span stage's own pixel loops ([`pair_loop`], [`depth_loop`]), so the
-//!   bytes are those of the generic path.
+//!   span stage's own pixel loops: [`inr_span`] for a triangle whose
+//!   depths are all in range (the kernel [`Fill`](super::Fill) runs too,
+//!   so the firmware's span-loop figures are this loop's), [`depth_loop`]
+//!   with the clamping test otherwise; so the bytes are those of the
+//!   generic path.
 //!
 //! Values are the same modulo 2^32 as the generic walker's `row + sx·x0 +
 //! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
 
-use super::span::{depth_loop, in_range_test, pair_loop};
+use super::span::{clamp_test, depth_loop, inr_span};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
@@ -38,22 +41,6 @@ pub(crate) struct BandMem<'k, 'b, R, Z> {
     pub y0: i32,
     /// Pixels per row.
     pub width: i32,
-}
-
-/// The pixels of a span whose depths are in range, in a function of its
-/// own: the row loop keeps its edge walkers and row values in the
-/// callee-saved registers across the call, and the pixel loop has the
-/// others to itself. Returns the pixels written.
-#[inline(never)]
-fn span_inr<const N: usize, R: Copy, D: DepthFormat>(
-    p: &mut [R],
-    d: &mut [D::Raw],
-    z: i32,
-    a: [i32; N],
-    sx: &Vals<i32, N>,
-    color: &impl Fn(&[i32; N]) -> R,
-) -> u32 {
-    p.len() as u32 - pair_loop(p, d, z, sx.z, a, &sx.a, color, in_range_test::<i32, D>)
 }
 
 impl Walk {
@@ -145,31 +132,7 @@ impl Walk {
                     let span = base.wrapping_add(x0 as usize)..base.wrapping_add(x1 as usize);
                     if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
                         drawn += if INR {
-                            if NO_LONG_MUL {
-                                // ARMv6-M: inline, as the generic walker
-                                // (the call costs more there).
-                                p.len() as u32
-                                    - depth_loop(
-                                        p,
-                                        d,
-                                        s.z,
-                                        sx.z,
-                                        s.a,
-                                        &sx.a,
-                                        color,
-                                        in_range_test::<i32, D>,
-                                    )
-                            } else if let ([q], [zb]) = (&mut *p, &mut *d) {
-                                // One pixel (frequent on small triangles):
-                                // no call (bunny-gouraud raster -0.5 %).
-                                let pass = in_range_test::<i32, D>(s.z, zb);
-                                if pass {
-                                    *q = color(&s.a);
-                                }
-                                pass as u32
-                            } else {
-                                span_inr::<N, R, D>(p, d, s.z, s.a, sx, color)
-                            }
+                            inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
                         } else {
                             p.len() as u32
                                 - depth_loop(
@@ -180,14 +143,7 @@ impl Walk {
                                     s.a,
                                     &sx.a,
                                     color,
-                                    |z, zb: &mut D::Raw| {
-                                        let zd = D::from_lerp(z);
-                                        let pass = zd < *zb;
-                                        if pass {
-                                            *zb = zd;
-                                        }
-                                        pass
-                                    },
+                                    clamp_test::<i32, D>,
                                 )
                         };
                     }

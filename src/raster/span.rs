@@ -332,19 +332,26 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
                     if N > 1 {
                         pair_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
                     } else if inr {
-                        in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, color_inr)
+                        len - inr_span::<L, N, _, D>(
+                            row,
+                            drow,
+                            z,
+                            a,
+                            &Vals { z: dz, a: *da },
+                            color_inr,
+                        )
                     } else {
-                        in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, color)
+                        len - inr_span::<L, N, _, D>(
+                            row,
+                            drow,
+                            z,
+                            a,
+                            &Vals { z: dz, a: *da },
+                            color,
+                        )
                     }
                 } else {
-                    depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
-                        let zd = D::from_lerp(z);
-                        let pass = zd < *zb;
-                        if pass {
-                            *zb = zd;
-                        }
-                        pass
-                    })
+                    depth_loop(row, drow, z, dz, a, da, color, clamp_test::<L, D>)
                 };
                 len - fails
             } else {
@@ -403,7 +410,7 @@ where
 {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, plane_in_range, |_| raw)
+        row_pixels::<L, N, F::Raw, D>(row, drow, v, sx, plane_in_range, move |_| raw)
     } else {
         let mut drow = drow;
         if let Some(drawn) =
@@ -443,28 +450,14 @@ fn row_pixels<L: Lerp, const N: usize, R, D: DepthFormat>(
                 if plane_in_range || (long && D::span_in_range(z, dz, len)) {
                     depth_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
                 } else {
-                    depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
-                        let zd = D::from_lerp(z);
-                        let pass = zd < *zb;
-                        if pass {
-                            *zb = zd;
-                        }
-                        pass
-                    })
+                    depth_loop(row, drow, z, dz, a, da, color, clamp_test::<L, D>)
                 }
             } else if long && (plane_in_range || D::span_in_range(z, dz, len)) {
-                in_range_loop::<L, N, _, D>(row, drow, z, dz, a, da, &color)
+                len - in_range_loop::<L, N, _, D>(row, drow, z, a, sx, &color)
             } else if plane_in_range {
                 depth_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
             } else {
-                depth_loop(row, drow, z, dz, a, da, color, |z, zb: &mut D::Raw| {
-                    let zd = D::from_lerp(z);
-                    let pass = zd < *zb;
-                    if pass {
-                        *zb = zd;
-                    }
-                    pass
-                })
+                depth_loop(row, drow, z, dz, a, da, color, clamp_test::<L, D>)
             };
             len - fails
         }
@@ -518,29 +511,27 @@ pub(super) fn depth_loop<L: Lerp, const N: usize, R, Z>(
     fails
 }
 
-/// [`depth_loop`] for a span whose depths stay in range (no clamp), in a
-/// function of its own on ARMv7-M and the host: inlined next to the
-/// clamping loop of the short spans, its depth step lost its register to
-/// a stack reload on ARMv7-M; the call costs bunny-gouraud raster 0.6 %.
-/// ARMv6-M calls it too since the band renderer's fast path no longer
-/// goes through [`Fill`] (with the pixels stored as `u16`s and the
-/// unclamped Gouraud levels, [`Shader::span_in_range`]: span loops on
-/// thumbv6m Gouraud 22.67 -> 20.96 instructions a pixel, flat 11.67 ->
-/// 11.77; dodeca-gouraud raster 483 180 -> 463 907). Spans of more than
-/// one attribute inline [`pair_loop`] instead (their outlined loop
-/// spilled its steps: dodeca-gouraud raster +11 % on the M4).
+/// [`depth_loop`] for a span whose depths stay in range (no clamp), two
+/// pixels a step ([`pair_loop`]), in a function of its own that returns
+/// the pixels written (the caller then keeps no length across the call): the spans of
+/// three pixels or more of [`inr_span`] on ARMv7-M and the hosts, and the
+/// long spans of the generic row kernel's single-attribute shaders there
+/// (inlined next to the clamping loop of the short spans, its depth step
+/// lost its register to a stack reload on ARMv7-M; the call costs
+/// bunny-gouraud raster 0.6 %). Spans of more than one attribute inline
+/// [`pair_loop`] instead (their outlined loop spilled its steps:
+/// dodeca-gouraud raster +11 % on the M4).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn in_range_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     row: &mut [R],
     drow: &mut [D::Raw],
     z: L,
-    dz: L,
     a: [L; N],
-    da: &[L; N],
+    sx: &Vals<L, N>,
     color: &impl Fn(&[L; N]) -> R,
 ) -> u32 {
-    pair_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
+    row.len() as u32 - pair_loop(row, drow, z, sx.z, a, &sx.a, color, in_range_test::<L, D>)
 }
 
 /// [`depth_loop`] two pixels per iteration (after one pixel alone when
@@ -592,6 +583,67 @@ pub(super) fn pair_loop<L: Lerp, const N: usize, R, Z>(
     fails
 }
 
+/// The pixels of a span whose depths all convert without a clamp (the
+/// triangle's [`DepthFormat::plane_in_range`] flag, or
+/// [`DepthFormat::span_in_range`] for the span): returns the pixels
+/// written. The span kernel of the band renderer's fused row loop
+/// (`raster::fast`), and [`Fill`]'s for the in-range spans of at most one
+/// attribute, so that the firmware's span-loop figures are the loop the
+/// renderer runs. On ARMv6-M the one-pixel-a-step [`depth_loop`], inlined
+/// (a call costs more there than it saves on spans of a few pixels);
+/// elsewhere a single pixel inline (frequent on small triangles:
+/// bunny-gouraud raster -0.5 % on thumbv7em), two without attributes, and
+/// longer spans through the outlined [`pair_loop`] ([`in_range_loop`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(super) fn inr_span<L: Lerp, const N: usize, R, D: DepthFormat>(
+    row: &mut [R],
+    drow: &mut [D::Raw],
+    z: L,
+    a: [L; N],
+    sx: &Vals<L, N>,
+    color: &impl Fn(&[L; N]) -> R,
+) -> u32 {
+    if NO_LONG_MUL {
+        row.len() as u32 - depth_loop(row, drow, z, sx.z, a, &sx.a, color, in_range_test::<L, D>)
+    } else if let ([p], [zb]) = (&mut *row, &mut *drow) {
+        let pass = in_range_test::<L, D>(z, zb);
+        if pass {
+            *p = color(&a);
+        }
+        pass as u32
+    } else if let (0, [p0, p1], [z0, z1]) = (N, &mut *row, &mut *drow) {
+        // Two pixels inline as well, without attributes (flat: bunny-flat
+        // raster on thumbv7em 2.110 -> 2.075 M; with one attribute the
+        // row loop lost registers to it, bunny-gouraud +0.4 %).
+        let pass0 = in_range_test::<L, D>(z, z0);
+        if pass0 {
+            *p0 = color(&a);
+        }
+        let mut a = a;
+        step_all(&mut a, &sx.a);
+        let pass1 = in_range_test::<L, D>(z.add(sx.z), z1);
+        if pass1 {
+            *p1 = color(&a);
+        }
+        pass0 as u32 + pass1 as u32
+    } else {
+        in_range_loop::<L, N, R, D>(row, drow, z, a, sx, color)
+    }
+}
+
+/// The depth test and write of a pixel, its depth converted with the
+/// format's clamp ([`DepthFormat::from_lerp`]).
+#[inline(always)]
+pub(super) fn clamp_test<L: Lerp, D: DepthFormat>(z: L, zb: &mut D::Raw) -> bool {
+    let zd = D::from_lerp(z);
+    let pass = zd < *zb;
+    if pass {
+        *zb = zd;
+    }
+    pass
+}
+
 /// The depth test and write of a pixel whose depth is in range
 /// ([`DepthFormat::span_in_range`]): no clamp.
 #[inline(always)]
@@ -626,7 +678,7 @@ where
     fn span(&mut self, s: &Span<L, N>) {
         if let Some(c) = self.shader.constant() {
             let raw = T::Format::encode(c);
-            self.fill(s, |_| raw);
+            self.fill(s, move |_| raw);
         } else {
             let len = s.x1.saturating_sub(s.x0);
             self.shader.begin_span(&s.a, &s.da, len);

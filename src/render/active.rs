@@ -1074,7 +1074,7 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
 ) -> u32 {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |_| raw)
+        walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, move |_| raw)
     } else {
         walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
     }
