@@ -1403,16 +1403,19 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     back: bool,
 ) -> u32 {
     let len = row.len() as u32;
-    let depth = drow.map(|drow| DepthTest { drow, z, dz });
-    // Checked only for spans long enough to repay the check.
-    let in_range = depth.is_some() && len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
-    let out = RowOut::<L, F, D> {
-        row,
-        depth,
-        in_range,
-        enc: [F::Raw::default(); CHUNK],
-    };
-    k.fill_with(n, dn, p, dp, back, len, out)
+    match drow {
+        Some(drow) => {
+            // Checked only for spans long enough to repay the check.
+            let in_range = len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
+            let out = RowOut::<L, F, D> {
+                row,
+                depth: DepthTest { drow, z, dz },
+                in_range,
+            };
+            k.fill_with(n, dn, p, dp, back, len, out)
+        }
+        None => k.fill_with(n, dn, p, dp, back, len, RowNoDepth::<F> { row }),
+    }
 }
 
 /// Spans of at least this many pixels check whether their depths are in
@@ -1463,29 +1466,15 @@ impl<T: FnMut(u32) -> bool, W: FnMut(u32, Rgb8)> Out for FnOut<T, W> {
     }
 }
 
-/// [`Out`] of a span's row slice and, with a depth buffer, its depth
-/// slice. A chunk is two loops: the colours of all its pixels encoded
-/// into `enc` (the channel constants stay in registers: measured on the
-/// M4's span sweep, 9 reloads a pixel less than in the loop of the depth
-/// test), then the depth test over the three slices zipped (no index
-/// checks per pixel), without the depth clamp when the span's depths are
-/// in range ([`DepthFormat::span_in_range`]: the same values), copying
-/// the passing pixels' colours. Without a depth buffer the colours go
-/// straight into the row.
-struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
+/// [`Out`] of a span's row slice without a depth buffer.
+struct RowNoDepth<'r, F: PixelFormat> {
     row: &'r mut [F::Raw],
-    depth: Option<DepthTest<'d, L, D>>,
-    in_range: bool,
-    enc: [F::Raw; CHUNK],
 }
 
-impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+impl<F: PixelFormat> Out for RowNoDepth<'_, F> {
     #[inline(always)]
-    fn test(&mut self, i: u32) -> bool {
-        match &mut self.depth {
-            Some(d) => d.test(i),
-            None => true,
-        }
+    fn test(&mut self, _i: u32) -> bool {
+        true
     }
 
     #[inline(always)]
@@ -1498,47 +1487,69 @@ impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
     #[inline(always)]
     fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
         let (i, k) = (i as usize, cols.len());
-        let Self {
-            row,
-            depth,
-            in_range,
-            enc,
-        } = self;
-        let Some(row) = row.get_mut(i..i + k) else {
+        let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        let Some(d) = depth else {
-            for (px, &c) in row.iter_mut().zip(cols.iter()) {
-                *px = F::encode(unpack(col(c)));
-            }
-            return 0;
-        };
-        let (Some(drow), Some(enc)) = (d.drow.get_mut(i..i + k), enc.get_mut(..k)) else {
-            return k as u32;
-        };
-        for (e, &c) in enc.iter_mut().zip(cols.iter()) {
-            *e = F::encode(unpack(col(c)));
+        for (px, &c) in row.iter_mut().zip(cols.iter()) {
+            *px = F::encode(unpack(col(c)));
         }
+        0
+    }
+}
+
+/// [`Out`] of a span's row slice and its depth slice: a chunk is one
+/// loop over the three slices zipped (no index checks per pixel),
+/// without the depth clamp when the span's depths are in range
+/// ([`DepthFormat::span_in_range`]: the same values).
+struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
+    row: &'r mut [F::Raw],
+    depth: DepthTest<'d, L, D>,
+    in_range: bool,
+}
+
+impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        self.depth.test(i)
+    }
+
+    #[inline(always)]
+    fn write(&mut self, i: u32, c: Rgb8) {
+        if let Some(px) = self.row.get_mut(i as usize) {
+            *px = F::encode(c);
+        }
+    }
+
+    #[inline(always)]
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+        let (i, k) = (i as usize, cols.len());
+        let Some(row) = self.row.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let d = &mut self.depth;
+        let Some(drow) = d.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
         let (mut z, dz) = (d.z, d.dz);
         let mut failed = 0;
-        let px = row.iter_mut().zip(drow.iter_mut()).zip(enc.iter());
-        if *in_range {
-            for ((px, zb), &e) in px {
+        let px = row.iter_mut().zip(drow.iter_mut()).zip(cols.iter());
+        if self.in_range {
+            for ((px, zb), &c) in px {
                 let key = D::from_lerp_in_range(z);
                 if key < D::to_key(*zb) {
                     *zb = D::from_key(key);
-                    *px = e;
+                    *px = F::encode(unpack(col(c)));
                 } else {
                     failed += 1;
                 }
                 z = z.add(dz);
             }
         } else {
-            for ((px, zb), &e) in px {
+            for ((px, zb), &c) in px {
                 let zd = D::from_lerp(z);
                 if zd < *zb {
                     *zb = zd;
-                    *px = e;
+                    *px = F::encode(unpack(col(c)));
                 } else {
                     failed += 1;
                 }

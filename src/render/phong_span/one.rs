@@ -23,32 +23,10 @@
 
 use super::{
     cross, drive, fallback, lin, pack, quad, sq3, KLight, Out, PhongKernel, CHUNK, RS,
-    RSQRT_N, SPEC_SEGMENTS,
+    SPEC_SEGMENTS,
 };
 use crate::num::wide::wmul;
 use crate::num::Real;
-
-/// Bits of the difference in an entry of [`RS_PAIRS`].
-const RS_DIFF_BITS: u32 = 12;
-const RS_DIFF_MASK: u32 = (1 << RS_DIFF_BITS) - 1;
-
-/// The `1/|n|` table [`RS`] as pairs packed in one word, `RS[j] << 12 |
-/// (RS[j] - RS[j + 1])`: the 32-bit loops' interpolation with one load.
-/// `RS[j] <= 2^17` and the differences below `2^12` (the largest,
-/// `2^17 - 2^19/sqrt(17) = 3 914`, at `j = 0`; the table decreases), so
-/// that an entry is below `2^30` and unpacks exactly (checked at compile
-/// time: a bad entry makes the table fail to build).
-const RS_PAIRS: [u32; RSQRT_N] = {
-    let mut t = [0u32; RSQRT_N];
-    let mut j = 0;
-    while j < RSQRT_N {
-        let (a, b) = (RS[j], RS[j + 1]);
-        assert!(a <= 1 << 17 && b <= a && a - b <= RS_DIFF_MASK);
-        t[j] = a << RS_DIFF_BITS | (a - b);
-        j += 1;
-    }
-    t
-};
 
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 const QM_FRAC: u32 = 20;
@@ -334,11 +312,10 @@ impl<R: Real> PhongKernel<'_, R> {
     pub(super) fn terms<const SPEC: bool>(&self, nn: i32, nl: i32, q7: i32) -> (u32, u32) {
         // 64 segments of 2^24 (Q30) from 1/4.
         let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
-        // One load: `RS[j]` and `RS[j] - RS[j + 1]` ([`RS_PAIRS`]).
-        let w = RS_PAIRS[j];
+        let (a, b) = (RS[j], RS[j + 1]);
         let t = ((nn as u32) >> 8) & 0xFFFF;
         // 2^16 / |n| (<= 2^17).
-        let r = (w >> RS_DIFF_BITS) - (((w & RS_DIFF_MASK) * t) >> 16);
+        let r = a - (((a - b) * t) >> 16);
         // N·L in Q15: (n·L)/|n| <= 1 (within 2^-11 relative: no clamp
         // needed below, the products stay below 2^30).
         let nl15 = ((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16;
