@@ -1403,19 +1403,14 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     back: bool,
 ) -> u32 {
     let len = row.len() as u32;
-    match drow {
-        Some(drow) => {
-            // Checked only for spans long enough to repay the check.
-            let in_range = len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
-            let out = RowOut::<L, F, D> {
-                row,
-                depth: DepthTest { drow, z, dz },
-                in_range,
-            };
-            k.fill_with(n, dn, p, dp, back, len, out)
-        }
-        None => k.fill_with(n, dn, p, dp, back, len, RowNoDepth::<F> { row }),
-    }
+    // Checked only for spans long enough to repay the check.
+    let in_range = drow.is_some() && len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
+    let out = RowOut::<L, F, D> {
+        row,
+        depth: drow.map(|drow| DepthTest { drow, z, dz }),
+        in_range,
+    };
+    k.fill_with(n, dn, p, dp, back, len, out)
 }
 
 /// Spans of at least this many pixels check whether their depths are in
@@ -1466,51 +1461,24 @@ impl<T: FnMut(u32) -> bool, W: FnMut(u32, Rgb8)> Out for FnOut<T, W> {
     }
 }
 
-/// [`Out`] of a span's row slice without a depth buffer.
-struct RowNoDepth<'r, F: PixelFormat> {
-    row: &'r mut [F::Raw],
-}
-
-impl<F: PixelFormat> Out for RowNoDepth<'_, F> {
-    #[inline(always)]
-    fn test(&mut self, _i: u32) -> bool {
-        true
-    }
-
-    #[inline(always)]
-    fn write(&mut self, i: u32, c: Rgb8) {
-        if let Some(px) = self.row.get_mut(i as usize) {
-            *px = F::encode(c);
-        }
-    }
-
-    #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
-        let (i, k) = (i as usize, cols.len());
-        let Some(row) = self.row.get_mut(i..i + k) else {
-            return k as u32;
-        };
-        for (px, &c) in row.iter_mut().zip(cols.iter()) {
-            *px = F::encode(unpack(col(c)));
-        }
-        0
-    }
-}
-
-/// [`Out`] of a span's row slice and its depth slice: a chunk is one
-/// loop over the three slices zipped (no index checks per pixel),
-/// without the depth clamp when the span's depths are in range
-/// ([`DepthFormat::span_in_range`]: the same values).
+/// [`Out`] of a span's row slice and, with a depth buffer, its depth
+/// slice: a chunk is one loop over the slices zipped (no index checks
+/// per pixel), with the depth test without the depth clamp when the
+/// span's depths are in range ([`DepthFormat::span_in_range`]: the same
+/// values).
 struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
     row: &'r mut [F::Raw],
-    depth: DepthTest<'d, L, D>,
+    depth: Option<DepthTest<'d, L, D>>,
     in_range: bool,
 }
 
 impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
     #[inline(always)]
     fn test(&mut self, i: u32) -> bool {
-        self.depth.test(i)
+        match &mut self.depth {
+            Some(d) => d.test(i),
+            None => true,
+        }
     }
 
     #[inline(always)]
@@ -1526,7 +1494,12 @@ impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
         let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        let d = &mut self.depth;
+        let Some(d) = &mut self.depth else {
+            for (px, &c) in row.iter_mut().zip(cols.iter()) {
+                *px = F::encode(unpack(col(c)));
+            }
+            return 0;
+        };
         let Some(drow) = d.drow.get_mut(i..i + k) else {
             return k as u32;
         };
