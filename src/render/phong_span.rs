@@ -1244,6 +1244,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         drow,
                         z: s.z,
                         dz: s.dz,
+                        in_range: false,
                     };
                     let test = move |i| d.test(i);
                     k.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
@@ -1367,6 +1368,9 @@ struct DepthTest<'d, L, D: DepthFormat> {
     drow: &'d mut [D::Raw],
     z: L,
     dz: L,
+    /// The span's depths are in range ([`DepthFormat::span_in_range`]):
+    /// a chunk's loop runs without the depth clamp (the same values).
+    in_range: bool,
 }
 
 impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
@@ -1403,14 +1407,32 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     back: bool,
 ) -> u32 {
     let len = row.len() as u32;
-    // Checked only for spans long enough to repay the check.
-    let in_range = drow.is_some() && len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
-    let out = RowOut::<L, F, D> {
-        row,
-        depth: drow.map(|drow| DepthTest { drow, z, dz }),
-        in_range,
-    };
-    k.fill_with(n, dn, p, dp, back, len, out)
+    match drow {
+        Some(drow) => {
+            // Checked only for spans long enough to repay the check.
+            let in_range = len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
+            let depth = DepthTest::<L, D> {
+                drow,
+                z,
+                dz,
+                in_range,
+            };
+            let out = RowOut::<F, _> { row, depth };
+            k.fill_with(n, dn, p, dp, back, len, out)
+        }
+        None => k.fill_with(
+            n,
+            dn,
+            p,
+            dp,
+            back,
+            len,
+            RowOut::<F, _> {
+                row,
+                depth: NoDepth,
+            },
+        ),
+    }
 }
 
 /// Spans of at least this many pixels check whether their depths are in
@@ -1461,24 +1483,92 @@ impl<T: FnMut(u32) -> bool, W: FnMut(u32, Rgb8)> Out for FnOut<T, W> {
     }
 }
 
-/// [`Out`] of a span's row slice and, with a depth buffer, its depth
-/// slice: a chunk is one loop over the slices zipped (no index checks
-/// per pixel), with the depth test without the depth clamp when the
-/// span's depths are in range ([`DepthFormat::span_in_range`]: the same
-/// values).
-struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
-    row: &'r mut [F::Raw],
-    depth: Option<DepthTest<'d, L, D>>,
-    in_range: bool,
+/// The depth part of [`RowOut`]: the depth test of one pixel, and a
+/// chunk's loop over the row (the pixels of a chunk from its first).
+trait SpanDepth {
+    /// The depth test of pixel `i` (its depth stored when it passes).
+    fn test(&mut self, i: u32) -> bool;
+    /// Tests the `row.len()` pixels from pixel `i` and writes the passing
+    /// ones, `px(c)` for their entries `c` of `cols`; returns how many
+    /// failed.
+    fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32;
 }
 
-impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+/// No depth buffer: every pixel passes.
+struct NoDepth;
+
+impl SpanDepth for NoDepth {
+    #[inline(always)]
+    fn test(&mut self, _i: u32) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    fn chunk<P>(&mut self, row: &mut [P], _i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
+        for (o, &c) in row.iter_mut().zip(cols.iter()) {
+            *o = px(c);
+        }
+        0
+    }
+}
+
+impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
     #[inline(always)]
     fn test(&mut self, i: u32) -> bool {
-        match &mut self.depth {
-            Some(d) => d.test(i),
-            None => true,
+        DepthTest::test(self, i)
+    }
+
+    /// One loop over the row, depth and colour slices zipped (no index
+    /// checks per pixel), without the depth clamp when the span's depths
+    /// are in range.
+    #[inline(always)]
+    fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
+        let k = row.len();
+        let Some(drow) = self.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let (mut z, dz) = (self.z, self.dz);
+        let mut failed = 0;
+        let it = row.iter_mut().zip(drow.iter_mut()).zip(cols.iter());
+        if self.in_range {
+            for ((o, zb), &c) in it {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    *o = px(c);
+                } else {
+                    failed += 1;
+                }
+                z = z.add(dz);
+            }
+        } else {
+            for ((o, zb), &c) in it {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    *o = px(c);
+                } else {
+                    failed += 1;
+                }
+                z = z.add(dz);
+            }
         }
+        self.z = z;
+        failed
+    }
+}
+
+/// [`Out`] of a span's row slice and its depth part ([`SpanDepth`]: a
+/// depth slice, or none).
+struct RowOut<'r, F: PixelFormat, Z> {
+    row: &'r mut [F::Raw],
+    depth: Z,
+}
+
+impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        self.depth.test(i)
     }
 
     #[inline(always)]
@@ -1494,43 +1584,8 @@ impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
         let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        let Some(d) = &mut self.depth else {
-            for (px, &c) in row.iter_mut().zip(cols.iter()) {
-                *px = F::encode(unpack(col(c)));
-            }
-            return 0;
-        };
-        let Some(drow) = d.drow.get_mut(i..i + k) else {
-            return k as u32;
-        };
-        let (mut z, dz) = (d.z, d.dz);
-        let mut failed = 0;
-        let px = row.iter_mut().zip(drow.iter_mut()).zip(cols.iter());
-        if self.in_range {
-            for ((px, zb), &c) in px {
-                let key = D::from_lerp_in_range(z);
-                if key < D::to_key(*zb) {
-                    *zb = D::from_key(key);
-                    *px = F::encode(unpack(col(c)));
-                } else {
-                    failed += 1;
-                }
-                z = z.add(dz);
-            }
-        } else {
-            for ((px, zb), &c) in px {
-                let zd = D::from_lerp(z);
-                if zd < *zb {
-                    *zb = zd;
-                    *px = F::encode(unpack(col(c)));
-                } else {
-                    failed += 1;
-                }
-                z = z.add(dz);
-            }
-        }
-        d.z = z;
-        failed
+        self.depth
+            .chunk(row, i, cols, |c| F::encode(unpack(col(c))))
     }
 }
 

@@ -73,46 +73,18 @@ pub(super) struct Colour {
     pub(super) d: [i32; 3],
     pub(super) s: [i32; 3],
     /// The constants of [`Colour::of_terms`] (other than ARMv6-M): per
-    /// channel `d | s << 16` and `amb + TERM_OFF · (d + s)` (wrapping).
+    /// channel `d | s << 16` and `amb + 2^15 (d + s)` (wrapping).
     ds: [i32; 3],
     ambo: [i32; 3],
 }
 
-/// The offset of both halves of packed light terms ([`pack_terms`]
-/// other than on ARMv6-M): `N·L` in Q15 is at most `2^15 (1 + 2^-11)`
-/// and the specular factor at most `2^15`, so that both minus `2^14`
-/// are signed 16-bit values.
-const TERM_OFF: i32 = 1 << 14;
-
-/// The light terms of one pixel, `N·L` (Q15, `<= 2^15 (1 + 2^-11)`) and
-/// the specular factor (Q15, `<= 2^15`), packed in one word for
-/// [`Colour::of_terms`]: on ARMv6-M `nl15 | sp << 16`
-/// ([`pack_terms_plain`]), elsewhere both halves less [`TERM_OFF`] as
-/// signed 16-bit values ([`pack_terms_dsp`]), which the M4 multiplies by
-/// the packed coefficients with one `SMLABB`/`SMLATT` each.
-#[inline(always)]
-pub(super) fn pack_terms(nl15: u32, sp: u32) -> u32 {
-    if cfg!(armv6m) {
-        pack_terms_plain(nl15, sp)
-    } else {
-        pack_terms_dsp(nl15, sp)
-    }
-}
-
-/// [`pack_terms`] on ARMv6-M.
-#[inline(always)]
-fn pack_terms_plain(nl15: u32, sp: u32) -> u32 {
-    (nl15 & 0xFFFF) | sp << 16
-}
-
-/// [`pack_terms`] other than on ARMv6-M.
-#[inline(always)]
-#[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
-fn pack_terms_dsp(nl15: u32, sp: u32) -> u32 {
-    let lo = (nl15 as i32).wrapping_sub(TERM_OFF) as u32 & 0xFFFF;
-    let hi = (sp as i32).wrapping_sub(TERM_OFF) as u32;
-    lo | hi << 16
-}
+/// The offset of both halves of the packed light terms `nl15 | sp <<
+/// 16` (both below `2^16`) in [`Colour::of_terms`] other than on
+/// ARMv6-M: flipping bit 15 of each half (`t ^ 0x8000_8000`) makes a
+/// half `x` the signed 16-bit `x - 2^15` (no borrow between the halves),
+/// which the M4 multiplies by a packed coefficient with one
+/// `SMLABB`/`SMLATT`.
+const TERM_OFF: i32 = 1 << 15;
 
 impl Colour {
     /// The constants of light `l` of kernel `k`.
@@ -131,11 +103,11 @@ impl Colour {
         }
     }
 
-    /// The colour (`r | g << 8 | b << 16`) of packed light terms
-    /// ([`pack_terms`]): [`PhongKernel::channels`] of the two terms, the
+    /// The colour (`r | g << 8 | b << 16`) of the packed light terms
+    /// `nl15 | sp << 16`: [`PhongKernel::channels`] of the two terms, the
     /// same value on every target (the sums agree modulo 2^32:
-    /// `amb + d·nl + s·sp = amb + 2^14 (d + s) + d (nl - 2^14) + s (sp -
-    /// 2^14)`; tested).
+    /// `amb + d·nl + s·sp = amb + 2^15 (d + s) + d (nl - 2^15) + s (sp -
+    /// 2^15)`; tested).
     #[inline(always)]
     #[allow(clippy::cast_possible_wrap)]
     pub(super) fn of_terms(&self, t: u32) -> u32 {
@@ -158,6 +130,7 @@ impl Colour {
     #[inline(always)]
     #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
     fn of_terms_dsp(&self, t: u32) -> u32 {
+        let t = t ^ 0x8000_8000;
         let lo = i32::from(t as i16);
         let hi = (t as i32) >> 16;
         let ch = |k: usize| {
@@ -393,7 +366,7 @@ impl<R: Real> PhongKernel<'_, R> {
         // 2^16); the channels are the driver's, per passing pixel.
         for o in buf.iter_mut() {
             let (nl15, sp) = self.terms::<SPEC>(nn, nl, q >> (QM_FRAC - 7));
-            *o = pack_terms(nl15, sp);
+            *o = (nl15 & 0xFFFF) | sp << 16;
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
             if SPEC {
@@ -532,7 +505,7 @@ mod tests {
                 d,
                 s,
                 ds: [0, 1, 2].map(|k| d[k] | s[k] << 16),
-                ambo: [0, 1, 2].map(|k| amb[k].wrapping_add(TERM_OFF * (d[k] + s[k]))),
+                ambo: [0, 1, 2].map(|k| amb[k].wrapping_add(TERM_OFF.wrapping_mul(d[k] + s[k]))),
             };
             let terms = [
                 (0, 0),
@@ -544,9 +517,10 @@ mod tests {
             ];
             for (nl, sp) in terms {
                 let want = PhongKernel::<crate::num::Q16>::channels(&c, nl as i32, sp as i32);
-                assert_eq!(c.of_terms_plain(pack_terms_plain(nl, sp)), want);
-                assert_eq!(c.of_terms_dsp(pack_terms_dsp(nl, sp)), want, "{nl} {sp}");
-                assert_eq!(c.of_terms(pack_terms(nl, sp)), want);
+                let t = (nl & 0xFFFF) | sp << 16;
+                assert_eq!(c.of_terms_plain(t), want);
+                assert_eq!(c.of_terms_dsp(t), want, "{nl} {sp}");
+                assert_eq!(c.of_terms(t), want);
                 checked += 1;
             }
         }

@@ -46,7 +46,7 @@
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
 
-use super::one::{pack_terms, Colour};
+use super::one::Colour;
 use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
@@ -404,7 +404,7 @@ impl<R: Real> PhongKernel<'_, R> {
                     0
                 };
                 let (nl15, sp) = self.terms::<SPEC>(a, nl, q >> 8);
-                *o = pack_terms(nl15, sp);
+                *o = (nl15 & 0xFFFF) | sp << 16;
                 a = a.wrapping_add(a1);
                 a1 = a1.wrapping_add(a2);
             }
