@@ -1518,42 +1518,60 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
         DepthTest::test(self, i)
     }
 
-    /// One loop over the row, depth and colour slices zipped (no index
-    /// checks per pixel), without the depth clamp when the span's depths
-    /// are in range.
+    /// Two loops: the depth test of the chunk's pixels (over the depth
+    /// slice alone, without the depth clamp when the span's depths are in
+    /// range), their results as a bit mask, then the colours of the
+    /// passing pixels (one loop without a test when all passed, the
+    /// common case). Measured on the M4's span sweep: one loop over the
+    /// three slices kept 15 values live and reloaded the channel
+    /// constants every pixel.
     #[inline(always)]
     fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
-        let k = row.len();
+        const { assert!(CHUNK <= 32) };
+        let k = row.len().min(CHUNK);
         let Some(drow) = self.drow.get_mut(i..i + k) else {
             return k as u32;
         };
         let (mut z, dz) = (self.z, self.dz);
-        let mut failed = 0;
-        let it = row.iter_mut().zip(drow.iter_mut()).zip(cols.iter());
+        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
         if self.in_range {
-            for ((o, zb), &c) in it {
+            for zb in drow.iter_mut() {
                 let key = D::from_lerp_in_range(z);
                 if key < D::to_key(*zb) {
                     *zb = D::from_key(key);
-                    *o = px(c);
+                    pass |= bit;
                 } else {
                     failed += 1;
                 }
+                bit <<= 1;
                 z = z.add(dz);
             }
         } else {
-            for ((o, zb), &c) in it {
+            for zb in drow.iter_mut() {
                 let zd = D::from_lerp(z);
                 if zd < *zb {
                     *zb = zd;
-                    *o = px(c);
+                    pass |= bit;
                 } else {
                     failed += 1;
                 }
+                bit <<= 1;
                 z = z.add(dz);
             }
         }
         self.z = z;
+        if failed == 0 {
+            for (o, &c) in row.iter_mut().zip(cols.iter()) {
+                *o = px(c);
+            }
+        } else {
+            for (o, &c) in row.iter_mut().zip(cols.iter()) {
+                if pass & 1 != 0 {
+                    *o = px(c);
+                }
+                pass >>= 1;
+            }
+        }
         failed
     }
 }
