@@ -42,17 +42,21 @@
 //! 32-bit forward differences re-seeded exactly every 32 pixels (module
 //! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
 //! proven range per chunk, chunks whose `Q` is provably past the table
-//! skip the specular term, the rest per pixel in 64 bits); measured on
-//! the firmware's span sweep, 94.63 instructions a pixel on the M4 (was
-//! 167, 106.97, then 104.88 with the channels in a second pass over the
-//! chunk and the depth test on indexed slices) and 187.56 on the M0 (was
-//! 207.96, then 198.87): the light terms of a chunk (`N·L` and the
-//! specular factor, packed) come from one copy of that arithmetic, the
-//! three channels from the span driver both 32-bit loops share, per
-//! passing pixel, in the loop of the depth test and the write (one per
-//! pixel and depth format, over the row, depth and term slices zipped,
-//! without the depth clamp on spans of 8 pixels or more whose depths are
-//! in range). Per pixel: `1/|n|` from a 65-entry
+//! skip the specular term, the rest per pixel in 64 bits; a full
+//! chunk's set-up with its length a constant, so that the products by it
+//! fold into shifts); measured on the firmware's span sweep, 92.23
+//! instructions a pixel on the M4 (was 167, 106.97, 104.88, then 94.63
+//! with the channels in the loop of the depth test) and 169.37 on the M0
+//! (was 207.96, 198.87, then 184.50): the light terms of a chunk (`N·L`
+//! and the specular factor, packed) come from one copy of that
+//! arithmetic, the three channels from the span driver both 32-bit loops
+//! share (one per pixel and depth format): the chunk's depth test first,
+//! over the depth slice alone into a bit mask (without the depth clamp on
+//! spans of 8 pixels or more whose depths are
+//! in range), then the colours of the passing pixels (one loop without
+//! a test when all passed; on the M4 each channel two `SMLABB`/`SMLATT`
+//! of the packed terms, flipped to signed halves, by the packed
+//! coefficients, see `one::Colour`). Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -70,9 +74,9 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 205.85 instructions a pixel on the M4
-//! (was 517, then 219.06 with the channels in its own last pass) and
-//! 780.22 on the M0 (was 1 357, then 797.56); its buffers (256 bytes) live in
+//! on the firmware's span sweep, 203.69 instructions a pixel on the M4
+//! (was 517, 219.06, then 205.85 with the channels in the loop of the
+//! depth test) and 772.15 on the M0 (was 1 357, 797.56, then 776.22); its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
