@@ -42,17 +42,21 @@
 //! 32-bit forward differences re-seeded exactly every 32 pixels (module
 //! `one`: `|n|²` in Q30, `K·Q` in Q20 table segments, both within their
 //! proven range per chunk, chunks whose `Q` is provably past the table
-//! skip the specular term, the rest per pixel in 64 bits); measured on
-//! the firmware's span sweep, 94.63 instructions a pixel on the M4 (was
-//! 167, 106.97, then 104.88 with the channels in a second pass over the
-//! chunk and the depth test on indexed slices) and 187.56 on the M0 (was
-//! 207.96, then 198.87): the light terms of a chunk (`N·L` and the
-//! specular factor, packed) come from one copy of that arithmetic, the
-//! three channels from the span driver both 32-bit loops share, per
-//! passing pixel, in the loop of the depth test and the write (one per
-//! pixel and depth format, over the row, depth and term slices zipped,
-//! without the depth clamp on spans of 8 pixels or more whose depths are
-//! in range). Per pixel: `1/|n|` from a 65-entry
+//! skip the specular term, the rest per pixel in 64 bits; a full
+//! chunk's set-up with its length a constant, so that the products by it
+//! fold into shifts); measured on the firmware's span sweep, 92.23
+//! instructions a pixel on the M4 (was 167, 106.97, 104.88, then 94.63
+//! with the channels in the loop of the depth test) and 169.37 on the M0
+//! (was 207.96, 198.87, then 184.50): the light terms of a chunk (`N·L`
+//! and the specular factor, packed) come from one copy of that
+//! arithmetic, the three channels from the span driver both 32-bit loops
+//! share (one per pixel and depth format): the chunk's depth test first,
+//! over the depth slice alone into a bit mask (without the depth clamp on
+//! spans of 8 pixels or more whose depths are
+//! in range), then the colours of the passing pixels (one loop without
+//! a test when all passed; on the M4 each channel two `SMLABB`/`SMLATT`
+//! of the packed terms, flipped to signed halves, by the packed
+//! coefficients, see `one::Colour`). Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -70,9 +74,9 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 205.85 instructions a pixel on the M4
-//! (was 517, then 219.06 with the channels in its own last pass) and
-//! 780.22 on the M0 (was 1 357, then 797.56); its buffers (256 bytes) live in
+//! on the firmware's span sweep, 203.69 instructions a pixel on the M4
+//! (was 517, 219.06, then 205.85 with the channels in the loop of the
+//! depth test) and 772.15 on the M0 (was 1 357, 797.56, then 776.22); its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
@@ -1244,6 +1248,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         drow,
                         z: s.z,
                         dz: s.dz,
+                        in_range: false,
                     };
                     let test = move |i| d.test(i);
                     k.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
@@ -1367,6 +1372,9 @@ struct DepthTest<'d, L, D: DepthFormat> {
     drow: &'d mut [D::Raw],
     z: L,
     dz: L,
+    /// The span's depths are in range ([`DepthFormat::span_in_range`]):
+    /// a chunk's loop runs without the depth clamp (the same values).
+    in_range: bool,
 }
 
 impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
@@ -1407,14 +1415,27 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
         Some(drow) => {
             // Checked only for spans long enough to repay the check.
             let in_range = len >= IN_RANGE_SPAN && D::span_in_range(z, dz, len);
-            let out = RowOut::<L, F, D> {
-                row,
-                depth: DepthTest { drow, z, dz },
+            let depth = DepthTest::<L, D> {
+                drow,
+                z,
+                dz,
                 in_range,
             };
+            let out = RowOut::<F, _> { row, depth };
             k.fill_with(n, dn, p, dp, back, len, out)
         }
-        None => k.fill_with(n, dn, p, dp, back, len, RowNoDepth::<F> { row }),
+        None => k.fill_with(
+            n,
+            dn,
+            p,
+            dp,
+            back,
+            len,
+            RowOut::<F, _> {
+                row,
+                depth: NoDepth,
+            },
+        ),
     }
 }
 
@@ -1466,48 +1487,107 @@ impl<T: FnMut(u32) -> bool, W: FnMut(u32, Rgb8)> Out for FnOut<T, W> {
     }
 }
 
-/// [`Out`] of a span's row slice without a depth buffer.
-struct RowNoDepth<'r, F: PixelFormat> {
-    row: &'r mut [F::Raw],
+/// The depth part of [`RowOut`]: the depth test of one pixel, and a
+/// chunk's loop over the row (the pixels of a chunk from its first).
+trait SpanDepth {
+    /// The depth test of pixel `i` (its depth stored when it passes).
+    fn test(&mut self, i: u32) -> bool;
+    /// Tests the `row.len()` pixels from pixel `i` and writes the passing
+    /// ones, `px(c)` for their entries `c` of `cols`; returns how many
+    /// failed.
+    fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32;
 }
 
-impl<F: PixelFormat> Out for RowNoDepth<'_, F> {
+/// No depth buffer: every pixel passes.
+struct NoDepth;
+
+impl SpanDepth for NoDepth {
     #[inline(always)]
     fn test(&mut self, _i: u32) -> bool {
         true
     }
 
     #[inline(always)]
-    fn write(&mut self, i: u32, c: Rgb8) {
-        if let Some(px) = self.row.get_mut(i as usize) {
-            *px = F::encode(c);
-        }
-    }
-
-    #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
-        let (i, k) = (i as usize, cols.len());
-        let Some(row) = self.row.get_mut(i..i + k) else {
-            return k as u32;
-        };
-        for (px, &c) in row.iter_mut().zip(cols.iter()) {
-            *px = F::encode(unpack(col(c)));
+    fn chunk<P>(&mut self, row: &mut [P], _i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
+        for (o, &c) in row.iter_mut().zip(cols.iter()) {
+            *o = px(c);
         }
         0
     }
 }
 
-/// [`Out`] of a span's row slice and its depth slice: a chunk is one
-/// loop over the three slices zipped (no index checks per pixel),
-/// without the depth clamp when the span's depths are in range
-/// ([`DepthFormat::span_in_range`]: the same values).
-struct RowOut<'r, 'd, L, F: PixelFormat, D: DepthFormat> {
-    row: &'r mut [F::Raw],
-    depth: DepthTest<'d, L, D>,
-    in_range: bool,
+impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
+    #[inline(always)]
+    fn test(&mut self, i: u32) -> bool {
+        DepthTest::test(self, i)
+    }
+
+    /// Two loops: the depth test of the chunk's pixels (over the depth
+    /// slice alone, without the depth clamp when the span's depths are in
+    /// range), their results as a bit mask, then the colours of the
+    /// passing pixels (one loop without a test when all passed, the
+    /// common case). Measured on the M4's span sweep: one loop over the
+    /// three slices kept 15 values live and reloaded the channel
+    /// constants every pixel.
+    #[inline(always)]
+    fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
+        const { assert!(CHUNK <= 32) };
+        let k = row.len().min(CHUNK);
+        let Some(drow) = self.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let (mut z, dz) = (self.z, self.dz);
+        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
+        if self.in_range {
+            for zb in drow.iter_mut() {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    pass |= bit;
+                } else {
+                    failed += 1;
+                }
+                bit <<= 1;
+                z = z.add(dz);
+            }
+        } else {
+            for zb in drow.iter_mut() {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    pass |= bit;
+                } else {
+                    failed += 1;
+                }
+                bit <<= 1;
+                z = z.add(dz);
+            }
+        }
+        self.z = z;
+        if failed == 0 {
+            for (o, &c) in row.iter_mut().zip(cols.iter()) {
+                *o = px(c);
+            }
+        } else {
+            for (o, &c) in row.iter_mut().zip(cols.iter()) {
+                if pass & 1 != 0 {
+                    *o = px(c);
+                }
+                pass >>= 1;
+            }
+        }
+        failed
+    }
 }
 
-impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
+/// [`Out`] of a span's row slice and its depth part ([`SpanDepth`]: a
+/// depth slice, or none).
+struct RowOut<'r, F: PixelFormat, Z> {
+    row: &'r mut [F::Raw],
+    depth: Z,
+}
+
+impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
     #[inline(always)]
     fn test(&mut self, i: u32) -> bool {
         self.depth.test(i)
@@ -1526,38 +1606,8 @@ impl<L: Lerp, F: PixelFormat, D: DepthFormat> Out for RowOut<'_, '_, L, F, D> {
         let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        let d = &mut self.depth;
-        let Some(drow) = d.drow.get_mut(i..i + k) else {
-            return k as u32;
-        };
-        let (mut z, dz) = (d.z, d.dz);
-        let mut failed = 0;
-        let px = row.iter_mut().zip(drow.iter_mut()).zip(cols.iter());
-        if self.in_range {
-            for ((px, zb), &c) in px {
-                let key = D::from_lerp_in_range(z);
-                if key < D::to_key(*zb) {
-                    *zb = D::from_key(key);
-                    *px = F::encode(unpack(col(c)));
-                } else {
-                    failed += 1;
-                }
-                z = z.add(dz);
-            }
-        } else {
-            for ((px, zb), &c) in px {
-                let zd = D::from_lerp(z);
-                if zd < *zb {
-                    *zb = zd;
-                    *px = F::encode(unpack(col(c)));
-                } else {
-                    failed += 1;
-                }
-                z = z.add(dz);
-            }
-        }
-        d.z = z;
-        failed
+        self.depth
+            .chunk(row, i, cols, |c| F::encode(unpack(col(c))))
     }
 }
 

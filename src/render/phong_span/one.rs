@@ -72,17 +72,75 @@ pub(super) struct Colour {
     pub(super) amb: [i32; 3],
     pub(super) d: [i32; 3],
     pub(super) s: [i32; 3],
+    /// The constants of [`Colour::of_terms`] (other than ARMv6-M): per
+    /// channel `d | s << 16` and `amb + 2^15 (d + s)` (wrapping).
+    ds: [i32; 3],
+    ambo: [i32; 3],
 }
+
+/// The offset of both halves of the packed light terms `nl15 | sp <<
+/// 16` (both below `2^16`) in [`Colour::of_terms`] other than on
+/// ARMv6-M: flipping bit 15 of each half (`t ^ 0x8000_8000`) makes a
+/// half `x` the signed 16-bit `x - 2^15` (no borrow between the halves),
+/// which the M4 multiplies by a packed coefficient with one
+/// `SMLABB`/`SMLATT`.
+const TERM_OFF: i32 = 1 << 15;
 
 impl Colour {
     /// The constants of light `l` of kernel `k`.
     #[inline(always)]
     pub(super) fn of<R>(k: &PhongKernel<'_, R>, l: &KLight) -> Self {
+        let d = l.d4.map(i32::from);
+        let s = l.s4.map(i32::from);
+        let amb = k.amb19;
         Self {
-            amb: k.amb19,
-            d: l.d4.map(i32::from),
-            s: l.s4.map(i32::from),
+            amb,
+            d,
+            s,
+            // d, s below 2^14: the halves are d and s again.
+            ds: [0, 1, 2].map(|c| d[c] | s[c] << 16),
+            ambo: [0, 1, 2].map(|c| amb[c].wrapping_add(TERM_OFF.wrapping_mul(d[c] + s[c]))),
         }
+    }
+
+    /// The colour (`r | g << 8 | b << 16`) of the packed light terms
+    /// `nl15 | sp << 16`: [`PhongKernel::channels`] of the two terms, the
+    /// same value on every target (the sums agree modulo 2^32:
+    /// `amb + d·nl + s·sp = amb + 2^15 (d + s) + d (nl - 2^15) + s (sp -
+    /// 2^15)`; tested).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    pub(super) fn of_terms(&self, t: u32) -> u32 {
+        if cfg!(armv6m) {
+            self.of_terms_plain(t)
+        } else {
+            self.of_terms_dsp(t)
+        }
+    }
+
+    /// [`Colour::of_terms`] on ARMv6-M.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn of_terms_plain(&self, t: u32) -> u32 {
+        PhongKernel::<crate::num::Q16>::channels(self, (t & 0xFFFF) as i32, (t >> 16) as i32)
+    }
+
+    /// [`Colour::of_terms`] other than on ARMv6-M: per channel two
+    /// signed 16 × 16-bit multiply-adds of the halves.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
+    fn of_terms_dsp(&self, t: u32) -> u32 {
+        let t = t ^ 0x8000_8000;
+        let lo = i32::from(t as i16);
+        let hi = (t as i32) >> 16;
+        let ch = |k: usize| {
+            let ds = self.ds[k];
+            let acc = self.ambo[k]
+                .wrapping_add(lo.wrapping_mul(i32::from(ds as i16)))
+                .wrapping_add(hi.wrapping_mul(ds >> 16));
+            (acc >> 19).clamp(0, 255) as u32
+        };
+        ch(0) | ch(1) << 8 | ch(2) << 16
     }
 }
 
@@ -106,7 +164,16 @@ struct OneSpan {
     qm_a: i64,
 }
 
-/// How a chunk runs.
+/// How a chunk runs: the 32-bit loop with or without the specular
+/// term (`|n|²` and `Qm` as 32-bit forward differences, `n·L` and its
+/// step), or pixel by pixel in 64 bits.
+enum Plan {
+    Spec((i32, i32, i32), (i32, i32, i32), i32, i32),
+    NoSpec((i32, i32, i32), i32, i32),
+    Exact,
+}
+
+/// Whether a chunk has a specular term.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Mode {
     Spec,
@@ -134,7 +201,7 @@ impl<R: Real> PhongKernel<'_, R> {
         drive(
             len,
             |i, k, buf| self.one_chunk(l, n, dn, &mut st, i, k, buf),
-            |t| Self::channels(&c, (t & 0xFFFF) as i32, (t >> 16) as i32),
+            |t| c.of_terms(t),
             &mut out,
         )
     }
@@ -197,6 +264,37 @@ impl<R: Real> PhongKernel<'_, R> {
         k: u32,
         buf: &mut [u32; CHUNK],
     ) -> bool {
+        // Full chunks with `k` a constant: the products by `k` (64-bit
+        // on the M0) fold into shifts and constants.
+        let plan = if k == CHUNK as u32 {
+            self.one_plan(st, i, CHUNK as u32)
+        } else {
+            self.one_plan(st, i, k)
+        };
+        match plan {
+            Plan::Spec(nn32, q32, nl, dnl) => {
+                self.chunk::<true>(k, nn32, q32, nl, dnl, buf);
+                true
+            }
+            Plan::NoSpec(nn32, nl, dnl) => {
+                self.chunk::<false>(k, nn32, (0, 0, 0), nl, dnl, buf);
+                true
+            }
+            Plan::Exact => {
+                for (j, o) in (i..i + k).zip(buf.iter_mut()) {
+                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
+                    *o = self.one_exact(l, ni, n, dn, j);
+                }
+                false
+            }
+        }
+    }
+
+    /// How the chunk of the `k` pixels from pixel `i` runs, and the
+    /// state stepped past them.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn one_plan(&self, st: &mut OneSpan, i: u32, k: u32) -> Plan {
         let OneSpan {
             nn,
             nn_d1,
@@ -238,25 +336,14 @@ impl<R: Real> PhongKernel<'_, R> {
             }
         };
         let q32 = (qm_a as i32, fit(mul_shr48(q_d1 as i64, self.kf)), qd2);
-        let terms = match (mode, nn_ok, nn32, q32) {
-            (Mode::Spec, true, (a, Some(b), Some(d)), (qa, Some(qb), Some(qc))) => {
-                self.chunk::<true>(k, (a, b, d), (qa, qb, qc), nl, dnl, buf);
-                true
-            }
-            (Mode::NoSpec, true, (a, Some(b), Some(d)), _) => {
-                self.chunk::<false>(k, (a, b, d), (0, 0, 0), nl, dnl, buf);
-                true
-            }
-            _ => {
-                for (j, o) in (i..i + k).zip(buf.iter_mut()) {
-                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
-                    *o = self.one_exact(l, ni, n, dn, j);
-                }
-                false
-            }
-        };
         (st.nn, st.nn_d1, st.q, st.q_d1, st.qm_a) = (nn_b, nn_d1_b, q_b, q_d1_b, qm_b);
-        terms
+        match (mode, nn_ok, nn32, q32) {
+            (Mode::Spec, true, (a, Some(b), Some(d)), (qa, Some(qb), Some(qc))) => {
+                Plan::Spec((a, b, d), (qa, qb, qc), nl, dnl)
+            }
+            (Mode::NoSpec, true, (a, Some(b), Some(d)), _) => Plan::NoSpec((a, b, d), nl, dnl),
+            _ => Plan::Exact,
+        }
     }
 
     /// `k` light terms (`N·L | sp << 16`) with 32-bit forward differences
@@ -345,7 +432,9 @@ impl<R: Real> PhongKernel<'_, R> {
     #[allow(clippy::cast_sign_loss)]
     pub(super) fn channels(c: &Colour, nl15: i32, sp: i32) -> u32 {
         let ch = |k: usize| {
-            let acc = c.amb[k] + c.d[k] * nl15 + c.s[k] * sp;
+            let acc = c.amb[k]
+                .wrapping_add(c.d[k].wrapping_mul(nl15))
+                .wrapping_add(c.s[k].wrapping_mul(sp));
             (acc >> 19).clamp(0, 255) as u32
         };
         ch(0) | ch(1) << 8 | ch(2) << 16
@@ -376,6 +465,85 @@ impl<R: Real> PhongKernel<'_, R> {
             self.colour::<true>(&cl, (nn >> 30) as i32, nl, qm >> (QM_FRAC - 7))
         } else {
             self.colour::<false>(&cl, (nn >> 30) as i32, nl, 0)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Both packings of the light terms give the colour of
+    /// [`PhongKernel::channels`] over the terms' whole range (`N·L` to
+    /// `2^15 (1 + 2^-11)`, the specular factor to `2^15`), coefficients
+    /// to `2^14 - 1` and ambient levels up to the clamp and beyond.
+    #[test]
+    fn packed_terms_give_the_channels() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = |m: u32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 16) as u32 % m
+        };
+        let nl_max = (1u32 << 15) + (1 << 4);
+        let mut checked = 0;
+        for case in 0..2000 {
+            let coef = |next: &mut dyn FnMut(u32) -> u32| match case % 4 {
+                0 => [0, (1 << 14) - 1, 1 << 13],
+                _ => [
+                    next(1 << 14) as i32,
+                    next(1 << 14) as i32,
+                    next(1 << 14) as i32,
+                ],
+            };
+            let d = coef(&mut next);
+            let s = coef(&mut next);
+            let amb = [0, 1, 2].map(|_| (next(300 << 19) as i32) + (1 << 18));
+            let c = Colour {
+                amb,
+                d,
+                s,
+                ds: [0, 1, 2].map(|k| d[k] | s[k] << 16),
+                ambo: [0, 1, 2].map(|k| amb[k].wrapping_add(TERM_OFF.wrapping_mul(d[k] + s[k]))),
+            };
+            let terms = [
+                (0, 0),
+                (nl_max, 1 << 15),
+                (nl_max, 0),
+                (0, 1 << 15),
+                (next(nl_max + 1), next((1 << 15) + 1)),
+                (next(nl_max + 1), next((1 << 15) + 1)),
+            ];
+            for (nl, sp) in terms {
+                let want = PhongKernel::<crate::num::Q16>::channels(&c, nl as i32, sp as i32);
+                let t = (nl & 0xFFFF) | sp << 16;
+                assert_eq!(c.of_terms_plain(t), want);
+                assert_eq!(c.of_terms_dsp(t), want, "{nl} {sp}");
+                assert_eq!(c.of_terms(t), want);
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 12_000);
+    }
+
+    /// `advance` by `k` steps is `k` single steps, wrapping (the set-up
+    /// of a full chunk, `k` a constant, and of a partial one).
+    #[test]
+    fn advance_by_constant_and_variable_k_agree() {
+        for &(v, d1, d2) in &[
+            (1u64 << 60, 3u64 << 40, 5u64 << 30),
+            (u64::MAX / 3, 12_345, 678),
+        ] {
+            for k in [1u32, 7, 31, 32] {
+                let (a, b) = advance(v, d1, d2, k);
+                let (mut x, mut y) = (v, d1);
+                for _ in 0..k {
+                    x = x.wrapping_add(y);
+                    y = y.wrapping_add(d2);
+                }
+                assert_eq!((a, b), (x, y));
+            }
         }
     }
 }

@@ -208,7 +208,7 @@ impl<R: Real> PhongKernel<'_, R> {
         drive(
             len,
             |i, k, buf| self.point_chunk(l, span, i, k as usize, buf),
-            |t| Self::channels(&c, (t & 0xFFFF) as i32, (t >> 16) as i32),
+            |t| c.of_terms(t),
             &mut out,
         )
     }
