@@ -195,7 +195,7 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
         .iter()
         .fold(0, |o, v| o | v.unsigned_abs());
     if or >= 1 << 15 {
-        return crate::mesh::face_normal(a, b, c);
+        return super::exact::face_normal(a, b, c);
     }
     // |products| < 2^30: the differences fit i32.
     let x = [
@@ -459,7 +459,7 @@ mod tests {
 
     #[test]
     fn face_normal_q14_is_exact() {
-        use crate::mesh::face_normal;
+        use crate::geom::exact::face_normal;
         let mut next = crate::geom::testkit::xorshift(0x2545_f491_4f6c_dd1d);
         for i in 0..400_000u32 {
             // Edges of every length class: tiny (degenerate-ish), mesh
