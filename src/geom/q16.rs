@@ -229,7 +229,7 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
     let my = wmul_u32(m, y);
     #[allow(clippy::cast_possible_truncation)]
     let mut len = if up { my >> 30 } else { my >> 31 } as u32;
-    // Within a few units (2^-29 relative of at most 2^32, and the dropped
+    // Within a few units (2^-28.5 relative of at most 2^32, and the dropped
     // low bits of S): step to the exact floor root. (len + 1)² < 2^64.
     // One square, then steps of (len ± 1)² = len² ± (2 len ∓ 1).
     let mut sq = sq_u32(len);
