@@ -59,7 +59,8 @@
 //! · spread + bias` with the baked `d = a · P` (see [`EarlyCull::margin`]
 //! for the ranges: nothing wraps). Only objects with `det M > 0` use it.
 
-use crate::mesh::{Bound, SLACK_FRAC_BITS, SLACK_LENGTH};
+use super::bound::Bound;
+use super::exact::{SLACK_FRAC_BITS, SLACK_LENGTH};
 
 /// Object-space back-face test of one object (see the module docs).
 #[derive(Clone, Copy, Debug)]
@@ -79,7 +80,7 @@ pub(crate) struct EarlyCull {
 
 /// `⌊√n⌋ + 1`: strictly above `√n`.
 fn sqrt_up(n: u64) -> u64 {
-    crate::mesh::isqrt_u64(n) + 1
+    crate::num::isqrt_u64(n) + 1
 }
 
 /// An upper bound `m · 2^e` of a positive quantity (`m < 2^32` once
@@ -397,9 +398,9 @@ impl EarlyCull {
 mod tests {
     extern crate std;
     use super::*;
+    use crate::geom::exact::{cone_covers, face_normal, face_plane, MAX_AXIS2};
     use crate::geom::fused::Fused;
     use crate::geom::testkit::{proj, rotation, uniform};
-    use crate::mesh::{cone_covers, face_normal, face_plane, MAX_AXIS2};
 
     /// Whenever [`EarlyCull::back`] holds, the fused kernel's rounded
     /// corners give a positive doubled area (the screen test culls the

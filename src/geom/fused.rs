@@ -24,8 +24,8 @@
 //! kernel is used (objects it cannot bound use the exact-rounding kernels
 //! of [`super::q16`]). Tested against `f64` in `fused_within_bound`.
 
+use super::bound::Bound;
 use super::q16::Proj16;
-use crate::mesh::Bound;
 use crate::num::approx16::recip_mant_top;
 use crate::num::wide::clz32;
 

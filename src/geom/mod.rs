@@ -7,7 +7,9 @@
 
 use crate::num::{Q16Kernels, Real};
 
+pub(crate) mod bound;
 pub(crate) mod cull;
+pub(crate) mod exact;
 pub(crate) mod fused;
 pub(crate) mod q16;
 #[cfg(test)]

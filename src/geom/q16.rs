@@ -195,7 +195,7 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
         .iter()
         .fold(0, |o, v| o | v.unsigned_abs());
     if or >= 1 << 15 {
-        return crate::mesh::face_normal(a, b, c);
+        return super::exact::face_normal(a, b, c);
     }
     // |products| < 2^30: the differences fit i32.
     let x = [
@@ -229,7 +229,7 @@ pub(crate) fn face_normal_q14(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3]
     let my = wmul_u32(m, y);
     #[allow(clippy::cast_possible_truncation)]
     let mut len = if up { my >> 30 } else { my >> 31 } as u32;
-    // Within a few units (2^-29 relative of at most 2^32, and the dropped
+    // Within a few units (2^-28.5 relative of at most 2^32, and the dropped
     // low bits of S): step to the exact floor root. (len + 1)² < 2^64.
     // One square, then steps of (len ± 1)² = len² ± (2 len ∓ 1).
     let mut sq = sq_u32(len);
@@ -459,7 +459,7 @@ mod tests {
 
     #[test]
     fn face_normal_q14_is_exact() {
-        use crate::mesh::face_normal;
+        use crate::geom::exact::face_normal;
         let mut next = crate::geom::testkit::xorshift(0x2545_f491_4f6c_dd1d);
         for i in 0..400_000u32 {
             // Edges of every length class: tiny (degenerate-ish), mesh

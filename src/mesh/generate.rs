@@ -3,7 +3,7 @@
 use super::crease::Crease;
 use super::data::Mesh;
 use super::error::NormalsError;
-use super::exact::{face_normal_q30, unit};
+use crate::geom::exact::{face_normal_q30, unit};
 
 /// Largest triangle count [`generate_normals`] accepts: face numbers are
 /// stored in u16 adjacency entries.

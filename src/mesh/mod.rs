@@ -94,21 +94,20 @@
 mod crease;
 mod data;
 mod error;
-mod exact;
 mod generate;
 pub mod shapes;
 #[cfg(test)]
 mod tests;
 
+pub use crate::geom::bound::Bound;
+pub use crate::geom::exact::{
+    cone_covers, face_normal, face_plane, normalize_q14, MAX_AXIS2, SLACK_FRAC_BITS, SLACK_LENGTH,
+};
+pub use crate::num::isqrt_u64;
 pub use crease::Crease;
 pub use data::{
-    weld, Bound, CornerNormals, Mesh, MAX_VERTICES, NORMAL_FRAC_BITS, NORMAL_ONE,
-    POSITION_FRAC_BITS,
+    weld, CornerNormals, Mesh, MAX_VERTICES, NORMAL_FRAC_BITS, NORMAL_ONE, POSITION_FRAC_BITS,
 };
 pub use error::{MeshError, NormalsError};
-pub use exact::{
-    cone_covers, face_normal, face_plane, isqrt_u64, normalize_q14, MAX_AXIS2, SLACK_FRAC_BITS,
-    SLACK_LENGTH,
-};
 pub use generate::{generate_normals, Smoothing, MAX_TRIANGLES};
 pub use shapes::{BUNNY, CAN, CUBE, DODECAHEDRON, GRID, SPHERE};

@@ -7,7 +7,7 @@
 //!   an even exponent, then linear interpolation in a 193-entry table of
 //!   `1/sqrt(f)` (step 1/64). One 16x16->32 product, no 64-bit arithmetic.
 //!   Chord error <= 2^-15.4 relative; measured total 2^-15.46 relative
-//!   plus the 1/2 ulp output rounding (tests in `accuracy`).
+//!   plus the 1/2 ulp output rounding.
 //! - `sqrt`: exact digit-by-digit integer square root (no multiplication),
 //!   correctly rounded to nearest.
 //! - `pow`: `x^n = 2^(-n * L)`, `L = -log2 x`. `L` comes from a table
@@ -21,12 +21,52 @@
 //!   `|x| = 2^15`), 65-entry quarter-wave table, Taylor correction of the
 //!   residual (|h| <= pi/256) in 64-bit integers (a per-vertex function).
 //!   Measured 2^-16.44 absolute.
+//!
+//! Each function's bound is a constant next to it (`RSQRT_MAX_ERROR`,
+//! `POW_MAX_ERROR`, …), which the tests at the bottom of this file check
+//! against `f64` over sweeps of the function's domain. The tables are in
+//! `tables`, with the test that re-derives every entry.
 
 use super::tables::{EXP2, LOG_INV, LOG_T, RSQRT, SIN};
 use super::wide::{clz32, wmul};
 
 /// Q16 one.
 const ONE: i32 = 1 << 16;
+
+/// [`rsqrt`]'s largest relative error beyond the half-ulp rounding of its
+/// output: `2^-15` (measured `2^-15.46`).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const RSQRT_MAX_ERROR: f64 = 1.0 / 32_768.0;
+
+/// [`sqrt`]'s largest absolute error: half an ulp, `2^-17` (correctly
+/// rounded).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const SQRT_MAX_ERROR: f64 = 1.0 / 131_072.0;
+
+/// [`pow`]'s largest absolute error for `x` in `[0, 1]`, `n` up to 32767:
+/// `2^-14` (measured `2^-14.79`).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const POW_MAX_ERROR: f64 = 1.0 / 16_384.0;
+
+/// [`sin_cos`]'s largest absolute error over every angle: `2^-16`
+/// (measured `2^-16.44`; the half-ulp output rounding for `|x| < 8`).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const SIN_COS_MAX_ERROR: f64 = 1.0 / 65_536.0;
+
+/// [`recip_mant`]'s largest relative error: `2^-17` (measured
+/// `2^-17.004` over every 18-bit position).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const RECIP_MANT_MAX_ERROR: f64 = 1.0 / 131_072.0;
+
+/// [`rsqrt_newton`]'s largest relative error: `2^-28.5` (measured
+/// `2^-28.79`; about 2.3 units of a result near `2^30`).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const RSQRT_NEWTON_MAX_ERROR: f64 = 2.7e-9;
+
+/// [`unit`]'s largest absolute error per component: `2^-15` (measured
+/// `2^-15.4`).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const UNIT_MAX_ERROR: f64 = 1.0 / 32_768.0;
 
 /// `1/sqrt(f)` for a mantissa `m` = `f * 2^30`, `f` in `[1, 4)`, as Q1.31.
 ///
@@ -43,7 +83,8 @@ pub(crate) fn rsqrt_mant(m: u32) -> u32 {
     a - ((d * t) >> 8)
 }
 
-/// `1/sqrt(x)` on Q16 bits; `x <= 0` gives 0.
+/// `1/sqrt(x)` on Q16 bits, within [`RSQRT_MAX_ERROR`] relative plus
+/// half an ulp; `x <= 0` gives 0.
 pub(crate) fn rsqrt(b: i32) -> i32 {
     if b <= 0 {
         return 0;
@@ -59,7 +100,8 @@ pub(crate) fn rsqrt(b: i32) -> i32 {
     i32::try_from(r).unwrap_or(i32::MAX)
 }
 
-/// `sqrt(x)` on Q16 bits, correctly rounded; `x <= 0` gives 0.
+/// `sqrt(x)` on Q16 bits, correctly rounded (within [`SQRT_MAX_ERROR`]);
+/// `x <= 0` gives 0.
 pub(crate) fn sqrt(b: i32) -> i32 {
     if b <= 0 {
         return 0;
@@ -107,7 +149,8 @@ fn exp2_neg(y: u32) -> i32 {
     i32::try_from(r).unwrap_or(ONE)
 }
 
-/// `x^n` on Q16 bits for `x` in `[0, 1]`, `n >= 0` (see `Real::powf`).
+/// `x^n` on Q16 bits for `x` in `[0, 1]`, `n >= 0` (see `Real::powf`),
+/// within [`POW_MAX_ERROR`] absolute.
 pub(crate) fn pow(xb: i32, nb: i32) -> i32 {
     if nb <= 0 || xb >= ONE {
         return ONE;
@@ -123,7 +166,8 @@ pub(crate) fn pow(xb: i32, nb: i32) -> i32 {
     }
 }
 
-/// `(sin, cos)` of an angle in Q16 bits, results in Q16 bits.
+/// `(sin, cos)` of an angle in Q16 bits, results in Q16 bits, within
+/// [`SIN_COS_MAX_ERROR`] absolute.
 pub(crate) fn sin_cos(b: i32) -> (i32, i32) {
     // Quarter turns in units of 2^-48: b * 2/pi (2/pi as Q0.32).
     let u = i64::from(b) * 0xa2f9_836e;
@@ -170,8 +214,8 @@ const RECIP: [u32; 257] = {
 /// Error: the chord lies above the convex curve by at most
 /// `(1/256)^2 / 8 · 2 = 2^-18` relative; truncating the position to 18 bits
 /// moves it by at most `2^-18` relative (downwards); table rounding
-/// `2^-30`. Within `2^-17` relative in all (tested exhaustively over the
-/// 18-bit positions in `accuracy`).
+/// `2^-30`. Within [`RECIP_MANT_MAX_ERROR`] = `2^-17` relative in all
+/// (tested over every 18-bit position below).
 pub(crate) fn recip_mant(m: u32) -> u32 {
     let idx = ((m >> 23) as usize).saturating_sub(256).min(255);
     let t = (m >> 13) & 0x3FF;
@@ -193,8 +237,10 @@ pub(crate) fn recip_mant_top(m: u32) -> u32 {
 }
 
 /// [`rsqrt_mant`] refined by one Newton step `y (3 - f y^2) / 2`: within
-/// `2^-29` relative of `2^31 / sqrt(f)` (the chord error `2^-15.4`
-/// squared, times 1.5, plus truncations of `2^-31`), at most `2^31`.
+/// [`RSQRT_NEWTON_MAX_ERROR`] = `2^-28.5` relative of `2^31 / sqrt(f)`
+/// (the chord error `2^-15.4` squared, times 1.5, is `2^-30.2`; the
+/// truncations of the 32-bit steps, a few units of `2^-31` each, add the
+/// rest: measured `2^-28.79`), at most `2^31`.
 /// Exact 32x32-bit products ([`wmul`]: 16-bit halves on the Cortex-M0).
 #[allow(
     clippy::cast_possible_truncation,
@@ -220,11 +266,12 @@ pub(crate) fn rsqrt_newton(m: u32) -> u32 {
 /// The largest magnitude is brought into `[2^15, 2^16)` (truncating the
 /// others: at most `2^-15` of the length each), the squared length comes
 /// from three 32-bit squares, its reciprocal square root from
-/// [`rsqrt_newton`] (within `2^-29` relative), and the products are split in 16-bit halves
-/// (exact floor) before the final rounding. Error per component, tested
-/// over random and axis-near vectors of every magnitude: within `2^-15`
-/// absolute of the exact unit vector (measured `2^-15.4`, see
-/// `accuracy::unit_q16`), hence no component above `1 + 2^-15`.
+/// [`rsqrt_newton`] (within `2^-28.5` relative), and the products are
+/// split in 16-bit halves (exact floor) before the final rounding. Error
+/// per component, tested over random and axis-near vectors of every
+/// magnitude (components up to `i32::MIN`): within [`UNIT_MAX_ERROR`] =
+/// `2^-15` absolute of the exact unit vector (measured `2^-15.4`), hence
+/// no component above `1 + 2^-15`.
 pub(crate) fn unit(v: [i32; 3]) -> [i32; 3] {
     let mag = v.map(i32::unsigned_abs);
     let max = mag[0].max(mag[1]).max(mag[2]);
@@ -264,13 +311,17 @@ pub(crate) fn unit(v: [i32; 3]) -> [i32; 3] {
     [out(0), out(1), out(2)]
 }
 
+/// [`exp_neg`]'s largest absolute error: `2^-15.5`.
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const EXP_NEG_MAX_ERROR: f64 = 1.0 / 46_340.95;
+
 /// `log2(e)` in Q21 (`1.442695… · 2^21`, rounded).
 const LOG2E_Q21: u64 = 3_025_525;
 
 /// `e^-x` for `x >= 0` in Q16 bits, as Q16 bits: through [`exp2_neg`]
 /// (`x · log2 e` in Q5.27, the constant within `2^-22` relative), so
-/// within `2^-15.5` absolute (measured in `accuracy`-style tests of the
-/// Phong specular table); 0 from `x >= 11.7` on.
+/// within [`EXP_NEG_MAX_ERROR`] = `2^-15.5` absolute; 0 from `x >= 11.7`
+/// on.
 pub(crate) fn exp_neg(x: u32) -> i32 {
     let y = (u64::from(x) * LOG2E_Q21) >> 10; // Q16 · Q21 = Q37 -> Q27
     match u32::try_from(y) {
@@ -332,4 +383,186 @@ pub(crate) fn spec_entry_q(u: u32, m: u32, q: Option<u64>) -> u16 {
     };
     // Q16 -> Q15, rounded; v <= 2^16.
     (((v.clamp(0, ONE) + 1) >> 1) as u32).min(1 << 15) as u16
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::println;
+    use std::vec::Vec;
+
+    use super::super::testkit::{
+        lg, near_one, pow_error, q16_positive, rel_beyond_rounding, sin_cos_error, Rng,
+    };
+    use super::super::{Real, Q16};
+    use super::*;
+
+    #[test]
+    fn rsqrt_within_max_error() {
+        let mut worst = 0f64;
+        for b in q16_positive() {
+            let x = Q16::from_bits(b);
+            let exact = 1.0 / x.to_f64().sqrt();
+            let e = rel_beyond_rounding(x.rsqrt().to_f64(), exact, 2f64.powi(-16));
+            worst = worst.max(e);
+        }
+        println!("Q16 rsqrt: rel error beyond 1/2 ulp = 2^{:.2}", lg(worst));
+        assert!(worst <= RSQRT_MAX_ERROR);
+    }
+
+    #[test]
+    fn sqrt_correctly_rounded() {
+        for b in q16_positive() {
+            let x = Q16::from_bits(b);
+            let exact = x.to_f64().sqrt();
+            let err = (x.sqrt().to_f64() - exact).abs();
+            assert!(err <= SQRT_MAX_ERROR * (1.0 + 1e-9), "Q16 sqrt {b}");
+        }
+    }
+
+    #[test]
+    fn pow_within_max_error() {
+        let mut xs: Vec<Q16> = (0..=65536).map(Q16::from_bits).collect();
+        xs.extend(near_one().map(Q16::from_f64));
+        let worst = pow_error(&xs);
+        println!("Q16 powf: abs error 2^{:.2}", lg(worst));
+        assert!(worst <= POW_MAX_ERROR);
+        // x = 0.999 (as represented), n = 800: 0.999^800 = 0.449.
+        let x = Q16::from_f64(0.999);
+        let got = x.powf(Q16::from_i32(800)).to_f64();
+        assert!((got - x.to_f64().powf(800.0)).abs() <= 2f64.powi(-12));
+        assert!((got - 0.449).abs() < 0.01);
+    }
+
+    #[test]
+    fn sin_cos_within_max_error() {
+        let dense = (-(8 << 16)..(8 << 16)).map(Q16::from_bits);
+        let worst = sin_cos_error(dense);
+        println!("Q16 sin_cos |x| < 8: abs error 2^{:.2}", lg(worst));
+        assert!(worst <= SIN_COS_MAX_ERROR);
+        let mut rng = Rng(5);
+        let wide = (0..300_000).map(|_| Q16::from_bits((rng.next_i64() >> 32) as i32));
+        let worst = sin_cos_error(wide.chain([Q16::MAX, Q16::MIN]));
+        println!("Q16 sin_cos all angles: abs error 2^{:.2}", lg(worst));
+        assert!(worst <= SIN_COS_MAX_ERROR);
+    }
+
+    /// Every 18-bit position of a mantissa (the interpolation reads no
+    /// lower bit), at the lowest and highest mantissa of each; and
+    /// [`recip_mant_top`] equal to it.
+    #[test]
+    fn recip_mant_within_max_error_at_every_position() {
+        let mut worst = 0f64;
+        for p in 0..1u32 << 18 {
+            for low in [0, (1 << 13) - 1] {
+                let m = 1 << 31 | p << 13 | low;
+                let exact = 2f64.powi(61) / f64::from(m);
+                let got = f64::from(recip_mant(m));
+                worst = worst.max((got - exact).abs() / exact);
+                assert_eq!(recip_mant_top(m), recip_mant(m));
+            }
+        }
+        println!("recip_mant: rel error 2^{:.3}", lg(worst));
+        assert!(worst <= RECIP_MANT_MAX_ERROR);
+        assert!(
+            worst > RECIP_MANT_MAX_ERROR / 2.0,
+            "{worst}: the bound is tight"
+        );
+    }
+
+    /// Every Q16 `x` up to 12 (where the result is 0) and beyond.
+    #[test]
+    fn exp_neg_within_max_error() {
+        let mut worst = 0f64;
+        for x in (0..12 << 16).chain([u32::MAX, 1 << 31, 17 << 16]) {
+            let exact = (-f64::from(x) / 65536.0).exp();
+            let got = f64::from(exp_neg(x)) / 65536.0;
+            worst = worst.max((got - exact).abs());
+        }
+        println!("exp_neg: abs error 2^{:.2}", lg(worst));
+        assert!(worst <= EXP_NEG_MAX_ERROR);
+    }
+
+    /// Every mantissa near both ends of `[1, 4)` and random ones between.
+    #[test]
+    fn rsqrt_newton_within_max_error() {
+        let mut rng = Rng(12);
+        let ends = (0..20_000u32).flat_map(|k| [(1 << 30) + k, u32::MAX - k]);
+        let random = (0..400_000)
+            .map(|_| (1 << 30) | (rng.next() >> 34) as u32 | ((rng.next() >> 62) as u32) << 30);
+        let mut worst = 0f64;
+        for m in ends.chain(random) {
+            let exact = 2f64.powi(31) / (f64::from(m) / 2f64.powi(30)).sqrt();
+            let got = rsqrt_newton(m);
+            assert!(got <= 1 << 31);
+            worst = worst.max((f64::from(got) - exact).abs() / exact);
+        }
+        println!("rsqrt_newton: rel error 2^{:.2}", lg(worst));
+        assert!(worst <= RSQRT_NEWTON_MAX_ERROR);
+    }
+
+    /// `approx16::unit` against `f64` over random vectors of every magnitude
+    /// (and near the axes): the bound stated in its doc comment.
+    #[test]
+    fn unit_within_max_error() {
+        let mut rng = Rng(7);
+        let mut worst = 0f64;
+        let mut longest = 0f64;
+        // Random vectors of every magnitude up to the whole i32 range (e = 31
+        // draws any i32, i32::MIN included), then the extremes by hand.
+        let extremes = [
+            [i32::MIN, 0, 0],
+            [0, i32::MIN, 0],
+            [0, 0, i32::MIN],
+            [i32::MIN, i32::MIN, i32::MIN],
+            [i32::MAX, i32::MIN, 1],
+            [i32::MIN, i32::MAX, i32::MAX],
+            [1 << 30, -(1 << 30), 1 << 30],
+            [i32::MAX, 1, -1],
+            [i32::MIN, 1 << 30, -(1 << 29)],
+        ];
+        let random = (0..400_000u32).map(|i| {
+            let e = i % 32;
+            let mut v = [0i32; 3];
+            for c in &mut v {
+                *c = if e == 31 {
+                    (rng.next() >> 32) as u32 as i32
+                } else {
+                    let r = (rng.next() >> 33) as i64 & ((1i64 << e) - 1).max(1);
+                    if rng.next() & 1 == 0 {
+                        r as i32
+                    } else {
+                        -(r as i32)
+                    }
+                };
+            }
+            if i % 7 == 0 {
+                v[(i % 3) as usize] = ((1i64 << e) - 1) as i32;
+            }
+            v
+        });
+        for v in random.chain(extremes) {
+            if v == [0; 3] {
+                continue;
+            }
+            let u = unit(v);
+            let f = v.map(f64::from);
+            let l = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+            let mut len2 = 0.0;
+            for k in 0..3 {
+                let got = f64::from(u[k]) / 65536.0;
+                worst = worst.max((got - f[k] / l).abs());
+                len2 += got * got;
+            }
+            longest = longest.max(len2.sqrt());
+        }
+        println!(
+            "Q16 unit: abs error 2^{:.2}, longest 1 + 2^{:.2}",
+            lg(worst),
+            lg(longest - 1.0)
+        );
+        assert!(worst <= UNIT_MAX_ERROR);
+        assert_eq!(unit([0; 3]), [0; 3]);
+    }
 }

@@ -14,12 +14,35 @@
 //!   relative) and a degree-4 series for `2^-y` on 1/64 steps.
 //! - `sin_cos`: reduction by 2/pi in Q0.64, quarter-wave table, Taylor
 //!   correction to degree 5 (|h| <= pi/256, truncation < 2^-46).
+//!
+//! Each function's bound is a constant next to it, which the tests at the
+//! bottom of this file check against `f64`.
 
 use super::approx16::rsqrt_mant;
 use super::tables::{EXP2, LOG_INV, LOG_T, SIN};
 
 /// Q32 one.
 const ONE: i64 = 1 << 32;
+
+/// [`rsqrt`]'s largest relative error beyond the half-ulp rounding of its
+/// output: `2^-30` (measured `2^-30.28`).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const RSQRT_MAX_ERROR: f64 = 1.0 / 1_073_741_824.0;
+
+/// [`sqrt`]'s largest absolute error: half an ulp, `2^-33` (correctly
+/// rounded).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const SQRT_MAX_ERROR: f64 = 1.0 / 8_589_934_592.0;
+
+/// [`pow`]'s largest absolute error for `x` in `[0, 1]`, `n` up to 32767:
+/// `2^-31` (measured `2^-32.99`, the output rounding).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const POW_MAX_ERROR: f64 = 1.0 / 2_147_483_648.0;
+
+/// [`sin_cos`]'s largest absolute error over every angle: `2^-32`
+/// (measured `2^-32.97`).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const SIN_COS_MAX_ERROR: f64 = 1.0 / 4_294_967_296.0;
 /// Q.62 one.
 const ONE62: i128 = 1 << 62;
 /// `ln 2` in Q.62.
@@ -45,7 +68,8 @@ fn mul62(a: i128, b: i128) -> i128 {
     (a * b) >> 62
 }
 
-/// `1/sqrt(x)` on Q32 bits; `x <= 0` gives 0.
+/// `1/sqrt(x)` on Q32 bits, within [`RSQRT_MAX_ERROR`] relative plus
+/// half an ulp; `x <= 0` gives 0.
 pub(crate) fn rsqrt(b: i64) -> i64 {
     if b <= 0 {
         return 0;
@@ -64,7 +88,8 @@ pub(crate) fn rsqrt(b: i64) -> i64 {
     i64::try_from(r).unwrap_or(i64::MAX)
 }
 
-/// `sqrt(x)` on Q32 bits, correctly rounded; `x <= 0` gives 0.
+/// `sqrt(x)` on Q32 bits, correctly rounded (within [`SQRT_MAX_ERROR`]);
+/// `x <= 0` gives 0.
 pub(crate) fn sqrt(b: i64) -> i64 {
     if b <= 0 {
         return 0;
@@ -112,7 +137,8 @@ fn exp2_neg(y: u64) -> i64 {
     i64::try_from(r).unwrap_or(ONE)
 }
 
-/// `x^n` on Q32 bits for `x` in `[0, 1]`, `n >= 0` (see `Real::powf`).
+/// `x^n` on Q32 bits for `x` in `[0, 1]`, `n >= 0` (see `Real::powf`),
+/// within [`POW_MAX_ERROR`] absolute.
 pub(crate) fn pow(xb: i64, nb: i64) -> i64 {
     if nb <= 0 || xb >= ONE {
         return ONE;
@@ -128,7 +154,8 @@ pub(crate) fn pow(xb: i64, nb: i64) -> i64 {
     }
 }
 
-/// `(sin, cos)` of an angle in Q32 bits, results in Q32 bits.
+/// `(sin, cos)` of an angle in Q32 bits, results in Q32 bits, within
+/// [`SIN_COS_MAX_ERROR`] absolute.
 pub(crate) fn sin_cos(b: i64) -> (i64, i64) {
     // Quarter turns in units of 2^-96.
     let u = i128::from(b) * TWO_OVER_PI;
@@ -154,4 +181,76 @@ pub(crate) fn sin_cos(b: i64) -> (i64, i64) {
     };
     let round = |v: i128| i64::try_from((v + (1 << 29)) >> 30).unwrap_or(0);
     (round(s), round(c))
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::println;
+    use std::vec::Vec;
+
+    use super::super::testkit::{
+        lg, near_one, pow_error, q32_positive, rel_beyond_rounding, sin_cos_error, Rng,
+    };
+    use super::super::{Real, Q32};
+    use super::*;
+
+    #[test]
+    fn rsqrt_within_max_error() {
+        let mut worst = 0f64;
+        for b in q32_positive() {
+            let x = Q32::from_bits(b);
+            let exact = 1.0 / x.to_f64().sqrt();
+            let e = rel_beyond_rounding(x.rsqrt().to_f64(), exact, 2f64.powi(-32));
+            worst = worst.max(e);
+        }
+        println!("Q32 rsqrt: rel error beyond 1/2 ulp = 2^{:.2}", lg(worst));
+        assert!(worst <= RSQRT_MAX_ERROR);
+    }
+
+    #[test]
+    fn sqrt_correctly_rounded() {
+        for b in q32_positive() {
+            let x = Q32::from_bits(b);
+            let exact = x.to_f64().sqrt();
+            let err = (x.sqrt().to_f64() - exact).abs();
+            // f64 reference itself is only good to 2^-53 relative.
+            assert!(
+                err <= SQRT_MAX_ERROR + exact * 2f64.powi(-52),
+                "Q32 sqrt {b}"
+            );
+        }
+    }
+
+    #[test]
+    fn pow_within_max_error() {
+        let mut rng = Rng(4);
+        let mut xs: Vec<Q32> = (0..200_000)
+            .map(|_| Q32::from_bits(rng.next_i64() & 0xFFFF_FFFF))
+            .collect();
+        xs.extend((0..5000).map(|k| Q32::from_bits((1 << 32) - k)));
+        xs.extend((0..2000).map(Q32::from_bits));
+        xs.extend(near_one().map(Q32::from_f64));
+        let worst = pow_error(&xs);
+        println!("Q32 powf: abs error 2^{:.2}", lg(worst));
+        assert!(worst <= POW_MAX_ERROR);
+        let x = Q32::from_f64(0.999);
+        let got = x.powf(Q32::from_i32(800)).to_f64();
+        assert!((got - 0.999f64.powf(800.0)).abs() <= 2f64.powi(-20));
+    }
+
+    #[test]
+    fn sin_cos_within_max_error() {
+        let mut rng = Rng(6);
+        let small = (0..300_000).map(|_| Q32::from_bits(rng.next_i64() >> 28));
+        let worst = sin_cos_error(small);
+        println!("Q32 sin_cos |x| < 8: abs error 2^{:.2}", lg(worst));
+        assert!(worst <= SIN_COS_MAX_ERROR);
+        // Large angles with raw values exactly representable in f64.
+        let wide = (0..300_000).map(|_| Q32::from_bits(rng.next_i64() & !0x7ff));
+        let worst = sin_cos_error(wide);
+        println!("Q32 sin_cos all angles: abs error 2^{:.2}", lg(worst));
+        assert!(worst <= SIN_COS_MAX_ERROR);
+    }
 }

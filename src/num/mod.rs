@@ -14,9 +14,9 @@ mod tables;
 pub(crate) mod wide;
 
 #[cfg(test)]
-mod accuracy;
-#[cfg(test)]
 mod edge_tests;
+#[cfg(test)]
+mod testkit;
 
 pub use self::fixed_point::{Q16, Q32};
 pub use self::isqrt::isqrt_u64;

@@ -13,7 +13,7 @@ use crate::geom::Affine;
 use crate::illum::{Light, Material, Specular, Viewer, MAX_LIGHTS};
 use crate::mesh::Mesh;
 use crate::num::Real;
-use crate::target::Rgb8;
+use crate::pixel::{Rgb8, MAX_SCREEN};
 use core::fmt;
 
 /// Most objects in one scene: 32.
@@ -126,7 +126,7 @@ impl fmt::Display for SceneError {
             Self::Screen => write!(
                 f,
                 "the screen size is above {} pixels or out of the profile's range",
-                crate::target::MAX_SCREEN
+                MAX_SCREEN
             ),
             Self::TooManyObjects => write!(f, "at most {MAX_OBJECTS} objects are supported"),
             Self::TooManyLights => write!(f, "at most {MAX_LIGHTS} lights are supported"),

@@ -6,33 +6,7 @@
 //! ([`Rgb565Be`]); [`Rgb565Le`] is the little-endian order of a `u16` on a
 //! Cortex-M.
 
-/// A colour with 8 bits per channel, the output of every shader.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Rgb8 {
-    /// Red level, 0..=255.
-    pub r: u8,
-    /// Green level, 0..=255.
-    pub g: u8,
-    /// Blue level, 0..=255.
-    pub b: u8,
-}
-
-impl Rgb8 {
-    /// Black.
-    pub const BLACK: Self = Self::grey(0);
-    /// White.
-    pub const WHITE: Self = Self::grey(255);
-
-    /// A colour from its three levels.
-    pub const fn new(r: u8, g: u8, b: u8) -> Self {
-        Self { r, g, b }
-    }
-
-    /// A grey: all three channels at `level`.
-    pub const fn grey(level: u8) -> Self {
-        Self::new(level, level, level)
-    }
-}
+pub use crate::pixel::Rgb8;
 
 /// A stored pixel: its bytes in memory.
 pub trait RawPixel: Copy + Default + PartialEq + core::fmt::Debug {

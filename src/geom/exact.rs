@@ -1,8 +1,11 @@
-//! Exact integer square root, normalisation and face normals.
+//! Exact integer normalisation, face normals, face planes and normal cones
+//! of Q1.14 positions (what the mesh tables bake and the geometry stage
+//! tests against).
 //!
-//! The error analysis is in the [module docs](super#arithmetic-and-error-bounds).
+//! The error analysis is in the [mesh module
+//! docs](crate::mesh#arithmetic-and-error-bounds).
 
-pub use crate::num::isqrt_u64;
+use crate::num::isqrt_u64;
 
 /// `round(v · 2^frac / |v|)` per component, half away from zero, for
 /// `frac <= 30`; `None` for the zero vector. Each magnitude is at most
@@ -135,7 +138,7 @@ const fn edge_up(p: [i16; 3], q: [i16; 3]) -> u64 {
 
 /// The culling plane of the counter-clockwise triangle `a, b, c`, as
 /// `[d, slack]`; its slack bounds the per-vertex cones baked with the
-/// built-in meshes ([`Mesh::with_vertex_cones`](super::Mesh::with_vertex_cones)):
+/// built-in meshes ([`Mesh::with_vertex_cones`](crate::mesh::Mesh::with_vertex_cones)):
 ///
 /// - `d = n · a` exactly, with `n` the Q1.14 [`face_normal`] (so
 ///   `|d| <= 16386 · 2^15·√3 < 2^30`);
