@@ -524,3 +524,174 @@ fn walk_edges(
     w.ja = ay >> sub.get();
     w.long_left = long_left;
 }
+
+/// The small-triangle kernel: a triangle set up in 32 bits and walked in
+/// one go, without a [`Walk`], band carry-over, clipping or depth clamps.
+///
+/// `v` holds the vertices sorted by `y` (subpixels, within the module's
+/// limits). The kernel applies when every condition below holds, decided
+/// before a pixel is written; `None` otherwise (nothing written, the
+/// caller takes [`setup_fast`] and [`Walk::rows_fused`]):
+///
+/// - a depth plane is present and the triangle's rows lie within the band
+///   (`y0 <= first row`, `last row < until`): nothing to carry over;
+/// - its columns lie within `0..=width` ([`Walk::inside`]): no clipping;
+/// - [`setup32`]'s bounds (coordinate offsets below `2^15`, the
+///   reciprocal's high-word case, no wrapping numerator);
+/// - every depth converts to 16 bits without a clamp
+///   ([`DepthFormat::plane_in_range`]).
+///
+/// Then it writes exactly the pixels of [`setup_fast`] and
+/// [`Walk::rows_fused`] (the same edges from their first rows, the same
+/// gradients and values, the same span stage) and returns their count
+/// (`Some(0)` for a triangle without area or rows). Tested pixel for pixel
+/// against the general path on random and extreme triangles.
+#[inline(always)]
+pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
+    v: &[Vertex<i32, N>; 3],
+    sub: SubpixelBits,
+    until: i32,
+    mem: &mut BandMem<'_, '_, R, D::Raw>,
+    color: impl Fn(&[i32; N]) -> R,
+) -> Option<u32> {
+    let [a, b, c] = v;
+    let (y0, width) = (mem.y0, mem.width);
+    let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
+    let sc = sub.scale();
+    let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
+    let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
+    let s = sub.get();
+    let h = 1i32 << (s - 1);
+    let far = SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15;
+    if (j_top < y0)
+        | (j_bot > until)
+        | (xmin < 0)
+        | (xmax > width.saturating_mul(sc))
+        | (mxy >= 1 << 15)
+        | far
+        | mem.z.is_none()
+    {
+        return None;
+    }
+    let area2 = dx1 * dy2 - dx2 * dy1;
+    if area2 == 0 || j_top >= j_bot {
+        return Some(0);
+    }
+    let small = if NO_DIVIDE {
+        None
+    } else {
+        InvArea::new_small(area2)
+    };
+    let inv = match small {
+        Some(inv) => inv,
+        None => InvArea::new(area2 as i64),
+    };
+    let k = inv.high_shift(s)?;
+    let g = Grad {
+        d: [dx1, dy1, dx2, dy2],
+        inv,
+        k,
+        s,
+        o: [h - a.x, h - a.y],
+    };
+    let (gx, gy, z0, mut ok) = g.plane(a.z, b.z, c.z);
+    ok &= D::plane_in_range(depth16_plane_in_range32([a.z, b.z, c.z], gx, gy));
+    let mut row = Vals { z: z0, a: [0; N] };
+    let mut sx = Vals { z: gx, a: [0; N] };
+    let mut sy = Vals { z: gy, a: [0; N] };
+    for k in 0..N {
+        let (gx, gy, o, oka) = g.plane(a.attrs[k], b.attrs[k], c.attrs[k]);
+        ok &= oka;
+        row.a[k] = o;
+        sx.a[k] = gx;
+        sy.a[k] = gy;
+    }
+    if !ok {
+        return None;
+    }
+    let z = mem.z.as_deref_mut()?;
+    let px = &mut **mem.px;
+    let j_mid = first_row(b.y, sub);
+    let long = Edge::new_first(a.x, a.y, c.x, c.y, j_top, sub);
+    let upper = j_top < j_mid;
+    let short = if upper {
+        Edge::new_first(a.x, a.y, b.x, b.y, j_top, sub)
+    } else {
+        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
+    };
+    let long_left = area2 > 0;
+    let (mut l, mut r) = if long_left {
+        (long, short)
+    } else {
+        (short, long)
+    };
+    let mut row = SmallRows {
+        v: row.add_n(&sy, j_top),
+        base: (j_top - y0).wrapping_mul(width) as usize,
+        width: width as usize,
+        drawn: 0,
+    };
+    let (sx, sy) = (&sx, &sy);
+    let mut j = j_top;
+    if upper {
+        let stop = j_mid.min(j_bot);
+        while j < stop {
+            row.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
+            l.step();
+            r.step();
+            j += 1;
+        }
+        if j < j_bot {
+            let low = Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub);
+            if long_left {
+                r = low;
+            } else {
+                l = low;
+            }
+        }
+    }
+    while j < j_bot {
+        row.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
+        l.step();
+        r.step();
+        j += 1;
+    }
+    Some(row.drawn)
+}
+
+/// The row state of [`draw_small`]: the values at column 0 of the row,
+/// the row's offset in the band and the pixels written so far.
+struct SmallRows<const N: usize> {
+    v: Vals<i32, N>,
+    base: usize,
+    width: usize,
+    drawn: u32,
+}
+
+impl<const N: usize> SmallRows<N> {
+    /// Draws columns `x0..x1` of the current row (nothing when `x0 >=
+    /// x1`) and moves to the next row.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn span<R: Copy, D: DepthFormat>(
+        &mut self,
+        x0: i32,
+        x1: i32,
+        px: &mut [R],
+        z: &mut [D::Raw],
+        sx: &Vals<i32, N>,
+        sy: &Vals<i32, N>,
+        color: &impl Fn(&[i32; N]) -> R,
+    ) {
+        if x0 < x1 {
+            let s = self.v.add_n(sx, x0);
+            let span = self.base.wrapping_add(x0 as usize)..self.base.wrapping_add(x1 as usize);
+            if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
+                self.drawn += inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color);
+            }
+        }
+        self.v = self.v.add_n(sy, 1);
+        self.base = self.base.wrapping_add(self.width);
+    }
+}

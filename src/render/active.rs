@@ -74,8 +74,9 @@ use super::{Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, Rende
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
 use crate::raster::{
-    in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud, GouraudMono, Lerp,
-    PackedWalk, Persp, RasterError, RowSpans, Shader, Vals, Vertex, Walk,
+    draw_small, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud,
+    GouraudMono, Lerp, PackedWalk, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals,
+    Vertex, Walk,
 };
 use crate::scene::{Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -814,31 +815,36 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     self.put_back(si, ti as u16, &walk);
                     drawn
                 }
-                Src::Fresh => {
-                    // Set up and walked in the scratch; kept in a slot
-                    // when it continues below the band.
-                    let (walk, vals) = (&mut scratch.0, &mut scratch.1);
-                    let set = fresh_fixed::<P, N, V>(frame, po, &tri, y0, width, walk, vals);
-                    let drawn = match set {
-                        Ok(Some(true)) => {
-                            self.stats.triangles += 1;
-                            draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
+                Src::Fresh => match fetch_fixed::<P, N>(frame, po, &tri) {
+                    Ok(Some(v)) => {
+                        self.stats.triangles += 1;
+                        let sub = P::SUBPIXEL_BITS;
+                        match draw_small_shaded::<N, S, F, D>(&v, sub, y1, &mut mem, &shader) {
+                            Some(drawn) => drawn,
+                            None => {
+                                // Set up and walked in the scratch; kept
+                                // in a slot when it continues below the
+                                // band.
+                                let (walk, vals) = (&mut scratch.0, &mut scratch.1);
+                                let drawn = if setup_fixed::<N, V>(&v, sub, y0, width, walk, vals)
+                                {
+                                    draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
+                                } else {
+                                    0
+                                };
+                                if !walk.done() {
+                                    self.keep_fixed::<N>(ti as u16, walk, vals);
+                                }
+                                drawn
+                            }
                         }
-                        Ok(Some(false)) => {
-                            self.stats.triangles += 1;
-                            0
-                        }
-                        Ok(None) => 0,
-                        Err(e) => {
-                            self.stats.triangles += 1;
-                            return Err(e);
-                        }
-                    };
-                    if !walk.done() {
-                        self.keep_fixed::<N>(ti as u16, walk, vals);
                     }
-                    drawn
-                }
+                    Ok(None) => 0,
+                    Err(e) => {
+                        self.stats.triangles += 1;
+                        return Err(e);
+                    }
+                },
             };
             self.stats.pixels += drawn;
         }
@@ -1080,29 +1086,19 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
     }
 }
 
-/// Sets triangle `tri` of object `po` up for the fused row kernel from
-/// row `max(first row, j0)` into `walk` and `vals` (a pool slot's, or the
-/// scratch): `Ok(Some(true))` when it draws rows from there,
-/// `Ok(Some(false))` when it was set up but draws none (`walk` then done),
-/// `Ok(None)` when a vertex is missing. A function of its own on ARMv6-M
-/// (its live state then does not share the eight low registers with the
-/// row loop's); inlined elsewhere (out of line, thumbv7em bunny-gouraud
-/// raster took 2.317 -> 2.351 M).
-#[cfg_attr(armv6m, inline(never))]
-#[cfg_attr(not(armv6m), inline(always))]
-fn fresh_fixed<P: Profile, const N: usize, const V: usize>(
+/// The vertices of triangle `tri` of object `po`, sorted by `y`, with
+/// their depths and first `N` values as fixed-point `i32`s (each corner
+/// and its values read once): `Ok(None)` when a vertex is missing, an
+/// error when a vertex lies outside the rasterizer's limits.
+#[inline(always)]
+fn fetch_fixed<P: Profile, const N: usize>(
     frame: &Frame<'_, P>,
     po: &PreparedObject,
     tri: &PreparedTri,
-    j0: i32,
-    width: i32,
-    walk: &mut Walk,
-    vals: &mut [[i32; 3]; V],
-) -> Result<Option<bool>, RenderError> {
+) -> Result<Option<[Vertex<i32, N>; 3]>, RenderError> {
     let sub = P::SUBPIXEL_BITS;
     let xy = |i: u16| frame.xy(usize::from(i));
     let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
-        *walk = Walk::EMPTY;
         return Ok(None);
     };
     let lim = sub.coord_limit();
@@ -1128,22 +1124,61 @@ fn fresh_fixed<P: Profile, const N: usize, const V: usize>(
         raw(frame.vertex::<N>(po, i1, q1)),
         raw(frame.vertex::<N>(po, i2, q2)),
     ) else {
-        *walk = Walk::EMPTY;
         return Ok(None);
     };
     if outside != 0 {
-        *walk = Walk::EMPTY;
         let i = [p0, p1, p2]
             .iter()
             .position(|&[x, y]| !in_limits(x, y, sub))
             .unwrap_or(0);
         return Err(RasterError::OutOfRange(i as u8).into());
     }
-    let set = setup_fast::<N, V>(&a, &b, &c, sub, j0, width, walk, vals);
+    Ok(Some([a, b, c]))
+}
+
+/// Draws a fetched triangle ([`fetch_fixed`]) with the small-triangle
+/// kernel ([`draw_small`]) when it applies: the shader's constant colour
+/// encoded once, or its colour per pixel; `None` (nothing drawn) when the
+/// triangle needs the general path.
+#[inline(always)]
+fn draw_small_shaded<const N: usize, S: Shader<i32, N>, F: PixelFormat, D: DepthFormat>(
+    v: &[Vertex<i32, N>; 3],
+    sub: SubpixelBits,
+    until: i32,
+    mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
+    shader: &S,
+) -> Option<u32> {
+    if let Some(c) = shader.constant() {
+        let raw = F::encode(c);
+        draw_small::<N, F::Raw, D>(v, sub, until, mem, move |_| raw)
+    } else {
+        draw_small::<N, F::Raw, D>(v, sub, until, mem, |a| shader.shade_raw::<F>(a))
+    }
+}
+
+/// Sets a fetched triangle ([`fetch_fixed`]) up for the fused row kernel
+/// from row `max(first row, j0)` into `walk` and `vals` (a pool slot's, or
+/// the scratch): `true` when it draws rows from there, `false` (and `walk`
+/// done) when it draws none. A function of its own on ARMv6-M (its live
+/// state then does not share the eight low registers with the row
+/// loop's); inlined elsewhere (out of line, thumbv7em bunny-gouraud raster
+/// took 2.317 -> 2.351 M).
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline(always))]
+fn setup_fixed<const N: usize, const V: usize>(
+    v: &[Vertex<i32, N>; 3],
+    sub: SubpixelBits,
+    j0: i32,
+    width: i32,
+    walk: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+) -> bool {
+    let [a, b, c] = v;
+    let set = setup_fast::<N, V>(a, b, c, sub, j0, width, walk, vals);
     if !set {
         *walk = Walk::EMPTY;
     }
-    Ok(Some(set))
+    set
 }
 
 /// A slot's values as the walker's row values and steps.
