@@ -826,8 +826,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                                 // in a slot when it continues below the
                                 // band.
                                 let (walk, vals) = (&mut scratch.0, &mut scratch.1);
-                                let drawn = if setup_fixed::<N, V>(&v, sub, y0, width, walk, vals)
-                                {
+                                let drawn = if setup_fixed::<N, V>(&v, sub, y0, width, walk, vals) {
                                     draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
                                 } else {
                                     0
