@@ -1001,3 +1001,209 @@ fn packed_walks_resume_as_the_walk_itself() {
     assert!(packed > 1000);
     assert_eq!(Walk::EMPTY.pack(), Some(PackedWalk::EMPTY));
 }
+
+/// Draws sorted triangle `v` into a band (rows `y0..y0 + rows`, `w`
+/// columns, colour `px`, depth `z`) with the small-triangle kernel and
+/// with the general fused walk (from fresh copies of the buffers): `None`
+/// when the kernel declines (then it wrote nothing), else the pixel
+/// counts, which must agree, as must every byte of both buffers.
+fn check_small<const N: usize>(
+    v: &[Vertex<i32, N>; 3],
+    y0: i32,
+    rows: i32,
+    w: i32,
+    px: &[u32],
+    z: &[u16],
+) -> Option<u32> {
+    let color = |a: &[i32; N]| {
+        a.iter()
+            .fold(0x9e37_79b9u32, |h, &x| h.rotate_left(5) ^ x as u32)
+    };
+    let run_small = || {
+        let (mut p, mut d) = (px.to_vec(), z.to_vec());
+        let (mut pr, mut dr) = (&mut p[..], Some(&mut d[..]));
+        let mut mem = BandMem::<u32, u16> {
+            px: &mut pr,
+            z: &mut dr,
+            y0,
+            width: w,
+        };
+        let n = draw_small::<N, u32, Depth16>(v, SUB, y0 + rows, &mut mem, color);
+        (n, p, d)
+    };
+    let (n, p, d) = run_small();
+    let Some(n) = n else {
+        assert_eq!((&p[..], &d[..]), (px, z), "declined but wrote: {v:?}");
+        return None;
+    };
+    let (mut gp, mut gd) = (px.to_vec(), z.to_vec());
+    let (mut walk, mut vals) = (Walk::EMPTY, [[0; 3]; 4]);
+    let mut drawn = 0;
+    if setup_fast::<N, 4>(&v[0], &v[1], &v[2], SUB, y0, w, &mut walk, &mut vals) {
+        let (mut pr, mut dr) = (&mut gp[..], Some(&mut gd[..]));
+        let mut mem = BandMem::<u32, u16> {
+            px: &mut pr,
+            z: &mut dr,
+            y0,
+            width: w,
+        };
+        drawn = walk.rows_fused::<N, 4, u32, Depth16>(&vals, y0 + rows, &mut mem, color);
+        assert!(walk.done(), "a triangle within the band: {v:?}");
+    }
+    assert_eq!(n, drawn, "{v:?}");
+    assert!(p == gp && d == gd, "pixels differ: {v:?} y0 {y0}");
+    Some(n)
+}
+
+#[test]
+fn small_kernel_equals_the_fused_walk() {
+    let mut rng = Rng(0x5a11_7e57);
+    let (w, rows) = (240, 16);
+    let lim = SUB.coord_limit();
+    let mut taken = 0;
+    let mut pixels = 0;
+    for i in 0..20_000 {
+        let y0 = [0, 16, 112, 224][i % 4];
+        let px: Vec<u32> = (0..w * rows).map(|_| rng.next() as u32).collect();
+        // Depths mostly far (most pixels pass), some near.
+        let zb: Vec<u16> = (0..w * rows)
+            .map(|_| {
+                if rng.range(0, 4) == 0 {
+                    rng.range(0, 65535) as u16
+                } else {
+                    65534
+                }
+            })
+            .collect();
+        // Mostly small triangles around the band (in it, across its
+        // edges, at the window's sides), some large or at the limits.
+        let (cx, cy, span) = match i % 8 {
+            0 => (rng.range(-lim, lim), rng.range(-lim, lim), lim / 4),
+            1 => (
+                rng.range(-64, w * 16 + 64),
+                y0 * 16 + rng.range(-64, rows * 16 + 64),
+                300 * 16,
+            ),
+            2 => (rng.range(0, 32), y0 * 16 + rng.range(0, rows * 16), 48),
+            _ => (
+                rng.range(0, w * 16),
+                y0 * 16 + rng.range(0, rows * 16),
+                6 * 16,
+            ),
+        };
+        let mut p = || {
+            (
+                (cx + rng.range(-span, span + 1)).clamp(-lim, lim),
+                (cy + rng.range(-span, span + 1)).clamp(-lim, lim),
+            )
+        };
+        let (p0, p1, p2) = (p(), p(), p());
+        // Depths and levels near a per-triangle base (planes of a mesh),
+        // or anywhere (the general path's cases).
+        let (zbase, abase, k) = (
+            rng.range(1 << 20, (1 << 30) - (1 << 20)),
+            rng.range(0, 255 << 16),
+            rng.range(0, 8),
+        );
+        let depth = |rng: &mut Rng| match k {
+            0 => rng.range(i32::MIN / 2, i32::MAX / 2) * 2,
+            1 => rng.range(0, 1 << 30),
+            _ => zbase + rng.range(-(1 << 19), 1 << 19),
+        };
+        let level = |rng: &mut Rng| match k {
+            0 | 2 => rng.range(0, 256 << 16),
+            _ => abase + rng.range(0, 1 << 16),
+        };
+        let vert = |(x, y): (i32, i32), rng: &mut Rng| Vertex {
+            x,
+            y,
+            z: depth(rng),
+            attrs: [level(rng)],
+        };
+        let v = sort3(
+            [vert(p0, &mut rng), vert(p1, &mut rng), vert(p2, &mut rng)],
+            |v| v.y,
+        );
+        if let Some(n) = check_small::<1>(&v, y0, rows, w, &px, &zb) {
+            taken += 1;
+            pixels += n;
+        }
+        let flat = v.map(|v| Vertex {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+            attrs: [],
+        });
+        let _ = check_small::<0>(&flat, y0, rows, w, &px, &zb);
+    }
+    assert!(taken > 5_000 && pixels > 40_000, "{taken} {pixels}");
+    // Extremes: zero area, flat tops and bottoms, one-row and one-column
+    // triangles, the band's first and last rows, the window's sides,
+    // values at the ends of the ranges.
+    let px = vec![7u32; (w * rows) as usize];
+    let zb = vec![65534u16; (w * rows) as usize];
+    let vx = |x, y, z, a| Vertex {
+        x,
+        y,
+        z,
+        attrs: [a],
+    };
+    let (wx, b) = (w * 16, rows * 16);
+    let mut small = 0;
+    for t in [
+        [
+            vx(0, 0, 1 << 20, 0),
+            vx(16, 0, 1 << 20, 0),
+            vx(32, 0, 1 << 20, 0),
+        ],
+        [
+            vx(0, 0, 1 << 20, 0),
+            vx(wx, 0, 1 << 21, 1 << 12),
+            vx(0, b, 1 << 20 | 1 << 16, 1 << 11),
+        ],
+        [
+            vx(0, 0, 1 << 20, 0),
+            vx(wx, 8, (1 << 20) + 99, 1 << 10),
+            vx(wx, b - 9, (1 << 20) + 4000, 3 << 14),
+        ],
+        [
+            vx(8, 8, 1 << 20, 2),
+            vx(wx, 8, 1 << 20, 4),
+            vx(8, 9, 1 << 20, 6),
+        ],
+        [
+            vx(8, 7, 1 << 20, 2),
+            vx(wx, 8, 1 << 20, 4),
+            vx(8, 24, 1 << 20, 6),
+        ],
+        [
+            vx(100, b - 9, 1 << 20, 0),
+            vx(300, b - 8, (1 << 20) + 777, 1 << 16),
+            vx(90, b + 7, (1 << 20) - 5000, 1 << 15),
+        ],
+        [
+            vx(0, 0, 1 << 20, i32::MIN),
+            vx(16, 16, 1 << 20, i32::MAX),
+            vx(0, 32, 1 << 20, 0),
+        ],
+        [
+            vx(wx - 1, 0, 1 << 16, 0),
+            vx(wx, 0, 1 << 16, 0),
+            vx(wx, b - 9, 1 << 30, 0),
+        ],
+        [
+            vx(-1, 0, 1 << 20, 0),
+            vx(16, 0, 1 << 20, 0),
+            vx(0, 32, 1 << 20, 0),
+        ],
+        [
+            vx(0, 8, 1 << 20, 0),
+            vx(wx + 1, 8, 1 << 20, 0),
+            vx(0, 40, 1 << 20, 0),
+        ],
+    ] {
+        let t = sort3(t, |v| v.y);
+        small = small << 1 | check_small::<1>(&t, 0, rows, w, &px, &zb).is_some() as u32;
+    }
+    assert_eq!(small, 0b11_1111_0000, "{small:010b}");
+}
