@@ -169,6 +169,18 @@ impl InvArea {
         Self::new_long(a)
     }
 
+    /// [`InvArea::new`] of an `i32`: the short path inlined (no 64-bit
+    /// magnitude on the way), the others out of line.
+    #[inline(always)]
+    pub(crate) fn new_i32(a: i32) -> Self {
+        let mag = a.unsigned_abs();
+        if (1..1 << 16).contains(&mag) {
+            Self::new_short(mag, a < 0)
+        } else {
+            Self::new(a as i64)
+        }
+    }
+
     /// [`InvArea::new`] through [`recip63`] for any magnitude.
     fn new_long(a: i64) -> Self {
         let mag = a.unsigned_abs().max(1);
@@ -784,6 +796,9 @@ mod tests {
         // border.
         for a in [(1i64 << 16) - 1, 1 << 16, (1 << 16) + 1, -(1 << 16) + 1] {
             assert_eq!(InvArea::new(a), InvArea::new_long(a), "a={a}");
+        }
+        for a in [1, -1, 3, 65535, -65535, 65536, -65536, i32::MAX, i32::MIN] {
+            assert_eq!(InvArea::new_i32(a), InvArea::new_long(a as i64), "a={a}");
         }
         assert_eq!(
             InvArea::new(1),

@@ -442,7 +442,7 @@ fn setup32<const N: usize, const V: usize>(
     };
     let inv = match small {
         Some(inv) => inv,
-        None => InvArea::new(area2 as i64),
+        None => InvArea::new_i32(area2),
     };
     let s = sub.get();
     let k = inv.high_shift(s).ok_or(())?;
@@ -585,7 +585,7 @@ pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
     };
     let inv = match small {
         Some(inv) => inv,
-        None => InvArea::new(area2 as i64),
+        None => InvArea::new_i32(area2),
     };
     let k = inv.high_shift(s)?;
     let g = Grad {
