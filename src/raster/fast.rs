@@ -27,7 +27,7 @@ use super::span::{clamp_test, depth_loop, inr_span};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
-use crate::num::wide::{mul_i32_i16_soft, NO_DIVIDE, NO_LONG_MUL};
+use crate::num::wide::{clz32, mul_i32_i16_soft, NO_DIVIDE, NO_LONG_MUL};
 use crate::target::DepthFormat;
 
 /// A band's memory as the fused row kernel sees it: colour and depth
@@ -345,6 +345,48 @@ impl Grad {
     }
 }
 
+impl Grad {
+    /// [`Grad::plane`] with the gradient numerators in 32 bits (ARMv6-M:
+    /// no 64-bit products for them), for `lim = 2^(30 - bxy)` where the
+    /// coordinate offsets lie below `2^bxy`: when the value differences do
+    /// not wrap and lie below `lim` in magnitude, each product of a
+    /// numerator is below `2^30`, the numerator below `2^31`, the very
+    /// `i32` of [`Grad::plane`]. Otherwise the flag is `false` (and the
+    /// values mean nothing).
+    #[inline(always)]
+    fn plane_short(&self, v0: i32, v1: i32, v2: i32, lim: u32) -> (i32, i32, i32, bool) {
+        let [dx1, dy1, dx2, dy2] = self.d;
+        let (d1, o1) = v1.overflowing_sub(v0);
+        let (d2, o2) = v2.overflowing_sub(v0);
+        let ok = !(o1 | o2) & ((d1.unsigned_abs() | d2.unsigned_abs()) < lim);
+        let nx = d1.wrapping_mul(dy2).wrapping_sub(d2.wrapping_mul(dy1));
+        let ny = d2.wrapping_mul(dx1).wrapping_sub(d1.wrapping_mul(dx2));
+        let (gx, gy) = (
+            self.inv.quot_high(nx, self.k),
+            self.inv.quot_high(ny, self.k),
+        );
+        let h = 1i64 << (self.s - 1);
+        let t = wide(gx, self.o[0]) + wide(gy, self.o[1]) + h;
+        (gx, gy, v0.wrapping_add((t >> self.s) as i32), ok)
+    }
+
+    /// [`Grad::plane`] on ARMv6-M (and in test builds, which check it)
+    /// with [`Grad::plane_short`]'s bound, elsewhere [`Grad::plane`].
+    #[inline(always)]
+    fn plane_small(&self, v0: i32, v1: i32, v2: i32, lim: u32) -> (i32, i32, i32, bool) {
+        if SHORT_NUMERATORS {
+            self.plane_short(v0, v1, v2, lim)
+        } else {
+            self.plane(v0, v1, v2)
+        }
+    }
+}
+
+/// [`draw_small`] takes [`Grad::plane_short`]: on ARMv6-M, and in test
+/// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
+/// test).
+const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
+
 /// `true` when `v` fits an `i32`.
 #[inline(always)]
 fn fits(v: i64) -> bool {
@@ -539,7 +581,10 @@ fn walk_edges(
 /// - [`setup32`]'s bounds (coordinate offsets below `2^15`, the
 ///   reciprocal's high-word case, no wrapping numerator);
 /// - every depth converts to 16 bits without a clamp
-///   ([`DepthFormat::plane_in_range`]).
+///   ([`DepthFormat::plane_in_range`]);
+/// - on ARMv6-M (and in test builds), the gradient numerators in 32 bits:
+///   each value's differences below `2^(30 - bxy)` for coordinate offsets
+///   below `2^bxy` ([`Grad::plane_short`]).
 ///
 /// Then it writes exactly the pixels of [`setup_fast`] and
 /// [`Walk::rows_fused`] (the same edges from their first rows, the same
@@ -595,13 +640,15 @@ pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
         s,
         o: [h - a.x, h - a.y],
     };
-    let (gx, gy, z0, mut ok) = g.plane(a.z, b.z, c.z);
+    // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15).
+    let lim = (1u32 << 30) >> (32 - clz32(mxy));
+    let (gx, gy, z0, mut ok) = g.plane_small(a.z, b.z, c.z, lim);
     ok &= D::plane_in_range(depth16_plane_in_range32([a.z, b.z, c.z], gx, gy));
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
-        let (gx, gy, o, oka) = g.plane(a.attrs[k], b.attrs[k], c.attrs[k]);
+        let (gx, gy, o, oka) = g.plane_small(a.attrs[k], b.attrs[k], c.attrs[k], lim);
         ok &= oka;
         row.a[k] = o;
         sx.a[k] = gx;
