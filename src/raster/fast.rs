@@ -570,7 +570,8 @@ fn walk_edges(
 /// The small-triangle kernel: a triangle set up in 32 bits and walked in
 /// one go, without a [`Walk`], band carry-over, clipping or depth clamps.
 ///
-/// `v` holds the vertices sorted by `y` (subpixels, within the module's
+/// `v` holds the vertices sorted by `y` (subpixels, any `i32`: a
+/// triangle the kernel takes lies within the window, inside the module's
 /// limits). The kernel applies when every condition below holds, decided
 /// before a pixel is written; `None` otherwise (nothing written, the
 /// caller takes [`setup_fast`] and [`Walk::rows_fused`]):
@@ -601,22 +602,26 @@ pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
 ) -> Option<u32> {
     let [a, b, c] = v;
     let (y0, width) = (mem.y0, mem.width);
-    let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
-    let sc = sub.scale();
-    let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
-    let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
-    let s = sub.get();
+    let (s, sc) = (sub.get(), sub.scale());
     let h = 1i32 << (s - 1);
-    let far = SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15;
-    if (j_top < y0)
-        | (j_bot > until)
+    let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    // `y0 <= first_row(a.y)` and `first_row(c.y) <= until` (`first_row(y)
+    // = ⌈(y - h) / S⌉`), tested on the coordinates: every coordinate then
+    // lies within the window's, far inside the module's limits, and
+    // nothing below wraps.
+    if (a.y <= (y0 - 1) * sc + h)
+        | (c.y > until * sc + h)
         | (xmin < 0)
         | (xmax > width.saturating_mul(sc))
-        | (mxy >= 1 << 15)
-        | far
         | mem.z.is_none()
     {
+        return None;
+    }
+    let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
+    let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
+    let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
+    let far = SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15;
+    if (mxy >= 1 << 15) | far {
         return None;
     }
     let area2 = dx1 * dy2 - dx2 * dy1;

@@ -816,12 +816,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     drawn
                 }
                 Src::Fresh => match fetch_fixed::<P, N>(frame, po, &tri) {
-                    Ok(Some(v)) => {
+                    Some(v) => {
                         self.stats.triangles += 1;
                         let sub = P::SUBPIXEL_BITS;
                         match draw_small_shaded::<N, S, F, D>(&v, sub, y1, &mut mem, &shader) {
                             Some(drawn) => drawn,
                             None => {
+                                in_limits_fixed::<P, N>(frame, &tri, &v)?;
                                 // Set up and walked in the scratch; kept
                                 // in a slot when it continues below the
                                 // band.
@@ -838,11 +839,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                             }
                         }
                     }
-                    Ok(None) => 0,
-                    Err(e) => {
-                        self.stats.triangles += 1;
-                        return Err(e);
-                    }
+                    None => 0,
                 },
             };
             self.stats.pixels += drawn;
@@ -1087,22 +1084,16 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
 
 /// The vertices of triangle `tri` of object `po`, sorted by `y`, with
 /// their depths and first `N` values as fixed-point `i32`s (each corner
-/// and its values read once): `Ok(None)` when a vertex is missing, an
-/// error when a vertex lies outside the rasterizer's limits.
+/// and its values read once); `None` when a vertex is missing. Positions
+/// are not checked against the rasterizer's limits ([`in_limits_fixed`]).
 #[inline(always)]
 fn fetch_fixed<P: Profile, const N: usize>(
     frame: &Frame<'_, P>,
     po: &PreparedObject,
     tri: &PreparedTri,
-) -> Result<Option<[Vertex<i32, N>; 3]>, RenderError> {
-    let sub = P::SUBPIXEL_BITS;
+) -> Option<[Vertex<i32, N>; 3]> {
     let xy = |i: u16| frame.xy(usize::from(i));
-    let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
-        return Ok(None);
-    };
-    let lim = sub.coord_limit();
-    let off = |v: i32| (v.wrapping_add(lim) as u32 > (2 * lim) as u32) as u32;
-    let outside = off(p0[0]) | off(p0[1]) | off(p1[0]) | off(p1[1]) | off(p2[0]) | off(p2[1]);
+    let (p0, p1, p2) = (xy(tri.v[0])?, xy(tri.v[1])?, xy(tri.v[2])?);
     let [(i0, q0), (i1, q1), (i2, q2)] =
         sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
     let raw = |v: Option<Vertex<P::Lerp, N>>| -> Option<Vertex<i32, N>> {
@@ -1118,21 +1109,47 @@ fn fetch_fixed<P: Profile, const N: usize>(
             attrs,
         })
     };
-    let (Some(a), Some(b), Some(c)) = (
-        raw(frame.vertex::<N>(po, i0, q0)),
-        raw(frame.vertex::<N>(po, i1, q1)),
-        raw(frame.vertex::<N>(po, i2, q2)),
-    ) else {
-        return Ok(None);
-    };
+    Some([
+        raw(frame.vertex::<N>(po, i0, q0))?,
+        raw(frame.vertex::<N>(po, i1, q1))?,
+        raw(frame.vertex::<N>(po, i2, q2))?,
+    ])
+}
+
+/// The error of a fetched triangle ([`fetch_fixed`]) with a vertex
+/// outside the rasterizer's limits (the index of the first such vertex
+/// in `tri`'s order), else `Ok`.
+#[inline(always)]
+fn in_limits_fixed<P: Profile, const N: usize>(
+    frame: &Frame<'_, P>,
+    tri: &PreparedTri,
+    v: &[Vertex<i32, N>; 3],
+) -> Result<(), RenderError> {
+    let sub = P::SUBPIXEL_BITS;
+    let lim = sub.coord_limit();
+    let off = |v: i32| (v.wrapping_add(lim) as u32 > (2 * lim) as u32) as u32;
+    let outside = v.iter().fold(0, |o, v| o | off(v.x) | off(v.y));
     if outside != 0 {
-        let i = [p0, p1, p2]
-            .iter()
-            .position(|&[x, y]| !in_limits(x, y, sub))
-            .unwrap_or(0);
-        return Err(RasterError::OutOfRange(i as u8).into());
+        return Err(out_of_limits(frame, tri));
     }
-    Ok(Some([a, b, c]))
+    Ok(())
+}
+
+/// [`in_limits_fixed`]'s error, out of line.
+#[cold]
+#[inline(never)]
+fn out_of_limits<P: Profile>(frame: &Frame<'_, P>, tri: &PreparedTri) -> RenderError {
+    let sub = P::SUBPIXEL_BITS;
+    let i = tri
+        .v
+        .iter()
+        .position(|&i| {
+            frame
+                .xy(usize::from(i))
+                .is_some_and(|[x, y]| !in_limits(x, y, sub))
+        })
+        .unwrap_or(0);
+    RasterError::OutOfRange(i as u8).into()
 }
 
 /// Draws a fetched triangle ([`fetch_fixed`]) with the small-triangle
