@@ -4,7 +4,7 @@
 //! ([`recip63`]: a table-seeded Newton iteration on ARMv6-M, two hardware
 //! divisions elsewhere).
 
-use super::wide::{clz32, clz64, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL};
+use super::wide::{clz32, clz64, mulhi, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL};
 
 /// The reciprocal of a doubled triangle area in fixed point:
 /// `1/|a| ≈ m · 2^-k`, `m` rounded to 32 significant bits.
@@ -357,7 +357,8 @@ impl InvArea {
     /// wraps and the result fits an `i32`).
     #[inline(always)]
     pub(crate) fn quot_high(&self, n: i32, k: u32) -> i32 {
-        let h = (wmul(n, self.m) >> 32) as i32;
+        // ⌊n·m / 2^32⌋ (ARMv6-M: four `MULS` in 32 bits, no 64-bit sum).
+        let h = mulhi(n, self.m);
         (h + (1 << k)) >> (k + 1)
     }
 }
