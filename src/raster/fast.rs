@@ -365,9 +365,32 @@ impl Grad {
             self.inv.quot_high(nx, self.k),
             self.inv.quot_high(ny, self.k),
         );
-        let h = 1i64 << (self.s - 1);
-        let t = wide(gx, self.o[0]) + wide(gy, self.o[1]) + h;
-        (gx, gy, v0.wrapping_add((t >> self.s) as i32), ok)
+        (gx, gy, v0.wrapping_add(self.origin_short(gx, gy)), ok)
+    }
+
+    /// `(gx·ox + gy·oy + h) >> s` modulo 2^32 ([`Grad::plane`]'s row
+    /// origin, the offsets `o` below `2^15` in magnitude as [`wide`] asks)
+    /// in 32-bit arithmetic: with `g = 2^16·gh + gl` (`gl` in `0..2^16`)
+    /// the sum is `2^16·A + B1 + B2` for `A = gxh·ox + gyh·oy` (each
+    /// product below 2^30), `B1 = gxl·ox`, `B2 = gyl·oy + h` (each below
+    /// `2^31`: `65535·32767 + 128 < 2^31`); for `s <= 8` its floor by `2^s`
+    /// is `A·2^(16-s) + (B1 >> s) + (B2 >> s)` plus the carry of the low
+    /// `s` bits of `B1` and `B2`. Exact, the very bits.
+    #[inline(always)]
+    fn origin_short(&self, gx: i32, gy: i32) -> i32 {
+        let s = self.s;
+        let [ox, oy] = self.o;
+        let a = (gx >> 16)
+            .wrapping_mul(ox)
+            .wrapping_add((gy >> 16).wrapping_mul(oy));
+        let b1 = (gx & 0xffff).wrapping_mul(ox);
+        let b2 = (gy & 0xffff).wrapping_mul(oy).wrapping_add(1 << (s - 1));
+        let m = (1 << s) - 1;
+        let carry = ((b1 & m) + (b2 & m)) >> s;
+        (a << (16 - s))
+            .wrapping_add(b1 >> s)
+            .wrapping_add(b2 >> s)
+            .wrapping_add(carry)
     }
 
     /// [`Grad::plane`] on ARMv6-M (and in test builds, which check it)
@@ -745,5 +768,50 @@ impl<const N: usize> SmallRows<N> {
         }
         self.v = self.v.add_n(sy, 1);
         self.base = self.base.wrapping_add(self.width);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`Grad::origin_short`] against the 64-bit sum of [`Grad::plane`].
+    #[test]
+    fn short_origin_equals_the_wide_sum() {
+        let mut g = 0x0123_4567_89ab_cdefu64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g as u32
+        };
+        let lim = (1 << 15) - 1;
+        let ends = [0, 1, -1, lim, -lim, i32::MAX, i32::MIN, 0xffff, -0x10000];
+        for i in 0..400_000u32 {
+            let pick = |r: u32, k: u32| -> i32 {
+                match k % 4 {
+                    0 => ends[(r % ends.len() as u32) as usize],
+                    1 => (r as i32) >> (r % 31),
+                    _ => r as i32,
+                }
+            };
+            let (gx, gy) = (pick(next(), i), pick(next(), i / 4));
+            let o = |r: u32| ((r as i32) >> (r % 17)).clamp(-lim, lim);
+            let (ox, oy) = (o(next()), o(next()));
+            let s = 1 + i % 8;
+            let grad = Grad {
+                d: [0; 4],
+                inv: InvArea::new(1),
+                k: 0,
+                s,
+                o: [ox, oy],
+            };
+            let t = gx as i64 * ox as i64 + gy as i64 * oy as i64 + (1i64 << (s - 1));
+            assert_eq!(
+                grad.origin_short(gx, gy),
+                (t >> s) as i32,
+                "{gx} {gy} {ox} {oy} {s}"
+            );
+        }
     }
 }
