@@ -985,7 +985,7 @@ fn object_space_culling_keeps_the_frame_and_skips_vertices() {
 }
 
 /// A triangle whose upper edge runs 4 400 pixels across within two
-/// subpixel rows: the guard band (2 013 pixels around the centre of a
+/// subpixel rows: the guard band (2 014 pixels around the centre of a
 /// 64 × 48 screen at 4 subpixel bits, see `guard_px`) cuts it into two
 /// triangles whose edges stay within ±2 047 pixels, so their walks pack
 /// into pool slots: each is set up once, with one-row bands too, and the
