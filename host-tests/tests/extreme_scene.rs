@@ -811,7 +811,8 @@ fn precise_phong_2044_px_spans_lights_near() {
             }
             let (d, covered) = precise_vs_twin(&s, 1000, 1003);
             println!("{specular:?} n {n}: precise {d} levels from f64 over {covered} pixels");
-            assert!(covered > 10_000, "the square fills the band: {covered}");
+            // 5 760 of the band's 4 × 2 044 pixels.
+            assert!(covered > 5_000, "the square fills the band: {covered}");
             assert!(d <= 1, "{specular:?} n {n}: precise {d} levels from f64");
         }
     }
