@@ -1434,7 +1434,9 @@ impl<P: Profile> Preparer<'_, P> {
         let mut lo = i32::MAX;
         let mut hi = i32::MIN;
         for t in self.ws.tris.get(tris).unwrap_or(&[]) {
-            let y = t.v().map(|v| xy.get(usize::from(v)).map_or(0, |p| p.unpack(o)[1]));
+            let y = t
+                .v()
+                .map(|v| xy.get(usize::from(v)).map_or(0, |p| p.unpack(o)[1]));
             lo = lo.min(y[0].min(y[1]).min(y[2]));
             hi = hi.max(y[0].max(y[1]).max(y[2]));
         }
@@ -1457,7 +1459,10 @@ impl<P: Profile> Preparer<'_, P> {
     /// corner (`[0, 0]` past the end).
     #[inline(always)]
     fn xy(&self, v: usize) -> [i32; 2] {
-        self.ws.xy.get(v).map_or([0; 2], |p| p.unpack(self.origin()))
+        self.ws
+            .xy
+            .get(v)
+            .map_or([0; 2], |p| p.unpack(self.origin()))
     }
 
     /// The rows a triangle with corners at `xy` can cover (the rows the
@@ -1696,7 +1701,13 @@ impl<P: Profile> Preparer<'_, P> {
             let q = vs.map(|v| self.ws.xy.get(usize::from(v)).copied().unwrap_or_default());
             if !INSIDE && (q[0].0[0] == OUTSIDE || q[1].0[0] == OUTSIDE || q[2].0[0] == OUTSIDE) {
                 #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
-                let code = |p: ScreenXy| if p.0[0] == OUTSIDE { p.0[1] as Outcode } else { 0 };
+                let code = |p: ScreenXy| {
+                    if p.0[0] == OUTSIDE {
+                        p.0[1] as Outcode
+                    } else {
+                        0
+                    }
+                };
                 self.clipped(ctx, t, [code(q[0]), code(q[1]), code(q[2])])?;
                 continue;
             }
