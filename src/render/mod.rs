@@ -178,7 +178,7 @@ impl ScreenXy {
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
     pub(crate) fn pack_clamped(p: [i32; 2], origin: [i32; 2]) -> Self {
-        let c = |v: i32, o: i32| v.saturating_sub(o).max(-XY_LIMIT).min(XY_LIMIT) as i16;
+        let c = |v: i32, o: i32| v.saturating_sub(o).clamp(-XY_LIMIT, XY_LIMIT) as i16;
         Self([c(p[0], origin[0]), c(p[1], origin[1])])
     }
 

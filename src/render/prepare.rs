@@ -129,7 +129,7 @@ pub(crate) const fn guard_px(sub: u32, width: u32, height: u32) -> Option<i32> {
         r - h - 1
     };
     let g = if g < GUARD_PX { g } else { GUARD_PX };
-    if g >= h + 1 {
+    if g > h {
         Some(g)
     } else {
         None
