@@ -69,7 +69,7 @@ use crate::target::{Rgb8, MAX_SCREEN};
 /// subpixels: `i16::MAX - 1` = 32 766, so that every stored coordinate
 /// fits an `i16` and the two values below `-XY_LIMIT` (`i16::MIN` and
 /// `i16::MIN + 1`) are free for the marks of vertices that are never
-/// drawn ([`OUTSIDE`], [`UNUSED`]).
+/// drawn (outside the planes, or culled in object space).
 pub const XY_LIMIT: i32 = i16::MAX as i32 - 1;
 
 /// Profiles with at most this many subpixel bits store screen positions
@@ -136,9 +136,17 @@ pub(crate) const fn guard_px(sub: u32, width: u32, height: u32) -> Option<i32> {
     }
 }
 
-/// The largest screen side [`prepare`] takes for `sub` subpixel bits
-/// (see [`guard_px`] for the arithmetic): larger screens are
-/// [`SceneError::Screen`]. 2 044 pixels at the default 4 bits.
+/// The largest screen side [`prepare`] takes for `sub` subpixel bits:
+/// larger screens are [`SceneError::Screen`]. Stored positions
+/// ([`ScreenXy`]) are within ±[`XY_LIMIT`] subpixels, `R = XY_LIMIT >>
+/// sub` whole pixels; with `h` half the screen's larger side, the guard
+/// band's half-size is `G = min(4096, R - h - 1)` for `sub <= 4`
+/// (positions stored from the screen's corner, `|x| <= h + G + 1 <= R`
+/// pixels with a pixel for rounding) and `G = min(4096, R - 1)` above
+/// (stored from the centre), and must reach past the screen, `G >= h +
+/// 1`: `h <= (R - 2) / 2`, resp. `h <= R - 2`. 2 044 pixels at the
+/// default 4 bits (`R` = 2 047), 4 096 at 1 and 2, 4 092 at 3, 2 042 at 5,
+/// 1 018 at 6, 506 at 7, 250 at 8 (`R` = 127).
 #[allow(clippy::cast_sign_loss)]
 pub const fn max_screen(sub: u32) -> u32 {
     if sub > 15 {
@@ -284,7 +292,9 @@ impl<R: Real> View<R> {
 /// Prepares `scene` for a `width × height` screen into `ws`.
 ///
 /// # Errors
-/// [`RenderError`]: an invalid scene or screen size, a mesh without
+/// [`RenderError`]: an invalid scene or screen size (a side above
+/// [`max_screen`] of the profile's subpixel bits: 2 044 pixels at the
+/// default 4), a mesh without
 /// normals for smooth shading, or a workspace part too small (naming the
 /// part and the object).
 pub fn prepare<'w, P: Profile>(
