@@ -162,7 +162,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     assert_eq!(most.peak, PICO_PEAK);
     assert_eq!(
         (most.vertices, most.triangles, most.bytes),
-        (1839, 1574, 38_868)
+        (1839, 1574, 31_512)
     );
     assert_eq!(
         [turn[0].crc, turn[1].crc, turn[2].crc],
@@ -214,7 +214,7 @@ fn blackpill_turn_fits() {
         );
     }
     assert_eq!(most.peak, BLACKPILL_PEAK);
-    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2_268));
+    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2_028));
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
     assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
     assert_eq!(most.pixels, 2488);
