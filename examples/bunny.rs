@@ -49,7 +49,7 @@ fn run<P: Profile>(out: &str, shading: Shading) -> Result<(), Box<dyn Error>> {
         background: Rgb8::BLACK,
     };
     let (mut xy, mut vals, mut tris) = (
-        vec![[0i32; 2]; 8000],
+        vec![fixshade::render::ScreenXy::ZERO; 8000],
         vec![P::Lerp::default(); 32000],
         vec![Tri::default(); 8000],
     );

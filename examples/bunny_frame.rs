@@ -16,7 +16,7 @@ use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 use std::hint::black_box;
 
 struct Mem<L> {
-    xy: Vec<[i32; 2]>,
+    xy: Vec<fixshade::render::ScreenXy>,
     vals: Vec<L>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
@@ -83,7 +83,7 @@ fn run<P: Profile>() {
         background: Rgb8::BLACK,
     };
     let mut m = Mem {
-        xy: vec![[0; 2]; 4000],
+        xy: vec![fixshade::render::ScreenXy::ZERO; 4000],
         vals: vec![P::Lerp::default(); 16000],
         tris: vec![Tri::default(); 4000],
         colors: vec![fixshade::target::Rgb8::BLACK; 4000],

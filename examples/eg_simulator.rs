@@ -74,7 +74,11 @@ fn render_to<C: PixelColor + FromShaded>(
         viewer: Viewer::Local,
         background: Rgb8::BLACK,
     };
-    let (mut xy, mut vals, mut tris) = ([[0; 2]; 64], [0i32; 64 * 7], [Tri::default(); 64]);
+    let (mut xy, mut vals, mut tris) = (
+        [fixshade::render::ScreenXy::ZERO; 64],
+        [0i32; 64 * 7],
+        [Tri::default(); 64],
+    );
     let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
     let ws = Workspace {
         xy: &mut xy,

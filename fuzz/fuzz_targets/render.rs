@@ -393,7 +393,7 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     let small = b.u8().is_multiple_of(8);
     let cap = |b: &mut Bytes<'_>, big: usize| if small { b.u16() as usize % 64 } else { big };
     let verts = cap(b, 6000);
-    let mut xy = vec![[0i32; 2]; verts];
+    let mut xy = vec![fixshade::render::ScreenXy::ZERO; verts];
     let mut vals = vec![P::Lerp::default(); cap(b, 6000 * 8)];
     let mut tris = vec![Tri::default(); cap(b, 8000)];
     let mut colors = vec![fixshade::target::Rgb8::BLACK; cap(b, 8000)];

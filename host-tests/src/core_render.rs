@@ -439,7 +439,7 @@ const POOL: usize = 512;
 /// band and a 16-bit depth band, allocated once.
 #[derive(Debug)]
 pub struct Renderer<P: Profile, F: CorePixelFormat> {
-    xy: Vec<[i32; 2]>,
+    xy: Vec<fixshade::render::ScreenXy>,
     vals: Vec<P::Lerp>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
@@ -459,7 +459,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
         let rows = rows.max(1);
         let band_len = (width * rows.min(height.max(1))) as usize;
         Self {
-            xy: vec![[0; 2]; verts],
+            xy: vec![fixshade::render::ScreenXy::ZERO; verts],
             vals: vec![P::Lerp::default(); verts * 8],
             tris: vec![Tri::default(); tris],
             colors: vec![fixshade::target::Rgb8::BLACK; tris],

@@ -86,7 +86,7 @@ fn q16_scene(desc: &SceneDesc) -> Result<CoreScene<'_, Q16>, String> {
 /// chooses at run time: the core's `Storage` takes them as const
 /// generics).
 struct Owned {
-    xy: Vec<[i32; 2]>,
+    xy: Vec<fixshade::render::ScreenXy>,
     vals: Vec<i32>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
@@ -95,7 +95,7 @@ struct Owned {
 impl Owned {
     fn new(cap: Capacity) -> Self {
         Self {
-            xy: vec![[0; 2]; cap.vertices],
+            xy: vec![fixshade::render::ScreenXy::ZERO; cap.vertices],
             vals: vec![0; cap.values],
             tris: vec![Tri::default(); cap.triangles],
             colors: vec![fixshade::target::Rgb8::BLACK; cap.triangles],

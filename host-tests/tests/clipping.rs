@@ -74,7 +74,7 @@ fn core_mask<P: Profile>(pos: &'static [[i16; 3]; 3]) -> Vec<bool> {
         background: Rgb8::BLACK,
     };
     let (mut xy, mut vals, mut tris) = (
-        vec![[0; 2]; 32],
+        vec![fixshade::render::ScreenXy::ZERO; 32],
         vec![P::Lerp::default(); 32],
         vec![Tri::default(); 32],
     );

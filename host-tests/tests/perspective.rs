@@ -62,7 +62,7 @@ fn core_frame<P: Profile>(shading: Shading) -> Vec<[u8; 3]> {
         background: Rgb8::BLACK,
     };
     let (mut xy, mut vals, mut tris) = (
-        vec![[0; 2]; 64],
+        vec![fixshade::render::ScreenXy::ZERO; 64],
         vec![P::Lerp::default(); 512],
         vec![Tri::default(); 64],
     );

@@ -180,7 +180,7 @@ const RADIX_BITS: u32 = 6;
 /// use fixshade::illum::{Light, Material, Specular, Viewer};
 /// use fixshade::mesh::shapes::DODECAHEDRON;
 /// use fixshade::num::{Fast, Real, Q16};
-/// use fixshade::render::{prepare, BandState, Pool, Tri, Workspace};
+/// use fixshade::render::{prepare, BandState, Pool, ScreenXy, Tri, Workspace};
 /// use fixshade::scene::{Camera, Object, Scene, Shading};
 /// use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 ///
@@ -194,7 +194,7 @@ const RADIX_BITS: u32 = 6;
 /// let lights = [Light::point(Vec3::new(q(0, 1), q(0, 1), q(2, 1)), q(1, 1))];
 /// let scene = Scene { camera, objects: &objects, lights: &lights, ambient: q(1, 1),
 ///                     specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
-/// let (mut xy, mut vals, mut tris) = ([[0; 2]; 64], [0i32; 64 * 7], [Tri::default(); 64]);
+/// let (mut xy, mut vals, mut tris) = ([ScreenXy::ZERO; 64], [0i32; 64 * 7], [Tri::default(); 64]);
 /// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris, colors: &mut [] };
 /// let frame = prepare::<Fast>(&scene, 96, 96, ws)?;
 ///

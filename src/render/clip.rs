@@ -2,8 +2,8 @@
 //!
 //! Planes (with `w = −z`, the distance in front of the eye):
 //! near `w ≥ near`, optional far `w ≤ far`, and the guard band `|x|, |y| ≤
-//! g·w` with `g = GUARD_PX / k`, which keeps every projected vertex within
-//! [`GUARD_PX`] pixels of the screen centre, well inside the rasterizer's
+//! g·w` with `g = G / k` (`G` at most [`GUARD_PX`]), which keeps every
+//! projected vertex within `G` pixels of the screen centre, well inside the rasterizer's
 //! ±8192-pixel range. Clipping a triangle against the planes its corners
 //! violate gives a convex polygon of at most 3 + 6 = 9 corners, whose
 //! attributes are interpolated linearly in eye space (exact for the
@@ -12,9 +12,11 @@
 use crate::geom::Vec3;
 use crate::num::Real;
 
-/// Half-size of the guard band around the screen centre, in pixels: 4096.
-/// With screens of at most 4096 pixels a side, projected vertices stay
-/// within 2048 + 4096 < 8192 pixels of the origin.
+/// Largest half-size of the guard band around the screen centre, in
+/// pixels: 4096. [`prepare`](super::prepare) narrows it so that stored
+/// positions fit `i16` subpixels (see [`max_screen`](super::max_screen));
+/// projected vertices stay within 2048 + 4096 < 8192 pixels of the
+/// origin.
 pub const GUARD_PX: i32 = 4096;
 
 /// Most attributes a clipped vertex carries (colour or normal: 3).

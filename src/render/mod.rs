@@ -21,7 +21,7 @@
 //! # Memory (what a prepared frame costs)
 //! | part | bytes |
 //! |------|-------|
-//! | per prepared vertex | 8 (`xy`) + `stride × size_of::<Lerp>()` (4 for fixed profiles) |
+//! | per prepared vertex | 4 (`xy`, a [`ScreenXy`]) + `stride × size_of::<Lerp>()` (4 for fixed profiles) |
 //! | stride, flat | 1 (depth) |
 //! | stride, Gouraud | 2 (depth, grey level) or 4 (depth, red, green, blue) |
 //! | stride, Phong | 4 (depth, normal), or 7 (depth, normal, eye position) when a point light or the local viewer needs the position |
@@ -74,6 +74,7 @@ pub use phong_span::{
     SPEC_SEGMENTS,
 };
 pub use prepare::prepare;
+pub use prepare::{max_screen, XY_LIMIT};
 pub use storage::{Capacity, Reach, Storage};
 
 use crate::num::Profile;
@@ -145,14 +146,61 @@ pub struct PreparedTri {
     pub back: bool,
 }
 
+/// The stored screen position of a prepared vertex: `[x, y]` in
+/// subpixels (`1/2^s` of a pixel, `s` the profile's
+/// [`SubpixelBits`](crate::num::SubpixelBits)), each within
+/// ±[`XY_LIMIT`] = ±32 766 so that it fits an `i16` (4 bytes a vertex
+/// instead of 8). Profiles with at most 4 subpixel bits store the
+/// position from the screen's top-left corner; profiles with more count
+/// from the screen's centre (`[w, h] · 2^s / 2`), which
+/// [`Frame::xy`] adds back. [`prepare`] narrows the guard band so that
+/// every stored position fits (see [`max_screen`]); `i16::MIN` and
+/// `i16::MIN + 1` mark vertices that are never drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ScreenXy(pub [i16; 2]);
+
+impl ScreenXy {
+    /// The origin.
+    pub const ZERO: Self = Self([0; 2]);
+
+    /// The subpixel position `p` (from the screen's top-left corner)
+    /// stored from `origin`, known to lie within ±[`XY_LIMIT`] of it
+    /// (the inside kernels: the guard band bounds it). A plain cast.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    pub(crate) fn pack(p: [i32; 2], origin: [i32; 2]) -> Self {
+        Self([(p[0] - origin[0]) as i16, (p[1] - origin[1]) as i16])
+    }
+
+    /// [`Self::pack`] clamped to ±[`XY_LIMIT`] (positions that rounding
+    /// or a saturated scalar may have moved out of the range; a no-op
+    /// for the others).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    pub(crate) fn pack_clamped(p: [i32; 2], origin: [i32; 2]) -> Self {
+        let c = |v: i32, o: i32| v.saturating_sub(o).clamp(-XY_LIMIT, XY_LIMIT) as i16;
+        Self([c(p[0], origin[0]), c(p[1], origin[1])])
+    }
+
+    /// The subpixel position from the screen's top-left corner, for a
+    /// position stored from `origin`.
+    #[inline(always)]
+    pub(crate) fn unpack(self, origin: [i32; 2]) -> [i32; 2] {
+        [
+            i32::from(self.0[0]) + origin[0],
+            i32::from(self.0[1]) + origin[1],
+        ]
+    }
+}
+
 /// Caller-provided memory for a prepared frame: slices the caller brings
 /// (for arrays sized by the compiler from the scene's meshes, see
 /// [`Storage`] and [`Capacity`]). Too short a part makes [`prepare`]
 /// return [`RenderError::Capacity`] naming it.
 #[derive(Debug)]
 pub struct Workspace<'a, L> {
-    /// Screen positions of prepared vertices (subpixels).
-    pub xy: &'a mut [[i32; 2]],
+    /// Screen positions of prepared vertices ([`ScreenXy`]).
+    pub xy: &'a mut [ScreenXy],
     /// Depth and attributes of prepared vertices, `stride` per vertex.
     pub vals: &'a mut [L],
     /// Prepared triangles.
@@ -283,7 +331,7 @@ impl<P: Profile> Frame<'_, P> {
         let vals = self.objects.last().map_or(0, |o| {
             o.val_base as usize + o.verts.len() * usize::from(o.stride)
         });
-        self.vertex_count() * size_of::<[i32; 2]>()
+        self.vertex_count() * size_of::<ScreenXy>()
             + vals * size_of::<P::Lerp>()
             + self.triangle_count() * size_of::<Tri>()
             + self.color_count() * size_of::<Rgb8>()
@@ -360,9 +408,11 @@ impl<P: Profile> Frame<'_, P> {
         self.objects.iter().flat_map(|po| self.object_tris(po))
     }
 
-    /// Screen position of prepared vertex `v` (subpixels).
+    /// Screen position of prepared vertex `v` (subpixels from the
+    /// screen's top-left corner; stored as a [`ScreenXy`]).
     pub fn xy(&self, v: usize) -> Option<[i32; 2]> {
-        self.ws.xy.get(v).copied()
+        let o = prepare::xy_origin::<P>(self.width, self.height);
+        self.ws.xy.get(v).map(|p| p.unpack(o))
     }
 
     /// Prepared vertex `i` of object `po` (depth and the first `N`

@@ -36,7 +36,7 @@
 //! # Limits
 //! `k` counts pixels from the triangle's anchor (the pixel centre nearest
 //! its first vertex, which may lie in the guard band): `|Δx| + |Δy|`, up
-//! to `2 · 4096` within a 4096-pixel screen. A position error `δ` turns
+//! to `2 · 4096` within a 4096-pixel guard band. A position error `δ` turns
 //! `L` by `δ/d` (`d` the distance from the surface to the light) and `V`
 //! by `δ/|p|`. Within 1 level of the twin at shininess `n` and a
 //! specular coefficient `Ip·Lc·ks = s` needs `255 · s · 0.61·√n · (δ/d +
@@ -44,8 +44,8 @@
 //! + 1/|p|) < 2^29 / (311 · s · √n)`: for `s = 1`, `n = 10 000` and
 //! `k = 4096`, `r/d + r/|p| < 4.2` (an object up to about four times its
 //! distance to the nearest light and to the eye). The extreme suite
-//! checks the 1600 × 1200 sphere and a square filling a 4096-pixel
-//! screen with lights 0.3 units above it (`r/d` 4.7 at `k` up to 6000:
+//! checks the 1600 × 1200 sphere and a square filling a 2044-pixel
+//! screen with lights 0.3 units above it (`r/d` 4.7 at `k` up to 3000:
 //! within 1 level measured, the bound being conservative)
 //! (`host-tests/tests/extreme_scene.rs`). The affine twin's own model
 //! (screen-linear positions) is what both compute; the perspective-correct

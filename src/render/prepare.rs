@@ -49,7 +49,8 @@
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
 use super::{
-    Frame, Layout, Part, PreparedObject, RenderError, Tri, Workspace, MAX_TRIANGLES, MAX_VERTICES,
+    Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Tri, Workspace, MAX_TRIANGLES,
+    MAX_VERTICES,
 };
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
@@ -63,6 +64,108 @@ use crate::num::{Profile, Real};
 use crate::raster::{first_row, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
+
+/// Largest magnitude of a stored screen coordinate ([`ScreenXy`]), in
+/// subpixels: `i16::MAX - 1` = 32 766, so that every stored coordinate
+/// fits an `i16` and the two values below `-XY_LIMIT` (`i16::MIN` and
+/// `i16::MIN + 1`) are free for the marks of vertices that are never
+/// drawn (outside the planes, or culled in object space).
+pub const XY_LIMIT: i32 = i16::MAX as i32 - 1;
+
+/// Profiles with at most this many subpixel bits store screen positions
+/// from the screen's top-left corner; profiles with more store them from
+/// the screen's centre (see [`guard_px`]).
+const FROM_CORNER_MAX_BITS: u32 = 4;
+
+/// The origin of stored screen positions of profile `P` on a `width ×
+/// height` screen, in subpixels: the top-left corner (`[0, 0]`) for at
+/// most [`FROM_CORNER_MAX_BITS`] subpixel bits, else the screen's centre
+/// `[width, height] · 2^s / 2` (exact: `s >= 1`; at most `4096 · 2^7`).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap)]
+pub(crate) fn xy_origin<P: Profile>(width: u32, height: u32) -> [i32; 2] {
+    let s = P::SUBPIXEL_BITS.get();
+    if s > FROM_CORNER_MAX_BITS {
+        let c = |n: u32| (n.min(MAX_SCREEN) << (s - 1)) as i32;
+        [c(width), c(height)]
+    } else {
+        [0, 0]
+    }
+}
+
+/// The guard band's half-size in pixels (around the screen's centre) for
+/// `sub` subpixel bits on a `width × height` screen, or `None` when no
+/// guard band both holds the screen and keeps stored positions within
+/// ±[`XY_LIMIT`].
+///
+/// With `R = XY_LIMIT >> sub` whole pixels of stored range, `h =
+/// ⌈max(width, height) / 2⌉` and the screen's centre `c <= h`, a vertex
+/// inside the guard band lies within `G` pixels of `c`, so
+/// - stored from the corner (`sub <= 4`): `|x| <= c + G`, and `G =
+///   min(GUARD_PX, R - h - 1)` keeps `|x| <= R - 1` pixels;
+/// - stored from the centre (`sub > 4`): `|x - c| <= G`, and `G =
+///   min(GUARD_PX, R - 1)`;
+///
+/// one pixel of `R` left for the rounding of the projection (at most 3/4
+/// subpixel in the fused kernel, 1/2 in the others) and of the guard
+/// planes' slope. The band must reach beyond the screen: `G >= h + 1`
+/// (a corner clipped by a guard plane is then a pixel or more outside
+/// the screen, as with the 4096-pixel band before). Hence the largest
+/// screen ([`max_screen`]): `h <= (R - 2) / 2` from the corner, `h <= R
+/// - 2` from the centre, and at most [`MAX_SCREEN`]: 2 044 pixels at 4
+/// bits (`R` = 2 047), 4 092 at 3, 4 096 at 1 and 2; 2 042 at 5 (`R` =
+/// 1 023), 1 018 at 6, 506 at 7 and 250 at 8 (`R` = 127).
+#[allow(clippy::cast_possible_wrap)]
+pub(crate) const fn guard_px(sub: u32, width: u32, height: u32) -> Option<i32> {
+    let n = if width > height { width } else { height };
+    if n > MAX_SCREEN || sub > 15 {
+        return None;
+    }
+    let h = n.div_ceil(2) as i32;
+    let r = XY_LIMIT >> sub;
+    let g = if sub > FROM_CORNER_MAX_BITS {
+        r - 1
+    } else {
+        r - h - 1
+    };
+    let g = if g < GUARD_PX { g } else { GUARD_PX };
+    if g > h {
+        Some(g)
+    } else {
+        None
+    }
+}
+
+/// The largest screen side [`prepare`] takes for `sub` subpixel bits:
+/// larger screens are [`SceneError::Screen`]. Stored positions
+/// ([`ScreenXy`]) are within ±[`XY_LIMIT`] subpixels, `R = XY_LIMIT >>
+/// sub` whole pixels; with `h` half the screen's larger side, the guard
+/// band's half-size is `G = min(4096, R - h - 1)` for `sub <= 4`
+/// (positions stored from the screen's corner, `|x| <= h + G + 1 <= R`
+/// pixels with a pixel for rounding) and `G = min(4096, R - 1)` above
+/// (stored from the centre), and must reach past the screen, `G >= h +
+/// 1`: `h <= (R - 2) / 2`, resp. `h <= R - 2`. 2 044 pixels at the
+/// default 4 bits (`R` = 2 047), 4 096 at 1 and 2, 4 092 at 3, 2 042 at 5,
+/// 1 018 at 6, 506 at 7, 250 at 8 (`R` = 127).
+#[allow(clippy::cast_sign_loss)]
+pub const fn max_screen(sub: u32) -> u32 {
+    if sub > 15 {
+        return 0;
+    }
+    let r = XY_LIMIT >> sub;
+    let h = if sub > FROM_CORNER_MAX_BITS {
+        r - 2
+    } else {
+        (r - 2) / 2
+    };
+    let h = if h < GUARD_PX - 1 { h } else { GUARD_PX - 1 };
+    let n = 2 * h as u32;
+    if n < MAX_SCREEN {
+        n
+    } else {
+        MAX_SCREEN
+    }
+}
 
 /// The lights of a scene moved to eye space.
 pub(super) fn eye_lights<R: Real>(
@@ -189,7 +292,9 @@ impl<R: Real> View<R> {
 /// Prepares `scene` for a `width × height` screen into `ws`.
 ///
 /// # Errors
-/// [`RenderError`]: an invalid scene or screen size, a mesh without
+/// [`RenderError`]: an invalid scene or screen size (a side above
+/// [`max_screen`] of the profile's subpixel bits: 2 044 pixels at the
+/// default 4), a mesh without
 /// normals for smooth shading, or a workspace part too small (naming the
 /// part and the object).
 pub fn prepare<'w, P: Profile>(
@@ -199,9 +304,11 @@ pub fn prepare<'w, P: Profile>(
     ws: Workspace<'w, P::Lerp>,
 ) -> Result<Frame<'w, P>, RenderError> {
     scene.check()?;
-    if width > MAX_SCREEN || height > MAX_SCREEN {
+    // The guard band that keeps stored positions within `±XY_LIMIT`
+    // (`None`: the screen is beyond `max_screen`).
+    let Some(guard) = guard_px(P::SUBPIXEL_BITS.get(), width, height) else {
         return Err(SceneError::Screen.into());
-    }
+    };
     let cam = &scene.camera;
     let k = cam.focal.mul_i32(height as i32).half();
     // A saturated projection scale (a field of view too narrow for the
@@ -214,7 +321,7 @@ pub fn prepare<'w, P: Profile>(
         planes: Planes {
             near: cam.near,
             far: cam.far,
-            guard: P::Real::from_i32(GUARD_PX).div(k),
+            guard: P::Real::from_i32(guard).div(k),
         },
         k,
         cx: P::Real::from_i32(width as i32).half(),
@@ -331,15 +438,14 @@ const EARLY_CULL_MIN_VERTICES: usize = 300;
 
 /// `xy[0]` of a prepared vertex outside the clipping planes: never drawn
 /// (its triangles are clipped or dropped), `xy[1]` holds its outcode. No
-/// vertex inside the planes has it: they are clamped to ±`COORD_LIMIT_PX`
-/// pixels.
-const OUTSIDE: i32 = i32::MIN;
+/// vertex inside the planes has it: they are within ±[`XY_LIMIT`].
+const OUTSIDE: i16 = i16::MIN;
 
 /// `xy[0]` of a prepared vertex that no kept triangle needs: every
 /// triangle using it is certainly back-facing ([`EarlyCull::margin`]), and
 /// the vertex pass skips it. Never drawn, never read by the rasterizer; no
-/// projected vertex has it (they are clamped to ±`COORD_LIMIT_PX` pixels).
-const UNUSED: i32 = i32::MIN + 1;
+/// projected vertex has it (they are within ±[`XY_LIMIT`]).
+pub(super) const UNUSED: i16 = i16::MIN + 1;
 
 /// Where the bounding sphere of `mesh` placed by `mv` lies against
 /// the planes. The sphere's eye-space radius is the mesh radius times
@@ -474,7 +580,7 @@ fn rows_in(xy: [[i32; 2]; 3], width: u32, height: u32, sub: SubpixelBits) -> Opt
 fn triangles_inside(
     tris: &[[u16; 3]],
     base: usize,
-    xy: &[[i32; 2]],
+    (xy, origin): (&[ScreenXy], [i32; 2]),
     out: &mut [Tri],
     mut nt: usize,
     (width, height): (u32, u32),
@@ -484,11 +590,12 @@ fn triangles_inside(
 ) -> Option<usize> {
     let nt0 = nt;
     for (t, tri) in tris.iter().enumerate() {
-        let p = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or([0; 2]));
-        if marked && (p[0][0] == UNUSED || p[1][0] == UNUSED || p[2][0] == UNUSED) {
+        let q = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or_default());
+        if marked && (q[0].0[0] == UNUSED || q[1].0[0] == UNUSED || q[2].0[0] == UNUSED) {
             // Culled in object space.
             continue;
         }
+        let p = q.map(|v| v.unpack(origin));
         let [a, b, c] = p;
         let (e0, e1, e2, e3) = (b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
         let sign = det_sign_small(e0, e1, e2, e3).unwrap_or_else(|| det_sign(e0, e1, e2, e3));
@@ -531,7 +638,7 @@ fn put_tri(slot: &mut Tri, tri: &[u16; 3], base: usize, back: bool) {
 fn triangles_visible<const CULL: bool, const MARKED: bool>(
     tris: &[[u16; 3]],
     base: usize,
-    xy: &[[i32; 2]],
+    xy: &[ScreenXy],
     out: &mut [Tri],
     mut nt: usize,
     sub: SubpixelBits,
@@ -544,12 +651,16 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
             // Projected x is at least 0 here, `UNUSED` negative: a corner
             // left unprojected means the triangle was culled in object
             // space. Corner by corner, before the loads of the sign.
-            let x = |k: usize| xy.get(usize::from(tri[k])).map_or(-1, |p| p[0]);
+            let x = |k: usize| xy.get(usize::from(tri[k])).map_or(-1, |p| p.0[0]);
             if x(0) < 0 || x(1) < 0 || x(2) < 0 {
                 continue;
             }
         }
-        let [a, b, c] = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or([0; 2]));
+        // Stored from the screen's corner here (the caller checks it).
+        let [a, b, c] = tri.map(|i| {
+            let p = xy.get(usize::from(i)).copied().unwrap_or_default().0;
+            [i32::from(p[0]), i32::from(p[1])]
+        });
         // |edges| < 2^15: each product below 2^30.
         let d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
         if d == 0 {
@@ -587,7 +698,7 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
 fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
     f: &Fused,
     positions: &[[i16; 3]],
-    xy: &mut [[i32; 2]],
+    (xy, origin): (&mut [ScreenXy], [i32; 2]),
     vals: &mut [L],
     depth: impl Fn(i32) -> L,
 ) -> [u32; 3] {
@@ -596,12 +707,13 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
     for ((p, out), v) in verts.zip(vals.chunks_exact_mut(S)) {
         // A negative mark is a skipped vertex ([`mark_vertices`]): it
         // gets the one mark the triangle loops know.
-        if MARKED && out[0] < 0 {
-            out[0] = UNUSED;
+        if MARKED && out.0[0] < 0 {
+            out.0[0] = UNUSED;
             continue;
         }
         let (s, d) = f.project::<CLAMP>(*p);
-        *out = s;
+        // Inside the guard band: within `±XY_LIMIT` of the origin.
+        *out = ScreenXy::pack(s, origin);
         ux = ux.max(s[0] as u32);
         uy = uy.max(s[1] as u32);
         if ROWS_FROM_BOX {
@@ -619,10 +731,12 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
 /// select: measured 29 -> 21 instructions per vertex on the Cortex-M4).
 /// Out of line, the test's constants in registers.
 #[inline(never)]
-fn mark_vertices(c: EarlyCull, normals: &[[i16; 3]], cones: &[[i32; 2]], xy: &mut [[i32; 2]]) {
+#[allow(clippy::cast_possible_truncation)]
+fn mark_vertices(c: EarlyCull, normals: &[[i16; 3]], cones: &[[i32; 2]], xy: &mut [ScreenXy]) {
     for ((a, cone), out) in normals.iter().zip(cones).zip(xy.iter_mut()) {
-        // Negative exactly for a skipped vertex.
-        out[0] = c.margin(*a, *cone);
+        // Negative exactly for a skipped vertex (the high half keeps the
+        // sign and fits `i16`).
+        out.0[0] = (c.margin(*a, *cone) >> 16) as i16;
     }
 }
 
@@ -636,7 +750,7 @@ fn mark_vertices(c: EarlyCull, normals: &[[i16; 3]], cones: &[[i32; 2]], xy: &mu
 fn cull_light<const S: usize, L>(
     cull: &EarlyCull,
     (normals, cones): (&[[i16; 3]], &[[i32; 2]]),
-    xy: &mut [[i32; 2]],
+    xy: &mut [ScreenXy],
     vals: &mut [L],
     levels: Option<&impl Fn([i16; 3]) -> [i32; 3]>,
     level: impl Fn(i32) -> L,
@@ -645,7 +759,7 @@ fn cull_light<const S: usize, L>(
     if let Some(l) = levels {
         let verts = normals.iter().zip(xy.iter());
         for ((a, out), v) in verts.zip(vals.chunks_exact_mut(S)) {
-            if out[0] < 0 {
+            if out.0[0] < 0 {
                 continue;
             }
             let lv = l(*a);
@@ -967,7 +1081,7 @@ impl<P: Profile> Preparer<'_, P> {
                 // Outside: never drawn directly; triangles using it are
                 // clipped.
                 if let Some(xy) = self.ws.xy.get_mut(v) {
-                    *xy = [OUTSIDE, i32::from(code)];
+                    *xy = ScreenXy([OUTSIDE, i16::from(code)]);
                 }
                 if let Some(vals) = self.ws.vals.get_mut(base..base + stride) {
                     vals.fill(P::level(P::Real::ZERO));
@@ -1116,6 +1230,8 @@ impl<P: Profile> Preparer<'_, P> {
         }
         let pos = ctx.positions;
         let depth = P::depth_q30;
+        let o = xy_origin::<P>(self.width, self.height);
+        let xy = (xy, o);
         let bbox = match (f.depth_in_range, marked) {
             (true, false) => project_loop::<false, false, S, _>(f, pos, xy, vals, depth),
             (false, false) => project_loop::<false, true, S, _>(f, pos, xy, vals, depth),
@@ -1130,7 +1246,9 @@ impl<P: Profile> Preparer<'_, P> {
                 }
             }
         }
-        self.bbox = Some(bbox);
+        // The triangle loop over the box reads positions stored from the
+        // screen's corner.
+        self.bbox = Some(bbox).filter(|_| o == [0, 0]);
         self.marked = marked;
         self.nv = end;
         self.nval = ctx.val_base + n * S;
@@ -1170,6 +1288,7 @@ impl<P: Profile> Preparer<'_, P> {
             .map(|s| s.to_fixed_i32(16))
             .filter(|s| s.unsigned_abs() <= SMALL);
         let normals = ctx.normals;
+        let o = xy_origin::<P>(self.width, self.height);
         for (i, ((p, out), v)) in ctx
             .positions
             .iter()
@@ -1178,7 +1297,8 @@ impl<P: Profile> Preparer<'_, P> {
             .enumerate()
         {
             let (s, q) = pj.project_inside(x.point(*p), sub);
-            *out = s;
+            // Inside the guard band: within `±XY_LIMIT` of the origin.
+            *out = ScreenXy::pack(s, o);
             let d = R::<P>::ONE - R::<P>::from_fixed_i32(q, 16);
             let d = match scale_small {
                 // `Q16`'s `*` in 32-bit products, bit for bit (`d <= 1`).
@@ -1232,8 +1352,9 @@ impl<P: Profile> Preparer<'_, P> {
             let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
             ([sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)], d, q)
         };
+        let o = self.origin();
         if let Some(slot) = self.ws.xy.get_mut(v) {
-            *slot = xy;
+            *slot = ScreenXy::pack_clamped(xy, o);
         }
         let Some(vals) = self.ws.vals.get_mut(base..base + stride) else {
             return;
@@ -1304,7 +1425,7 @@ impl<P: Profile> Preparer<'_, P> {
         color: Option<Rgb8>,
         back: bool,
     ) -> Result<(), RenderError> {
-        let xy = v.map(|v| self.ws.xy.get(v as usize).copied().unwrap_or([0; 2]));
+        let xy = v.map(|v| self.xy(usize::from(v)));
         match self.rows_of(xy) {
             Some(_) => self.store_tri(v, color, back),
             None => Ok(()),
@@ -1315,6 +1436,7 @@ impl<P: Profile> Preparer<'_, P> {
     /// cover; `[u16::MAX, 0]` for none).
     fn rows_of_tris(&self, tris: core::ops::Range<usize>) -> [u16; 2] {
         let xy = &*self.ws.xy;
+        let o = self.origin();
         let (sub, h) = (
             P::SUBPIXEL_BITS,
             self.height.min(u32::from(u16::MAX)) as i32,
@@ -1322,7 +1444,9 @@ impl<P: Profile> Preparer<'_, P> {
         let mut lo = i32::MAX;
         let mut hi = i32::MIN;
         for t in self.ws.tris.get(tris).unwrap_or(&[]) {
-            let y = t.v().map(|v| xy.get(usize::from(v)).map_or(0, |p| p[1]));
+            let y = t
+                .v()
+                .map(|v| xy.get(usize::from(v)).map_or(0, |p| p.unpack(o)[1]));
             lo = lo.min(y[0].min(y[1]).min(y[2]));
             hi = hi.max(y[0].max(y[1]).max(y[2]));
         }
@@ -1333,6 +1457,22 @@ impl<P: Profile> Preparer<'_, P> {
         // as each triangle's are (`max`/`min`: no panic branch).
         let r = |y: i32| first_row(y, sub).max(0).min(h) as u16;
         [r(lo), r(hi)]
+    }
+
+    /// The origin of the stored screen positions ([`xy_origin`]).
+    #[inline(always)]
+    fn origin(&self) -> [i32; 2] {
+        xy_origin::<P>(self.width, self.height)
+    }
+
+    /// Screen position of prepared vertex `v`, subpixels from the screen's
+    /// corner (`[0, 0]` past the end).
+    #[inline(always)]
+    fn xy(&self, v: usize) -> [i32; 2] {
+        self.ws
+            .xy
+            .get(v)
+            .map_or([0; 2], |p| p.unpack(self.origin()))
     }
 
     /// The rows a triangle with corners at `xy` can cover (the rows the
@@ -1538,11 +1678,12 @@ impl<P: Profile> Preparer<'_, P> {
                 self.nt = nt_new;
                 return Ok(());
             }
+            let o = self.origin();
             let colors = self.ws.colors.get_mut(self.nc..).unwrap_or(&mut []);
             let nt = triangles_inside(
                 ctx.tris,
                 base,
-                xy,
+                (xy, o),
                 self.ws.tris,
                 self.nt,
                 (self.width, self.height),
@@ -1567,12 +1708,21 @@ impl<P: Profile> Preparer<'_, P> {
         for (t, tri) in ctx.tris.iter().enumerate() {
             // base + index < MAX_VERTICES (checked by the vertex pass).
             let vs = tri.map(|i| (base + usize::from(i)) as u16);
-            let xy = vs.map(|v| self.ws.xy.get(usize::from(v)).copied().unwrap_or([0; 2]));
-            if !INSIDE && (xy[0][0] == OUTSIDE || xy[1][0] == OUTSIDE || xy[2][0] == OUTSIDE) {
-                let code = |p: [i32; 2]| if p[0] == OUTSIDE { p[1] as Outcode } else { 0 };
-                self.clipped(ctx, t, [code(xy[0]), code(xy[1]), code(xy[2])])?;
+            let q = vs.map(|v| self.ws.xy.get(usize::from(v)).copied().unwrap_or_default());
+            if !INSIDE && (q[0].0[0] == OUTSIDE || q[1].0[0] == OUTSIDE || q[2].0[0] == OUTSIDE) {
+                #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+                let code = |p: ScreenXy| {
+                    if p.0[0] == OUTSIDE {
+                        p.0[1] as Outcode
+                    } else {
+                        0
+                    }
+                };
+                self.clipped(ctx, t, [code(q[0]), code(q[1]), code(q[2])])?;
                 continue;
             }
+            let o = self.origin();
+            let xy = q.map(|p| p.unpack(o));
             let [a, b, c] = xy;
             // Twice the signed area; only its sign is used: 32-bit
             // products when every edge is shorter than 2^15 subpixels.

@@ -1,6 +1,6 @@
 //! Storage sized by the compiler: see [`Storage`].
 
-use super::{Layout, Tri, Workspace};
+use super::{Layout, ScreenXy, Tri, Workspace};
 use crate::mesh::Mesh;
 use crate::raster::Lerp;
 use crate::target::Rgb8;
@@ -121,7 +121,7 @@ impl Capacity {
     }
 
     /// Bytes of a [`Storage`] of these lengths with `value_bytes`-byte
-    /// values: 8 per vertex, `value_bytes` per value, 6 + 4 (order) per
+    /// values: 4 per vertex (a [`ScreenXy`]), `value_bytes` per value, 6 + 4 (order) per
     /// triangle, 3 per colour (with the arrays' padding to 4-byte
     /// alignment: the colours' bytes rounded up to a multiple of 4, as
     /// `size_of` counts them after the other parts).
@@ -135,7 +135,7 @@ impl Capacity {
             .triangles
             .saturating_mul(core::mem::size_of::<Tri>() + 4);
         self.vertices
-            .saturating_mul(8)
+            .saturating_mul(core::mem::size_of::<ScreenXy>())
             .saturating_add(self.values.saturating_mul(value_bytes))
             .saturating_add(tris)
             .saturating_add(colors)
@@ -195,7 +195,7 @@ impl Capacity {
 /// [`RenderError::Capacity`](super::RenderError::Capacity), never a panic.
 #[derive(Clone, Debug)]
 pub struct Storage<L, const V: usize, const N: usize, const T: usize, const C: usize> {
-    xy: [[i32; 2]; V],
+    xy: [ScreenXy; V],
     vals: [L; N],
     tris: [Tri; T],
     order: [[u16; 2]; T],
@@ -207,7 +207,7 @@ impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize>
 {
     /// Empty storage.
     pub const EMPTY: Self = Self {
-        xy: [[0; 2]; V],
+        xy: [ScreenXy::ZERO; V],
         vals: [L::ZERO; N],
         tris: [Tri::EMPTY; T],
         order: [[0; 2]; T],
@@ -388,7 +388,7 @@ mod tests {
         assert_eq!(
             Grey::BYTES,
             CUBE_GREY.bytes(4),
-            "8 per vertex, 4 per value, 10 per triangle"
+            "4 per vertex, 4 per value, 10 per triangle"
         );
         assert_eq!(CUBE_GREY.max(all), all);
         // Beyond `usize`: saturated, never wrapped to a small capacity.

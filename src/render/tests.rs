@@ -15,7 +15,7 @@ use std::boxed::Box;
 
 /// Owned workspace memory for tests.
 struct Mem<L> {
-    xy: Vec<[i32; 2]>,
+    xy: Vec<super::ScreenXy>,
     vals: Vec<L>,
     tris: Vec<Tri>,
     colors: Vec<Rgb8>,
@@ -24,7 +24,7 @@ struct Mem<L> {
 impl<L: Copy + Default> Mem<L> {
     fn new(verts: usize, tris: usize) -> Self {
         Self {
-            xy: vec![[0; 2]; verts],
+            xy: vec![super::ScreenXy::ZERO; verts],
             vals: vec![L::default(); verts * 7],
             tris: vec![Tri::default(); tris],
             colors: vec![Rgb8::BLACK; tris],
@@ -441,7 +441,7 @@ fn memory_figures_are_as_documented() {
         assert_eq!(l.stride(), s);
     }
     // The bunny in Gouraud under a white light: grey, so one level per
-    // vertex; 1839 vertices (no clipping), 8 + 2 * 4 bytes each.
+    // vertex; 1839 vertices (no clipping), 4 + 2 * 4 bytes each.
     let white = Material {
         color: Vec3::from_f32([1.0; 3]),
         ..material::<crate::num::Q16>(0.0)
@@ -461,7 +461,7 @@ fn memory_figures_are_as_documented() {
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
-    assert_eq!(frame.bytes_used(), 1839 * (8 + 2 * 4) + t * 6);
+    assert_eq!(frame.bytes_used(), 1839 * (4 + 2 * 4) + t * 6);
     // Phong with a point light and a local viewer carries positions.
     let objs = [object::<crate::num::Q16>(
         shapes::CUBE,
@@ -964,7 +964,7 @@ fn object_space_culling_keeps_the_frame_and_skips_vertices() {
             let mut mem = Mem::<i32>::new(2000, 2000);
             let frame = prepare::<Fast>(&s, 240, 240, mem.ws()).unwrap();
             let skipped = (0..frame.vertex_count())
-                .filter(|&v| frame.xy(v).unwrap()[0] == i32::MIN + 1)
+                .filter(|&v| frame.xy(v).unwrap()[0] == i32::from(super::prepare::UNUSED))
                 .count();
             let tris = frame.tris().collect::<Vec<_>>();
             (tris, skipped, full::<Fast>(&s, 240, 240, true))
@@ -985,13 +985,14 @@ fn object_space_culling_keeps_the_frame_and_skips_vertices() {
 }
 
 /// A triangle whose upper edge runs 4 400 pixels across within two
-/// subpixel rows (a whole step per row beyond ±32 767 columns): after
-/// its first row its walk does not pack into a pool slot, so with
-/// one-row bands it is set up again in the next band, even with slots to
-/// spare; the bytes are those of the full frame (fast path: `Fast`; general
-/// path: `F64`).
+/// subpixel rows: the guard band (2 014 pixels around the centre of a
+/// 64 × 48 screen at 4 subpixel bits, see `guard_px`) cuts it into two
+/// triangles whose edges stay within ±2 047 pixels, so their walks pack
+/// into pool slots: each is set up once, with one-row bands too, and the
+/// bytes are those of the full frame (fast path: `Fast`; general path:
+/// `F64`).
 #[test]
-fn walks_that_do_not_pack_are_set_up_again_with_the_same_bytes() {
+fn walks_within_the_guard_band_pack_with_the_same_bytes() {
     // Raw Q1.14 positions scaled by 200: A (-200, 0.0517) and B (200,
     // 0.0395), 0.13 pixels apart around the centre of row 23; C below.
     const POS: [[i16; 3]; 3] = [[-16384, 1, 0], [16384, 0, 0], [0, -3000, 0]];
@@ -1022,14 +1023,116 @@ fn walks_that_do_not_pack_are_set_up_again_with_the_same_bytes() {
         for rows in [1, 7] {
             let (out, stats, n) = banded_with::<P, 256, 8>(&s, w, h, rows, true);
             assert_eq!(out, whole, "{} rows {rows}", P::NAME);
-            assert_eq!(n, 1);
-            // One-row bands: set up in row 23's band and again in row
-            // 24's (then in its lower half, it packs); 7-row bands reach
-            // the next border (row 28) in the lower half.
-            let setups = if rows == 1 { 2 } else { 1 };
-            assert_eq!(stats.triangles, setups, "{} rows {rows}", P::NAME);
+            // Two triangles, each set up once.
+            assert_eq!(n, 2);
+            assert_eq!(stats.triangles, 2, "{} rows {rows}", P::NAME);
         }
     }
     run::<Fast>(Shading::Flat);
     run::<F64>(Shading::Flat);
+}
+
+/// `Fast` with 8 subpixel bits: positions stored from the screen's
+/// centre.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Fast8;
+
+impl Profile for Fast8 {
+    type Real = crate::num::Q16;
+    type Lerp = i32;
+    const NAME: &'static str = "fast8";
+    const SUBPIXEL_BITS: crate::num::SubpixelBits = match crate::num::SubpixelBits::new(8) {
+        Ok(b) => b,
+        Err(_) => panic!("8 bits"),
+    };
+    fn level(r: crate::num::Q16) -> i32 {
+        Fast::level(r)
+    }
+    fn depth(r: crate::num::Q16) -> i32 {
+        Fast::depth(r)
+    }
+    fn unit(r: crate::num::Q16) -> i32 {
+        Fast::unit(r)
+    }
+    fn unit_back(l: i32) -> crate::num::Q16 {
+        Fast::unit_back(l)
+    }
+    fn coord(r: crate::num::Q16) -> i32 {
+        Fast::coord(r)
+    }
+    fn coord_back(l: i32) -> crate::num::Q16 {
+        Fast::coord_back(l)
+    }
+}
+
+/// Stored screen positions are `i16` subpixels ([`ScreenXy`]): the guard
+/// band narrows so that they fit (`guard_px`), and a screen too large for
+/// any guard band is [`SceneError::Screen`]: 2 044 pixels at 4 subpixel
+/// bits (`XY_LIMIT >> 4` = 2 047 pixels of range from the corner: a
+/// half-screen of 1 022, a band of 2 047 - 1 022 - 1 = 1 024 pixels
+/// around the centre), 250 at 8 bits (from the centre: 127 - 1 = 126 >=
+/// 125 + 1). A triangle thousands of pixels across on the largest screen is
+/// clipped by the band, and every stored coordinate lies within the
+/// band, inside `±XY_LIMIT`.
+#[test]
+fn compact_positions_hold_the_screen_and_its_guard_band() {
+    use super::prepare::guard_px;
+    use crate::scene::SceneError;
+    let most = (1..=8).map(max_screen).collect::<Vec<_>>();
+    assert_eq!(most, [4096, 4096, 4092, 2044, 2042, 1018, 506, 250]);
+    assert_eq!(guard_px(4, 2044, 100), Some(1024));
+    assert_eq!(guard_px(4, 2045, 100), None);
+    assert_eq!(guard_px(4, 240, 240), Some(2047 - 120 - 1));
+    assert_eq!(guard_px(8, 240, 250), Some(126));
+    assert_eq!(guard_px(8, 251, 240), None);
+    assert_eq!(guard_px(2, 4096, 4096), Some(4096));
+    assert_eq!(guard_px(2, 4097, 1), None);
+    for bits in 1..=8 {
+        let n = max_screen(bits);
+        assert!(guard_px(bits, n, n).is_some(), "{bits}");
+        assert!(n == crate::target::MAX_SCREEN || guard_px(bits, n + 1, 1).is_none());
+    }
+    // One triangle 10 units across at 1 unit from the eye.
+    const POS: [[i16; 3]; 3] = [[-16384, -8000, 0], [16384, -8000, 0], [0, 16000, 0]];
+    fn run<P: Profile>(n: u32) -> Result<(), RenderError> {
+        let mesh = Mesh::new(&POS, &[[0, 1, 2]], None).unwrap();
+        let f = P::Real::from_f32;
+        let objs = [Object {
+            mesh,
+            transform: Affine::from_parts(f(5.0), Vec3::ZERO, Vec3::ZERO),
+            material: material(0.0),
+            shading: Shading::Flat,
+            cull_backfaces: false,
+        }];
+        let ls = lights();
+        let s = scene(&objs, &ls, [0.0, 0.0, 1.0]);
+        let mut mem = Mem::<P::Lerp>::new(64, 64);
+        let frame = prepare::<P>(&s, n, n, mem.ws())?;
+        let sub = P::SUBPIXEL_BITS.get();
+        let g = guard_px(sub, n, n).unwrap();
+        assert!(frame.triangle_count() > 1, "clipped into a fan");
+        let c = (n << sub) as i32 / 2;
+        // The corners of the kept triangles (the mesh's own corners lie
+        // outside the planes: marked, never drawn).
+        for v in frame.tris().flat_map(|t| t.v).map(usize::from) {
+            let p = frame.xy(v).unwrap();
+            let stored = mem_xy(&frame, v);
+            for (k, q) in p.into_iter().enumerate() {
+                assert!((q - c).abs() <= (g + 1) << sub, "{v} {p:?}");
+                assert!(i32::from(stored[k]).abs() <= XY_LIMIT);
+            }
+        }
+        Ok(())
+    }
+    fn mem_xy<P: Profile>(frame: &Frame<'_, P>, v: usize) -> [i16; 2] {
+        frame.ws.xy[v].0
+    }
+    run::<Fast>(2044).unwrap();
+    run::<Fast8>(250).unwrap();
+    run::<F64>(2044).unwrap();
+    assert_eq!(run::<Fast>(2046), Err(SceneError::Screen.into()));
+    assert_eq!(run::<Fast8>(252), Err(SceneError::Screen.into()));
+    // 8 bits on a 240-pixel screen: stored from the centre, read back
+    // from the corner.
+    run::<Fast8>(240).unwrap();
 }

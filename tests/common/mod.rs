@@ -203,7 +203,7 @@ pub fn with_scene<P: Profile, T>(
     let tris: usize = scene.objects.iter().map(|o| o.mesh.triangle_count()).sum();
     let mesh_verts: usize = scene.objects.iter().map(|o| o.mesh.vertex_count()).sum();
     let verts = mesh_verts + 2 * 3 * tris + 64;
-    let mut xy = vec![[0i32; 2]; verts];
+    let mut xy = vec![fixshade::render::ScreenXy::ZERO; verts];
     let mut vals = vec![P::Lerp::default(); verts * 7];
     let mut tri_buf = vec![Tri::default(); 4 * tris + 16];
     let mut colors = vec![fixshade::target::Rgb8::BLACK; tri_buf.len()];

@@ -293,7 +293,8 @@ fn frame(
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references (safe code).
-    static mut XY: [[i32; 2]; MAX_VERTS] = [[0; 2]; MAX_VERTS];
+    static mut XY: [fixshade::render::ScreenXy; MAX_VERTS] =
+        [fixshade::render::ScreenXy::ZERO; MAX_VERTS];
     static mut VALS: [L; MAX_VALS] = [0; MAX_VALS];
     static mut TRIS: [Tri; MAX_TRIS] = [Tri::EMPTY; MAX_TRIS];
     static mut COLORS: [fixshade::target::Rgb8; MAX_TRIS] =

@@ -21,7 +21,7 @@ use fixshade_host::ideal::{self, IdealScene};
 
 /// Owned workspace memory.
 pub struct Mem<L> {
-    pub xy: Vec<[i32; 2]>,
+    pub xy: Vec<fixshade::render::ScreenXy>,
     pub vals: Vec<L>,
     pub tris: Vec<Tri>,
     pub colors: Vec<fixshade::target::Rgb8>,
@@ -32,7 +32,7 @@ impl<L: Copy + Default> Mem<L> {
     /// triangles and meshes of up to 2000 vertices.
     pub fn new(verts: usize, tris: usize) -> Self {
         Self {
-            xy: vec![[0; 2]; verts],
+            xy: vec![fixshade::render::ScreenXy::ZERO; verts],
             vals: vec![L::default(); verts * 8],
             tris: vec![Tri::default(); tris],
             colors: vec![fixshade::target::Rgb8::BLACK; tris],

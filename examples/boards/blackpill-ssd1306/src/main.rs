@@ -63,7 +63,7 @@ fn main() -> ! {
 
     let mut pixels = [[0u8; 1]; BAND_PX];
     let mut depth = [0u16; BAND_PX];
-    let mut xy = [[0i32; 2]; VERTICES];
+    let mut xy = [fixshade::render::ScreenXy::ZERO; VERTICES];
     let mut vals = [0i32; VALUES];
     let mut tris = [Tri::EMPTY; TRIANGLES];
     let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];

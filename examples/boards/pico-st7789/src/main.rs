@@ -218,7 +218,7 @@ fn main() -> ! {
     let mut next: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(a));
     let (Some(depth), Some(xy), Some(vals), Some(tris), Some(colors), Some(order), Some(pool)) = (
         cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
-        cortex_m::singleton!(: [[i32; 2]; VERTICES] = [[0; 2]; VERTICES]),
+        cortex_m::singleton!(: [fixshade::render::ScreenXy; VERTICES] = [fixshade::render::ScreenXy::ZERO; VERTICES]),
         cortex_m::singleton!(: [i32; VALUES] = [0; VALUES]),
         cortex_m::singleton!(: [Tri; TRIANGLES] = [Tri::EMPTY; TRIANGLES]),
         cortex_m::singleton!(: [Rgb8; COLORS] = [Rgb8::BLACK; COLORS]),

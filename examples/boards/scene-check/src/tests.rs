@@ -108,7 +108,7 @@ fn firmware_frame(i: u32, ws: Workspace<'_, i32>, order: &mut [u16]) -> Use {
 #[test]
 fn pico_turn_fits_and_is_the_firmware_animation() {
     use crate::pico::*;
-    let mut xy = vec![[0i32; 2]; VERTICES];
+    let mut xy = vec![fixshade::render::ScreenXy::ZERO; VERTICES];
     let mut vals = vec![0i32; VALUES];
     let mut tris = vec![Tri::EMPTY; TRIANGLES];
     let mut colors = vec![fixshade::target::Rgb8::BLACK; TRIANGLES];
@@ -162,7 +162,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     assert_eq!(most.peak, PICO_PEAK);
     assert_eq!(
         (most.vertices, most.triangles, most.bytes),
-        (1839, 1574, 38_868)
+        (1839, 1574, 31_512)
     );
     assert_eq!(
         [turn[0].crc, turn[1].crc, turn[2].crc],
@@ -178,7 +178,7 @@ const PICO_PEAK: usize = 69;
 #[test]
 fn blackpill_turn_fits() {
     use crate::blackpill::*;
-    let mut xy = [[0i32; 2]; VERTICES];
+    let mut xy = [fixshade::render::ScreenXy::ZERO; VERTICES];
     let mut vals = [0i32; VALUES];
     let mut tris = [Tri::EMPTY; TRIANGLES];
     let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];
@@ -214,7 +214,7 @@ fn blackpill_turn_fits() {
         );
     }
     assert_eq!(most.peak, BLACKPILL_PEAK);
-    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2_268));
+    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2_028));
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
     assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
     assert_eq!(most.pixels, 2488);

@@ -24,7 +24,7 @@ use std::{error::Error, fs, io::Write, path::PathBuf};
 /// Storage on the heap, of the firmware's capacities for the profile
 /// (values of type `L`).
 struct Owned<L> {
-    xy: Vec<[i32; 2]>,
+    xy: Vec<fixshade::render::ScreenXy>,
     vals: Vec<L>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
@@ -34,7 +34,7 @@ struct Owned<L> {
 impl<L: fixshade::raster::Lerp> Owned<L> {
     fn new(n: Capacity) -> Self {
         Self {
-            xy: vec![[0; 2]; n.vertices],
+            xy: vec![fixshade::render::ScreenXy::ZERO; n.vertices],
             vals: vec![L::ZERO; n.values],
             tris: vec![Tri::default(); n.triangles],
             colors: vec![fixshade::target::Rgb8::BLACK; n.colors],

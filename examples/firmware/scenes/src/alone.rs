@@ -6,16 +6,16 @@
 //! [`dodeca`]: the dodecahedron scenes (feature `dodeca` of this crate
 //! and of the firmware, `cargo build --release --features dodeca` in
 //! `examples/firmware`). One convex object with back faces culled needs
-//! no depth band; its 36 triangles need 1 188 bytes of storage at most
+//! no depth band; its 36 triangles need 1 108 bytes of storage at most
 //! (Phong with the eye position, the widest of the three), so the static
 //! RAM is the colour band, that storage and the pool:
 //!
 //! | part | bytes |
 //! |------|------:|
 //! | colour band: 160 px × 8 rows × 2 (RGB565) | 2 560 |
-//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 1 188 |
+//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 1 108 |
 //! | pool: 12 slots of 7 values ([`dodeca::DodecaPool`]) | `size_of` (about 2 100) |
-//! | total, within the 8 KB = 8 192 bytes budget | about 5 900 |
+//! | total, within the 8 KB = 8 192 bytes budget | about 5 500 |
 //!
 //! (The tests check the sum against 8 192 bytes less 512 for the rest of
 //! the firmware's `.data` and `.bss`; `.ci/firmware` checks the ELF's.)
@@ -226,12 +226,17 @@ alone! {
     /// |------|------:|
     /// | colour band: 240 px × 8 rows × 2 (RGB565) | 3 840 |
     /// | depth band: 240 px × 8 rows × 2 (16-bit) | 3 840 |
-    /// | storage: 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (6 + 4) | 66 164 |
+    /// | storage: 1 839 vertices × (4 + 2 × 4) + 3 674 triangles × (6 + 4) | 58 808 |
     /// | pool: 62 slots of 2 values, 88 + 4 bytes each ([`bunny::BunnyPool`]) | 5 704 |
-    /// | total | 79 548 |
+    /// | total | 72 192 |
     ///
-    /// The budget is 40 KB = 40 960 bytes; the storage alone exceeds it (the
-    /// tests check these figures).
+    /// The storage's parts: screen positions 1 839 × 4 = 7 356 (`i16`
+    /// subpixels, [`fixshade::render::ScreenXy`]), values 1 839 × 2 × 4 =
+    /// 14 712, triangles 3 674 × 6 = 22 044 and the band order 3 674 × 4 =
+    /// 14 696: the triangle parts hold every mesh triangle (what a view
+    /// keeps is known only with the view: 1 498 here), 36 740 of the
+    /// 58 808 bytes. The budget is 40 KB = 40 960 bytes; the storage alone
+    /// exceeds it (the tests check these figures).
     pub mod bunny {
         prefix: "bunny-gouraud",
         /// Rows per band: 8 (3 840 bytes of colour band and as many of depth
@@ -272,7 +277,7 @@ mod tests {
         const { assert!(!dodeca::DEPTH) };
         assert_eq!(dodeca::WIDTH, 160);
         assert_eq!(dodeca::BAND_BYTES, 2560);
-        assert_eq!(dodeca::CAPACITY.bytes(4), 1188);
+        assert_eq!(dodeca::CAPACITY.bytes(4), 1108);
         // The statics other than storage, pool and band (a few hundred
         // bytes) must fit in what is left of 8 KB.
         const { assert!(dodeca::STATIC_BYTES <= 8192 - 512) };
@@ -336,15 +341,15 @@ mod tests {
         const { assert!(bunny::DEPTH) };
         assert_eq!(bunny::WIDTH, 240);
         assert_eq!(bunny::BAND_BYTES, 3840);
-        // 1 839 vertices × (8 + 2 × 4) + 3 674 triangles × (6 + 4).
-        assert_eq!(bunny::CAPACITY.bytes(4), 1839 * 16 + 3674 * 10);
-        assert_eq!(bunny::CAPACITY.bytes(4), 66_164);
+        // 1 839 vertices × (4 + 2 × 4) + 3 674 triangles × (6 + 4).
+        assert_eq!(bunny::CAPACITY.bytes(4), 1839 * 12 + 3674 * 10);
+        assert_eq!(bunny::CAPACITY.bytes(4), 58_808);
         assert_eq!(
             core::mem::size_of::<bunny::BunnyPool>(),
             bunny::POOL_SLOTS * 92
         );
-        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 66_164 + 62 * 92);
-        assert_eq!(bunny::STATIC_BYTES, 79_548);
+        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 58_808 + 62 * 92);
+        assert_eq!(bunny::STATIC_BYTES, 72_192);
         const C: fixshade::render::Capacity = bunny::CAPACITY;
         let mut st = Box::new(<fixshade::storage!(i32, C)>::new());
         // The build's pool: 56 slots by default (the peak it reports is
@@ -357,12 +362,12 @@ mod tests {
             let scene = parts.scene(spec, parts.camera.unwrap());
             let (ws, order) = st.split();
             let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
-            // 1 839 vertices × (8 bytes xy + 2 values × 4) + 1 498 kept
+            // 1 839 vertices × (4 bytes xy + 2 values × 4) + 1 498 kept
             // triangles × 6.
             assert_eq!(frame.vertex_count(), 1839);
             assert_eq!(frame.triangle_count(), 1498);
-            assert_eq!(frame.bytes_used(), 1839 * 16 + 1498 * 6);
-            assert_eq!(frame.bytes_used(), 38_412);
+            assert_eq!(frame.bytes_used(), 1839 * 12 + 1498 * 6);
+            assert_eq!(frame.bytes_used(), 31_056);
             let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
             let mut z = vec![0u16; (spec.width * rows) as usize];
             let s = raster_bands_in::<Fast, Depth16, _>(

@@ -398,7 +398,7 @@ mod tests {
         for spec in SCENES.iter() {
             let c = spec.capacity;
             let (mut xy, mut vals, mut tris) = (
-                vec![[0i32; 2]; c.vertices],
+                vec![fixshade::render::ScreenXy::ZERO; c.vertices],
                 vec![0i32; c.values],
                 vec![fixshade::render::Tri::EMPTY; c.triangles],
             );

@@ -246,7 +246,7 @@ mod tests {
     fn run<P: Profile>(spec: &SceneSpec) -> FrameStats {
         let n = capacity_for::<P>();
         let (mut xy, mut vals, mut tris) = (
-            vec![[0i32; 2]; n.vertices],
+            vec![fixshade::render::ScreenXy::ZERO; n.vertices],
             vec![<P::Lerp as fixshade::raster::Lerp>::ZERO; n.values],
             vec![Tri::default(); n.triangles],
         );
