@@ -102,7 +102,7 @@ use crate::num::approx16;
 use crate::num::wide::{clz32, wmul};
 use crate::num::Real;
 use crate::raster::{Lerp, RasterError, Span, Spans};
-use crate::target::{DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
+use crate::target::{level_q19, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 use core::fmt;
 
 /// Segments of the specular table (`SPEC_SEGMENTS + 1` entries of `u16`):
@@ -1453,14 +1453,15 @@ trait Out {
     /// Writes pixel `i`.
     fn write(&mut self, i: u32, c: Rgb8);
     /// Tests and writes the pixels of `cols` from pixel `i`, the colour
-    /// of a passing pixel `col(c)` for its entry `c`; returns how many
+    /// of a passing pixel the channel sums `col(c)` (Q19,
+    /// [`PixelFormat::encode_q19`]) for its entry `c`; returns how many
     /// failed.
     #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3]) -> u32 {
         let mut failed = 0;
         for (j, &c) in (i..).zip(cols.iter()) {
             if self.test(j) {
-                self.write(j, unpack(col(c)));
+                self.write(j, level_q19(col(c)));
             } else {
                 failed += 1;
             }
@@ -1601,13 +1602,12 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
     }
 
     #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3]) -> u32 {
         let (i, k) = (i as usize, cols.len());
         let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        self.depth
-            .chunk(row, i, cols, |c| F::encode(unpack(col(c))))
+        self.depth.chunk(row, i, cols, |c| F::encode_q19(col(c)))
     }
 }
 
@@ -1656,7 +1656,7 @@ const CHUNK: usize = 32;
 fn drive(
     len: u32,
     mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
-    terms: impl Fn(u32) -> u32,
+    terms: impl Fn(u32) -> [i32; 3],
     out: &mut impl Out,
 ) -> u32 {
     let mut buf = [0u32; CHUNK];
@@ -1670,7 +1670,7 @@ fn drive(
         failed += if t {
             out.chunk(i, b, &terms)
         } else {
-            out.chunk(i, b, |c| c)
+            out.chunk(i, b, unpack_q19)
         };
         i += k;
     }
@@ -1688,6 +1688,18 @@ fn pack(c: Rgb8) -> u32 {
 #[allow(clippy::cast_possible_truncation)]
 fn unpack(c: u32) -> Rgb8 {
     Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)
+}
+
+/// The channel sums (Q19) of the colour `r | g << 8 | b << 16`: its
+/// levels, exactly ([`PixelFormat::encode_q19`]).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap)]
+fn unpack_q19(c: u32) -> [i32; 3] {
+    [
+        ((c & 0xFF) << 19) as i32,
+        ((c >> 8 & 0xFF) << 19) as i32,
+        ((c >> 16 & 0xFF) << 19) as i32,
+    ]
 }
 
 mod one;
