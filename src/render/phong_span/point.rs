@@ -158,7 +158,9 @@ fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
 #[inline(always)]
 fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
     // rsqrt_n: 2^16 / sqrt(f) for f in [1/4, 5/4) (Q28): f = x/4, x, 4x.
-    let t = |x: i32| -> Option<i32> {
+    // A function inlined (as a closure it was a call per seed).
+    #[inline(always)]
+    fn t(x: i32) -> Option<i32> {
         let (f, s) = if x >= 1 << 29 {
             (x >> 3, 12)
         } else if x >= 1 << 27 {
@@ -168,7 +170,7 @@ fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
         };
         let r = rsqrt_n(f)?;
         i32::try_from(r << s).ok()
-    };
+    }
     let y0 = t(x0)?;
     let y1 = t(x0.wrapping_add(x1))?;
     let dl = y1.wrapping_sub(y0);
