@@ -96,8 +96,17 @@ pub fn level_q19(c: [i32; 3]) -> Rgb8 {
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 fn pack565_q19(c: [i32; 3]) -> u16 {
-    let f = |v: i32, s: u32, m: i32| (v >> s).clamp(0, m) as u16;
-    (f(c[0], 22, 31) << 11) | (f(c[1], 21, 63) << 5) | f(c[2], 22, 31)
+    (pack565_q19_high(c) >> 16) as u16
+}
+
+/// [`pack565_q19`] in the high half of a `u32` (low half zero): its byte
+/// swap (one `REV`) has the big-endian `u16` in the low half, without
+/// the shift a `u16` byte swap takes.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+fn pack565_q19_high(c: [i32; 3]) -> u32 {
+    let f = |v: i32, s: u32, m: i32| (v >> s).clamp(0, m) as u32;
+    (f(c[0], 22, 31) << 27) | (f(c[1], 21, 63) << 21) | (f(c[2], 22, 31) << 16)
 }
 
 /// [`PixelFormat::fill_slice`] for a byte-array format: one byte fill
@@ -215,8 +224,13 @@ impl PixelFormat for Rgb565Be {
         GREY565_BE[level as usize]
     }
     #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
     fn encode_q19(c: [i32; 3]) -> u16 {
-        pack565_q19(c).to_be()
+        if cfg!(target_endian = "little") {
+            pack565_q19_high(c).swap_bytes() as u16
+        } else {
+            pack565_q19(c)
+        }
     }
     #[inline]
     fn decode(raw: u16) -> Rgb8 {
