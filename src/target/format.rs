@@ -96,12 +96,14 @@ pub fn level_q19(c: [i32; 3]) -> Rgb8 {
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 fn pack565_q19(c: [i32; 3]) -> u16 {
-    (pack565_q19_high(c) >> 16) as u16
+    let f = |v: i32, s: u32, m: i32| (v >> s).clamp(0, m) as u16;
+    (f(c[0], 22, 31) << 11) | (f(c[1], 21, 63) << 5) | f(c[2], 22, 31)
 }
 
 /// [`pack565_q19`] in the high half of a `u32` (low half zero): its byte
 /// swap (one `REV`) has the big-endian `u16` in the low half, without
-/// the shift a `u16` byte swap takes.
+/// the shift a `u16` byte swap takes (ARMv7E-M: the fields' shifts fold
+/// into `USAT` and `ORR`).
 #[inline(always)]
 #[allow(clippy::cast_sign_loss)]
 fn pack565_q19_high(c: [i32; 3]) -> u32 {
@@ -329,6 +331,10 @@ mod tests {
     fn encode_q19_is_encode_of_the_levels() {
         fn check<F: PixelFormat>(c: [i32; 3]) {
             assert_eq!(F::encode_q19(c), F::encode(level_q19(c)), "{c:?}");
+            // Both forms of the RGB565 value (the other target's too).
+            let v = pack565(level_q19(c));
+            assert_eq!(pack565_q19(c), v, "{c:?}");
+            assert_eq!(pack565_q19_high(c), u32::from(v) << 16, "{c:?}");
         }
         let mut vals = std::vec![i32::MIN, i32::MAX, -1, 0, 1 << 30, -(1 << 30)];
         for l in -2..=258i32 {
