@@ -44,10 +44,16 @@
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits; a full
 //! chunk's set-up with its length a constant, so that the products by it
-//! fold into shifts); measured on the firmware's span sweep, 92.23
-//! instructions a pixel on the M4 (was 167, 106.97, 104.88, then 94.63
-//! with the channels in the loop of the depth test) and 169.37 on the M0
-//! (was 207.96, 198.87, then 184.50): the light terms of a chunk (`N·L`
+//! fold into shifts); measured on the firmware's span sweep, 90.95
+//! instructions a pixel on the M4 (was 167, 106.97, 104.88, 94.63 with
+//! the channels in the loop of the depth test, then 92.23) and 176.07 on
+//! the M0 (was 207.96, 198.87, 184.50, then 169.37; the sweep's figure is
+//! the 200-pixel spans less the 1-pixel ones, and the latter now cost 570
+//! instructions less on the M4 and 2 318 less on the M0: the 200-pixel
+//! spans alone went from 96.8 to 92.7 a pixel on the M4 and from 186.2
+//! to 181.3 on the M0). Spans shorter than 4 pixels (`one::SHORT_SPAN`)
+//! skip the span and chunk set-up: the depth test of each pixel, then the
+//! 64-bit path for the passing ones. The light terms of a chunk (`N·L`
 //! and the specular factor, packed) come from one copy of that
 //! arithmetic, the three channels from the span driver both 32-bit loops
 //! share (one per pixel and depth format): the chunk's depth test first,
@@ -56,7 +62,9 @@
 //! in range), then the colours of the passing pixels (one loop without
 //! a test when all passed; on the M4 each channel two `SMLABB`/`SMLATT`
 //! of the packed terms, flipped to signed halves, by the packed
-//! coefficients, see `one::Colour`). Per pixel: `1/|n|` from a 65-entry
+//! coefficients, see `one::Colour`, and the sums encoded straight from
+//! Q19 by [`PixelFormat::encode_q19`]: for RGB565 one `USAT` a channel).
+//! Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -74,9 +82,11 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 203.69 instructions a pixel on the M4
-//! (was 517, 219.06, then 205.85 with the channels in the loop of the
-//! depth test) and 772.15 on the M0 (was 1 357, 797.56, then 776.22); its buffers (256 bytes) live in
+//! on the firmware's span sweep, 192.15 instructions a pixel on the M4
+//! (was 517, 219.06, 205.85 with the channels in the loop of the depth
+//! test, then 203.69) and 766.44 on the M0 (was 1 357, 797.56, 776.22,
+//! then 772.15), its chunk set-up (`point_setup`, ~950 instructions on
+//! the M4) a function of its own; its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).

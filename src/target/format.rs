@@ -355,8 +355,14 @@ mod tests {
             }
         }
         assert_eq!(n, 4 * vals.len());
-        assert_eq!(level_q19([255 << 19, (7 << 19) + 5, -3]), Rgb8::new(255, 7, 0));
-        assert_eq!(Rgb565Be::encode_q19([i32::MAX, 0, i32::MAX]), 0xf81f_u16.to_be());
+        assert_eq!(
+            level_q19([255 << 19, (7 << 19) + 5, -3]),
+            Rgb8::new(255, 7, 0)
+        );
+        assert_eq!(
+            Rgb565Be::encode_q19([i32::MAX, 0, i32::MAX]),
+            0xf81f_u16.to_be()
+        );
     }
 
     #[test]

@@ -562,5 +562,8 @@ fn rsqrt64_within_max_error() {
     let lg = worst.log2();
     std::println!("rsqrt64: rel error 2^{lg:.2}");
     assert!(worst <= RSQRT64_MAX_ERROR, "2^{lg:.2}");
-    assert!(worst > RSQRT64_MAX_ERROR / 4.0, "2^{lg:.2}: the bound is tight");
+    assert!(
+        worst > RSQRT64_MAX_ERROR / 4.0,
+        "2^{lg:.2}: the bound is tight"
+    );
 }
