@@ -46,12 +46,12 @@
 //! chunk's set-up with its length a constant, so that the products by it
 //! fold into shifts); measured on the firmware's span sweep, 90.95
 //! instructions a pixel on the M4 (was 167, 106.97, 104.88, 94.63 with
-//! the channels in the loop of the depth test, then 92.23) and 176.07 on
+//! the channels in the loop of the depth test, then 92.23) and 174.93 on
 //! the M0 (was 207.96, 198.87, 184.50, then 169.37; the sweep's figure is
 //! the 200-pixel spans less the 1-pixel ones, and the latter now cost 570
 //! instructions less on the M4 and 2 318 less on the M0: the 200-pixel
 //! spans alone went from 96.8 to 92.7 a pixel on the M4 and from 186.2
-//! to 181.3 on the M0). Spans shorter than 4 pixels (`one::SHORT_SPAN`)
+//! to 180.1 on the M0). Spans shorter than 4 pixels (`one::SHORT_SPAN`)
 //! skip the span and chunk set-up: the depth test of each pixel, then the
 //! 64-bit path for the passing ones. The light terms of a chunk (`N·L`
 //! and the specular factor, packed) come from one copy of that
@@ -84,7 +84,7 @@
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
 //! on the firmware's span sweep, 192.15 instructions a pixel on the M4
 //! (was 517, 219.06, 205.85 with the channels in the loop of the depth
-//! test, then 203.69) and 766.44 on the M0 (was 1 357, 797.56, 776.22,
+//! test, then 203.69) and 765.99 on the M0 (was 1 357, 797.56, 776.22,
 //! then 772.15), its chunk set-up (`point_setup`, ~950 instructions on
 //! the M4) a function of its own; its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
