@@ -44,10 +44,16 @@
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits; a full
 //! chunk's set-up with its length a constant, so that the products by it
-//! fold into shifts); measured on the firmware's span sweep, 92.23
-//! instructions a pixel on the M4 (was 167, 106.97, 104.88, then 94.63
-//! with the channels in the loop of the depth test) and 169.37 on the M0
-//! (was 207.96, 198.87, then 184.50): the light terms of a chunk (`N·L`
+//! fold into shifts); measured on the firmware's span sweep, 90.95
+//! instructions a pixel on the M4 (was 167, 106.97, 104.88, 94.63 with
+//! the channels in the loop of the depth test, then 92.23) and 174.93 on
+//! the M0 (was 207.96, 198.87, 184.50, then 169.37; the sweep's figure is
+//! the 200-pixel spans less the 1-pixel ones, and the latter now cost 570
+//! instructions less on the M4 and 2 318 less on the M0: the 200-pixel
+//! spans alone went from 96.8 to 92.7 a pixel on the M4 and from 186.2
+//! to 180.1 on the M0). Spans shorter than 4 pixels (`one::SHORT_SPAN`)
+//! skip the span and chunk set-up: the depth test of each pixel, then the
+//! 64-bit path for the passing ones. The light terms of a chunk (`N·L`
 //! and the specular factor, packed) come from one copy of that
 //! arithmetic, the three channels from the span driver both 32-bit loops
 //! share (one per pixel and depth format): the chunk's depth test first,
@@ -56,7 +62,9 @@
 //! in range), then the colours of the passing pixels (one loop without
 //! a test when all passed; on the M4 each channel two `SMLABB`/`SMLATT`
 //! of the packed terms, flipped to signed halves, by the packed
-//! coefficients, see `one::Colour`). Per pixel: `1/|n|` from a 65-entry
+//! coefficients, see `one::Colour`, and the sums encoded straight from
+//! Q19 by [`PixelFormat::encode_q19`]: for RGB565 one `USAT` a channel).
+//! Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
 //! segments of `(1 - u/m)^m` for `u ∈ [0, min(m, 8)]`, built when the
@@ -74,9 +82,11 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 203.69 instructions a pixel on the M4
-//! (was 517, 219.06, then 205.85 with the channels in the loop of the
-//! depth test) and 772.15 on the M0 (was 1 357, 797.56, then 776.22); its buffers (256 bytes) live in
+//! on the firmware's span sweep, 192.15 instructions a pixel on the M4
+//! (was 517, 219.06, 205.85 with the channels in the loop of the depth
+//! test, then 203.69) and 765.99 on the M0 (was 1 357, 797.56, 776.22,
+//! then 772.15), its chunk set-up (`point_setup`, ~950 instructions on
+//! the M4) a function of its own; its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
@@ -102,7 +112,7 @@ use crate::num::approx16;
 use crate::num::wide::{clz32, wmul};
 use crate::num::Real;
 use crate::raster::{Lerp, RasterError, Span, Spans};
-use crate::target::{DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
+use crate::target::{level_q19, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 use core::fmt;
 
 /// Segments of the specular table (`SPEC_SEGMENTS + 1` entries of `u16`):
@@ -853,8 +863,13 @@ fn rsqrt_n(f: i32) -> Option<u32> {
     Some(a - (((a - b) * t) >> 16))
 }
 
-/// `1 / sqrt(x)` for `x > 0` as `(y, e)`: `y · 2^-e`, `y` in `(2^29,
-/// 2^30]`, within `2^-29` relative ([`approx16::rsqrt_newton`]).
+/// `1 / sqrt(x)` for `x > 0` as `(y, e)`: `y · 2^-e`, `y` in `[2^29,
+/// 2^30]`, within [`RSQRT64_MAX_ERROR`] = `2^-28.5 + 2^-29` relative:
+/// [`approx16::rsqrt_newton`]'s `2^-28.5` of the top 32 bits of `x`
+/// (the dropped low bits, below `2^-30` of `x`, move the root by less
+/// than `2^-31`, inside that bound's margin) plus `2^-29`, the truncation
+/// of its result to `y`. Tested over every even shift and random `x`
+/// (`rsqrt64_within_max_error`): measured `2^-28.75`.
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation)]
 fn rsqrt64(x: u64) -> (i32, u32) {
@@ -876,6 +891,10 @@ fn rsqrt64(x: u64) -> (i32, u32) {
     let y = approx16::rsqrt_newton(m) >> 1;
     (y as i32, 61 - lz / 2)
 }
+
+/// The largest relative error of [`rsqrt64`]: `2^-28.5 + 2^-29`.
+#[cfg_attr(not(test), allow(dead_code))]
+const RSQRT64_MAX_ERROR: f64 = 4.496_823_181_161_834e-9;
 
 /// The low 32 bits of `x >> s` for `s` in `0..32` (32-bit shifts only).
 #[inline(always)]
@@ -1453,14 +1472,15 @@ trait Out {
     /// Writes pixel `i`.
     fn write(&mut self, i: u32, c: Rgb8);
     /// Tests and writes the pixels of `cols` from pixel `i`, the colour
-    /// of a passing pixel `col(c)` for its entry `c`; returns how many
+    /// of a passing pixel the channel sums `col(c)` (Q19,
+    /// [`PixelFormat::encode_q19`]) for its entry `c`; returns how many
     /// failed.
     #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3]) -> u32 {
         let mut failed = 0;
         for (j, &c) in (i..).zip(cols.iter()) {
             if self.test(j) {
-                self.write(j, unpack(col(c)));
+                self.write(j, level_q19(col(c)));
             } else {
                 failed += 1;
             }
@@ -1601,13 +1621,12 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
     }
 
     #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> u32) -> u32 {
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3]) -> u32 {
         let (i, k) = (i as usize, cols.len());
         let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        self.depth
-            .chunk(row, i, cols, |c| F::encode(unpack(col(c))))
+        self.depth.chunk(row, i, cols, |c| F::encode_q19(col(c)))
     }
 }
 
@@ -1656,7 +1675,7 @@ const CHUNK: usize = 32;
 fn drive(
     len: u32,
     mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
-    terms: impl Fn(u32) -> u32,
+    terms: impl Fn(u32) -> [i32; 3],
     out: &mut impl Out,
 ) -> u32 {
     let mut buf = [0u32; CHUNK];
@@ -1670,7 +1689,7 @@ fn drive(
         failed += if t {
             out.chunk(i, b, &terms)
         } else {
-            out.chunk(i, b, |c| c)
+            out.chunk(i, b, unpack_q19)
         };
         i += k;
     }
@@ -1688,6 +1707,18 @@ fn pack(c: Rgb8) -> u32 {
 #[allow(clippy::cast_possible_truncation)]
 fn unpack(c: u32) -> Rgb8 {
     Rgb8::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)
+}
+
+/// The channel sums (Q19) of the colour `r | g << 8 | b << 16`: its
+/// levels, exactly ([`PixelFormat::encode_q19`]).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap)]
+fn unpack_q19(c: u32) -> [i32; 3] {
+    [
+        ((c & 0xFF) << 19) as i32,
+        ((c >> 8 & 0xFF) << 19) as i32,
+        ((c >> 16 & 0xFF) << 19) as i32,
+    ]
 }
 
 mod one;

@@ -61,6 +61,15 @@ pub trait PixelFormat: Copy + core::fmt::Debug {
         Self::encode(Rgb8::grey(level))
     }
 
+    /// The colour of three channel sums in Q19 (`c >> 19` clamped to
+    /// `0..=255` per channel), encoded: `encode` of that colour, or a
+    /// faster path giving the same value (the Phong span kernel's
+    /// channels go straight from their sums to the buffer).
+    #[inline(always)]
+    fn encode_q19(c: [i32; 3]) -> Self::Raw {
+        Self::encode(level_q19(c))
+    }
+
     /// Sets every pixel of `pixels` to `raw`: `pixels.fill(raw)`, or a
     /// faster path storing the same bytes (the byte-array formats fill
     /// bytewise, a `memset`, when all bytes of `raw` are equal, as for
@@ -69,6 +78,38 @@ pub trait PixelFormat: Copy + core::fmt::Debug {
     fn fill_slice(pixels: &mut [Self::Raw], raw: Self::Raw) {
         pixels.fill(raw);
     }
+}
+
+/// The colour of three channel sums in Q19: `c >> 19` clamped to
+/// `0..=255` per channel ([`PixelFormat::encode_q19`]).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+pub fn level_q19(c: [i32; 3]) -> Rgb8 {
+    let l = |v: i32| (v >> 19).clamp(0, 255) as u8;
+    Rgb8::new(l(c[0]), l(c[1]), l(c[2]))
+}
+
+/// RGB565 (native value, before the byte order) of three channel sums
+/// in Q19: the top 5, 6, 5 bits of the clamped levels are the sums
+/// shifted by 22, 21, 22 and clamped to the field (`floor` commutes with
+/// the clamp), one `USAT` each on ARMv7E-M.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn pack565_q19(c: [i32; 3]) -> u16 {
+    let f = |v: i32, s: u32, m: i32| (v >> s).clamp(0, m) as u16;
+    (f(c[0], 22, 31) << 11) | (f(c[1], 21, 63) << 5) | f(c[2], 22, 31)
+}
+
+/// [`pack565_q19`] in the high half of a `u32` (low half zero): its byte
+/// swap (one `REV`) has the big-endian `u16` in the low half, without
+/// the shift a `u16` byte swap takes (ARMv7E-M: the fields' shifts fold
+/// into `USAT` and `ORR`; on ARMv6-M, without `USAT`, the `u16` form and
+/// its `REV16` cost less: span sweep `phong-k1` 2 instructions a pixel).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+fn pack565_q19_high(c: [i32; 3]) -> u32 {
+    let f = |v: i32, s: u32, m: i32| (v >> s).clamp(0, m) as u32;
+    (f(c[0], 22, 31) << 27) | (f(c[1], 21, 63) << 21) | (f(c[2], 22, 31) << 16)
 }
 
 /// [`PixelFormat::fill_slice`] for a byte-array format: one byte fill
@@ -185,6 +226,15 @@ impl PixelFormat for Rgb565Be {
     fn encode_grey(level: u8) -> u16 {
         GREY565_BE[level as usize]
     }
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn encode_q19(c: [i32; 3]) -> u16 {
+        if cfg!(all(target_endian = "little", not(armv6m))) {
+            pack565_q19_high(c).swap_bytes() as u16
+        } else {
+            pack565_q19(c).to_be()
+        }
+    }
     #[inline]
     fn decode(raw: u16) -> Rgb8 {
         unpack565(u16::from_be(raw))
@@ -210,6 +260,10 @@ impl PixelFormat for Rgb565Le {
     #[inline(always)]
     fn encode_grey(level: u8) -> u16 {
         GREY565_LE[level as usize]
+    }
+    #[inline(always)]
+    fn encode_q19(c: [i32; 3]) -> u16 {
+        pack565_q19(c).to_le()
     }
     #[inline]
     fn decode(raw: u16) -> Rgb8 {
@@ -240,6 +294,7 @@ impl PixelFormat for Rgb888 {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
 
     #[test]
@@ -269,6 +324,46 @@ mod tests {
         }
         assert_eq!(Rgb565Le::decode(Rgb565Le::encode(Rgb8::WHITE)), Rgb8::WHITE);
         assert_eq!(Rgb565Le::decode(Rgb565Le::encode(Rgb8::BLACK)), Rgb8::BLACK);
+    }
+
+    /// The fast `encode_q19` of every format is `encode` of the clamped
+    /// levels, over sums around every level boundary and far outside.
+    #[test]
+    fn encode_q19_is_encode_of_the_levels() {
+        fn check<F: PixelFormat>(c: [i32; 3]) {
+            assert_eq!(F::encode_q19(c), F::encode(level_q19(c)), "{c:?}");
+            // Both forms of the RGB565 value (the other target's too).
+            let v = pack565(level_q19(c));
+            assert_eq!(pack565_q19(c), v, "{c:?}");
+            assert_eq!(pack565_q19_high(c), u32::from(v) << 16, "{c:?}");
+        }
+        let mut vals = std::vec![i32::MIN, i32::MAX, -1, 0, 1 << 30, -(1 << 30)];
+        for l in -2..=258i32 {
+            for d in [-1, 0, 1, 1 << 18] {
+                vals.push((l << 19).wrapping_add(d));
+            }
+        }
+        let mut n = 0;
+        for (k, &a) in vals.iter().enumerate() {
+            let b = vals[(k * 7 + 3) % vals.len()];
+            let c = vals[(k * 13 + 5) % vals.len()];
+            for t in [[a, b, c], [b, c, a], [c, a, b], [a, a, a]] {
+                check::<Rgb565Be>(t);
+                check::<Rgb565Le>(t);
+                check::<Rgb888>(t);
+                check::<Gray8>(t);
+                n += 1;
+            }
+        }
+        assert_eq!(n, 4 * vals.len());
+        assert_eq!(
+            level_q19([255 << 19, (7 << 19) + 5, -3]),
+            Rgb8::new(255, 7, 0)
+        );
+        assert_eq!(
+            Rgb565Be::encode_q19([i32::MAX, 0, i32::MAX]),
+            0xf81f_u16.to_be()
+        );
     }
 
     #[test]

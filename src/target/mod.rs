@@ -28,7 +28,7 @@ pub mod mock;
 pub use band::BandBuf;
 pub use buffer::FrameBuf;
 pub use depth::{Depth16, Depth32, DepthBuffer, DepthFormat};
-pub use format::{Gray8, PixelFormat, RawPixel, Rgb565Be, Rgb565Le, Rgb8, Rgb888};
+pub use format::{level_q19, Gray8, PixelFormat, RawPixel, Rgb565Be, Rgb565Le, Rgb8, Rgb888};
 pub use mock::{MockTarget, PatternError};
 
 use core::fmt;

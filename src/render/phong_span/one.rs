@@ -22,11 +22,16 @@
 //! pixel's normal in 64 bits).
 
 use super::{
-    cross, drive, fallback, lin, pack, quad, sq3, KLight, Out, PhongKernel, CHUNK, RS,
+    cross, drive, fallback, lin, pack, quad, sq3, unpack, KLight, Out, PhongKernel, CHUNK, RS,
     SPEC_SEGMENTS,
 };
 use crate::num::wide::wmul;
 use crate::num::Real;
+use crate::target::level_q19;
+
+/// Spans shorter than this run [`PhongKernel::one_exact`] per passing
+/// pixel (after its depth test) instead of the chunk set-up.
+pub(super) const SHORT_SPAN: u32 = 4;
 
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 const QM_FRAC: u32 = 20;
@@ -103,14 +108,15 @@ impl Colour {
         }
     }
 
-    /// The colour (`r | g << 8 | b << 16`) of the packed light terms
-    /// `nl15 | sp << 16`: [`PhongKernel::channels`] of the two terms, the
-    /// same value on every target (the sums agree modulo 2^32:
-    /// `amb + d·nl + s·sp = amb + 2^15 (d + s) + d (nl - 2^15) + s (sp -
-    /// 2^15)`; tested).
+    /// The Q19 channel sums of the packed light terms `nl15 | sp << 16`
+    /// ([`PixelFormat::encode_q19`](crate::target::PixelFormat::encode_q19)
+    /// clamps and encodes them): [`PhongKernel::channels_q19`] of the two
+    /// terms, the same values on every target (the sums agree modulo
+    /// 2^32: `amb + d·nl + s·sp = amb + 2^15 (d + s) + d (nl - 2^15) + s
+    /// (sp - 2^15)`; tested).
     #[inline(always)]
     #[allow(clippy::cast_possible_wrap)]
-    pub(super) fn of_terms(&self, t: u32) -> u32 {
+    pub(super) fn of_terms(&self, t: u32) -> [i32; 3] {
         if cfg!(armv6m) {
             self.of_terms_plain(t)
         } else {
@@ -121,26 +127,25 @@ impl Colour {
     /// [`Colour::of_terms`] on ARMv6-M.
     #[inline(always)]
     #[allow(clippy::cast_possible_wrap)]
-    fn of_terms_plain(&self, t: u32) -> u32 {
-        PhongKernel::<crate::num::Q16>::channels(self, (t & 0xFFFF) as i32, (t >> 16) as i32)
+    fn of_terms_plain(&self, t: u32) -> [i32; 3] {
+        PhongKernel::<crate::num::Q16>::channels_q19(self, (t & 0xFFFF) as i32, (t >> 16) as i32)
     }
 
     /// [`Colour::of_terms`] other than on ARMv6-M: per channel two
     /// signed 16 × 16-bit multiply-adds of the halves.
     #[inline(always)]
     #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
-    fn of_terms_dsp(&self, t: u32) -> u32 {
+    fn of_terms_dsp(&self, t: u32) -> [i32; 3] {
         let t = t ^ 0x8000_8000;
         let lo = i32::from(t as i16);
         let hi = (t as i32) >> 16;
         let ch = |k: usize| {
             let ds = self.ds[k];
-            let acc = self.ambo[k]
+            self.ambo[k]
                 .wrapping_add(lo.wrapping_mul(i32::from(ds as i16)))
-                .wrapping_add(hi.wrapping_mul(ds >> 16));
-            (acc >> 19).clamp(0, 255) as u32
+                .wrapping_add(hi.wrapping_mul(ds >> 16))
         };
-        ch(0) | ch(1) << 8 | ch(2) << 16
+        [ch(0), ch(1), ch(2)]
     }
 }
 
@@ -196,6 +201,19 @@ impl<R: Real> PhongKernel<'_, R> {
         len: u32,
         mut out: impl Out,
     ) -> u32 {
+        if len < SHORT_SPAN {
+            // The depth test first, then the 64-bit path for the passing
+            // pixels alone (no span or chunk set-up).
+            let mut passed = 0;
+            for i in 0..len {
+                if out.test(i) {
+                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(i as i32)));
+                    out.write(i, unpack(self.one_exact(l, ni, n, dn, i)));
+                    passed += 1;
+                }
+            }
+            return passed;
+        }
         let mut st = self.one_begin(l, n, dn);
         let c = Colour::of(self, l);
         drive(
@@ -429,15 +447,19 @@ impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::terms`]: per channel ambient plus diffuse times
     /// `N·L` plus specular times the factor, clamped to `0..=255`.
     #[inline(always)]
-    #[allow(clippy::cast_sign_loss)]
     pub(super) fn channels(c: &Colour, nl15: i32, sp: i32) -> u32 {
+        pack(level_q19(Self::channels_q19(c, nl15, sp)))
+    }
+
+    /// The channel sums (Q19, before the clamp) of [`PhongKernel::channels`].
+    #[inline(always)]
+    pub(super) fn channels_q19(c: &Colour, nl15: i32, sp: i32) -> [i32; 3] {
         let ch = |k: usize| {
-            let acc = c.amb[k]
+            c.amb[k]
                 .wrapping_add(c.d[k].wrapping_mul(nl15))
-                .wrapping_add(c.s[k].wrapping_mul(sp));
-            (acc >> 19).clamp(0, 255) as u32
+                .wrapping_add(c.s[k].wrapping_mul(sp))
         };
-        ch(0) | ch(1) << 8 | ch(2) << 16
+        [ch(0), ch(1), ch(2)]
     }
 
     /// One pixel of normal `n` (Q30) in 64 bits: the chunks the 32-bit
@@ -516,7 +538,7 @@ mod tests {
                 (next(nl_max + 1), next((1 << 15) + 1)),
             ];
             for (nl, sp) in terms {
-                let want = PhongKernel::<crate::num::Q16>::channels(&c, nl as i32, sp as i32);
+                let want = PhongKernel::<crate::num::Q16>::channels_q19(&c, nl as i32, sp as i32);
                 let t = (nl & 0xFFFF) | sp << 16;
                 assert_eq!(c.of_terms_plain(t), want);
                 assert_eq!(c.of_terms_dsp(t), want, "{nl} {sp}");

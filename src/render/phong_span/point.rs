@@ -46,7 +46,7 @@
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
 
-use super::one::Colour;
+use super::one::{Colour, SHORT_SPAN};
 use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
@@ -158,7 +158,9 @@ fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
 #[inline(always)]
 fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
     // rsqrt_n: 2^16 / sqrt(f) for f in [1/4, 5/4) (Q28): f = x/4, x, 4x.
-    let t = |x: i32| -> Option<i32> {
+    // A function inlined (as a closure it was a call per seed).
+    #[inline(always)]
+    fn t(x: i32) -> Option<i32> {
         let (f, s) = if x >= 1 << 29 {
             (x >> 3, 12)
         } else if x >= 1 << 27 {
@@ -168,7 +170,7 @@ fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
         };
         let r = rsqrt_n(f)?;
         i32::try_from(r << s).ok()
-    };
+    }
     let y0 = t(x0)?;
     let y1 = t(x0.wrapping_add(x1))?;
     let dl = y1.wrapping_sub(y0);
@@ -204,6 +206,19 @@ impl<R: Real> PhongKernel<'_, R> {
         len: u32,
         mut out: impl Out,
     ) -> u32 {
+        if len < SHORT_SPAN {
+            // The depth test first, then the 64-bit path for the passing
+            // pixels alone (as `point_chunk` for chunks this short).
+            let (n, dn, p, dp) = span;
+            let mut passed = 0;
+            for i in 0..len {
+                if out.test(i) {
+                    out.write(i, self.point_exact(l, n, dn, p, dp, i));
+                    passed += 1;
+                }
+            }
+            return passed;
+        }
         let c = Colour::of(self, l);
         drive(
             len,
@@ -228,7 +243,7 @@ impl<R: Real> PhongKernel<'_, R> {
     ) -> bool {
         // Below 4 pixels the 64-bit path costs less than the set-up (M4:
         // ~360 instructions a pixel against ~1 100 a chunk).
-        let st = if k >= 4 {
+        let st = if k >= SHORT_SPAN as usize {
             self.point_setup(l, span, i, k)
         } else {
             None
@@ -253,8 +268,9 @@ impl<R: Real> PhongKernel<'_, R> {
     }
 
     /// The chunk's 32-bit state at pixel `i` (`None`: outside the proven
-    /// ranges).
-    #[inline(always)]
+    /// ranges). Not inlined: its 64-bit set-up would share the loop's
+    /// frame and registers.
+    #[inline(never)]
     #[allow(
         clippy::cast_possible_wrap,
         clippy::cast_sign_loss,

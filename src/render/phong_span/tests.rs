@@ -531,3 +531,39 @@ fn spec_cache_same_kernel() {
         }
     }
 }
+
+/// `rsqrt64` against `f64` over `x` from 2 to `u64::MAX`: both ends of
+/// every even shift's mantissa range and random values of every
+/// magnitude, within the bound stated in its doc comment.
+#[test]
+fn rsqrt64_within_max_error() {
+    let mut seed = 0x2545_F491_4F6C_DD1Du64;
+    let mut worst = 0f64;
+    let mut check = |x: u64| {
+        let (y, e) = rsqrt64(x);
+        assert!((1 << 29..=1 << 30).contains(&y), "{x}: {y}");
+        let got = f64::from(y) * 2f64.powi(-(e as i32));
+        // 1/sqrt(x) in f64 from two halves (x is not exact in f64 above 2^53).
+        let xf = (x >> 11) as f64 * 2048.0 + (x & 0x7FF) as f64;
+        let exact = 1.0 / xf.sqrt();
+        worst = worst.max((got - exact).abs() / exact);
+    };
+    for b in 1..64u32 {
+        let lo = 1u64 << b;
+        for k in 0..2000u64 {
+            check(lo + k);
+            check(lo.wrapping_mul(2).wrapping_sub(1).wrapping_sub(k).max(lo));
+        }
+    }
+    for _ in 0..400_000 {
+        let x = xorshift(&mut seed) >> (xorshift(&mut seed) % 62);
+        check(x.max(2));
+    }
+    let lg = worst.log2();
+    std::println!("rsqrt64: rel error 2^{lg:.2}");
+    assert!(worst <= RSQRT64_MAX_ERROR, "2^{lg:.2}");
+    assert!(
+        worst > RSQRT64_MAX_ERROR / 4.0,
+        "2^{lg:.2}: the bound is tight"
+    );
+}
