@@ -28,7 +28,7 @@
 //! `tables`, with the test that re-derives every entry.
 
 use super::tables::{EXP2, LOG_INV, LOG_T, RSQRT, SIN};
-use super::wide::{clz32, wmul};
+use super::wide::{clz32, wmul, wmul_u32};
 
 /// Q16 one.
 const ONE: i32 = 1 << 16;
@@ -316,14 +316,14 @@ pub(crate) fn unit(v: [i32; 3]) -> [i32; 3] {
 pub(crate) const EXP_NEG_MAX_ERROR: f64 = 1.0 / 46_340.95;
 
 /// `log2(e)` in Q21 (`1.442695… · 2^21`, rounded).
-const LOG2E_Q21: u64 = 3_025_525;
+const LOG2E_Q21: u32 = 3_025_525;
 
 /// `e^-x` for `x >= 0` in Q16 bits, as Q16 bits: through [`exp2_neg`]
 /// (`x · log2 e` in Q5.27, the constant within `2^-22` relative), so
 /// within [`EXP_NEG_MAX_ERROR`] = `2^-15.5` absolute; 0 from `x >= 11.7`
 /// on.
 pub(crate) fn exp_neg(x: u32) -> i32 {
-    let y = (u64::from(x) * LOG2E_Q21) >> 10; // Q16 · Q21 = Q37 -> Q27
+    let y = wmul_u32(x, LOG2E_Q21) >> 10; // Q16 · Q21 = Q37 -> Q27
     match u32::try_from(y) {
         Ok(y) if y < 17 << 27 => exp2_neg(y),
         _ => 0,
@@ -375,7 +375,7 @@ pub(crate) fn spec_entry_q(u: u32, m: u32, q: Option<u64>) -> u16 {
             sum += (yk * *inv) >> 16; // yk < 2^16, inv <= 2^15
         }
         // E = u · sum, Q16; u <= 2^19, sum < 2^17 (sum < 1.16).
-        let e = (u64::from(u) * u64::from(sum)) >> 16;
+        let e = wmul_u32(u, sum) >> 16;
         exp_neg(u32::try_from(e).unwrap_or(u32::MAX))
     } else {
         let q = q.unwrap_or(1 << 16).min(1 << 16) as i32;
