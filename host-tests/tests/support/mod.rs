@@ -336,6 +336,21 @@ impl<'m> Spec<'m> {
         render_full::<P>(&scene, self.width, self.height)
     }
 
+    /// Renders with each of the eight profiles, named.
+    pub fn render_every_profile(&self) -> Result<Vec<(&'static str, CoreFrame)>, RenderError> {
+        use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, F32, F64};
+        Ok(vec![
+            (F64::NAME, self.render::<F64>()?),
+            (F64Pc::NAME, self.render::<F64Pc>()?),
+            (F32::NAME, self.render::<F32>()?),
+            (F32Pc::NAME, self.render::<F32Pc>()?),
+            (Precise::NAME, self.render::<Precise>()?),
+            (PrecisePc::NAME, self.render::<PrecisePc>()?),
+            (Fast::NAME, self.render::<Fast>()?),
+            (FastPc::NAME, self.render::<FastPc>()?),
+        ])
+    }
+
     /// Renders with profile `P` band by band.
     pub fn render_banded<P: Profile>(&self, rows: u32) -> Result<Vec<[u8; 3]>, RenderError> {
         let (camera, lights, objects) = self.core::<P::Real>();
