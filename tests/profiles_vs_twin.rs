@@ -302,7 +302,7 @@ fn fast_lighting_of_bunny_two_lights_against_f64() {
         let len = v.iter().map(|c| c * c).sum::<f64>().sqrt();
         let n = v.map(|c| c / len);
         // Facing the eye (at the origin), a normal of the sphere's ball.
-        if len > 1.0 || len < 0.1 || n.iter().zip(p).map(|(a, b)| a * b).sum::<f64>() >= 0.0 {
+        if !(0.1..=1.0).contains(&len) || n.iter().zip(p).map(|(a, b)| a * b).sum::<f64>() >= 0.0 {
             continue;
         }
         lit += 1;
