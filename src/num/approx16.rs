@@ -169,8 +169,10 @@ pub(crate) fn pow(xb: i32, nb: i32) -> i32 {
 /// `(sin, cos)` of an angle in Q16 bits, results in Q16 bits, within
 /// [`SIN_COS_MAX_ERROR`] absolute.
 pub(crate) fn sin_cos(b: i32) -> (i32, i32) {
-    // Quarter turns in units of 2^-48: b * 2/pi (2/pi as Q0.32).
-    let u = i64::from(b) * 0xa2f9_836e;
+    // Quarter turns in units of 2^-48: b * 2/pi (2/pi as Q0.32,
+    // 0xA2F9_836E = 2^32 - 0x5D06_7C92, so the product is one `wmul`:
+    // |b| <= 2^31 keeps b * 2^32 and the difference within i64).
+    let u = (i64::from(b) << 32) - wmul(b, 0x5D06_7C92);
     let quadrant = (u >> 48) & 3;
     let f = (u >> 16) & 0xFFFF_FFFF; // fraction of a quarter turn, 2^-32
     let ji = ((f + (1 << 25)) >> 26).min(64);
@@ -433,6 +435,20 @@ mod tests {
         let got = x.powf(Q16::from_i32(800)).to_f64();
         assert!((got - x.to_f64().powf(800.0)).abs() <= 2f64.powi(-12));
         assert!((got - 0.449).abs() < 0.01);
+    }
+
+    #[test]
+    fn sin_cos_quarter_turn_product_is_exact() {
+        // sin_cos's b · 0xA2F9_836E as b · 2^32 - wmul(b, 0x5D06_7C92).
+        let mut rng = Rng(7);
+        let edges = [0, 1, -1, i32::MAX, i32::MIN, i32::MIN + 1, 0x7FFF, -0x8000];
+        for b in edges
+            .into_iter()
+            .chain((0..100_000).map(|_| (rng.next_i64() >> 32) as i32))
+        {
+            let want = i64::from(b) * 0xA2F9_836E;
+            assert_eq!((i64::from(b) << 32) - wmul(b, 0x5D06_7C92), want, "{b}");
+        }
     }
 
     #[test]
