@@ -544,20 +544,10 @@ fn render_format<P: Profile, F: CorePixelFormat>(
     })
 }
 
-/// CRC-32 (IEEE 802.3, reflected, as zlib and `crc32fast` compute it).
+/// CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320: `CRC_32_ISO_HDLC`,
+/// the checksum of zlib and of the firmware's `crc` crate) by `crc32fast`.
 pub fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= b as u32;
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xedb8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
+    crc32fast::hash(bytes)
 }
 
 #[cfg(test)]

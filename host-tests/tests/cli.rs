@@ -3,59 +3,12 @@
 //! files left untouched on error, and the outputs of `scenes`, `bake` and
 //! `ideal`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use crate::support::{fixshade, TempDir};
+use std::path::Path;
+use std::process::Output;
 
 use fixshade_host::builtin::builtin_scenes;
 use fixshade_host::image::read_png;
-
-const EXE: &str = env!("CARGO_BIN_EXE_fixshade");
-
-/// A temporary folder, removed when dropped.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(tag: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("fixshade-cli-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create temp dir");
-        Self(dir)
-    }
-
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-
-    fn write(&self, name: &str, text: &str) -> PathBuf {
-        let path = self.path(name);
-        std::fs::write(&path, text).expect("write test file");
-        path
-    }
-
-    /// The names of the files in the folder, sorted.
-    fn files(&self) -> Vec<String> {
-        let mut names: Vec<String> = std::fs::read_dir(&self.0)
-            .expect("list temp dir")
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(EXE)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run fixshade")
-}
 
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
@@ -69,7 +22,7 @@ const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
 #[test]
 fn bad_scene_files_exit_2_and_leave_the_output_alone() {
-    let dir = TempDir::new("bad");
+    let dir = TempDir::new("cli-bad");
     dir.write("index.obj", &format!("{TRIANGLE}f 1 2 9\n"));
     dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
     let object = |extra: &str| format!("[[object]]\nmesh = \"cube\"\n[[object]]\n{extra}");
@@ -118,7 +71,7 @@ fn bad_scene_files_exit_2_and_leave_the_output_alone() {
     for (name, text, expected) in &cases {
         let scene = dir.write(&format!("{name}.toml"), text);
         let out = dir.write("out.png", "old contents");
-        let result = run(
+        let result = fixshade(
             &dir.0,
             &[
                 "ideal",
@@ -144,14 +97,14 @@ fn bad_scene_files_exit_2_and_leave_the_output_alone() {
         assert!(result.stdout.is_empty(), "{name}");
     }
     // The missing OBJ is named with its path and the OS error.
-    let missing = run(&dir.0, &["ideal", "missing-obj.toml", "--out", "out.png"]);
+    let missing = fixshade(&dir.0, &["ideal", "missing-obj.toml", "--out", "out.png"]);
     let message = stderr(&missing);
     assert!(
         message.contains("missing-obj.toml: object[1].mesh: OBJ file `missing.obj`: cannot read: "),
         "{message}"
     );
     // A missing scene file is bad input too.
-    let absent = run(&dir.0, &["ideal", "absent.toml", "--out", "out.png"]);
+    let absent = fixshade(&dir.0, &["ideal", "absent.toml", "--out", "out.png"]);
     assert_eq!(absent.status.code(), Some(2));
     assert!(stderr(&absent).starts_with("error: absent.toml: cannot read scene file: "));
     // No temporary or other stray file was left behind.
@@ -163,7 +116,7 @@ fn bad_scene_files_exit_2_and_leave_the_output_alone() {
 
 #[test]
 fn usage_errors_exit_2() {
-    let dir = TempDir::new("usage");
+    let dir = TempDir::new("cli-usage");
     for args in [
         &[][..],
         &["render"][..],
@@ -172,7 +125,7 @@ fn usage_errors_exit_2() {
         &["bake", "m.obj"][..],
         &["bake", "m.obj", "--out", "m.rs", "--scale", "big"][..],
     ] {
-        let out = run(&dir.0, args);
+        let out = fixshade(&dir.0, args);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
         // Without arguments clap prints the help, otherwise an error.
         let message = stderr(&out);
@@ -181,13 +134,13 @@ fn usage_errors_exit_2() {
             "{args:?}: {message}"
         );
     }
-    let unknown = run(&dir.0, &["ideal", "--scene", "nope", "--out", "x.png"]);
+    let unknown = fixshade(&dir.0, &["ideal", "--scene", "nope", "--out", "x.png"]);
     assert_eq!(unknown.status.code(), Some(2));
     assert!(
         stderr(&unknown).starts_with("error: builtin:nope: no such built-in scene; known scenes: ")
     );
     assert!(dir.files().is_empty());
-    let help = run(&dir.0, &["--help"]);
+    let help = fixshade(&dir.0, &["--help"]);
     assert_eq!(help.status.code(), Some(0));
     for sub in ["scenes", "bake", "ideal"] {
         assert!(stdout(&help).contains(sub));
@@ -196,8 +149,8 @@ fn usage_errors_exit_2() {
 
 #[test]
 fn write_failures_exit_1() {
-    let dir = TempDir::new("io");
-    let out = run(
+    let dir = TempDir::new("cli-io");
+    let out = fixshade(
         &dir.0,
         &["ideal", "--scene", "can-flat", "--out", "no/such/dir/x.png"],
     );
@@ -208,7 +161,7 @@ fn write_failures_exit_1() {
         stderr(&out)
     );
     dir.write("tri.obj", &format!("{TRIANGLE}f 1 2 3\n"));
-    let out = run(&dir.0, &["bake", "tri.obj", "--out", "no/such/dir/x.rs"]);
+    let out = fixshade(&dir.0, &["bake", "tri.obj", "--out", "no/such/dir/x.rs"]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stderr(&out).starts_with("error: no/such/dir/x.rs: cannot write: "));
     assert_eq!(dir.files(), ["tri.obj"]);
@@ -216,7 +169,7 @@ fn write_failures_exit_1() {
 
 #[test]
 fn scenes_lists_every_builtin() {
-    let out = run(&std::env::temp_dir(), &["scenes"]);
+    let out = fixshade(&std::env::temp_dir(), &["scenes"]);
     assert_eq!(out.status.code(), Some(0));
     let text = stdout(&out);
     let lines: Vec<&str> = text.lines().collect();
@@ -242,7 +195,7 @@ fn table_rows(text: &str, name: &str) -> usize {
 
 #[test]
 fn bake_writes_the_counts() {
-    let dir = TempDir::new("bake");
+    let dir = TempDir::new("cli-bake");
     // A cube of side 4 centred on (1, 2, 3), as quads with normals.
     let mut cube = String::new();
     for i in 0..8 {
@@ -251,7 +204,7 @@ fn bake_writes_the_counts() {
     }
     cube.push_str("f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n");
     dir.write("my cube.obj", &cube);
-    let out = run(&dir.0, &["bake", "my cube.obj", "--out", "cube.rs"]);
+    let out = fixshade(&dir.0, &["bake", "my cube.obj", "--out", "cube.rs"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert_eq!(
         stdout(&out),
@@ -272,7 +225,7 @@ fn bake_writes_the_counts() {
     assert!(text.contains("[-9459, -9459, -9459],"));
 
     // With a crease angle: flat faces, three normals at each corner.
-    let out = run(
+    let out = fixshade(
         &dir.0,
         &[
             "bake",
@@ -330,7 +283,7 @@ fn bake_writes_the_counts() {
             "error: --name: `cube` is not an upper-case Rust constant name".to_string(),
         ),
     ] {
-        let out = run(&dir.0, &args);
+        let out = fixshade(&dir.0, &args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         assert!(
             stderr(&out).starts_with(&expected),
@@ -348,10 +301,10 @@ fn bake_writes_the_counts() {
 
 #[test]
 fn bake_reproduces_the_builtin_bunny() {
-    let dir = TempDir::new("bunny");
+    let dir = TempDir::new("cli-bunny");
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let obj = root.join("assets/bunny.obj");
-    let out = run(
+    let out = fixshade(
         &dir.0,
         &["bake", obj.to_str().unwrap(), "--out", "bunny.rs"],
     );
@@ -372,12 +325,12 @@ fn bake_reproduces_the_builtin_bunny() {
 
 #[test]
 fn ideal_writes_a_png_of_the_scene_size() {
-    let dir = TempDir::new("ideal");
+    let dir = TempDir::new("cli-ideal");
     dir.write(
         "wide.toml",
         "width = 64\nheight = 48\n[[light]]\ntype = \"point\"\nposition = [0, 0, 5]\n[[object]]\nmesh = \"sphere\"\nshading = \"phong\"\n",
     );
-    let out = run(&dir.0, &["ideal", "wide.toml", "--out", "wide.png"]);
+    let out = fixshade(&dir.0, &["ideal", "wide.toml", "--out", "wide.png"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert!(stdout(&out).starts_with("wrote wide.png: 64x48, "));
     let image = read_png(dir.path("wide.png")).unwrap();
@@ -387,7 +340,7 @@ fn ideal_writes_a_png_of_the_scene_size() {
     assert_ne!(image.pixels[24 * 64 + 32], [0, 0, 0]);
 
     dir.write("bunny.png", "old");
-    let out = run(
+    let out = fixshade(
         &dir.0,
         &["ideal", "--scene", "bunny-gouraud", "--out", "bunny.png"],
     );

@@ -1,21 +1,12 @@
 //! `fixshade animate`, run as a real process: a turn of a scene as an
 //! animated GIF, and exit status 2 with no file for bad input.
 
-use std::path::PathBuf;
+use crate::support::{TempDir, EXE};
 use std::process::Command;
 
 use fixshade_host::builtin::load_builtin;
 use fixshade_host::cli::animate::turned;
 use fixshade_host::core_render::{render_core, CoreProfile};
-
-const EXE: &str = env!("CARGO_BIN_EXE_fixshade");
-
-fn temp(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fixshade-animate-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn run(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(EXE).args(args).output().unwrap();
@@ -28,7 +19,7 @@ fn run(args: &[&str]) -> (i32, String, String) {
 
 #[test]
 fn a_turn_is_written_as_a_looping_gif() {
-    let dir = temp("ok");
+    let dir = TempDir::new("animate-ok");
     let gif = dir.join("spin.gif");
     let (code, stdout, stderr) = run(&[
         "animate",
@@ -80,7 +71,7 @@ fn a_turn_is_written_as_a_looping_gif() {
 
 #[test]
 fn bad_input_is_status_2_and_no_file() {
-    let dir = temp("bad");
+    let dir = TempDir::new("animate-bad");
     let gif = dir.join("spin.gif");
     let g = gif.to_str().unwrap();
     let missing = dir.join("no-such-folder").join("spin.gif");

@@ -7,10 +7,9 @@
 //! one target: one firmware build (about 30 s on 2 cores when the core is
 //! cached in the measurement's target folder).
 
-use std::path::{Path, PathBuf};
+use crate::support::{fixshade, TempDir};
+use std::path::Path;
 use std::process::Command;
-
-const EXE: &str = env!("CARGO_BIN_EXE_fixshade");
 
 /// A regular tetrahedron, counter-clockwise outwards: convex.
 const TETRA: &str =
@@ -28,11 +27,10 @@ fn scene(width: u32) -> String {
     )
 }
 
-fn temp_dir(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fixshade-fw-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("tetra.obj"), TETRA).unwrap();
+/// A fresh temporary folder holding `tetra.obj`.
+fn temp_dir(tag: &str) -> TempDir {
+    let dir = TempDir::new(&format!("fw-{tag}"));
+    dir.write("tetra.obj", TETRA);
     dir
 }
 
@@ -53,14 +51,6 @@ fn missing_tools() -> Option<String> {
         return Some("the thumbv7em-none-eabihf target is not installed".into());
     }
     None
-}
-
-fn fixshade(dir: &Path, args: &[&str]) -> std::process::Output {
-    Command::new(EXE)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -1,31 +1,13 @@
 //! `fixshade render` and `fixshade compare` as a user runs them.
 
+use crate::support::{fixshade, TempDir};
 use fixshade_host::builtin::load_builtin;
 use fixshade_host::core_render::{crc32, render_core, CoreProfile};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-const EXE: &str = env!("CARGO_BIN_EXE_fixshade");
-
-fn temp(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fixshade-render-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(EXE)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
 
 #[test]
 fn render_prints_the_crc_of_the_frame_bytes() {
-    let dir = temp("crc");
-    let out = run(
+    let dir = TempDir::new("render-crc");
+    let out = fixshade(
         &dir,
         &[
             "render",
@@ -62,8 +44,8 @@ fn render_prints_the_crc_of_the_frame_bytes() {
 
 #[test]
 fn compare_writes_frames_diff_and_metrics() {
-    let dir = temp("cmp");
-    let out = run(
+    let dir = TempDir::new("render-cmp");
+    let out = fixshade(
         &dir,
         &[
             "compare",
@@ -111,7 +93,7 @@ fn compare_writes_frames_diff_and_metrics() {
 
 #[test]
 fn bad_render_input_exits_2_and_writes_nothing() {
-    let dir = temp("bad");
+    let dir = TempDir::new("render-bad");
     std::fs::write(dir.join("keep.png"), b"old").unwrap();
     for args in [
         vec![
@@ -127,7 +109,7 @@ fn bad_render_input_exits_2_and_writes_nothing() {
         vec!["render", "missing.toml", "--out", "keep.png"],
         vec!["compare", "--scene", "no-such-scene", "--out", "cmp"],
     ] {
-        let out = run(&dir, &args);
+        let out = fixshade(&dir, &args);
         assert_eq!(
             out.status.code(),
             Some(2),
@@ -140,7 +122,7 @@ fn bad_render_input_exits_2_and_writes_nothing() {
     assert!(!dir.join("cmp").exists());
     // A folder that cannot be created: status 1.
     std::fs::write(dir.join("file"), b"x").unwrap();
-    let out = run(
+    let out = fixshade(
         &dir,
         &["compare", "--scene", "big-face-phong", "--out", "file/sub"],
     );

@@ -2,14 +2,10 @@
 //! independent ideal reference covers, up to the subpixel snapping of the
 //! clipped corners.
 
-use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use crate::support::{ObjSpec, Spec};
 use fixshade::mesh::Mesh;
-use fixshade::num::{Precise, Profile, Real, F64};
-use fixshade::render::{prepare, Tri, Workspace};
-use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{FrameBuf, Rgb8, Rgb888, Target};
-use fixshade_host::ideal::{self, IdealScene};
+use fixshade::num::{Precise, Profile, F64};
+use fixshade::scene::Shading;
 
 const W: u32 = 96;
 const H: u32 = 72;
@@ -37,63 +33,32 @@ const CASES: [[[i16; 3]; 3]; 4] = [
     [[-20000, -15000, 0], [20000, -15000, 0], [0, 12000, 32000]],
 ];
 
-fn core_mask<P: Profile>(pos: &'static [[i16; 3]; 3]) -> Vec<bool> {
+/// The clipped triangle `pos` as one white, unlit (`ka` = 1) object seen
+/// from [`EYE`] with the near plane at [`NEAR`]: one description for the
+/// core and the ideal reference.
+fn spec(pos: &'static [[i16; 3]; 3]) -> Spec<'static> {
     let mesh = Mesh::new(pos, &[[0, 1, 2]], None).unwrap();
-    let r = |v: f32| P::Real::from_f32(v);
-    let m = Material {
-        color: Vec3::from_f32([1.0; 3]),
-        ka: r(1.0),
-        kd: r(0.0),
-        ks: r(0.0),
-        shininess: r(1.0),
-    };
-    let objs = [Object {
-        mesh,
-        transform: Affine::IDENTITY,
-        material: m,
-        shading: Shading::Flat,
-        cull_backfaces: false,
+    let mut s = Spec::new(W, H, EYE);
+    s.near = NEAR;
+    s.objects = vec![ObjSpec {
+        ka: 1.0,
+        kd: 0.0,
+        ..ObjSpec::new(mesh, Shading::Flat)
     }];
-    let lights: [Light<P::Real>; 0] = [];
-    let camera = Camera::look_at_f32(
-        [0.0, 0.0, 1.5],
-        [0.0; 3],
-        [0.0, 1.0, 0.0],
-        60.0,
-        NEAR as f32,
-        None,
-    )
-    .unwrap();
-    let scene = Scene {
-        camera,
-        objects: &objs,
-        lights: &lights,
-        ambient: r(1.0),
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    };
-    let (mut xy, mut vals, mut tris) = (
-        vec![fixshade::render::ScreenXy::ZERO; 32],
-        vec![P::Lerp::default(); 32],
-        vec![Tri::default(); 32],
+    s
+}
+
+fn core_mask<P: Profile>(pos: &'static [[i16; 3]; 3]) -> Vec<bool> {
+    let frame = spec(pos).render::<P>().unwrap();
+    // The near plane cuts the triangle into a polygon of three or four
+    // corners, drawn as a fan of one or two triangles.
+    assert_eq!(
+        frame.stats.triangles as usize,
+        screen_polygon(pos).len() - 2,
+        "the triangle was clipped: {:?}",
+        frame.stats
     );
-    let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
-    let ws = Workspace {
-        xy: &mut xy,
-        vals: &mut vals,
-        tris: &mut tris,
-        colors: &mut colors,
-    };
-    let frame = prepare::<P>(&scene, W, H, ws).unwrap();
-    assert!(frame.vertex_count() > 3, "the triangle was clipped");
-    let mut px = vec![[0u8; 3]; (W * H) as usize];
-    let mut fb = FrameBuf::<Rgb888>::new(&mut px, W, H).unwrap();
-    fb.clear(Rgb8::BLACK);
-    frame
-        .render::<_, fixshade::target::Depth16>(&scene, &mut fb, None)
-        .unwrap();
-    px.iter().map(|p| p[0] != 0).collect()
+    frame.covered
 }
 
 /// Exact screen polygon of the clipped triangle (f64), for distances.
@@ -147,40 +112,8 @@ fn distance_to_edges(poly: &[[f64; 2]], q: [f64; 2]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-fn ideal_mask(pos: &[[i16; 3]; 3]) -> Vec<bool> {
-    let v = |p: [i16; 3]| ideal::Vertex {
-        position: p.map(|c| c as f64 / 16384.0),
-        normal: [0.0, 0.0, 1.0],
-    };
-    let scene = IdealScene {
-        width: W,
-        height: H,
-        background: [0.0; 3],
-        camera: ideal::Camera {
-            eye: EYE,
-            target: [0.0; 3],
-            up: [0.0, 1.0, 0.0],
-            fov_y_deg: 60.0,
-            near: NEAR,
-            far: None,
-        },
-        ambient: 1.0,
-        specular: ideal::SpecularModel::Phong,
-        lights: vec![],
-        objects: vec![ideal::Object {
-            triangles: vec![[v(pos[0]), v(pos[1]), v(pos[2])]],
-            shading: ideal::Shading::Flat,
-            material: ideal::Material {
-                color: [1.0; 3],
-                ka: 1.0,
-                kd: 0.0,
-                ks: 0.0,
-                shininess: 1.0,
-            },
-            cull_backfaces: false,
-        }],
-    };
-    ideal::render(&scene).unwrap().covered
+fn ideal_mask(pos: &'static [[i16; 3]; 3]) -> Vec<bool> {
+    spec(pos).render_ideal().1
 }
 
 #[test]

@@ -91,6 +91,30 @@ fn facing_patch(mesh: Mesh<'static>, shading: Shading) -> Spec<'static> {
     s
 }
 
+/// Every covered pixel is `colour`, in the ideal and in each of the eight
+/// profiles (each covering more than `min_covered` pixels).
+fn uniform_in_every_profile(s: &Spec<'_>, colour: [u8; 3], min_covered: usize, label: &str) {
+    let (ideal, icov) = s.render_ideal();
+    let uniform = |rgb: &[[u8; 3]], covered: &[bool]| {
+        rgb.iter().zip(covered).all(|(p, &c)| !c || *p == colour)
+    };
+    assert!(uniform(&ideal, &icov), "{label}: ideal");
+    for (name, f) in s.render_every_profile().unwrap() {
+        assert!(f.covered_count() > min_covered, "{label}: {name}");
+        assert!(uniform(&f.rgb, &f.covered), "{label}: {name}");
+    }
+}
+
+/// Each of the eight profiles covers the pixels `reference` covers and is
+/// within `bound` levels of it there.
+fn every_profile_within(s: &Spec<'_>, reference: &CoreFrame, bound: u8, label: &str) {
+    for (name, f) in s.render_every_profile().unwrap() {
+        assert_eq!(f.covered, reference.covered, "{label}: {name}: coverage");
+        let (d, _) = max_diff_covered(&f.rgb, &f.covered, &reference.rgb, &reference.covered);
+        assert!(d <= bound, "{label}: {name} {d} levels from the reference");
+    }
+}
+
 fn diff<P: Profile>(s: &Spec<'_>, reference: &CoreFrame) -> u8 {
     let f = s.render::<P>().unwrap();
     assert_eq!(f.covered, reference.covered, "{}: same coverage", P::NAME);
@@ -319,13 +343,7 @@ fn vertices_in_front_of_on_and_behind_the_near_plane() {
                 .push((LightSpec::Directional([0.2, 0.5, 1.0]), 0.8, [1.0; 3]));
             let (_, ideal) = s.render_ideal();
             let reference = s.render::<F64>().unwrap();
-            for (name, f) in [
-                ("f64", reference.clone()),
-                ("f32", s.render::<F32>().unwrap()),
-                ("precise", s.render::<Precise>().unwrap()),
-                ("fast", s.render::<Fast>().unwrap()),
-                ("f64-pc", s.render::<F64Pc>().unwrap()),
-            ] {
+            for (name, f) in s.render_every_profile().unwrap() {
                 let (n, ok) = boundary_only(&f.covered, &ideal, W, H);
                 assert!(ok, "case {c} {shading:?} {name}: {n} pixels differ inside");
             }
@@ -444,7 +462,7 @@ fn point_light_on_close_to_and_far_from_the_surface() {
             assert!(diff::<F32>(&s, &reference) <= 1, "{label}: f32");
             if k < 3 {
                 assert!(di <= 1, "{label}: f64 {di} from the ideal");
-                assert!(diff::<Fast>(&s, &reference) <= 1, "{label}: fast");
+                every_profile_within(&s, &reference, 1, &label);
             }
             if k == 0 {
                 // With the true (flat) normals the light lies in the
@@ -452,20 +470,7 @@ fn point_light_on_close_to_and_far_from_the_surface() {
                 // 0.5 · 0.3 · 255 = 38.25 -> 38, as in the ideal.
                 let mut flat = s.clone();
                 flat.objects[0].mesh = quad(&FLAT_UP);
-                let (ideal, icov) = flat.render_ideal();
-                assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == [38; 3]));
-                for f in [
-                    flat.render::<F64>().unwrap(),
-                    flat.render::<Precise>().unwrap(),
-                    flat.render::<Fast>().unwrap(),
-                ] {
-                    assert!(f.covered_count() > 700);
-                    assert!(f
-                        .rgb
-                        .iter()
-                        .zip(&f.covered)
-                        .all(|(p, &c)| !c || *p == [38; 3]));
-                }
+                uniform_in_every_profile(&flat, [38; 3], 700, &label);
             }
             if k == 3 {
                 // 3·10^4 is within Q16's range: Fast too (was 214 levels off).
@@ -512,33 +517,13 @@ fn normals_that_average_to_zero() {
             .push((LightSpec::Directional([0.0, 0.0, 1.0]), 1.0, [1.0; 3]));
         s.lights
             .push((LightSpec::Point([0.1, 0.1, 0.5]), 1.0, [1.0; 3]));
-        let (ideal, icov) = s.render_ideal();
-        assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == [38; 3]));
-        for f in [
-            s.render::<F64>().unwrap(),
-            s.render::<F32>().unwrap(),
-            s.render::<Precise>().unwrap(),
-            s.render::<Fast>().unwrap(),
-            s.render::<PrecisePc>().unwrap(),
-        ] {
-            assert!(f.covered_count() > 700);
-            assert!(f
-                .rgb
-                .iter()
-                .zip(&f.covered)
-                .all(|(p, &c)| !c || *p == [38; 3]));
-        }
+        uniform_in_every_profile(&s, [38; 3], 700, &format!("{shading:?} zero normals"));
 
         let mut s = facing_patch(quad(&OPPOSITE), shading);
         s.lights
             .push((LightSpec::Directional([1.0, 0.2, 0.3]), 1.0, [1.0; 3]));
         let reference = s.render::<F64>().unwrap();
-        for d in [
-            diff::<Precise>(&s, &reference),
-            diff::<Fast>(&s, &reference),
-        ] {
-            assert!(d <= 1, "{shading:?}: {d} levels from f64");
-        }
+        every_profile_within(&s, &reference, 1, &format!("{shading:?} opposite normals"));
         let (ideal, icov) = s.render_ideal();
         // Away from the middle column (x = 32), where the interpolated
         // normal passes through zero and flips.
@@ -569,22 +554,7 @@ fn eight_lights_saturate_at_255() {
             s.lights
                 .push((LightSpec::Point([a.cos(), a.sin(), 2.0]), 1.0, [1.0; 3]));
         }
-        let (ideal, icov) = s.render_ideal();
-        assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == [255; 3]));
-        for f in [
-            s.render::<F64>().unwrap(),
-            s.render::<F32>().unwrap(),
-            s.render::<Precise>().unwrap(),
-            s.render::<Fast>().unwrap(),
-            s.render::<FastPc>().unwrap(),
-        ] {
-            assert!(f.covered_count() > 700);
-            assert!(f
-                .rgb
-                .iter()
-                .zip(&f.covered)
-                .all(|(p, &c)| !c || *p == [255; 3]));
-        }
+        uniform_in_every_profile(&s, [255; 3], 700, &format!("{shading:?} eight lights"));
         s.lights
             .push((LightSpec::Directional([0.0, 0.0, 1.0]), 1.0, [1.0; 3]));
         assert_eq!(
@@ -612,17 +582,7 @@ fn coplanar_faces_first_drawn_wins() {
             s.objects.swap(0, 1);
         }
         let want = if order == 0 { [255, 0, 0] } else { [0, 0, 255] };
-        let (ideal, icov) = s.render_ideal();
-        assert!(ideal.iter().zip(&icov).all(|(p, &c)| !c || *p == want));
-        for f in [
-            s.render::<F64>().unwrap(),
-            s.render::<Precise>().unwrap(),
-            s.render::<Fast>().unwrap(),
-            s.render::<FastPc>().unwrap(),
-        ] {
-            assert!(f.covered_count() > 300);
-            assert!(f.rgb.iter().zip(&f.covered).all(|(p, &c)| !c || *p == want));
-        }
+        uniform_in_every_profile(&s, want, 300, &format!("order {order}"));
     }
 }
 

@@ -1,7 +1,7 @@
 //! Tests of the frame metrics (hand-computed values on tiny frames), PNG
 //! input/output, the difference heat map and the reference-image check.
 
-use std::path::PathBuf;
+use crate::support::TempDir;
 
 use fixshade_host::image::{
     check_reference_in, diff_heatmap, heat_color, read_png, write_png, ReferenceError,
@@ -23,14 +23,6 @@ fn view<'a>(rgb: &'a [[u8; 3]], covered: &'a [bool]) -> FrameView<'a> {
         covered,
         object: None,
     }
-}
-
-/// A fresh, empty temporary folder for one test.
-fn temp_dir(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fixshade-host-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
 }
 
 #[test]
@@ -189,7 +181,7 @@ fn heatmap_colours() {
 
 #[test]
 fn png_round_trip_leaves_no_temporary_file() {
-    let dir = temp_dir("png");
+    let dir = TempDir::new("host-png");
     let path = dir.join("a.png");
     let rgb: Vec<[u8; 3]> = (0..12u8).map(|i| [i * 20, 255 - i, i % 3 * 100]).collect();
     write_png(&path, 4, 3, &rgb).expect("written");
@@ -214,7 +206,7 @@ fn png_round_trip_leaves_no_temporary_file() {
 
 #[test]
 fn read_png_converts_grey_and_rgba_to_rgb() {
-    let dir = temp_dir("colour-types");
+    let dir = TempDir::new("host-colour-types");
     let cases: [(png::ColorType, &[u8]); 2] = [
         (png::ColorType::Grayscale, &[7, 200]),
         (png::ColorType::Rgba, &[1, 2, 3, 0, 4, 5, 6, 255]),
@@ -236,7 +228,7 @@ fn read_png_converts_grey_and_rgba_to_rgb() {
 
 #[test]
 fn reference_check_writes_a_three_panel_diff_on_mismatch() {
-    let dir = temp_dir("reference");
+    let dir = TempDir::new("host-reference");
     let (images, diffs) = (dir.join("images"), dir.join("diff"));
     let check =
         |rgb: &[[u8; 3]], make| check_reference_in(&images, &diffs, "tiny", 2, 2, rgb, make);

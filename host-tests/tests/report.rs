@@ -6,35 +6,15 @@
 //! figures' effect on the picks is checked on the same records through the
 //! library.
 
+use crate::support::{TempDir, EXE};
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 use fixshade_host::core_render::CoreProfile;
 use fixshade_host::report::{
     parse_firmware_results, CostSource, Mode, ReportData, Summary, Target, QUICK_SCENES,
 };
-
-const EXE: &str = env!("CARGO_BIN_EXE_fixshade");
-
-/// A temporary folder, removed when dropped.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(tag: &str) -> Self {
-        let dir =
-            std::env::temp_dir().join(format!("fixshade-report-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create temp dir");
-        Self(dir)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 fn run(args: &[&str]) -> Output {
     Command::new(EXE).args(args).output().expect("run fixshade")
@@ -46,7 +26,7 @@ fn text(path: &Path) -> String {
 
 #[test]
 fn quick_report_has_every_record_the_summary_and_the_plots() {
-    let tmp = TempDir::new("quick");
+    let tmp = TempDir::new("report-quick");
     let out = tmp.0.join("out");
     let o = run(&[
         "report",
@@ -305,7 +285,7 @@ fn quick_report_has_every_record_the_summary_and_the_plots() {
 
 #[test]
 fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
-    let tmp = TempDir::new("bad");
+    let tmp = TempDir::new("report-bad");
     let file = tmp.0.join("a-file");
     std::fs::write(&file, "x").unwrap();
     let under_file = file.join("out");
@@ -355,7 +335,7 @@ fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
 
 #[test]
 fn missing_malformed_and_stale_measurements_are_refused_before_any_output() {
-    let tmp = TempDir::new("measurements");
+    let tmp = TempDir::new("report-measurements");
     let out = tmp.0.join("out");
     let committed =
         text(&fixshade_host::report::chips::repo_root().join("docs/measurements/firmware.json"));
@@ -524,7 +504,7 @@ fn the_users_scene_files_are_swept_and_picked_by_ram() {
 
     // `report SCENE.toml...`: the files instead of the built-ins, with
     // the RAM each needs against the parts.
-    let tmp = TempDir::new("user");
+    let tmp = TempDir::new("report-user");
     let out = tmp.0.join("out");
     let dodeca = scenes.join("dodeca-phong-n100.toml");
     let o = run(&[

@@ -2,7 +2,8 @@
 //! its message, built-in and OBJ meshes, the conversion to the ideal
 //! scene, and the built-in scenes rendered by the ideal reference.
 
-use std::path::{Path, PathBuf};
+use crate::support::TempDir;
+use std::path::Path;
 
 use fixshade::mesh::{DODECAHEDRON, SPHERE};
 use fixshade_host::builtin::{builtin_scenes, load_builtin};
@@ -40,15 +41,6 @@ translate = [0.0, 0.0, 0.0]
 cull_backfaces = true
 material = { color = [1.0, 0.3, 0.2], ka = 0.2, kd = 0.5, ks = 0.5, shininess = 100.0 }
 "#;
-
-/// A fresh empty folder under the system temp folder.
-fn temp_dir(tag: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("fixshade-scene-file-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create temp dir");
-    dir
-}
 
 fn parse(text: &str) -> Result<SceneDesc, SceneError> {
     SceneDesc::from_toml(text, "s.toml", Some(Path::new(".")))
@@ -406,7 +398,7 @@ fn error_messages_name_file_field_and_problem() {
 
 #[test]
 fn load_reads_files_and_reports_missing_ones() {
-    let dir = temp_dir("load");
+    let dir = TempDir::new("scene-file-load");
     let path = dir.join("scene.toml");
     std::fs::write(&path, "width = 32\nheight = 16\n").unwrap();
     let s = SceneDesc::load(&path).unwrap();
@@ -441,7 +433,7 @@ fn tetra_obj(with_normals: bool) -> String {
 
 #[test]
 fn obj_meshes_keep_world_geometry_and_their_normals() {
-    let dir = temp_dir("obj");
+    let dir = TempDir::new("scene-file-obj");
     std::fs::write(dir.join("tetra.obj"), tetra_obj(true)).unwrap();
     let scene = "[[object]]\nmesh = \"tetra.obj\"\nscale = 0.5\nrotate_deg = [0, 0, 90]\ntranslate = [1, 2, 3]\n";
     std::fs::write(dir.join("s.toml"), scene).unwrap();
@@ -492,7 +484,7 @@ fn obj_meshes_keep_world_geometry_and_their_normals() {
 
 #[test]
 fn obj_without_normals_gets_generated_ones() {
-    let dir = temp_dir("objgen");
+    let dir = TempDir::new("scene-file-objgen");
     std::fs::write(dir.join("tetra.obj"), tetra_obj(false)).unwrap();
     let load = |crease: &str| {
         let text = format!("[[object]]\nmesh = \"tetra.obj\"\n{crease}");
@@ -511,7 +503,7 @@ fn obj_without_normals_gets_generated_ones() {
 
 #[test]
 fn obj_errors_name_the_object_and_the_problem() {
-    let dir = temp_dir("objerr");
+    let dir = TempDir::new("scene-file-objerr");
     let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     let files = [
         ("index.obj", format!("{tri}f 1 2 9\n")),
@@ -573,7 +565,7 @@ fn obj_errors_name_the_object_and_the_problem() {
 
 #[test]
 fn obj_with_too_many_vertices() {
-    let dir = temp_dir("objbig");
+    let dir = TempDir::new("scene-file-objbig");
     // 65538 distinct vertices in 21846 triangles.
     let mut text = String::with_capacity(2_000_000);
     for i in 0..65538u32 {

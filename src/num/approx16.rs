@@ -28,7 +28,7 @@
 //! `tables`, with the test that re-derives every entry.
 
 use super::tables::{EXP2, LOG_INV, LOG_T, RSQRT, SIN};
-use super::wide::{clz32, wmul};
+use super::wide::{clz32, wmul, wmul_u32};
 
 /// Q16 one.
 const ONE: i32 = 1 << 16;
@@ -169,8 +169,10 @@ pub(crate) fn pow(xb: i32, nb: i32) -> i32 {
 /// `(sin, cos)` of an angle in Q16 bits, results in Q16 bits, within
 /// [`SIN_COS_MAX_ERROR`] absolute.
 pub(crate) fn sin_cos(b: i32) -> (i32, i32) {
-    // Quarter turns in units of 2^-48: b * 2/pi (2/pi as Q0.32).
-    let u = i64::from(b) * 0xa2f9_836e;
+    // Quarter turns in units of 2^-48: b * 2/pi (2/pi as Q0.32,
+    // 0xA2F9_836E = 2^32 - 0x5D06_7C92, so the product is one `wmul`:
+    // |b| <= 2^31 keeps b * 2^32 and the difference within i64).
+    let u = (i64::from(b) << 32) - wmul(b, 0x5D06_7C92);
     let quadrant = (u >> 48) & 3;
     let f = (u >> 16) & 0xFFFF_FFFF; // fraction of a quarter turn, 2^-32
     let ji = ((f + (1 << 25)) >> 26).min(64);
@@ -316,14 +318,14 @@ pub(crate) fn unit(v: [i32; 3]) -> [i32; 3] {
 pub(crate) const EXP_NEG_MAX_ERROR: f64 = 1.0 / 46_340.95;
 
 /// `log2(e)` in Q21 (`1.442695… · 2^21`, rounded).
-const LOG2E_Q21: u64 = 3_025_525;
+const LOG2E_Q21: u32 = 3_025_525;
 
 /// `e^-x` for `x >= 0` in Q16 bits, as Q16 bits: through [`exp2_neg`]
 /// (`x · log2 e` in Q5.27, the constant within `2^-22` relative), so
 /// within [`EXP_NEG_MAX_ERROR`] = `2^-15.5` absolute; 0 from `x >= 11.7`
 /// on.
 pub(crate) fn exp_neg(x: u32) -> i32 {
-    let y = (u64::from(x) * LOG2E_Q21) >> 10; // Q16 · Q21 = Q37 -> Q27
+    let y = wmul_u32(x, LOG2E_Q21) >> 10; // Q16 · Q21 = Q37 -> Q27
     match u32::try_from(y) {
         Ok(y) if y < 17 << 27 => exp2_neg(y),
         _ => 0,
@@ -375,7 +377,7 @@ pub(crate) fn spec_entry_q(u: u32, m: u32, q: Option<u64>) -> u16 {
             sum += (yk * *inv) >> 16; // yk < 2^16, inv <= 2^15
         }
         // E = u · sum, Q16; u <= 2^19, sum < 2^17 (sum < 1.16).
-        let e = (u64::from(u) * u64::from(sum)) >> 16;
+        let e = wmul_u32(u, sum) >> 16;
         exp_neg(u32::try_from(e).unwrap_or(u32::MAX))
     } else {
         let q = q.unwrap_or(1 << 16).min(1 << 16) as i32;
@@ -433,6 +435,20 @@ mod tests {
         let got = x.powf(Q16::from_i32(800)).to_f64();
         assert!((got - x.to_f64().powf(800.0)).abs() <= 2f64.powi(-12));
         assert!((got - 0.449).abs() < 0.01);
+    }
+
+    #[test]
+    fn sin_cos_quarter_turn_product_is_exact() {
+        // sin_cos's b · 0xA2F9_836E as b · 2^32 - wmul(b, 0x5D06_7C92).
+        let mut rng = Rng(7);
+        let edges = [0, 1, -1, i32::MAX, i32::MIN, i32::MIN + 1, 0x7FFF, -0x8000];
+        for b in edges
+            .into_iter()
+            .chain((0..100_000).map(|_| (rng.next_i64() >> 32) as i32))
+        {
+            let want = i64::from(b) * 0xA2F9_836E;
+            assert_eq!((i64::from(b) << 32) - wmul(b, 0x5D06_7C92), want, "{b}");
+        }
     }
 
     #[test]

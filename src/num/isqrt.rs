@@ -1,51 +1,25 @@
-//! The integer square root: `⌊√n⌋` and the remainder `n - ⌊√n⌋²`, exact
-//! for every `u64` and `u128` (bit by bit, one step per bit pair from the
-//! highest power of four not above `n`, no division). The one
-//! implementation behind the mesh's exact normals, the correctly rounded
+//! The integer square root with its remainder: `⌊√n⌋` from core's
+//! `isqrt` (exact for every `u64` and `u128`) and `n - ⌊√n⌋²`. The one
+//! square root behind the mesh's exact normals, the correctly rounded
 //! `Q16`/`Q32` square roots and the Phong kernels' unit vectors.
 
-/// One exact integer square root per width (the same steps).
-macro_rules! isqrt_rem {
-    ($(#[$doc:meta])* $name:ident, $t:ty) => {
-        $(#[$doc])*
-        pub(crate) const fn $name(n: $t) -> ($t, $t) {
-            if n < 2 {
-                return (n, 0);
-            }
-            // Highest power of four not above n.
-            let mut bit: $t = 1 << ((<$t>::BITS - 1 - n.leading_zeros()) & !1);
-            let mut rest = n;
-            // Invariant: `root` is the root found so far, shifted left by
-            // the number of bit pairs still to process.
-            let mut root: $t = 0;
-            while bit != 0 {
-                if rest >= root + bit {
-                    rest -= root + bit;
-                    root = (root >> 1) + bit;
-                } else {
-                    root >>= 1;
-                }
-                bit >>= 2;
-            }
-            (root, rest)
-        }
-    };
+/// `(⌊√n⌋, n - ⌊√n⌋²)`, exactly, for every `u64`.
+#[inline]
+pub(crate) const fn isqrt_rem_u64(n: u64) -> (u64, u64) {
+    let r = n.isqrt();
+    (r, n - r * r)
 }
 
-isqrt_rem!(
-    /// `(⌊√n⌋, n - ⌊√n⌋²)`, exactly, for every `u64`.
-    isqrt_rem_u64,
-    u64
-);
-isqrt_rem!(
-    /// `(⌊√n⌋, n - ⌊√n⌋²)`, exactly, for every `u128`.
-    isqrt_rem_u128,
-    u128
-);
+/// `(⌊√n⌋, n - ⌊√n⌋²)`, exactly, for every `u128`.
+#[inline]
+pub(crate) const fn isqrt_rem_u128(n: u128) -> (u128, u128) {
+    let r = n.isqrt();
+    (r, n - r * r)
+}
 
 /// ⌊√n⌋, exactly, for every `u64`.
 pub const fn isqrt_u64(n: u64) -> u64 {
-    isqrt_rem_u64(n).0
+    n.isqrt()
 }
 
 #[cfg(test)]

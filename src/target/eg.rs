@@ -160,7 +160,7 @@ impl Levels {
             Curve::Linear => s as u8,
             Curve::Sqrt => {
                 let x = 255 * s;
-                let r = isqrt(x);
+                let r = x.isqrt();
                 // round(√x): up when x − r² > r, as (r + ½)² = r² + r + ¼.
                 (if x - r * r > r { r + 1 } else { r }) as u8
             }
@@ -171,20 +171,6 @@ impl Levels {
     pub const fn apply(&self, c: Rgb8) -> Rgb8 {
         Rgb8::new(self.map(c.r), self.map(c.g), self.map(c.b))
     }
-}
-
-/// `⌊√x⌋` for `x < 2^16` (bitwise, 8 steps).
-const fn isqrt(x: u32) -> u32 {
-    let mut r = 0u32;
-    let mut bit = 1u32 << 7;
-    while bit > 0 {
-        let t = r | bit;
-        if t * t <= x {
-            r = t;
-        }
-        bit >>= 1;
-    }
-    r
 }
 
 /// Sends a rendered band to `display`: one `fill_contiguous` over the

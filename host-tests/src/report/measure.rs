@@ -782,6 +782,75 @@ fn tools(fw: &Path) -> Result<Tools, Error> {
     })
 }
 
+/// `root`'s firmware folder (`examples/firmware`), or bad input when it
+/// has none.
+fn firmware_dir(root: &Path) -> Result<PathBuf, Error> {
+    let fw = root.join("examples/firmware");
+    if fw.join("Cargo.toml").is_file() {
+        Ok(fw)
+    } else {
+        Err(Error::input(format!(
+            "{}: no firmware here (examples/firmware) to measure",
+            root.display()
+        )))
+    }
+}
+
+/// What a measurement holds from its start to its end: the lock (one
+/// measurement at a time, held over the plugin's build, the staged copy,
+/// the builds and runs), the tools, the sources' fingerprint and the
+/// staged copy.
+struct Session {
+    /// The firmware folder (`examples/firmware`).
+    fw: PathBuf,
+    tools: Tools,
+    fingerprint: String,
+    stage: Stage,
+    /// Last: released after everything else.
+    _lock: StageLock,
+}
+
+impl Session {
+    /// Takes the lock, then checks and builds the tools, fingerprints the
+    /// sources of `root` and stages them.
+    fn begin(root: &Path, fw: PathBuf) -> Result<Self, Error> {
+        let lock = StageLock::acquire(Path::new(STAGE_LOCK))?;
+        Ok(Self {
+            tools: tools(&fw)?,
+            fw,
+            fingerprint: chips::source_fingerprint(root)?,
+            stage: Stage::new(root)?,
+            _lock: lock,
+        })
+    }
+
+    /// The measurements of `builds` and `results` (no knobs), with this
+    /// session's tools, fingerprint and build settings; ends the session.
+    fn finish(
+        self,
+        about: String,
+        regenerate: String,
+        builds: Vec<Build>,
+        results: Vec<ChipResult>,
+    ) -> Measurements {
+        Measurements {
+            schema: SCHEMA,
+            about,
+            regenerate,
+            toolchain: self.tools.toolchain,
+            qemu: self.tools.qemu,
+            source_fingerprint: self.fingerprint,
+            opt_level: opt_level(&self.fw),
+            band_rows: BAND_ROWS,
+            depth_bits: 16,
+            builds,
+            results,
+            knobs: Vec::new(),
+            knob_depth32_vs_depth16_pixels: 0,
+        }
+    }
+}
+
 fn progress_bar(show: bool, total: u64) -> ProgressBar {
     let bar = if show && std::io::stderr().is_terminal() {
         ProgressBar::new(total)
@@ -820,6 +889,9 @@ fn on_targets<T: Send>(
     })
 }
 
+/// What [`measure_firmware`]'s measurements are.
+const ABOUT: &str = "fixshade firmware (examples/firmware) under QEMU 7.2: instructions counted exactly by the plugin (qemu-plugin/insn_count.c); est. Cortex-M0 cycles from ARM DDI 0432C table 3-1, zero wait states (an ESTIMATE, M0 only); RAM per scene = colour band + 16-bit depth band (16 rows) + prepared frame + stack high-water mark. Generated: do not edit.";
+
 /// Measures every profile of `opts` on both targets (see the module
 /// docs).
 ///
@@ -829,23 +901,9 @@ fn on_targets<T: Send>(
 /// ([`Error::Measurement`]).
 pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     let root = &opts.root;
-    let fw = root.join("examples/firmware");
-    if !fw.join("Cargo.toml").is_file() {
-        return Err(Error::input(format!(
-            "{}: no firmware here (examples/firmware) to measure",
-            root.display()
-        )));
-    }
-    // Held until the measurement ends (the plugin's build, the staged
-    // copy, the builds and runs): one measurement at a time.
-    let _lock = StageLock::acquire(Path::new(STAGE_LOCK))?;
-    let Tools {
-        qemu,
-        toolchain,
-        plugin,
-    } = tools(&fw)?;
-    let fingerprint = chips::source_fingerprint(root)?;
-    let stage = Stage::new(root)?;
+    let fw = firmware_dir(root)?;
+    let session = Session::begin(root, fw)?;
+    let (stage, plugin) = (&session.stage, &session.tools.plugin);
     let total = ((opts.profiles.len() + 1) * (TARGETS.len() + 1)) as u64;
     let bar = progress_bar(opts.progress, total);
     // The host's CRCs first (one host build, cached), then both targets
@@ -854,24 +912,24 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     let mut hosts = Vec::new();
     for &profile in &opts.profiles {
         bar.set_message(format!("{} on the host", profile.name()));
-        hosts.push((profile, host_crcs(&fw, profile, None)?));
+        hosts.push((profile, host_crcs(&session.fw, profile, None)?));
         bar.inc(1);
     }
     bar.set_message("knobs on the host");
-    let (knob_host, depth_differ) = host_knobs(&fw)?;
+    let (knob_host, depth_differ) = host_knobs(&session.fw)?;
     bar.inc(1);
     let per_target = on_targets(&TARGETS, |t| {
         let stage = stage.for_target(t.0);
         let (mut builds, mut results) = (Vec::new(), Vec::new());
         for (profile, host) in &hosts {
             bar.set_message(format!("{} on {}", profile.name(), t.0));
-            let (b, r) = measure_one(&stage, &plugin, t, *profile, host, None)?;
+            let (b, r) = measure_one(&stage, plugin, t, *profile, host, None)?;
             builds.push(b);
             results.extend(r);
             bar.inc(1);
         }
         bar.set_message(format!("knobs on {}", t.0));
-        let knobs = measure_knobs(&stage, &plugin, t, &knob_host)?;
+        let knobs = measure_knobs(&stage, plugin, t, &knob_host)?;
         bar.inc(1);
         Ok((builds, results, knobs))
     });
@@ -886,19 +944,9 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     builds.sort_by_key(|b: &Build| (rank(&b.profile), b.target.clone()));
     results.sort_by_key(|r: &ChipResult| (rank(&r.profile), r.target.clone()));
     Ok(Measurements {
-        schema: SCHEMA,
-        about: "fixshade firmware (examples/firmware) under QEMU 7.2: instructions counted exactly by the plugin (qemu-plugin/insn_count.c); est. Cortex-M0 cycles from ARM DDI 0432C table 3-1, zero wait states (an ESTIMATE, M0 only); RAM per scene = colour band + 16-bit depth band (16 rows) + prepared frame + stack high-water mark. Generated: do not edit.".into(),
-        regenerate: REGENERATE.into(),
-        toolchain,
-        qemu,
-        source_fingerprint: fingerprint,
-        opt_level: opt_level(&fw),
-        band_rows: BAND_ROWS,
-        depth_bits: 16,
-        builds,
-        results,
         knobs,
         knob_depth32_vs_depth16_pixels: depth_differ,
+        ..session.finish(ABOUT.into(), REGENERATE.into(), builds, results)
     })
 }
 
@@ -992,13 +1040,7 @@ pub fn user_firmware_scenes(
 /// flash), run or CRC check ([`Error::Measurement`]).
 pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Error> {
     let root = &opts.root;
-    let fw = root.join("examples/firmware");
-    if !fw.join("Cargo.toml").is_file() {
-        return Err(Error::input(format!(
-            "{}: no firmware here (examples/firmware) to measure",
-            root.display()
-        )));
-    }
+    let fw = firmware_dir(root)?;
     let targets: Vec<(&str, &str, &str, &str)> = opts
         .targets
         .iter()
@@ -1022,16 +1064,8 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Er
             Ok((s.name.clone(), format!("0x{:08x}", f.crc)))
         })
         .collect::<Result<_, Error>>()?;
-    // Held until the measurement ends (the plugin's build, the staged
-    // copy, the builds and runs): one measurement at a time.
-    let _lock = StageLock::acquire(Path::new(STAGE_LOCK))?;
-    let Tools {
-        qemu,
-        toolchain,
-        plugin,
-    } = tools(&fw)?;
-    let fingerprint = chips::source_fingerprint(root)?;
-    let stage = Stage::new(root)?;
+    let session = Session::begin(root, fw)?;
+    let (stage, plugin) = (&session.stage, &session.tools.plugin);
     let generated = stage.src.join(crate::firmware_scenes::GENERATED_PATH);
     std::fs::write(&generated, source).map_err(|e| Error::write(&generated, e))?;
     let others = opts
@@ -1062,7 +1096,7 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Er
         let (mut builds, mut results) = (Vec::new(), Vec::new());
         for (profile, host) in &hosts {
             bar.set_message(format!("your scenes, {} on {}", profile.name(), t.0));
-            let (b, r) = measure_one(&stage, &plugin, t, *profile, host, Some(&modes))?;
+            let (b, r) = measure_one(&stage, plugin, t, *profile, host, Some(&modes))?;
             builds.push(b);
             results.extend(r);
             bar.inc(1);
@@ -1075,28 +1109,20 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Er
         results.extend(r);
     }
     bar.finish_and_clear();
-    Ok(Measurements {
-        schema: SCHEMA,
-        about: format!(
-            "fixshade firmware under QEMU, generated for your scenes ({}): instructions counted exactly by the plugin; est. Cortex-M0 cycles from ARM DDI 0432C table 3-1, zero wait states (an ESTIMATE, M0 only); RAM per scene = what a firmware built for it alone holds: colour band + depth band (none for one convex object with back faces culled) + storage sized by the compiler for its meshes + active-triangle pool + stack high-water mark.",
-            opts.files
-                .iter()
-                .map(|f| f.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-        regenerate: "fixshade measure-firmware --scene SCENE.toml --write FILE".into(),
-        toolchain,
-        qemu,
-        source_fingerprint: fingerprint,
-        opt_level: opt_level(&fw),
-        band_rows: BAND_ROWS,
-        depth_bits: 16,
+    let about = format!(
+        "fixshade firmware under QEMU, generated for your scenes ({}): instructions counted exactly by the plugin; est. Cortex-M0 cycles from ARM DDI 0432C table 3-1, zero wait states (an ESTIMATE, M0 only); RAM per scene = what a firmware built for it alone holds: colour band + depth band (none for one convex object with back faces culled) + storage sized by the compiler for its meshes + active-triangle pool + stack high-water mark.",
+        opts.files
+            .iter()
+            .map(|f| f.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok(session.finish(
+        about,
+        "fixshade measure-firmware --scene SCENE.toml --write FILE".into(),
         builds,
         results,
-        knobs: Vec::new(),
-        knob_depth32_vs_depth16_pixels: 0,
-    })
+    ))
 }
 
 #[cfg(test)]

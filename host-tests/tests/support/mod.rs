@@ -19,6 +19,71 @@ use fixshade::target::{
 };
 use fixshade_host::ideal::{self, IdealScene};
 
+/// The `fixshade` command under test.
+pub const EXE: &str = env!("CARGO_BIN_EXE_fixshade");
+
+/// A fresh, empty temporary folder (`fixshade-TAG-PID` in the system's),
+/// removed when dropped; it derefs to its path.
+pub struct TempDir(pub std::path::PathBuf);
+
+impl TempDir {
+    pub fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("fixshade-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create temp dir");
+        Self(dir)
+    }
+
+    pub fn path(&self, name: &str) -> std::path::PathBuf {
+        self.0.join(name)
+    }
+
+    /// Writes `text` to the file `name` in the folder; its path.
+    pub fn write(&self, name: &str, text: &str) -> std::path::PathBuf {
+        let path = self.path(name);
+        std::fs::write(&path, text).expect("write test file");
+        path
+    }
+
+    /// The names of the files in the folder, sorted.
+    pub fn files(&self) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(&self.0)
+            .expect("list temp dir")
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+}
+
+impl std::ops::Deref for TempDir {
+    type Target = std::path::Path;
+    fn deref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+impl AsRef<std::path::Path> for TempDir {
+    fn as_ref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Runs `fixshade ARGS` in `dir`.
+pub fn fixshade(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(EXE)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run fixshade")
+}
+
 /// Owned workspace memory.
 pub struct Mem<L> {
     pub xy: Vec<fixshade::render::ScreenXy>,
@@ -334,6 +399,21 @@ impl<'m> Spec<'m> {
         let (camera, lights, objects) = self.core::<P::Real>();
         let scene = self.scene(camera, &lights, &objects);
         render_full::<P>(&scene, self.width, self.height)
+    }
+
+    /// Renders with each of the eight profiles, named.
+    pub fn render_every_profile(&self) -> Result<Vec<(&'static str, CoreFrame)>, RenderError> {
+        use fixshade::num::{F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, F32, F64};
+        Ok(vec![
+            (F64::NAME, self.render::<F64>()?),
+            (F64Pc::NAME, self.render::<F64Pc>()?),
+            (F32::NAME, self.render::<F32>()?),
+            (F32Pc::NAME, self.render::<F32Pc>()?),
+            (Precise::NAME, self.render::<Precise>()?),
+            (PrecisePc::NAME, self.render::<PrecisePc>()?),
+            (Fast::NAME, self.render::<Fast>()?),
+            (FastPc::NAME, self.render::<FastPc>()?),
+        ])
     }
 
     /// Renders with profile `P` band by band.
