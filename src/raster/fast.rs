@@ -590,17 +590,21 @@ fn walk_edges(
     w.long_left = long_left;
 }
 
-/// The small-triangle kernel: a triangle set up in 32 bits and walked in
-/// one go, without a [`Walk`], band carry-over, clipping or depth clamps.
+/// The small-triangle kernel: a triangle set up in 32 bits and walked
+/// from its first row without clipping or depth clamps; a triangle that
+/// continues below the band is handed back as the [`Walk`] and values of
+/// [`setup_fast`] after [`Walk::rows_fused`] down to the band's end.
 ///
 /// `v` holds the vertices sorted by `y` (subpixels, any `i32`: a
-/// triangle the kernel takes lies within the window, inside the module's
-/// limits). The kernel applies when every condition below holds, decided
-/// before a pixel is written; `None` otherwise (nothing written, the
-/// caller takes [`setup_fast`] and [`Walk::rows_fused`]):
+/// triangle the kernel takes lies within the window's columns, its first
+/// row in the band, inside the module's limits). The kernel applies when
+/// every condition below holds, decided before a pixel is written; `None`
+/// otherwise (nothing written, the caller takes [`setup_fast`] and
+/// [`Walk::rows_fused`]):
 ///
-/// - a depth plane is present and the triangle's rows lie within the band
-///   (`y0 <= first row`, `last row < until`): nothing to carry over;
+/// - a depth plane is present, the triangle's first row lies within the
+///   band (`y0 <= first row < until`) and its last vertex within the
+///   module's limits (`c.y <= coord_limit`);
 /// - its columns lie within `0..=width` ([`Walk::inside`]): no clipping;
 /// - [`setup32`]'s bounds (coordinate offsets below `2^15`, the
 ///   reciprocal's high-word case, no wrapping numerator);
@@ -613,27 +617,34 @@ fn walk_edges(
 /// Then it writes exactly the pixels of [`setup_fast`] and
 /// [`Walk::rows_fused`] (the same edges from their first rows, the same
 /// gradients and values, the same span stage) and returns their count
-/// (`Some(0)` for a triangle without area or rows). Tested pixel for pixel
-/// against the general path on random and extreme triangles.
+/// (`Some((0, false))` for a triangle without area or rows) and whether
+/// the triangle continues below the band: then `carry` and `vals` hold
+/// the very walk and values (entries `0..=N`) [`setup_fast`] and
+/// [`Walk::rows_fused`] leave. Tested against the general path on random
+/// and extreme triangles, pixel for pixel and walk for walk.
 #[inline(always)]
-pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
     v: &[Vertex<i32, N>; 3],
     sub: SubpixelBits,
     until: i32,
     mem: &mut BandMem<'_, '_, R, D::Raw>,
+    carry: &mut Walk,
+    vals: &mut [[i32; 3]; V],
     color: impl Fn(&[i32; N]) -> R,
-) -> Option<u32> {
+) -> Option<(u32, bool)> {
     let [a, b, c] = v;
     let (y0, width) = (mem.y0, mem.width);
     let (s, sc) = (sub.get(), sub.scale());
     let h = 1i32 << (s - 1);
     let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
-    // `y0 <= first_row(a.y)` and `first_row(c.y) <= until` (`first_row(y)
-    // = ⌈(y - h) / S⌉`), tested on the coordinates: every coordinate then
-    // lies within the window's, far inside the module's limits, and
-    // nothing below wraps.
+    // `y0 <= first_row(a.y) < until` (`first_row(y) = ⌈(y - h) / S⌉`),
+    // tested on the coordinates, and `c.y` within the limits: every
+    // coordinate then lies within the module's limits, and nothing below
+    // wraps.
     if (a.y <= (y0 - 1) * sc + h)
-        | (c.y > until * sc + h)
+        | (a.y > (until - 1) * sc + h)
+        | (c.y > sub.coord_limit())
         | (xmin < 0)
         | (xmax > width.saturating_mul(sc))
         | mem.z.is_none()
@@ -649,7 +660,7 @@ pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
     }
     let area2 = dx1 * dy2 - dx2 * dy1;
     if area2 == 0 || j_top >= j_bot {
-        return Some(0);
+        return Some((0, false));
     }
     let small = if NO_DIVIDE {
         None
@@ -671,7 +682,8 @@ pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
     // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15).
     let lim = (1u32 << 30) >> (32 - clz32(mxy));
     let (gx, gy, z0, mut ok) = g.plane_small(a.z, b.z, c.z, lim);
-    ok &= D::plane_in_range(depth16_plane_in_range32([a.z, b.z, c.z], gx, gy));
+    let z16 = depth16_plane_in_range32([a.z, b.z, c.z], gx, gy);
+    ok &= D::plane_in_range(z16);
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };
     let mut sy = Vals { z: gy, a: [0; N] };
@@ -701,23 +713,26 @@ pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
     } else {
         (short, long)
     };
-    let mut row = SmallRows {
+    let mut rows = SmallRows {
         v: row.add_n(&sy, j_top),
         base: (j_top - y0).wrapping_mul(width) as usize,
         width: width as usize,
         drawn: 0,
     };
     let (sx, sy) = (&sx, &sy);
+    let stop = j_bot.min(until);
     let mut j = j_top;
     if upper {
-        let stop = j_mid.min(j_bot);
-        while j < stop {
-            row.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
+        let stop_upper = j_mid.min(stop);
+        while j < stop_upper {
+            rows.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
             j += 1;
         }
-        if j < j_bot {
+        // At the lower half's first row (and not at the band's end, where
+        // the resumed walk swaps the edges itself).
+        if j < stop {
             let low = Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub);
             if long_left {
                 r = low;
@@ -726,13 +741,58 @@ pub(crate) fn draw_small<const N: usize, R: Copy, D: DepthFormat>(
             }
         }
     }
-    while j < j_bot {
-        row.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
+    while j < stop {
+        rows.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
         l.step();
         r.step();
         j += 1;
     }
-    Some(row.drawn)
+    let more = j < j_bot;
+    if more {
+        carry_over(
+            carry,
+            [a, b, c],
+            [l, r],
+            [j, j_mid, j_bot],
+            [long_left, z16],
+            sub,
+        );
+        pack_fixed(vals, &rows.v.add_n(sy, j.wrapping_neg()), sx, sy);
+    }
+    Some((rows.drawn, more))
+}
+
+/// [`draw_small`]'s walk of a triangle continuing below the band (its
+/// sorted vertices `p`, edges `[left, right]` at row `rows[0]`, middle
+/// and end rows `rows[1..]`, `flags` the long edge's side and
+/// [`Walk::z16`]): the fields [`setup32`] and [`Walk::rows_fused`] leave
+/// (the lower short edge from its first row, inside the window).
+#[inline(never)]
+fn carry_over<const N: usize>(
+    w: &mut Walk,
+    p: [&Vertex<i32, N>; 3],
+    e: [Edge; 2],
+    rows: [i32; 3],
+    flags: [bool; 2],
+    sub: SubpixelBits,
+) {
+    let [a, b, c] = p;
+    let [long_left, z16] = flags;
+    let [j, j_mid, j_bot] = rows;
+    [w.left, w.right] = e;
+    w.low = if j_mid < j_bot {
+        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
+    } else {
+        Edge::EMPTY
+    };
+    w.j = j;
+    w.mid = j_mid;
+    w.end = j_bot;
+    w.ia = a.x >> sub.get();
+    w.ja = a.y >> sub.get();
+    w.long_left = long_left;
+    w.inside = true;
+    w.z16 = z16;
 }
 
 /// The row state of [`draw_small`]: the values at column 0 of the row,

@@ -1014,7 +1014,7 @@ fn check_small<const N: usize>(
     w: i32,
     px: &[u32],
     z: &[u16],
-) -> Option<u32> {
+) -> Option<(u32, bool)> {
     let color = |a: &[i32; N]| {
         a.iter()
             .fold(0x9e37_79b9u32, |h, &x| h.rotate_left(5) ^ x as u32)
@@ -1028,11 +1028,20 @@ fn check_small<const N: usize>(
             y0,
             width: w,
         };
-        let n = draw_small::<N, u32, Depth16>(v, SUB, y0 + rows, &mut mem, color);
-        (n, p, d)
+        let (mut carry, mut kv) = (Walk::EMPTY, [[0; 3]; 4]);
+        let n = draw_small::<N, 4, u32, Depth16>(
+            v,
+            SUB,
+            y0 + rows,
+            &mut mem,
+            &mut carry,
+            &mut kv,
+            color,
+        );
+        (n, p, d, carry, kv)
     };
-    let (n, p, d) = run_small();
-    let Some(n) = n else {
+    let (n, p, d, carry, kv) = run_small();
+    let Some((n, more)) = n else {
         assert_eq!((&p[..], &d[..]), (px, z), "declined but wrote: {v:?}");
         return None;
     };
@@ -1048,11 +1057,16 @@ fn check_small<const N: usize>(
             width: w,
         };
         drawn = walk.rows_fused::<N, 4, u32, Depth16>(&vals, y0 + rows, &mut mem, color);
-        assert!(walk.done(), "a triangle within the band: {v:?}");
+    }
+    // A triangle continuing below the band: the very walk and values.
+    assert_eq!(more, !walk.done(), "{v:?}");
+    if more {
+        assert_eq!(carry, walk, "{v:?}");
+        assert_eq!(kv[..=N], vals[..=N], "{v:?}");
     }
     assert_eq!(n, drawn, "{v:?}");
     assert!(p == gp && d == gd, "pixels differ: {v:?} y0 {y0}");
-    Some(n)
+    Some((n, more))
 }
 
 #[test]
@@ -1062,6 +1076,7 @@ fn small_kernel_equals_the_fused_walk() {
     let lim = SUB.coord_limit();
     let mut taken = 0;
     let mut pixels = 0;
+    let mut carried = 0;
     for i in 0..20_000 {
         let y0 = [0, 16, 112, 224][i % 4];
         let px: Vec<u32> = (0..w * rows).map(|_| rng.next() as u32).collect();
@@ -1124,9 +1139,10 @@ fn small_kernel_equals_the_fused_walk() {
             [vert(p0, &mut rng), vert(p1, &mut rng), vert(p2, &mut rng)],
             |v| v.y,
         );
-        if let Some(n) = check_small::<1>(&v, y0, rows, w, &px, &zb) {
+        if let Some((n, more)) = check_small::<1>(&v, y0, rows, w, &px, &zb) {
             taken += 1;
             pixels += n;
+            carried += more as u32;
         }
         let flat = v.map(|v| Vertex {
             x: v.x,
@@ -1136,7 +1152,10 @@ fn small_kernel_equals_the_fused_walk() {
         });
         let _ = check_small::<0>(&flat, y0, rows, w, &px, &zb);
     }
-    assert!(taken > 5_000 && pixels > 40_000, "{taken} {pixels}");
+    assert!(
+        taken > 5_000 && pixels > 40_000 && carried > 1_000,
+        "{taken} {pixels} {carried}"
+    );
     // Extremes: zero area, flat tops and bottoms, one-row and one-column
     // triangles, the band's first and last rows, the window's sides,
     // values at the ends of the ranges.
@@ -1201,9 +1220,25 @@ fn small_kernel_equals_the_fused_walk() {
             vx(wx + 1, 8, 1 << 20, 0),
             vx(0, 40, 1 << 20, 0),
         ],
+        // Across the band's end, in its upper and its lower half there.
+        [
+            vx(100, b - 9, 1 << 20, 0),
+            vx(300, b + 30, (1 << 20) + 777, 1 << 16),
+            vx(90, b + 70, (1 << 20) - 5000, 1 << 15),
+        ],
+        [
+            vx(100, 3, 1 << 20, 0),
+            vx(300, b - 30, (1 << 20) + 777, 1 << 16),
+            vx(90, b + 70, (1 << 20) - 5000, 1 << 15),
+        ],
+        [
+            vx(100, 3, 1 << 20, 0),
+            vx(300, b + 8, (1 << 20) + 777, 1 << 16),
+            vx(90, b + 70, (1 << 20) - 5000, 1 << 15),
+        ],
     ] {
         let t = sort3(t, |v| v.y);
         small = small << 1 | check_small::<1>(&t, 0, rows, w, &px, &zb).is_some() as u32;
     }
-    assert_eq!(small, 0b11_1111_0000, "{small:010b}");
+    assert_eq!(small, 0b1_1111_1000_0111, "{small:013b}");
 }

@@ -819,14 +819,24 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     Some(v) => {
                         self.stats.triangles += 1;
                         let sub = P::SUBPIXEL_BITS;
-                        match draw_small_shaded::<N, S, F, D>(&v, sub, y1, &mut mem, &shader) {
-                            Some(drawn) => drawn,
+                        let (walk, vals) = (&mut scratch.0, &mut scratch.1);
+                        let small = draw_small_shaded::<N, V, S, F, D>(
+                            &v, sub, y1, &mut mem, walk, vals, &shader,
+                        );
+                        match small {
+                            Some((drawn, more)) => {
+                                // Continues below the band: kept as the
+                                // general path keeps it.
+                                if more {
+                                    self.keep_fixed::<N>(ti as u16, walk, vals);
+                                }
+                                drawn
+                            }
                             None => {
                                 in_limits_fixed::<P, N>(frame, &tri, &v)?;
                                 // Set up and walked in the scratch; kept
                                 // in a slot when it continues below the
                                 // band.
-                                let (walk, vals) = (&mut scratch.0, &mut scratch.1);
                                 let drawn = if setup_fixed::<N, V>(&v, sub, y0, width, walk, vals) {
                                     draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
                                 } else {
@@ -1155,20 +1165,30 @@ fn out_of_limits<P: Profile>(frame: &Frame<'_, P>, tri: &PreparedTri) -> RenderE
 /// Draws a fetched triangle ([`fetch_fixed`]) with the small-triangle
 /// kernel ([`draw_small`]) when it applies: the shader's constant colour
 /// encoded once, or its colour per pixel; `None` (nothing drawn) when the
-/// triangle needs the general path.
+/// triangle needs the general path, else the pixels drawn and whether it
+/// continues below the band (in `walk` and `vals`).
 #[inline(always)]
-fn draw_small_shaded<const N: usize, S: Shader<i32, N>, F: PixelFormat, D: DepthFormat>(
+#[allow(clippy::too_many_arguments)]
+fn draw_small_shaded<
+    const N: usize,
+    const V: usize,
+    S: Shader<i32, N>,
+    F: PixelFormat,
+    D: DepthFormat,
+>(
     v: &[Vertex<i32, N>; 3],
     sub: SubpixelBits,
     until: i32,
     mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
+    walk: &mut Walk,
+    vals: &mut [[i32; 3]; V],
     shader: &S,
-) -> Option<u32> {
+) -> Option<(u32, bool)> {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        draw_small::<N, F::Raw, D>(v, sub, until, mem, move |_| raw)
+        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, move |_| raw)
     } else {
-        draw_small::<N, F::Raw, D>(v, sub, until, mem, |a| shader.shade_raw::<F>(a))
+        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, |a| shader.shade_raw::<F>(a))
     }
 }
 
