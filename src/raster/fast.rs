@@ -62,6 +62,7 @@ impl Walk {
         let px = &mut **mem.px;
         match mem.z.as_deref_mut() {
             Some(z) => {
+                let (px, z) = same_len(px, z);
                 let inr = D::plane_in_range(self.z16);
                 match (self.inside, inr) {
                     (true, true) => self.fused::<N, R, D, false, true>(
@@ -620,7 +621,7 @@ fn walk_edges(
 /// (`Some((0, false))` for a triangle without area or rows) and whether
 /// the triangle continues below the band: then `carry` and `vals` hold
 /// the very walk and values (entries `0..=N`) [`setup_fast`] and
-/// [`Walk::rows_fused`] leave. Tested against the general path on random
+/// [`Walk::rows_fused`] leave (but [`carry_over`]'s unused edge). Tested against the general path on random
 /// and extreme triangles, pixel for pixel and walk for walk.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
@@ -697,8 +698,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if !ok {
         return None;
     }
-    let z = mem.z.as_deref_mut()?;
-    let px = &mut **mem.px;
+    let (px, z) = same_len(&mut **mem.px, mem.z.as_deref_mut()?);
     let j_mid = first_row(b.y, sub);
     let long = Edge::new_first(a.x, a.y, c.x, c.y, j_top, sub);
     let upper = j_top < j_mid;
@@ -766,7 +766,8 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
 /// sorted vertices `p`, edges `[left, right]` at row `rows[0]`, middle
 /// and end rows `rows[1..]`, `flags` the long edge's side and
 /// [`Walk::z16`]): the fields [`setup32`] and [`Walk::rows_fused`] leave
-/// (the lower short edge from its first row, inside the window).
+/// (inside the window), but the lower short edge once the walk is past
+/// its first row (then unused).
 #[inline(never)]
 fn carry_over<const N: usize>(
     w: &mut Walk,
@@ -780,7 +781,10 @@ fn carry_over<const N: usize>(
     let [long_left, z16] = flags;
     let [j, j_mid, j_bot] = rows;
     [w.left, w.right] = e;
-    w.low = if j_mid < j_bot {
+    // The lower short edge from its first row while the walk has not
+    // swapped it in yet (`j <= mid`); past that row the walk never reads
+    // it (the general walk keeps it unused, here it is left empty).
+    w.low = if (j <= j_mid) & (j_mid < j_bot) {
         Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
     } else {
         Edge::EMPTY
@@ -793,6 +797,16 @@ fn carry_over<const N: usize>(
     w.long_left = long_left;
     w.inside = true;
     w.z16 = z16;
+}
+
+/// The colour and depth slices cut to their common length: a span's
+/// range checked on one then holds for the other (one test per span).
+#[inline(always)]
+fn same_len<'p, 'z, R, Z>(px: &'p mut [R], z: &'z mut [Z]) -> (&'p mut [R], &'z mut [Z]) {
+    let n = px.len().min(z.len());
+    let (px, _) = px.split_at_mut(n);
+    let (z, _) = z.split_at_mut(n);
+    (px, z)
 }
 
 /// The row state of [`draw_small`]: the values at column 0 of the row,

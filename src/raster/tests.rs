@@ -1061,6 +1061,11 @@ fn check_small<const N: usize>(
     // A triangle continuing below the band: the very walk and values.
     assert_eq!(more, !walk.done(), "{v:?}");
     if more {
+        // Past the middle row the walk never reads its lower short edge
+        // (the kernel leaves it empty).
+        if walk.j > walk.mid {
+            walk.low = Edge::EMPTY;
+        }
         assert_eq!(carry, walk, "{v:?}");
         assert_eq!(kv[..=N], vals[..=N], "{v:?}");
     }
