@@ -634,6 +634,8 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     vals: &mut [[i32; 3]; V],
     color: impl Fn(&[i32; N]) -> R,
 ) -> Option<(u32, bool)> {
+    // Without a depth plane the general path, decided first.
+    let z = mem.z.as_deref_mut()?;
     let [a, b, c] = v;
     let (y0, width) = (mem.y0, mem.width);
     let (s, sc) = (sub.get(), sub.scale());
@@ -648,7 +650,6 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
         | (c.y > sub.coord_limit())
         | (xmin < 0)
         | (xmax > width.saturating_mul(sc))
-        | mem.z.is_none()
     {
         return None;
     }
@@ -698,7 +699,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if !ok {
         return None;
     }
-    let (px, z) = same_len(&mut **mem.px, mem.z.as_deref_mut()?);
+    let (px, z) = same_len(&mut **mem.px, z);
     let j_mid = first_row(b.y, sub);
     let long = Edge::new_first(a.x, a.y, c.x, c.y, j_top, sub);
     let upper = j_top < j_mid;

@@ -823,31 +823,24 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         let small = draw_small_shaded::<N, V, S, F, D>(
                             &v, sub, y1, &mut mem, walk, vals, &shader,
                         );
-                        match small {
-                            Some((drawn, more)) => {
-                                // Continues below the band: kept as the
-                                // general path keeps it.
-                                if more {
-                                    self.keep_fixed::<N>(ti as u16, walk, vals);
-                                }
-                                drawn
-                            }
+                        let (drawn, more) = match small {
+                            Some(r) => r,
                             None => {
                                 in_limits_fixed::<P, N>(frame, &tri, &v)?;
-                                // Set up and walked in the scratch; kept
-                                // in a slot when it continues below the
-                                // band.
+                                // Set up and walked in the scratch.
                                 let drawn = if setup_fixed::<N, V>(&v, sub, y0, width, walk, vals) {
                                     draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
                                 } else {
                                     0
                                 };
-                                if !walk.done() {
-                                    self.keep_fixed::<N>(ti as u16, walk, vals);
-                                }
-                                drawn
+                                (drawn, !walk.done())
                             }
+                        };
+                        // Kept in a slot when it continues below the band.
+                        if more {
+                            self.keep_fixed::<N>(ti as u16, walk, vals);
                         }
+                        drawn
                     }
                     None => 0,
                 },
