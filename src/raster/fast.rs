@@ -769,7 +769,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
 /// [`Walk::z16`]): the fields [`setup32`] and [`Walk::rows_fused`] leave
 /// (inside the window), but the lower short edge once the walk is past
 /// its first row (then unused).
-#[inline(never)]
+#[inline(always)]
 fn carry_over<const N: usize>(
     w: &mut Walk,
     p: [&Vertex<i32, N>; 3],
