@@ -699,7 +699,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if !ok {
         return None;
     }
-    let (px, z) = same_len(&mut **mem.px, z);
+    let (px, z) = same_len(mem.px, z);
     let j_mid = first_row(b.y, sub);
     let long = Edge::new_first(a.x, a.y, c.x, c.y, j_top, sub);
     let upper = j_top < j_mid;
