@@ -35,8 +35,90 @@ use fixshade::scene::{Scene, Shading};
 use fixshade::target::{BandBuf, Rgb565Be};
 
 use crate::builtin::load_builtin;
-use crate::core_render::{crc32, CameraInputs, CoreScene, BAND_ROWS};
-use crate::scene_file::{PixelFormat, SceneDesc, SceneMesh, BUILTIN_MESHES};
+use crate::core_render::{crc32, CameraInputs, CoreError, CoreScene, BAND_ROWS};
+use crate::scene_file::{PixelFormat, SceneDesc, SceneError, SceneMesh, BUILTIN_MESHES};
+
+/// Why a scene cannot be one of the firmware's, or its frame not rendered
+/// on the host (messages only through `Display`, for the command line).
+#[derive(Debug)]
+pub enum FirmwareSceneError {
+    /// No built-in scene of that name.
+    Load(SceneError),
+    /// The scene is not RGB565.
+    PixelFormat {
+        /// The scene's name.
+        scene: String,
+    },
+    /// Wider or taller than [`MAX_WIDTH`].
+    TooLarge {
+        /// The scene's name.
+        scene: String,
+        /// Its width, pixels.
+        width: u32,
+        /// Its height, pixels.
+        height: u32,
+    },
+    /// An object scaled non-uniformly.
+    NonUniformScale {
+        /// The scene's name.
+        scene: String,
+        /// The object's index.
+        object: usize,
+    },
+    /// More objects than the core takes.
+    TooManyObjects {
+        /// The scene's name.
+        scene: String,
+        /// Its objects.
+        objects: usize,
+    },
+    /// The core refuses the scene (its camera).
+    Core {
+        /// The scene's name.
+        scene: String,
+        /// The core's error.
+        error: CoreError,
+    },
+    /// Preparing or rendering the frame failed.
+    Render {
+        /// The scene's name.
+        scene: String,
+        /// The core's error.
+        error: RenderError,
+    },
+}
+
+impl std::fmt::Display for FirmwareSceneError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Load(e) => write!(f, "{e}"),
+            Self::PixelFormat { scene } => {
+                write!(f, "{scene}: the firmware renders RGB565 only")
+            }
+            Self::TooLarge {
+                scene,
+                width,
+                height,
+            } => write!(
+                f,
+                "{scene}: {width}x{height} is larger than the firmware's {MAX_WIDTH}x{MAX_WIDTH}"
+            ),
+            Self::NonUniformScale { scene, object } => write!(
+                f,
+                "{scene}: object {object} is scaled non-uniformly; the firmware's scenes take one scale per object"
+            ),
+            Self::TooManyObjects { scene, objects } => write!(
+                f,
+                "{scene}: {objects} objects, the core takes at most {}",
+                fixshade::scene::MAX_OBJECTS
+            ),
+            Self::Core { scene, error } => write!(f, "{scene}: {error}"),
+            Self::Render { scene, error } => write!(f, "{scene}: {error}"),
+        }
+    }
+}
+
+impl std::error::Error for FirmwareSceneError {}
 
 /// The built-in scenes the firmware renders, in order.
 pub const FIRMWARE_SCENES: [&str; 6] = [
@@ -78,8 +160,8 @@ pub fn q16_bits(v: f64) -> i32 {
 ///
 /// # Errors
 /// A camera the core refuses.
-fn q16_scene(desc: &SceneDesc) -> Result<CoreScene<'_, Q16>, String> {
-    CoreScene::new(desc).map_err(|e| e.to_string())
+fn q16_scene(desc: &SceneDesc) -> Result<CoreScene<'_, Q16>, CoreError> {
+    CoreScene::new(desc)
 }
 
 /// A `Fast` workspace of the lengths `cap`, on the heap (lengths a host
@@ -274,8 +356,8 @@ impl FirmwareScene {
     ///
     /// # Errors
     /// As [`Self::new`].
-    pub fn load(name: &str) -> Result<Self, String> {
-        let desc = load_builtin(name).map_err(|e| e.to_string())?;
+    pub fn load(name: &str) -> Result<Self, FirmwareSceneError> {
+        let desc = load_builtin(name).map_err(FirmwareSceneError::Load)?;
         Self::new(name.to_string(), desc)
     }
 
@@ -285,32 +367,38 @@ impl FirmwareScene {
     /// A scene the firmware cannot take: not RGB565, wider or taller than
     /// [`MAX_WIDTH`], a non-uniform scale, more objects than the core
     /// takes, or one the core refuses.
-    pub fn new(name: String, desc: SceneDesc) -> Result<Self, String> {
+    pub fn new(name: String, desc: SceneDesc) -> Result<Self, FirmwareSceneError> {
         if desc.pixel_format != PixelFormat::Rgb565 {
-            return Err(format!("{name}: the firmware renders RGB565 only"));
+            return Err(FirmwareSceneError::PixelFormat { scene: name });
         }
         if desc.width > MAX_WIDTH || desc.height > MAX_WIDTH {
-            return Err(format!(
-                "{name}: {}x{} is larger than the firmware's {MAX_WIDTH}x{MAX_WIDTH}",
-                desc.width, desc.height
-            ));
+            return Err(FirmwareSceneError::TooLarge {
+                scene: name,
+                width: desc.width,
+                height: desc.height,
+            });
         }
-        if let Some(i) = desc.objects.iter().position(|o| !o.transform.is_uniform()) {
-            return Err(format!(
-                "{name}: object {i} is scaled non-uniformly; the firmware's scenes take one scale per object"
-            ));
+        if let Some(object) = desc.objects.iter().position(|o| !o.transform.is_uniform()) {
+            return Err(FirmwareSceneError::NonUniformScale {
+                scene: name,
+                object,
+            });
         }
         if desc.objects.len() > fixshade::scene::MAX_OBJECTS {
-            return Err(format!(
-                "{name}: {} objects, the core takes at most {}",
-                desc.objects.len(),
-                fixshade::scene::MAX_OBJECTS
-            ));
+            return Err(FirmwareSceneError::TooManyObjects {
+                scene: name,
+                objects: desc.objects.len(),
+            });
         }
-        let q = q16_scene(&desc).map_err(|e| format!("{name}: {e}"))?;
+        let q = match q16_scene(&desc) {
+            Ok(q) => q,
+            Err(error) => return Err(FirmwareSceneError::Core { scene: name, error }),
+        };
         let scene = q.scene();
-        let (rooms, capacity) =
-            rooms(&scene, desc.width, desc.height).map_err(|e| format!("{name}: {e}"))?;
+        let (rooms, capacity) = match rooms(&scene, desc.width, desc.height) {
+            Ok(r) => r,
+            Err(error) => return Err(FirmwareSceneError::Render { scene: name, error }),
+        };
         let depth = !(scene.objects.len() == 1
             && scene.objects[0].cull_backfaces
             && convex(&scene.objects[0].mesh));
@@ -340,8 +428,11 @@ impl FirmwareScene {
     ///
     /// # Errors
     /// The core's error.
-    pub fn render_crc(&self) -> Result<HostFrame, String> {
-        let q = q16_scene(&self.desc)?;
+    pub fn render_crc(&self) -> Result<HostFrame, FirmwareSceneError> {
+        let q = q16_scene(&self.desc).map_err(|error| FirmwareSceneError::Core {
+            scene: self.name.clone(),
+            error,
+        })?;
         let scene = q.scene();
         render_crc(
             &scene,
@@ -350,7 +441,10 @@ impl FirmwareScene {
             self.capacity,
             self.depth,
         )
-        .map_err(|e| e.to_string())
+        .map_err(|error| FirmwareSceneError::Render {
+            scene: self.name.clone(),
+            error,
+        })
     }
 }
 
@@ -427,7 +521,7 @@ fn triples<T: std::fmt::Display>(out: &mut String, items: &[[T; 3]]) {
 ///
 /// # Errors
 /// A scene the generator cannot express.
-pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
+pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, FirmwareSceneError> {
     let mut out = String::new();
     let mut meshes = String::new();
     // Distinct tables in flash, and the shapes they belong to.
@@ -443,7 +537,10 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
 
     for s in scenes {
         let d = &s.desc;
-        let cs = q16_scene(d)?;
+        let cs = q16_scene(d).map_err(|error| FirmwareSceneError::Core {
+            scene: s.name.clone(),
+            error,
+        })?;
         let qs = cs.scene();
         depth |= s.depth;
         max_objects = max_objects.max(d.objects.len());
@@ -702,7 +799,7 @@ pub fn generate_for(scenes: &[FirmwareScene]) -> Result<String, String> {
 ///
 /// # Errors
 /// As [`FirmwareScene::load`] and [`generate_for`].
-pub fn generate() -> Result<String, String> {
+pub fn generate() -> Result<String, FirmwareSceneError> {
     let scenes = FIRMWARE_SCENES
         .iter()
         .map(|n| FirmwareScene::load(n))

@@ -7,7 +7,8 @@
 use fixshade::render::{Part, Reach, RenderError};
 use fixshade_host::core_render::{crc32, render_core, CoreProfile};
 use fixshade_host::firmware_scenes::{
-    generate, generated_path, Capacity, FirmwareScene, FIRMWARE_SCENES,
+    generate, generated_path, Capacity, FirmwareScene, FirmwareSceneError, FIRMWARE_SCENES,
+    MAX_WIDTH,
 };
 use std::path::PathBuf;
 
@@ -119,5 +120,25 @@ fn the_depth_band_is_left_out_for_one_convex_culled_object() {
             ("bunny-flat", true),
             ("cubes-and-sphere", true),
         ]
+    );
+}
+
+#[test]
+fn refused_scenes_are_error_values() {
+    let err = FirmwareScene::load("no-such-scene").err();
+    assert!(matches!(err, Some(FirmwareSceneError::Load(_))), "{err:?}");
+    let mut desc = FirmwareScene::load("bunny-gouraud").unwrap().desc;
+    desc.width = MAX_WIDTH + 1;
+    let err = FirmwareScene::new("wide".into(), desc).err();
+    assert!(
+        matches!(
+            &err,
+            Some(FirmwareSceneError::TooLarge { scene, width: 241, height: 240 }) if scene == "wide"
+        ),
+        "{err:?}"
+    );
+    assert_eq!(
+        err.map(|e| e.to_string()).unwrap_or_default(),
+        "wide: 241x240 is larger than the firmware's 240x240"
     );
 }

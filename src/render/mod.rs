@@ -159,6 +159,15 @@ pub struct PreparedTri {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ScreenXy(pub [i16; 2]);
 
+/// A screen position in subpixels (`1/2^s` of a pixel, `s` the profile's
+/// [`SubpixelBits`](crate::num::SubpixelBits)), `[x, y]` from the
+/// screen's top-left corner unless said otherwise (an origin of stored
+/// positions, [`prepare::xy_origin`]): the wide form of a [`ScreenXy`],
+/// not to be mixed with raw Q16 bits or depths. Zero-cost (`i32` pairs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(transparent)]
+pub(crate) struct Subpx(pub(crate) [i32; 2]);
+
 impl ScreenXy {
     /// The origin.
     pub const ZERO: Self = Self([0; 2]);
@@ -168,7 +177,7 @@ impl ScreenXy {
     /// (the inside kernels: the guard band bounds it). A plain cast.
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
-    pub(crate) fn pack(p: [i32; 2], origin: [i32; 2]) -> Self {
+    pub(crate) fn pack(Subpx(p): Subpx, Subpx(origin): Subpx) -> Self {
         Self([(p[0] - origin[0]) as i16, (p[1] - origin[1]) as i16])
     }
 
@@ -177,7 +186,7 @@ impl ScreenXy {
     /// for the others).
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
-    pub(crate) fn pack_clamped(p: [i32; 2], origin: [i32; 2]) -> Self {
+    pub(crate) fn pack_clamped(Subpx(p): Subpx, Subpx(origin): Subpx) -> Self {
         let c = |v: i32, o: i32| v.saturating_sub(o).clamp(-XY_LIMIT, XY_LIMIT) as i16;
         Self([c(p[0], origin[0]), c(p[1], origin[1])])
     }
@@ -185,11 +194,11 @@ impl ScreenXy {
     /// The subpixel position from the screen's top-left corner, for a
     /// position stored from `origin`.
     #[inline(always)]
-    pub(crate) fn unpack(self, origin: [i32; 2]) -> [i32; 2] {
-        [
+    pub(crate) fn unpack(self, Subpx(origin): Subpx) -> Subpx {
+        Subpx([
             i32::from(self.0[0]) + origin[0],
             i32::from(self.0[1]) + origin[1],
-        ]
+        ])
     }
 }
 
@@ -412,7 +421,7 @@ impl<P: Profile> Frame<'_, P> {
     /// screen's top-left corner; stored as a [`ScreenXy`]).
     pub fn xy(&self, v: usize) -> Option<[i32; 2]> {
         let o = prepare::xy_origin::<P>(self.width, self.height);
-        self.ws.xy.get(v).map(|p| p.unpack(o))
+        self.ws.xy.get(v).map(|p| p.unpack(o).0)
     }
 
     /// Prepared vertex `i` of object `po` (depth and the first `N`

@@ -49,8 +49,8 @@
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
 use super::{
-    Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Tri, Workspace, MAX_TRIANGLES,
-    MAX_VERTICES,
+    Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri, Workspace,
+    MAX_TRIANGLES, MAX_VERTICES,
 };
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
@@ -83,13 +83,13 @@ const FROM_CORNER_MAX_BITS: u32 = 4;
 /// `[width, height] · 2^s / 2` (exact: `s >= 1`; at most `4096 · 2^7`).
 #[inline(always)]
 #[allow(clippy::cast_possible_wrap)]
-pub(crate) fn xy_origin<P: Profile>(width: u32, height: u32) -> [i32; 2] {
+pub(crate) fn xy_origin<P: Profile>(width: u32, height: u32) -> Subpx {
     let s = P::SUBPIXEL_BITS.get();
     if s > FROM_CORNER_MAX_BITS {
         let c = |n: u32| (n.min(MAX_SCREEN) << (s - 1)) as i32;
-        [c(width), c(height)]
+        Subpx([c(width), c(height)])
     } else {
-        [0, 0]
+        Subpx([0, 0])
     }
 }
 
@@ -221,23 +221,40 @@ struct View<R> {
     fast: Option<Proj16>,
 }
 
+/// The raw bits of a Q16.16 value (`to_fixed_i32(16)`): eye-space
+/// coordinates, colour levels in `[0, 255 · 2^16]`, the depth scale; not
+/// to be mixed with subpixel coordinates ([`Subpx`]) or depths
+/// ([`DepthQ30`]). Zero-cost (an `i32`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(transparent)]
+pub(super) struct Q16Bits(pub(super) i32);
+
+/// A depth in Q2.30 from the fused kernel (`0` at the near plane, `2^30`
+/// at the far one), before the profile stores it
+/// ([`Profile::depth_q30`]); not to be mixed with raw Q16 bits or
+/// subpixel coordinates. Zero-cost (an `i32`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(transparent)]
+pub(super) struct DepthQ30(pub(super) i32);
+
 /// Raw Q16 vector of a `Q16` vector.
 #[inline(always)]
-fn raw3<R: Real>(v: Vec3<R>) -> [i32; 3] {
+fn raw3<R: Real>(v: Vec3<R>) -> [Q16Bits; 3] {
     [
-        v.x.to_fixed_i32(16),
-        v.y.to_fixed_i32(16),
-        v.z.to_fixed_i32(16),
+        Q16Bits(v.x.to_fixed_i32(16)),
+        Q16Bits(v.y.to_fixed_i32(16)),
+        Q16Bits(v.z.to_fixed_i32(16)),
     ]
 }
 
 /// A `Q16` vector from raw bits.
 #[inline(always)]
-fn from_raw3<R: Real>(v: [i32; 3]) -> Vec3<R> {
+fn from_raw3<R: Real>(v: [Q16Bits; 3]) -> Vec3<R> {
+    let [Q16Bits(x), Q16Bits(y), Q16Bits(z)] = v;
     Vec3::new(
-        R::from_fixed_i32(v[0], 16),
-        R::from_fixed_i32(v[1], 16),
-        R::from_fixed_i32(v[2], 16),
+        R::from_fixed_i32(x, 16),
+        R::from_fixed_i32(y, 16),
+        R::from_fixed_i32(z, 16),
     )
 }
 
@@ -541,9 +558,9 @@ fn facing<R: Real>(a: Vec3<R>, b: Vec3<R>, c: Vec3<R>) -> R {
 /// height` screen (the rows the rasterizer would visit), or `None` when it
 /// covers no pixel centre of the screen.
 #[inline(always)]
-fn rows_in(xy: [[i32; 2]; 3], width: u32, height: u32, sub: SubpixelBits) -> Option<[u16; 2]> {
+fn rows_in(xy: [Subpx; 3], width: u32, height: u32, sub: SubpixelBits) -> Option<[u16; 2]> {
     let span = |k: usize| {
-        let (a, b, c) = (xy[0][k], xy[1][k], xy[2][k]);
+        let (a, b, c) = (xy[0].0[k], xy[1].0[k], xy[2].0[k]);
         (a.min(b).min(c), a.max(b).max(c))
     };
     let (x_lo, x_hi) = span(0);
@@ -580,7 +597,7 @@ fn rows_in(xy: [[i32; 2]; 3], width: u32, height: u32, sub: SubpixelBits) -> Opt
 fn triangles_inside(
     tris: &[[u16; 3]],
     base: usize,
-    (xy, origin): (&[ScreenXy], [i32; 2]),
+    (xy, origin): (&[ScreenXy], Subpx),
     out: &mut [Tri],
     mut nt: usize,
     (width, height): (u32, u32),
@@ -596,7 +613,7 @@ fn triangles_inside(
             continue;
         }
         let p = q.map(|v| v.unpack(origin));
-        let [a, b, c] = p;
+        let [Subpx(a), Subpx(b), Subpx(c)] = p;
         let (e0, e1, e2, e3) = (b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);
         let sign = det_sign_small(e0, e1, e2, e3).unwrap_or_else(|| det_sign(e0, e1, e2, e3));
         if sign == 0 {
@@ -698,9 +715,9 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
 fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
     f: &Fused,
     positions: &[[i16; 3]],
-    (xy, origin): (&mut [ScreenXy], [i32; 2]),
+    (xy, origin): (&mut [ScreenXy], Subpx),
     vals: &mut [L],
-    depth: impl Fn(i32) -> L,
+    depth: impl Fn(DepthQ30) -> L,
 ) -> [u32; 3] {
     let (mut ux, mut uy, mut ly) = (0u32, 0u32, u32::MAX);
     let verts = positions.iter().zip(xy.iter_mut());
@@ -713,14 +730,14 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
         }
         let (s, d) = f.project::<CLAMP>(*p);
         // Inside the guard band: within `±XY_LIMIT` of the origin.
-        *out = ScreenXy::pack(s, origin);
+        *out = ScreenXy::pack(Subpx(s), origin);
         ux = ux.max(s[0] as u32);
         uy = uy.max(s[1] as u32);
         if ROWS_FROM_BOX {
             ly = ly.min(s[1] as u32);
         }
         if let Some(first) = v.first_mut() {
-            *first = depth(d);
+            *first = depth(DepthQ30(d));
         }
     }
     [ux, uy, ly]
@@ -753,7 +770,7 @@ fn cull_light<const S: usize, L>(
     xy: &mut [ScreenXy],
     vals: &mut [L],
     levels: Option<&impl Fn([i16; 3]) -> [i32; 3]>,
-    level: impl Fn(i32) -> L,
+    level: impl Fn(Q16Bits) -> L,
 ) {
     mark_vertices(*cull, normals, cones, xy);
     if let Some(l) = levels {
@@ -764,7 +781,7 @@ fn cull_light<const S: usize, L>(
             }
             let lv = l(*a);
             for (d, x) in v.iter_mut().skip(1).zip(lv) {
-                *d = level(x);
+                *d = level(Q16Bits(x));
             }
         }
     }
@@ -773,8 +790,8 @@ fn cull_light<const S: usize, L>(
 /// Colour levels in `[0, 255 · 2^16]` rounded to 8 bits.
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-fn level_rgb(c: [i32; 3]) -> Rgb8 {
-    let q = |v: i32| ((v + (1 << 15)) >> 16) as u8;
+fn level_rgb(c: [Q16Bits; 3]) -> Rgb8 {
+    let q = |Q16Bits(v): Q16Bits| ((v + (1 << 15)) >> 16) as u8;
     Rgb8::new(q(c[0]), q(c[1]), q(c[2]))
 }
 
@@ -784,11 +801,14 @@ fn level_rgb(c: [i32; 3]) -> Rgb8 {
 fn one_color(o: &OneLight, grey: bool, n: [i16; 3], back: bool) -> Rgb8 {
     // Face normals are Q1.14 units: the negation is exact.
     let n = if back { n.map(i16::saturating_neg) } else { n };
-    level_rgb(if grey {
-        [o.at::<true>(n)[0]; 3]
-    } else {
-        o.at::<false>(n)
-    })
+    level_rgb(
+        if grey {
+            [o.at::<true>(n)[0]; 3]
+        } else {
+            o.at::<false>(n)
+        }
+        .map(Q16Bits),
+    )
 }
 
 /// Where an object's bounding sphere lies against the clipping planes.
@@ -999,7 +1019,7 @@ impl<P: Profile> Preparer<'_, P> {
     fn eye_pos(ctx: &ObjCtx<'_, '_, P::Real>, i: usize) -> Vec3<P::Real> {
         let pos = ctx.positions.get(i).copied().unwrap_or([0; 3]);
         match &ctx.fast {
-            Some(x) => from_raw3(x.point(pos)),
+            Some(x) => from_raw3(x.point(pos).map(Q16Bits)),
             None => ctx.mv.point(Vec3::from_q14(pos)),
         }
     }
@@ -1009,7 +1029,7 @@ impl<P: Profile> Preparer<'_, P> {
     #[inline]
     fn eye_normal(ctx: &ObjCtx<'_, '_, P::Real>, raw: [i16; 3], flip: bool) -> Vec3<P::Real> {
         let n = match &ctx.fast_n {
-            Some(x) => from_raw3(approx16::unit(x.vector(raw))),
+            Some(x) => from_raw3(approx16::unit(x.vector(raw)).map(Q16Bits)),
             None => ctx.nm.vector(Vec3::from_q14(raw)).normalize(),
         };
         if flip {
@@ -1226,10 +1246,11 @@ impl<P: Profile> Preparer<'_, P> {
         let marked = culled.is_some();
         if let Some((c, normals, cones)) = culled {
             // The vertex normal is the cone's axis, and the normal lit.
-            cull_light::<S, _>(c, (normals, cones), xy, vals, levels.as_ref(), P::level_q16);
+            let level = |Q16Bits(c)| P::level_q16(c);
+            cull_light::<S, _>(c, (normals, cones), xy, vals, levels.as_ref(), level);
         }
         let pos = ctx.positions;
-        let depth = P::depth_q30;
+        let depth = |DepthQ30(d)| P::depth_q30(d);
         let o = xy_origin::<P>(self.width, self.height);
         let xy = (xy, o);
         let bbox = match (f.depth_in_range, marked) {
@@ -1248,7 +1269,7 @@ impl<P: Profile> Preparer<'_, P> {
         }
         // The triangle loop over the box reads positions stored from the
         // screen's corner.
-        self.bbox = Some(bbox).filter(|_| o == [0, 0]);
+        self.bbox = Some(bbox).filter(|_| o == Subpx([0, 0]));
         self.marked = marked;
         self.nv = end;
         self.nval = ctx.val_base + n * S;
@@ -1298,7 +1319,7 @@ impl<P: Profile> Preparer<'_, P> {
         {
             let (s, q) = pj.project_inside(x.point(*p), sub);
             // Inside the guard band: within `±XY_LIMIT` of the origin.
-            *out = ScreenXy::pack(s, o);
+            *out = ScreenXy::pack(Subpx(s), o);
             let d = R::<P>::ONE - R::<P>::from_fixed_i32(q, 16);
             let d = match scale_small {
                 // `Q16`'s `*` in 32-bit products, bit for bit (`d <= 1`).
@@ -1334,7 +1355,7 @@ impl<P: Profile> Preparer<'_, P> {
         let sub = P::SUBPIXEL_BITS.get();
         let (xy, d, q) = if let Some(pj) = &self.view.fast {
             // Q16: integer projection, clamped to the rasterizer's range.
-            let (xy, q) = pj.project(raw3(cv.pos), sub);
+            let (xy, q) = pj.project(raw3(cv.pos).map(|Q16Bits(b)| b), sub);
             let q = P::Real::from_fixed_i32(q, 16);
             let d = P::Real::ONE - q;
             // `*`, inlined (`*=` measured as a call on the M0).
@@ -1354,7 +1375,7 @@ impl<P: Profile> Preparer<'_, P> {
         };
         let o = self.origin();
         if let Some(slot) = self.ws.xy.get_mut(v) {
-            *slot = ScreenXy::pack_clamped(xy, o);
+            *slot = ScreenXy::pack_clamped(Subpx(xy), o);
         }
         let Some(vals) = self.ws.vals.get_mut(base..base + stride) else {
             return;
@@ -1446,7 +1467,7 @@ impl<P: Profile> Preparer<'_, P> {
         for t in self.ws.tris.get(tris).unwrap_or(&[]) {
             let y = t
                 .v()
-                .map(|v| xy.get(usize::from(v)).map_or(0, |p| p.unpack(o)[1]));
+                .map(|v| xy.get(usize::from(v)).map_or(0, |p| p.unpack(o).0[1]));
             lo = lo.min(y[0].min(y[1]).min(y[2]));
             hi = hi.max(y[0].max(y[1]).max(y[2]));
         }
@@ -1461,25 +1482,25 @@ impl<P: Profile> Preparer<'_, P> {
 
     /// The origin of the stored screen positions ([`xy_origin`]).
     #[inline(always)]
-    fn origin(&self) -> [i32; 2] {
+    fn origin(&self) -> Subpx {
         xy_origin::<P>(self.width, self.height)
     }
 
     /// Screen position of prepared vertex `v`, subpixels from the screen's
     /// corner (`[0, 0]` past the end).
     #[inline(always)]
-    fn xy(&self, v: usize) -> [i32; 2] {
+    fn xy(&self, v: usize) -> Subpx {
         self.ws
             .xy
             .get(v)
-            .map_or([0; 2], |p| p.unpack(self.origin()))
+            .map_or(Subpx([0; 2]), |p| p.unpack(self.origin()))
     }
 
     /// The rows a triangle with corners at `xy` can cover (the rows the
     /// rasterizer would visit), or `None` when it covers no pixel centre
     /// of the screen.
     #[inline(always)]
-    fn rows_of(&self, xy: [[i32; 2]; 3]) -> Option<[u16; 2]> {
+    fn rows_of(&self, xy: [Subpx; 3]) -> Option<[u16; 2]> {
         rows_in(xy, self.width, self.height, P::SUBPIXEL_BITS)
     }
 
@@ -1534,7 +1555,7 @@ impl<P: Profile> Preparer<'_, P> {
             } else {
                 l.at::<false>(n)
             };
-            return level_rgb(c);
+            return level_rgb(c.map(Q16Bits));
         }
         let col = match &ctx.olight {
             Some(ol) => ol.at(n, back, ctx.grey),
@@ -1559,7 +1580,7 @@ impl<P: Profile> Preparer<'_, P> {
                     Vec3::ZERO
                 };
                 let n = match &ctx.fast_n {
-                    Some(x) => from_raw3::<P::Real>(x.vector(n)).normalize_geom(),
+                    Some(x) => from_raw3::<P::Real>(x.vector(n).map(Q16Bits)).normalize_geom(),
                     None => ctx.nm.vector(Vec3::from_q14(n)).normalize(),
                 };
                 ctx.shade.at(if back { -n } else { n }, c)
@@ -1723,7 +1744,7 @@ impl<P: Profile> Preparer<'_, P> {
             }
             let o = self.origin();
             let xy = q.map(|p| p.unpack(o));
-            let [a, b, c] = xy;
+            let [Subpx(a), Subpx(b), Subpx(c)] = xy;
             // Twice the signed area; only its sign is used: 32-bit
             // products when every edge is shorter than 2^15 subpixels.
             let (e0, e1, e2, e3) = (b[0] - a[0], c[1] - a[1], c[0] - a[0], b[1] - a[1]);

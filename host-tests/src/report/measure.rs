@@ -1054,7 +1054,7 @@ pub fn measure_user_scenes(opts: &UserMeasureOptions) -> Result<Measurements, Er
         })
         .collect::<Result<_, _>>()?;
     let (scenes, modes) = user_firmware_scenes(&opts.files)?;
-    let source = generate_for(&scenes).map_err(Error::input)?;
+    let source = generate_for(&scenes).map_err(|e| Error::input(e.to_string()))?;
     let fast_crcs: BTreeMap<String, String> = scenes
         .iter()
         .map(|s| {
