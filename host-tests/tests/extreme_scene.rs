@@ -778,10 +778,13 @@ fn precise_phong_2044_px_spans_lights_near() {
     }
 }
 
+/// Positions, triangles and normals of a mesh.
+type TorusData = (Vec<[i16; 3]>, Vec<[u16; 3]>, Vec<[i16; 3]>);
+
 /// A torus of major radius `R` 0.7 and minor radius 0.3 around the model's
 /// z axis, `a` by `b` segments, smooth normals: positions and normals in
 /// `Q1.14`.
-fn torus(a: usize, b: usize) -> (Vec<[i16; 3]>, Vec<[u16; 3]>, Vec<[i16; 3]>) {
+fn torus(a: usize, b: usize) -> TorusData {
     let q = |v: f64| (v * 16384.0).round() as i16;
     let (mut pos, mut nrm, mut tri) = (vec![], vec![], vec![]);
     for i in 0..a {
