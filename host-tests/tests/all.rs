@@ -15,6 +15,7 @@
 
 mod support;
 
+mod accuracy_phong;
 mod bands;
 mod budgets;
 mod cli;
