@@ -160,7 +160,7 @@ impl InvArea {
     /// rasterizer never asks for it).
     ///
     /// Magnitudes below `2^16` (nearly every triangle of a small display)
-    /// take [`InvArea::new_short`], the others [`recip63`]: the same value.
+    /// take `InvArea::new_short`, the others `recip63`: the same value.
     pub fn new(a: i64) -> Self {
         let mag = a.unsigned_abs();
         if (1..1 << 16).contains(&mag) {
