@@ -17,7 +17,6 @@
 
 use crate::support::*;
 use fixshade::illum::Specular;
-use fixshade::mesh::Mesh;
 use fixshade::num::{F64Pc, Fast, FastPc, Precise, PrecisePc, F64};
 use fixshade::scene::Shading;
 use fixshade_host::builtin::{builtin_scenes, load_builtin};
@@ -73,22 +72,6 @@ fn phong_scenes_within_budget_of_the_twin() {
     assert!(worst[3] <= 1, "precise-pc {}", worst[3]);
 }
 
-const QUAD: [[i16; 3]; 4] = [
-    [-16000, -16000, 0],
-    [16000, -16000, 0],
-    [16000, 16000, 0],
-    [-16000, 16000, 0],
-];
-/// Corner normals 20° off the face normal: the interpolated normal sweeps
-/// across the highlight's peak.
-const TILTED: [[i16; 3]; 4] = [
-    [-4000, -4000, 15400],
-    [4000, -4000, 15400],
-    [4000, 4000, 15400],
-    [-4000, 4000, 15400],
-];
-const QUAD_TRIS: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
-
 /// Shininess of the highlight-peak set.
 const SHININESS: [f64; 9] = [1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0, 10_000.0];
 
@@ -102,7 +85,7 @@ fn peak_case(tilt_deg: f64, specular: Specular, n: f64) -> Spec<'static> {
     let mut s = Spec::new(256, 192, [0.0, 0.0, 3.0]);
     s.ambient = 0.1;
     s.specular = specular;
-    let mesh = Mesh::new(&QUAD, &QUAD_TRIS, Some(&TILTED)).unwrap();
+    let mesh = quad(&TILTED);
     let mut o = ObjSpec::new(mesh, Shading::Phong);
     o.angles = [0.0, tilt_deg.to_radians(), 0.0];
     (o.ka, o.kd, o.ks, o.shininess) = (0.2, 0.3, 1.0, n);

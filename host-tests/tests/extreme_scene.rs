@@ -55,27 +55,6 @@ fn big_triangle() -> Mesh<'static> {
     Mesh::new(&TRI_POS, &[[0, 1, 2]], Some(&UP)).unwrap()
 }
 
-/// A square in z = 0 with corner normals tilted outwards (a curved patch
-/// for Phong and Gouraud).
-const QUAD: [[i16; 3]; 4] = [
-    [-16000, -16000, 0],
-    [16000, -16000, 0],
-    [16000, 16000, 0],
-    [-16000, 16000, 0],
-];
-const TILTED: [[i16; 3]; 4] = [
-    [-4000, -4000, 15400],
-    [4000, -4000, 15400],
-    [4000, 4000, 15400],
-    [-4000, 4000, 15400],
-];
-static FLAT_UP: [[i16; 3]; 4] = [[0, 0, 16384]; 4];
-const QUAD_TRIS: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
-
-fn quad(normals: &'static [[i16; 3]; 4]) -> Mesh<'static> {
-    Mesh::new(&QUAD, &QUAD_TRIS, Some(normals)).unwrap()
-}
-
 /// Scene: the eye on the +z axis looking at a patch facing it, so that
 /// depth is constant over the patch and affine interpolation is exact
 /// (the core's affine profiles and the perspective-correct ideal agree).
@@ -718,14 +697,7 @@ fn precise_phong_sphere_1600x1200_eight_lights_n10000() {
         o.ks = 0.6;
         o.shininess = 1e4;
         s.objects.push(o);
-        for k in 0..8 {
-            let a = f64::from(k) * std::f64::consts::PI / 4.0;
-            s.lights.push((
-                LightSpec::Point([2.0 * a.cos(), 2.0 * a.sin(), 2.5]),
-                0.3,
-                [1.0; 3],
-            ));
-        }
+        ring_of_eight_lights(&mut s);
         let (d, n) = precise_vs_twin(&s, 483, 490);
         println!("{specular:?}: precise {d} levels from f64 over {n} pixels");
         assert!(n > 4000, "the band holds the sphere: {n}");
@@ -863,14 +835,7 @@ fn torus_spec(
     o.cull = true;
     (o.ka, o.kd, o.ks, o.shininess) = (0.2, 0.4, 0.6, n);
     s.objects.push(o);
-    for k in 0..8 {
-        let a = f64::from(k) * std::f64::consts::PI / 4.0;
-        s.lights.push((
-            LightSpec::Point([2.0 * a.cos(), 2.0 * a.sin(), 2.5]),
-            0.3,
-            [1.0; 3],
-        ));
-    }
+    ring_of_eight_lights(&mut s);
     s
 }
 

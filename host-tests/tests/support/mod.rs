@@ -568,3 +568,42 @@ pub fn max_diff_covered(a: &[[u8; 3]], ca: &[bool], b: &[[u8; 3]], cb: &[bool]) 
 pub fn is_scene_error(e: &RenderError, want: SceneError) -> bool {
     *e == RenderError::Scene(want)
 }
+
+/// A square in z = 0 with corner normals tilted outwards (a curved patch
+/// for Phong and Gouraud).
+pub const QUAD: [[i16; 3]; 4] = [
+    [-16000, -16000, 0],
+    [16000, -16000, 0],
+    [16000, 16000, 0],
+    [-16000, 16000, 0],
+];
+/// Corner normals 20° off the face normal: the interpolated normal sweeps
+/// across a highlight's peak.
+pub const TILTED: [[i16; 3]; 4] = [
+    [-4000, -4000, 15400],
+    [4000, -4000, 15400],
+    [4000, 4000, 15400],
+    [-4000, 4000, 15400],
+];
+/// Every corner normal along the face normal (+z).
+pub static FLAT_UP: [[i16; 3]; 4] = [[0, 0, 16384]; 4];
+/// [`QUAD`]'s two triangles.
+pub const QUAD_TRIS: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+
+/// [`QUAD`] with the corner normals `normals`.
+pub fn quad(normals: &'static [[i16; 3]; 4]) -> Mesh<'static> {
+    Mesh::new(&QUAD, &QUAD_TRIS, Some(normals)).unwrap()
+}
+
+/// Eight point lights of intensity 0.3 on a ring of radius 2 at z = 2.5,
+/// 45° apart: the many-lights case of the extreme suite.
+pub fn ring_of_eight_lights(s: &mut Spec<'_>) {
+    for k in 0..8 {
+        let a = f64::from(k) * std::f64::consts::PI / 4.0;
+        s.lights.push((
+            LightSpec::Point([2.0 * a.cos(), 2.0 * a.sin(), 2.5]),
+            0.3,
+            [1.0; 3],
+        ));
+    }
+}
