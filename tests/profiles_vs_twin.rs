@@ -11,7 +11,7 @@ mod common;
 use common::{diff, render, smooth, snapped, Desc, Diff, Lamp, Mat, Obj, WHITE};
 use fixshade::illum::{Specular, Viewer};
 use fixshade::mesh::{BUNNY, DODECAHEDRON, SPHERE};
-use fixshade::num::{Fast, Precise, Profile, F32, F64};
+use fixshade::num::{Fast, FastSub, Precise, Profile, F32, F64};
 use fixshade::scene::Shading;
 
 const W: u32 = 240;
@@ -248,6 +248,35 @@ fn fast_snaps_some_vertices_one_subpixel_away() {
     println!("{} vertices; fast moves {}", b.len(), moved.len());
     assert_eq!(moved.len(), 82);
     assert!(moved.iter().all(|&m| m == 1));
+}
+
+/// `FastSub<B>` is `Fast` on a grid of `1/2^B` pixel: `FastSub<4>` renders
+/// the very pixels of `Fast`; with 2 bits every stored coordinate is
+/// `Fast`'s divided by 4 and rounded (the same projected position on a
+/// coarser grid, so within half a coarse step, in coarse units), and the
+/// frame differs from `Fast`'s (edge pixels move).
+#[test]
+fn fast_sub_is_fast_on_another_subpixel_grid() {
+    let d = scenes(Shading::Gouraud).swap_remove(2).1;
+    let (a, b) = (render::<Fast>(&d, W, W), render::<FastSub<4>>(&d, W, W));
+    assert_eq!(a.px, b.px);
+    assert_eq!(a.covered, b.covered);
+    let (fine, coarse) = (snapped::<Fast>(&d, W, W), snapped::<FastSub<2>>(&d, W, W));
+    assert_eq!(fine.len(), coarse.len());
+    for (f, c) in fine.iter().zip(&coarse) {
+        for k in 0..2 {
+            // |4c - f| <= 2 + 1: half a coarse step and each grid's own
+            // rounding of the projected point (one fine subpixel).
+            assert!((4 * c[k] - f[k]).abs() <= 3, "{f:?} {c:?}");
+        }
+    }
+    let coarse_frame = render::<FastSub<2>>(&d, W, W);
+    let moved = (a.covered.iter())
+        .zip(&coarse_frame.covered)
+        .filter(|(x, y)| x != y)
+        .count();
+    println!("FastSub<2> covers {moved} pixels differently from Fast");
+    assert!(moved > 0);
 }
 
 /// The Q16 lighting of "bunny two lights" on its own: `fast`'s

@@ -23,8 +23,8 @@ pub use self::isqrt::isqrt_u64;
 pub(crate) use self::isqrt::{isqrt_rem_u128, isqrt_rem_u64};
 pub use self::lerp::{Lerp, ATTR_LIMIT, DEPTH_ONE, LEVEL_FRAC_BITS};
 pub use self::profile::{
-    F32Pc, F64Pc, Fast, FastPc, Precise, PrecisePc, Profile, COORD_FRAC_BITS, COORD_FRAC_BITS_PC,
-    DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
+    F32Pc, F64Pc, Fast, FastPc, FastSub, Precise, PrecisePc, Profile, COORD_FRAC_BITS,
+    COORD_FRAC_BITS_PC, DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
 };
 pub use self::real::{Q16Kernels, Real};
 pub use self::recip::{InvArea, Recip};

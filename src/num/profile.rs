@@ -102,10 +102,20 @@ macro_rules! fixed_profile {
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         pub struct $name;
 
-        impl Profile for $name {
+        fixed_profile_impl!([] $name, $real, $label, $pc, $frame, SubpixelBits::DEFAULT);
+    };
+}
+
+/// The `Profile` impl of a fixed profile: type `$ty` with generics
+/// `[$g]`, scalar `$real`, perspective `$pc`, position frame `$frame` and
+/// subpixel bits `$sub`.
+macro_rules! fixed_profile_impl {
+    ([$($g:tt)*] $ty:ty, $real:ty, $label:literal, $pc:literal, $frame:literal, $sub:expr) => {
+        impl<$($g)*> Profile for $ty {
             type Real = $real;
             type Lerp = i32;
             const NAME: &'static str = $label;
+            const SUBPIXEL_BITS: SubpixelBits = $sub;
             const PERSPECTIVE: bool = $pc;
             const POSITION_FRAME: bool = $frame;
 
@@ -187,6 +197,27 @@ fixed_profile!(
     true,
     false,
     "[`Precise`] with perspective-correct interpolation."
+);
+
+/// [`Fast`] with `B` subpixel bits instead of [`SubpixelBits::DEFAULT`]
+/// (4): the knob that trades coverage accuracy for coordinate range
+/// ([`SubpixelBits::coord_limit`]). `B` must lie in
+/// `SubpixelBits::MIN..=SubpixelBits::MAX` (`1..=8`); another value is a
+/// compile-time error where the profile is used. Everything else, and the
+/// name `"fast"`, is [`Fast`]'s; `FastSub<4>` renders exactly as [`Fast`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FastSub<const B: u32>;
+
+fixed_profile_impl!(
+    [const B: u32] FastSub<B>,
+    Q16,
+    "fast",
+    false,
+    false,
+    match SubpixelBits::new(B) {
+        Ok(b) => b,
+        Err(_) => panic!("FastSub<B>: B outside SubpixelBits::MIN..=SubpixelBits::MAX"),
+    }
 );
 
 macro_rules! float_profile {

@@ -9,8 +9,7 @@
 use maud::{html, Markup, PreEscaped};
 use serde::{Deserialize, Serialize};
 
-use fixshade::num::{Fast, Profile, Q16};
-use fixshade::raster::SubpixelBits;
+use fixshade::num::{FastSub, Profile, Q16};
 use fixshade::target::{PixelFormat, Rgb888};
 
 use super::Error;
@@ -22,39 +21,6 @@ use crate::metrics::{compare, FrameView, Metrics};
 use super::chip_section::{md, table, Table};
 use super::chips::{KnobResult, Measurements};
 use super::plot::{line_svg, Series};
-
-/// `Fast` with `B` subpixel bits (as the firmware's
-/// `fixshade_scenes::knobs::FastSub`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct FastSub<const B: u32>;
-
-impl<const B: u32> Profile for FastSub<B> {
-    type Real = Q16;
-    type Lerp = i32;
-    const NAME: &'static str = "fast";
-    const SUBPIXEL_BITS: SubpixelBits = match SubpixelBits::new(B) {
-        Ok(b) => b,
-        Err(_) => panic!("subpixel bits out of range"),
-    };
-    fn level(r: Q16) -> i32 {
-        Fast::level(r)
-    }
-    fn depth(r: Q16) -> i32 {
-        Fast::depth(r)
-    }
-    fn unit(r: Q16) -> i32 {
-        Fast::unit(r)
-    }
-    fn unit_back(l: i32) -> Q16 {
-        Fast::unit_back(l)
-    }
-    fn coord(r: Q16) -> i32 {
-        Fast::coord(r)
-    }
-    fn coord_back(l: i32) -> Q16 {
-        Fast::coord_back(l)
-    }
-}
 
 /// The frame of built-in `scene` with profile `P` against its ideal frame.
 fn vs_ideal<P: Profile<Real = Q16>>(scene: &str) -> Result<Metrics, Error> {

@@ -62,7 +62,7 @@ use crate::output::write_atomically;
 pub use chip_section::{ChipSection, Table};
 pub use embedded::{parse_firmware_results, read_firmware_results, EmbeddedResult, Target};
 pub use error::Error;
-pub use knob_section::{FastSub, KnobSection};
+pub use knob_section::KnobSection;
 pub use plot::pareto_front;
 pub use summary::{
     aggregate, Aggregate, CostSource, Pick, Point, Summary, MODE_TOLERANCE, QUALITY_TOLERANCE,

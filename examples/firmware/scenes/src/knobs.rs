@@ -2,14 +2,14 @@
 //! subpixel bits (the firmware's `knobs` build and host-check `--knobs`).
 //!
 //! [`render_frame_knobs`] is [`crate::profiled::render_frame_with`] with
-//! the band height and the depth format as parameters; [`FastSub`] is the
-//! `Fast` profile with another subpixel precision (every other quantity as
-//! `Fast`'s).
+//! the band height and the depth format as parameters; [`FastSub`] (the
+//! core's) is the `Fast` profile with another subpixel precision (every
+//! other quantity as `Fast`'s).
 
 use crate::profiled::{depth_in, raster_bands_in, ProfilePool};
 use crate::{FrameError, FrameStats, Pixel, Probe, SceneSpec, WIDTH};
-use fixshade::num::{Fast, Profile, Q16};
-use fixshade::raster::SubpixelBits;
+pub use fixshade::num::FastSub;
+use fixshade::num::Profile;
 use fixshade::render::{prepare, Workspace};
 use fixshade::target::DepthFormat;
 
@@ -21,38 +21,6 @@ pub const BAND_ROWS_SWEEP: [u32; 6] = [4, 8, 16, 32, 80, 240];
 pub const SUBPIXEL_SWEEP: [u32; 5] = [2, 3, 4, 6, 8];
 /// Most rows of a band: pixels (and depth values) of the largest band.
 pub const MAX_BAND_PIXELS: usize = (WIDTH * 240) as usize;
-/// `Fast` with `B` subpixel bits.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct FastSub<const B: u32>;
-
-impl<const B: u32> Profile for FastSub<B> {
-    type Real = Q16;
-    type Lerp = i32;
-    const NAME: &'static str = "fast";
-    const SUBPIXEL_BITS: SubpixelBits = match SubpixelBits::new(B) {
-        Ok(b) => b,
-        Err(_) => panic!("subpixel bits out of range"),
-    };
-    fn level(r: Q16) -> i32 {
-        Fast::level(r)
-    }
-    fn depth(r: Q16) -> i32 {
-        Fast::depth(r)
-    }
-    fn unit(r: Q16) -> i32 {
-        Fast::unit(r)
-    }
-    fn unit_back(l: i32) -> Q16 {
-        Fast::unit_back(l)
-    }
-    fn coord(r: Q16) -> i32 {
-        Fast::coord(r)
-    }
-    fn coord_back(l: i32) -> Q16 {
-        Fast::coord_back(l)
-    }
-}
-
 /// A frame with the profile `P` in bands of `rows` rows with the depth
 /// format `D` (`pixels` and `depth` hold at least `width × rows`; no depth
 /// band with `None`): [`crate::profiled::render_frame_with`] is this with
@@ -116,6 +84,7 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
 mod tests {
     use super::*;
     use crate::{NoProbe, POOL_SLOTS, SCENES};
+    use fixshade::num::Fast;
     use fixshade::target::Depth16;
     use std::{boxed::Box, vec};
 
