@@ -8,6 +8,7 @@
 //! knob rows=<n> depth=<16|32> subpixel=<bits> scene=<name> crc=0x<crc32> covered=<px> drawn=<px> setups=<n> prepared_bytes=<bytes> band_bytes=<bytes> depth_bytes=<bytes> stack=<bytes>
 //! ```
 
+use crate::qemu;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::{Fast, Profile};
@@ -126,8 +127,5 @@ fn main() -> ! {
             debug::EXIT_FAILURE
         }
     };
-    debug::exit(status);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    qemu::exit(status)
 }

@@ -31,9 +31,9 @@
 mod knobs;
 #[cfg(feature = "profiled")]
 mod profiled;
+mod qemu;
 
 use core::hint::black_box;
-use core::panic::PanicInfo;
 use core::ptr::{addr_of, addr_of_mut};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
@@ -488,17 +488,5 @@ fn main() -> ! {
             debug::EXIT_FAILURE
         }
     };
-    debug::exit(status);
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(info: &PanicInfo) -> ! {
-    hprintln!("panic: {}", info);
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    qemu::exit(status)
 }

@@ -9,6 +9,7 @@
 //! (`capacity_for`: one more value per vertex in the `-pc` profiles) and
 //! its values are the profile's `Lerp` (4 bytes, or 8 for `f64`).
 
+use crate::qemu;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::num::Profile;
@@ -54,10 +55,7 @@ fn main() -> ! {
             debug::EXIT_FAILURE
         }
     };
-    debug::exit(status);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    qemu::exit(status)
 }
 
 fn run(

@@ -24,7 +24,9 @@
 #![no_std]
 #![no_main]
 
-use core::panic::PanicInfo;
+#[path = "../qemu.rs"]
+mod qemu;
+
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::geom::{Affine, Vec3};
@@ -232,17 +234,5 @@ fn main() -> ! {
             debug::EXIT_FAILURE
         }
     };
-    debug::exit(status);
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(info: &PanicInfo) -> ! {
-    hprintln!("panic: {}", info);
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    qemu::exit(status)
 }
