@@ -105,25 +105,6 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// a fixed raw `d·2^30` or a float `d`.
     fn depth30(self) -> u32;
 
-    /// Depth as stored in a 16-bit buffer: `min(depth30 >> 14, 65534)`
-    /// (65535 is the cleared value, farther than every fragment).
-    #[inline(always)]
-    fn depth16(self) -> u16 {
-        (self.depth30() >> 14).min(u16::MAX as u32 - 1) as u16
-    }
-
-    /// `true` when every value `self + k·step`, `0 <= k < n`, lies within
-    /// `[0, 65535·2^14)` (fixed; exactly, without wrapping), so that
-    /// [`Lerp::depth16_unclamped`] equals [`Lerp::depth16`] at each of them
-    /// and the wrapping additions of the span loop give the exact values.
-    /// A conservative test: `false` (the default, and always for floats)
-    /// only selects the clamping loop.
-    #[inline(always)]
-    fn depth16_span_in_range(self, step: Self, n: u32) -> bool {
-        let _ = (step, n);
-        false
-    }
-
     /// `true` when every pixel of a triangle whose vertex depths are `z`
     /// and whose depth gradients per pixel are `gx`, `gy` gets a depth
     /// within `[0, 65535·2^14)` as the walker computes it (fixed; the
@@ -134,13 +115,6 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     fn depth16_plane_in_range(z: [Self; 3], gx: Self::Grad, gy: Self::Grad) -> bool {
         let _ = (z, gx, gy);
         false
-    }
-
-    /// [`Lerp::depth16`] without the clamp (in a `u32`), for values for
-    /// which [`Lerp::depth16_span_in_range`] holds.
-    #[inline(always)]
-    fn depth16_unclamped(self) -> u32 {
-        self.depth16() as u32
     }
 
     /// Rounded to the nearest integer after removing `frac` fraction bits
@@ -215,38 +189,9 @@ fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
 }
 
 /// Upper end (excluded) of the depths whose 16-bit value needs no clamp:
-/// `65535·2^14`.
-const DEPTH16_LIM: u32 = 65535 << 14;
-
-/// [`Lerp::depth16_span_in_range`] for `i32` in 64 bits (a long
-/// multiply-accumulate is one instruction where there is one): the last
-/// value exactly. Values between the two ends lie between them (affine),
-/// hence in range too, and no partial sum of the span loop wraps.
-#[inline(always)]
-fn depth16_span_in_range64(z: i32, step: i32, n: u32) -> bool {
-    let last = z as i64 + step as i64 * (n as i64 - 1);
-    n != 0 && (z as u32) < DEPTH16_LIM && (0..DEPTH16_LIM as i64).contains(&last)
-}
-
-/// [`depth16_span_in_range64`] in 32 bits (ARMv6-M): the offset of the
-/// last value, `|step|·(n - 1)`, is computed only when it is below 2^31
-/// (either factor bound below), and the first value lies in `[0, 2^30)`,
-/// so the last one is exact in a `u32`. Conservative: `false` for the
-/// rare spans beyond both bounds.
-#[inline(always)]
-fn depth16_span_in_range32(z: i32, step: i32, n: u32) -> bool {
-    let (z, m, s) = (z as u32, n.wrapping_sub(1), step.unsigned_abs());
-    let small = (m < 1 << 13 && s < 1 << 18) || (m < 1 << 4 && s < 1 << 27);
-    if z >= DEPTH16_LIM || n == 0 || !small {
-        return false;
-    }
-    let off = s * m;
-    if step >= 0 {
-        z + off < DEPTH16_LIM
-    } else {
-        off <= z
-    }
-}
+/// `65535·2^14` (the 16-bit depth format's conversions,
+/// `target::Depth16`, and [`Lerp::depth16_plane_in_range`]).
+pub(crate) const DEPTH16_LIM: u32 = 65535 << 14;
 
 /// `a0 + round((gx·ox + gy·oy) / S)` from the 64-bit sum, wrapping.
 #[inline(always)]
@@ -372,34 +317,6 @@ impl Lerp for i32 {
     #[inline(always)]
     fn depth30(self) -> u32 {
         self.clamp(0, DEPTH_ONE) as u32
-    }
-
-    #[inline(always)]
-    fn depth16(self) -> u16 {
-        // The same value as the default, with one clamp instead of two.
-        if NO_LONG_MUL {
-            (self >> 14).clamp(0, u16::MAX as i32 - 1) as u16
-        } else {
-            // ARMv7-M: the clamp to 0..=65535 is one `USAT`; 65535 then
-            // becomes 65534 by subtracting `(u + 1) >> 16` (two ALU
-            // operations instead of a compare and a conditional move).
-            let u = (self >> 14).clamp(0, u16::MAX as i32) as u32;
-            (u - ((u + 1) >> 16)) as u16
-        }
-    }
-
-    #[inline(always)]
-    fn depth16_span_in_range(self, step: i32, n: u32) -> bool {
-        if NO_LONG_MUL {
-            depth16_span_in_range32(self, step, n)
-        } else {
-            depth16_span_in_range64(self, step, n)
-        }
-    }
-
-    #[inline(always)]
-    fn depth16_unclamped(self) -> u32 {
-        self as u32 >> 14
     }
 
     /// Every vertex depth within `[2^15, 65535·2^14 - 2^15)` and both
@@ -626,48 +543,6 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn depth16_span_range_checks_are_sound() {
-        // When a check says "in range", every value of the span converts
-        // without the clamp to the clamped value, and no step wraps.
-        let lim = DEPTH16_LIM as i32;
-        let zs = [0, 1, 1 << 14, 1 << 28, lim - 1, lim, -1, i32::MIN, i32::MAX];
-        let steps = [
-            0,
-            1,
-            -1,
-            1 << 16,
-            -(1 << 16),
-            1 << 20,
-            -(1 << 20),
-            1 << 27,
-            i32::MIN,
-        ];
-        for &z in &zs {
-            for &dz in &steps {
-                for n in [0u32, 1, 2, 15, 16, 17, 240, 4096] {
-                    let r64 = depth16_span_in_range64(z, dz, n);
-                    let r32 = depth16_span_in_range32(z, dz, n);
-                    assert!(!r32 || r64, "{z} {dz} {n}");
-                    if r64 {
-                        let mut v = z;
-                        for k in 0..n {
-                            let exact = z as i64 + dz as i64 * k as i64;
-                            assert_eq!(v as i64, exact, "{z} {dz} {n}");
-                            assert_eq!(v.depth16_unclamped(), v.depth16() as u32);
-                            v = v.wrapping_add(dz);
-                        }
-                    }
-                }
-            }
-        }
-        assert!(depth16_span_in_range32(1 << 28, 1 << 16, 200));
-        assert!(depth16_span_in_range32(lim - 1, -(1 << 20), 16));
-        assert!(!depth16_span_in_range32(lim - 1, 1, 2));
-        assert!(!depth16_span_in_range64(0, -1, 2));
-        assert!(depth16_span_in_range64(0, -1, 1));
     }
 
     #[test]

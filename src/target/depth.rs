@@ -12,6 +12,8 @@
 //! stores `d30` itself.
 
 use super::{check_window, span_range, BufferError, Window};
+use crate::num::wide::NO_LONG_MUL;
+use crate::num::{Lerp, DEPTH16_LIM};
 
 /// A depth value format.
 pub trait DepthFormat: Copy + core::fmt::Debug {
@@ -25,7 +27,7 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     /// Converts an interpolated depth: `from_d30(z.depth30())`, with a
     /// faster path where the format allows.
     #[inline(always)]
-    fn from_lerp<L: crate::num::Lerp>(z: L) -> Self::Raw {
+    fn from_lerp<L: Lerp>(z: L) -> Self::Raw {
         Self::from_d30(z.depth30())
     }
 
@@ -34,13 +36,13 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     /// a span (and the span loop's additions do not wrap): the span stage
     /// then converts without saturating. `false` by default.
     #[inline(always)]
-    fn span_in_range<L: crate::num::Lerp>(z: L, dz: L, n: u32) -> bool {
+    fn span_in_range<L: Lerp>(z: L, dz: L, n: u32) -> bool {
         let _ = (z, dz, n);
         false
     }
 
     /// `true` when a triangle whose depths convert to 16 bits without a
-    /// clamp (`z16`, [`crate::num::Lerp::depth16_plane_in_range`]) has
+    /// clamp (`z16`, [`Lerp::depth16_plane_in_range`]) has
     /// every span in range as [`DepthFormat::span_in_range`] says (then
     /// not asked per span). `false` by default.
     #[inline(always)]
@@ -55,7 +57,7 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     /// Defaults: unused (`span_in_range` is `false`), so they only need to
     /// be consistent.
     #[inline(always)]
-    fn from_lerp_in_range<L: crate::num::Lerp>(z: L) -> u32 {
+    fn from_lerp_in_range<L: Lerp>(z: L) -> u32 {
         let _ = z;
         0
     }
@@ -94,14 +96,32 @@ impl DepthFormat for Depth16 {
         }
     }
 
+    /// Fixed values: the clamp of `z >> 14` to `0..=65534` (one `USAT` and
+    /// two ALU operations on ARMv7-M); floats: `from_d30(z.depth30())`.
     #[inline(always)]
-    fn from_lerp<L: crate::num::Lerp>(z: L) -> u16 {
-        z.depth16()
+    fn from_lerp<L: Lerp>(z: L) -> u16 {
+        match z.fixed_raw() {
+            Some(v) => depth16_fixed(v),
+            None => Self::from_d30(z.depth30()),
+        }
     }
 
+    /// Fixed values: every depth `z + k·dz`, `k < n`, within `[0,
+    /// 65535·2^14)` exactly, without wrapping (the last value in 32-bit
+    /// arithmetic on ARMv6-M, conservative; in 64 bits elsewhere);
+    /// always `false` for floats.
     #[inline(always)]
-    fn span_in_range<L: crate::num::Lerp>(z: L, dz: L, n: u32) -> bool {
-        z.depth16_span_in_range(dz, n)
+    fn span_in_range<L: Lerp>(z: L, dz: L, n: u32) -> bool {
+        match (z.fixed_raw(), dz.fixed_raw()) {
+            (Some(z), Some(dz)) if L::EXACT_STEPS => {
+                if NO_LONG_MUL {
+                    span_in_range32(z, dz, n)
+                } else {
+                    span_in_range64(z, dz, n)
+                }
+            }
+            _ => false,
+        }
     }
 
     #[inline(always)]
@@ -109,10 +129,14 @@ impl DepthFormat for Depth16 {
         z16
     }
 
+    /// `z >> 14` without the clamp: at most 65534 in range, so the key is
+    /// the stored value.
     #[inline(always)]
-    fn from_lerp_in_range<L: crate::num::Lerp>(z: L) -> u32 {
-        // At most 65534 in range: the key is the stored value.
-        z.depth16_unclamped()
+    fn from_lerp_in_range<L: Lerp>(z: L) -> u32 {
+        match z.fixed_raw() {
+            Some(v) => v as u32 >> 14,
+            None => Self::from_lerp(z) as u32,
+        }
     }
 
     #[inline(always)]
@@ -123,6 +147,51 @@ impl DepthFormat for Depth16 {
     #[inline(always)]
     fn from_key(key: u32) -> u16 {
         key as u16
+    }
+}
+
+/// [`Depth16::from_d30`] of a fixed depth `d·2^30` (`i32`), with one clamp
+/// instead of two: `clamp(v >> 14, 0, 65534)`; on ARMv7-M the clamp to
+/// `0..=65535` is one `USAT` and 65535 then becomes 65534 by subtracting
+/// `(u + 1) >> 16` (two ALU operations instead of a compare and a
+/// conditional move). The same value (tested).
+#[inline(always)]
+fn depth16_fixed(v: i32) -> u16 {
+    if NO_LONG_MUL {
+        (v >> 14).clamp(0, u16::MAX as i32 - 1) as u16
+    } else {
+        let u = (v >> 14).clamp(0, u16::MAX as i32) as u32;
+        (u - ((u + 1) >> 16)) as u16
+    }
+}
+
+/// [`Depth16::span_in_range`] for fixed depths in 64 bits (a long
+/// multiply-accumulate is one instruction where there is one): the last
+/// value exactly. Values between the two ends lie between them (affine),
+/// hence in range too, and no partial sum of the span loop wraps.
+#[inline(always)]
+fn span_in_range64(z: i32, step: i32, n: u32) -> bool {
+    let last = z as i64 + step as i64 * (n as i64 - 1);
+    n != 0 && (z as u32) < DEPTH16_LIM && (0..DEPTH16_LIM as i64).contains(&last)
+}
+
+/// [`span_in_range64`] in 32 bits (ARMv6-M): the offset of the last
+/// value, `|step|·(n - 1)`, is computed only when it is below 2^31
+/// (either factor bound below), and the first value lies in `[0, 2^30)`,
+/// so the last one is exact in a `u32`. Conservative: `false` for the
+/// rare spans beyond both bounds.
+#[inline(always)]
+fn span_in_range32(z: i32, step: i32, n: u32) -> bool {
+    let (z, m, s) = (z as u32, n.wrapping_sub(1), step.unsigned_abs());
+    let small = (m < 1 << 13 && s < 1 << 18) || (m < 1 << 4 && s < 1 << 27);
+    if z >= DEPTH16_LIM || n == 0 || !small {
+        return false;
+    }
+    let off = s * m;
+    if step >= 0 {
+        z + off < DEPTH16_LIM
+    } else {
+        off <= z
     }
 }
 
@@ -269,10 +338,9 @@ mod tests {
 
     #[test]
     fn fast_depth16_equals_the_general_conversion() {
-        use crate::num::Lerp;
         let mut z = i32::MIN;
         for _ in 0..200_000 {
-            assert_eq!(z.depth16(), Depth16::from_d30(z.depth30()), "{z}");
+            assert_eq!(Depth16::from_lerp(z), Depth16::from_d30(z.depth30()), "{z}");
             z = z.wrapping_add(21_467 + (z as u32 % 977) as i32);
         }
         for z in [
@@ -289,7 +357,64 @@ mod tests {
             1 << 30,
             i32::MAX,
         ] {
-            assert_eq!(z.depth16(), Depth16::from_d30(z.depth30()), "{z}");
+            assert_eq!(Depth16::from_lerp(z), Depth16::from_d30(z.depth30()), "{z}");
+            // The ARMv6-M form of the fixed conversion too.
+            assert_eq!(
+                (z >> 14).clamp(0, u16::MAX as i32 - 1) as u16,
+                Depth16::from_d30(z.depth30()),
+                "{z}"
+            );
         }
+        assert_eq!(Depth16::from_lerp(0.5f64), 1 << 15);
+        assert!(!Depth16::span_in_range(0.5f32, 0.0, 1));
+    }
+
+    #[test]
+    fn depth16_span_range_checks_are_sound() {
+        // When a check says "in range", every value of the span converts
+        // without the clamp to the clamped value, and no step wraps.
+        let lim = DEPTH16_LIM as i32;
+        let zs = [0, 1, 1 << 14, 1 << 28, lim - 1, lim, -1, i32::MIN, i32::MAX];
+        let steps = [
+            0,
+            1,
+            -1,
+            1 << 16,
+            -(1 << 16),
+            1 << 20,
+            -(1 << 20),
+            1 << 27,
+            i32::MIN,
+        ];
+        for &z in &zs {
+            for &dz in &steps {
+                for n in [0u32, 1, 2, 15, 16, 17, 240, 4096] {
+                    let r64 = span_in_range64(z, dz, n);
+                    let r32 = span_in_range32(z, dz, n);
+                    assert!(!r32 || r64, "{z} {dz} {n}");
+                    assert_eq!(
+                        Depth16::span_in_range(z, dz, n),
+                        if NO_LONG_MUL { r32 } else { r64 }
+                    );
+                    if r64 {
+                        let mut v = z;
+                        for k in 0..n {
+                            let exact = z as i64 + dz as i64 * k as i64;
+                            assert_eq!(v as i64, exact, "{z} {dz} {n}");
+                            assert_eq!(
+                                Depth16::from_lerp_in_range(v),
+                                Depth16::from_lerp(v) as u32
+                            );
+                            v = v.wrapping_add(dz);
+                        }
+                    }
+                }
+            }
+        }
+        assert!(span_in_range32(1 << 28, 1 << 16, 200));
+        assert!(span_in_range32(lim - 1, -(1 << 20), 16));
+        assert!(!span_in_range32(lim - 1, 1, 2));
+        assert!(!span_in_range64(0, -1, 2));
+        assert!(span_in_range64(0, -1, 1));
     }
 }

@@ -204,72 +204,80 @@ const fn unpack565(v: u16) -> Rgb8 {
     )
 }
 
-/// RGB565, most significant byte first (the order SPI displays expect),
-/// stored as an aligned `u16` whose bytes in memory are that order
-/// (`to_be`: a byte swap, one `REV16`, on a little-endian Cortex-M, done
-/// once per colour or in the grey table; a halfword store per pixel).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Rgb565Be;
+/// [`PixelFormat::encode_q19`] of the RGB565 formats: the value whose
+/// bytes in memory are big-endian (`BIG`) or little-endian. Where that
+/// order is not the native one, a byte swap: on ARMv7-M of the high-half
+/// form ([`pack565_q19_high`], one `REV`), on ARMv6-M of the `u16` (one
+/// `REV16`).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn encode565_q19<const BIG: bool>(c: [i32; 3]) -> u16 {
+    let swap = BIG != cfg!(target_endian = "big");
+    if swap && cfg!(not(armv6m)) {
+        pack565_q19_high(c).swap_bytes() as u16
+    } else if swap {
+        pack565_q19(c).swap_bytes()
+    } else {
+        pack565_q19(c)
+    }
+}
 
-impl PixelFormat for Rgb565Be {
-    type Raw = u16;
-    #[inline]
-    fn fill_slice(pixels: &mut [u16], raw: u16) {
-        fill_u16(pixels, raw);
-    }
-    const BYTES: usize = 2;
-    #[inline]
-    fn encode(c: Rgb8) -> u16 {
-        pack565(c).to_be()
-    }
-    #[inline(always)]
-    fn encode_grey(level: u8) -> u16 {
-        GREY565_BE[level as usize]
-    }
-    #[inline(always)]
-    #[allow(clippy::cast_possible_truncation)]
-    fn encode_q19(c: [i32; 3]) -> u16 {
-        if cfg!(all(target_endian = "little", not(armv6m))) {
-            pack565_q19_high(c).swap_bytes() as u16
-        } else {
-            pack565_q19(c).to_be()
+/// An RGB565 format: `$to`/`$from` its byte order, `$grey` its grey
+/// table, `$big` whether it is big-endian.
+macro_rules! rgb565 {
+    ($(#[$doc:meta])* $name:ident, $big:literal, $to:ident, $from:ident, $grey:ident) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        pub struct $name;
+
+        impl PixelFormat for $name {
+            type Raw = u16;
+            #[inline]
+            fn fill_slice(pixels: &mut [u16], raw: u16) {
+                fill_u16(pixels, raw);
+            }
+            const BYTES: usize = 2;
+            #[inline]
+            fn encode(c: Rgb8) -> u16 {
+                pack565(c).$to()
+            }
+            #[inline(always)]
+            fn encode_grey(level: u8) -> u16 {
+                $grey[level as usize]
+            }
+            #[inline(always)]
+            fn encode_q19(c: [i32; 3]) -> u16 {
+                encode565_q19::<$big>(c)
+            }
+            #[inline]
+            fn decode(raw: u16) -> Rgb8 {
+                unpack565(u16::$from(raw))
+            }
         }
-    }
-    #[inline]
-    fn decode(raw: u16) -> Rgb8 {
-        unpack565(u16::from_be(raw))
-    }
+    };
 }
 
-/// RGB565, least significant byte first (a `u16` in Cortex-M memory),
-/// stored as an aligned `u16`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Rgb565Le;
+rgb565!(
+    /// RGB565, most significant byte first (the order SPI displays expect),
+    /// stored as an aligned `u16` whose bytes in memory are that order
+    /// (`to_be`: a byte swap, one `REV16`, on a little-endian Cortex-M, done
+    /// once per colour or in the grey table; a halfword store per pixel).
+    Rgb565Be,
+    true,
+    to_be,
+    from_be,
+    GREY565_BE
+);
 
-impl PixelFormat for Rgb565Le {
-    type Raw = u16;
-    #[inline]
-    fn fill_slice(pixels: &mut [u16], raw: u16) {
-        fill_u16(pixels, raw);
-    }
-    const BYTES: usize = 2;
-    #[inline]
-    fn encode(c: Rgb8) -> u16 {
-        pack565(c).to_le()
-    }
-    #[inline(always)]
-    fn encode_grey(level: u8) -> u16 {
-        GREY565_LE[level as usize]
-    }
-    #[inline(always)]
-    fn encode_q19(c: [i32; 3]) -> u16 {
-        pack565_q19(c).to_le()
-    }
-    #[inline]
-    fn decode(raw: u16) -> Rgb8 {
-        unpack565(u16::from_le(raw))
-    }
-}
+rgb565!(
+    /// RGB565, least significant byte first (a `u16` in Cortex-M memory),
+    /// stored as an aligned `u16`.
+    Rgb565Le,
+    false,
+    to_le,
+    from_le,
+    GREY565_LE
+);
 
 /// RGB888: red, green, blue bytes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
