@@ -254,6 +254,24 @@ impl Layout {
         }
     }
 
+    /// Values per prepared vertex with profile `P`: [`Self::stride_for`]
+    /// `(P::PERSPECTIVE)`, but 1 for [`Self::GouraudMono`] in the profiles
+    /// that pack depth and grey level into one value
+    /// ([`Profile::PACKED_GREY`], see [`pack_grey`]).
+    pub const fn values_in<P: Profile>(self) -> usize {
+        match self {
+            Self::GouraudMono if P::PACKED_GREY && !P::PERSPECTIVE => 1,
+            _ => self.stride_for(P::PERSPECTIVE),
+        }
+    }
+
+    /// Whether profile `P` stores this layout's depth and grey level
+    /// packed in one value ([`pack_grey`]).
+    #[inline(always)]
+    pub const fn packed_in<P: Profile>(self) -> bool {
+        matches!(self, Self::GouraudMono) && P::PACKED_GREY && !P::PERSPECTIVE
+    }
+
     /// The shading mode.
     pub const fn shading(self) -> Shading {
         match self {
@@ -262,6 +280,46 @@ impl Layout {
             _ => Shading::Phong,
         }
     }
+}
+
+/// The depth half of a packed grey vertex ([`Profile::PACKED_GREY`]):
+/// the 16 high bits of a Q2.30 depth `d` in `[0, 2^30]` (`d >> 14`, the
+/// bits a 16-bit depth buffer keeps, saturated to `0..=65535`) in the high
+/// half of the value. [`unpack_grey`] gives back `d` within `2^13`
+/// (half a step of a 16-bit depth buffer, `2^-17` of the depth range).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+pub(crate) fn grey_depth(d: i32) -> i32 {
+    (((d >> 14).clamp(0, 0xFFFF) as u32) << 16) as i32
+}
+
+/// The level half of a packed grey vertex: a Q16 grey level `l` in
+/// `[0, 255 · 2^16]` rounded to Q8.8 in the low half of the value.
+/// [`unpack_grey`] gives back `l` within `2^7` (`2^-9` of a level), and
+/// never above `255 · 2^16`.
+#[inline(always)]
+pub(crate) fn grey_level(l: i32) -> i32 {
+    (l.saturating_add(1 << 7) >> 8).clamp(0, 0xFFFF)
+}
+
+/// Depth and grey level of a packed grey vertex ([`grey_depth`] `|`
+/// [`grey_level`]): the depth in Q2.30 (the middle of its 16-bit step:
+/// below `2^30`) and the level in Q16.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+pub(crate) fn unpack_grey(v: i32) -> (i32, i32) {
+    let u = v as u32;
+    (
+        (((u >> 16) << 14) | (1 << 13)) as i32,
+        ((u & 0xFFFF) << 8) as i32,
+    )
+}
+
+/// Depth and grey level packed in one value: [`grey_depth`] `|`
+/// [`grey_level`].
+#[inline(always)]
+pub(crate) fn pack_grey(d: i32, l: i32) -> i32 {
+    grey_depth(d) | grey_level(l)
 }
 
 /// One object of a prepared frame: 20 bytes (indices as `u16`: below
@@ -436,6 +494,16 @@ impl<P: Profile> Frame<'_, P> {
         let i = usize::from(i);
         let base = po.val_base as usize
             + i.checked_sub(usize::from(po.verts.start))? * usize::from(po.stride);
+        if po.layout.packed_in::<P>() {
+            let (z, l) = unpack_grey(crate::raster::Lerp::fixed_raw(*self.ws.vals.get(base)?)?);
+            let l = <P::Lerp as crate::raster::Lerp>::from_fixed_raw(l);
+            return Some(Vertex {
+                x,
+                y,
+                z: <P::Lerp as crate::raster::Lerp>::from_fixed_raw(z),
+                attrs: [l; N],
+            });
+        }
         let vals = self.ws.vals.get(base..base + 1 + N)?;
         let mut attrs = [vals[0]; N];
         attrs.copy_from_slice(&vals[1..]);
