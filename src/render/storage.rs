@@ -74,8 +74,9 @@ impl Capacity {
     }
 
     /// Room for one more object: `mesh` with `layout`'s values (affine
-    /// profiles; see [`Self::perspective`]) and `reach` (the table in the
-    /// docs of [`Storage`]).
+    /// profiles; see [`Self::perspective`], and `packed_values` for the
+    /// profiles that pack grey vertices: [`Self::in_profile`]) and `reach`
+    /// (the table in the docs of [`Storage`]).
     pub const fn object(self, mesh: &Mesh<'_>, layout: Layout, reach: Reach) -> Self {
         let (v, t) = (mesh.vertex_count(), mesh.triangle_count());
         // Saturating: a sum beyond `usize` stays `usize::MAX` (no storage

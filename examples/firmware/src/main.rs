@@ -165,16 +165,17 @@ fn stack_used() -> usize {
     top - p
 }
 
-/// The storage's capacities: the scenes' ([`CAPACITY`], computed by the
-/// core's `const fn`s from their meshes), or, with the feature
+/// The storage's capacities: the scenes' in `fast` ([`CAPACITY`],
+/// computed by the core's `const fn`s from their meshes, with one value
+/// per grey Gouraud vertex: [`Capacity::in_profile`]), or, with the feature
 /// `tiny-workspace` (to test the start-up check), half the vertices.
 const CAP: Capacity = if cfg!(feature = "tiny-workspace") {
     Capacity {
         vertices: CAPACITY.vertices / 2,
-        ..CAPACITY
+        ..CAPACITY.in_profile::<Fast>()
     }
 } else {
-    CAPACITY
+    CAPACITY.in_profile::<Fast>()
 };
 
 /// The prepared frame's storage, sized by the compiler.
