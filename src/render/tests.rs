@@ -1156,7 +1156,10 @@ fn packed_grey_values_are_within_their_bounds() {
     let mut worst = (0i64, 0i64);
     let mut check = |d: i32, l: i32| {
         let (d2, l2) = unpack_grey(pack_grey(d, l));
-        assert!((0..1 << 30).contains(&d2) && (0..=full).contains(&l2), "{d} {l}");
+        assert!(
+            (0..1 << 30).contains(&d2) && (0..=full).contains(&l2),
+            "{d} {l}"
+        );
         worst.0 = worst.0.max((i64::from(d2) - i64::from(d)).abs());
         worst.1 = worst.1.max((i64::from(l2) - i64::from(l)).abs());
         // Each half leaves the other alone.
