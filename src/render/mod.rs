@@ -507,7 +507,9 @@ impl<P: Profile> Frame<'_, P> {
         let i = usize::from(i);
         let base = po.val_base as usize
             + i.checked_sub(usize::from(po.verts.start))? * usize::from(po.stride);
-        if po.layout.packed_in::<P>() {
+        // (Grey objects read one value besides the depth: the other
+        // readers need no test.)
+        if N == 1 && po.layout.packed_in::<P>() {
             let (z, l) = unpack_grey(crate::raster::Lerp::fixed_raw(*self.ws.vals.get(base)?)?);
             let l = <P::Lerp as crate::raster::Lerp>::from_fixed_raw(l);
             return Some(Vertex {

@@ -1170,45 +1170,55 @@ impl<P: Profile> Preparer<'_, P> {
                     let e = early();
                     let l = Some(|n| o.at_bounded::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) if bounded => {
                     let e = early();
                     let l = Some(|n| o.at_bounded::<false>(n));
-                    return self.kernel_fused::<4>(ctx, &f, l, e.as_ref());
+                    return self.kernel_fused::<4, false>(ctx, &f, l, e.as_ref());
                 }
                 (Layout::Flat, _, _) => {
                     let e = early();
-                    return self.kernel_fused::<1>(ctx, &f, None::<fn(_) -> _>, e.as_ref());
+                    return self.kernel_fused::<1, false>(ctx, &f, None::<fn(_) -> _>, e.as_ref());
                 }
                 (Layout::GouraudMono, _, Some(o)) => {
                     let e = early();
                     let l = Some(|n| o.at::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudMono, Some(l), None) => {
                     let e = early();
                     let l = Some(|n| l.at::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) => {
                     let e = early();
-                    return self.kernel_fused::<4>(ctx, &f, Some(|n| o.at::<false>(n)), e.as_ref());
+                    return self.kernel_fused::<4, false>(
+                        ctx,
+                        &f,
+                        Some(|n| o.at::<false>(n)),
+                        e.as_ref(),
+                    );
                 }
                 (Layout::GouraudRgb, Some(l), None) => {
                     let e = early();
-                    return self.kernel_fused::<4>(ctx, &f, Some(|n| l.at::<false>(n)), e.as_ref());
+                    return self.kernel_fused::<4, false>(
+                        ctx,
+                        &f,
+                        Some(|n| l.at::<false>(n)),
+                        e.as_ref(),
+                    );
                 }
                 _ => {}
             }
@@ -1226,10 +1236,12 @@ impl<P: Profile> Preparer<'_, P> {
 
     /// The vertex loop of [`Preparer::vertex_pass_fast`] with the fused
     /// integer kernel ([`Fused`]) for a layout of `S` values per vertex
-    /// (1 flat, 2 grey, 4 RGB), lit by `levels` (colour levels of a
-    /// normal). Records the screen bounding box of the vertices.
+    /// (1 flat or packed grey, 2 grey, 4 RGB), lit by `levels` (colour
+    /// levels of a normal); `PACK`: depth and grey level packed in one
+    /// value ([`Layout::packed_in`]). Records the screen bounding box of
+    /// the vertices.
     #[inline(never)]
-    fn kernel_fused<const S: usize>(
+    fn kernel_fused<const S: usize, const PACK: bool>(
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
         f: &Fused,
@@ -1262,7 +1274,7 @@ impl<P: Profile> Preparer<'_, P> {
         // low half of the one value, the depth ORed into its high half
         // (after the levels of the marked pass) or stored (before the
         // levels of the unmarked one).
-        let pack = S == 1 && levels.is_some();
+        let pack = PACK && S == 1 && levels.is_some();
         let raw = |v: P::Lerp| v.fixed_raw().unwrap_or(0);
         let marked = culled.is_some();
         if let Some((c, normals, cones)) = culled {
