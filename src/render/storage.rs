@@ -222,7 +222,9 @@ impl Capacity {
 /// becomes a polygon of at most [`MAX_POLY`](super::clip::MAX_POLY) = 9
 /// corners, emitted as new vertices, fanned into at most 7 triangles.
 /// [`Capacity::perspective`] adds the perspective-correct profiles' weight
-/// (one value per vertex). The triangle bound is every mesh triangle:
+/// (one value per vertex); `packed_values` counts one value per grey
+/// Gouraud vertex for the profiles that pack its depth and level
+/// ([`Capacity::in_profile`] picks what a profile needs). The triangle bound is every mesh triangle:
 /// how many a view keeps (the front faces on the screen) is known only
 /// when the view is (the bunny keeps 1 498 of its 3 674 in the benchmark
 /// view). A storage smaller than what a frame uses makes `prepare` return
