@@ -227,7 +227,8 @@ pub enum Layout {
     /// Depth and one grey level (grey material, white lights).
     ///
     /// In the profiles that pack them ([`Profile::PACKED_GREY`]: `fast`)
-    /// both share one `i32` per vertex ([`pack_grey`]; 4 bytes of values
+    /// both share one `i32` per vertex (the depth's 16 high bits in the high
+    /// half, the level in Q8.8 in the low half; 4 bytes of values
     /// instead of 8: the bunny's prepared frame 23 700 bytes instead of
     /// 31 056): the depth keeps its 16 high bits, within `2^-17` of the
     /// depth range at each vertex, and the level 8 fraction bits, within
@@ -270,7 +271,7 @@ impl Layout {
     /// Values per prepared vertex with profile `P`: [`Self::stride_for`]
     /// `(P::PERSPECTIVE)`, but 1 for [`Self::GouraudMono`] in the profiles
     /// that pack depth and grey level into one value
-    /// ([`Profile::PACKED_GREY`], see [`pack_grey`]).
+    /// ([`Profile::PACKED_GREY`], see [`Self::GouraudMono`]).
     pub const fn values_in<P: Profile>(self) -> usize {
         match self {
             Self::GouraudMono if P::PACKED_GREY && !P::PERSPECTIVE => 1,
@@ -279,7 +280,7 @@ impl Layout {
     }
 
     /// Whether profile `P` stores this layout's depth and grey level
-    /// packed in one value ([`pack_grey`]).
+    /// packed in one value (see [`Self::GouraudMono`]).
     #[inline(always)]
     pub const fn packed_in<P: Profile>(self) -> bool {
         matches!(self, Self::GouraudMono) && P::PACKED_GREY && !P::PERSPECTIVE
