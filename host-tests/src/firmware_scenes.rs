@@ -411,14 +411,15 @@ impl FirmwareScene {
         })
     }
 
-    /// Whether `prepare::<Fast>` accepts a workspace of the lengths `cap`.
+    /// Whether `prepare::<Fast>` accepts a workspace of the lengths `cap`
+    /// in `fast` ([`Capacity::in_profile`]: `packed_values` values).
     ///
     /// # Errors
     /// The core's error, e.g. [`RenderError::Capacity`].
     pub fn prepare_with(&self, cap: Capacity) -> Result<(), RenderError> {
         let q = q16_scene(&self.desc).map_err(|_| RenderError::Window)?;
         let scene = q.scene();
-        let mut mem = Owned::new(cap);
+        let mut mem = Owned::new(cap.in_profile::<Fast>());
         prepare::<Fast>(&scene, self.desc.width, self.desc.height, mem.ws()).map(|_| ())
     }
 

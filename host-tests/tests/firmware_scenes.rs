@@ -76,7 +76,7 @@ fn generated_values_render_the_hosts_fast_frame() {
             ),
             (
                 Capacity {
-                    values: c.values - 1,
+                    packed_values: c.packed_values - 1,
                     ..c
                 },
                 Part::Values,

@@ -68,6 +68,13 @@ pub trait Profile: Copy + Debug + Default + 'static {
     /// (see `render::position`). Affine fixed profiles only (`precise`);
     /// the others keep [`Profile::coord`].
     const POSITION_FRAME: bool = false;
+    /// Grey Gouraud vertices keep their depth and grey level in one
+    /// interpolated value, 16 bits each (`render::Layout::values_in`: 4
+    /// bytes of values per vertex instead of 8): the depth's 16 high bits
+    /// (those a 16-bit depth buffer keeps) and the level in Q8.8. Affine
+    /// `i32` profiles only (`fast`); see `render::Layout::GouraudMono`
+    /// for what it costs.
+    const PACKED_GREY: bool = false;
 
     /// A colour level in `[0, 1]` (not clamped) as an interpolated value.
     fn level(r: Self::Real) -> Self::Lerp;
@@ -97,7 +104,7 @@ pub trait Profile: Copy + Debug + Default + 'static {
 }
 
 macro_rules! fixed_profile {
-    ($name:ident, $real:ty, $label:literal, $pc:literal, $frame:literal, $doc:literal) => {
+    ($name:ident, $real:ty, $label:literal, $pc:literal, $frame:literal, $grey:literal, $doc:literal) => {
         #[doc = $doc]
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         pub struct $name;
@@ -118,6 +125,7 @@ macro_rules! fixed_profile_impl {
             const SUBPIXEL_BITS: SubpixelBits = $sub;
             const PERSPECTIVE: bool = $pc;
             const POSITION_FRAME: bool = $frame;
+            const PACKED_GREY: bool = $grey;
 
             #[inline]
             fn level(r: $real) -> i32 {
@@ -172,6 +180,7 @@ fixed_profile!(
     "fast",
     false,
     false,
+    true,
     "Fixed point for the Cortex-M0: Q16.16 scalars, `i32` interpolation."
 );
 fixed_profile!(
@@ -180,6 +189,7 @@ fixed_profile!(
     "precise",
     false,
     true,
+    false,
     "Fixed point with more bits: Q32.32 scalars, `i32` interpolation."
 );
 fixed_profile!(
@@ -188,6 +198,7 @@ fixed_profile!(
     "fast-pc",
     true,
     false,
+    false,
     "[`Fast`] with perspective-correct interpolation."
 );
 fixed_profile!(
@@ -195,6 +206,7 @@ fixed_profile!(
     Q32,
     "precise-pc",
     true,
+    false,
     false,
     "[`Precise`] with perspective-correct interpolation."
 );

@@ -61,7 +61,7 @@ use crate::mesh::{Mesh, MAX_AXIS2};
 use crate::num::approx16;
 use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
 use crate::num::{Profile, Real};
-use crate::raster::{first_row, SubpixelBits, COORD_LIMIT_PX};
+use crate::raster::{first_row, Lerp, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
 
@@ -717,7 +717,7 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
     positions: &[[i16; 3]],
     (xy, origin): (&mut [ScreenXy], Subpx),
     vals: &mut [L],
-    depth: impl Fn(DepthQ30) -> L,
+    depth: impl Fn(&mut L, DepthQ30),
 ) -> [u32; 3] {
     let (mut ux, mut uy, mut ly) = (0u32, 0u32, u32::MAX);
     let verts = positions.iter().zip(xy.iter_mut());
@@ -737,7 +737,7 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
             ly = ly.min(s[1] as u32);
         }
         if let Some(first) = v.first_mut() {
-            *first = depth(DepthQ30(d));
+            depth(first, DepthQ30(d));
         }
     }
     [ux, uy, ly]
@@ -770,7 +770,7 @@ fn cull_light<const S: usize, L>(
     xy: &mut [ScreenXy],
     vals: &mut [L],
     levels: Option<&impl Fn([i16; 3]) -> [i32; 3]>,
-    level: impl Fn(Q16Bits) -> L,
+    level: impl Fn(&mut [L], [i32; 3]),
 ) {
     mark_vertices(*cull, normals, cones, xy);
     if let Some(l) = levels {
@@ -779,10 +779,7 @@ fn cull_light<const S: usize, L>(
             if out.0[0] < 0 {
                 continue;
             }
-            let lv = l(*a);
-            for (d, x) in v.iter_mut().skip(1).zip(lv) {
-                *d = level(Q16Bits(x));
-            }
+            level(v, l(*a));
         }
     }
 }
@@ -938,7 +935,7 @@ impl<P: Profile> Preparer<'_, P> {
                 grey(obj.material.color) && lights.iter().all(|l| grey(l.color))
             },
             layout,
-            stride: layout.stride_for(P::PERSPECTIVE),
+            stride: layout.values_in::<P>(),
             cull: obj.cull_backfaces,
             val_base: self.nval,
             v_start: self.nv,
@@ -1084,7 +1081,7 @@ impl<P: Profile> Preparer<'_, P> {
         inside: bool,
     ) -> Result<(), RenderError> {
         let n = ctx.positions.len();
-        let stride = ctx.layout.stride_for(P::PERSPECTIVE);
+        let stride = ctx.layout.values_in::<P>();
         let end = ctx.v_start + n;
         if end >= MAX_VERTICES || end > self.ws.xy.len() {
             return Err(self.cap(Part::Vertices));
@@ -1132,6 +1129,7 @@ impl<P: Profile> Preparer<'_, P> {
             return self.vertex_pass(ctx, true);
         };
         let (x, pj) = (*x, *pj);
+        let packed = ctx.layout.packed_in::<P>();
         let (m, t) = x.parts();
         let fused = Fused::new(
             m,
@@ -1171,38 +1169,65 @@ impl<P: Profile> Preparer<'_, P> {
                 (Layout::GouraudMono, _, Some(o)) if bounded => {
                     let e = early();
                     let l = Some(|n| o.at_bounded::<true>(n));
-                    return self.kernel_fused::<2>(ctx, &f, l, e.as_ref());
+                    return if packed {
+                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                    } else {
+                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                    };
                 }
                 (Layout::GouraudRgb, _, Some(o)) if bounded => {
                     let e = early();
                     let l = Some(|n| o.at_bounded::<false>(n));
-                    return self.kernel_fused::<4>(ctx, &f, l, e.as_ref());
+                    return self.kernel_fused::<4, false>(ctx, &f, l, e.as_ref());
                 }
                 (Layout::Flat, _, _) => {
                     let e = early();
-                    return self.kernel_fused::<1>(ctx, &f, None::<fn(_) -> _>, e.as_ref());
+                    return self.kernel_fused::<1, false>(ctx, &f, None::<fn(_) -> _>, e.as_ref());
                 }
                 (Layout::GouraudMono, _, Some(o)) => {
                     let e = early();
-                    return self.kernel_fused::<2>(ctx, &f, Some(|n| o.at::<true>(n)), e.as_ref());
+                    let l = Some(|n| o.at::<true>(n));
+                    return if packed {
+                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                    } else {
+                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                    };
                 }
                 (Layout::GouraudMono, Some(l), None) => {
                     let e = early();
-                    return self.kernel_fused::<2>(ctx, &f, Some(|n| l.at::<true>(n)), e.as_ref());
+                    let l = Some(|n| l.at::<true>(n));
+                    return if packed {
+                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                    } else {
+                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                    };
                 }
                 (Layout::GouraudRgb, _, Some(o)) => {
                     let e = early();
-                    return self.kernel_fused::<4>(ctx, &f, Some(|n| o.at::<false>(n)), e.as_ref());
+                    return self.kernel_fused::<4, false>(
+                        ctx,
+                        &f,
+                        Some(|n| o.at::<false>(n)),
+                        e.as_ref(),
+                    );
                 }
                 (Layout::GouraudRgb, Some(l), None) => {
                     let e = early();
-                    return self.kernel_fused::<4>(ctx, &f, Some(|n| l.at::<false>(n)), e.as_ref());
+                    return self.kernel_fused::<4, false>(
+                        ctx,
+                        &f,
+                        Some(|n| l.at::<false>(n)),
+                        e.as_ref(),
+                    );
                 }
                 _ => {}
             }
         }
         match (ctx.layout, &ctx.olight) {
             (Layout::Flat, _) => self.kernel_q16::<1>(ctx, &x, &pj, None),
+            (Layout::GouraudMono, Some(ol)) if packed => {
+                self.kernel_q16::<1>(ctx, &x, &pj, Some(ol))
+            }
             (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, &x, &pj, Some(ol)),
             (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, &x, &pj, Some(ol)),
             _ => self.vertex_pass(ctx, true),
@@ -1211,10 +1236,12 @@ impl<P: Profile> Preparer<'_, P> {
 
     /// The vertex loop of [`Preparer::vertex_pass_fast`] with the fused
     /// integer kernel ([`Fused`]) for a layout of `S` values per vertex
-    /// (1 flat, 2 grey, 4 RGB), lit by `levels` (colour levels of a
-    /// normal). Records the screen bounding box of the vertices.
+    /// (1 flat or packed grey, 2 grey, 4 RGB), lit by `levels` (colour
+    /// levels of a normal); `PACK`: depth and grey level packed in one
+    /// value ([`Layout::packed_in`]). Records the screen bounding box of
+    /// the vertices.
     #[inline(never)]
-    fn kernel_fused<const S: usize>(
+    fn kernel_fused<const S: usize, const PACK: bool>(
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
         f: &Fused,
@@ -1243,14 +1270,36 @@ impl<P: Profile> Preparer<'_, P> {
             (Some(c), Some(normals), Some(cones)) => Some((c, normals, cones)),
             _ => None,
         };
+        // Packed grey ([`Layout::packed_in`], `S == 1`): the level in the
+        // low half of the one value, the depth ORed into its high half
+        // (after the levels of the marked pass) or stored (before the
+        // levels of the unmarked one).
+        let pack = PACK && S == 1 && levels.is_some();
+        let raw = |v: P::Lerp| v.fixed_raw().unwrap_or(0);
         let marked = culled.is_some();
         if let Some((c, normals, cones)) = culled {
             // The vertex normal is the cone's axis, and the normal lit.
-            let level = |Q16Bits(c)| P::level_q16(c);
+            let level = |v: &mut [P::Lerp], lv: [i32; 3]| {
+                if pack {
+                    if let Some(d) = v.first_mut() {
+                        *d = P::Lerp::from_fixed_raw(super::grey_level(lv[0]));
+                    }
+                } else {
+                    for (d, x) in v.iter_mut().skip(1).zip(lv) {
+                        *d = P::level_q16(x);
+                    }
+                }
+            };
             cull_light::<S, _>(c, (normals, cones), xy, vals, levels.as_ref(), level);
         }
         let pos = ctx.positions;
-        let depth = |DepthQ30(d)| P::depth_q30(d);
+        let depth = |v: &mut P::Lerp, DepthQ30(d)| {
+            *v = match (pack, marked) {
+                (true, true) => P::Lerp::from_fixed_raw(raw(*v) | super::grey_depth(d)),
+                (true, false) => P::Lerp::from_fixed_raw(super::grey_depth(d)),
+                _ => P::depth_q30(d),
+            };
+        };
         let o = xy_origin::<P>(self.width, self.height);
         let xy = (xy, o);
         let bbox = match (f.depth_in_range, marked) {
@@ -1262,8 +1311,14 @@ impl<P: Profile> Preparer<'_, P> {
         if let (false, Some(l)) = (marked, levels) {
             for (v, nrm) in vals.chunks_exact_mut(S).zip(ctx.normals) {
                 let c = l(*nrm);
-                for (d, c) in v.iter_mut().skip(1).zip(c) {
-                    *d = P::level_q16(c);
+                if pack {
+                    if let Some(d) = v.first_mut() {
+                        *d = P::Lerp::from_fixed_raw(raw(*d) | super::grey_level(c[0]));
+                    }
+                } else {
+                    for (d, c) in v.iter_mut().skip(1).zip(c) {
+                        *d = P::level_q16(c);
+                    }
                 }
             }
         }
@@ -1329,7 +1384,13 @@ impl<P: Profile> Preparer<'_, P> {
             v[0] = P::depth(d.clamp(R::<P>::ZERO, R::<P>::ONE));
             if let Some(ol) = ol {
                 let nrm = normals.get(i).copied().unwrap_or([0; 3]);
-                let c = ol.at(nrm, false, S == 2);
+                let c = ol.at(nrm, false, S <= 2);
+                if S == 1 {
+                    // Packed grey ([`Layout::packed_in`]).
+                    let raw = |v: P::Lerp| v.fixed_raw().unwrap_or(0);
+                    let p = super::pack_grey(raw(v[0]), raw(P::level(c.x)));
+                    v[0] = P::Lerp::from_fixed_raw(p);
+                }
                 for (d, c) in v.iter_mut().skip(1).zip([c.x, c.y, c.z]) {
                     *d = P::level(c);
                 }
@@ -1351,7 +1412,7 @@ impl<P: Profile> Preparer<'_, P> {
         cv: &ClipVert<P::Real>,
     ) {
         // `ctx.stride`, recomputed so the optimiser sees `stride >= 1`.
-        let stride = ctx.layout.stride_for(P::PERSPECTIVE);
+        let stride = ctx.layout.values_in::<P>();
         let sub = P::SUBPIXEL_BITS.get();
         let (xy, d, q) = if let Some(pj) = &self.view.fast {
             // Q16: integer projection, clamped to the rasterizer's range.
@@ -1380,6 +1441,12 @@ impl<P: Profile> Preparer<'_, P> {
         let Some(vals) = self.ws.vals.get_mut(base..base + stride) else {
             return;
         };
+        if ctx.layout.packed_in::<P>() {
+            let raw = |v: P::Lerp| v.fixed_raw().unwrap_or(0);
+            let l = raw(P::level(cv.attrs[0]));
+            vals[0] = P::Lerp::from_fixed_raw(super::pack_grey(raw(P::depth(d)), l));
+            return;
+        }
         vals[0] = P::depth(d);
         let mut a = cv.attrs;
         let mut pos = cv.pos;
@@ -1426,7 +1493,7 @@ impl<P: Profile> Preparer<'_, P> {
         if i >= MAX_VERTICES || i >= self.ws.xy.len() {
             return Err(self.cap(Part::Vertices));
         }
-        let stride = ctx.layout.stride_for(P::PERSPECTIVE);
+        let stride = ctx.layout.values_in::<P>();
         let base = ctx.val_base + (i - ctx.v_start) * stride;
         if base + stride > self.ws.vals.len() {
             return Err(self.cap(Part::Values));

@@ -2,6 +2,7 @@
 
 use super::{Layout, ScreenXy, Tri, Workspace};
 use crate::mesh::Mesh;
+use crate::num::Profile;
 use crate::raster::Lerp;
 use crate::target::Rgb8;
 
@@ -13,8 +14,14 @@ use crate::target::Rgb8;
 pub struct Capacity {
     /// Prepared vertices.
     pub vertices: usize,
-    /// Interpolated values.
+    /// Interpolated values (the most any profile needs; see
+    /// [`Self::in_profile`]).
     pub values: usize,
+    /// Interpolated values for the profiles that pack a grey Gouraud
+    /// vertex's depth and level into one value
+    /// ([`Profile::PACKED_GREY`]): as `values`, but one per vertex of a
+    /// [`Layout::GouraudMono`] object instead of two.
+    pub packed_values: usize,
     /// Prepared triangles.
     pub triangles: usize,
     /// Colours of prepared triangles of flat objects.
@@ -43,6 +50,7 @@ impl Capacity {
     pub const EMPTY: Self = Self {
         vertices: 0,
         values: 0,
+        packed_values: 0,
         triangles: 0,
         colors: 0,
     };
@@ -58,6 +66,7 @@ impl Capacity {
         while i < meshes.len() {
             c = c.object(meshes[i], Layout::PhongPosition, Reach::Inside);
             c.values = c.values.saturating_add(meshes[i].vertex_count());
+            c.packed_values = c.packed_values.saturating_add(meshes[i].vertex_count());
             c.colors = c.colors.saturating_add(meshes[i].triangle_count());
             i += 1;
         }
@@ -65,8 +74,9 @@ impl Capacity {
     }
 
     /// Room for one more object: `mesh` with `layout`'s values (affine
-    /// profiles; see [`Self::perspective`]) and `reach` (the table in the
-    /// docs of [`Storage`]).
+    /// profiles; see [`Self::perspective`], and `packed_values` for the
+    /// profiles that pack grey vertices: [`Self::in_profile`]) and `reach`
+    /// (the table in the docs of [`Storage`]).
     pub const fn object(self, mesh: &Mesh<'_>, layout: Layout, reach: Reach) -> Self {
         let (v, t) = (mesh.vertex_count(), mesh.triangle_count());
         // Saturating: a sum beyond `usize` stays `usize::MAX` (no storage
@@ -85,6 +95,12 @@ impl Capacity {
             values: self
                 .values
                 .saturating_add(vertices.saturating_mul(layout.stride())),
+            packed_values: self.packed_values.saturating_add(vertices.saturating_mul(
+                match layout {
+                    Layout::GouraudMono => 1,
+                    _ => layout.stride(),
+                },
+            )),
             triangles: self.triangles.saturating_add(triangles),
             colors: match layout {
                 Layout::Flat => self.colors.saturating_add(triangles),
@@ -99,7 +115,24 @@ impl Capacity {
     pub const fn perspective(self) -> Self {
         Self {
             values: self.values.saturating_add(self.vertices),
+            packed_values: self.packed_values.saturating_add(self.vertices),
             ..self
+        }
+    }
+
+    /// The room profile `P` needs: [`Self::perspective`] for a
+    /// perspective-correct profile, `values` = `packed_values` for one
+    /// that packs grey vertices ([`Profile::PACKED_GREY`]), else `self`.
+    pub const fn in_profile<P: Profile>(self) -> Self {
+        if P::PERSPECTIVE {
+            self.perspective()
+        } else if P::PACKED_GREY {
+            Self {
+                values: self.packed_values,
+                ..self
+            }
+        } else {
+            self
         }
     }
 
@@ -115,6 +148,7 @@ impl Capacity {
         Self {
             vertices: m(self.vertices, o.vertices),
             values: m(self.values, o.values),
+            packed_values: m(self.packed_values, o.packed_values),
             triangles: m(self.triangles, o.triangles),
             colors: m(self.colors, o.colors),
         }
@@ -188,7 +222,9 @@ impl Capacity {
 /// becomes a polygon of at most [`MAX_POLY`](super::clip::MAX_POLY) = 9
 /// corners, emitted as new vertices, fanned into at most 7 triangles.
 /// [`Capacity::perspective`] adds the perspective-correct profiles' weight
-/// (one value per vertex). The triangle bound is every mesh triangle:
+/// (one value per vertex); `packed_values` counts one value per grey
+/// Gouraud vertex for the profiles that pack its depth and level
+/// ([`Capacity::in_profile`] picks what a profile needs). The triangle bound is every mesh triangle:
 /// how many a view keeps (the front faces on the screen) is known only
 /// when the view is (the bunny keeps 1 498 of its 3 674 in the benchmark
 /// view). A storage smaller than what a frame uses makes `prepare` return
@@ -218,6 +254,7 @@ impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize>
     pub const CAPACITY: Capacity = Capacity {
         vertices: V,
         values: N,
+        packed_values: N,
         triangles: T,
         colors: C,
     };
@@ -295,7 +332,7 @@ mod tests {
     use crate::geom::{Affine, Vec3};
     use crate::illum::{Light, Material, Specular, Viewer};
     use crate::mesh::{BUNNY, CUBE};
-    use crate::num::{Fast, FastPc, Real, Q16};
+    use crate::num::{Fast, FastPc, Precise, Real, Q16};
     use crate::render::{prepare, Part, RenderError};
     use crate::scene::{Camera, Object, Scene, Shading};
     use crate::target::Rgb8;
@@ -360,10 +397,15 @@ mod tests {
             Capacity {
                 vertices: v,
                 values: 2 * v,
+                packed_values: v,
                 triangles: t,
                 colors: 0
             }
         );
+        // `fast` packs the grey level with the depth; `precise` does not.
+        assert_eq!(CUBE_GREY.in_profile::<Fast>().values, v);
+        assert_eq!(CUBE_GREY.in_profile::<Precise>().values, 2 * v);
+        assert_eq!(CUBE_GREY.in_profile::<FastPc>().values, 3 * v);
         let c = Capacity::EMPTY.object(&CUBE, Layout::GouraudRgb, Reach::TwoSided);
         assert_eq!(
             (c.vertices, c.values, c.triangles),
@@ -380,6 +422,7 @@ mod tests {
             Capacity {
                 vertices: BUNNY.vertex_count() + v,
                 values: 8 * (BUNNY.vertex_count() + v),
+                packed_values: 8 * (BUNNY.vertex_count() + v),
                 triangles: BUNNY.triangle_count() + t,
                 colors: BUNNY.triangle_count() + t
             }
@@ -395,6 +438,7 @@ mod tests {
         let huge = Capacity {
             vertices: usize::MAX - 1,
             values: usize::MAX - 1,
+            packed_values: usize::MAX - 1,
             triangles: usize::MAX / 2,
             colors: 0,
         };
@@ -420,12 +464,17 @@ mod tests {
         let frame = prepare::<Fast>(&s, 64, 64, st.workspace()).unwrap();
         assert_eq!(frame.vertex_count(), CUBE.vertex_count());
         assert!(frame.triangle_count() > 0);
+        // `fast` needs one value per grey vertex: its own capacity
+        // prepares the scene, one value less fails.
+        const FAST: Capacity = CUBE_GREY.in_profile::<Fast>();
+        let mut fast = Box::new(<crate::storage!(i32, FAST)>::new());
+        prepare::<Fast>(&s, 64, 64, fast.workspace()).unwrap();
         type Short = Storage<
             i32,
-            { CUBE_GREY.vertices },
-            { CUBE_GREY.values - 1 },
-            { CUBE_GREY.triangles },
-            { CUBE_GREY.colors },
+            { FAST.vertices },
+            { FAST.values - 1 },
+            { FAST.triangles },
+            { FAST.colors },
         >;
         let mut short = Box::new(Short::new());
         assert_eq!(

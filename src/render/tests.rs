@@ -441,7 +441,9 @@ fn memory_figures_are_as_documented() {
         assert_eq!(l.stride(), s);
     }
     // The bunny in Gouraud under a white light: grey, so one level per
-    // vertex; 1839 vertices (no clipping), 4 + 2 * 4 bytes each.
+    // vertex; 1839 vertices (no clipping), 4 + 4 bytes each with `fast`
+    // (depth and level packed in one value; 4 + 2 * 4 in the profiles
+    // that do not pack).
     let white = Material {
         color: Vec3::from_f32([1.0; 3]),
         ..material::<crate::num::Q16>(0.0)
@@ -461,7 +463,7 @@ fn memory_figures_are_as_documented() {
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
-    assert_eq!(frame.bytes_used(), 1839 * (4 + 2 * 4) + t * 6);
+    assert_eq!(frame.bytes_used(), 1839 * (4 + 4) + t * 6);
     // Phong with a point light and a local viewer carries positions.
     let objs = [object::<crate::num::Q16>(
         shapes::CUBE,
@@ -899,7 +901,15 @@ fn non_uniform_scale_lights_with_the_inverse_transpose() {
             let len = (ne[0] * ne[0] + ne[1] * ne[1] + ne[2] * ne[2]).sqrt();
             let nl = (0..3).map(|k| ne[k] / len * ln[k]).sum::<f64>().max(0.0);
             let want = 255.0 * (0.2 + 0.8 * nl).min(1.0);
-            let v = frame.ws.vals[po.val_base as usize + i * usize::from(po.stride) + 1];
+            let at = po.val_base as usize + i * usize::from(po.stride);
+            let v = if po.layout.packed_in::<P>() {
+                // Depth and level in one value: the level, in Q16.
+                use crate::raster::Lerp;
+                let raw = frame.ws.vals[at].fixed_raw().unwrap();
+                P::Lerp::from_fixed_raw(unpack_grey(raw).1)
+            } else {
+                frame.ws.vals[at + 1]
+            };
             let got = lv(v);
             worst = worst.max((got - want).abs());
         }
@@ -1135,4 +1145,42 @@ fn compact_positions_hold_the_screen_and_its_guard_band() {
     // 8 bits on a 240-pixel screen: stored from the centre, read back
     // from the corner.
     run::<Fast8>(240).unwrap();
+}
+
+/// Packed grey values ([`pack_grey`]): the depth back within `2^13` (half
+/// a 16-bit depth step) and below `2^30`, the level within `2^7` and never
+/// above `255 · 2^16`, over the whole ranges and at their ends.
+#[test]
+fn packed_grey_values_are_within_their_bounds() {
+    let full = 255 << 16;
+    let mut worst = (0i64, 0i64);
+    let mut check = |d: i32, l: i32| {
+        let (d2, l2) = unpack_grey(pack_grey(d, l));
+        assert!(
+            (0..1 << 30).contains(&d2) && (0..=full).contains(&l2),
+            "{d} {l}"
+        );
+        worst.0 = worst.0.max((i64::from(d2) - i64::from(d)).abs());
+        worst.1 = worst.1.max((i64::from(l2) - i64::from(l)).abs());
+        // Each half leaves the other alone.
+        assert_eq!(unpack_grey(grey_depth(d) | grey_level(l)), (d2, l2));
+    };
+    let mut x = 0x2545_F491u32;
+    for _ in 0..200_000 {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        let d = (x >> 2) as i32 % ((1 << 30) + 1);
+        let l = (x.rotate_left(11) % (full as u32 + 1)) as i32;
+        check(d, l);
+    }
+    for d in [0, 1, (1 << 13) - 1, 1 << 13, (1 << 30) - 1, 1 << 30] {
+        for l in [0, 127, 128, full - 128, full - 127, full] {
+            check(d, l);
+        }
+    }
+    assert!(worst.0 <= 1 << 13, "{worst:?}");
+    assert!(worst.1 <= 1 << 7, "{worst:?}");
+    // At the far plane the depth saturates to the last step.
+    assert_eq!(unpack_grey(pack_grey(1 << 30, 0)).0, (1 << 30) - (1 << 13));
 }

@@ -165,16 +165,17 @@ fn stack_used() -> usize {
     top - p
 }
 
-/// The storage's capacities: the scenes' ([`CAPACITY`], computed by the
-/// core's `const fn`s from their meshes), or, with the feature
+/// The storage's capacities: the scenes' in `fast` ([`CAPACITY`],
+/// computed by the core's `const fn`s from their meshes, with one value
+/// per grey Gouraud vertex: [`Capacity::in_profile`]), or, with the feature
 /// `tiny-workspace` (to test the start-up check), half the vertices.
 const CAP: Capacity = if cfg!(feature = "tiny-workspace") {
     Capacity {
         vertices: CAPACITY.vertices / 2,
-        ..CAPACITY
+        ..CAPACITY.in_profile::<Fast>()
     }
 } else {
-    CAPACITY
+    CAPACITY.in_profile::<Fast>()
 };
 
 /// The prepared frame's storage, sized by the compiler.
@@ -198,7 +199,10 @@ enum Failure {
 }
 
 fn run(mem: &mut Memory) -> Result<(), Failure> {
+    // (The three lengths printed, not the whole `Capacity`: fewer bytes
+    // in this frame, under every scene's.)
     let ws = FrameStorage::CAPACITY;
+    let (ws_vertices, ws_values, ws_triangles) = (ws.vertices, ws.values, ws.triangles);
     let band_bytes = core::mem::size_of_val(mem.pixels);
     let depth_bytes = core::mem::size_of_val(mem.depth);
     hprintln!(
@@ -214,9 +218,9 @@ fn run(mem: &mut Memory) -> Result<(), Failure> {
         "capacity band_bytes={} depth_bytes={} ws_vertices={} ws_values={} ws_triangles={} workspace_bytes={} mesh_shape_bytes={} mesh_normal_bytes={} static_ram={}",
         band_bytes,
         depth_bytes,
-        ws.vertices,
-        ws.values,
-        ws.triangles,
+        ws_vertices,
+        ws_values,
+        ws_triangles,
         FrameStorage::BYTES,
         MESH_SHAPE_BYTES,
         MESH_NORMAL_BYTES,

@@ -162,11 +162,11 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     assert_eq!(most.peak, PICO_PEAK);
     assert_eq!(
         (most.vertices, most.triangles, most.bytes),
-        (1839, 1574, 31_512)
+        (1839, 1574, 24_156)
     );
     assert_eq!(
         [turn[0].crc, turn[1].crc, turn[2].crc],
-        [0x1a5e_2025, 0x6cd7_8710, 0x7956_283c]
+        [0xca58_1561, 0xf462_8b76, 0xb13f_664f]
     );
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(49));
     assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);

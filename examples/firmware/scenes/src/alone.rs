@@ -120,7 +120,8 @@ pub struct Alone {
     pub band_bytes: usize,
     /// Bytes the firmware's statics hold for the scenes: the colour band,
     /// the depth band (as many bytes, 16-bit depth, when `depth`), the
-    /// storage ([`Capacity::bytes`] with 4-byte values) and the pool.
+    /// storage in `fast` ([`Capacity::in_profile`], [`Capacity::bytes`]
+    /// with 4-byte values) and the pool.
     pub static_bytes: usize,
 }
 
@@ -137,7 +138,7 @@ impl Alone {
             band_bytes,
             static_bytes: band_bytes
                 + if depth { band_bytes } else { 0 }
-                + capacity.bytes(4)
+                + capacity.in_profile::<fixshade::num::Fast>().bytes(4)
                 + pool_bytes,
         }
     }
@@ -217,26 +218,29 @@ alone! {
 alone! {
     /// The bunny Gouraud benchmark scene alone (feature `bunny`): the
     /// firmware the RAM budget of a prepared bunny frame is measured in.
-    /// Storage for one Gouraud object with a grey level (two values per
-    /// vertex: [`bunny::CAPACITY`] is the scene's own), a depth band (the
-    /// bunny is not convex), 8-row bands and a pool sized by the measured
-    /// peak of active triangles:
+    /// Storage for one Gouraud object with a grey level (in `fast` one
+    /// value per vertex, depth and level packed: [`bunny::CAPACITY`] in
+    /// `fast`, the scene's own), a depth band (the bunny is not convex),
+    /// 8-row bands and a pool sized by the measured peak of active
+    /// triangles:
     ///
     /// | part | bytes |
     /// |------|------:|
     /// | colour band: 240 px × 8 rows × 2 (RGB565) | 3 840 |
     /// | depth band: 240 px × 8 rows × 2 (16-bit) | 3 840 |
-    /// | storage: 1 839 vertices × (4 + 2 × 4) + 3 674 triangles × (6 + 4) | 58 808 |
+    /// | storage: 1 839 vertices × (4 + 4) + 3 674 triangles × (6 + 4) | 51 452 |
     /// | pool: 62 slots of 2 values, 88 + 4 bytes each ([`bunny::BunnyPool`]) | 5 704 |
-    /// | total | 72 192 |
+    /// | total | 64 836 |
     ///
     /// The storage's parts: screen positions 1 839 × 4 = 7 356 (`i16`
-    /// subpixels, [`fixshade::render::ScreenXy`]), values 1 839 × 2 × 4 =
-    /// 14 712, triangles 3 674 × 6 = 22 044 and the band order 3 674 × 4 =
-    /// 14 696: the triangle parts hold every mesh triangle (what a view
-    /// keeps is known only with the view: 1 498 here), 36 740 of the
-    /// 58 808 bytes. The budget is 40 KB = 40 960 bytes; the storage alone
-    /// exceeds it (the tests check these figures).
+    /// subpixels, [`fixshade::render::ScreenXy`]), values 1 839 × 4 =
+    /// 7 356 (depth and grey level, 16 bits each), triangles 3 674 × 6 =
+    /// 22 044 and the band order 3 674 × 4 = 14 696: the triangle parts
+    /// hold every mesh triangle (what a view keeps is known only with the
+    /// view: 1 498 here), 36 740 of the 51 452 bytes. The budget is 40 KB
+    /// = 40 960 bytes; the storage alone exceeds it (the tests check
+    /// these figures). The prepared frame itself is 23 700 bytes (7 356 +
+    /// 7 356 + 1 498 × 6).
     pub mod bunny {
         prefix: "bunny-gouraud",
         /// Rows per band: 8 (3 840 bytes of colour band and as many of depth
@@ -341,16 +345,19 @@ mod tests {
         const { assert!(bunny::DEPTH) };
         assert_eq!(bunny::WIDTH, 240);
         assert_eq!(bunny::BAND_BYTES, 3840);
-        // 1 839 vertices × (4 + 2 × 4) + 3 674 triangles × (6 + 4).
+        // 1 839 vertices × (4 + 4: depth and grey level packed in one
+        // value) + 3 674 triangles × (6 + 4); 2 values a vertex in the
+        // profiles that do not pack.
+        const C: fixshade::render::Capacity = bunny::CAPACITY.in_profile::<Fast>();
+        assert_eq!(C.bytes(4), 1839 * 8 + 3674 * 10);
+        assert_eq!(C.bytes(4), 51_452);
         assert_eq!(bunny::CAPACITY.bytes(4), 1839 * 12 + 3674 * 10);
-        assert_eq!(bunny::CAPACITY.bytes(4), 58_808);
         assert_eq!(
             core::mem::size_of::<bunny::BunnyPool>(),
             bunny::POOL_SLOTS * 92
         );
-        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 58_808 + 62 * 92);
-        assert_eq!(bunny::STATIC_BYTES, 72_192);
-        const C: fixshade::render::Capacity = bunny::CAPACITY;
+        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 51_452 + 62 * 92);
+        assert_eq!(bunny::STATIC_BYTES, 64_836);
         let mut st = Box::new(<fixshade::storage!(i32, C)>::new());
         // The build's pool: 56 slots by default (the peak it reports is
         // the bunny build's need), 62 with the feature `bunny`.
@@ -362,12 +369,12 @@ mod tests {
             let scene = parts.scene(spec, parts.camera.unwrap());
             let (ws, order) = st.split();
             let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
-            // 1 839 vertices × (4 bytes xy + 2 values × 4) + 1 498 kept
-            // triangles × 6.
+            // 1 839 vertices × (4 bytes xy + 4: depth and grey level packed
+            // in one value) + 1 498 kept triangles × 6.
             assert_eq!(frame.vertex_count(), 1839);
             assert_eq!(frame.triangle_count(), 1498);
-            assert_eq!(frame.bytes_used(), 1839 * 12 + 1498 * 6);
-            assert_eq!(frame.bytes_used(), 31_056);
+            assert_eq!(frame.bytes_used(), 1839 * 8 + 1498 * 6);
+            assert_eq!(frame.bytes_used(), 23_700);
             let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
             let mut z = vec![0u16; (spec.width * rows) as usize];
             let s = raster_bands_in::<Fast, Depth16, _>(
@@ -393,6 +400,6 @@ mod tests {
             crcs.push(s.crc);
         }
         assert_eq!(crcs[0], crcs[1]);
-        assert_eq!(crcs[0], 0x1a5e_2025);
+        assert_eq!(crcs[0], 0xca58_1561);
     }
 }

@@ -74,26 +74,21 @@ pub type Pixel = u16;
 /// A band of the frame, with its 16-bit depth band.
 pub type Band<'a> = BandBuf<'a, Rgb565Be>;
 
-/// The storage the scenes need with profile `P`: [`CAPACITY`], with one
-/// more value per vertex for perspective-correct profiles.
+/// The storage the scenes need with profile `P`: [`CAPACITY`] in `P`
+/// ([`Capacity::in_profile`]: one more value per vertex for
+/// perspective-correct profiles, one value per grey Gouraud vertex for
+/// `fast`, which packs its depth and level).
 pub const fn capacity_for<P: Profile>() -> Capacity {
-    if P::PERSPECTIVE {
-        CAPACITY.perspective()
-    } else {
-        CAPACITY
-    }
+    CAPACITY.in_profile::<P>()
 }
 
 /// Bytes of the storage a firmware built for `spec` alone would hold with
-/// profile `P` (`Capacity::bytes` of its capacity, for `P`'s values): the
-/// scene's own share of the static RAM.
+/// profile `P` (`Capacity::bytes` of its capacity in `P`, for `P`'s
+/// values): the scene's own share of the static RAM.
 pub const fn storage_bytes<P: Profile>(spec: &SceneSpec) -> usize {
-    let c = if P::PERSPECTIVE {
-        spec.capacity.perspective()
-    } else {
-        spec.capacity
-    };
-    c.bytes(core::mem::size_of::<P::Lerp>())
+    spec.capacity
+        .in_profile::<P>()
+        .bytes(core::mem::size_of::<P::Lerp>())
 }
 
 /// A `scene` line as the firmware and `host-check` print it: name, size,
@@ -441,6 +436,14 @@ mod tests {
             assert!(spec.width <= WIDTH && spec.objects.len() <= MAX_OBJECTS);
             assert!(DEPTH || !spec.depth);
         }
-        assert_eq!(SceneStorage::CAPACITY, CAPACITY);
+        // (A storage's `packed_values` are its values: it holds them in
+        // any profile.)
+        assert_eq!(
+            SceneStorage::CAPACITY,
+            Capacity {
+                packed_values: CAPACITY.values,
+                ..CAPACITY
+            }
+        );
     }
 }

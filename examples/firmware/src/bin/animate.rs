@@ -54,9 +54,9 @@ const fn angle(i: u32) -> Q16 {
 }
 
 /// The storage: the benchmark firmware's, the core's bound for the
-/// scenes' meshes (every mesh vertex and triangle), whatever a turn shows
+/// scenes' meshes in `fast` (every mesh vertex and triangle), whatever a turn shows
 /// (the start-up check proves each frame fits).
-const CAP: fixshade::render::Capacity = CAPACITY;
+const CAP: fixshade::render::Capacity = CAPACITY.in_profile::<Fast>();
 
 /// Executes `yield`, the plugin's marker (see the benchmark firmware).
 #[inline(always)]
