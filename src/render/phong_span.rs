@@ -612,6 +612,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             };
             return self.fill_one(l, n, dn, len, out);
         }
+        if self.duff && self.lights.len() > 1 {
+            let (n, dn) = if back {
+                (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
+            } else {
+                (n, dn)
+            };
+            return self.fill_multi(n, dn, len, out);
+        }
         if let [l] = &self.lights[..] {
             if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
                 // Positions and light offsets within ±2^29 over the span,
@@ -1721,6 +1729,7 @@ fn unpack_q19(c: u32) -> [i32; 3] {
     ]
 }
 
+mod multi;
 mod one;
 mod point;
 #[cfg(test)]
