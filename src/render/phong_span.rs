@@ -195,6 +195,10 @@ pub struct PhongKernel<'s, R> {
     /// `255 · 2^19 ·` ambient per channel plus `2^18` (rounding), for the
     /// 32-bit loop of one directional light ([`PhongKernel::fill`]).
     amb19: [i32; 3],
+    /// Two or more directional lights, viewer at infinity, whose channel
+    /// sums stay below `2^31` (module `multi`): the sums' start, the
+    /// ambient term (as `amb19`) plus `2^15 (d + s)` of every light.
+    multi: Option<[i32; 3]>,
     /// `Q` (Q28) at or above `2^(15 + sq)`: no specular term.
     sq: u32,
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
@@ -406,6 +410,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         .filter(|&k| k < 1 << 26)
         .ok_or(KernelError::Range)?;
         let amb19 = ambient.map(|a| (scale255(a, 19) as i32).saturating_add(1 << 18));
+        let multi = (duff && lights.len() > 1)
+            .then(|| multi::start(amb19, &lights))
+            .flatten();
         // qs (Q28 of Q) below 2^(15 + sq) covers every w·nn < 1.25 · t_eff / m.
         let qlim = (u64::from(t_eff) * (5 << 28) / 4)
             .checked_div(u64::from(m))
@@ -452,6 +459,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             table,
             kf,
             amb19,
+            multi,
             sq,
             c16,
             cb,
@@ -612,13 +620,13 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             };
             return self.fill_one(l, n, dn, len, out);
         }
-        if self.duff && self.lights.len() > 1 {
+        if let Some(start) = self.multi {
             let (n, dn) = if back {
                 (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
             } else {
                 (n, dn)
             };
-            return self.fill_multi(n, dn, len, out);
+            return self.fill_multi(start, n, dn, len, out);
         }
         if let [l] = &self.lights[..] {
             if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {

@@ -9,11 +9,17 @@
 //! [`PhongKernel::terms_r`] added to the pixel's channel sums (Q19, as
 //! one light's [`Colour`](super::one::Colour) gives them). A chunk that
 //! one light cannot prove runs every light per pixel in 64 bits
-//! ([`PhongKernel::multi_exact`]). The sums are saturated at [`SAT`] before
-//! each light is added (every term is non-negative and every channel at or
-//! above `SAT` is level 255), so that eight lights of coefficient 4 stay
-//! within `u32`. The colour of each pixel is then the sum of what each
-//! light alone adds in the loop of one light, every light's error that
+//! ([`PhongKernel::multi_exact`]). Each light adds its terms as the loop
+//! of one light does on the M4 ([`Colour`](super::one::Colour)): per
+//! channel `2^15 (d + s) + d (N·L - 2^15) + s (sp - 2^15)`, two signed
+//! 16-bit multiply-adds of the packed terms, the offsets `2^15 (d + s)`
+//! of every light in the sums' start ([`start`]). The sums agree with the
+//! true ones modulo `2^32`; the kernel takes this loop only when the
+//! largest true sum, every light at its largest terms, stays below `2^31`
+//! ([`start`]: four lights of coefficient 1 reach `2^29.6`), else the
+//! per-pixel path of [`PhongKernel::begin`]. The colour of each pixel is
+//! then the sum of what each light alone adds in the loop of one light,
+//! every light's error that
 //! loop's (tests: `random_spans_against_f64`, one to four lights).
 
 use super::one::{mul_shr48, rsq, OneSpan, Plan, QM_FRAC, QM_MAX, SHORT_SPAN};
@@ -25,11 +31,26 @@ use crate::num::wide::wmul;
 use crate::num::Real;
 use crate::target::level_q19;
 
-/// Channel sums (Q19) are saturated at this value (level 255 from
-/// `255.5 · 2^19` on) before a light's terms are added: below `2^30 +
-/// 2^31` with them (`d, s < 2^14`, `N·L`, the specular factor `<= 2^15 (1
-/// + 2^-11)`).
-const SAT: u32 = 1 << 30;
+/// The channel sums' start for the loop of several lights (module docs):
+/// `amb19` plus `2^15 (d + s)` of every light (wrapping), or `None` when a
+/// true sum may reach `2^31` (`amb19 + Σ d (2^15 + 2^4) + s 2^15`, `N·L`
+/// and the specular factor at their largest).
+#[allow(clippy::cast_possible_wrap, clippy::cast_possible_truncation)]
+pub(super) fn start(amb19: [i32; 3], lights: &[KLight]) -> Option<[i32; 3]> {
+    let mut st = amb19;
+    for c in 0..3 {
+        let mut hi = i64::from(amb19[c]);
+        for l in lights {
+            let (d, s) = (i64::from(l.d4[c]), i64::from(l.s4[c]));
+            hi += d * ((1 << 15) + (1 << 4)) + s * (1 << 15);
+            st[c] = st[c].wrapping_add(((d + s) << 15) as i32);
+        }
+        if hi >= 1 << 31 {
+            return None;
+        }
+    }
+    Some(st)
+}
 
 /// The exact states of a span's lights (`None` past the last light).
 type States = [Option<OneSpan>; MAX_LIGHTS];
@@ -40,7 +61,14 @@ impl<R: Real> PhongKernel<'_, R> {
     /// faces. Not inlined: the lights' states (up to eight) stay in its
     /// own frame.
     #[inline(never)]
-    pub(super) fn fill_multi(&self, n: [i32; 3], dn: [i32; 3], len: u32, mut out: impl Out) -> u32 {
+    pub(super) fn fill_multi(
+        &self,
+        start: [i32; 3],
+        n: [i32; 3],
+        dn: [i32; 3],
+        len: u32,
+        mut out: impl Out,
+    ) -> u32 {
         if len < SHORT_SPAN {
             let mut passed = 0;
             for i in 0..len {
@@ -56,7 +84,7 @@ impl<R: Real> PhongKernel<'_, R> {
             core::array::from_fn(|j| self.lights.get(j).map(|l| self.one_begin(l, n, dn)));
         drive(
             len,
-            |i, k, buf| self.multi_chunk(n, dn, &mut st, i, k, buf),
+            |i, k, buf| self.multi_chunk(start, n, dn, &mut st, i, k, buf),
             unpack_q19,
             &mut out,
         )
@@ -69,6 +97,7 @@ impl<R: Real> PhongKernel<'_, R> {
     #[allow(clippy::too_many_arguments, clippy::cast_possible_wrap)]
     fn multi_chunk(
         &self,
+        start: [i32; 3],
         n: [i32; 3],
         dn: [i32; 3],
         st: &mut States,
@@ -102,12 +131,11 @@ impl<R: Real> PhongKernel<'_, R> {
         let k = (k as usize).min(CHUNK);
         // 2^16/|n| per pixel, the sums from the ambient term.
         let mut rb = [0u32; CHUNK];
-        let mut acc = [[0u32; 3]; CHUNK];
-        let amb = self.amb19.map(i32::cast_unsigned);
+        let mut acc = [[0i32; 3]; CHUNK];
         let (mut nn, mut nd1, nd2) = nn32;
         for (r, a) in rb.iter_mut().zip(acc.iter_mut()).take(k) {
             *r = rsq(nn);
-            *a = amb;
+            *a = start;
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
         }
@@ -123,31 +151,35 @@ impl<R: Real> PhongKernel<'_, R> {
             }
         }
         for (o, a) in buf.iter_mut().zip(acc.iter()).take(k) {
-            *o = pack(level_q19(a.map(|c| c.min(SAT).cast_signed())));
+            *o = pack(level_q19(*a));
         }
         false
     }
 
     /// One light's terms over a chunk (`qm`: `Qm` in Q20 segments and its
     /// differences, `nl`: `n·L` and its step) added to the sums `acc`
-    /// from `1/|n|` in `rb`.
+    /// (module docs) from `1/|n|` in `rb`.
     #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
     fn multi_light<const SPEC: bool>(
         &self,
         l: &KLight,
         qm: (i32, i32, i32),
         (mut nl, dnl): (i32, i32),
         rb: &[u32; CHUNK],
-        acc: &mut [[u32; 3]; CHUNK],
+        acc: &mut [[i32; 3]; CHUNK],
         k: usize,
     ) {
-        let d = l.d4.map(i16::cast_unsigned).map(u32::from);
-        let s = l.s4.map(i16::cast_unsigned).map(u32::from);
+        let ds = [0, 1, 2].map(|c| i32::from(l.d4[c]) | i32::from(l.s4[c]) << 16);
         let (mut q, mut qd1, qd2) = qm;
         for (&r, a) in rb.iter().zip(acc.iter_mut()).take(k) {
             let (nl15, sp) = self.terms_r::<SPEC>(r, nl, q >> (QM_FRAC - 7));
+            let t = ((nl15 & 0xFFFF) | sp << 16) ^ 0x8000_8000;
+            let (lo, hi) = (i32::from(t as i16), (t as i32) >> 16);
             for c in 0..3 {
-                a[c] = a[c].min(SAT) + d[c] * nl15 + s[c] * sp;
+                a[c] = a[c]
+                    .wrapping_add(lo.wrapping_mul(i32::from(ds[c] as i16)))
+                    .wrapping_add(hi.wrapping_mul(ds[c] >> 16));
             }
             nl = nl.wrapping_add(dnl);
             if SPEC {
@@ -169,7 +201,7 @@ impl<R: Real> PhongKernel<'_, R> {
             return pack(fallback(self.shade, n0, dn, [0; 3], [0; 3], i));
         }
         let r = rsq((nn >> 30) as i32);
-        let mut acc = self.amb19.map(i32::cast_unsigned);
+        let mut acc = self.amb19;
         for l in &self.lights {
             let nl = lin(n, l.at);
             let (nl15, sp) = if self.spec && (!self.blinn || lin(n, l.p1) > 0) {
@@ -180,12 +212,12 @@ impl<R: Real> PhongKernel<'_, R> {
             } else {
                 self.terms_r::<false>(r, nl, 0)
             };
-            let d = l.d4.map(i16::cast_unsigned).map(u32::from);
-            let s = l.s4.map(i16::cast_unsigned).map(u32::from);
             for c in 0..3 {
-                acc[c] = acc[c].min(SAT) + d[c] * nl15 + s[c] * sp;
+                acc[c] = acc[c]
+                    .wrapping_add(i32::from(l.d4[c]).wrapping_mul(nl15 as i32))
+                    .wrapping_add(i32::from(l.s4[c]).wrapping_mul(sp as i32));
             }
         }
-        pack(level_q19(acc.map(|c| c.min(SAT).cast_signed())))
+        pack(level_q19(acc))
     }
 }
