@@ -212,10 +212,10 @@ impl<R: Real> PhongKernel<'_, R> {
             } else {
                 self.terms_r::<false>(r, nl, 0)
             };
-            for c in 0..3 {
-                acc[c] = acc[c]
-                    .wrapping_add(i32::from(l.d4[c]).wrapping_mul(nl15 as i32))
-                    .wrapping_add(i32::from(l.s4[c]).wrapping_mul(sp as i32));
+            for ((a, &d), &s) in acc.iter_mut().zip(&l.d4).zip(&l.s4) {
+                *a = a
+                    .wrapping_add(i32::from(d).wrapping_mul(nl15 as i32))
+                    .wrapping_add(i32::from(s).wrapping_mul(sp as i32));
             }
         }
         pack(level_q19(acc))
