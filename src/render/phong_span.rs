@@ -79,9 +79,9 @@
 //! `2^31` with each light at its largest terms (eight white lights of
 //! `Ip·kd = Ip·ks = 0.9`; beyond, the per-pixel path of
 //! [`PhongKernel::begin`]). Measured on the firmware's span sweep, per
-//! pixel with 1, 2 and 4 lights: 90.95, 196.12 and 315.79 instructions on
+//! pixel with 1, 2 and 4 lights: 89.03, 196.12 and 315.79 instructions on
 //! the M4 (the per-pixel path before: 280.33 and 434.96 with 2 and 4),
-//! 174.93, 356.08 and 592.60 on the M0 (before: 392.94 and 643.29): each
+//! 175.22, 356.08 and 592.60 on the M0 (before: 392.94 and 643.29): each
 //! light beyond the second adds 59.8 a pixel on the M4 and 118.3 on the
 //! M0 (its terms, its channel sums and its share of the chunk plans).
 //!
