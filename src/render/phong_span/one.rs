@@ -34,17 +34,17 @@ use crate::target::level_q19;
 pub(super) const SHORT_SPAN: u32 = 4;
 
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
-const QM_FRAC: u32 = 20;
+pub(super) const QM_FRAC: u32 = 20;
 /// `Qm` at or above this many segments (Q20) gives no specular term:
 /// `Qm / |n|² >= SEGMENTS` for `|n|² < 5/4`.
 const QM_OFF: i64 = ((SPEC_SEGMENTS as i64) * 5 / 4 + 1) << QM_FRAC;
 /// Largest `Qm` the 32-bit loop carries (below 2^31).
-const QM_MAX: i64 = (1 << 31) - (1 << 24);
+pub(super) const QM_MAX: i64 = (1 << 31) - (1 << 24);
 
 /// `floor(x · k / 2^48)` for `k < 2^31` (two 32x32 products).
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
-fn mul_shr48(x: i64, k: u32) -> i64 {
+pub(super) fn mul_shr48(x: i64, k: u32) -> i64 {
     let hi = (x >> 32) as i32;
     let lo = x as u32;
     let ph = wmul(hi, k as i32);
@@ -52,6 +52,18 @@ fn mul_shr48(x: i64, k: u32) -> i64 {
     // floor((ph · 2^32 + pl) / 2^48) = (ph + pl / 2^32) >> 16 (the low
     // 32 bits of `pl` add less than one unit of 2^-16).
     (ph + (pl >> 32) as i64) >> 16
+}
+
+/// `2^16 / |n|` (`<= 2^17`) from `|n|²` (Q30, within `[1/4, 5/4)`): the
+/// table [`RS`] with one interpolation (see [`PhongKernel::terms`]).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+pub(super) fn rsq(nn: i32) -> u32 {
+    // 64 segments of 2^24 (Q30) from 1/4.
+    let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
+    let (a, b) = (RS[j], RS[j + 1]);
+    let t = ((nn as u32) >> 8) & 0xFFFF;
+    a - (((a - b) * t) >> 16)
 }
 
 /// `v` when it fits `i32`.
@@ -152,7 +164,7 @@ impl Colour {
 /// The exact state of a span of one light (`u64` forward differences,
 /// Q60) and its constant 32-bit second differences.
 #[derive(Clone, Copy)]
-struct OneSpan {
+pub(super) struct OneSpan {
     nn: u64,
     nn_d1: u64,
     nn_d2: u64,
@@ -172,7 +184,8 @@ struct OneSpan {
 /// How a chunk runs: the 32-bit loop with or without the specular
 /// term (`|n|²` and `Qm` as 32-bit forward differences, `n·L` and its
 /// step), or pixel by pixel in 64 bits.
-enum Plan {
+#[derive(Clone, Copy)]
+pub(super) enum Plan {
     Spec((i32, i32, i32), (i32, i32, i32), i32, i32),
     NoSpec((i32, i32, i32), i32, i32),
     Exact,
@@ -226,7 +239,7 @@ impl<R: Real> PhongKernel<'_, R> {
 
     /// The span's exact state (see the module docs).
     #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
-    fn one_begin(&self, l: &KLight, n: [i32; 3], dn: [i32; 3]) -> OneSpan {
+    pub(super) fn one_begin(&self, l: &KLight, n: [i32; 3], dn: [i32; 3]) -> OneSpan {
         let (nn, nn_d1, nn_d2) = quad(&[(n, dn)]);
         let f = if self.spec {
             let (c0, c1) = (cross(n, l.p1), cross(dn, l.p1));
@@ -312,7 +325,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// state stepped past them.
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
-    fn one_plan(&self, st: &mut OneSpan, i: u32, k: u32) -> Plan {
+    pub(super) fn one_plan(&self, st: &mut OneSpan, i: u32, k: u32) -> Plan {
         let OneSpan {
             nn,
             nn_d1,
@@ -368,7 +381,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// of `|n|²` (Q30) and, with `SPEC`, `Qm` (Q20 segments).
     #[inline(always)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_wrap)]
-    fn chunk<const SPEC: bool>(
+    pub(super) fn chunk<const SPEC: bool>(
         &self,
         k: u32,
         nn: (i32, i32, i32),
@@ -415,12 +428,15 @@ impl<R: Real> PhongKernel<'_, R> {
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
     pub(super) fn terms<const SPEC: bool>(&self, nn: i32, nl: i32, q7: i32) -> (u32, u32) {
-        // 64 segments of 2^24 (Q30) from 1/4.
-        let j = ((nn.wrapping_sub(1 << 28) as u32) >> 24) as usize & 63;
-        let (a, b) = (RS[j], RS[j + 1]);
-        let t = ((nn as u32) >> 8) & 0xFFFF;
-        // 2^16 / |n| (<= 2^17).
-        let r = a - (((a - b) * t) >> 16);
+        self.terms_r::<SPEC>(rsq(nn), nl, q7)
+    }
+
+    /// [`PhongKernel::terms`] from `r = 2^16 / |n|` ([`rsq`] of `|n|²`):
+    /// the same values (the loop of several lights computes `r` once a
+    /// pixel).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+    pub(super) fn terms_r<const SPEC: bool>(&self, r: u32, nl: i32, q7: i32) -> (u32, u32) {
         // N·L in Q15: (n·L)/|n| <= 1 (within 2^-11 relative: no clamp
         // needed below, the products stay below 2^30).
         let nl15 = ((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16;

@@ -235,6 +235,101 @@ fn random_spans_against_f64() {
     assert!(worst[0] <= 1.0 && worst[1] <= 1.0, "{worst:?}");
 }
 
+/// Two to eight directional lights with the viewer at infinity (the
+/// loop of several lights, module `multi`): random materials, light
+/// colours and directions, both models, shininess 1 to 10 000, spans of
+/// 1 to 120 pixels (short spans, full and partial chunks) with normals up
+/// to 60° apart: within 1 level of `f64`, every case through that loop.
+#[test]
+fn several_directional_lights_against_f64() {
+    let mut s = 0x9e37_79b9_7f4a_7c15u64;
+    let mut f =
+        |lo: f64, hi: f64| lo + (hi - lo) * ((xorshift(&mut s) >> 11) as f64 / (1u64 << 53) as f64);
+    let mut worst = 0f64;
+    let mut cases = 0;
+    for it in 0..1200 {
+        let nl = 2 + it % 7;
+        let mut lights = Vec::new();
+        for _ in 0..nl {
+            let mut l = Light::directional(
+                v3(f(-1.0, 1.0), f(-1.0, 1.0), f(0.0, 1.0)),
+                q(f(0.1, 2.0) / nl as f64),
+            );
+            l.color = v3(f(0.3, 1.0), f(0.3, 1.0), f(0.3, 1.0));
+            lights.push(l);
+        }
+        let c = Case {
+            mat: Material {
+                color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
+                ka: q(f(0.0, 0.5)),
+                kd: q(f(0.0, 1.0)),
+                ks: q(f(0.0, 1.0)),
+                shininess: q(f(1.0, if it % 3 == 0 { 10_000.0 } else { 200.0 })),
+            },
+            lights,
+            ambient: q(f(0.0, 0.4)),
+            specular: if it % 2 == 1 {
+                Specular::Blinn
+            } else {
+                Specular::Phong
+            },
+            viewer: Viewer::Infinite,
+        };
+        let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+        assert!(
+            PhongKernel::new(&shade).unwrap().multi.is_some(),
+            "case {it}"
+        );
+        let n0 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
+        let n1 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
+        let len = 1 + f(0.0, 119.99) as i32;
+        let dn = [0, 1, 2].map(|k| (n1[k] - n0[k]) / 120.0);
+        let e = span_error(&c, n0, dn, [0.0; 3], [0.0; 3], len);
+        worst = worst.max(e);
+        cases += 1;
+    }
+    std::println!("several directional lights vs f64: {worst:.3} levels over {cases} spans");
+    assert_eq!(cases, 1200);
+    assert!(worst <= 1.0, "{worst}");
+}
+
+/// The loop of several lights is taken while every channel sum, each
+/// light at its largest terms, stays below `2^31`, and not beyond (each
+/// light at most `2^28 c` for diffuse and specular coefficients `c`): two
+/// lights of coefficient 3 fit, two of 4 do not, eight of 0.9 fit, eight
+/// of 1 do not (`2^31.003` with the ambient term).
+#[test]
+fn several_lights_sum_bound() {
+    let mat = Material {
+        color: v3(1.0, 1.0, 1.0),
+        ka: q(0.5),
+        kd: q(1.0),
+        ks: q(1.0),
+        shininess: q(20.0),
+    };
+    let kernel_multi = |k: usize, ip: f64| {
+        let lights: Vec<Light<Q16>> = (0..k)
+            .map(|_| Light::directional(v3(0.0, 0.0, 1.0), q(ip)))
+            .collect();
+        let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+        PhongKernel::new(&shade).unwrap().multi
+    };
+    assert!(kernel_multi(1, 1.0).is_none(), "one light: module one");
+    assert!(kernel_multi(2, 3.0).is_some());
+    assert!(kernel_multi(2, 4.0).is_none());
+    assert!(kernel_multi(8, 0.9).is_some());
+    assert!(kernel_multi(8, 1.0).is_none());
+    // The start is the ambient term plus 2^15 (d + s) per light, wrapping.
+    let lights = [Light::directional(v3(0.0, 0.0, 1.0), q(1.0)); 2];
+    let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+    let k = PhongKernel::new(&shade).unwrap();
+    let l = &k.lights[0];
+    let want = (0..3).map(|c| {
+        (i64::from(k.amb19[c]) + 2 * ((i64::from(l.d4[c]) + i64::from(l.s4[c])) << 15)) as i32
+    });
+    assert!(k.multi.unwrap().into_iter().eq(want));
+}
+
 /// Error of the linearly interpolated specular table against
 /// `(1 - u/m)^m` in `f64`, for table sizes 16 to 512 (the sweep that chose
 /// [`SPEC_SEGMENTS`]): printed, and the chosen size within 0.2 level.
