@@ -109,15 +109,15 @@ macro_rules! fixed_profile {
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         pub struct $name;
 
-        fixed_profile_impl!([] $name, $real, $label, $pc, $frame, SubpixelBits::DEFAULT);
+        fixed_profile_impl!([] $name, $real, $label, $pc, $frame, $grey, SubpixelBits::DEFAULT);
     };
 }
 
 /// The `Profile` impl of a fixed profile: type `$ty` with generics
-/// `[$g]`, scalar `$real`, perspective `$pc`, position frame `$frame` and
-/// subpixel bits `$sub`.
+/// `[$g]`, scalar `$real`, perspective `$pc`, position frame `$frame`,
+/// packed grey values `$grey` and subpixel bits `$sub`.
 macro_rules! fixed_profile_impl {
-    ([$($g:tt)*] $ty:ty, $real:ty, $label:literal, $pc:literal, $frame:literal, $sub:expr) => {
+    ([$($g:tt)*] $ty:ty, $real:ty, $label:literal, $pc:literal, $frame:literal, $grey:literal, $sub:expr) => {
         impl<$($g)*> Profile for $ty {
             type Real = $real;
             type Lerp = i32;
@@ -226,6 +226,7 @@ fixed_profile_impl!(
     "fast",
     false,
     false,
+    true,
     match SubpixelBits::new(B) {
         Ok(b) => b,
         Err(_) => panic!("FastSub<B>: B outside SubpixelBits::MIN..=SubpixelBits::MAX"),
