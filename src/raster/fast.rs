@@ -366,7 +366,21 @@ impl Grad {
             self.inv.quot_high(nx, self.k),
             self.inv.quot_high(ny, self.k),
         );
-        (gx, gy, v0.wrapping_add(self.origin_short(gx, gy)), ok)
+        let o = if SHORT_PRODUCTS {
+            self.origin_short(gx, gy)
+        } else {
+            self.origin_wide(gx, gy)
+        };
+        (gx, gy, v0.wrapping_add(o), ok)
+    }
+
+    /// `(gx·ox + gy·oy + h) >> s` modulo 2^32 ([`Grad::plane`]'s row
+    /// origin) from 64-bit products (`SMULL`/`SMLAL`).
+    #[inline(always)]
+    fn origin_wide(&self, gx: i32, gy: i32) -> i32 {
+        let h = 1i64 << (self.s - 1);
+        let t = wide(gx, self.o[0]) + wide(gy, self.o[1]) + h;
+        (t >> self.s) as i32
     }
 
     /// `(gx·ox + gy·oy + h) >> s` modulo 2^32 ([`Grad::plane`]'s row
@@ -409,7 +423,7 @@ impl Grad {
 /// [`draw_small`] takes [`Grad::plane_short`]: on ARMv6-M, and in test
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
 /// test).
-const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
+const SHORT_NUMERATORS: bool = true;
 
 /// `true` when `v` fits an `i32`.
 #[inline(always)]

@@ -815,35 +815,22 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     self.put_back(si, ti as u16, &walk);
                     drawn
                 }
-                Src::Fresh => match fetch_fixed::<P, N>(frame, po, &tri) {
-                    Some(v) => {
-                        self.stats.triangles += 1;
-                        let sub = P::SUBPIXEL_BITS;
-                        let (walk, vals) = (&mut scratch.0, &mut scratch.1);
-                        let small = draw_small_shaded::<N, V, S, F, D>(
-                            &v, sub, y1, &mut mem, walk, vals, &shader,
-                        );
-                        let (drawn, more) = match small {
-                            Some(r) => r,
-                            None => {
-                                in_limits_fixed::<P, N>(frame, &tri, &v)?;
-                                // Set up and walked in the scratch.
-                                let drawn = if setup_fixed::<N, V>(&v, sub, y0, width, walk, vals) {
-                                    draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
-                                } else {
-                                    0
-                                };
-                                (drawn, !walk.done())
+                Src::Fresh => {
+                    let (walk, vals) = (&mut scratch.0, &mut scratch.1);
+                    match fresh_fast::<P, N, V, S, F, D>(
+                        frame, po, &tri, y1, &mut mem, walk, vals, &shader,
+                    )? {
+                        Some((drawn, more)) => {
+                            self.stats.triangles += 1;
+                            // Kept in a slot when it continues below the band.
+                            if more {
+                                self.keep_fixed::<N>(ti as u16, walk, vals);
                             }
-                        };
-                        // Kept in a slot when it continues below the band.
-                        if more {
-                            self.keep_fixed::<N>(ti as u16, walk, vals);
+                            drawn
                         }
-                        drawn
+                        None => 0,
                     }
-                    None => 0,
-                },
+                }
             };
             self.stats.pixels += drawn;
         }
@@ -1083,6 +1070,48 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
     } else {
         walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
     }
+}
+
+/// A triangle of the fast path starting in the band (or set up afresh):
+/// fetched, set up and walked down to the band's end `until` by the
+/// small-triangle kernel ([`draw_small`]) or, when that does not apply,
+/// by the 32-bit setup and the fused row kernel; a function of its own so
+/// that its registers are not shared with the stream merge of
+/// [`Bands::run_fast`]. `Ok(None)` when a vertex is missing, else the
+/// pixels drawn and whether the triangle continues below the band (its
+/// walk and values then in `walk` and `vals`).
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn fresh_fast<P: Profile, const N: usize, const V: usize, S, F, D>(
+    frame: &Frame<'_, P>,
+    po: &PreparedObject,
+    tri: &PreparedTri,
+    until: i32,
+    mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
+    walk: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+    shader: &S,
+) -> Result<Option<(u32, bool)>, RenderError>
+where
+    S: Shader<i32, N>,
+    F: PixelFormat,
+    D: DepthFormat,
+{
+    let Some(v) = fetch_fixed::<P, N>(frame, po, tri) else {
+        return Ok(None);
+    };
+    let sub = P::SUBPIXEL_BITS;
+    if let Some(r) = draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, shader) {
+        return Ok(Some(r));
+    }
+    in_limits_fixed::<P, N>(frame, tri, &v)?;
+    // Set up and walked in the scratch.
+    let drawn = if setup_fixed::<N, V>(&v, sub, mem.y0, mem.width, walk, vals) {
+        draw_fused::<N, V, S, F, D>(walk, vals, until, mem, shader)
+    } else {
+        0
+    };
+    Ok(Some((drawn, !walk.done())))
 }
 
 /// The vertices of triangle `tri` of object `po`, sorted by `y`, with
