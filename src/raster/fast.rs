@@ -423,7 +423,7 @@ impl Grad {
 /// [`draw_small`] takes [`Grad::plane_short`]: on ARMv6-M, and in test
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
 /// test).
-const SHORT_NUMERATORS: bool = true;
+const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
 
 /// `true` when `v` fits an `i32`.
 #[inline(always)]
@@ -715,12 +715,19 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     }
     let (px, z) = same_len(mem.px, z);
     let j_mid = first_row(b.y, sub);
+    // The lower short edge from its first row: swapped in at `j_mid`, or
+    // carried to the next band (every triangle with a lower half needs it).
+    let low = if j_mid < j_bot {
+        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
+    } else {
+        Edge::EMPTY
+    };
     let long = Edge::new_first(a.x, a.y, c.x, c.y, j_top, sub);
     let upper = j_top < j_mid;
     let short = if upper {
         Edge::new_first(a.x, a.y, b.x, b.y, j_top, sub)
     } else {
-        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
+        low
     };
     let long_left = area2 > 0;
     let (mut l, mut r) = if long_left {
@@ -728,6 +735,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     } else {
         (short, long)
     };
+    let anchor = [a.x >> s, a.y >> s];
     let mut rows = SmallRows {
         v: row.add_n(&sy, j_top),
         base: (j_top - y0).wrapping_mul(width) as usize,
@@ -748,7 +756,6 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
         // At the lower half's first row (and not at the band's end, where
         // the resumed walk swaps the edges itself).
         if j < stop {
-            let low = Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub);
             if long_left {
                 r = low;
             } else {
@@ -766,11 +773,10 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if more {
         carry_over(
             carry,
-            [a, b, c],
-            [l, r],
+            [l, r, low],
+            anchor,
             [j, j_mid, j_bot],
             [long_left, z16],
-            sub,
         );
         pack_fixed(vals, &rows.v.add_n(sy, j.wrapping_neg()), sx, sy);
     }
@@ -778,37 +784,27 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
 }
 
 /// [`draw_small`]'s walk of a triangle continuing below the band (its
-/// sorted vertices `p`, edges `[left, right]` at row `rows[0]`, middle
-/// and end rows `rows[1..]`, `flags` the long edge's side and
+/// edges `[left, right, lower short]`, the lower one at its first row
+/// `rows[1]`, the walk at row `rows[0]`, its end row `rows[2]`, the
+/// anchor pixel of its first vertex, `flags` the long edge's side and
 /// [`Walk::z16`]): the fields [`setup32`] and [`Walk::rows_fused`] leave
 /// (inside the window), but the lower short edge once the walk is past
 /// its first row (then unused).
 #[inline(always)]
-fn carry_over<const N: usize>(
-    w: &mut Walk,
-    p: [&Vertex<i32, N>; 3],
-    e: [Edge; 2],
-    rows: [i32; 3],
-    flags: [bool; 2],
-    sub: SubpixelBits,
-) {
-    let [a, b, c] = p;
+fn carry_over(w: &mut Walk, e: [Edge; 3], anchor: [i32; 2], rows: [i32; 3], flags: [bool; 2]) {
     let [long_left, z16] = flags;
     let [j, j_mid, j_bot] = rows;
-    [w.left, w.right] = e;
-    // The lower short edge from its first row while the walk has not
-    // swapped it in yet (`j <= mid`); past that row the walk never reads
-    // it (the general walk keeps it unused, here it is left empty).
-    w.low = if (j <= j_mid) & (j_mid < j_bot) {
-        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
-    } else {
-        Edge::EMPTY
-    };
+    let [l, r, low] = e;
+    w.left = l;
+    w.right = r;
+    // The lower short edge while the walk has not swapped it in yet (`j
+    // <= mid`); past that row the walk never reads it (the general walk
+    // keeps it unused, here it is left empty).
+    w.low = if j <= j_mid { low } else { Edge::EMPTY };
     w.j = j;
     w.mid = j_mid;
     w.end = j_bot;
-    w.ia = a.x >> sub.get();
-    w.ja = a.y >> sub.get();
+    [w.ia, w.ja] = anchor;
     w.long_left = long_left;
     w.inside = true;
     w.z16 = z16;

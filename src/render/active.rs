@@ -1080,7 +1080,7 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
 /// [`Bands::run_fast`]. `Ok(None)` when a vertex is missing, else the
 /// pixels drawn and whether the triangle continues below the band (its
 /// walk and values then in `walk` and `vals`).
-#[inline(never)]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn fresh_fast<P: Profile, const N: usize, const V: usize, S, F, D>(
     frame: &Frame<'_, P>,
