@@ -807,12 +807,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let Some(slot) = self.pool.slots.get_mut(si) else {
                         return Ok(());
                     };
-                    let mut walk = slot.walk.unpack();
+                    let walk = slot.walk.walk_mut();
                     let Some(vals) = P::Lerp::fixed_slots(&mut slot.vals) else {
                         return Ok(());
                     };
-                    let drawn = draw_fused::<N, V, S, F, D>(&mut walk, vals, y1, &mut mem, &shader);
-                    self.put_back(si, ti as u16, &walk);
+                    let drawn = draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader);
+                    let done = walk.done();
+                    self.put_back_in_place(si, done);
                     drawn
                 }
                 Src::Fresh => {
@@ -910,6 +911,24 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         }
     }
 
+    /// [`Bands::put_back`] for a slot walked in place: to the free stack
+    /// when the triangle is `done`, else to the ring's tail.
+    #[inline(always)]
+    fn put_back_in_place(&mut self, si: usize, done: bool) {
+        if done {
+            if let Some(f) = self.pool.free.get_mut(self.free_len) {
+                *f = si as u16;
+                self.free_len += 1;
+            }
+        } else {
+            let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+            if let Some(r) = self.pool.ring.get_mut(tail) {
+                *r = si as u16;
+                self.ring_len += 1;
+            }
+        }
+    }
+
     /// Sets up triangle `tri` of object `po` from row `max(first row,
     /// j0)`; `None` when it draws nothing from there (or a vertex is
     /// missing).
@@ -995,26 +1014,22 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// copied into a free slot, or the triangle queued.
     #[inline(always)]
     fn keep_fixed<const N: usize>(&mut self, ti: u16, walk: &Walk, vals: &[[i32; 3]; V]) {
-        let packed = if N < V && self.free_len > 0 {
-            walk.pack()
-        } else {
-            None
-        };
+        let packed = N < V && self.free_len > 0;
         let slot = match packed {
-            Some(p) => {
+            true => {
                 self.free_len -= 1;
                 let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
                 self.pool
                     .slots
                     .get_mut(si as usize)
-                    .map(|slot| (si, p, slot))
+                    .map(|slot| (si, slot))
             }
-            None => None,
+            false => None,
         };
         match slot {
-            Some((si, p, slot)) => {
+            Some((si, slot)) => {
                 slot.tri = ti;
-                slot.walk = p;
+                walk.copy_to(slot.walk.walk_mut());
                 if let Some(v) = P::Lerp::fixed_slots(&mut slot.vals) {
                     // The depth and the N values in use, not the whole slot.
                     for (d, s) in v.iter_mut().zip(vals).take(N + 1) {
