@@ -297,78 +297,11 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
     Some((walk, row, sx, sy))
 }
 
-/// An edge walker as a pool slot keeps it ([`PackedWalk`]): the column
-/// and the whole step in 16 bits, the error term, remainder and divisor in
-/// 32 (16 bytes).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct PackedEdge {
-    x: i16,
-    q: i16,
-    e: i32,
-    r: i32,
-    d: i32,
-}
-
-impl PackedEdge {
-    const EMPTY: Self = Self {
-        x: 0,
-        q: 0,
-        e: 0,
-        r: 0,
-        d: 1,
-    };
-
-    #[inline(always)]
-    fn pack(g: &Edge) -> Self {
-        Self {
-            x: g.x as i16,
-            q: g.q as i16,
-            e: g.e,
-            r: g.r,
-            d: g.d,
-        }
-    }
-
-    #[inline(always)]
-    fn unpack(&self) -> Edge {
-        Edge {
-            x: self.x as i32,
-            e: self.e,
-            q: self.q as i32,
-            r: self.r,
-            d: self.d,
-        }
-    }
-}
-
-/// A [`Walk`] as the band renderer's pool keeps it between bands.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct PackedWalk {
-    w: Walk,
-}
-
-impl PackedWalk {
-    /// A walk with no rows.
-    pub(crate) const EMPTY: Self = Self { w: Walk::EMPTY };
-
-    /// The walk it holds.
-    #[inline(always)]
-    pub(crate) fn unpack(&self) -> Walk {
-        self.w
-    }
-
-    /// The walk it holds, to be walked in place.
-    #[inline(always)]
-    pub(crate) fn walk_mut(&mut self) -> &mut Walk {
-        &mut self.w
-    }
-}
-
 impl Walk {
-    /// Copies the walk into `dst` field by field (no library call).
+    /// Copies the walk into `dst` field by field (each edge read whole
+    /// before it is stored: no library `memmove` call).
     #[inline(always)]
     pub(crate) fn copy_to(&self, dst: &mut Walk) {
-        // Each edge read whole before it is stored (no `memmove` call).
         let e = |g: &Edge| Edge {
             x: g.x,
             e: g.e,
@@ -388,11 +321,5 @@ impl Walk {
         dst.long_left = self.long_left;
         dst.inside = self.inside;
         dst.z16 = self.z16;
-    }
-
-    /// The walk in the pool's form.
-    #[inline(always)]
-    pub(crate) fn pack(&self) -> Option<PackedWalk> {
-        Some(PackedWalk { w: *self })
     }
 }
