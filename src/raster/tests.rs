@@ -955,12 +955,6 @@ fn fast_setup_equals_the_general_setup() {
     }
 }
 
-/// Walks the rows of a triangle without drawing (for [`Walk::pack`]).
-struct NoSpans;
-impl RowSpans<i32, 1> for NoSpans {
-    fn span(&mut self, _: i32, _: i32, _: i32, _: &Vals<i32, 1>, _: &Vals<i32, 1>, _: bool) {}
-}
-
 /// Draws sorted triangle `v` into a band (rows `y0..y0 + rows`, `w`
 /// columns, colour `px`, depth `z`) with the small-triangle kernel and
 /// with the general fused walk (from fresh copies of the buffers): `None`
