@@ -27,7 +27,7 @@ use super::span::{clamp_test, depth_loop, inr_span};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
-use crate::num::wide::{clz32, mul_i32_i16_soft, NO_DIVIDE, NO_LONG_MUL};
+use crate::num::wide::{clz32, mul_i32_i16_soft, NO_LONG_MUL};
 use crate::target::DepthFormat;
 
 /// A band's memory as the fused row kernel sees it: colour and depth
@@ -513,17 +513,7 @@ fn setup32<const N: usize, const V: usize>(
         width,
         sub,
     );
-    // ARMv6-M: the division-free reciprocal (`new_small` would take two
-    // library divisions); the same value.
-    let small = if NO_DIVIDE {
-        None
-    } else {
-        InvArea::new_small(area2)
-    };
-    let inv = match small {
-        Some(inv) => inv,
-        None => InvArea::new_i32(area2),
-    };
+    let inv = InvArea::new_fast(area2);
     let s = sub.get();
     let k = inv.high_shift(s).ok_or(())?;
     let h = 1i32 << (s - 1);
@@ -678,15 +668,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if area2 == 0 || j_top >= j_bot {
         return Some((0, false));
     }
-    let small = if NO_DIVIDE {
-        None
-    } else {
-        InvArea::new_small(area2)
-    };
-    let inv = match small {
-        Some(inv) => inv,
-        None => InvArea::new_i32(area2),
-    };
+    let inv = InvArea::new_fast(area2);
     let k = inv.high_shift(s)?;
     let g = Grad {
         d: [dx1, dy1, dx2, dy2],
