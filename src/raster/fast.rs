@@ -243,7 +243,9 @@ pub(crate) fn setup_fast<const N: usize, const V: usize>(
 ) -> bool {
     match setup32(a, b, c, sub, j0, width, walk, vals) {
         Ok(drawn) => drawn,
-        Err(()) => setup_slow(a, b, c, sub, j0, width, walk, vals),
+        // The vertices by value: their copy is made on this rare path
+        // only (by reference they would live in memory on every path).
+        Err(()) => setup_slow([*a, *b, *c], sub, j0, width, walk, vals),
     }
 }
 
@@ -283,15 +285,14 @@ pub(crate) fn unpack_fixed<const N: usize, const V: usize>(v: &[[i32; 3]; V]) ->
 #[cold]
 #[allow(clippy::too_many_arguments)]
 fn setup_slow<const N: usize, const V: usize>(
-    a: &Vertex<i32, N>,
-    b: &Vertex<i32, N>,
-    c: &Vertex<i32, N>,
+    v: [Vertex<i32, N>; 3],
     sub: SubpixelBits,
     j0: i32,
     width: i32,
     walk: &mut Walk,
     vals: &mut [[i32; 3]; V],
 ) -> bool {
+    let [a, b, c] = &v;
     match setup::<i32, N>(a, b, c, sub, j0, width) {
         Some((w, r, sx, sy)) => {
             *walk = w;
