@@ -1098,7 +1098,7 @@ where
     }
     in_limits_fixed::<P, N>(frame, tri, &v)?;
     // Set up and walked in the scratch.
-    let drawn = if setup_fixed::<N, V>(&v, sub, mem.y0, mem.width, walk, vals) {
+    let drawn = if setup_fixed::<N, V>(v, sub, mem.y0, mem.width, walk, vals) {
         draw_fused::<N, V, S, F, D>(walk, vals, until, mem, shader)
     } else {
         0
@@ -1212,18 +1212,19 @@ fn draw_small_shaded<
 /// done) when it draws none. A function of its own on ARMv6-M (its live
 /// state then does not share the eight low registers with the row
 /// loop's); inlined elsewhere (out of line, thumbv7em bunny-gouraud raster
-/// took 2.317 -> 2.351 M).
+/// took 2.317 -> 2.351 M). The vertices by value: a copy on this path
+/// only, not a vertex array in memory on every path.
 #[cfg_attr(armv6m, inline(never))]
 #[cfg_attr(not(armv6m), inline(always))]
 fn setup_fixed<const N: usize, const V: usize>(
-    v: &[Vertex<i32, N>; 3],
+    v: [Vertex<i32, N>; 3],
     sub: SubpixelBits,
     j0: i32,
     width: i32,
     walk: &mut Walk,
     vals: &mut [[i32; 3]; V],
 ) -> bool {
-    let [a, b, c] = v;
+    let [a, b, c] = &v;
     let set = setup_fast::<N, V>(a, b, c, sub, j0, width, walk, vals);
     if !set {
         *walk = Walk::EMPTY;
