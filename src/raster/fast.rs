@@ -613,7 +613,9 @@ fn walk_edges(
 ///   module's limits (`c.y <= coord_limit`);
 /// - its columns lie within `0..=width` ([`Walk::inside`]): no clipping;
 /// - [`setup32`]'s bounds (coordinate offsets below `2^15`, the
-///   reciprocal's high-word case, no wrapping numerator);
+///   reciprocal's high-word case, no wrapping numerator); on ARMv7-M the
+///   offsets' bound is taken as the column extent and the height below
+///   `2^15` (which implies it);
 /// - every depth converts to 16 bits without a clamp
 ///   ([`DepthFormat::plane_in_range`]);
 /// - on ARMv6-M (and in test builds), the gradient numerators in 32 bits:
@@ -660,7 +662,15 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     }
     let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
     let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
+    // Every offset below 2^15 in magnitude: on ARMv6-M (and in test
+    // builds) tested one by one (their bit length sets `lim` below);
+    // elsewhere through the column extent and the height (`0 <= dy1 <=
+    // dy2`, columns within `xmin..=xmax`), slightly stricter, cheaper.
+    let mxy = if SHORT_NUMERATORS {
+        dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs()
+    } else {
+        (xmax - xmin) as u32 | dy2 as u32
+    };
     let far = SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15;
     if (mxy >= 1 << 15) | far {
         return None;
