@@ -307,10 +307,24 @@ fn setup_slow<const N: usize, const V: usize>(
 /// (the same bounds on the vertex depths and on `|gx|`, `|gy|`).
 #[inline(always)]
 fn depth16_plane_in_range32(z: [i32; 3], gx: i32, gy: i32) -> bool {
+    depth16_vertices_in_range(z) & depth16_gradients_in_range(gx, gy)
+}
+
+/// The vertex part of [`depth16_plane_in_range32`]: every depth within
+/// `[2^15, 2^15 + 65535·2^14 - 2^16)`, so that their differences lie
+/// below `2^30` in magnitude (nothing wraps).
+#[inline(always)]
+fn depth16_vertices_in_range(z: [i32; 3]) -> bool {
     const M: u32 = 1 << 15;
     const LIM: u32 = (65535 << 14) - 2 * M;
     let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < LIM;
-    ok(z[0]) & ok(z[1]) & ok(z[2]) & (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
+    ok(z[0]) & ok(z[1]) & ok(z[2])
+}
+
+/// The gradient part of [`depth16_plane_in_range32`].
+#[inline(always)]
+fn depth16_gradients_in_range(gx: i32, gy: i32) -> bool {
+    (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
 }
 
 /// What [`setup32`] computes a value's plane from: the vertex offsets
@@ -331,9 +345,16 @@ impl Grad {
     /// values mean nothing).
     #[inline(always)]
     fn plane(&self, v0: i32, v1: i32, v2: i32) -> (i32, i32, i32, bool) {
+        self.plane_diff::<true>(v0, v1, v2)
+    }
+
+    /// [`Grad::plane`]; without `WRAPS` for values whose differences are
+    /// known not to wrap (then not tested).
+    #[inline(always)]
+    fn plane_diff<const WRAPS: bool>(&self, v0: i32, v1: i32, v2: i32) -> (i32, i32, i32, bool) {
         let [dx1, dy1, dx2, dy2] = self.d;
-        let (d1, o1) = v1.overflowing_sub(v0);
-        let (d2, o2) = v2.overflowing_sub(v0);
+        let (d1, o1) = sub_wrap::<WRAPS>(v1, v0);
+        let (d2, o2) = sub_wrap::<WRAPS>(v2, v0);
         let nx = wide(d1, dy2) - wide(d2, dy1);
         let ny = wide(d2, dx1) - wide(d1, dx2);
         let ok = !(o1 | o2) & fits(nx) & fits(ny);
@@ -356,10 +377,16 @@ impl Grad {
     /// `i32` of [`Grad::plane`]. Otherwise the flag is `false` (and the
     /// values mean nothing).
     #[inline(always)]
-    fn plane_short(&self, v0: i32, v1: i32, v2: i32, lim: u32) -> (i32, i32, i32, bool) {
+    fn plane_short<const WRAPS: bool>(
+        &self,
+        v0: i32,
+        v1: i32,
+        v2: i32,
+        lim: u32,
+    ) -> (i32, i32, i32, bool) {
         let [dx1, dy1, dx2, dy2] = self.d;
-        let (d1, o1) = v1.overflowing_sub(v0);
-        let (d2, o2) = v2.overflowing_sub(v0);
+        let (d1, o1) = sub_wrap::<WRAPS>(v1, v0);
+        let (d2, o2) = sub_wrap::<WRAPS>(v2, v0);
         let ok = !(o1 | o2) & ((d1.unsigned_abs() | d2.unsigned_abs()) < lim);
         let nx = d1.wrapping_mul(dy2).wrapping_sub(d2.wrapping_mul(dy1));
         let ny = d2.wrapping_mul(dx1).wrapping_sub(d1.wrapping_mul(dx2));
@@ -412,11 +439,17 @@ impl Grad {
     /// [`Grad::plane`] on ARMv6-M (and in test builds, which check it)
     /// with [`Grad::plane_short`]'s bound, elsewhere [`Grad::plane`].
     #[inline(always)]
-    fn plane_small(&self, v0: i32, v1: i32, v2: i32, lim: u32) -> (i32, i32, i32, bool) {
+    fn plane_small<const WRAPS: bool>(
+        &self,
+        v0: i32,
+        v1: i32,
+        v2: i32,
+        lim: u32,
+    ) -> (i32, i32, i32, bool) {
         if SHORT_NUMERATORS {
-            self.plane_short(v0, v1, v2, lim)
+            self.plane_short::<WRAPS>(v0, v1, v2, lim)
         } else {
-            self.plane(v0, v1, v2)
+            self.plane_diff::<WRAPS>(v0, v1, v2)
         }
     }
 }
@@ -425,6 +458,17 @@ impl Grad {
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
 /// test).
 const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
+
+/// `a - b` and whether it wraps; without `WRAPS` (a difference known not
+/// to wrap) the wrapping difference and `false`.
+#[inline(always)]
+fn sub_wrap<const WRAPS: bool>(a: i32, b: i32) -> (i32, bool) {
+    if WRAPS {
+        a.overflowing_sub(b)
+    } else {
+        (a.wrapping_sub(b), false)
+    }
+}
 
 /// `true` when `v` fits an `i32`.
 #[inline(always)]
@@ -679,6 +723,12 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if area2 == 0 || j_top >= j_bot {
         return Some((0, false));
     }
+    // The kernel needs every depth in range (the vertex part of `z16`,
+    // below): tested first, the depth differences then do not wrap.
+    let zv = depth16_vertices_in_range([a.z, b.z, c.z]);
+    if !(zv & D::plane_in_range(true)) {
+        return None;
+    }
     let inv = InvArea::new_fast(area2);
     let k = inv.high_shift(s)?;
     let g = Grad {
@@ -690,14 +740,14 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     };
     // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15).
     let lim = (1u32 << 30) >> (32 - clz32(mxy));
-    let (gx, gy, z0, mut ok) = g.plane_small(a.z, b.z, c.z, lim);
-    let z16 = depth16_plane_in_range32([a.z, b.z, c.z], gx, gy);
+    let (gx, gy, z0, mut ok) = g.plane_small::<false>(a.z, b.z, c.z, lim);
+    let z16 = depth16_gradients_in_range(gx, gy);
     ok &= D::plane_in_range(z16);
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
-        let (gx, gy, o, oka) = g.plane_small(a.attrs[k], b.attrs[k], c.attrs[k], lim);
+        let (gx, gy, o, oka) = g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim);
         ok &= oka;
         row.a[k] = o;
         sx.a[k] = gx;
