@@ -394,21 +394,7 @@ impl Grad {
             self.inv.quot_high(nx, self.k),
             self.inv.quot_high(ny, self.k),
         );
-        let o = if SHORT_PRODUCTS {
-            self.origin_short(gx, gy)
-        } else {
-            self.origin_wide(gx, gy)
-        };
-        (gx, gy, v0.wrapping_add(o), ok)
-    }
-
-    /// `(gx·ox + gy·oy + h) >> s` modulo 2^32 ([`Grad::plane`]'s row
-    /// origin) from 64-bit products (`SMULL`/`SMLAL`).
-    #[inline(always)]
-    fn origin_wide(&self, gx: i32, gy: i32) -> i32 {
-        let h = 1i64 << (self.s - 1);
-        let t = wide(gx, self.o[0]) + wide(gy, self.o[1]) + h;
-        (t >> self.s) as i32
+        (gx, gy, v0.wrapping_add(self.origin_short(gx, gy)), ok)
     }
 
     /// `(gx·ox + gy·oy + h) >> s` modulo 2^32 ([`Grad::plane`]'s row
