@@ -337,6 +337,21 @@ impl InvArea {
         })
     }
 
+    /// [`InvArea::new`] of an `i32` by the target's cheapest exact path:
+    /// with a hardware divider (ARMv7-M, the hosts) [`InvArea::new_small`]
+    /// (two 32-bit divisions) where it applies; on ARMv6-M, where those
+    /// would be library calls, the table and Newton steps of
+    /// `InvArea::new_short`; the others through `InvArea::new`. The same
+    /// value on every path (each tested equal to `new`).
+    #[inline(always)]
+    pub(crate) fn new_fast(a: i32) -> Self {
+        let small = if NO_DIVIDE { None } else { Self::new_small(a) };
+        match small {
+            Some(inv) => inv,
+            None => Self::new_i32(a),
+        }
+    }
+
     /// For the fast path (`raster::fast`): `Some(k)` when [`InvArea::quot`]
     /// of a numerator within an `i32` takes its usual high-word case for
     /// `s` subpixel bits (`sh = e - s` in `33..64`, then `k = sh - 33`):
@@ -800,6 +815,14 @@ mod tests {
         }
         for a in [1, -1, 3, 65535, -65535, 65536, -65536, i32::MAX, i32::MIN] {
             assert_eq!(InvArea::new_i32(a), InvArea::new_long(a as i64), "a={a}");
+            assert_eq!(InvArea::new_fast(a), InvArea::new_long(a as i64), "a={a}");
+        }
+        // The target's constructor (the hosts: the two divisions below
+        // 2^16) on every magnitude up to 2^17, both signs.
+        for mag in 1i32..1 << 17 {
+            for a in [mag, -mag] {
+                assert_eq!(InvArea::new_fast(a), InvArea::new_long(a as i64), "a={a}");
+            }
         }
         assert_eq!(
             InvArea::new(1),

@@ -27,7 +27,7 @@ use super::span::{clamp_test, depth_loop, inr_span};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
-use crate::num::wide::{clz32, mul_i32_i16_soft, NO_DIVIDE, NO_LONG_MUL};
+use crate::num::wide::{clz32, mul_i32_i16_soft, NO_LONG_MUL};
 use crate::target::DepthFormat;
 
 /// A band's memory as the fused row kernel sees it: colour and depth
@@ -243,7 +243,9 @@ pub(crate) fn setup_fast<const N: usize, const V: usize>(
 ) -> bool {
     match setup32(a, b, c, sub, j0, width, walk, vals) {
         Ok(drawn) => drawn,
-        Err(()) => setup_slow(a, b, c, sub, j0, width, walk, vals),
+        // The vertices by value: their copy is made on this rare path
+        // only (by reference they would live in memory on every path).
+        Err(()) => setup_slow([*a, *b, *c], sub, j0, width, walk, vals),
     }
 }
 
@@ -283,15 +285,14 @@ pub(crate) fn unpack_fixed<const N: usize, const V: usize>(v: &[[i32; 3]; V]) ->
 #[cold]
 #[allow(clippy::too_many_arguments)]
 fn setup_slow<const N: usize, const V: usize>(
-    a: &Vertex<i32, N>,
-    b: &Vertex<i32, N>,
-    c: &Vertex<i32, N>,
+    v: [Vertex<i32, N>; 3],
     sub: SubpixelBits,
     j0: i32,
     width: i32,
     walk: &mut Walk,
     vals: &mut [[i32; 3]; V],
 ) -> bool {
+    let [a, b, c] = &v;
     match setup::<i32, N>(a, b, c, sub, j0, width) {
         Some((w, r, sx, sy)) => {
             *walk = w;
@@ -306,10 +307,24 @@ fn setup_slow<const N: usize, const V: usize>(
 /// (the same bounds on the vertex depths and on `|gx|`, `|gy|`).
 #[inline(always)]
 fn depth16_plane_in_range32(z: [i32; 3], gx: i32, gy: i32) -> bool {
+    depth16_vertices_in_range(z) & depth16_gradients_in_range(gx, gy)
+}
+
+/// The vertex part of [`depth16_plane_in_range32`]: every depth within
+/// `[2^15, 2^15 + 65535·2^14 - 2^16)`, so that their differences lie
+/// below `2^30` in magnitude (nothing wraps).
+#[inline(always)]
+fn depth16_vertices_in_range(z: [i32; 3]) -> bool {
     const M: u32 = 1 << 15;
     const LIM: u32 = (65535 << 14) - 2 * M;
     let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < LIM;
-    ok(z[0]) & ok(z[1]) & ok(z[2]) & (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
+    ok(z[0]) & ok(z[1]) & ok(z[2])
+}
+
+/// The gradient part of [`depth16_plane_in_range32`].
+#[inline(always)]
+fn depth16_gradients_in_range(gx: i32, gy: i32) -> bool {
+    (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
 }
 
 /// What [`setup32`] computes a value's plane from: the vertex offsets
@@ -330,9 +345,16 @@ impl Grad {
     /// values mean nothing).
     #[inline(always)]
     fn plane(&self, v0: i32, v1: i32, v2: i32) -> (i32, i32, i32, bool) {
+        self.plane_diff::<true>(v0, v1, v2)
+    }
+
+    /// [`Grad::plane`]; without `WRAPS` for values whose differences are
+    /// known not to wrap (then not tested).
+    #[inline(always)]
+    fn plane_diff<const WRAPS: bool>(&self, v0: i32, v1: i32, v2: i32) -> (i32, i32, i32, bool) {
         let [dx1, dy1, dx2, dy2] = self.d;
-        let (d1, o1) = v1.overflowing_sub(v0);
-        let (d2, o2) = v2.overflowing_sub(v0);
+        let (d1, o1) = sub_wrap::<WRAPS>(v1, v0);
+        let (d2, o2) = sub_wrap::<WRAPS>(v2, v0);
         let nx = wide(d1, dy2) - wide(d2, dy1);
         let ny = wide(d2, dx1) - wide(d1, dx2);
         let ok = !(o1 | o2) & fits(nx) & fits(ny);
@@ -355,10 +377,16 @@ impl Grad {
     /// `i32` of [`Grad::plane`]. Otherwise the flag is `false` (and the
     /// values mean nothing).
     #[inline(always)]
-    fn plane_short(&self, v0: i32, v1: i32, v2: i32, lim: u32) -> (i32, i32, i32, bool) {
+    fn plane_short<const WRAPS: bool>(
+        &self,
+        v0: i32,
+        v1: i32,
+        v2: i32,
+        lim: u32,
+    ) -> (i32, i32, i32, bool) {
         let [dx1, dy1, dx2, dy2] = self.d;
-        let (d1, o1) = v1.overflowing_sub(v0);
-        let (d2, o2) = v2.overflowing_sub(v0);
+        let (d1, o1) = sub_wrap::<WRAPS>(v1, v0);
+        let (d2, o2) = sub_wrap::<WRAPS>(v2, v0);
         let ok = !(o1 | o2) & ((d1.unsigned_abs() | d2.unsigned_abs()) < lim);
         let nx = d1.wrapping_mul(dy2).wrapping_sub(d2.wrapping_mul(dy1));
         let ny = d2.wrapping_mul(dx1).wrapping_sub(d1.wrapping_mul(dx2));
@@ -397,11 +425,17 @@ impl Grad {
     /// [`Grad::plane`] on ARMv6-M (and in test builds, which check it)
     /// with [`Grad::plane_short`]'s bound, elsewhere [`Grad::plane`].
     #[inline(always)]
-    fn plane_small(&self, v0: i32, v1: i32, v2: i32, lim: u32) -> (i32, i32, i32, bool) {
+    fn plane_small<const WRAPS: bool>(
+        &self,
+        v0: i32,
+        v1: i32,
+        v2: i32,
+        lim: u32,
+    ) -> (i32, i32, i32, bool) {
         if SHORT_NUMERATORS {
-            self.plane_short(v0, v1, v2, lim)
+            self.plane_short::<WRAPS>(v0, v1, v2, lim)
         } else {
-            self.plane(v0, v1, v2)
+            self.plane_diff::<WRAPS>(v0, v1, v2)
         }
     }
 }
@@ -410,6 +444,17 @@ impl Grad {
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
 /// test).
 const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
+
+/// `a - b` and whether it wraps; without `WRAPS` (a difference known not
+/// to wrap) the wrapping difference and `false`.
+#[inline(always)]
+fn sub_wrap<const WRAPS: bool>(a: i32, b: i32) -> (i32, bool) {
+    if WRAPS {
+        a.overflowing_sub(b)
+    } else {
+        (a.wrapping_sub(b), false)
+    }
+}
 
 /// `true` when `v` fits an `i32`.
 #[inline(always)]
@@ -499,17 +544,7 @@ fn setup32<const N: usize, const V: usize>(
         width,
         sub,
     );
-    // ARMv6-M: the division-free reciprocal (`new_small` would take two
-    // library divisions); the same value.
-    let small = if NO_DIVIDE {
-        None
-    } else {
-        InvArea::new_small(area2)
-    };
-    let inv = match small {
-        Some(inv) => inv,
-        None => InvArea::new_i32(area2),
-    };
+    let inv = InvArea::new_fast(area2);
     let s = sub.get();
     let k = inv.high_shift(s).ok_or(())?;
     let h = 1i32 << (s - 1);
@@ -608,7 +643,9 @@ fn walk_edges(
 ///   module's limits (`c.y <= coord_limit`);
 /// - its columns lie within `0..=width` ([`Walk::inside`]): no clipping;
 /// - [`setup32`]'s bounds (coordinate offsets below `2^15`, the
-///   reciprocal's high-word case, no wrapping numerator);
+///   reciprocal's high-word case, no wrapping numerator); on ARMv7-M the
+///   offsets' bound is taken as the column extent and the height below
+///   `2^15` (which implies it);
 /// - every depth converts to 16 bits without a clamp
 ///   ([`DepthFormat::plane_in_range`]);
 /// - on ARMv6-M (and in test builds), the gradient numerators in 32 bits:
@@ -655,7 +692,15 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     }
     let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
     let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    let mxy = dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs();
+    // Every offset below 2^15 in magnitude: on ARMv6-M (and in test
+    // builds) tested one by one (their bit length sets `lim` below);
+    // elsewhere through the column extent and the height (`0 <= dy1 <=
+    // dy2`, columns within `xmin..=xmax`), slightly stricter, cheaper.
+    let mxy = if SHORT_NUMERATORS {
+        dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs()
+    } else {
+        (xmax - xmin) as u32 | dy2 as u32
+    };
     let far = SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15;
     if (mxy >= 1 << 15) | far {
         return None;
@@ -664,15 +709,13 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if area2 == 0 || j_top >= j_bot {
         return Some((0, false));
     }
-    let small = if NO_DIVIDE {
-        None
-    } else {
-        InvArea::new_small(area2)
-    };
-    let inv = match small {
-        Some(inv) => inv,
-        None => InvArea::new_i32(area2),
-    };
+    // The kernel needs every depth in range (the vertex part of `z16`,
+    // below): tested first, the depth differences then do not wrap.
+    let zv = depth16_vertices_in_range([a.z, b.z, c.z]);
+    if !(zv & D::plane_in_range(true)) {
+        return None;
+    }
+    let inv = InvArea::new_fast(area2);
     let k = inv.high_shift(s)?;
     let g = Grad {
         d: [dx1, dy1, dx2, dy2],
@@ -683,14 +726,14 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     };
     // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15).
     let lim = (1u32 << 30) >> (32 - clz32(mxy));
-    let (gx, gy, z0, mut ok) = g.plane_small(a.z, b.z, c.z, lim);
-    let z16 = depth16_plane_in_range32([a.z, b.z, c.z], gx, gy);
+    let (gx, gy, z0, mut ok) = g.plane_small::<false>(a.z, b.z, c.z, lim);
+    let z16 = depth16_gradients_in_range(gx, gy);
     ok &= D::plane_in_range(z16);
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
-        let (gx, gy, o, oka) = g.plane_small(a.attrs[k], b.attrs[k], c.attrs[k], lim);
+        let (gx, gy, o, oka) = g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim);
         ok &= oka;
         row.a[k] = o;
         sx.a[k] = gx;
@@ -701,12 +744,19 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     }
     let (px, z) = same_len(mem.px, z);
     let j_mid = first_row(b.y, sub);
+    // The lower short edge from its first row: swapped in at `j_mid`, or
+    // carried to the next band (every triangle with a lower half needs it).
+    let low = if j_mid < j_bot {
+        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
+    } else {
+        Edge::EMPTY
+    };
     let long = Edge::new_first(a.x, a.y, c.x, c.y, j_top, sub);
     let upper = j_top < j_mid;
     let short = if upper {
         Edge::new_first(a.x, a.y, b.x, b.y, j_top, sub)
     } else {
-        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
+        low
     };
     let long_left = area2 > 0;
     let (mut l, mut r) = if long_left {
@@ -714,6 +764,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     } else {
         (short, long)
     };
+    let anchor = [a.x >> s, a.y >> s];
     let mut rows = SmallRows {
         v: row.add_n(&sy, j_top),
         base: (j_top - y0).wrapping_mul(width) as usize,
@@ -734,7 +785,6 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
         // At the lower half's first row (and not at the band's end, where
         // the resumed walk swaps the edges itself).
         if j < stop {
-            let low = Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub);
             if long_left {
                 r = low;
             } else {
@@ -752,11 +802,10 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     if more {
         carry_over(
             carry,
-            [a, b, c],
-            [l, r],
+            [l, r, low],
+            anchor,
             [j, j_mid, j_bot],
             [long_left, z16],
-            sub,
         );
         pack_fixed(vals, &rows.v.add_n(sy, j.wrapping_neg()), sx, sy);
     }
@@ -764,37 +813,27 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
 }
 
 /// [`draw_small`]'s walk of a triangle continuing below the band (its
-/// sorted vertices `p`, edges `[left, right]` at row `rows[0]`, middle
-/// and end rows `rows[1..]`, `flags` the long edge's side and
+/// edges `[left, right, lower short]`, the lower one at its first row
+/// `rows[1]`, the walk at row `rows[0]`, its end row `rows[2]`, the
+/// anchor pixel of its first vertex, `flags` the long edge's side and
 /// [`Walk::z16`]): the fields [`setup32`] and [`Walk::rows_fused`] leave
 /// (inside the window), but the lower short edge once the walk is past
 /// its first row (then unused).
 #[inline(always)]
-fn carry_over<const N: usize>(
-    w: &mut Walk,
-    p: [&Vertex<i32, N>; 3],
-    e: [Edge; 2],
-    rows: [i32; 3],
-    flags: [bool; 2],
-    sub: SubpixelBits,
-) {
-    let [a, b, c] = p;
+fn carry_over(w: &mut Walk, e: [Edge; 3], anchor: [i32; 2], rows: [i32; 3], flags: [bool; 2]) {
     let [long_left, z16] = flags;
     let [j, j_mid, j_bot] = rows;
-    [w.left, w.right] = e;
-    // The lower short edge from its first row while the walk has not
-    // swapped it in yet (`j <= mid`); past that row the walk never reads
-    // it (the general walk keeps it unused, here it is left empty).
-    w.low = if (j <= j_mid) & (j_mid < j_bot) {
-        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
-    } else {
-        Edge::EMPTY
-    };
+    let [l, r, low] = e;
+    w.left = l;
+    w.right = r;
+    // The lower short edge while the walk has not swapped it in yet (`j
+    // <= mid`); past that row the walk never reads it (the general walk
+    // keeps it unused, here it is left empty).
+    w.low = if j <= j_mid { low } else { Edge::EMPTY };
     w.j = j;
     w.mid = j_mid;
     w.end = j_bot;
-    w.ia = a.x >> sub.get();
-    w.ja = a.y >> sub.get();
+    [w.ia, w.ja] = anchor;
     w.long_left = long_left;
     w.inside = true;
     w.z16 = z16;

@@ -75,7 +75,7 @@ pub(crate) use span::span_pixels;
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
 pub(crate) use triangle::{draw_sorted, first_row, in_limits, sort3};
 pub use triangle::{draw_triangle, Span, Spans};
-pub(crate) use walk::{setup, PackedWalk, RowSpans, Vals, Walk};
+pub(crate) use walk::{setup, RowSpans, Vals, Walk};
 
 pub use crate::num::{
     BadSubpixelBits, InvArea, Lerp, Recip, SubpixelBits, ATTR_LIMIT, COORD_LIMIT_PX, DEPTH_ONE,

@@ -955,53 +955,6 @@ fn fast_setup_equals_the_general_setup() {
     }
 }
 
-/// Walks the rows of a triangle without drawing (for [`Walk::pack`]).
-struct NoSpans;
-impl RowSpans<i32, 1> for NoSpans {
-    fn span(&mut self, _: i32, _: i32, _: i32, _: &Vals<i32, 1>, _: &Vals<i32, 1>, _: bool) {}
-}
-
-#[test]
-fn packed_walks_resume_as_the_walk_itself() {
-    let mut rng = Rng(7);
-    let mut packed = 0;
-    for i in 0..2000 {
-        // Mostly triangles near the window, some reaching beyond 32 767
-        // pixels (which do not pack).
-        let r = if i % 10 == 0 { 40_000 * 16 } else { 300 * 16 };
-        let t: [Vertex<i32, 1>; 3] = core::array::from_fn(|_| Vertex {
-            x: rng.range(-r, r),
-            y: rng.range(-300 * 16, 600 * 16),
-            z: rng.range(0, DEPTH_ONE),
-            attrs: [rng.range(0, 256 << 16)],
-        });
-        let [a, b, c] = sort3(t, |v| v.y);
-        let Some((mut walk, row, sx, sy)) = setup(&a, &b, &c, SUB, 0, 240) else {
-            continue;
-        };
-        let mut j = walk.j;
-        while !walk.done() {
-            let fits = [walk.left, walk.right, walk.low]
-                .iter()
-                .flat_map(|e| [e.x, e.q])
-                .chain([walk.j, walk.mid, walk.end, walk.ia, walk.ja])
-                .all(|v| i16::try_from(v).is_ok());
-            match walk.pack() {
-                Some(p) => {
-                    assert!(fits);
-                    assert_eq!(p.unpack(), walk);
-                    packed += 1;
-                }
-                None => assert!(!fits),
-            }
-            j += 1 + rng.range(0, 40);
-            walk.rows(&row, &sx, &sy, j, 240, &mut NoSpans);
-        }
-    }
-    assert!(packed > 1000);
-    assert_eq!(Walk::EMPTY.pack(), Some(PackedWalk::EMPTY));
-}
-
 /// Draws sorted triangle `v` into a band (rows `y0..y0 + rows`, `w`
 /// columns, colour `px`, depth `z`) with the small-triangle kernel and
 /// with the general fused walk (from fresh copies of the buffers): `None`

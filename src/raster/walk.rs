@@ -297,137 +297,29 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
     Some((walk, row, sx, sy))
 }
 
-/// An edge walker as a pool slot keeps it ([`PackedWalk`]): the column
-/// and the whole step in 16 bits, the error term, remainder and divisor in
-/// 32 (16 bytes).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct PackedEdge {
-    x: i16,
-    q: i16,
-    e: i32,
-    r: i32,
-    d: i32,
-}
-
-impl PackedEdge {
-    const EMPTY: Self = Self {
-        x: 0,
-        q: 0,
-        e: 0,
-        r: 0,
-        d: 1,
-    };
-
+impl Walk {
+    /// Copies the walk into `dst` field by field (each edge read whole
+    /// before it is stored: no library `memmove` call).
     #[inline(always)]
-    fn pack(g: &Edge) -> Self {
-        Self {
-            x: g.x as i16,
-            q: g.q as i16,
+    pub(crate) fn copy_to(&self, dst: &mut Walk) {
+        let e = |g: &Edge| Edge {
+            x: g.x,
             e: g.e,
+            q: g.q,
             r: g.r,
             d: g.d,
-        }
-    }
-
-    #[inline(always)]
-    fn unpack(&self) -> Edge {
-        Edge {
-            x: self.x as i32,
-            e: self.e,
-            q: self.q as i32,
-            r: self.r,
-            d: self.d,
-        }
-    }
-}
-
-/// A [`Walk`] as the band renderer's pool keeps it between bands: 60
-/// bytes instead of 84 (three edge walkers of 16 bytes, five rows of 16
-/// bits, the flags in one byte).
-///
-/// It holds a walk whose columns, whole steps per row and rows lie within
-/// `i16` ([`Walk::pack`]): at most 32 767 pixels from the origin, which
-/// every triangle of a screen up to 32 767 pixels a side meets while it
-/// is walked inside the window (its columns are clamped to the window
-/// only when drawn, so a triangle reaching further out, up to the
-/// rasterizer's limits, finds no slot and is set up afresh in each band
-/// instead: the same bytes, more setups).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct PackedWalk {
-    /// Left, right and lower short edge.
-    edges: [PackedEdge; 3],
-    /// `j`, `mid`, `end`, `ia`, `ja`.
-    rows: [i16; 5],
-    /// `long_left`, `inside`, `z16` (bits 0, 1, 2).
-    flags: u8,
-}
-
-impl PackedWalk {
-    /// A walk with no rows.
-    pub(crate) const EMPTY: Self = Self {
-        edges: [PackedEdge::EMPTY; 3],
-        rows: [0; 5],
-        flags: 0,
-    };
-
-    /// The walk it holds.
-    #[inline(always)]
-    pub(crate) fn unpack(&self) -> Walk {
-        let [l, r, low] = &self.edges;
-        let [j, mid, end, ia, ja] = self.rows;
-        Walk {
-            left: l.unpack(),
-            right: r.unpack(),
-            low: low.unpack(),
-            j: j as i32,
-            mid: mid as i32,
-            end: end as i32,
-            ia: ia as i32,
-            ja: ja as i32,
-            long_left: self.flags & 1 != 0,
-            inside: self.flags & 2 != 0,
-            z16: self.flags & 4 != 0,
-        }
-    }
-}
-
-impl Walk {
-    /// The walk in the pool's form, `None` when a column, whole step or
-    /// row lies outside `i16` (see [`PackedWalk`]).
-    #[inline(always)]
-    pub(crate) fn pack(&self) -> Option<PackedWalk> {
-        // `v` lies in `i16` exactly when `v + 2^15` (wrapping) is below
-        // 2^16 as a `u32`: one test for all eleven values.
-        let out = |v: i32| v.wrapping_add(1 << 15) as u32;
-        let (l, r, low) = (&self.left, &self.right, &self.low);
-        let far = out(l.x)
-            | out(l.q)
-            | out(r.x)
-            | out(r.q)
-            | out(low.x)
-            | out(low.q)
-            | out(self.j)
-            | out(self.mid)
-            | out(self.end)
-            | out(self.ia)
-            | out(self.ja);
-        if far >= 1 << 16 {
-            return None;
-        }
-        Some(PackedWalk {
-            edges: [
-                PackedEdge::pack(l),
-                PackedEdge::pack(r),
-                PackedEdge::pack(low),
-            ],
-            rows: [
-                self.j as i16,
-                self.mid as i16,
-                self.end as i16,
-                self.ia as i16,
-                self.ja as i16,
-            ],
-            flags: self.long_left as u8 | (self.inside as u8) << 1 | (self.z16 as u8) << 2,
-        })
+        };
+        let (l, r, low) = (e(&self.left), e(&self.right), e(&self.low));
+        dst.left = l;
+        dst.right = r;
+        dst.low = low;
+        dst.j = self.j;
+        dst.mid = self.mid;
+        dst.end = self.end;
+        dst.ia = self.ia;
+        dst.ja = self.ja;
+        dst.long_left = self.long_left;
+        dst.inside = self.inside;
+        dst.z16 = self.z16;
     }
 }

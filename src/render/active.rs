@@ -28,7 +28,7 @@
 //! values, no perspective: [`Lerp::fixed_raw`]) take `Bands::run_fast`:
 //! the same streams, with the setup of `raster::fast` (32-bit where the
 //! triangle's extents allow it, on every target; tested equal to the
-//! general setup), written into a scratch walk and values (packed into a
+//! general setup), written into a scratch walk and values (copied into a
 //! free pool slot only when the triangle continues below the band: the
 //! setup writing straight into a slot measured no faster), and its fused
 //! row kernel (two
@@ -44,27 +44,25 @@
 //! | part | bytes |
 //! |------|-------|
 //! | order scratch ([`BandState`]) | 4 per prepared triangle (`2 ×` [`Frame::triangle_count`] `u16`: the order, and the queue of triangles that found the pool full) |
-//! | pool slot ([`Pool::SLOT_BYTES`]) | 64 (the walk packed: three edge walkers of 16 bytes, five 16-bit rows, the flags, the triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
+//! | pool slot ([`Pool::SLOT_BYTES`]) | 88 (the walk: three edge walkers of 20 bytes, five `i32` rows, three flags; the triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
 //!
-//! With `i32` values: 88 bytes per active triangle for `V = 2` (depth
-//! and a grey level), 112 for `V = 4`, 160 for `V = 8` (any layout). A
-//! slot keeps the walk packed (`raster::PackedWalk`: columns, whole
-//! steps and rows in `i16`): a triangle starting in a band is set up and
-//! walked in a scratch walk and packed into a free slot (with its values)
-//! only when it continues below the band; a resumed one is unpacked for
-//! the band and packed again. A walk that does not pack (a column beyond
-//! ±32 767, only for slivers near the rasterizer's coordinate limits) is
-//! set up afresh in the next band instead, like a triangle that found the
-//! pool full.
+//! With `i32` values: 112 bytes per active triangle for `V = 2` (depth
+//! and a grey level), 136 for `V = 4`, 184 for `V = 8` (any layout). A
+//! slot keeps the walk as the row kernels walk it: a triangle starting in
+//! a band is set up and walked in a scratch walk and copied into a free
+//! slot (with its values) only when it continues below the band; a
+//! resumed one is walked in its slot, in place, and its slot index goes
+//! back to the ring (or to the free stack when it is done).
 //!
 //! The bunny at 240×240 in 16-row bands crosses band borders 352 times
-//! and keeps at most 55 triangles at once ([`Bands::active_peak`]). In
-//! the firmware (exact QEMU counts, bunny-gouraud raster, thumbv7em):
-//! unpacked slots of 8 values, 64 slots (12 032 bytes), 2.281 M
-//! instructions; packed slots of 2 values, 56 slots (5 152 bytes, every
-//! triangle set up once), 2.297 M; 32 slots (2 944 bytes, the firmware's
-//! pool: 105 triangles set up a second time), 2.354 M (thumbv6m 3.810 ->
-//! 3.942 M). The order scratch for its 1 498 triangles is 5 992 bytes.
+//! and keeps at most 55 triangles at once ([`Bands::active_peak`]). The
+//! walk kept packed in 16-bit columns and rows (64-byte slots) instead
+//! saved 24 bytes per slot (1 344 bytes for the firmware's 56 slots of 8
+//! values, 9 184 -> 10 528 bytes) for an unpack and a range-checked pack
+//! per resumed triangle: kept unpacked, exact QEMU counts, bunny-flat
+//! raster thumbv7em 1.901 -> 1.847 M, thumbv6m 2.725 -> 2.693 M;
+//! bunny-gouraud 2.175 -> 2.172 M and 3.180 -> 3.152 M. The order scratch
+//! for its 1 498 triangles is 5 992 bytes.
 
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
@@ -75,8 +73,7 @@ use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
 use crate::raster::{
     draw_small, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud,
-    GouraudMono, Lerp, PackedWalk, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals,
-    Vertex, Walk,
+    GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex, Walk,
 };
 use crate::scene::{Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -85,7 +82,7 @@ use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
 #[derive(Clone, Copy, Debug)]
 pub struct Slot<L, const V: usize> {
     tri: u16,
-    walk: PackedWalk,
+    walk: Walk,
     /// Per value (depth first): the value at pixel (0, 0) (floats: at
     /// the anchor), its step per pixel along x, along y (none of them
     /// changes while the triangle is walked).
@@ -118,7 +115,7 @@ impl<L: Lerp, const CAP: usize, const V: usize> Pool<L, CAP, V> {
         Self {
             slots: [Slot {
                 tri: 0,
-                walk: PackedWalk::EMPTY,
+                walk: Walk::EMPTY,
                 vals: [[L::ZERO; 3]; V],
             }; CAP],
             ring: [0; CAP],
@@ -742,9 +739,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         return Ok(());
                     };
                     let (row, sx, sy) = unpack::<_, N, V>(&slot.vals);
-                    let mut walk = slot.walk.unpack();
-                    walk.rows(&row, &sx, &sy, y1, width, &mut k);
-                    self.put_back(si, ti as u16, &walk);
+                    slot.walk.rows(&row, &sx, &sy, y1, width, &mut k);
+                    let done = slot.walk.done();
+                    self.put_back(si, done);
                 }
                 Src::Fresh => {
                     let fresh = self.fresh::<N>(po, &tri, t.y0 as i32, width)?;
@@ -766,9 +763,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// perspective) and shaders of at most one attribute: the fused row
     /// kernel of `raster::fast` (the same bytes, see there). A triangle
     /// starting in the band is set up in a scratch walk and values (by
-    /// [`fresh_fixed`]), walked from there and kept in a free slot when it
+    /// [`fresh_fast`]), walked from there and kept in a free slot when it
     /// continues below the band ([`Bands::keep_fixed`]); a resumed one is
-    /// unpacked from its slot for the band and packed back.
+    /// walked in its slot.
     #[inline(never)]
     fn run_fast<const N: usize, S, F, D>(
         &mut self,
@@ -807,43 +804,31 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let Some(slot) = self.pool.slots.get_mut(si) else {
                         return Ok(());
                     };
-                    let mut walk = slot.walk.unpack();
+                    let walk = &mut slot.walk;
                     let Some(vals) = P::Lerp::fixed_slots(&mut slot.vals) else {
                         return Ok(());
                     };
-                    let drawn = draw_fused::<N, V, S, F, D>(&mut walk, vals, y1, &mut mem, &shader);
-                    self.put_back(si, ti as u16, &walk);
+                    let drawn = draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader);
+                    let done = walk.done();
+                    self.put_back(si, done);
                     drawn
                 }
-                Src::Fresh => match fetch_fixed::<P, N>(frame, po, &tri) {
-                    Some(v) => {
-                        self.stats.triangles += 1;
-                        let sub = P::SUBPIXEL_BITS;
-                        let (walk, vals) = (&mut scratch.0, &mut scratch.1);
-                        let small = draw_small_shaded::<N, V, S, F, D>(
-                            &v, sub, y1, &mut mem, walk, vals, &shader,
-                        );
-                        let (drawn, more) = match small {
-                            Some(r) => r,
-                            None => {
-                                in_limits_fixed::<P, N>(frame, &tri, &v)?;
-                                // Set up and walked in the scratch.
-                                let drawn = if setup_fixed::<N, V>(&v, sub, y0, width, walk, vals) {
-                                    draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader)
-                                } else {
-                                    0
-                                };
-                                (drawn, !walk.done())
+                Src::Fresh => {
+                    let (walk, vals) = (&mut scratch.0, &mut scratch.1);
+                    match fresh_fast::<P, N, V, S, F, D>(
+                        frame, po, &tri, y1, &mut mem, walk, vals, &shader,
+                    )? {
+                        Some((drawn, more)) => {
+                            self.stats.triangles += 1;
+                            // Kept in a slot when it continues below the band.
+                            if more {
+                                self.keep_fixed::<N>(ti as u16, walk, vals);
                             }
-                        };
-                        // Kept in a slot when it continues below the band.
-                        if more {
-                            self.keep_fixed::<N>(ti as u16, walk, vals);
+                            drawn
                         }
-                        drawn
+                        None => 0,
                     }
-                    None => 0,
-                },
+                }
             };
             self.stats.pixels += drawn;
         }
@@ -878,13 +863,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         }
         if ti == ta {
             let si = self.pool.ring.get(self.ring_head).copied().unwrap_or(0) as usize;
-            self.ring_head = (self.ring_head + 1) % CAP.max(1);
+            self.ring_head = wrap(self.ring_head + 1, CAP);
             self.ring_cur -= 1;
             self.ring_len -= 1;
             Some((ti, Src::Slot(si)))
         } else {
             if ti == tb {
-                self.def_head = (self.def_head + 1) % self.n.max(1);
+                self.def_head = wrap(self.def_head + 1, self.n);
                 self.def_cur -= 1;
                 self.def_len -= 1;
             } else {
@@ -894,31 +879,21 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         }
     }
 
-    /// Returns slot `si` of triangle `ti` after its walk `walk` in this
-    /// band: to the free stack when the triangle is done, else with the
-    /// walk packed into it to the ring's tail for the next band (or, when
-    /// the walk does not pack, [`Walk::pack`], to the free stack with the
-    /// triangle queued to be set up afresh).
+    /// Returns slot `si`, its walk walked in place in this band: to the
+    /// free stack when the triangle is `done`, else to the ring's tail for
+    /// the next band.
     #[inline(always)]
-    fn put_back(&mut self, si: usize, ti: u16, walk: &Walk) {
-        let packed = if walk.done() { None } else { walk.pack() };
-        match (packed, self.pool.slots.get_mut(si)) {
-            (Some(p), Some(slot)) => {
-                slot.walk = p;
-                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
-                if let Some(r) = self.pool.ring.get_mut(tail) {
-                    *r = si as u16;
-                    self.ring_len += 1;
-                }
+    fn put_back(&mut self, si: usize, done: bool) {
+        if done {
+            if let Some(f) = self.pool.free.get_mut(self.free_len) {
+                *f = si as u16;
+                self.free_len += 1;
             }
-            _ => {
-                if let Some(f) = self.pool.free.get_mut(self.free_len) {
-                    *f = si as u16;
-                    self.free_len += 1;
-                }
-                if !walk.done() {
-                    self.defer(ti);
-                }
+        } else {
+            let tail = wrap(self.ring_head + self.ring_len, CAP);
+            if let Some(r) = self.pool.ring.get_mut(tail) {
+                *r = si as u16;
+                self.ring_len += 1;
             }
         }
     }
@@ -980,19 +955,14 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         sx: &Vals<P::Lerp, N>,
         sy: &Vals<P::Lerp, N>,
     ) {
-        let packed = if N < V && self.free_len > 0 {
-            walk.pack()
-        } else {
-            None
-        };
-        if let Some(packed) = packed {
+        if N < V && self.free_len > 0 {
             self.free_len -= 1;
             let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
             if let Some(slot) = self.pool.slots.get_mut(si as usize) {
                 slot.tri = ti;
-                slot.walk = packed;
+                slot.walk = walk;
                 pack::<_, N, V>(&mut slot.vals, row, sx, sy);
-                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                let tail = wrap(self.ring_head + self.ring_len, CAP);
                 if let Some(r) = self.pool.ring.get_mut(tail) {
                     *r = si;
                     self.ring_len += 1;
@@ -1004,37 +974,30 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         self.peak = self.peak.max(CAP - self.free_len + self.def_len);
     }
 
-    /// [`Bands::keep`] for the fast path: the walk packed and the values
-    /// copied into a free slot, or the triangle queued.
+    /// [`Bands::keep`] for the fast path: the walk and the values copied
+    /// into a free slot, or the triangle queued.
     #[inline(always)]
     fn keep_fixed<const N: usize>(&mut self, ti: u16, walk: &Walk, vals: &[[i32; 3]; V]) {
-        let packed = if N < V && self.free_len > 0 {
-            walk.pack()
-        } else {
-            None
-        };
-        let slot = match packed {
-            Some(p) => {
+        let kept = N < V && self.free_len > 0;
+        let slot = match kept {
+            true => {
                 self.free_len -= 1;
                 let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
-                self.pool
-                    .slots
-                    .get_mut(si as usize)
-                    .map(|slot| (si, p, slot))
+                self.pool.slots.get_mut(si as usize).map(|slot| (si, slot))
             }
-            None => None,
+            false => None,
         };
         match slot {
-            Some((si, p, slot)) => {
+            Some((si, slot)) => {
                 slot.tri = ti;
-                slot.walk = p;
+                walk.copy_to(&mut slot.walk);
                 if let Some(v) = P::Lerp::fixed_slots(&mut slot.vals) {
                     // The depth and the N values in use, not the whole slot.
                     for (d, s) in v.iter_mut().zip(vals).take(N + 1) {
                         *d = *s;
                     }
                 }
-                let tail = (self.ring_head + self.ring_len) % CAP.max(1);
+                let tail = wrap(self.ring_head + self.ring_len, CAP);
                 if let Some(r) = self.pool.ring.get_mut(tail) {
                     *r = si;
                     self.ring_len += 1;
@@ -1049,11 +1012,27 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// set up afresh in the next band.
     #[inline(always)]
     fn defer(&mut self, ti: u16) {
-        let tail = (self.def_head + self.def_len) % self.n.max(1);
+        let tail = wrap(self.def_head + self.def_len, self.n);
         if let Some(q) = self.order.get_mut(self.n + tail) {
             *q = ti;
             self.def_len += 1;
         }
+    }
+}
+
+/// `x mod m` for `x < 2·m`, the positions in the pool's ring (`m` =
+/// its slots) and in the queue (`m` = the prepared triangles): a head
+/// below `m` plus an entry count at most `m`. No division (a library call
+/// on ARMv6-M: bunny-gouraud raster thumbv6m 3 151 780 -> 3 112 736,
+/// thumbv7em 2 172 222 -> 2 148 352). A
+/// position that breaks that bound stays out of range and is ignored by
+/// the checked accesses.
+#[inline(always)]
+fn wrap(x: usize, m: usize) -> usize {
+    if x >= m {
+        x - m
+    } else {
+        x
     }
 }
 
@@ -1083,6 +1062,48 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
     } else {
         walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
     }
+}
+
+/// A triangle of the fast path starting in the band (or set up afresh):
+/// fetched, set up and walked down to the band's end `until` by the
+/// small-triangle kernel ([`draw_small`]) or, when that does not apply,
+/// by the 32-bit setup and the fused row kernel; a function of its own so
+/// that its registers are not shared with the stream merge of
+/// [`Bands::run_fast`]. `Ok(None)` when a vertex is missing, else the
+/// pixels drawn and whether the triangle continues below the band (its
+/// walk and values then in `walk` and `vals`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn fresh_fast<P: Profile, const N: usize, const V: usize, S, F, D>(
+    frame: &Frame<'_, P>,
+    po: &PreparedObject,
+    tri: &PreparedTri,
+    until: i32,
+    mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
+    walk: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+    shader: &S,
+) -> Result<Option<(u32, bool)>, RenderError>
+where
+    S: Shader<i32, N>,
+    F: PixelFormat,
+    D: DepthFormat,
+{
+    let Some(v) = fetch_fixed::<P, N>(frame, po, tri) else {
+        return Ok(None);
+    };
+    let sub = P::SUBPIXEL_BITS;
+    if let Some(r) = draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, shader) {
+        return Ok(Some(r));
+    }
+    in_limits_fixed::<P, N>(frame, tri, &v)?;
+    // Set up and walked in the scratch.
+    let drawn = if setup_fixed::<N, V>(v, sub, mem.y0, mem.width, walk, vals) {
+        draw_fused::<N, V, S, F, D>(walk, vals, until, mem, shader)
+    } else {
+        0
+    };
+    Ok(Some((drawn, !walk.done())))
 }
 
 /// The vertices of triangle `tri` of object `po`, sorted by `y`, with
@@ -1191,18 +1212,19 @@ fn draw_small_shaded<
 /// done) when it draws none. A function of its own on ARMv6-M (its live
 /// state then does not share the eight low registers with the row
 /// loop's); inlined elsewhere (out of line, thumbv7em bunny-gouraud raster
-/// took 2.317 -> 2.351 M).
+/// took 2.317 -> 2.351 M). The vertices by value: a copy on this path
+/// only, not a vertex array in memory on every path.
 #[cfg_attr(armv6m, inline(never))]
 #[cfg_attr(not(armv6m), inline(always))]
 fn setup_fixed<const N: usize, const V: usize>(
-    v: &[Vertex<i32, N>; 3],
+    v: [Vertex<i32, N>; 3],
     sub: SubpixelBits,
     j0: i32,
     width: i32,
     walk: &mut Walk,
     vals: &mut [[i32; 3]; V],
 ) -> bool {
-    let [a, b, c] = v;
+    let [a, b, c] = &v;
     let set = setup_fast::<N, V>(a, b, c, sub, j0, width, walk, vals);
     if !set {
         *walk = Walk::EMPTY;

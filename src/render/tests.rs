@@ -772,16 +772,16 @@ fn band_of_equals_the_division() {
 #[test]
 fn band_state_memory_is_as_documented() {
     use core::mem::size_of;
-    // The packed walk: three edge walkers of 16 bytes, five 16-bit rows
-    // and a flag byte = 59, 60 aligned; with the triangle index 62, 64
-    // aligned; then 12 bytes per value.
-    assert_eq!(size_of::<crate::raster::PackedWalk>(), 60);
-    assert_eq!(Pool::<i32, 1, 2>::SLOT_BYTES, 64 + 24);
-    assert_eq!(Pool::<i32, 1, 4>::SLOT_BYTES, 64 + 48);
-    assert_eq!(Pool::<i32, 1, 8>::SLOT_BYTES, 64 + 96);
+    // The walk: three edge walkers of 20 bytes, five i32 rows and three
+    // flags = 83, 84 aligned; with the triangle index 88; then 12 bytes
+    // per value.
+    assert_eq!(size_of::<crate::raster::Walk>(), 84);
+    assert_eq!(Pool::<i32, 1, 2>::SLOT_BYTES, 88 + 24);
+    assert_eq!(Pool::<i32, 1, 4>::SLOT_BYTES, 88 + 48);
+    assert_eq!(Pool::<i32, 1, 8>::SLOT_BYTES, 88 + 96);
     // The pool adds two u16 list entries per slot.
-    assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (64 + 96 + 4));
-    assert_eq!(size_of::<Pool<i32, 32, 2>>(), 32 * (64 + 24 + 4));
+    assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (88 + 96 + 4));
+    assert_eq!(size_of::<Pool<i32, 32, 2>>(), 32 * (88 + 24 + 4));
 }
 
 /// The bounding sphere decides once per object: wholly inside (no
