@@ -123,22 +123,23 @@ fn fill_bytes<const N: usize>(pixels: &mut [[u8; N]], raw: [u8; N]) {
 }
 
 /// [`PixelFormat::fill_slice`] for a `u16` format, and the 16-bit depth
-/// clear: `pixels.fill(raw)`, the same values. ARMv6-M (no unaligned
-/// word stores): black and white (the usual backgrounds) as constant
-/// fills, which the compiler turns into a `memset` (word stores: a band
-/// clear of the bunny firmware took 1.75 instructions a pixel as a loop
-/// of halfword stores, 1 as a `memset`), other colours as a loop.
-/// Elsewhere [`fill_u16_words`].
+/// clear: `pixels.fill(raw)`, the same values. On ARMv7-M
+/// [`fill_u16_words`]. Elsewhere black and white (the usual backgrounds)
+/// as constant fills, which the compiler turns into a `memset` (on
+/// ARMv6-M word stores: a band clear of the bunny firmware took 1.75
+/// instructions a pixel as a loop of halfword stores, 1 as a `memset`;
+/// there the word loop's halves stay two halfword stores, 3 a pixel),
+/// other colours as a loop.
 #[inline(always)]
 pub(crate) fn fill_u16(pixels: &mut [u16], raw: u16) {
-    if cfg!(armv6m) {
+    if cfg!(all(target_arch = "arm", not(armv6m))) {
+        fill_u16_words(pixels, raw);
+    } else {
         match raw {
             0 => pixels.fill(0),
             u16::MAX => pixels.fill(u16::MAX),
             _ => pixels.fill(raw),
         }
-    } else {
-        fill_u16_words(pixels, raw);
     }
 }
 
