@@ -148,7 +148,7 @@ impl<'a, F: PixelFormat, D: DepthFormat> BandBuf<'a, F, D> {
         let z = match self.depth.as_deref_mut() {
             Some(d) => {
                 let d = d.get_mut(..n)?;
-                d.fill(D::CLEAR);
+                D::clear_slice(d);
                 Some(d)
             }
             None => None,

@@ -11,6 +11,7 @@
 //! the last 2^-15 of the depth range shares one value; a 32-bit buffer
 //! stores `d30` itself.
 
+use super::format::fill_u16;
 use super::{check_window, span_range, BufferError, Window};
 use crate::num::wide::NO_LONG_MUL;
 use crate::num::{Lerp, DEPTH16_LIM};
@@ -23,6 +24,14 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     const CLEAR: Self::Raw;
     /// Converts a 30-bit depth `0..=2^30` (larger values saturate).
     fn from_d30(d30: u32) -> Self::Raw;
+
+    /// Sets every value of `values` to [`DepthFormat::CLEAR`]:
+    /// `values.fill(Self::CLEAR)`, or a faster path storing the same
+    /// values.
+    #[inline(always)]
+    fn clear_slice(values: &mut [Self::Raw]) {
+        values.fill(Self::CLEAR);
+    }
 
     /// Converts an interpolated depth: `from_d30(z.depth30())`, with a
     /// faster path where the format allows.
@@ -86,6 +95,12 @@ pub struct Depth16;
 impl DepthFormat for Depth16 {
     type Raw = u16;
     const CLEAR: u16 = u16::MAX;
+
+    /// Word stores ([`fill_u16`]).
+    #[inline(always)]
+    fn clear_slice(values: &mut [u16]) {
+        fill_u16(values, u16::MAX);
+    }
     #[inline]
     fn from_d30(d30: u32) -> u16 {
         let v = d30 >> 14;
@@ -239,7 +254,7 @@ impl<'a, D: DepthFormat> DepthBuffer<'a, D> {
 
     /// Sets every value to [`DepthFormat::CLEAR`].
     pub fn clear(&mut self) {
-        self.values.fill(D::CLEAR);
+        D::clear_slice(self.values);
     }
 
     /// The window held.

@@ -458,18 +458,22 @@ fn phong_kernel_spans(
     Ok(())
 }
 
+/// A band buffer on a word boundary.
+#[repr(C, align(4))]
+struct Words<T>(T);
+
 #[cfg(not(any(feature = "profiled", feature = "knobs")))]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` (the entry runs once),
     // in .bss.
-    static mut PIXELS: [Pixel; BAND_PIXELS] = [0; BAND_PIXELS];
-    static mut DEPTH: [u16; DEPTH_PIXELS] = [0; DEPTH_PIXELS];
+    static mut PIXELS: Words<[Pixel; BAND_PIXELS]> = Words([0; BAND_PIXELS]);
+    static mut DEPTH: Words<[u16; DEPTH_PIXELS]> = Words([0; DEPTH_PIXELS]);
     static mut STORAGE: FrameStorage = FrameStorage::EMPTY;
     static mut POOL: BandPool = BandPool::new();
     let mut mem = Memory {
-        pixels: PIXELS,
-        depth: DEPTH,
+        pixels: &mut PIXELS.0,
+        depth: &mut DEPTH.0,
         storage: STORAGE,
         pool: POOL,
     };
