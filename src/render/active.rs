@@ -404,7 +404,7 @@ fn sort_by_band<P: Profile>(
                 let o = prepare::xy_origin::<P>(frame.width, frame.height).0[1];
                 let round = o - sc / 2 + sc - 1;
                 let sh = sub.get() + s;
-                let xy: &[super::ScreenXy] = &frame.ws.xy;
+                let xy: &[super::ScreenXy] = frame.ws.xy;
                 let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
                 for (k, t) in hi.iter_mut().zip(tris) {
                     let [a, b, c] = t.v();
