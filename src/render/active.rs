@@ -67,7 +67,7 @@
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
 use super::position::PosFrame;
-use super::prepare::eye_lights;
+use super::prepare::{self, eye_lights};
 use super::{Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats};
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
@@ -389,8 +389,31 @@ fn sort_by_band<P: Profile>(
     let (lo, hi) = order.split_at_mut_checked(n)?;
     let hi = hi.get_mut(..n)?;
     if last < 1 << RADIX_BITS {
-        for (i, k) in hi.iter_mut().enumerate() {
-            *k = key(i as u16) as u16;
+        match (shift, frame.ws.tris.get(..n)) {
+            // A power-of-two band height: the band is the top `y`'s first
+            // row shifted once more, `(y + round) >> (sub + s)` (one
+            // floor division by `2^(sub + s)`), clamped to `0..=last`;
+            // the same key as `key` (the row's clamps to the height and
+            // to 4095 both give a band at or beyond `last`).
+            (Some(s), Some(tris)) => {
+                let sub = P::SUBPIXEL_BITS;
+                let sc = sub.scale();
+                let o = prepare::xy_origin::<P>(frame.width, frame.height).0[1];
+                let round = o - sc / 2 + sc - 1;
+                let sh = sub.get() + s;
+                let xy: &[super::ScreenXy] = frame.ws.xy;
+                let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
+                for (k, t) in hi.iter_mut().zip(tris) {
+                    let [a, b, c] = t.v();
+                    let top = y(a).min(y(b)).min(y(c));
+                    *k = (((top + round) >> sh).max(0) as u32).min(last) as u16;
+                }
+            }
+            _ => {
+                for (i, k) in hi.iter_mut().enumerate() {
+                    *k = key(i as u16) as u16;
+                }
+            }
         }
         let keys: &[u16] = hi;
         let k = |i: u16| keys.get(usize::from(i)).map_or(0, |&k| u32::from(k));

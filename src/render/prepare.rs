@@ -687,11 +687,15 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if back && CULL {
             continue;
         }
-        let y_lo = a[1].min(b[1]).min(c[1]);
-        let y_hi = a[1].max(b[1]).max(c[1]);
-        let r0 = first_row(y_lo, sub);
-        let r1 = first_row(y_hi, sub);
-        if r0 >= r1 {
+        // No row centre within the vertical extent (`first_row` of the
+        // lowest `y` not below that of the highest) exactly when the
+        // three corners share their first row: `first_row` is a floor
+        // shift of `y + k`, and two values floor to the same multiple of
+        // `2^sub` exactly when they agree above bit `sub`.
+        let k = sub.scale() - 1 - sub.scale() / 2;
+        let e = |p: [i32; 2]| p[1] + k;
+        let (ea, eb, ec) = (e(a), e(b), e(c));
+        if ((ea ^ eb) | (ea ^ ec)) >> sub.get() == 0 {
             continue;
         }
         let slot = slots.next()?;
