@@ -96,7 +96,7 @@ impl DepthFormat for Depth16 {
     type Raw = u16;
     const CLEAR: u16 = u16::MAX;
 
-    /// Word stores ([`fill_u16`]).
+    /// Word stores on ARMv7-M (the pixel formats' 16-bit fill).
     #[inline(always)]
     fn clear_slice(values: &mut [u16]) {
         fill_u16(values, u16::MAX);
