@@ -252,6 +252,6 @@ fn memory_figures() {
         2 * crate::blackpill::ORDER,
     );
     println!("pool, workspace, order bytes: pico {pico:?}, blackpill {blackpill:?}");
-    assert_eq!(pico, (9_280, 66_180, 14_696));
-    assert_eq!(blackpill, (2_624, 2_376, 144));
+    assert_eq!(pico, (11_200, 66_180, 14_696));
+    assert_eq!(blackpill, (3_008, 2_376, 144));
 }
