@@ -229,7 +229,10 @@ const BLACKPILL_PEAK: usize = 12;
 fn memory_figures() {
     use core::mem::size_of;
     let ws = |v: usize, vals: usize, t: usize, c: usize| {
-        v * 8 + vals * 4 + t * size_of::<Tri>() + c * size_of::<fixshade::target::Rgb8>()
+        v * size_of::<fixshade::render::ScreenXy>()
+            + vals * 4
+            + t * size_of::<Tri>()
+            + c * size_of::<fixshade::target::Rgb8>()
     };
     let pico = (
         size_of::<crate::pico::BandPool>(),
@@ -252,6 +255,6 @@ fn memory_figures() {
         2 * crate::blackpill::ORDER,
     );
     println!("pool, workspace, order bytes: pico {pico:?}, blackpill {blackpill:?}");
-    assert_eq!(pico, (11_200, 66_180, 14_696));
-    assert_eq!(blackpill, (3_008, 2_376, 144));
+    assert_eq!(pico, (11_200, 58_824, 14_696));
+    assert_eq!(blackpill, (3_008, 2_136, 144));
 }
