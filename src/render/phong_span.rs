@@ -1450,16 +1450,18 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 /// slice `drow` (the same length; depths `z + i·dz`, the test of
 /// [`DepthTest`]) through [`RowOut`]; returns the pixels written.
 ///
-/// Not inlined: one copy per pixel format, depth format and scalar
-/// instead of one in each of the band renderer's Phong walks. Inlined, the
-/// firmware's `.text` was 604 232 B on thumbv6m and 428 680 B on
-/// thumbv7em (the two Phong `Bands::run` instances 129 + 141 KB and
-/// 65 + 74 KB); out of line 344 700 and 291 460 B. The call per span costs
-/// the thumbv7em dodecahedron Phong frame 2.2 % (1 963 410 -> 2 006 167
-/// raster instructions) and saves the thumbv6m 0.9 % (6 763 071 ->
-/// 6 700 527).
+/// Not inlined on ARMv7-M: one copy per pixel format, depth format and
+/// scalar instead of one in each of the band renderer's Phong walks.
+/// Inlined, the thumbv7em firmware's `.text` is 428 680 B (its two Phong
+/// `Bands::run` instances 65 + 74 KB); out of line 291 460 B, for 2.2 %
+/// more instructions in the dodecahedron Phong frame (1 963 410 ->
+/// 2 006 167 raster). Inlined on ARMv6-M: out of line, a bounds check in
+/// the kernel's chunk loop is no longer proven away there (the
+/// panic-never build keeps a panic branch), though `.text` would shrink
+/// from 604 232 to 344 700 B.
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
+#[cfg_attr(armv6m, inline(always))]
+#[cfg_attr(not(armv6m), inline(never))]
 fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
     row: &mut [F::Raw],
