@@ -366,6 +366,30 @@ impl InvArea {
         }
     }
 
+    /// [`InvArea::quot`]`(n · 2^sh, s)` for `k` from
+    /// [`InvArea::high_shift`]`(s)` and `sh <= 14`: the numerator without
+    /// its `sh` low zero bits (of packed depths or levels, whose
+    /// differences are multiples of `2^14` or `2^8`), so that it fits an
+    /// `i32` where `n · 2^sh` need not. `None` when `n · 2^u` does not fit
+    /// an `i32` for `u = sh - k` (none for `k >= sh`; the quotient then
+    /// reaches `2^29`).
+    ///
+    /// `quot` rounds `n·2^sh·m / 2^(k + 33)` half up in every case (in its
+    /// high-word case and in its normalised one alike, the bits it drops
+    /// being zeros), that is `n·m / 2^q` for `q = k + 33 - sh`, which is
+    /// [`InvArea::quot_high`]`(n · 2^u, k')` for `u = max(sh - k, 0)`, `k'
+    /// = max(k - sh, 0)` (`k' - u = k - sh`): one product, in 32 bits, the
+    /// very value of `quot`, below `2^30` in magnitude.
+    #[inline(always)]
+    pub(crate) fn quot_scaled(&self, n: i32, k: u32, sh: u32) -> Option<i32> {
+        let (u, kk) = (sh.saturating_sub(k) & 31, k.saturating_sub(sh));
+        let nu = n << u;
+        if nu >> u != n {
+            return None;
+        }
+        Some(self.quot_high(nu, kk))
+    }
+
     /// [`InvArea::quot`]`(n, s)` for `n` within an `i32` and `k` from
     /// [`InvArea::high_shift`]`(s)`: the very value, with one product and
     /// no normalisation (`t = 0`; `|h| < 2^30` and `k <= 30`, so nothing

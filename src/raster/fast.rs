@@ -440,6 +440,51 @@ impl Grad {
     }
 }
 
+impl Grad {
+    /// The plane of packed values ([`crate::num::Profile::PACKED_GREY`]:
+    /// each vertex value `v_i = f_i · 2^sh + c` with a 16-bit field
+    /// `f_i = v_i >> sh` and the same low part `c < 2^sh`, the depths at
+    /// `sh = 14` and the grey levels at `sh = 8`), from the fields `f` and
+    /// the value `v0` at vertex 0, for coordinate offsets below `2^14`:
+    /// the value differences are `2^sh` times the field differences (below
+    /// `2^16`), so each product of a gradient numerator is below `2^30`
+    /// and the numerator (the full one without its `sh` zero low bits) an
+    /// exact `i32`, whatever the size of the value differences (which the
+    /// 32-bit numerators of [`Grad::plane_short`] bound by `2^(30 -
+    /// bxy)`). The gradients by [`InvArea::quot_scaled`], the flag `false`
+    /// where it declines (a gradient then reaches `2^29`, and the values
+    /// mean nothing). The very gradients and row
+    /// origin of [`Grad::plane`] and of the general setup ([`setup`]).
+    #[inline(always)]
+    fn plane_fields(&self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
+        let [dx1, dy1, dx2, dy2] = self.d;
+        let (f1, f2) = (f[1].wrapping_sub(f[0]), f[2].wrapping_sub(f[0]));
+        let nx = f1.wrapping_mul(dy2).wrapping_sub(f2.wrapping_mul(dy1));
+        let ny = f2.wrapping_mul(dx1).wrapping_sub(f1.wrapping_mul(dx2));
+        let (gx, gy) = (
+            self.inv.quot_scaled(nx, self.k, sh),
+            self.inv.quot_scaled(ny, self.k, sh),
+        );
+        let ok = gx.is_some() & gy.is_some();
+        let (gx, gy) = (gx.unwrap_or(0), gy.unwrap_or(0));
+        let o = if SHORT_NUMERATORS {
+            self.origin_short(gx, gy)
+        } else {
+            let h = 1i64 << (self.s - 1);
+            ((wide(gx, self.o[0]) + wide(gy, self.o[1]) + h) >> self.s) as i32
+        };
+        (gx, gy, v0.wrapping_add(o), ok)
+    }
+}
+
+/// [`draw_small`] takes [`Grad::plane_fields`] for packed values: on
+/// ARMv7-M (bunny-gouraud raster thumbv7em 2 019 909 -> 1 954 376) and in
+/// test builds; not on ARMv6-M, where it cost more than it saved (thumbv6m
+/// 3 005 292 -> 3 118 241, although more triangles took the small
+/// kernel), nor on the 64-bit hosts (callgrind, `examples/bunny_frame.rs`:
+/// 2 840 474 -> 2 974 717).
+const PACKED_FIELDS: bool = (cfg!(target_arch = "arm") && !NO_LONG_MUL) || cfg!(test);
+
 /// [`draw_small`] takes [`Grad::plane_short`]: on ARMv6-M, and in test
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
 /// test).
@@ -669,6 +714,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     mem: &mut BandMem<'_, '_, R, D::Raw>,
     carry: &mut Walk,
     vals: &mut [[i32; 3]; V],
+    packed: bool,
     color: impl Fn(&[i32; N]) -> R,
 ) -> Option<(u32, bool)> {
     // Without a depth plane the general path, decided first.
@@ -726,14 +772,25 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     };
     // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15).
     let lim = (1u32 << 30) >> (32 - clz32(mxy));
-    let (gx, gy, z0, mut ok) = g.plane_small::<false>(a.z, b.z, c.z, lim);
+    // Packed values by their 16-bit fields where the offsets allow it.
+    let pk = PACKED_FIELDS & packed & (mxy < 1 << 14);
+    let (gx, gy, z0, mut ok) = if pk {
+        g.plane_fields([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14)
+    } else {
+        g.plane_small::<false>(a.z, b.z, c.z, lim)
+    };
     let z16 = depth16_gradients_in_range(gx, gy);
     ok &= D::plane_in_range(z16);
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
-        let (gx, gy, o, oka) = g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim);
+        let (gx, gy, o, oka) = if pk {
+            let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
+            g.plane_fields(f, a.attrs[k], 8)
+        } else {
+            g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim)
+        };
         ok &= oka;
         row.a[k] = o;
         sx.a[k] = gx;

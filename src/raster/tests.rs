@@ -967,6 +967,7 @@ fn check_small<const N: usize>(
     w: i32,
     px: &[u32],
     z: &[u16],
+    packed: bool,
 ) -> Option<(u32, bool)> {
     let color = |a: &[i32; N]| {
         a.iter()
@@ -989,6 +990,7 @@ fn check_small<const N: usize>(
             &mut mem,
             &mut carry,
             &mut kv,
+            packed,
             color,
         );
         (n, p, d, carry, kv)
@@ -1097,7 +1099,7 @@ fn small_kernel_equals_the_fused_walk() {
             [vert(p0, &mut rng), vert(p1, &mut rng), vert(p2, &mut rng)],
             |v| v.y,
         );
-        if let Some((n, more)) = check_small::<1>(&v, y0, rows, w, &px, &zb) {
+        if let Some((n, more)) = check_small::<1>(&v, y0, rows, w, &px, &zb, false) {
             taken += 1;
             pixels += n;
             carried += more as u32;
@@ -1108,7 +1110,7 @@ fn small_kernel_equals_the_fused_walk() {
             z: v.z,
             attrs: [],
         });
-        let _ = check_small::<0>(&flat, y0, rows, w, &px, &zb);
+        let _ = check_small::<0>(&flat, y0, rows, w, &px, &zb, false);
     }
     assert!(
         taken > 5_000 && pixels > 40_000 && carried > 1_000,
@@ -1196,7 +1198,91 @@ fn small_kernel_equals_the_fused_walk() {
         ],
     ] {
         let t = sort3(t, |v| v.y);
-        small = small << 1 | check_small::<1>(&t, 0, rows, w, &px, &zb).is_some() as u32;
+        small = small << 1 | check_small::<1>(&t, 0, rows, w, &px, &zb, false).is_some() as u32;
     }
     assert_eq!(small, 0b1_1111_1000_0111, "{small:013b}");
+}
+
+/// The small-triangle kernel on packed grey vertices (depth `f·2^14 +
+/// 2^13`, level `f·2^8` for 16-bit fields `f`, as the packed layout
+/// gives them), its planes from the fields: the very pixels, walk and
+/// values of the general fused walk, on random triangles (depth fields
+/// near a base or anywhere in `0..=65535`, sizes up to beyond the `2^14`
+/// subpixel offsets of the field planes) and extreme ones; and taken for
+/// depth differences the 32-bit numerators of the unpacked values refuse.
+#[test]
+fn small_kernel_on_packed_values_equals_the_fused_walk() {
+    let mut rng = Rng(0x9ac4_ed00);
+    let (w, rows) = (240, 16);
+    let (mut taken, mut taken_unpacked) = (0, 0);
+    let zdepth = |f: i32| (f << 14) | (1 << 13);
+    for i in 0..20_000 {
+        let y0 = [0, 16, 112, 224][i % 4];
+        let px: Vec<u32> = (0..w * rows).map(|_| rng.next() as u32).collect();
+        let zb: Vec<u16> = (0..w * rows)
+            .map(|_| {
+                if rng.range(0, 4) == 0 {
+                    rng.range(0, 65535) as u16
+                } else {
+                    65534
+                }
+            })
+            .collect();
+        let span = match i % 4 {
+            0 => 1100 * 16,
+            1 => 40 * 16,
+            _ => 6 * 16,
+        };
+        let (cx, cy) = (rng.range(0, w * 16), y0 * 16 + rng.range(0, rows * 16));
+        let mut p = || {
+            (
+                cx + rng.range(-span, span + 1),
+                cy + rng.range(-span, span + 1),
+            )
+        };
+        let (p0, p1, p2) = (p(), p(), p());
+        let (zbase, k) = (rng.range(0, 65536), rng.range(0, 4));
+        let field = |rng: &mut Rng| match k {
+            0 => rng.range(0, 65536),
+            1 => [0, 65535][rng.range(0, 2) as usize],
+            _ => (zbase + rng.range(-300, 301)).clamp(0, 65535),
+        };
+        let vert = |(x, y): (i32, i32), rng: &mut Rng| Vertex {
+            x,
+            y,
+            z: zdepth(field(rng)),
+            attrs: [field(rng) << 8],
+        };
+        let v = sort3(
+            [vert(p0, &mut rng), vert(p1, &mut rng), vert(p2, &mut rng)],
+            |v| v.y,
+        );
+        taken += check_small::<1>(&v, y0, rows, w, &px, &zb, true).is_some() as u32;
+        taken_unpacked += check_small::<1>(&v, y0, rows, w, &px, &zb, false).is_some() as u32;
+    }
+    assert!(taken > taken_unpacked + 500, "{taken} {taken_unpacked}");
+    // Extremes: the ends of the fields, offsets at the 2^14 bound.
+    let px = vec![7u32; (w * rows) as usize];
+    let zb = vec![65534u16; (w * rows) as usize];
+    let vx = |x, y, f: i32, l: i32| Vertex {
+        x,
+        y,
+        z: zdepth(f),
+        attrs: [l << 8],
+    };
+    let e = (1 << 14) - 1;
+    for t in [
+        [vx(0, 0, 0, 0), vx(16, 0, 65535, 65535), vx(0, 40, 65535, 0)],
+        [vx(0, 8, 65535, 0), vx(e, 8, 0, 65535), vx(0, 200, 0, 65535)],
+        [vx(0, 8, 65535, 65535), vx(e + 1, 8, 0, 0), vx(0, 200, 0, 0)],
+        [vx(8, 8, 1, 2), vx(9, 9, 3, 4), vx(8, 40, 5, 6)],
+        [
+            vx(3000, 8, 65535, 0),
+            vx(3001, 9, 0, 65535),
+            vx(3000, 9, 65535, 1),
+        ],
+    ] {
+        let t = sort3(t, |v| v.y);
+        let _ = check_small::<1>(&t, 0, rows, w, &px, &zb, true);
+    }
 }

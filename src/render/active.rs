@@ -1116,7 +1116,11 @@ where
         return Ok(None);
     };
     let sub = P::SUBPIXEL_BITS;
-    if let Some(r) = draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, shader) {
+    // Packed grey vertices: depths and levels from their 16-bit fields.
+    let packed = N == 1 && po.layout.packed_in::<P>();
+    if let Some(r) =
+        draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, packed, shader)
+    {
         return Ok(Some(r));
     }
     in_limits_fixed::<P, N>(frame, tri, &v)?;
@@ -1219,13 +1223,16 @@ fn draw_small_shaded<
     mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
     walk: &mut Walk,
     vals: &mut [[i32; 3]; V],
+    packed: bool,
     shader: &S,
 ) -> Option<(u32, bool)> {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, move |_| raw)
+        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, move |_| raw)
     } else {
-        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, |a| shader.shade_raw::<F>(a))
+        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, |a| {
+            shader.shade_raw::<F>(a)
+        })
     }
 }
 
