@@ -441,6 +441,15 @@ impl Grad {
 }
 
 impl Grad {
+    /// [`Grad::plane_fields`] out of line (on ARMv6-M, for the values
+    /// [`Grad::plane_short`] refuses: inlined there, it cost the kernel's
+    /// other paths more than it saved).
+    #[inline(never)]
+    #[cold]
+    fn plane_fields_cold(&self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
+        self.plane_fields(f, v0, sh)
+    }
+
     /// The plane of packed values ([`crate::num::Profile::PACKED_GREY`]:
     /// each vertex value `v_i = f_i · 2^sh + c` with a 16-bit field
     /// `f_i = v_i >> sh` and the same low part `c < 2^sh`, the depths at
@@ -481,9 +490,15 @@ impl Grad {
 /// ARMv7-M (bunny-gouraud raster thumbv7em 2 019 909 -> 1 954 376) and in
 /// test builds; not on ARMv6-M, where it cost more than it saved (thumbv6m
 /// 3 005 292 -> 3 118 241, although more triangles took the small
-/// kernel), nor on the 64-bit hosts (callgrind, `examples/bunny_frame.rs`:
+/// kernel; see [`FIELDS_RESCUE`]), nor on the 64-bit hosts (callgrind, `examples/bunny_frame.rs`:
 /// 2 840 474 -> 2 974 717).
 const PACKED_FIELDS: bool = (cfg!(target_arch = "arm") && !NO_LONG_MUL) || cfg!(test);
+
+/// On ARMv6-M [`draw_small`] takes [`Grad::plane_fields`] for packed
+/// values only where [`Grad::plane_short`] refuses them, out of line
+/// ([`Grad::plane_fields_cold`]): bunny-gouraud raster thumbv6m 3 005 292
+/// -> 2 980 115 (inlined there: 3 016 457).
+const FIELDS_RESCUE: bool = NO_LONG_MUL;
 
 /// [`draw_small`] takes [`Grad::plane_short`]: on ARMv6-M, and in test
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
@@ -695,7 +710,14 @@ fn walk_edges(
 ///   ([`DepthFormat::plane_in_range`]);
 /// - on ARMv6-M (and in test builds), the gradient numerators in 32 bits:
 ///   each value's differences below `2^(30 - bxy)` for coordinate offsets
-///   below `2^bxy` ([`Grad::plane_short`]).
+///   below `2^bxy` ([`Grad::plane_short`]);
+/// - with `packed` (the caller's promise that the vertices are packed grey
+///   ones, [`crate::num::Profile::PACKED_GREY`]: depths `f·2^14 + 2^13`,
+///   levels `f·2^8` for 16-bit fields `f`), for offsets below `2^14`: the
+///   planes from the fields ([`Grad::plane_fields`], numerators in 32 bits
+///   for any depth difference, the gradients below `2^29`) instead, on
+///   ARMv7-M and in test builds ([`PACKED_FIELDS`]), and on ARMv6-M where
+///   [`Grad::plane_short`] refuses the values ([`FIELDS_RESCUE`]).
 ///
 /// Then it writes exactly the pixels of [`setup_fast`] and
 /// [`Walk::rows_fused`] (the same edges from their first rows, the same
@@ -773,11 +795,18 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15).
     let lim = (1u32 << 30) >> (32 - clz32(mxy));
     // Packed values by their 16-bit fields where the offsets allow it.
-    let pk = PACKED_FIELDS & packed & (mxy < 1 << 14);
+    let fields = packed & (mxy < 1 << 14);
+    let pk = PACKED_FIELDS & fields;
+    // ARMv6-M: the fields, out of line, where the 32-bit numerators of the
+    // values refuse them.
+    let rescue = FIELDS_RESCUE & fields;
     let (gx, gy, z0, mut ok) = if pk {
         g.plane_fields([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14)
     } else {
-        g.plane_small::<false>(a.z, b.z, c.z, lim)
+        match g.plane_small::<false>(a.z, b.z, c.z, lim) {
+            p if !p.3 & rescue => g.plane_fields_cold([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14),
+            p => p,
+        }
     };
     let z16 = depth16_gradients_in_range(gx, gy);
     ok &= D::plane_in_range(z16);
@@ -789,7 +818,13 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
             let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
             g.plane_fields(f, a.attrs[k], 8)
         } else {
-            g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim)
+            match g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim) {
+                p if !p.3 & rescue => {
+                    let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
+                    g.plane_fields_cold(f, a.attrs[k], 8)
+                }
+                p => p,
+            }
         };
         ok &= oka;
         row.a[k] = o;
