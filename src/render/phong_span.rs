@@ -649,15 +649,21 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 // steps within 2^18 (the point loop's 64-bit set-up).
                 let end = |c: i32, d: i32| i64::from(c) + i64::from(d) * i64::from(len);
                 let near = |v: i64| v.unsigned_abs() < 1 << 29;
-                let ok = (0..3).all(|a| {
-                    let (p0, p1) = (i64::from(p[a]), end(p[a], dp[a]));
-                    let lp = i64::from(l.at[a]);
-                    dp[a].unsigned_abs() <= 1 << 18
-                        && near(p0)
-                        && near(p1)
-                        && near(lp - p0)
-                        && near(lp - p1)
-                });
+                // Zipped, not indexed: out of line (ARMv6-M) the indices
+                // of `(0..3).all(..)` kept a bounds check.
+                let ok = p
+                    .iter()
+                    .zip(dp.iter())
+                    .zip(l.at.iter())
+                    .all(|((&c, &d), &lp)| {
+                        let (p0, p1) = (i64::from(c), end(c, d));
+                        let lp = i64::from(lp);
+                        d.unsigned_abs() <= 1 << 18
+                            && near(p0)
+                            && near(p1)
+                            && near(lp - p0)
+                            && near(lp - p1)
+                    });
                 if ok {
                     let (n, dn) = if back {
                         (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
@@ -1450,18 +1456,18 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 /// slice `drow` (the same length; depths `z + i·dz`, the test of
 /// [`DepthTest`]) through [`RowOut`]; returns the pixels written.
 ///
-/// Not inlined on ARMv7-M: one copy per pixel format, depth format and
-/// scalar instead of one in each of the band renderer's Phong walks.
-/// Inlined, the thumbv7em firmware's `.text` is 428 680 B (its two Phong
-/// `Bands::run` instances 65 + 74 KB); out of line 291 460 B, for 2.2 %
+/// Not inlined: one copy per pixel format, depth format and scalar
+/// instead of one in each of the band renderer's Phong walks. On ARMv7-M
+/// inlined, the firmware's `.text` was 428 680 B (its two Phong
+/// `Bands::run` instances 65 + 74 KB), out of line 291 460 B, for 2.2 %
 /// more instructions in the dodecahedron Phong frame (1 963 410 ->
-/// 2 006 167 raster). Inlined on ARMv6-M: out of line, a bounds check in
-/// the kernel's chunk loop is no longer proven away there (the
-/// panic-never build keeps a panic branch), though `.text` would shrink
-/// from 604 232 to 344 700 B.
+/// 2 006 167 raster). On ARMv6-M out of line the firmware's `.text` went
+/// from 705 760 to 446 008 B and the dodecahedron Phong frame from
+/// 6 825 515 to 6 751 339 instructions (the span sweep's one light 175.22
+/// -> 175.71 a pixel); the bounds check that kept it inlined there (the
+/// point loop's range test, indexed) is gone.
 #[allow(clippy::too_many_arguments)]
-#[cfg_attr(armv6m, inline(always))]
-#[cfg_attr(not(armv6m), inline(never))]
+#[inline(never)]
 fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
     row: &mut [F::Raw],
