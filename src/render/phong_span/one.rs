@@ -436,13 +436,7 @@ impl<R: Real> PhongKernel<'_, R> {
         for o in buf.iter_mut() {
             let r = rsq_biased(rs, nn);
             let (nl15, sp) = if LIT {
-                let nl15 = ((nl as u32) >> 15).wrapping_mul(r) >> 16;
-                let sp = if SPEC {
-                    self.spec_r(r, q >> (QM_FRAC - 7))
-                } else {
-                    0
-                };
-                (nl15, sp)
+                self.terms_lit::<SPEC>(r, nl, q >> (QM_FRAC - 7))
             } else {
                 self.terms_r::<SPEC>(r, nl, q >> (QM_FRAC - 7))
             };
@@ -494,6 +488,15 @@ impl<R: Real> PhongKernel<'_, R> {
         } else {
             0
         };
+        (nl15, sp)
+    }
+
+    /// [`PhongKernel::terms_r`] for `n·L > 0` (no test): the same values.
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss)]
+    pub(super) fn terms_lit<const SPEC: bool>(&self, r: u32, nl: i32, q7: i32) -> (u32, u32) {
+        let nl15 = ((nl as u32) >> 15).wrapping_mul(r) >> 16;
+        let sp = if SPEC { self.spec_r(r, q7) } else { 0 };
         (nl15, sp)
     }
 
