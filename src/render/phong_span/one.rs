@@ -92,6 +92,51 @@ pub(super) fn rsq_biased(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
     (e >> 14) - (((e & 0x3FFF) * t) >> 16)
 }
 
+/// The normal `n + i·dn` of pixel `i` (wrapping, as the loops step it).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap)]
+fn normal_at(n: [i32; 3], dn: [i32; 3], i: u32) -> [i32; 3] {
+    [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(i as i32)))
+}
+
+/// A span shorter than [`SHORT_SPAN`] (one light or several): the depth
+/// test of each pixel first, then `exact(normal, i)` (the colour `r | g
+/// << 8 | b << 16` of pixel `i` in 64 bits) for the passing ones alone,
+/// without span or chunk set-up; returns how many passed.
+#[inline(always)]
+pub(super) fn short_span(
+    n: [i32; 3],
+    dn: [i32; 3],
+    len: u32,
+    out: &mut impl Out,
+    exact: impl Fn([i32; 3], u32) -> u32,
+) -> u32 {
+    let mut passed = 0;
+    for i in 0..len {
+        if out.test(i) {
+            out.write(i, unpack(exact(normal_at(n, dn, i), i)));
+            passed += 1;
+        }
+    }
+    passed
+}
+
+/// A chunk the 32-bit loop cannot prove (one light or several): the
+/// colours `exact(normal, j)` of its `k` pixels from pixel `i` into `buf`.
+#[inline(always)]
+pub(super) fn exact_chunk(
+    n: [i32; 3],
+    dn: [i32; 3],
+    i: u32,
+    k: u32,
+    buf: &mut [u32; CHUNK],
+    exact: impl Fn([i32; 3], u32) -> u32,
+) {
+    for (j, o) in (i..i + k).zip(buf.iter_mut()) {
+        *o = exact(normal_at(n, dn, j), j);
+    }
+}
+
 /// `v` when it fits `i32`.
 #[inline(always)]
 fn fit(v: i64) -> Option<i32> {
@@ -241,17 +286,9 @@ impl<R: Real> PhongKernel<'_, R> {
         mut out: impl Out,
     ) -> u32 {
         if len < SHORT_SPAN {
-            // The depth test first, then the 64-bit path for the passing
-            // pixels alone (no span or chunk set-up).
-            let mut passed = 0;
-            for i in 0..len {
-                if out.test(i) {
-                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(i as i32)));
-                    out.write(i, unpack(self.one_exact(l, ni, n, dn, i)));
-                    passed += 1;
-                }
-            }
-            return passed;
+            return short_span(n, dn, len, &mut out, |ni, i| {
+                self.one_exact(l, ni, n, dn, i)
+            });
         }
         let mut st = self.one_begin(l, n, dn);
         let c = Colour::of(self, l);
@@ -345,10 +382,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 true
             }
             Plan::Exact => {
-                for (j, o) in (i..i + k).zip(buf.iter_mut()) {
-                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
-                    *o = self.one_exact(l, ni, n, dn, j);
-                }
+                exact_chunk(n, dn, i, k, buf, |ni, j| self.one_exact(l, ni, n, dn, j));
                 false
             }
         }

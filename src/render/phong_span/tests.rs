@@ -23,6 +23,32 @@ struct Case {
     viewer: Viewer,
 }
 
+/// A case of random material (colour, `ka`, `kd`, `ks`, then shininess
+/// 1 to 10 000 when `high`, else to 200) and ambient, drawn from `f` in
+/// that order, with `lights`, `specular` and `viewer`.
+fn random_case(
+    f: &mut impl FnMut(f64, f64) -> f64,
+    lights: Vec<Light<Q16>>,
+    high: bool,
+    specular: Specular,
+    viewer: Viewer,
+) -> Case {
+    let mat = Material {
+        color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
+        ka: q(f(0.0, 0.5)),
+        kd: q(f(0.0, 1.0)),
+        ks: q(f(0.0, 1.0)),
+        shininess: q(f(1.0, if high { 10_000.0 } else { 200.0 })),
+    };
+    Case {
+        mat,
+        lights,
+        ambient: q(f(0.0, 0.4)),
+        specular,
+        viewer,
+    }
+}
+
 fn to64(v: Vec3<Q16>) -> Vec3<f64> {
     Vec3::new(v.x.to_f64(), v.y.to_f64(), v.z.to_f64())
 }
@@ -200,23 +226,12 @@ fn random_spans_against_f64() {
             l.color = v3(f(0.3, 1.0), f(0.3, 1.0), f(0.3, 1.0));
             lights.push(l);
         }
-        let c = Case {
-            mat: Material {
-                color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
-                ka: q(f(0.0, 0.5)),
-                kd: q(f(0.0, 1.0)),
-                ks: q(f(0.0, 1.0)),
-                shininess: q(f(1.0, if it % 3 == 0 { 10_000.0 } else { 200.0 })),
-            },
-            lights,
-            ambient: q(f(0.0, 0.4)),
-            specular: if it % 3 == 1 {
-                Specular::Blinn
-            } else {
-                Specular::Phong
-            },
-            viewer,
+        let specular = if it % 3 == 1 {
+            Specular::Blinn
+        } else {
+            Specular::Phong
         };
+        let c = random_case(&mut f, lights, it % 3 == 0, specular, viewer);
         let n0 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
         let n1 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
         let len = 1 + f(0.0, 79.99) as i32;
@@ -258,23 +273,12 @@ fn several_directional_lights_against_f64() {
             l.color = v3(f(0.3, 1.0), f(0.3, 1.0), f(0.3, 1.0));
             lights.push(l);
         }
-        let c = Case {
-            mat: Material {
-                color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
-                ka: q(f(0.0, 0.5)),
-                kd: q(f(0.0, 1.0)),
-                ks: q(f(0.0, 1.0)),
-                shininess: q(f(1.0, if it % 3 == 0 { 10_000.0 } else { 200.0 })),
-            },
-            lights,
-            ambient: q(f(0.0, 0.4)),
-            specular: if it % 2 == 1 {
-                Specular::Blinn
-            } else {
-                Specular::Phong
-            },
-            viewer: Viewer::Infinite,
+        let specular = if it % 2 == 1 {
+            Specular::Blinn
+        } else {
+            Specular::Phong
         };
+        let c = random_case(&mut f, lights, it % 3 == 0, specular, Viewer::Infinite);
         let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
         assert!(
             PhongKernel::new(&shade).unwrap().multi.is_some(),
