@@ -44,10 +44,14 @@
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits; a full
 //! chunk's set-up with its length a constant, so that the products by it
-//! fold into shifts); measured on the firmware's span sweep, 90.95
+//! fold into shifts); measured on the firmware's span sweep, 86.52
 //! instructions a pixel on the M4 (was 167, 106.97, 104.88, 94.63 with
-//! the channels in the loop of the depth test, then 92.23) and 174.93 on
-//! the M0 (was 207.96, 198.87, 184.50, then 169.37; the sweep's figure is
+//! the channels in the loop of the depth test, then 92.23, 90.95, 89.31;
+//! then `1/|n|` from one load of a packed table, `one::RS_PACKED`, whose
+//! address stays in a register, `|n|²` stepped less `1/4`, and no `n·L`
+//! test a pixel in chunks where `n·L` is positive at both ends) and
+//! 169.25 on the M0 (was 207.96, 198.87, 184.50, 169.37, 174.93, 175.22,
+//! 175.71 with the row fill out of line; the sweep's figure is
 //! the 200-pixel spans less the 1-pixel ones, and the latter now cost 570
 //! instructions less on the M4 and 2 318 less on the M0: the 200-pixel
 //! spans alone went from 96.8 to 92.7 a pixel on the M4 and from 186.2
@@ -79,11 +83,13 @@
 //! `2^31` with each light at its largest terms (eight white lights of
 //! `Ip·kd = Ip·ks = 0.9`; beyond, the per-pixel path of
 //! [`PhongKernel::begin`]). Measured on the firmware's span sweep, per
-//! pixel with 1, 2 and 4 lights: 89.03, 196.12 and 315.79 instructions on
+//! pixel with 1, 2 and 4 lights: 86.52, 196.49 and 316.20 instructions on
 //! the M4 (the per-pixel path before: 280.33 and 434.96 with 2 and 4),
-//! 175.22, 356.08 and 592.60 on the M0 (before: 392.94 and 643.29): each
-//! light beyond the second adds 59.8 a pixel on the M4 and 118.3 on the
+//! 169.25, 356.07 and 592.59 on the M0 (before: 392.94 and 643.29): each
+//! light beyond the second adds 59.9 a pixel on the M4 and 118.3 on the
 //! M0 (its terms, its channel sums and its share of the chunk plans).
+//! (The packed `1/|n|` table and the test-free lit chunks made this loop
+//! slower: 201.13 and 324.98 on the M4 with 2 and 4 lights.)
 //!
 //! # Point lights, local viewer
 //! `l = Lp - p` and `v = -p` are linear per pixel and `|l|²`, `|v|²`
