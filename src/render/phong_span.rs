@@ -88,8 +88,9 @@
 //! 169.25, 356.07 and 592.59 on the M0 (before: 392.94 and 643.29): each
 //! light beyond the second adds 59.9 a pixel on the M4 and 118.3 on the
 //! M0 (its terms, its channel sums and its share of the chunk plans).
-//! (The packed `1/|n|` table and the test-free lit chunks made this loop
-//! slower: 201.13 and 324.98 on the M4 with 2 and 4 lights.)
+//! (The test-free lit chunks of one light made this loop slower, 201.13
+//! and 324.98 on the M4 with 2 and 4 lights, 203.40 and 329.11 with the
+//! packed `1/|n|` table too: not taken here.)
 //!
 //! # Point lights, local viewer
 //! `l = Lp - p` and `v = -p` are linear per pixel and `|l|²`, `|v|²`
