@@ -1727,34 +1727,39 @@ const PLANE_BITS: u32 = 12;
 /// raw, the `PhongPosition` layout's attributes 3 to 5) with
 /// [`PLANE_BITS`] more fraction bits than the rasterizer's steps, made
 /// once a triangle; per span [`PosPlane::start`] gives the kernel a start
-/// position whose stepped values are exact (to half a raw unit) at the
-/// span's middle pixel.
+/// position whose stepped values are exact (within half a raw unit) at
+/// the span's middle pixel.
 ///
 /// Why: the rasterizer steps an attribute by its gradient rounded to a
 /// whole raw unit, so `k` pixels from the triangle's anchor a position is
-/// off by up to `k/2` raw units (`k · 2^-17` eye units). The view
-/// direction turns by that over the distance to the eye, and the peak of
-/// `x^n` amplifies it by up to `0.61·√n` levels per `1/255` radian:
-/// measured on the highlight-peak set (a 108-pixel square face 3 units
-/// from the eye, light straight above, Phong, `n = 10 000`), `fast` was 3
-/// levels from its `f64` twin with the walked positions, 1 with the same
-/// scene scaled 4 times (positions 4 times coarser relative to the
-/// error). With the start from this plane a pixel `i` of a span of `len`
-/// is off by at most `½ + |i - h| / 2` raw units (`h = ⌊(len - 1)/2⌋`,
-/// the stepping error from the middle, plus the plane's own:
-/// `InvArea::quot`'s `½ + |g|·2^-28` in units of `2^-12` raw times the
-/// pixel offsets, below `2^-6` raw for gradients below `2^28` raw and
-/// offsets within 4096 pixels), half the worst of the walked values,
-/// and none at the middle, where a face's highlight peak spans lie
-/// centred.
+/// off by up to `k/2` raw units (`k · 2^-17` eye units); the view and
+/// light directions turn by that over the distance to the eye and the
+/// light, and the peak of `x^n` amplifies it by up to `0.61·√n` a
+/// radian. Measured on the highlight-peak set (a 108-pixel square face 3
+/// units from the eye, light straight above, Phong, `n = 10 000`):
+/// `fast` 3 levels from its `f64` twin with the walked positions, 1 with
+/// this start.
+///
+/// Error (`plane_start_error` checks it): at pixel `i` of a span of `len`
+/// the stepped position is within `½ + |i - h| · |dp - g| + 2^-5` raw
+/// units of the exact plane through the three vertices (`h = ⌊(len -
+/// 1)/2⌋`, `g` the exact gradient along x, `|dp - g| <= ½` for the
+/// rasterizer's rounded step `dp`): the rounding at the middle, the step's
+/// drift from there, and the plane's own error (`InvArea::quot`'s `½ +
+/// |g|·2^-28` in units of `2^-12` raw per pixel, times offsets within
+/// `2^14` pixels, with gradients below `2^28` raw).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PosPlane {
-    /// `2^PLANE_BITS` times the value at the centre of pixel (0, 0).
-    o: [i64; 3],
-    /// `2^PLANE_BITS` times the gradients per pixel along x.
-    gx: [i64; 3],
-    /// `2^PLANE_BITS` times the gradients per pixel along y.
-    gy: [i64; 3],
+    /// The anchor pixel (nearest the first vertex).
+    at: [i32; 2],
+    /// Per component: the value at the anchor, whole raw units.
+    base: [i32; 3],
+    /// Per component: the rest of the value at the anchor, in `2^-12`
+    /// raw units (`0..2^12`).
+    rest: [i32; 3],
+    /// Per component: the gradients along x and y, whole raw units
+    /// (floor) and the rest in `2^-12` raw units (`0..2^12`).
+    g: [[i32; 4]; 3],
     /// Made (else [`PosPlane::start`] keeps the walked values).
     ok: bool,
 }
@@ -1762,9 +1767,10 @@ pub struct PosPlane {
 impl PosPlane {
     /// No plane: [`PosPlane::start`] keeps the walked values.
     pub const NONE: Self = Self {
-        o: [0; 3],
-        gx: [0; 3],
-        gy: [0; 3],
+        at: [0; 2],
+        base: [0; 3],
+        rest: [0; 3],
+        g: [[0; 4]; 3],
         ok: false,
     };
 
@@ -1788,26 +1794,56 @@ impl PosPlane {
         }
         let inv = crate::num::InvArea::new(area2);
         let s = sub.get();
-        let h = 1i64 << (s - 1);
-        let [dx1, dy1, dx2, dy2] = d.map(i64::from);
+        let sc = 1i32 << s;
+        let (xa, ya) = (x0 >> s, y0 >> s);
+        // Offsets of the anchor pixel's centre from vertex 0, within a
+        // pixel.
+        let (ox, oy) = (
+            i64::from((xa << s).wrapping_add(sc / 2).wrapping_sub(x0)),
+            i64::from((ya << s).wrapping_add(sc / 2).wrapping_sub(y0)),
+        );
         let mut p = Self::NONE;
+        p.at = [xa, ya];
+        const MASK: i64 = (1 << PLANE_BITS) - 1;
+        const LIM: u64 = 1 << (28 + PLANE_BITS);
         for k in 0..3 {
-            let d1 = i64::from(a1[k]) - i64::from(a0[k]);
-            let d2 = i64::from(a2[k]) - i64::from(a0[k]);
-            let nx = d1.wrapping_mul(dy2).wrapping_sub(d2.wrapping_mul(dy1));
-            let ny = d2.wrapping_mul(dx1).wrapping_sub(d1.wrapping_mul(dx2));
+            let (d1, d2) = (a1[k].overflowing_sub(a0[k]), a2[k].overflowing_sub(a0[k]));
+            let (nx, ny) = if d1.1 || d2.1 {
+                let (d1, d2) = (
+                    i64::from(a1[k]) - i64::from(a0[k]),
+                    i64::from(a2[k]) - i64::from(a0[k]),
+                );
+                let [dx1, dy1, dx2, dy2] = d.map(i64::from);
+                (
+                    d1.wrapping_mul(dy2).wrapping_sub(d2.wrapping_mul(dy1)),
+                    d2.wrapping_mul(dx1).wrapping_sub(d1.wrapping_mul(dx2)),
+                )
+            } else {
+                let (d1, d2) = (d1.0, d2.0);
+                (
+                    wmul(d1, d[3]).wrapping_sub(wmul(d2, d[1])),
+                    wmul(d2, d[0]).wrapping_sub(wmul(d1, d[2])),
+                )
+            };
             let (gx, gy) = (inv.quot(nx, s + PLANE_BITS), inv.quot(ny, s + PLANE_BITS));
-            const LIM: u64 = 1 << (28 + PLANE_BITS);
             if gx.unsigned_abs() >= LIM || gy.unsigned_abs() >= LIM {
                 return Self::NONE;
             }
+            // The anchor's offset from vertex 0 in 2^-12 raw units
+            // (|g·o| < 2^40 · 2^8).
             let t = gx
-                .wrapping_mul(h - i64::from(x0))
-                .wrapping_add(gy.wrapping_mul(h - i64::from(y0)))
-                .wrapping_add(h);
-            p.o[k] = (i64::from(a0[k]) << PLANE_BITS).wrapping_add(t >> s);
-            p.gx[k] = gx;
-            p.gy[k] = gy;
+                .wrapping_mul(ox)
+                .wrapping_add(gy.wrapping_mul(oy))
+                .wrapping_add(1 << (s - 1))
+                >> s;
+            p.base[k] = a0[k].wrapping_add((t >> PLANE_BITS) as i32);
+            p.rest[k] = (t & MASK) as i32;
+            p.g[k] = [
+                (gx >> PLANE_BITS) as i32,
+                (gx & MASK) as i32,
+                (gy >> PLANE_BITS) as i32,
+                (gy & MASK) as i32,
+            ];
         }
         p.ok = true;
         p
@@ -1837,21 +1873,32 @@ impl PosPlane {
     /// The start position of the span of `len` pixels from pixel `(x0,
     /// y)` stepped by `dp`: the plane's value at its middle pixel `x0 +
     /// h` (`h = ⌊(len - 1)/2⌋`), rounded, less `h·dp` (wrapping); the
-    /// walked start `p` without a plane.
+    /// walked start `p` without a plane. 32-bit arithmetic: pixels within
+    /// `2^14` of the anchor keep the fractions' sum within `2^27`.
     #[inline(always)]
     pub fn start(&self, x0: i32, y: i32, len: u32, p: [i32; 3], dp: [i32; 3]) -> [i32; 3] {
         if !self.ok {
             return p;
         }
         let h = (len.saturating_sub(1) / 2) as i32;
-        let (xm, y) = (i64::from(x0.wrapping_add(h)), i64::from(y));
+        let dx = x0.wrapping_add(h).wrapping_sub(self.at[0]);
+        let dy = y.wrapping_sub(self.at[1]);
+        if dx.unsigned_abs() >= 1 << 14 || dy.unsigned_abs() >= 1 << 14 {
+            return p;
+        }
         let mut out = p;
         for (k, o) in out.iter_mut().enumerate() {
-            let v = self.o[k]
-                .wrapping_add(self.gx[k].wrapping_mul(xm))
-                .wrapping_add(self.gy[k].wrapping_mul(y))
+            let [gxi, gxf, gyi, gyf] = self.g[k];
+            let whole = self.base[k]
+                .wrapping_add(gxi.wrapping_mul(dx))
+                .wrapping_add(gyi.wrapping_mul(dy));
+            let frac = self.rest[k]
+                .wrapping_add(gxf.wrapping_mul(dx))
+                .wrapping_add(gyf.wrapping_mul(dy))
                 .wrapping_add(1 << (PLANE_BITS - 1));
-            *o = ((v >> PLANE_BITS) as i32).wrapping_sub(dp[k].wrapping_mul(h));
+            *o = whole
+                .wrapping_add(frac >> PLANE_BITS)
+                .wrapping_sub(dp[k].wrapping_mul(h));
         }
         out
     }
