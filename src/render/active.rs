@@ -631,10 +631,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         } else {
                             // The exact position plane per triangle
                             // (`PosPlane`).
+                            let plane = k.wants_plane();
                             let set = |s: &mut PhongKernelShader<'_, '_, P::Real>,
                                        t: &PreparedTri| {
                                 s.back = t.back;
-                                s.plane = PosPlane::of_tri(frame, po, t);
+                                if plane {
+                                    s.plane = PosPlane::of_tri(frame, po, t);
+                                }
                             };
                             self.run::<6, _, _, _>(po, &mut t, sh, set)?;
                         }

@@ -272,10 +272,13 @@ impl<P: Profile> Frame<'_, P> {
                         } else {
                             // The exact position plane per triangle
                             // (`PosPlane`).
+                            let plane = k.wants_plane();
                             let set = |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
                                        t: &PreparedTri| {
                                 f.back = t.back;
-                                f.plane = PosPlane::of_tri(self, po, t);
+                                if plane {
+                                    f.plane = PosPlane::of_tri(self, po, t);
+                                }
                             };
                             self.draw_spans::<6, _>(po, w, &mut f, &mut stats, set)?;
                         }
