@@ -736,8 +736,7 @@ fn plane_start_error() {
             let y = ylo + r(yhi - ylo + 1);
             let xa = xlo + r(xhi - xlo + 1);
             let len = 1 + r(xhi - xa + 1) as u32;
-            let dp: [i32; 3] =
-                core::array::from_fn(|k| exact(k, 0.0, 0.0).1.round() as i32);
+            let dp: [i32; 3] = core::array::from_fn(|k| exact(k, 0.0, 0.0).1.round() as i32);
             let start = p.start(xa as i32, y as i32, len, [0; 3], dp);
             let h = (len - 1) / 2;
             for i in [0, h, len - 1] {
@@ -762,7 +761,10 @@ fn plane_start_error() {
                     // Modulo 2^32 (wrapping beyond the triangle).
                     let m = (got - e).rem_euclid(4_294_967_296.0);
                     let err = m.min(4_294_967_296.0 - m);
-                    assert!(err <= bound, "{v:?} x {xa} y {y} len {len} i {i}: {err} > {bound}");
+                    assert!(
+                        err <= bound,
+                        "{v:?} x {xa} y {y} len {len} i {i}: {err} > {bound}"
+                    );
                     if i == h {
                         worst_mid = worst_mid.max(err - plane);
                     }
