@@ -9,7 +9,7 @@
 //! took the walked eye positions, whose steps are rounded to a raw `Q16`
 //! unit (off by `k · 2^-17` units `k` pixels from the triangle's anchor);
 //! with the span's start from the triangle's exact position plane
-//! (`render::phong_span::PosPlane`) it is 1. `fast-pc`, not in the
+//! (`render::phong_span::PosPlane`, at shininess 512 or more) it is 1. `fast-pc`, not in the
 //! issue's budget, is 23 levels off there (its normal and position come
 //! out of a per-pixel division in `Q16`). The affine twin is up to 237
 //! levels from the ideal on the grazing face: screen-linear
