@@ -73,8 +73,8 @@ pub trait Shader<L: Lerp, const N: usize> {
     /// A span loop of the shader's own (chosen by the shader's type): shades
     /// the pixels of `row`, depth-testing against `drow` (the same length)
     /// when given, from the depth `z` and the attributes `a` at the first
-    /// pixel, stepped per pixel by `dz` and `da`, and returns the pixels
-    /// drawn; the depth test and write must be the span stage's own
+    /// pixel, `at` = `(x, y)` on the screen, stepped per pixel by `dz` and
+    /// `da`, and returns the pixels drawn; the depth test and write must be the span stage's own
     /// ([`DepthFormat::from_lerp`], less-than). `None`, the default: the
     /// span stage runs its loop, with [`Shader::begin_span`] and
     /// [`Shader::shade_raw`] per pixel. Per-pixel Phong
@@ -90,8 +90,9 @@ pub trait Shader<L: Lerp, const N: usize> {
         dz: L,
         a: &[L; N],
         da: &[L; N],
+        at: (i32, i32),
     ) -> Option<u32> {
-        let _ = (row, drow, z, dz, a, da);
+        let _ = (row, drow, z, dz, a, da, at);
         None
     }
 }
@@ -420,8 +421,8 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
 /// The pixels of one span of the band renderer's row kernel: `row` and
 /// `drow` (the same length, `x1 - x0`) are the span's colour and depth
 /// slices, `v` the values at its first pixel and `sx` their steps. The
-/// same loops, hence the same bytes, as [`Fill`]'s. Returns the pixels
-/// written.
+/// same loops, hence the same bytes, as [`Fill`]'s; `at` is the first
+/// pixel's `(x, y)` on the screen. Returns the pixels written.
 #[inline(always)]
 pub(crate) fn span_pixels<L, const N: usize, F, D, S>(
     row: &mut [F::Raw],
@@ -430,6 +431,7 @@ pub(crate) fn span_pixels<L, const N: usize, F, D, S>(
     sx: &Vals<L, N>,
     plane_in_range: bool,
     shader: &mut S,
+    at: (i32, i32),
 ) -> u32
 where
     L: Lerp,
@@ -443,7 +445,7 @@ where
     } else {
         let mut drow = drow;
         if let Some(drawn) =
-            shader.span_kernel::<F, D>(row, drow.as_deref_mut(), v.z, sx.z, &v.a, &sx.a)
+            shader.span_kernel::<F, D>(row, drow.as_deref_mut(), v.z, sx.z, &v.a, &sx.a, at)
         {
             return drawn;
         }

@@ -65,7 +65,7 @@
 //! for its 1 498 triangles is 5 992 bytes.
 
 use super::band::PhongShader;
-use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
+use super::phong_span::{PhongKernel, PhongKernelShader, PosPlane, SpecCache};
 use super::position::PosFrame;
 use super::prepare::{self, eye_lights};
 use super::{Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats};
@@ -493,7 +493,7 @@ impl<L: Lerp, const N: usize, F: PixelFormat, D: DepthFormat, S: Shader<L, N>> R
             None => None,
         };
         let plane = D::plane_in_range(z16);
-        self.drawn += span_pixels::<L, N, F, D, S>(row, drow, v, sx, plane, self.shader);
+        self.drawn += span_pixels::<L, N, F, D, S>(row, drow, v, sx, plane, self.shader, (x0, j));
     }
 }
 
@@ -622,12 +622,23 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     };
                     if let Some(k) = &kernel {
                         let sh = PhongKernelShader::new(k);
-                        let set = |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| {
-                            s.back = t.back
-                        };
                         if normal {
+                            let set = |s: &mut PhongKernelShader<'_, '_, P::Real>,
+                                       t: &PreparedTri| {
+                                s.back = t.back
+                            };
                             self.run::<3, _, _, _>(po, &mut t, sh, set)?;
                         } else {
+                            // The exact position plane per triangle
+                            // (`PosPlane`).
+                            let plane = k.wants_plane();
+                            let set = |s: &mut PhongKernelShader<'_, '_, P::Real>,
+                                       t: &PreparedTri| {
+                                s.back = t.back;
+                                if plane {
+                                    s.plane = PosPlane::of_tri(frame, po, t);
+                                }
+                            };
                             self.run::<6, _, _, _>(po, &mut t, sh, set)?;
                         }
                         continue;

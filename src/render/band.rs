@@ -1,6 +1,6 @@
 //! Rasterizing a prepared frame into a band (or a whole frame).
 
-use super::phong_span::{PhongFill, PhongKernel};
+use super::phong_span::{PhongFill, PhongKernel, PosPlane};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, PreparedTri, RenderError};
@@ -264,12 +264,22 @@ impl<P: Profile> Frame<'_, P> {
                     if let Some(k) = &kernel {
                         let mut f = PhongFill::new(&mut *target, d, k)?;
                         let w = f.window();
-                        let set =
-                            |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
-                             t: &PreparedTri| f.back = t.back;
                         if po.layout == Layout::PhongNormal {
+                            let set =
+                                |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
+                                 t: &PreparedTri| f.back = t.back;
                             self.draw_spans::<3, _>(po, w, &mut f, &mut stats, set)?;
                         } else {
+                            // The exact position plane per triangle
+                            // (`PosPlane`).
+                            let plane = k.wants_plane();
+                            let set = |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
+                                       t: &PreparedTri| {
+                                f.back = t.back;
+                                if plane {
+                                    f.plane = PosPlane::of_tri(self, po, t);
+                                }
+                            };
                             self.draw_spans::<6, _>(po, w, &mut f, &mut stats, set)?;
                         }
                         stats.pixels += f.drawn();

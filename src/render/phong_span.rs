@@ -44,10 +44,14 @@
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits; a full
 //! chunk's set-up with its length a constant, so that the products by it
-//! fold into shifts); measured on the firmware's span sweep, 90.95
+//! fold into shifts); measured on the firmware's span sweep, 86.52
 //! instructions a pixel on the M4 (was 167, 106.97, 104.88, 94.63 with
-//! the channels in the loop of the depth test, then 92.23) and 174.93 on
-//! the M0 (was 207.96, 198.87, 184.50, then 169.37; the sweep's figure is
+//! the channels in the loop of the depth test, then 92.23, 90.95, 89.31;
+//! then `1/|n|` from one load of a packed table, `one::RS_PACKED`, whose
+//! address stays in a register, `|n|²` stepped less `1/4`, and no `n·L`
+//! test a pixel in chunks where `n·L` is positive at both ends) and
+//! 169.25 on the M0 (was 207.96, 198.87, 184.50, 169.37, 174.93, 175.22,
+//! 175.71 with the row fill out of line; the sweep's figure is
 //! the 200-pixel spans less the 1-pixel ones, and the latter now cost 570
 //! instructions less on the M4 and 2 318 less on the M0: the 200-pixel
 //! spans alone went from 96.8 to 92.7 a pixel on the M4 and from 186.2
@@ -79,11 +83,15 @@
 //! `2^31` with each light at its largest terms (eight white lights of
 //! `Ip·kd = Ip·ks = 0.9`; beyond, the per-pixel path of
 //! [`PhongKernel::begin`]). Measured on the firmware's span sweep, per
-//! pixel with 1, 2 and 4 lights: 89.03, 196.12 and 315.79 instructions on
+//! pixel with 1, 2 and 4 lights: 86.52, 196.49 and 316.20 instructions on
 //! the M4 (the per-pixel path before: 280.33 and 434.96 with 2 and 4),
-//! 175.22, 356.08 and 592.60 on the M0 (before: 392.94 and 643.29): each
-//! light beyond the second adds 59.8 a pixel on the M4 and 118.3 on the
+//! 169.25, 356.07 and 592.59 on the M0 (before: 392.94 and 643.29): each
+//! light beyond the second adds 59.9 a pixel on the M4 and 118.3 on the
 //! M0 (its terms, its channel sums and its share of the chunk plans).
+//! (The test-free lit chunks of one light made this loop slower, 201.13
+//! and 324.98 on the M4 with 2 and 4 lights, 203.40 and 329.11 with the
+//! packed `1/|n|` table too, 198.43 and 319.67 with the table alone: not
+//! taken here.)
 //!
 //! # Point lights, local viewer
 //! `l = Lp - p` and `v = -p` are linear per pixel and `|l|²`, `|v|²`
@@ -105,6 +113,15 @@
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
+//!
+//! # Positions
+//! The position layout's eye positions come walked by the rasterizer,
+//! whose steps are rounded to a raw `Q16` unit; at shininess
+//! [`PLANE_MIN_SHININESS`] or more the renderers give each span's start
+//! from the triangle's exact position plane instead ([`PosPlane`], made
+//! once a triangle, exact at the span's middle pixel): measured on the
+//! highlight-peak set, `fast` 3 levels from its twin -> 1 at shininess
+//! 10 000, no cost in the span loop (the start is set before it).
 //!
 //! # Accuracy (tests in this module)
 //! Against the same model in `f64` on the same inputs, per channel: within
@@ -207,6 +224,11 @@ pub struct PhongKernel<'s, R> {
     /// Table position per `Q` (Q8): `K = m · SPEC_SEGMENTS / min(m, 8)`
     /// times 2^8, below 2^26 (`m <= 10 000`).
     kf: u32,
+    /// Spans take their start position from the triangle's
+    /// [`PosPlane`]: a specular term at shininess [`PLANE_MIN_SHININESS`]
+    /// or more, and positions interpolated (a point light or a local
+    /// viewer).
+    plane: bool,
     /// `255 · 2^19 ·` ambient per channel plus `2^18` (rounding), for the
     /// 32-bit loop of one directional light ([`PhongKernel::fill`]).
     amb19: [i32; 3],
@@ -473,12 +495,19 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             local,
             table,
             kf,
+            plane: spec && !duff && i64::from(shin) >= i64::from(PLANE_MIN_SHININESS) << 16,
             amb19,
             multi,
             sq,
             c16,
             cb,
         })
+    }
+
+    /// `true` when the renderers set a [`PosPlane`] per triangle for
+    /// this kernel (see [`PLANE_MIN_SHININESS`]).
+    pub fn wants_plane(&self) -> bool {
+        self.plane
     }
 
     /// Per-span set-up from the interpolated values at the span's first
@@ -649,15 +678,21 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 // steps within 2^18 (the point loop's 64-bit set-up).
                 let end = |c: i32, d: i32| i64::from(c) + i64::from(d) * i64::from(len);
                 let near = |v: i64| v.unsigned_abs() < 1 << 29;
-                let ok = (0..3).all(|a| {
-                    let (p0, p1) = (i64::from(p[a]), end(p[a], dp[a]));
-                    let lp = i64::from(l.at[a]);
-                    dp[a].unsigned_abs() <= 1 << 18
-                        && near(p0)
-                        && near(p1)
-                        && near(lp - p0)
-                        && near(lp - p1)
-                });
+                // Zipped, not indexed: out of line (ARMv6-M) the indices
+                // of `(0..3).all(..)` kept a bounds check.
+                let ok = p
+                    .iter()
+                    .zip(dp.iter())
+                    .zip(l.at.iter())
+                    .all(|((&c, &d), &lp)| {
+                        let (p0, p1) = (i64::from(c), end(c, d));
+                        let lp = i64::from(lp);
+                        d.unsigned_abs() <= 1 << 18
+                            && near(p0)
+                            && near(p1)
+                            && near(lp - p0)
+                            && near(lp - p1)
+                    });
                 if ok {
                     let (n, dn) = if back {
                         (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
@@ -1228,6 +1263,8 @@ pub struct PhongFill<'t, 'd, 'b, 'k, 's, T, D: DepthFormat, R> {
     kernel: &'k PhongKernel<'s, R>,
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
+    /// The next triangle's position plane (the `PhongPosition` layout).
+    pub plane: PosPlane,
     drawn: u32,
 }
 
@@ -1255,6 +1292,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             depth,
             kernel,
             back: false,
+            plane: PosPlane::NONE,
             drawn: 0,
         })
     }
@@ -1331,6 +1369,8 @@ pub struct PhongKernelShader<'k, 's, R> {
     kernel: &'k PhongKernel<'s, R>,
     /// The next triangles are back faces (normal flipped).
     pub back: bool,
+    /// The next triangle's position plane (the `PhongPosition` layout).
+    pub plane: PosPlane,
 }
 
 impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
@@ -1339,6 +1379,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         Self {
             kernel,
             back: false,
+            plane: PosPlane::NONE,
         }
     }
 
@@ -1385,6 +1426,7 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 3> for PhongKernelShader<'_, '_,
         dz: L,
         a: &[L; 3],
         da: &[L; 3],
+        _at: (i32, i32),
     ) -> Option<u32> {
         Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, ([0; 3], [0; 3])))
     }
@@ -1404,11 +1446,11 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 6> for PhongKernelShader<'_, '_,
         dz: L,
         a: &[L; 6],
         da: &[L; 6],
+        (x0, y): (i32, i32),
     ) -> Option<u32> {
-        let pp = (
-            [raw(a[3]), raw(a[4]), raw(a[5])],
-            [raw(da[3]), raw(da[4]), raw(da[5])],
-        );
+        let p = [raw(a[3]), raw(a[4]), raw(a[5])];
+        let dp = [raw(da[3]), raw(da[4]), raw(da[5])];
+        let pp = (self.plane.start(x0, y, row.len() as u32, p, dp), dp);
         Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, pp))
     }
 }
@@ -1450,18 +1492,18 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 /// slice `drow` (the same length; depths `z + i·dz`, the test of
 /// [`DepthTest`]) through [`RowOut`]; returns the pixels written.
 ///
-/// Not inlined on ARMv7-M: one copy per pixel format, depth format and
-/// scalar instead of one in each of the band renderer's Phong walks.
-/// Inlined, the thumbv7em firmware's `.text` is 428 680 B (its two Phong
-/// `Bands::run` instances 65 + 74 KB); out of line 291 460 B, for 2.2 %
+/// Not inlined: one copy per pixel format, depth format and scalar
+/// instead of one in each of the band renderer's Phong walks. On ARMv7-M
+/// inlined, the firmware's `.text` was 428 680 B (its two Phong
+/// `Bands::run` instances 65 + 74 KB), out of line 291 460 B, for 2.2 %
 /// more instructions in the dodecahedron Phong frame (1 963 410 ->
-/// 2 006 167 raster). Inlined on ARMv6-M: out of line, a bounds check in
-/// the kernel's chunk loop is no longer proven away there (the
-/// panic-never build keeps a panic branch), though `.text` would shrink
-/// from 604 232 to 344 700 B.
+/// 2 006 167 raster). On ARMv6-M out of line the firmware's `.text` went
+/// from 705 760 to 446 008 B and the dodecahedron Phong frame from
+/// 6 825 515 to 6 751 339 instructions (the span sweep's one light 175.22
+/// -> 175.71 a pixel); the bounds check that kept it inlined there (the
+/// point loop's range test, indexed) is gone.
 #[allow(clippy::too_many_arguments)]
-#[cfg_attr(armv6m, inline(always))]
-#[cfg_attr(not(armv6m), inline(never))]
+#[inline(never)]
 fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
     row: &mut [F::Raw],
@@ -1693,7 +1735,203 @@ impl<L: Lerp, T: Target, D: DepthFormat, R: Real> Spans<L, 6>
     fn span(&mut self, s: &Span<L, 6>) {
         let p = [raw(s.a[3]), raw(s.a[4]), raw(s.a[5])];
         let dp = [raw(s.da[3]), raw(s.da[4]), raw(s.da[5])];
+        let len = s.x1.saturating_sub(s.x0);
+        let p = self.plane.start(s.x0 as i32, s.y as i32, len, p, dp);
         self.run(s, Some((p, dp)));
+    }
+}
+
+/// Extra fraction bits of [`PosPlane`]'s gradients and origin.
+const PLANE_BITS: u32 = 12;
+
+/// The least shininess at which the renderers give the kernel its spans'
+/// start from the triangle's [`PosPlane`] ([`PhongKernel::wants_plane`]).
+/// Below it the walked positions are kept (no set-up per triangle and
+/// span): their error moves a highlight by at most `255·Ip·ks·0.61·√n`
+/// levels per radian, and on the highlight-peak set every case below
+/// shininess 1 000 measured within 1 level of the twin with them (the
+/// plane took the dodecahedron Phong frame at shininess 100 from
+/// 2 004 406 to 2 102 855 instructions on the M4 for no level).
+pub const PLANE_MIN_SHININESS: u32 = 512;
+
+/// The plane of one triangle's interpolated eye-space positions (`Q16`
+/// raw, the `PhongPosition` layout's attributes 3 to 5) with
+/// [`PLANE_BITS`] more fraction bits than the rasterizer's steps, made
+/// once a triangle; per span [`PosPlane::start`] gives the kernel a start
+/// position whose stepped values are exact (within half a raw unit) at
+/// the span's middle pixel.
+///
+/// Why: the rasterizer steps an attribute by its gradient rounded to a
+/// whole raw unit, so `k` pixels from the triangle's anchor a position is
+/// off by up to `k/2` raw units (`k · 2^-17` eye units); the view and
+/// light directions turn by that over the distance to the eye and the
+/// light, and the peak of `x^n` amplifies it by up to `0.61·√n` a
+/// radian. Measured on the highlight-peak set (a 108-pixel square face 3
+/// units from the eye, light straight above, Phong, `n = 10 000`):
+/// `fast` 3 levels from its `f64` twin with the walked positions, 1 with
+/// this start.
+///
+/// Error (`plane_start_error` checks it): at pixel `i` of a span of `len`
+/// the stepped position is within `½ + |i - h| · |dp - g| + 2^-5` raw
+/// units of the exact plane through the three vertices (`h = ⌊(len -
+/// 1)/2⌋`, `g` the exact gradient along x, `|dp - g| <= ½` for the
+/// rasterizer's rounded step `dp`): the rounding at the middle, the step's
+/// drift from there, and the plane's own error (`InvArea::quot`'s `½ +
+/// |g|·2^-28` in units of `2^-12` raw per pixel, times offsets within
+/// `2^14` pixels, with gradients below `2^28` raw).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PosPlane {
+    /// The anchor pixel (nearest the first vertex).
+    at: [i32; 2],
+    /// Per component: the value at the anchor, whole raw units.
+    base: [i32; 3],
+    /// Per component: the rest of the value at the anchor, in `2^-12`
+    /// raw units (`0..2^12`).
+    rest: [i32; 3],
+    /// Per component: the gradients along x and y, whole raw units
+    /// (floor) and the rest in `2^-12` raw units (`0..2^12`).
+    g: [[i32; 4]; 3],
+    /// Made (else [`PosPlane::start`] keeps the walked values).
+    ok: bool,
+}
+
+impl PosPlane {
+    /// No plane: [`PosPlane::start`] keeps the walked values.
+    pub const NONE: Self = Self {
+        at: [0; 2],
+        base: [0; 3],
+        rest: [0; 3],
+        g: [[0; 4]; 3],
+        ok: false,
+    };
+
+    /// The plane through the three vertices `v` (screen position in
+    /// subpixels of `sub` bits from the screen's top-left corner, eye
+    /// position `Q16` raw); [`PosPlane::NONE`] for a degenerate triangle
+    /// or gradients of `2^28` raw a pixel or more.
+    pub fn new(v: [([i32; 2], [i32; 3]); 3], sub: crate::num::SubpixelBits) -> Self {
+        let ([x0, y0], a0) = v[0];
+        let ([x1, y1], a1) = v[1];
+        let ([x2, y2], a2) = v[2];
+        let d = [
+            x1.wrapping_sub(x0),
+            y1.wrapping_sub(y0),
+            x2.wrapping_sub(x0),
+            y2.wrapping_sub(y0),
+        ];
+        let area2 = wmul(d[0], d[3]).wrapping_sub(wmul(d[2], d[1]));
+        if area2 == 0 {
+            return Self::NONE;
+        }
+        let inv = crate::num::InvArea::new(area2);
+        let s = sub.get();
+        let sc = 1i32 << s;
+        let (xa, ya) = (x0 >> s, y0 >> s);
+        // Offsets of the anchor pixel's centre from vertex 0, within a
+        // pixel.
+        let (ox, oy) = (
+            i64::from((xa << s).wrapping_add(sc / 2).wrapping_sub(x0)),
+            i64::from((ya << s).wrapping_add(sc / 2).wrapping_sub(y0)),
+        );
+        let mut p = Self::NONE;
+        p.at = [xa, ya];
+        const MASK: i64 = (1 << PLANE_BITS) - 1;
+        const LIM: u64 = 1 << (28 + PLANE_BITS);
+        for k in 0..3 {
+            let (d1, d2) = (a1[k].overflowing_sub(a0[k]), a2[k].overflowing_sub(a0[k]));
+            let (nx, ny) = if d1.1 || d2.1 {
+                let (d1, d2) = (
+                    i64::from(a1[k]) - i64::from(a0[k]),
+                    i64::from(a2[k]) - i64::from(a0[k]),
+                );
+                let [dx1, dy1, dx2, dy2] = d.map(i64::from);
+                (
+                    d1.wrapping_mul(dy2).wrapping_sub(d2.wrapping_mul(dy1)),
+                    d2.wrapping_mul(dx1).wrapping_sub(d1.wrapping_mul(dx2)),
+                )
+            } else {
+                let (d1, d2) = (d1.0, d2.0);
+                (
+                    wmul(d1, d[3]).wrapping_sub(wmul(d2, d[1])),
+                    wmul(d2, d[0]).wrapping_sub(wmul(d1, d[2])),
+                )
+            };
+            let (gx, gy) = (inv.quot(nx, s + PLANE_BITS), inv.quot(ny, s + PLANE_BITS));
+            if gx.unsigned_abs() >= LIM || gy.unsigned_abs() >= LIM {
+                return Self::NONE;
+            }
+            // The anchor's offset from vertex 0 in 2^-12 raw units
+            // (|g·o| < 2^40 · 2^8).
+            let t = gx
+                .wrapping_mul(ox)
+                .wrapping_add(gy.wrapping_mul(oy))
+                .wrapping_add(1 << (s - 1))
+                >> s;
+            p.base[k] = a0[k].wrapping_add((t >> PLANE_BITS) as i32);
+            p.rest[k] = (t & MASK) as i32;
+            p.g[k] = [
+                (gx >> PLANE_BITS) as i32,
+                (gx & MASK) as i32,
+                (gy >> PLANE_BITS) as i32,
+                (gy & MASK) as i32,
+            ];
+        }
+        p.ok = true;
+        p
+    }
+
+    /// The plane of triangle `tri` of object `po` in `frame` (the
+    /// `PhongPosition` layout: attributes 3 to 5 the eye position);
+    /// [`PosPlane::NONE`] when its vertices are not at hand.
+    pub(crate) fn of_tri<P: crate::num::Profile>(
+        frame: &super::Frame<'_, P>,
+        po: &super::PreparedObject,
+        tri: &super::PreparedTri,
+    ) -> Self {
+        let mut v = [([0i32; 2], [0i32; 3]); 3];
+        for (o, &i) in v.iter_mut().zip(tri.v.iter()) {
+            let Some(xy) = frame.xy(usize::from(i)) else {
+                return Self::NONE;
+            };
+            let Some(vx) = frame.vertex::<6>(po, i, xy) else {
+                return Self::NONE;
+            };
+            *o = (xy, [raw(vx.attrs[3]), raw(vx.attrs[4]), raw(vx.attrs[5])]);
+        }
+        Self::new(v, P::SUBPIXEL_BITS)
+    }
+
+    /// The start position of the span of `len` pixels from pixel `(x0,
+    /// y)` stepped by `dp`: the plane's value at its middle pixel `x0 +
+    /// h` (`h = ⌊(len - 1)/2⌋`), rounded, less `h·dp` (wrapping); the
+    /// walked start `p` without a plane. 32-bit arithmetic: pixels within
+    /// `2^14` of the anchor keep the fractions' sum within `2^27`.
+    #[inline(always)]
+    pub fn start(&self, x0: i32, y: i32, len: u32, p: [i32; 3], dp: [i32; 3]) -> [i32; 3] {
+        if !self.ok {
+            return p;
+        }
+        let h = (len.saturating_sub(1) / 2) as i32;
+        let dx = x0.wrapping_add(h).wrapping_sub(self.at[0]);
+        let dy = y.wrapping_sub(self.at[1]);
+        if dx.unsigned_abs() >= 1 << 14 || dy.unsigned_abs() >= 1 << 14 {
+            return p;
+        }
+        let mut out = p;
+        for (k, o) in out.iter_mut().enumerate() {
+            let [gxi, gxf, gyi, gyf] = self.g[k];
+            let whole = self.base[k]
+                .wrapping_add(gxi.wrapping_mul(dx))
+                .wrapping_add(gyi.wrapping_mul(dy));
+            let frac = self.rest[k]
+                .wrapping_add(gxf.wrapping_mul(dx))
+                .wrapping_add(gyf.wrapping_mul(dy))
+                .wrapping_add(1 << (PLANE_BITS - 1));
+            *o = whole
+                .wrapping_add(frac >> PLANE_BITS)
+                .wrapping_sub(dp[k].wrapping_mul(h));
+        }
+        out
     }
 }
 

@@ -22,10 +22,11 @@
 //! every light's error that
 //! loop's (tests: `random_spans_against_f64`, one to four lights).
 
-use super::one::{mul_shr48, rsq, OneSpan, Plan, QM_FRAC, QM_MAX, SHORT_SPAN};
+use super::one::{
+    exact_chunk, mul_shr48, rsq, short_span, OneSpan, Plan, QM_FRAC, QM_MAX, SHORT_SPAN,
+};
 use super::{
-    cross, drive, fallback, lin, pack, sq3, unpack, unpack_q19, KLight, Out, PhongKernel, CHUNK,
-    MAX_LIGHTS,
+    cross, drive, fallback, lin, pack, sq3, unpack_q19, KLight, Out, PhongKernel, CHUNK, MAX_LIGHTS,
 };
 use crate::num::wide::wmul;
 use crate::num::Real;
@@ -70,15 +71,7 @@ impl<R: Real> PhongKernel<'_, R> {
         mut out: impl Out,
     ) -> u32 {
         if len < SHORT_SPAN {
-            let mut passed = 0;
-            for i in 0..len {
-                if out.test(i) {
-                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(i as i32)));
-                    out.write(i, unpack(self.multi_exact(ni, n, dn, i)));
-                    passed += 1;
-                }
-            }
-            return passed;
+            return short_span(n, dn, len, &mut out, |ni, i| self.multi_exact(ni, n, dn, i));
         }
         let mut st: States =
             core::array::from_fn(|j| self.lights.get(j).map(|l| self.one_begin(l, n, dn)));
@@ -121,10 +114,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let nn32 = match plans[0] {
             Some(Plan::Spec(nn, ..) | Plan::NoSpec(nn, ..)) if !exact => nn,
             _ => {
-                for (j, o) in (i..i + k).zip(buf.iter_mut()) {
-                    let nj = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
-                    *o = self.multi_exact(nj, n, dn, j);
-                }
+                exact_chunk(n, dn, i, k, buf, |nj, j| self.multi_exact(nj, n, dn, j));
                 return false;
             }
         };

@@ -23,7 +23,7 @@
 
 use super::{
     cross, drive, fallback, lin, pack, quad, sq3, unpack, KLight, Out, PhongKernel, CHUNK, RS,
-    SPEC_SEGMENTS,
+    RSQRT_N, SPEC_SEGMENTS,
 };
 use crate::num::wide::wmul;
 use crate::num::Real;
@@ -64,6 +64,77 @@ pub(super) fn rsq(nn: i32) -> u32 {
     let (a, b) = (RS[j], RS[j + 1]);
     let t = ((nn as u32) >> 8) & 0xFFFF;
     a - (((a - b) * t) >> 16)
+}
+
+/// [`RS`] packed for the 32-bit loop: entry `j` is `RS[j] << 14 |
+/// (RS[j] - RS[j + 1])` (`RS[j] <= 2^17`, differences below `2^14`,
+/// checked when it is built), one load a pixel for both values.
+pub(super) const RS_PACKED: [u32; RSQRT_N] = {
+    let mut t = [0u32; RSQRT_N];
+    let mut j = 0;
+    while j < RSQRT_N {
+        let (a, b) = (RS[j], RS[j + 1]);
+        assert!(a <= 1 << 17 && b <= a && a - b < 1 << 14);
+        t[j] = a << 14 | (a - b);
+        j += 1;
+    }
+    t
+};
+
+/// [`rsq`] of `|n|²` from `nb = |n|² - 1/4` (Q30, within `[0, 1)`) and
+/// [`RS_PACKED`] (the table passed in, so that its address stays in a
+/// register through the loop): the same value.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+pub(super) fn rsq_biased(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
+    let e = rs[((nb as u32) >> 24) as usize & (RSQRT_N - 1)];
+    let t = ((nb as u32) >> 8) & 0xFFFF;
+    (e >> 14) - (((e & 0x3FFF) * t) >> 16)
+}
+
+/// The normal `n + i·dn` of pixel `i` (wrapping, as the loops step it).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap)]
+fn normal_at(n: [i32; 3], dn: [i32; 3], i: u32) -> [i32; 3] {
+    [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(i as i32)))
+}
+
+/// A span shorter than [`SHORT_SPAN`] (one light or several): the depth
+/// test of each pixel first, then `exact(normal, i)` (the colour `r | g
+/// << 8 | b << 16` of pixel `i` in 64 bits) for the passing ones alone,
+/// without span or chunk set-up; returns how many passed.
+#[inline(always)]
+pub(super) fn short_span(
+    n: [i32; 3],
+    dn: [i32; 3],
+    len: u32,
+    out: &mut impl Out,
+    exact: impl Fn([i32; 3], u32) -> u32,
+) -> u32 {
+    let mut passed = 0;
+    for i in 0..len {
+        if out.test(i) {
+            out.write(i, unpack(exact(normal_at(n, dn, i), i)));
+            passed += 1;
+        }
+    }
+    passed
+}
+
+/// A chunk the 32-bit loop cannot prove (one light or several): the
+/// colours `exact(normal, j)` of its `k` pixels from pixel `i` into `buf`.
+#[inline(always)]
+pub(super) fn exact_chunk(
+    n: [i32; 3],
+    dn: [i32; 3],
+    i: u32,
+    k: u32,
+    buf: &mut [u32; CHUNK],
+    exact: impl Fn([i32; 3], u32) -> u32,
+) {
+    for (j, o) in (i..i + k).zip(buf.iter_mut()) {
+        *o = exact(normal_at(n, dn, j), j);
+    }
 }
 
 /// `v` when it fits `i32`.
@@ -215,17 +286,9 @@ impl<R: Real> PhongKernel<'_, R> {
         mut out: impl Out,
     ) -> u32 {
         if len < SHORT_SPAN {
-            // The depth test first, then the 64-bit path for the passing
-            // pixels alone (no span or chunk set-up).
-            let mut passed = 0;
-            for i in 0..len {
-                if out.test(i) {
-                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(i as i32)));
-                    out.write(i, unpack(self.one_exact(l, ni, n, dn, i)));
-                    passed += 1;
-                }
-            }
-            return passed;
+            return short_span(n, dn, len, &mut out, |ni, i| {
+                self.one_exact(l, ni, n, dn, i)
+            });
         }
         let mut st = self.one_begin(l, n, dn);
         let c = Colour::of(self, l);
@@ -302,20 +365,24 @@ impl<R: Real> PhongKernel<'_, R> {
         } else {
             self.one_plan(st, i, k)
         };
+        // `n·L` is linear: positive at both ends, at every pixel.
+        let lit =
+            |nl: i32, dnl: i32| nl > 0 && i64::from(nl) + i64::from(dnl) * i64::from(k - 1) > 0;
         match plan {
             Plan::Spec(nn32, q32, nl, dnl) => {
-                self.chunk::<true>(k, nn32, q32, nl, dnl, buf);
+                if lit(nl, dnl) {
+                    self.chunk::<true, true>(k, nn32, q32, nl, dnl, buf);
+                } else {
+                    self.chunk::<true, false>(k, nn32, q32, nl, dnl, buf);
+                }
                 true
             }
             Plan::NoSpec(nn32, nl, dnl) => {
-                self.chunk::<false>(k, nn32, (0, 0, 0), nl, dnl, buf);
+                self.chunk::<false, false>(k, nn32, (0, 0, 0), nl, dnl, buf);
                 true
             }
             Plan::Exact => {
-                for (j, o) in (i..i + k).zip(buf.iter_mut()) {
-                    let ni = [0, 1, 2].map(|a| n[a].wrapping_add(dn[a].wrapping_mul(j as i32)));
-                    *o = self.one_exact(l, ni, n, dn, j);
-                }
+                exact_chunk(n, dn, i, k, buf, |ni, j| self.one_exact(l, ni, n, dn, j));
                 false
             }
         }
@@ -378,10 +445,13 @@ impl<R: Real> PhongKernel<'_, R> {
     }
 
     /// `k` light terms (`N·L | sp << 16`) with 32-bit forward differences
-    /// of `|n|²` (Q30) and, with `SPEC`, `Qm` (Q20 segments).
+    /// of `|n|²` (Q30) and, with `SPEC`, `Qm` (Q20 segments); `LIT`: `n·L
+    /// > 0` at every pixel of the chunk (no test a pixel). `|n|²` is
+    /// stepped less `1/4` ([`rsq_biased`]), the table's address held in a
+    /// register: the values of [`PhongKernel::terms`].
     #[inline(always)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_wrap)]
-    pub(super) fn chunk<const SPEC: bool>(
+    pub(super) fn chunk<const SPEC: bool, const LIT: bool>(
         &self,
         k: u32,
         nn: (i32, i32, i32),
@@ -390,13 +460,20 @@ impl<R: Real> PhongKernel<'_, R> {
         dnl: i32,
         buf: &mut [u32; CHUNK],
     ) {
-        let (mut nn, mut nd1, nd2) = nn;
+        let (nn, mut nd1, nd2) = nn;
+        let mut nn = nn.wrapping_sub(1 << 28);
         let (mut q, mut qd1, qd2) = qm;
+        let rs = core::hint::black_box(&RS_PACKED);
         let buf = buf.get_mut(..k as usize).unwrap_or_default();
         // The terms `N·L` and the specular factor (packed: both below
         // 2^16); the channels are the driver's, per passing pixel.
         for o in buf.iter_mut() {
-            let (nl15, sp) = self.terms::<SPEC>(nn, nl, q >> (QM_FRAC - 7));
+            let r = rsq_biased(rs, nn);
+            let (nl15, sp) = if LIT {
+                self.terms_lit::<SPEC>(r, nl, q >> (QM_FRAC - 7))
+            } else {
+                self.terms_r::<SPEC>(r, nl, q >> (QM_FRAC - 7))
+            };
             *o = (nl15 & 0xFFFF) | sp << 16;
             nn = nn.wrapping_add(nd1);
             nd1 = nd1.wrapping_add(nd2);
@@ -441,22 +518,38 @@ impl<R: Real> PhongKernel<'_, R> {
         // needed below, the products stay below 2^30).
         let nl15 = ((nl.max(0) as u32) >> 15).wrapping_mul(r) >> 16;
         let sp = if SPEC && nl > 0 {
-            let r14 = r >> 2;
-            // 2^14 / |n|² <= 2^16.
-            let rr14 = (r14 * r14) >> 14;
-            // The position (Q7 segments) saturated below 2^15 (256
-            // segments, beyond the table's 1.25 · 128); divided by |n|²
-            // in Q21 segments below 2^31, saturated at the table's end.
-            let qs = q7.clamp(0, (1 << 15) - 1) as u32;
-            let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
-            let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
-            let f = (pos >> 5) & 0xFFFF;
-            let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
-            a - (((a - b) * f) >> 16)
+            self.spec_r(r, q7)
         } else {
             0
         };
         (nl15, sp)
+    }
+
+    /// [`PhongKernel::terms_r`] for `n·L > 0` (no test): the same values.
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss)]
+    pub(super) fn terms_lit<const SPEC: bool>(&self, r: u32, nl: i32, q7: i32) -> (u32, u32) {
+        let nl15 = ((nl as u32) >> 15).wrapping_mul(r) >> 16;
+        let sp = if SPEC { self.spec_r(r, q7) } else { 0 };
+        (nl15, sp)
+    }
+
+    /// The specular factor of [`PhongKernel::terms_r`] (`n·L > 0`).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+    pub(super) fn spec_r(&self, r: u32, q7: i32) -> u32 {
+        let r14 = r >> 2;
+        // 2^14 / |n|² <= 2^16.
+        let rr14 = (r14 * r14) >> 14;
+        // The position (Q7 segments) saturated below 2^15 (256
+        // segments, beyond the table's 1.25 · 128); divided by |n|²
+        // in Q21 segments below 2^31, saturated at the table's end.
+        let qs = q7.clamp(0, (1 << 15) - 1) as u32;
+        let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
+        let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
+        let f = (pos >> 5) & 0xFFFF;
+        let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
+        a - (((a - b) * f) >> 16)
     }
 
     /// The colour (`r | g << 8 | b << 16`) of the light terms of
@@ -563,6 +656,28 @@ mod tests {
             }
         }
         assert_eq!(checked, 12_000);
+    }
+
+    /// The packed table from `|n|² - 1/4` gives [`rsq`]'s value at every
+    /// `|n|²` of `[1/4, 5/4)` on a grid of `2^6` (Q30) and at each
+    /// segment's ends.
+    #[test]
+    fn packed_rsq_is_rsq() {
+        let mut checked = 0u32;
+        let mut nn = 1i32 << 28;
+        while nn < 5 << 28 {
+            for v in [nn, nn + 63, nn | 0xFF_FFFF] {
+                if v < 5 << 28 {
+                    assert_eq!(rsq_biased(&RS_PACKED, v - (1 << 28)), rsq(v), "{v}");
+                    checked += 1;
+                }
+            }
+            nn += 1 << 6;
+        }
+        assert_eq!(checked, 3 << 24);
+        // 2^16 / |n| at |n|² = 1/4 and 1 (RS's ends of the range).
+        assert_eq!(rsq_biased(&RS_PACKED, 0), 1 << 17);
+        assert_eq!(rsq_biased(&RS_PACKED, 3 << 28), 1 << 16);
     }
 
     /// `advance` by `k` steps is `k` single steps, wrapping (the set-up

@@ -23,6 +23,32 @@ struct Case {
     viewer: Viewer,
 }
 
+/// A case of random material (colour, `ka`, `kd`, `ks`, then shininess
+/// 1 to 10 000 when `high`, else to 200) and ambient, drawn from `f` in
+/// that order, with `lights`, `specular` and `viewer`.
+fn random_case(
+    f: &mut impl FnMut(f64, f64) -> f64,
+    lights: Vec<Light<Q16>>,
+    high: bool,
+    specular: Specular,
+    viewer: Viewer,
+) -> Case {
+    let mat = Material {
+        color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
+        ka: q(f(0.0, 0.5)),
+        kd: q(f(0.0, 1.0)),
+        ks: q(f(0.0, 1.0)),
+        shininess: q(f(1.0, if high { 10_000.0 } else { 200.0 })),
+    };
+    Case {
+        mat,
+        lights,
+        ambient: q(f(0.0, 0.4)),
+        specular,
+        viewer,
+    }
+}
+
 fn to64(v: Vec3<Q16>) -> Vec3<f64> {
     Vec3::new(v.x.to_f64(), v.y.to_f64(), v.z.to_f64())
 }
@@ -200,23 +226,12 @@ fn random_spans_against_f64() {
             l.color = v3(f(0.3, 1.0), f(0.3, 1.0), f(0.3, 1.0));
             lights.push(l);
         }
-        let c = Case {
-            mat: Material {
-                color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
-                ka: q(f(0.0, 0.5)),
-                kd: q(f(0.0, 1.0)),
-                ks: q(f(0.0, 1.0)),
-                shininess: q(f(1.0, if it % 3 == 0 { 10_000.0 } else { 200.0 })),
-            },
-            lights,
-            ambient: q(f(0.0, 0.4)),
-            specular: if it % 3 == 1 {
-                Specular::Blinn
-            } else {
-                Specular::Phong
-            },
-            viewer,
+        let specular = if it % 3 == 1 {
+            Specular::Blinn
+        } else {
+            Specular::Phong
         };
+        let c = random_case(&mut f, lights, it % 3 == 0, specular, viewer);
         let n0 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
         let n1 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
         let len = 1 + f(0.0, 79.99) as i32;
@@ -258,23 +273,12 @@ fn several_directional_lights_against_f64() {
             l.color = v3(f(0.3, 1.0), f(0.3, 1.0), f(0.3, 1.0));
             lights.push(l);
         }
-        let c = Case {
-            mat: Material {
-                color: v3(f(0.0, 1.0), f(0.0, 1.0), f(0.0, 1.0)),
-                ka: q(f(0.0, 0.5)),
-                kd: q(f(0.0, 1.0)),
-                ks: q(f(0.0, 1.0)),
-                shininess: q(f(1.0, if it % 3 == 0 { 10_000.0 } else { 200.0 })),
-            },
-            lights,
-            ambient: q(f(0.0, 0.4)),
-            specular: if it % 2 == 1 {
-                Specular::Blinn
-            } else {
-                Specular::Phong
-            },
-            viewer: Viewer::Infinite,
+        let specular = if it % 2 == 1 {
+            Specular::Blinn
+        } else {
+            Specular::Phong
         };
+        let c = random_case(&mut f, lights, it % 3 == 0, specular, Viewer::Infinite);
         let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
         assert!(
             PhongKernel::new(&shade).unwrap().multi.is_some(),
@@ -661,4 +665,113 @@ fn rsqrt64_within_max_error() {
         worst > RSQRT64_MAX_ERROR / 4.0,
         "2^{lg:.2}: the bound is tight"
     );
+}
+
+/// [`PosPlane::start`] against the exact plane through the three vertices
+/// (`f64`, exact for these magnitudes): at pixel `i` of a span, the start
+/// stepped by the rounded gradient `dp` lies within `½ + |i - h| · |dp -
+/// g| + (1 + |Δx| + |Δy|) · (2^-13 + G · 2^-28) + 2^-12` raw units of it
+/// (the bound on [`PosPlane`]), on random triangles of up to 4096 pixels
+/// with positions within `±2^28` raw and spans within the triangle's box.
+#[test]
+fn plane_start_error() {
+    let mut seed = 0x05ee_d0f9_1a4e_u64;
+    let sub = crate::num::SubpixelBits::DEFAULT;
+    let sc = f64::from(1u32 << sub.get());
+    let mut worst_mid = 0.0f64;
+    let mut cases = 0;
+    for _ in 0..4000 {
+        let mut r = |m: u64| (xorshift(&mut seed) % m) as i64;
+        let size = 1 << (2 + r(11));
+        let v: [([i32; 2], [i32; 3]); 3] = core::array::from_fn(|_| {
+            (
+                [
+                    (r(size * 16) + r(1000) * 16) as i32,
+                    (r(size * 16) + r(1000) * 16) as i32,
+                ],
+                [0; 3].map(|_: i32| (r(1 << 29) - (1 << 28)) as i32),
+            )
+        });
+        let p = PosPlane::new(v, sub);
+        let ([x0, y0], _) = v[0];
+        let d = [
+            f64::from(v[1].0[0] - x0),
+            f64::from(v[1].0[1] - y0),
+            f64::from(v[2].0[0] - x0),
+            f64::from(v[2].0[1] - y0),
+        ];
+        let area2 = d[0] * d[3] - d[2] * d[1];
+        if area2 == 0.0 {
+            assert_eq!(p, PosPlane::NONE);
+            continue;
+        }
+        let exact = |k: usize, x: f64, y: f64| {
+            let a = |j: usize| f64::from(v[j].1[k]);
+            let (d1, d2) = (a(1) - a(0), a(2) - a(0));
+            let gx = (d1 * d[3] - d2 * d[1]) / area2;
+            let gy = (d2 * d[0] - d1 * d[2]) / area2;
+            let (px, py) = (x * sc + sc / 2.0, y * sc + sc / 2.0);
+            (
+                a(0) + gx * (px - f64::from(x0)) + gy * (py - f64::from(y0)),
+                gx * sc,
+            )
+        };
+        if !p.ok {
+            // Only for gradients of 2^28 raw a pixel or more.
+            let big = (0..3).any(|k| {
+                let (b, gx) = exact(k, 0.0, 0.0);
+                let gy = exact(k, 0.0, 1.0).0 - b;
+                gx.abs().max(gy.abs()) >= (1u64 << 28) as f64 - 1.0
+            });
+            assert!(big, "{v:?}");
+            continue;
+        }
+        cases += 1;
+        let xs = v.map(|c| i64::from(c.0[0]) >> sub.get());
+        let ys = v.map(|c| i64::from(c.0[1]) >> sub.get());
+        let (xlo, xhi) = (*xs.iter().min().unwrap(), *xs.iter().max().unwrap());
+        let (ylo, yhi) = (*ys.iter().min().unwrap(), *ys.iter().max().unwrap());
+        for _ in 0..4 {
+            let mut r = |m: i64| (xorshift(&mut seed) % m.max(1) as u64) as i64;
+            let y = ylo + r(yhi - ylo + 1);
+            let xa = xlo + r(xhi - xlo + 1);
+            let len = 1 + r(xhi - xa + 1) as u32;
+            let dp: [i32; 3] = core::array::from_fn(|k| exact(k, 0.0, 0.0).1.round() as i32);
+            let start = p.start(xa as i32, y as i32, len, [0; 3], dp);
+            let h = (len - 1) / 2;
+            for i in [0, h, len - 1] {
+                for k in 0..3 {
+                    let (e, g) = exact(k, (xa + i64::from(i)) as f64, y as f64);
+                    let got = f64::from(start[k]) + f64::from(i) * f64::from(dp[k]);
+                    let off = (f64::from(i) - f64::from(h)).abs();
+                    let gm = (0..3)
+                        .map(|k| exact(k, 0.0, 0.0).1.abs())
+                        .chain((0..3).map(|k| {
+                            let (a, _) = exact(k, 1.0, 0.0);
+                            let (b, _) = exact(k, 0.0, 0.0);
+                            let (c, _) = exact(k, 0.0, 1.0);
+                            (a - b).abs().max((c - b).abs())
+                        }))
+                        .fold(0.0, f64::max);
+                    let far = 1.0
+                        + ((xa + i64::from(h)) - (i64::from(x0) >> sub.get())).abs() as f64
+                        + (y - (i64::from(y0) >> sub.get())).abs() as f64;
+                    let plane = far * (1.0 / 8192.0 + gm / (1u64 << 28) as f64) + 1.0 / 4096.0;
+                    let bound = 0.5 + off * (f64::from(dp[k]) - g).abs() + plane;
+                    // Modulo 2^32 (wrapping beyond the triangle).
+                    let m = (got - e).rem_euclid(4_294_967_296.0);
+                    let err = m.min(4_294_967_296.0 - m);
+                    assert!(
+                        err <= bound,
+                        "{v:?} x {xa} y {y} len {len} i {i}: {err} > {bound}"
+                    );
+                    if i == h {
+                        worst_mid = worst_mid.max(err - plane);
+                    }
+                }
+            }
+        }
+    }
+    std::println!("plane start: {cases} triangles, worst at the middle {worst_mid:.4} raw");
+    assert!(cases > 3000 && worst_mid <= 0.5);
 }
