@@ -1,13 +1,13 @@
 //! Integer kernels of the `fast` profiles' vertex path: raw Q16.16 values
 //! in `i32`, mesh data in Q1.14 (`i16`). Used for the scalars that run
-//! them ([`Real::q16_kernels`]); every kernel is exact integer arithmetic
+//! them ([`Q16Kernels`](crate::num::Q16Kernels)); every kernel is exact integer arithmetic
 //! up to one stated rounding, so all targets compute the same bits (the
 //! ARMv6-M variants are tested against the generic ones).
 
 use super::Affine;
 use crate::num::approx16::{recip_mant, rsqrt_newton};
 use crate::num::wide::{clz32, wmul, wmul_u32};
-use crate::num::Real;
+use crate::num::{Kernels, Raw16, Real};
 
 /// Largest matrix entry magnitude (exclusive) of the integer transform:
 /// 256 (a model scale up to about 256). Larger transforms use the generic
@@ -78,7 +78,11 @@ impl Xform16 {
     /// The integer form of `a`, or `None` when the scalar is not `Q16` or
     /// an entry of the linear part reaches 256.
     pub(crate) fn new<R: Real>(a: &Affine<R>) -> Option<Self> {
-        let q = R::q16_kernels()?;
+        R::Kernels::pick(|q| Self::of_raw(q, a), || None)
+    }
+
+    /// [`Xform16::new`] of a `Q16` transform.
+    fn of_raw<R: Real>(q: Raw16<R>, a: &Affine<R>) -> Option<Self> {
         let raw = |v: R| q.raw(v);
         let m = a.m.rows.map(|r| [raw(r.x), raw(r.y), raw(r.z)]);
         if m.iter().flatten().any(|v| v.unsigned_abs() >= M_LIMIT) {
