@@ -30,7 +30,7 @@
 use crate::geom::Vec3;
 use crate::num::approx16;
 use crate::num::wide::wmul;
-use crate::num::{Kernels, Real};
+use crate::num::{Kernels, Raw16, Real};
 use core::fmt;
 
 /// Raw Q16 one.
@@ -290,17 +290,25 @@ impl<R: Real> Shade<R> {
     /// path with a specular term: `Shade::at_q16` there moved
     /// `dodeca-flat-n100`'s mean error against the `f64` twin to 0.14
     /// level, above its 0.08 budget; the per-pixel Phong shader uses it.)
+    ///
+    /// Out of line: one call per vertex or face, and its callers keep
+    /// their registers (inlined, it cost the `fast` face colour 9
+    /// instructions a face).
+    #[inline(never)]
     pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
-        R::Kernels::pick(
-            |q| match self.has_specular {
-                false => match self.diffuse_q16(raw3(n), p) {
-                    Some(c) => Vec3::new(q.from_raw(c[0]), q.from_raw(c[1]), q.from_raw(c[2])),
-                    None => self.at_generic(n, p),
-                },
-                true => self.at_generic(n, p),
-            },
-            || self.at_generic(n, p),
-        )
+        R::Kernels::pick(|q| self.at_q16_diffuse(q, n, p), || self.at_generic(n, p))
+    }
+
+    /// [`Shade::at`] for `Q16`: the diffuse sum by [`Shade::diffuse_q16`]
+    /// where it answers, else the generic code.
+    #[inline(always)]
+    fn at_q16_diffuse(&self, q: Raw16<R>, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
+        if !self.has_specular {
+            if let Some(c) = self.diffuse_q16(raw3(n), p) {
+                return Vec3::new(q.from_raw(c[0]), q.from_raw(c[1]), q.from_raw(c[2]));
+            }
+        }
+        self.at_generic(n, p)
     }
 
     /// [`Shade::at`] without a specular term, for `Q16` on raw values
@@ -534,6 +542,26 @@ impl<R: Real> ObjectLight<R> {
         }
     }
 
+    /// Adds `diffuse · nl` to `sum` (its first channel when `mono`) by
+    /// `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| < 2^24
+    /// checked when built, |N·L| <= 2^17 for unit vectors); `false` (the
+    /// caller adds) when `nl` is beyond that range.
+    #[inline(always)]
+    fn add_q16(q: Raw16<R>, t: &ObjTerm<R>, nl: R, mono: bool, sum: &mut Vec3<R>) -> bool {
+        let nlr = q.raw(nl);
+        if nlr.unsigned_abs() > SMALL {
+            return false;
+        }
+        let d = raw3(t.diffuse);
+        let p = |c: i32| q.from_raw(mul16_small(c, nlr));
+        if mono {
+            sum.x += p(d[0]);
+        } else {
+            *sum = *sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
+        }
+        true
+    }
+
     /// The colour, each channel clamped to `[0, 1]`, of a surface with
     /// object-space Q1.14 unit normal `n` (reversed when `flip`); only the
     /// first channel when `mono` (the others are then copies of it).
@@ -545,32 +573,14 @@ impl<R: Real> ObjectLight<R> {
             if nl <= R::ZERO {
                 continue;
             }
-            let generic = |sum: Vec3<R>| {
-                if mono {
-                    Vec3::new(sum.x + t.diffuse.x * nl, sum.y, sum.z)
-                } else {
-                    sum + t.diffuse.scale(nl)
-                }
-            };
-            sum = R::Kernels::pick(
-                |q| {
-                    // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse|
-                    // < 2^24 checked when built, |N·L| <= 2^17 for unit
-                    // vectors).
-                    let nlr = q.raw(nl);
-                    if nlr.unsigned_abs() > SMALL {
-                        return generic(sum);
-                    }
-                    let d = raw3(t.diffuse);
-                    let p = |c: i32| q.from_raw(mul16_small(c, nlr));
-                    if mono {
-                        Vec3::new(sum.x + p(d[0]), sum.y, sum.z)
-                    } else {
-                        sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]))
-                    }
-                },
-                || generic(sum),
-            );
+            if R::Kernels::pick(|q| Self::add_q16(q, t, nl, mono, &mut sum), || false) {
+                continue;
+            }
+            if mono {
+                sum.x += t.diffuse.x * nl;
+            } else {
+                sum = sum + t.diffuse.scale(nl);
+            }
         }
         if mono {
             let x = clamp01(sum.x);

@@ -151,12 +151,16 @@ impl<R: Real> Vec3<R> {
     /// for `Q16` vectors with components up to 2 and lengths from 1/2
     /// (per-vertex and per-face code of the geometry; kept apart from
     /// `normalize` so that the rasterizer's code is not changed).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn normalize_geom(self) -> Self {
-        R::Kernels::pick(
-            |q| unit_q16_small(q, self).unwrap_or_else(|| self.normalize()),
-            || self.normalize(),
-        )
+        R::Kernels::pick(|q| self.normalize_q16(q), || self.normalize())
+    }
+
+    /// [`normalize_geom`](Self::normalize_geom) for `Q16`: the 32-bit
+    /// form where it applies, else [`normalize`](Self::normalize).
+    #[inline(never)]
+    fn normalize_q16(self, q: Raw16<R>) -> Self {
+        unit_q16_small(q, self).unwrap_or_else(|| self.normalize())
     }
 
     /// `true` when every component is exactly zero.
