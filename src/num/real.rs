@@ -230,3 +230,33 @@ impl<R: Real> Raw16<R> {
         R::from_fixed_i32(b, 16)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Kernels, Raw16, Real};
+    use crate::num::{Q16, Q32};
+
+    fn kernels<R: Real>() -> &'static str {
+        R::Kernels::pick(|_| "q16", || "generic")
+    }
+
+    /// Each scalar type runs its own kernels: the integer ones for `Q16`
+    /// only.
+    #[test]
+    fn kernels_by_type() {
+        assert_eq!(kernels::<Q16>(), "q16");
+        assert_eq!(kernels::<Q32>(), "generic");
+        assert_eq!(kernels::<f32>(), "generic");
+        assert_eq!(kernels::<f64>(), "generic");
+    }
+
+    /// `Raw16` reads and writes `Q16`'s bits exactly.
+    #[test]
+    fn raw16_is_exact() {
+        let q = Raw16::<Q16>::Q16;
+        for b in [i32::MIN, -65_537, -1, 0, 1, 3, 65_536, 0x1234_5678, i32::MAX] {
+            assert_eq!(q.raw(Q16::from_bits(b)), b);
+            assert_eq!(q.from_raw(b), Q16::from_bits(b));
+        }
+    }
+}
