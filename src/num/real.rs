@@ -254,7 +254,17 @@ mod tests {
     #[test]
     fn raw16_is_exact() {
         let q = Raw16::<Q16>::Q16;
-        for b in [i32::MIN, -65_537, -1, 0, 1, 3, 65_536, 0x1234_5678, i32::MAX] {
+        for b in [
+            i32::MIN,
+            -65_537,
+            -1,
+            0,
+            1,
+            3,
+            65_536,
+            0x1234_5678,
+            i32::MAX,
+        ] {
             assert_eq!(q.raw(Q16::from_bits(b)), b);
             assert_eq!(q.from_raw(b), Q16::from_bits(b));
         }
