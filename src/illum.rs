@@ -756,36 +756,28 @@ pub(crate) struct RawTerm {
     pub(crate) specular: [i32; 3],
 }
 
+/// A [`Shade`] as raw `Q16` bits ([`Shade::raw_q16`]): ambient, lights,
+/// shininess (Q16), whether the specular term is on, its model and the
+/// viewer.
+pub(crate) type RawShade = (
+    [i32; 3],
+    heapless::Vec<RawTerm, MAX_LIGHTS>,
+    i32,
+    bool,
+    Specular,
+    Viewer,
+);
+
 impl<R: Real> Shade<R> {
     /// The folded material and lights as raw `Q16` bits (`None` unless
     /// `R` is `Q16`, [`Q16Kernels`](crate::num::Q16Kernels)): ambient, lights, shininess
     /// (Q16), whether the specular term is on, its model and the viewer.
-    #[allow(clippy::type_complexity)]
-    pub(crate) fn raw_q16(
-        &self,
-    ) -> Option<(
-        [i32; 3],
-        heapless::Vec<RawTerm, MAX_LIGHTS>,
-        i32,
-        bool,
-        Specular,
-        Viewer,
-    )> {
+    pub(crate) fn raw_q16(&self) -> Option<RawShade> {
         R::Kernels::pick(|_| Some(self.raw_parts()), || None)
     }
 
     /// [`Shade::raw_q16`] of a `Q16` shade.
-    #[allow(clippy::type_complexity)]
-    fn raw_parts(
-        &self,
-    ) -> (
-        [i32; 3],
-        heapless::Vec<RawTerm, MAX_LIGHTS>,
-        i32,
-        bool,
-        Specular,
-        Viewer,
-    ) {
+    fn raw_parts(&self) -> RawShade {
         let mut terms = heapless::Vec::new();
         for t in &self.terms {
             // Never fails: as many terms as `self.terms` holds.

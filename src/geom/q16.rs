@@ -316,24 +316,7 @@ pub(crate) struct Proj16 {
     clippy::cast_possible_wrap
 )]
 fn shr_round_clamp(p: i64, s: u32, lim: i32) -> i32 {
-    // round(p / 2^s) ties up = floor((p + 2^(s-1)) / 2^s); |p| < 2^62,
-    // so the sum fits.
-    let (mut hi, mut lo) = ((p >> 32) as i32, p as u32);
-    let k = s.wrapping_sub(1) & 63;
-    if k < 32 {
-        let (l, carry) = lo.overflowing_add(1 << k);
-        lo = l;
-        hi = hi.wrapping_add(i32::from(carry));
-    } else {
-        hi = hi.wrapping_add(1 << (k & 31));
-    }
-    let s = s & 63;
-    let (rhi, rlo) = if s < 32 {
-        let up = ((hi as u32) << 1) << (31 - (s & 31));
-        (hi >> (s & 31), (lo >> (s & 31)) | up)
-    } else {
-        (hi >> 31, (hi >> ((s - 32) & 31)) as u32)
-    };
+    let (rhi, rlo) = shr_round_halves(p, s);
     let r = rlo as i32;
     // The value fits `i32` iff the high half is the sign of the low.
     let v = if rhi == r >> 31 {
@@ -356,6 +339,20 @@ fn shr_round_clamp(p: i64, s: u32, lim: i32) -> i32 {
     clippy::cast_possible_wrap
 )]
 fn shr_round(p: i64, s: u32) -> i32 {
+    // The low half of the rounded quotient: the value, as it fits.
+    shr_round_halves(p, s).1 as i32
+}
+
+/// `floor((p + 2^(s-1)) / 2^s)` (`round(p / 2^s)`, ties up), `s` in
+/// `1..=62`, `|p| < 2^62` (the sum fits), as its high and low 32-bit
+/// halves, computed in 32-bit halves.
+#[inline(always)]
+#[allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    clippy::cast_possible_wrap
+)]
+fn shr_round_halves(p: i64, s: u32) -> (i32, u32) {
     let (mut hi, mut lo) = ((p >> 32) as i32, p as u32);
     let k = s.wrapping_sub(1) & 63;
     if k < 32 {
@@ -368,9 +365,9 @@ fn shr_round(p: i64, s: u32) -> i32 {
     let s = s & 63;
     if s < 32 {
         let up = ((hi as u32) << 1) << (31 - (s & 31));
-        ((lo >> (s & 31)) | up) as i32
+        (hi >> (s & 31), (lo >> (s & 31)) | up)
     } else {
-        hi >> ((s - 32) & 31)
+        (hi >> 31, (hi >> ((s - 32) & 31)) as u32)
     }
 }
 
