@@ -17,13 +17,13 @@ use embedded_graphics_core::geometry::Size;
 use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor, Rgb565};
 use embedded_graphics_simulator::{BinaryColorTheme, OutputSettingsBuilder, SimulatorDisplay};
 use fixshade::geom::{radians, Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::illum::{Light, Material};
 use fixshade::mesh::shapes::DODECAHEDRON;
 use fixshade::num::{Fast, Real, Q16};
 use fixshade::render::{prepare, BandState, Capacity, Layout, Pool, Reach, RenderError};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::eg::{draw_band_with, FromShaded, Levels};
-use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
+use fixshade::target::{BandBuf, Rgb565Be};
 use std::error::Error;
 
 /// The dodecahedron's capacities (Phong with the eye position; the camera
@@ -70,15 +70,7 @@ fn render_to<C: PixelColor + FromShaded>(
         cull_backfaces: true,
     }];
     let lights = [Light::point(v(2, 2, 4), q(1, 1))];
-    let scene = Scene {
-        camera,
-        objects: &objects,
-        lights: &lights,
-        ambient: q(1, 1),
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    };
+    let scene = Scene::new(camera, &objects, &lights, q(1, 1));
     let mut store = <fixshade::storage!(i32, CAPACITY)>::EMPTY;
     let (ws, order) = store.split();
     let frame = prepare::<Fast>(&scene, w, h, ws)?;

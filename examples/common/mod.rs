@@ -3,12 +3,11 @@
 //! the storage of its prepared frame.
 
 use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::illum::{Light, Material};
 use fixshade::mesh::shapes::BUNNY;
 use fixshade::num::Real;
 use fixshade::render::{Capacity, Layout, Reach};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
-use fixshade::target::Rgb8;
 
 /// The bunny's capacities: every vertex and triangle, colour Gouraud (the
 /// camera never clips it).
@@ -64,14 +63,6 @@ impl<R: Real> Bunny<R> {
 
     /// The scene.
     pub fn scene(&self) -> Scene<'_, 'static, R> {
-        Scene {
-            camera: self.camera,
-            objects: &self.objects,
-            lights: &self.lights,
-            ambient: R::from_f32(0.2),
-            specular: Specular::Phong,
-            viewer: Viewer::Local,
-            background: Rgb8::BLACK,
-        }
+        Scene::new(self.camera, &self.objects, &self.lights, R::from_f32(0.2))
     }
 }

@@ -7,12 +7,11 @@
 //! very capacities (fit, active-triangle peak).
 
 use fixshade::geom::{radians, Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::illum::{Light, Material};
 use fixshade::mesh::DODECAHEDRON;
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::render::{Capacity, Layout, Pool, Reach};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
-use fixshade::target::Rgb8;
 
 /// Screen width (pixels).
 pub const W: u32 = 128;
@@ -109,13 +108,5 @@ pub fn scene<'s>(
     objects: &'s [Object<'static, Q16>],
     lights: &'s [Light<Q16>],
 ) -> Scene<'s, 'static, Q16> {
-    Scene {
-        camera,
-        objects,
-        lights,
-        ambient: q(1, 1),
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    }
+    Scene::new(camera, objects, lights, q(1, 1))
 }

@@ -9,12 +9,11 @@
 //! very capacities (fit, active-triangle peak, frame CRCs).
 
 use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::illum::{Light, Material};
 use fixshade::mesh::BUNNY;
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::render::{Capacity, Layout, Pool, Reach};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
-use fixshade::target::Rgb8;
 
 /// Screen width and height (pixels).
 pub const W: u32 = 240;
@@ -117,13 +116,5 @@ pub fn scene<'s>(
     objects: &'s [Object<'static, Q16>],
     lights: &'s [Light<Q16>],
 ) -> Scene<'s, 'static, Q16> {
-    Scene {
-        camera,
-        objects,
-        lights,
-        ambient: Q16::from_bits(13_107), // 0.2
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    }
+    Scene::new(camera, objects, lights, Q16::from_bits(13_107)) // ambient 0.2
 }
