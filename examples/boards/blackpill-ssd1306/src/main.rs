@@ -24,6 +24,7 @@ use panic_probe as _;
 use cortex_m::peripheral::DWT;
 use fixshade::num::Fast;
 use fixshade::render::{prepare, BandState, RenderError};
+use fixshade::scene::Scene;
 use fixshade::target::eg::{draw_band_with, Levels};
 use fixshade::target::{BandBuf, Gray8};
 use ssd1306::{prelude::*, I2CDisplayInterface, Ssd1306};
@@ -79,7 +80,7 @@ fn main() -> ! {
     loop {
         let t0 = DWT::cycle_count();
         let objects = scene::objects(i);
-        let scene = scene::scene(camera, &objects, &lights);
+        let scene = Scene::new(camera, &objects, &lights, scene::AMBIENT);
         let (ws, order) = store.split();
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,

@@ -11,7 +11,7 @@ use fixshade::illum::{Light, Material};
 use fixshade::mesh::DODECAHEDRON;
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::render::{Capacity, Layout, Pool, Reach};
-use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
+use fixshade::scene::{Camera, Object, SceneError, Shading};
 
 /// Screen width (pixels).
 pub const W: u32 = 128;
@@ -102,11 +102,6 @@ pub fn objects(i: i32) -> [Object<'static, Q16>; 1] {
     }]
 }
 
-/// The scene of `objects` and `lights` seen by `camera`.
-pub fn scene<'s>(
-    camera: Camera<Q16>,
-    objects: &'s [Object<'static, Q16>],
-    lights: &'s [Light<Q16>],
-) -> Scene<'s, 'static, Q16> {
-    Scene::new(camera, objects, lights, q(1, 1))
-}
+/// The ambient intensity of the scene (`Scene::new` of the camera,
+/// [`objects`] and [`lights`]): 1.
+pub const AMBIENT: Q16 = q(1, 1);

@@ -32,6 +32,7 @@ use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::{SpiBus, MODE_0};
 use fixshade::num::Fast;
 use fixshade::render::{prepare, BandState};
+use fixshade::scene::Scene;
 use fixshade::target::{BandBuf, Rgb565Be};
 use fugit::RateExtU32;
 use hal::dma::{single_buffer, Channel, DMAExt, CH0};
@@ -233,7 +234,7 @@ fn main() -> ! {
     loop {
         let t0 = timer.get_counter();
         let objects = scene::objects(i);
-        let scene = scene::scene(camera, &objects, &lights);
+        let scene = Scene::new(camera, &objects, &lights, scene::AMBIENT);
         let (ws, order) = store.split();
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,

@@ -13,7 +13,7 @@ use fixshade::illum::{Light, Material};
 use fixshade::mesh::BUNNY;
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::render::{Capacity, Layout, Pool, Reach};
-use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
+use fixshade::scene::{Camera, Object, SceneError, Shading};
 
 /// Screen width and height (pixels).
 pub const W: u32 = 240;
@@ -110,11 +110,6 @@ pub fn objects(i: i32) -> [Object<'static, Q16>; 1] {
     }]
 }
 
-/// The scene of `objects` and `lights` seen by `camera`.
-pub fn scene<'s>(
-    camera: Camera<Q16>,
-    objects: &'s [Object<'static, Q16>],
-    lights: &'s [Light<Q16>],
-) -> Scene<'s, 'static, Q16> {
-    Scene::new(camera, objects, lights, Q16::from_bits(13_107)) // ambient 0.2
-}
+/// The ambient intensity of the scene (`Scene::new` of the camera,
+/// [`objects`] and [`lights`]): 0.2.
+pub const AMBIENT: Q16 = Q16::from_bits(13_107);

@@ -1,5 +1,6 @@
 use fixshade::num::Fast;
 use fixshade::render::{prepare, BandState, Capacity, Frame, Workspace};
+use fixshade::scene::Scene;
 use fixshade::target::{BandBuf, Depth16, DepthFormat, Gray8, PixelFormat, Rgb565Be};
 use fixshade_scenes::Crc32;
 
@@ -116,7 +117,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     let mut turn = Vec::new();
     for i in 0..FRAMES {
         let objects = objects(i);
-        let scene = scene(camera, &objects, &lights);
+        let scene = Scene::new(camera, &objects, &lights, AMBIENT);
         let (ws, order) = store.split();
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
         let u =
@@ -171,7 +172,7 @@ fn blackpill_turn_fits() {
     let mut turn = Vec::new();
     for i in 0..FRAMES {
         let objects = objects(i);
-        let scene = scene(camera, &objects, &lights);
+        let scene = Scene::new(camera, &objects, &lights, AMBIENT);
         let (ws, order) = store.split();
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
         let u = bands::<Gray8, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut pool, order, W, ROWS);
