@@ -545,26 +545,6 @@ impl<R: Real> ObjectLight<R> {
         }
     }
 
-    /// Adds `diffuse · nl` to `sum` (its first channel when `mono`) by
-    /// `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| < 2^24
-    /// checked when built, |N·L| <= 2^17 for unit vectors); `false` (the
-    /// caller adds) when `nl` is beyond that range.
-    #[inline(always)]
-    fn add_q16(q: Raw16<R>, t: &ObjTerm<R>, nl: R, mono: bool, sum: &mut Vec3<R>) -> bool {
-        let nlr = q.raw(nl);
-        if nlr.unsigned_abs() > SMALL {
-            return false;
-        }
-        let d = raw3(t.diffuse);
-        let p = |c: i32| q.from_raw(mul16_small(c, nlr));
-        if mono {
-            sum.x += p(d[0]);
-        } else {
-            *sum = *sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
-        }
-        true
-    }
-
     /// The colour, each channel clamped to `[0, 1]`, of a surface with
     /// object-space Q1.14 unit normal `n` (reversed when `flip`); only the
     /// first channel when `mono` (the others are then copies of it).
@@ -576,7 +556,24 @@ impl<R: Real> ObjectLight<R> {
             if nl <= R::ZERO {
                 continue;
             }
-            if R::Kernels::pick(|q| Self::add_q16(q, t, nl, mono, &mut sum), || false) {
+            // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| <
+            // 2^24 checked when built, |N·L| <= 2^17 for unit vectors),
+            // where `N·L` is in that range.
+            let small = R::Kernels::pick(
+                |q| {
+                    let nlr = q.raw(nl);
+                    (nlr.unsigned_abs() <= SMALL).then_some((q, nlr))
+                },
+                || None,
+            );
+            if let Some((q, nlr)) = small {
+                let d = raw3(t.diffuse);
+                let p = |c: i32| q.from_raw(mul16_small(c, nlr));
+                if mono {
+                    sum.x += p(d[0]);
+                } else {
+                    sum = sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
+                }
                 continue;
             }
             if mono {
