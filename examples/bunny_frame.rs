@@ -6,38 +6,29 @@
 //! `cargo build --release --example bunny_frame && valgrind --tool=callgrind
 //! --toggle-collect='*one_frame*' target/release/examples/bunny_frame [PROFILE]`
 
-use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
-use fixshade::mesh::shapes::BUNNY;
-use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
-use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
-use fixshade::scene::{Camera, Object, Scene, Shading};
-use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
+mod common;
+
+use common::{Bunny, Store};
+use fixshade::num::{Fast, Precise, Profile, F32, F64};
+use fixshade::render::{prepare, BandState, Pool, RenderError};
+use fixshade::scene::{Scene, Shading};
+use fixshade::target::{BandBuf, Rgb565Be};
 use std::hint::black_box;
 
 struct Mem<L> {
-    xy: Vec<fixshade::render::ScreenXy>,
-    vals: Vec<L>,
-    tris: Vec<Tri>,
-    colors: Vec<fixshade::target::Rgb8>,
+    store: Box<Store<L>>,
     band: Vec<u16>,
     z: Vec<u16>,
-    order: Vec<u16>,
     pool: Box<Pool<L, 64, 8>>,
 }
 
 #[inline(never)]
 fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -> u32 {
-    let ws = Workspace {
-        xy: &mut m.xy,
-        vals: &mut m.vals,
-        tris: &mut m.tris,
-        colors: &mut m.colors,
-    };
+    let (ws, order) = m.store.split();
     let frame = prepare::<P>(scene, 240, 240, ws).expect("prepare");
     let mut crc = 0u32;
     let mut band = BandBuf::<Rgb565Be>::new(&mut m.band, Some(&mut m.z), 240, 16).expect("band");
-    let mut state = BandState::new(&mut m.order, &mut m.pool);
+    let mut state = BandState::new(order, &mut m.pool);
     let stats = frame
         .render_bands(scene, &mut state, &mut band, |b| {
             crc = crc.wrapping_add(b.pixels().len() as u32);
@@ -48,48 +39,12 @@ fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -
 }
 
 fn run<P: Profile>() {
-    let r = |v: f32| P::Real::from_f32(v);
-    let camera = Camera::look_at_f32(
-        [0.0, 0.0, 3.922],
-        [0.0; 3],
-        [0.0, 1.0, 0.0],
-        45.0,
-        1.0,
-        Some(10.0),
-    )
-    .expect("camera");
-    let material = Material {
-        color: Vec3::new(r(1.0), r(1.0), r(1.0)),
-        ka: r(1.0),
-        kd: r(1.0),
-        ks: r(0.0),
-        shininess: r(1.0),
-    };
-    let objects = [Object {
-        mesh: BUNNY,
-        transform: Affine::IDENTITY,
-        material,
-        shading: Shading::Gouraud,
-        cull_backfaces: true,
-    }];
-    let lights = [Light::directional(Vec3::from_f32([1.0, 1.0, 1.0]), r(0.8))];
-    let scene = Scene {
-        camera,
-        objects: &objects,
-        lights: &lights,
-        ambient: r(0.2),
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    };
+    let bunny = Bunny::<P::Real>::new(Shading::Gouraud).expect("camera");
+    let scene = bunny.scene();
     let mut m = Mem {
-        xy: vec![fixshade::render::ScreenXy::ZERO; 4000],
-        vals: vec![P::Lerp::default(); 16000],
-        tris: vec![Tri::default(); 4000],
-        colors: vec![fixshade::target::Rgb8::BLACK; 4000],
+        store: Box::new(Store::EMPTY),
         band: vec![0; 240 * 16],
         z: vec![0; 240 * 16],
-        order: vec![0; 8000],
         pool: Box::new(Pool::new()),
     };
     println!(

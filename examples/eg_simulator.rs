@@ -17,14 +17,19 @@ use embedded_graphics_core::geometry::Size;
 use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor, Rgb565};
 use embedded_graphics_simulator::{BinaryColorTheme, OutputSettingsBuilder, SimulatorDisplay};
 use fixshade::geom::{radians, Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::illum::{Light, Material};
 use fixshade::mesh::shapes::DODECAHEDRON;
 use fixshade::num::{Fast, Real, Q16};
-use fixshade::render::{prepare, BandState, Pool, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Capacity, Layout, Pool, Reach, RenderError};
 use fixshade::scene::{Camera, Object, Scene, Shading};
 use fixshade::target::eg::{draw_band_with, FromShaded, Levels};
-use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
+use fixshade::target::{BandBuf, Rgb565Be};
 use std::error::Error;
+
+/// The dodecahedron's capacities (Phong with the eye position; the camera
+/// never clips it).
+const CAPACITY: Capacity =
+    Capacity::EMPTY.object(&DODECAHEDRON, Layout::PhongPosition, Reach::Inside);
 
 fn render_to<C: PixelColor + FromShaded>(
     display: &mut SimulatorDisplay<C>,
@@ -65,33 +70,15 @@ fn render_to<C: PixelColor + FromShaded>(
         cull_backfaces: true,
     }];
     let lights = [Light::point(v(2, 2, 4), q(1, 1))];
-    let scene = Scene {
-        camera,
-        objects: &objects,
-        lights: &lights,
-        ambient: q(1, 1),
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    };
-    let (mut xy, mut vals, mut tris) = (
-        [fixshade::render::ScreenXy::ZERO; 64],
-        [0i32; 64 * 7],
-        [Tri::default(); 64],
-    );
-    let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
-    let ws = Workspace {
-        xy: &mut xy,
-        vals: &mut vals,
-        tris: &mut tris,
-        colors: &mut colors,
-    };
+    let scene = Scene::new(camera, &objects, &lights, q(1, 1));
+    let mut store = <fixshade::storage!(i32, CAPACITY)>::EMPTY;
+    let (ws, order) = store.split();
     let frame = prepare::<Fast>(&scene, w, h, ws)?;
     let mut pixels = vec![0u16; (w * 16) as usize];
     let mut depth = vec![0u16; (w * 16) as usize];
     let mut band = BandBuf::<Rgb565Be>::new(&mut pixels, Some(&mut depth), w, 16)?;
-    let (mut order, mut pool) = ([0u16; 128], Pool::<i32, 32, 8>::new());
-    let mut state = BandState::new(&mut order, &mut pool);
+    let mut pool = Pool::<i32, 32, 8>::new();
+    let mut state = BandState::new(order, &mut pool);
     let stats = frame.render_bands(&scene, &mut state, &mut band, |b| {
         // The simulator's DrawTarget never fails.
         let _ = draw_band_with(b, display, levels);

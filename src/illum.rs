@@ -30,14 +30,14 @@
 use crate::geom::Vec3;
 use crate::num::approx16;
 use crate::num::wide::wmul;
-use crate::num::Real;
+use crate::num::{Kernels, Raw16, Real};
 use core::fmt;
 
 /// Raw Q16 one.
 const ONE16: i32 = 1 << 16;
 
 /// Raw Q16 bits of a scalar, rounded (exact for `Q16`, the scalar of the
-/// integer kernels, [`Real::q16_kernels`]).
+/// integer kernels, [`Q16Kernels`](crate::num::Q16Kernels)).
 #[inline(always)]
 fn raw<R: Real>(v: R) -> i32 {
     v.to_fixed_i32(16)
@@ -284,18 +284,31 @@ impl<R: Real> Shade<R> {
     /// The colour at eye-space point `p` with unit normal `n`, each channel
     /// clamped to `[0, 1]`.
     ///
-    /// For `Q16` ([`Real::q16_kernels`]) without a specular term the
+    /// For `Q16` ([`Q16Kernels`](crate::num::Q16Kernels)) without a specular term the
     /// diffuse sum runs on raw integers with 32-bit products, bit for bit
     /// the generic result. (Vertex and face lighting keep the generic
     /// path with a specular term: `Shade::at_q16` there moved
     /// `dodeca-flat-n100`'s mean error against the `f64` twin to 0.14
     /// level, above its 0.08 budget; the per-pixel Phong shader uses it.)
+    ///
+    /// Out of line: one call per vertex or face, and its callers keep
+    /// their registers (inlined, it cost the `fast` face colour 9
+    /// instructions a face).
+    #[inline(never)]
     pub fn at(&self, n: Vec3<R>, p: Vec3<R>) -> Vec3<R> {
-        if let Some(q) = R::q16_kernels() {
-            if !self.has_specular {
-                if let Some(c) = self.diffuse_q16(raw3(n), p) {
-                    return Vec3::new(q.from_raw(c[0]), q.from_raw(c[1]), q.from_raw(c[2]));
-                }
+        R::Kernels::pick(|q| self.at_q16_diffuse(q, &n, &p), || self.at_generic(n, p))
+    }
+
+    /// [`Shade::at`] for `Q16`: the diffuse sum by [`Shade::diffuse_q16`]
+    /// where it answers, else the generic code. (The vectors by
+    /// reference: by value, they cost the `fast` vertex colour of
+    /// `dodeca-gouraud-n100` 100 instructions on the M4.)
+    #[inline(always)]
+    fn at_q16_diffuse(&self, q: Raw16<R>, n: &Vec3<R>, p: &Vec3<R>) -> Vec3<R> {
+        let (n, p) = (*n, *p);
+        if !self.has_specular {
+            if let Some(c) = self.diffuse_q16(raw3(n), p) {
+                return Vec3::new(q.from_raw(c[0]), q.from_raw(c[1]), q.from_raw(c[2]));
             }
         }
         self.at_generic(n, p)
@@ -488,7 +501,7 @@ impl<R: Real> Shade<R> {
         for t in &self.terms {
             // The Q16 products `diffuse · N·L` by `mul16_small`: diffuse
             // below 256 (else the eye-space path lights the object).
-            if R::q16_kernels().is_some() && big3(t.diffuse, (1 << 24) - 1) {
+            if R::Kernels::pick(|_| big3(t.diffuse, (1 << 24) - 1), || false) {
                 return None;
             }
             let l = kt.apply(t.at);
@@ -514,16 +527,17 @@ impl<R: Real> ObjectLight<R> {
     /// `N·L'` of Q1.14 normal `n` (reversed when `flip`).
     #[inline(always)]
     fn nl(t: &ObjTerm<R>, n: [i16; 3], flip: bool) -> R {
-        let nl = if let Some(q) = R::q16_kernels() {
-            // |n_k| <= 2^15, |l14_k| <= 2^14 (unit L'): each product
-            // below 2^29 and the sum below 3 · 2^29 (no overflow).
-            let l = t.l14;
-            let s = i32::from(n[0]) * l[0] + i32::from(n[1]) * l[1] + i32::from(n[2]) * l[2];
-            // Q28 to Q16, rounded (ties up).
-            q.from_raw((s + (1 << 11)) >> 12)
-        } else {
-            Vec3::from_q14(n).dot(t.l)
-        };
+        let nl = R::Kernels::pick(
+            |q| {
+                // |n_k| <= 2^15, |l14_k| <= 2^14 (unit L'): each product
+                // below 2^29 and the sum below 3 · 2^29 (no overflow).
+                let l = t.l14;
+                let s = i32::from(n[0]) * l[0] + i32::from(n[1]) * l[1] + i32::from(n[2]) * l[2];
+                // Q28 to Q16, rounded (ties up).
+                q.from_raw((s + (1 << 11)) >> 12)
+            },
+            || Vec3::from_q14(n).dot(t.l),
+        );
         if flip {
             -nl
         } else {
@@ -542,20 +556,25 @@ impl<R: Real> ObjectLight<R> {
             if nl <= R::ZERO {
                 continue;
             }
-            if let Some(q) = R::q16_kernels() {
-                // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| <
-                // 2^24 checked when built, |N·L| <= 2^17 for unit vectors).
-                let nlr = q.raw(nl);
-                if nlr.unsigned_abs() <= SMALL {
-                    let d = raw3(t.diffuse);
-                    let p = |c: i32| q.from_raw(mul16_small(c, nlr));
-                    if mono {
-                        sum.x += p(d[0]);
-                    } else {
-                        sum = sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
-                    }
-                    continue;
+            // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| <
+            // 2^24 checked when built, |N·L| <= 2^17 for unit vectors),
+            // where `N·L` is in that range.
+            let small = R::Kernels::pick(
+                |q| {
+                    let nlr = q.raw(nl);
+                    (nlr.unsigned_abs() <= SMALL).then_some((q, nlr))
+                },
+                || None,
+            );
+            if let Some((q, nlr)) = small {
+                let d = raw3(t.diffuse);
+                let p = |c: i32| q.from_raw(mul16_small(c, nlr));
+                if mono {
+                    sum.x += p(d[0]);
+                } else {
+                    sum = sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
                 }
+                continue;
             }
             if mono {
                 sum.x += t.diffuse.x * nl;
@@ -578,7 +597,11 @@ impl<R: Real> ObjectLight<R> {
     /// normal, or `None` unless `R` is `Q16` and every diffuse factor is
     /// below `2^8 / 255 ≈ 1.004` (brighter lights use [`ObjectLight::at`]).
     pub(crate) fn levels(&self) -> Option<LevelLight> {
-        R::q16_kernels()?;
+        R::Kernels::pick(|_| self.levels_q16(), || None)
+    }
+
+    /// [`ObjectLight::levels`] of `Q16` lights.
+    fn levels_q16(&self) -> Option<LevelLight> {
         #[allow(clippy::cast_possible_truncation)]
         let ambient =
             raw3(self.ambient).map(|a| (i64::from(a) * 255).clamp(-(1 << 29), 1 << 29) as i32);
@@ -730,22 +753,28 @@ pub(crate) struct RawTerm {
     pub(crate) specular: [i32; 3],
 }
 
+/// A [`Shade`] as raw `Q16` bits ([`Shade::raw_q16`]): ambient, lights,
+/// shininess (Q16), whether the specular term is on, its model and the
+/// viewer.
+pub(crate) type RawShade = (
+    [i32; 3],
+    heapless::Vec<RawTerm, MAX_LIGHTS>,
+    i32,
+    bool,
+    Specular,
+    Viewer,
+);
+
 impl<R: Real> Shade<R> {
     /// The folded material and lights as raw `Q16` bits (`None` unless
-    /// `R` is `Q16`, [`Real::q16_kernels`]): ambient, lights, shininess
+    /// `R` is `Q16`, [`Q16Kernels`](crate::num::Q16Kernels)): ambient, lights, shininess
     /// (Q16), whether the specular term is on, its model and the viewer.
-    #[allow(clippy::type_complexity)]
-    pub(crate) fn raw_q16(
-        &self,
-    ) -> Option<(
-        [i32; 3],
-        heapless::Vec<RawTerm, MAX_LIGHTS>,
-        i32,
-        bool,
-        Specular,
-        Viewer,
-    )> {
-        R::q16_kernels()?;
+    pub(crate) fn raw_q16(&self) -> Option<RawShade> {
+        R::Kernels::pick(|_| Some(self.raw_parts()), || None)
+    }
+
+    /// [`Shade::raw_q16`] of a `Q16` shade.
+    fn raw_parts(&self) -> RawShade {
         let mut terms = heapless::Vec::new();
         for t in &self.terms {
             // Never fails: as many terms as `self.terms` holds.
@@ -756,14 +785,14 @@ impl<R: Real> Shade<R> {
                 specular: raw3(t.specular),
             });
         }
-        Some((
+        (
             raw3(self.ambient),
             terms,
             raw(self.shininess),
             self.has_specular(),
             self.specular,
             self.viewer,
-        ))
+        )
     }
 }
 

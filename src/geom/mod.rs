@@ -5,7 +5,7 @@
 //! generic over the profile's scalar, so a fixed-point firmware builds its
 //! matrices with fixed-point trigonometry ([`Real::sin_cos`]) and no float.
 
-use crate::num::{Q16Kernels, Real};
+use crate::num::{Kernels, Raw16, Real};
 
 pub(crate) mod bound;
 pub(crate) mod cull;
@@ -31,7 +31,7 @@ pub fn radians<R: Real>(deg: R) -> R {
 /// component and `1/|v|` are at most 2 in magnitude (vectors of length
 /// 1/2 to 2: normals, light directions).
 #[inline]
-fn unit_q16_small<R: Real>(q: Q16Kernels<R>, v: Vec3<R>) -> Option<Vec3<R>> {
+fn unit_q16_small<R: Real>(q: Raw16<R>, v: Vec3<R>) -> Option<Vec3<R>> {
     use crate::num::wide::{mul16_small, SMALL};
     let r = [q.raw(v.x), q.raw(v.y), q.raw(v.z)];
     if r.iter().any(|c| c.unsigned_abs() > SMALL) {
@@ -151,12 +151,16 @@ impl<R: Real> Vec3<R> {
     /// for `Q16` vectors with components up to 2 and lengths from 1/2
     /// (per-vertex and per-face code of the geometry; kept apart from
     /// `normalize` so that the rasterizer's code is not changed).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn normalize_geom(self) -> Self {
-        if let Some(u) = R::q16_kernels().and_then(|q| unit_q16_small(q, self)) {
-            return u;
-        }
-        self.normalize()
+        R::Kernels::pick(|q| self.normalize_q16(q), || self.normalize())
+    }
+
+    /// [`normalize_geom`](Self::normalize_geom) for `Q16`: the 32-bit
+    /// form where it applies, else [`normalize`](Self::normalize).
+    #[inline(never)]
+    fn normalize_q16(self, q: Raw16<R>) -> Self {
+        unit_q16_small(q, self).unwrap_or_else(|| self.normalize())
     }
 
     /// `true` when every component is exactly zero.
@@ -426,7 +430,7 @@ impl<R: Real> Mul<Vec3<R>> for Mat3<R> {
 #[cfg(test)]
 mod tests {
     use super::{unit_q16_small, Vec3};
-    use crate::num::{Real, Q16};
+    use crate::num::{Raw16, Real, Q16};
 
     /// The 32-bit normalisation gives the generic code's bits, and takes
     /// every vector of components up to 2 with a length from 1/2.
@@ -439,7 +443,7 @@ mod tests {
             let c = [0; 3].map(|_| Q16::from_bits((next() % (2 * lim + 1)) as i32 - lim as i32));
             let v = Vec3::new(c[0], c[1], c[2]);
             let generic = v.scale(v.length_sq().rsqrt());
-            if let Some(u) = unit_q16_small(Q16::q16_kernels().unwrap(), v) {
+            if let Some(u) = unit_q16_small(Raw16::Q16, v) {
                 assert_eq!(u, generic, "{v:?}");
                 taken += 1;
             } else {
@@ -450,6 +454,6 @@ mod tests {
         }
         assert!(taken > 200_000);
         let z = Vec3::<Q16>::ZERO;
-        assert_eq!(unit_q16_small(Q16::q16_kernels().unwrap(), z), Some(z));
+        assert_eq!(unit_q16_small(Raw16::Q16, z), Some(z));
     }
 }

@@ -1,13 +1,13 @@
 //! Integer kernels of the `fast` profiles' vertex path: raw Q16.16 values
 //! in `i32`, mesh data in Q1.14 (`i16`). Used for the scalars that run
-//! them ([`Real::q16_kernels`]); every kernel is exact integer arithmetic
+//! them ([`Q16Kernels`](crate::num::Q16Kernels)); every kernel is exact integer arithmetic
 //! up to one stated rounding, so all targets compute the same bits (the
 //! ARMv6-M variants are tested against the generic ones).
 
 use super::Affine;
 use crate::num::approx16::{recip_mant, rsqrt_newton};
 use crate::num::wide::{clz32, wmul, wmul_u32};
-use crate::num::Real;
+use crate::num::{Kernels, Raw16, Real};
 
 /// Largest matrix entry magnitude (exclusive) of the integer transform:
 /// 256 (a model scale up to about 256). Larger transforms use the generic
@@ -78,7 +78,11 @@ impl Xform16 {
     /// The integer form of `a`, or `None` when the scalar is not `Q16` or
     /// an entry of the linear part reaches 256.
     pub(crate) fn new<R: Real>(a: &Affine<R>) -> Option<Self> {
-        let q = R::q16_kernels()?;
+        R::Kernels::pick(|q| Self::of_raw(q, a), || None)
+    }
+
+    /// [`Xform16::new`] of a `Q16` transform.
+    fn of_raw<R: Real>(q: Raw16<R>, a: &Affine<R>) -> Option<Self> {
         let raw = |v: R| q.raw(v);
         let m = a.m.rows.map(|r| [raw(r.x), raw(r.y), raw(r.z)]);
         if m.iter().flatten().any(|v| v.unsigned_abs() >= M_LIMIT) {
@@ -312,24 +316,7 @@ pub(crate) struct Proj16 {
     clippy::cast_possible_wrap
 )]
 fn shr_round_clamp(p: i64, s: u32, lim: i32) -> i32 {
-    // round(p / 2^s) ties up = floor((p + 2^(s-1)) / 2^s); |p| < 2^62,
-    // so the sum fits.
-    let (mut hi, mut lo) = ((p >> 32) as i32, p as u32);
-    let k = s.wrapping_sub(1) & 63;
-    if k < 32 {
-        let (l, carry) = lo.overflowing_add(1 << k);
-        lo = l;
-        hi = hi.wrapping_add(i32::from(carry));
-    } else {
-        hi = hi.wrapping_add(1 << (k & 31));
-    }
-    let s = s & 63;
-    let (rhi, rlo) = if s < 32 {
-        let up = ((hi as u32) << 1) << (31 - (s & 31));
-        (hi >> (s & 31), (lo >> (s & 31)) | up)
-    } else {
-        (hi >> 31, (hi >> ((s - 32) & 31)) as u32)
-    };
+    let (rhi, rlo) = shr_round_halves(p, s);
     let r = rlo as i32;
     // The value fits `i32` iff the high half is the sign of the low.
     let v = if rhi == r >> 31 {
@@ -352,6 +339,20 @@ fn shr_round_clamp(p: i64, s: u32, lim: i32) -> i32 {
     clippy::cast_possible_wrap
 )]
 fn shr_round(p: i64, s: u32) -> i32 {
+    // The low half of the rounded quotient: the value, as it fits.
+    shr_round_halves(p, s).1 as i32
+}
+
+/// `floor((p + 2^(s-1)) / 2^s)` (`round(p / 2^s)`, ties up), `s` in
+/// `1..=62`, `|p| < 2^62` (the sum fits), as its high and low 32-bit
+/// halves, computed in 32-bit halves.
+#[inline(always)]
+#[allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    clippy::cast_possible_wrap
+)]
+fn shr_round_halves(p: i64, s: u32) -> (i32, u32) {
     let (mut hi, mut lo) = ((p >> 32) as i32, p as u32);
     let k = s.wrapping_sub(1) & 63;
     if k < 32 {
@@ -364,9 +365,9 @@ fn shr_round(p: i64, s: u32) -> i32 {
     let s = s & 63;
     if s < 32 {
         let up = ((hi as u32) << 1) << (31 - (s & 31));
-        ((lo >> (s & 31)) | up) as i32
+        (hi >> (s & 31), (lo >> (s & 31)) | up)
     } else {
-        hi >> ((s - 32) & 31)
+        (hi >> 31, (hi >> ((s - 32) & 31)) as u32)
     }
 }
 

@@ -10,14 +10,14 @@ use core::ops::{Add, AddAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 use fixed::types::{I16F16, I32F32};
 
-use super::real::{Q16Kernels, Real};
+use super::real::{GenericKernels, Q16Kernels, Real};
 use super::wide::{wmul, wmul64};
 use super::{approx16, approx32};
 
 macro_rules! fixed_real {
     (
         $(#[$doc:meta])*
-        $name:ident, $fixed:ty, $raw:ty, $wide:ty, $frac:expr, $approx:ident, $wmul:path, $kern:expr
+        $name:ident, $fixed:ty, $raw:ty, $wide:ty, $frac:expr, $approx:ident, $wmul:path, $kern:ty
     ) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -178,10 +178,7 @@ macro_rules! fixed_real {
             const MAX: Self = Self::from_bits(<$raw>::MAX);
             const MIN: Self = Self::from_bits(<$raw>::MIN);
             const EPSILON: Self = Self::from_bits(1);
-            #[inline(always)]
-            fn q16_kernels() -> Option<Q16Kernels<Self>> {
-                $kern
-            }
+            type Kernels = $kern;
 
             fn from_f32(v: f32) -> Self {
                 Self::from_float(f64::from(v))
@@ -278,13 +275,13 @@ fixed_real!(
     /// Q16.16 fixed point (`fixed::types::I16F16`), the `fast` profile for
     /// Cortex-M0: range `[-32768, 32768)`, resolution 2^-16. Operators
     /// saturate; per-pixel kernels stay mostly in 32-bit integers.
-    Q16, I16F16, i32, i64, 16, approx16, wmul, Some(Q16Kernels::new())
+    Q16, I16F16, i32, i64, 16, approx16, wmul, Q16Kernels
 );
 
 fixed_real!(
     /// Q32.32 fixed point (`fixed::types::I32F32`), the `precise` profile:
     /// range `[-2^31, 2^31)`, resolution 2^-32. Operators saturate.
-    Q32, I32F32, i64, i128, 32, approx32, wmul64, None
+    Q32, I32F32, i64, i128, 32, approx32, wmul64, GenericKernels
 );
 
 #[cfg(test)]

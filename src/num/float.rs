@@ -16,7 +16,7 @@
 
 use micromath::F32Ext;
 
-use super::real::Real;
+use super::real::{GenericKernels, Real};
 
 /// [`rsqrt_f32`]'s largest relative error: `2^-22` (measured `2^-22.44`).
 #[cfg_attr(not(test), allow(dead_code))]
@@ -107,6 +107,7 @@ macro_rules! float_real {
         $round:path, $abs:path, $sqrt:ident, $rsqrt:ident, $pow:path, $sincos:path
     ) => {
         impl Real for $t {
+            type Kernels = GenericKernels;
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
             const MAX: Self = $t::MAX;

@@ -55,15 +55,11 @@ pub trait Real:
     /// for floats.
     const EPSILON: Self;
 
-    /// The integer kernels of the `fast` profiles, chosen by type: `Some`
-    /// for [`Q16`](super::Q16) only (its witness, [`Q16Kernels`], reads
-    /// and writes raw Q16.16 values exactly), `None` for the other types,
-    /// which run the generic code. A constant of the type: each
-    /// monomorphised caller keeps one of its two paths.
-    #[inline(always)]
-    fn q16_kernels() -> Option<Q16Kernels<Self>> {
-        None
-    }
+    /// The kernels this type runs ([`Kernels`]): [`Q16Kernels`] for
+    /// [`Q16`](super::Q16) (the integer kernels of the `fast` profiles),
+    /// [`GenericKernels`] for the other types. Chosen by type: each
+    /// monomorphised caller compiles one path.
+    type Kernels: Kernels<Self>;
 
     /// Saturating conversion, rounded to nearest; NaN maps to
     /// [`ZERO`](Real::ZERO), infinities saturate.
@@ -153,31 +149,75 @@ pub trait Real:
     fn to_level(self) -> u8;
 }
 
-/// The witness that a scalar type runs the integer kernels of the `fast`
-/// profiles (32-bit products where ranges allow, exact widening products
-/// elsewhere, table reciprocals instead of division): its values are raw
-/// Q16.16 bits, which [`raw`](Q16Kernels::raw) and
-/// [`from_raw`](Q16Kernels::from_raw) read and write exactly. Only
-/// [`Real::q16_kernels`] of [`Q16`](super::Q16) hands one out (it cannot be
-/// built outside `num`), so an integer path taken with it cannot run on
-/// another scalar.
-#[derive(Debug)]
-pub struct Q16Kernels<R>(PhantomData<R>);
+/// The kernels of a scalar type ([`Real::Kernels`]), chosen at compile
+/// time: [`Q16Kernels`] for [`Q16`](super::Q16), [`GenericKernels`] for
+/// the others. Sealed: no other implementation exists.
+///
+/// Code generic over the scalar hands [`Kernels::pick`] its two forms of
+/// a computation: the integer form (32-bit products where ranges allow,
+/// exact widening products elsewhere, table reciprocals instead of
+/// division) on the raw Q16.16 values that [`Raw16`] reads and writes,
+/// and the generic form on the scalar's own operations. The type picks
+/// one; the other is never instantiated for it, so no branch and no dead
+/// path is compiled into either.
+pub trait Kernels<R: Real>: sealed::Sealed {
+    /// `q16(Raw16)` for [`Q16Kernels`], `generic()` for
+    /// [`GenericKernels`].
+    fn pick<T>(q16: impl FnOnce(Raw16<R>) -> T, generic: impl FnOnce() -> T) -> T;
+}
 
-impl<R> Clone for Q16Kernels<R> {
+mod sealed {
+    /// Only the two kernel sets of `num` implement [`Kernels`](super::Kernels).
+    pub trait Sealed {}
+    impl Sealed for super::GenericKernels {}
+    impl Sealed for super::Q16Kernels {}
+}
+
+/// The generic kernels: the scalar's own operations (`Q32`, `f32`, `f64`).
+#[derive(Clone, Copy, Debug)]
+pub enum GenericKernels {}
+
+impl<R: Real> Kernels<R> for GenericKernels {
+    #[inline(always)]
+    fn pick<T>(_: impl FnOnce(Raw16<R>) -> T, generic: impl FnOnce() -> T) -> T {
+        generic()
+    }
+}
+
+/// The integer kernels of the `fast` profiles, on raw Q16.16 values
+/// ([`Raw16`]): the kernels of [`Q16`](super::Q16) only.
+#[derive(Clone, Copy, Debug)]
+pub enum Q16Kernels {}
+
+impl Kernels<super::Q16> for Q16Kernels {
+    #[inline(always)]
+    fn pick<T>(q16: impl FnOnce(Raw16<super::Q16>) -> T, _: impl FnOnce() -> T) -> T {
+        q16(Raw16::Q16)
+    }
+}
+
+/// Exact access to the raw Q16.16 bits of a scalar that runs
+/// [`Q16Kernels`]: [`raw`](Raw16::raw) and [`from_raw`](Raw16::from_raw)
+/// read and write them without rounding. It exists for `Q16` only
+/// ([`Raw16::Q16`], which [`Q16Kernels::pick`] hands out), so an integer
+/// path taken with it runs on `Q16` values only.
+#[derive(Debug)]
+pub struct Raw16<R>(PhantomData<R>);
+
+impl Raw16<super::Q16> {
+    /// The access to `Q16`'s own bits.
+    pub const Q16: Self = Self(PhantomData);
+}
+
+impl<R> Clone for Raw16<R> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<R> Copy for Q16Kernels<R> {}
+impl<R> Copy for Raw16<R> {}
 
-impl<R: Real> Q16Kernels<R> {
-    /// The witness (for `Q16` only).
-    pub(super) const fn new() -> Self {
-        Self(PhantomData)
-    }
-
+impl<R: Real> Raw16<R> {
     /// The raw Q16.16 bits of `v` (exact).
     #[inline(always)]
     pub fn raw(self, v: R) -> i32 {
@@ -188,5 +228,45 @@ impl<R: Real> Q16Kernels<R> {
     #[inline(always)]
     pub fn from_raw(self, b: i32) -> R {
         R::from_fixed_i32(b, 16)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Kernels, Raw16, Real};
+    use crate::num::{Q16, Q32};
+
+    fn kernels<R: Real>() -> &'static str {
+        R::Kernels::pick(|_| "q16", || "generic")
+    }
+
+    /// Each scalar type runs its own kernels: the integer ones for `Q16`
+    /// only.
+    #[test]
+    fn kernels_by_type() {
+        assert_eq!(kernels::<Q16>(), "q16");
+        assert_eq!(kernels::<Q32>(), "generic");
+        assert_eq!(kernels::<f32>(), "generic");
+        assert_eq!(kernels::<f64>(), "generic");
+    }
+
+    /// `Raw16` reads and writes `Q16`'s bits exactly.
+    #[test]
+    fn raw16_is_exact() {
+        let q = Raw16::<Q16>::Q16;
+        for b in [
+            i32::MIN,
+            -65_537,
+            -1,
+            0,
+            1,
+            3,
+            65_536,
+            0x1234_5678,
+            i32::MAX,
+        ] {
+            assert_eq!(q.raw(Q16::from_bits(b)), b);
+            assert_eq!(q.from_raw(b), Q16::from_bits(b));
+        }
     }
 }

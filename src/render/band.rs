@@ -6,7 +6,7 @@ use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, PreparedTri, RenderError};
 use crate::geom::Vec3;
 use crate::illum::Shade;
-use crate::num::{approx16, Profile, Real};
+use crate::num::{approx16, Kernels, Profile, Real};
 use crate::raster::{
     draw_sorted, in_limits, sort3, Fill, Flat, Gouraud, GouraudMono, Persp, RasterError, Shader,
     Spans,
@@ -17,7 +17,7 @@ use crate::target::{DepthBuffer, DepthFormat, Rgb8, Target};
 /// Per-pixel Phong shading: the interpolated normal (and position)
 /// normalised and illuminated.
 ///
-/// For `Q16` ([`Real::q16_kernels`], the `Fast` profiles) the pixel runs
+/// For `Q16` ([`Q16Kernels`](crate::num::Q16Kernels), the `Fast` profiles) the pixel runs
 /// on raw integers: the normal normalised by 32-bit arithmetic (within
 /// `2^-15` per component of the exact unit vector), the light and view
 /// vectors likewise, dot products summed exactly and rounded once (see
@@ -67,22 +67,26 @@ impl<'a, P: Profile> PhongShader<'a, P> {
     #[inline(always)]
     fn color(&self, a: &[P::Lerp], p: Vec3<P::Real>) -> Rgb8 {
         let n = Vec3::new(P::unit_back(a[0]), P::unit_back(a[1]), P::unit_back(a[2]));
-        if let Some(q) = P::Real::q16_kernels() {
-            let raw = |v: P::Real| q.raw(v);
-            let mut u = approx16::unit([raw(n.x), raw(n.y), raw(n.z)]);
-            if self.back {
-                u = u.map(i32::saturating_neg);
-            }
-            let c = self.shade.at_q16(u, [raw(p.x), raw(p.y), raw(p.z)]);
-            let level = |c: i32| q.from_raw(c).to_level();
-            return Rgb8::new(level(c[0]), level(c[1]), level(c[2]));
-        }
-        let mut n = n.normalize();
-        if self.back {
-            n = -n;
-        }
-        let c = self.shade.at(n, p);
-        Rgb8::new(c.x.to_level(), c.y.to_level(), c.z.to_level())
+        <P::Real as Real>::Kernels::pick(
+            |q| {
+                let raw = |v: P::Real| q.raw(v);
+                let mut u = approx16::unit([raw(n.x), raw(n.y), raw(n.z)]);
+                if self.back {
+                    u = u.map(i32::saturating_neg);
+                }
+                let c = self.shade.at_q16(u, [raw(p.x), raw(p.y), raw(p.z)]);
+                let level = |c: i32| q.from_raw(c).to_level();
+                Rgb8::new(level(c[0]), level(c[1]), level(c[2]))
+            },
+            || {
+                let mut n = n.normalize();
+                if self.back {
+                    n = -n;
+                }
+                let c = self.shade.at(n, p);
+                Rgb8::new(c.x.to_level(), c.y.to_level(), c.z.to_level())
+            },
+        )
     }
 }
 

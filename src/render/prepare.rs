@@ -60,7 +60,7 @@ use crate::illum::{LevelLight, Light, LightKind, ObjectLight, OneLight, Shade, M
 use crate::mesh::{Mesh, MAX_AXIS2};
 use crate::num::approx16;
 use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
-use crate::num::{Profile, Real};
+use crate::num::{Kernels, Profile, Real};
 use crate::raster::{first_row, Lerp, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
@@ -348,15 +348,18 @@ pub fn prepare<'w, P: Profile>(
     };
     let sub = P::SUBPIXEL_BITS.get();
     let view = View {
-        fast: P::Real::q16_kernels()
-            .filter(|_| sub <= 15)
-            .map(|q| Proj16 {
-                k: q.raw(view.k),
-                near: q.raw(view.planes.near),
-                cx: view.cx.to_fixed_i32(sub),
-                cy: view.cy.to_fixed_i32(sub),
-                lim: COORD_LIMIT_PX << sub,
-            }),
+        fast: <P::Real as Real>::Kernels::pick(
+            |q| {
+                (sub <= 15).then(|| Proj16 {
+                    k: q.raw(view.k),
+                    near: q.raw(view.planes.near),
+                    cx: view.cx.to_fixed_i32(sub),
+                    cy: view.cy.to_fixed_i32(sub),
+                    lim: COORD_LIMIT_PX << sub,
+                })
+            },
+            || None,
+        ),
         ..view
     };
     let lights = eye_lights(scene)?;

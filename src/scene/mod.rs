@@ -70,6 +70,40 @@ pub struct Scene<'s, 'm, R> {
     pub background: Rgb8,
 }
 
+impl<'s, 'm, R> Scene<'s, 'm, R> {
+    /// The scene of `objects` and `lights` seen by `camera`, with ambient
+    /// intensity `ambient`, the Phong specular model, a local viewer and a
+    /// black background (set those fields for others).
+    ///
+    /// ```
+    /// use fixshade::illum::{Specular, Viewer};
+    /// use fixshade::scene::{Camera, Scene};
+    /// use fixshade::target::Rgb8;
+    ///
+    /// let camera = Camera::<f32>::look_at_f32([0.0, 0.0, 4.0], [0.0; 3], [0.0, 1.0, 0.0], 45.0, 1.0, None)?;
+    /// let scene = Scene::new(camera, &[], &[], 0.25);
+    /// assert_eq!((scene.objects.len(), scene.lights.len(), scene.ambient), (0, 0, 0.25));
+    /// assert_eq!((scene.specular, scene.viewer, scene.background), (Specular::Phong, Viewer::Local, Rgb8::BLACK));
+    /// # Ok::<(), fixshade::scene::SceneError>(())
+    /// ```
+    pub const fn new(
+        camera: Camera<R>,
+        objects: &'s [Object<'m, R>],
+        lights: &'s [Light<R>],
+        ambient: R,
+    ) -> Self {
+        Self {
+            camera,
+            objects,
+            lights,
+            ambient,
+            specular: Specular::Phong,
+            viewer: Viewer::Local,
+            background: Rgb8::BLACK,
+        }
+    }
+}
+
 impl<R: Real> Scene<'_, '_, R> {
     /// Checks the capacities.
     ///

@@ -23,7 +23,8 @@ use panic_probe as _;
 
 use cortex_m::peripheral::DWT;
 use fixshade::num::Fast;
-use fixshade::render::{prepare, BandState, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, RenderError};
+use fixshade::scene::Scene;
 use fixshade::target::eg::{draw_band_with, Levels};
 use fixshade::target::{BandBuf, Gray8};
 use ssd1306::{prelude::*, I2CDisplayInterface, Ssd1306};
@@ -31,7 +32,7 @@ use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 
 mod scene;
 
-use scene::{BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
+use scene::{BandPool, Store, BAND_PX, FRAMES, H, ROWS, W};
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
@@ -63,11 +64,7 @@ fn main() -> ! {
 
     let mut pixels = [[0u8; 1]; BAND_PX];
     let mut depth = [0u16; BAND_PX];
-    let mut xy = [fixshade::render::ScreenXy::ZERO; VERTICES];
-    let mut vals = [0i32; VALUES];
-    let mut tris = [Tri::EMPTY; TRIANGLES];
-    let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];
-    let mut order = [0u16; ORDER];
+    let mut store = Store::EMPTY;
     let mut pool = BandPool::new();
     let mut band = match BandBuf::<Gray8>::new(&mut pixels, Some(&mut depth), W, ROWS) {
         Ok(b) => b,
@@ -83,19 +80,14 @@ fn main() -> ! {
     loop {
         let t0 = DWT::cycle_count();
         let objects = scene::objects(i);
-        let scene = scene::scene(camera, &objects, &lights);
-        let ws = Workspace {
-            xy: &mut xy,
-            vals: &mut vals,
-            tris: &mut tris,
-            colors: &mut colors,
-        };
+        let scene = Scene::new(camera, &objects, &lights, scene::AMBIENT);
+        let (ws, order) = store.split();
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,
             Err(e) => defmt::panic!("frame {} does not fit the workspace: {}", i, e),
         };
         let t1 = DWT::cycle_count();
-        let mut state = BandState::new(&mut order, &mut pool);
+        let mut state = BandState::new(order, &mut pool);
         // Each band in 8-bit grey, then dithered into the driver's 1 KiB
         // buffer (which cannot fail).
         let stats = match frame.render_bands(&scene, &mut state, &mut band, |b| {

@@ -7,12 +7,11 @@
 //! very capacities (fit, active-triangle peak).
 
 use fixshade::geom::{radians, Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::illum::{Light, Material};
 use fixshade::mesh::DODECAHEDRON;
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::render::{Capacity, Layout, Pool, Reach};
-use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
-use fixshade::target::Rgb8;
+use fixshade::scene::{Camera, Object, SceneError, Shading};
 
 /// Screen width (pixels).
 pub const W: u32 = 128;
@@ -30,16 +29,11 @@ pub const BAND_PX: usize = (W * ROWS) as usize;
 /// viewer), every triangle (36).
 pub const CAPACITY: Capacity =
     Capacity::EMPTY.object(&DODECAHEDRON, Layout::PhongPosition, Reach::Inside);
-/// Vertices of the workspace.
-pub const VERTICES: usize = CAPACITY.vertices;
-/// Values of the workspace (7 per vertex).
-pub const VALUES: usize = CAPACITY.values;
-/// Triangles of the workspace.
-pub const TRIANGLES: usize = CAPACITY.triangles;
-/// Flat-triangle colours (none: the dodecahedron is shaded Phong).
-pub const COLORS: usize = CAPACITY.colors;
-/// The band renderer's order scratch: 2 `u16` per prepared triangle.
-pub const ORDER: usize = 2 * TRIANGLES;
+
+/// The workspace and the band order scratch of [`CAPACITY`] in one
+/// (`fixshade::render::Storage`: its arrays, `Storage::split` lends them
+/// to `prepare` and the `BandState`).
+pub type Store = fixshade::storage!(i32, CAPACITY);
 
 /// Active-triangle pool: the most triangles kept across a band border in
 /// any frame of the turn is 12 (`Bands::active_peak`, measured on the host
@@ -54,19 +48,6 @@ pub const POOL_VALUES: usize = 8;
 /// The pool: 3 008 bytes (16 × 188: a slot is 88 bytes of walk plus 12 per
 /// value, and 4 for the pool's lists; `size_of` checked by scene-check).
 pub type BandPool = Pool<<Fast as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
-
-const _: () = assert!(
-    VERTICES >= DODECAHEDRON.vertex_count(),
-    "the workspace holds fewer vertices than the mesh has"
-);
-const _: () = assert!(
-    TRIANGLES >= DODECAHEDRON.triangle_count(),
-    "the workspace holds fewer triangles than the mesh has"
-);
-const _: () = assert!(
-    ORDER >= 2 * TRIANGLES,
-    "the order scratch needs 2 entries per workspace triangle"
-);
 
 /// Frames per turn (10° apart).
 pub const FRAMES: i32 = 36;
@@ -121,19 +102,6 @@ pub fn objects(i: i32) -> [Object<'static, Q16>; 1] {
     }]
 }
 
-/// The scene of `objects` and `lights` seen by `camera`.
-pub fn scene<'s>(
-    camera: Camera<Q16>,
-    objects: &'s [Object<'static, Q16>],
-    lights: &'s [Light<Q16>],
-) -> Scene<'s, 'static, Q16> {
-    Scene {
-        camera,
-        objects,
-        lights,
-        ambient: q(1, 1),
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    }
-}
+/// The ambient intensity of the scene (`Scene::new` of the camera,
+/// [`objects`] and [`lights`]): 1.
+pub const AMBIENT: Q16 = q(1, 1);

@@ -31,8 +31,9 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::{SpiBus, MODE_0};
 use fixshade::num::Fast;
-use fixshade::render::{prepare, BandState, Tri, Workspace};
-use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
+use fixshade::render::{prepare, BandState};
+use fixshade::scene::Scene;
+use fixshade::target::{BandBuf, Rgb565Be};
 use fugit::RateExtU32;
 use hal::dma::{single_buffer, Channel, DMAExt, CH0};
 use hal::gpio::bank0::{Gpio16, Gpio18, Gpio19};
@@ -55,7 +56,7 @@ const XTAL_FREQ_HZ: u32 = 12_000_000;
 
 mod scene;
 
-use scene::{BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
+use scene::{BandPool, Store, BAND_PX, FRAMES, H, ROWS, W};
 
 type Mosi = Pin<Gpio19, FunctionSpi, PullDown>;
 type Sck = Pin<Gpio18, FunctionSpi, PullDown>;
@@ -216,13 +217,9 @@ fn main() -> ! {
     };
     let mut spare: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(b));
     let mut next: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(a));
-    let (Some(depth), Some(xy), Some(vals), Some(tris), Some(colors), Some(order), Some(pool)) = (
+    let (Some(depth), Some(store), Some(pool)) = (
         cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
-        cortex_m::singleton!(: [fixshade::render::ScreenXy; VERTICES] = [fixshade::render::ScreenXy::ZERO; VERTICES]),
-        cortex_m::singleton!(: [i32; VALUES] = [0; VALUES]),
-        cortex_m::singleton!(: [Tri; TRIANGLES] = [Tri::EMPTY; TRIANGLES]),
-        cortex_m::singleton!(: [Rgb8; COLORS] = [Rgb8::BLACK; COLORS]),
-        cortex_m::singleton!(: [u16; ORDER] = [0; ORDER]),
+        cortex_m::singleton!(: Store = Store::EMPTY),
         cortex_m::singleton!(: BandPool = BandPool::new()),
     ) else {
         defmt::panic!("workspace taken twice");
@@ -237,19 +234,14 @@ fn main() -> ! {
     loop {
         let t0 = timer.get_counter();
         let objects = scene::objects(i);
-        let scene = scene::scene(camera, &objects, &lights);
-        let ws = Workspace {
-            xy: &mut xy[..],
-            vals: &mut vals[..],
-            tris: &mut tris[..],
-            colors: &mut colors[..],
-        };
+        let scene = Scene::new(camera, &objects, &lights, scene::AMBIENT);
+        let (ws, order) = store.split();
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,
             Err(e) => defmt::panic!("frame {} does not fit the workspace: {}", i, e),
         };
         let t1 = timer.get_counter();
-        let mut state = BandState::new(&mut order[..], &mut *pool);
+        let mut state = BandState::new(order, &mut *pool);
         let mut bands = match frame.bands(&scene, &mut state, ROWS) {
             Ok(b) => b,
             Err(e) => defmt::panic!("frame {}: band order: {}", i, e),

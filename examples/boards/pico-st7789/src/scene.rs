@@ -9,12 +9,11 @@
 //! very capacities (fit, active-triangle peak, frame CRCs).
 
 use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, Material, Specular, Viewer};
+use fixshade::illum::{Light, Material};
 use fixshade::mesh::BUNNY;
 use fixshade::num::{Fast, Profile, Q16};
 use fixshade::render::{Capacity, Layout, Pool, Reach};
-use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
-use fixshade::target::Rgb8;
+use fixshade::scene::{Camera, Object, SceneError, Shading};
 
 /// Screen width and height (pixels).
 pub const W: u32 = 240;
@@ -33,16 +32,11 @@ pub const BAND_PX: usize = (W * ROWS) as usize;
 /// turn shows other faces than any one view). A material or shading that
 /// needs more values is a start-up error over defmt.
 pub const CAPACITY: Capacity = Capacity::EMPTY.object(&BUNNY, Layout::GouraudRgb, Reach::Inside);
-/// Vertices of the workspace.
-pub const VERTICES: usize = CAPACITY.vertices;
-/// Values of the workspace (4 per vertex).
-pub const VALUES: usize = CAPACITY.values;
-/// Triangles of the workspace.
-pub const TRIANGLES: usize = CAPACITY.triangles;
-/// Flat-triangle colours (none: the bunny is shaded Gouraud).
-pub const COLORS: usize = CAPACITY.colors;
-/// The band renderer's order scratch: 2 `u16` per prepared triangle.
-pub const ORDER: usize = 2 * TRIANGLES;
+
+/// The workspace and the band order scratch of [`CAPACITY`] in one
+/// (`fixshade::render::Storage`: its arrays, `Storage::split` lends them
+/// to `prepare` and the `BandState`).
+pub type Store = fixshade::storage!(i32, CAPACITY);
 
 /// Active-triangle pool: the most triangles kept across a band border in
 /// any frame of the turn is 69 (`Bands::active_peak`, measured on the
@@ -58,18 +52,6 @@ pub const POOL_VALUES: usize = 4;
 /// value, and 4 for the pool's lists; `size_of` checked by scene-check).
 pub type BandPool = Pool<<Fast as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
 
-const _: () = assert!(
-    VERTICES >= BUNNY.vertex_count(),
-    "the workspace holds fewer vertices than the mesh has"
-);
-const _: () = assert!(
-    TRIANGLES >= BUNNY.triangle_count(),
-    "the workspace holds fewer triangles than the mesh has"
-);
-const _: () = assert!(
-    ORDER >= 2 * TRIANGLES,
-    "the order scratch needs 2 entries per workspace triangle"
-);
 const _: () = assert!(
     H.is_multiple_of(ROWS),
     "every band must be full: the DMA sends whole band buffers"
@@ -128,19 +110,6 @@ pub fn objects(i: i32) -> [Object<'static, Q16>; 1] {
     }]
 }
 
-/// The scene of `objects` and `lights` seen by `camera`.
-pub fn scene<'s>(
-    camera: Camera<Q16>,
-    objects: &'s [Object<'static, Q16>],
-    lights: &'s [Light<Q16>],
-) -> Scene<'s, 'static, Q16> {
-    Scene {
-        camera,
-        objects,
-        lights,
-        ambient: Q16::from_bits(13_107), // 0.2
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-        background: Rgb8::BLACK,
-    }
-}
+/// The ambient intensity of the scene (`Scene::new` of the camera,
+/// [`objects`] and [`lights`]): 0.2.
+pub const AMBIENT: Q16 = Q16::from_bits(13_107);

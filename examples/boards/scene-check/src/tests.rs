@@ -1,5 +1,6 @@
 use fixshade::num::Fast;
-use fixshade::render::{prepare, BandState, Frame, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Capacity, Frame, Workspace};
+use fixshade::scene::Scene;
 use fixshade::target::{BandBuf, Depth16, DepthFormat, Gray8, PixelFormat, Rgb565Be};
 use fixshade_scenes::Crc32;
 
@@ -108,11 +109,7 @@ fn firmware_frame(i: u32, ws: Workspace<'_, i32>, order: &mut [u16]) -> Use {
 #[test]
 fn pico_turn_fits_and_is_the_firmware_animation() {
     use crate::pico::*;
-    let mut xy = vec![fixshade::render::ScreenXy::ZERO; VERTICES];
-    let mut vals = vec![0i32; VALUES];
-    let mut tris = vec![Tri::EMPTY; TRIANGLES];
-    let mut colors = vec![fixshade::target::Rgb8::BLACK; TRIANGLES];
-    let mut order = vec![0u16; ORDER];
+    let mut store = Box::new(Store::EMPTY);
     let mut pool = Box::new(BandPool::new());
     let camera = camera().unwrap();
     let lights = lights();
@@ -120,17 +117,11 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     let mut turn = Vec::new();
     for i in 0..FRAMES {
         let objects = objects(i);
-        let scene = scene(camera, &objects, &lights);
-        let ws = Workspace {
-            xy: &mut xy,
-            vals: &mut vals,
-            tris: &mut tris,
-            colors: &mut colors,
-        };
+        let scene = Scene::new(camera, &objects, &lights, AMBIENT);
+        let (ws, order) = store.split();
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
-        let u = bands::<Rgb565Be, POOL_SLOTS, POOL_VALUES>(
-            &frame, &scene, &mut pool, &mut order, W, ROWS,
-        );
+        let u =
+            bands::<Rgb565Be, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut pool, order, W, ROWS);
         println!("pico frame {i:2}: crc 0x{:08x} {u:?}", u.crc);
         turn.push(u);
         most = max(most, u);
@@ -145,13 +136,8 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
             "frame {i}: {u:?}"
         );
         // The very frame the firmware animation renders (and QEMU measures).
-        let ws = Workspace {
-            xy: &mut xy,
-            vals: &mut vals,
-            tris: &mut tris,
-            colors: &mut colors,
-        };
-        let f = firmware_frame(i as u32, ws, &mut order);
+        let (ws, order) = store.split();
+        let f = firmware_frame(i as u32, ws, order);
         assert_eq!(
             (u.crc, u.covered, u.pixels),
             (f.crc, f.covered, f.pixels),
@@ -169,7 +155,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
         [0xca58_1561, 0xf462_8b76, 0xb13f_664f]
     );
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(49));
-    assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);
+    assert!(most.vertices <= CAPACITY.vertices && most.triangles <= CAPACITY.triangles);
 }
 
 /// The Pico turn's active-triangle peak (pico-st7789/src/scene.rs).
@@ -178,11 +164,7 @@ const PICO_PEAK: usize = 69;
 #[test]
 fn blackpill_turn_fits() {
     use crate::blackpill::*;
-    let mut xy = [fixshade::render::ScreenXy::ZERO; VERTICES];
-    let mut vals = [0i32; VALUES];
-    let mut tris = [Tri::EMPTY; TRIANGLES];
-    let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];
-    let mut order = [0u16; ORDER];
+    let mut store = Store::EMPTY;
     let mut pool = BandPool::new();
     let camera = camera().unwrap();
     let lights = lights();
@@ -190,16 +172,10 @@ fn blackpill_turn_fits() {
     let mut turn = Vec::new();
     for i in 0..FRAMES {
         let objects = objects(i);
-        let scene = scene(camera, &objects, &lights);
-        let ws = Workspace {
-            xy: &mut xy,
-            vals: &mut vals,
-            tris: &mut tris,
-            colors: &mut colors,
-        };
+        let scene = Scene::new(camera, &objects, &lights, AMBIENT);
+        let (ws, order) = store.split();
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
-        let u =
-            bands::<Gray8, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut pool, &mut order, W, ROWS);
+        let u = bands::<Gray8, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut pool, order, W, ROWS);
         println!("blackpill frame {i:2}: {u:?}");
         turn.push(u);
         most = max(most, u);
@@ -218,7 +194,7 @@ fn blackpill_turn_fits() {
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
     assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
     assert_eq!(most.pixels, 2488);
-    assert!(most.vertices <= VERTICES && most.triangles <= TRIANGLES);
+    assert!(most.vertices <= CAPACITY.vertices && most.triangles <= CAPACITY.triangles);
 }
 
 /// The Black Pill turn's active-triangle peak (blackpill-ssd1306/src/scene.rs).
@@ -228,33 +204,25 @@ const BLACKPILL_PEAK: usize = 12;
 #[test]
 fn memory_figures() {
     use core::mem::size_of;
-    let ws = |v: usize, vals: usize, t: usize, c: usize| {
-        v * size_of::<fixshade::render::ScreenXy>()
-            + vals * 4
-            + t * size_of::<Tri>()
-            + c * size_of::<fixshade::target::Rgb8>()
+    // The workspace (4-byte values) and the order scratch (2 `u16` a
+    // triangle): together the board's `Store`.
+    let parts = |c: Capacity, store: usize| {
+        let order = 4 * c.triangles;
+        assert_eq!(c.bytes(4), store);
+        (store - order, order)
     };
     let pico = (
         size_of::<crate::pico::BandPool>(),
-        ws(
-            crate::pico::VERTICES,
-            crate::pico::VALUES,
-            crate::pico::TRIANGLES,
-            crate::pico::COLORS,
-        ),
-        2 * crate::pico::ORDER,
+        parts(crate::pico::CAPACITY, size_of::<crate::pico::Store>()),
     );
     let blackpill = (
         size_of::<crate::blackpill::BandPool>(),
-        ws(
-            crate::blackpill::VERTICES,
-            crate::blackpill::VALUES,
-            crate::blackpill::TRIANGLES,
-            crate::blackpill::COLORS,
+        parts(
+            crate::blackpill::CAPACITY,
+            size_of::<crate::blackpill::Store>(),
         ),
-        2 * crate::blackpill::ORDER,
     );
     println!("pool, workspace, order bytes: pico {pico:?}, blackpill {blackpill:?}");
-    assert_eq!(pico, (11_200, 58_824, 14_696));
-    assert_eq!(blackpill, (3_008, 2_136, 144));
+    assert_eq!(pico, (11_200, (58_824, 14_696)));
+    assert_eq!(blackpill, (3_008, (2_136, 144)));
 }

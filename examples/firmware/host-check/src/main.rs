@@ -16,8 +16,11 @@
 
 use fixshade::render::{Capacity, Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
+use fixshade::num::Profile;
+use fixshade_scenes::profiled::{render_frame_with, ProfilePool};
 use fixshade_scenes::{
-    render_frame, BandPool, Crc32, NoProbe, Pixel, BAND_PIXELS, CAPACITY, DEPTH_PIXELS, SCENES,
+    render_frame, BandPool, Crc32, NoProbe, Pixel, SceneSpec, BAND_PIXELS, CAPACITY, DEPTH_PIXELS,
+    SCENES,
 };
 use std::{error::Error, fs, io::Write, path::PathBuf};
 
@@ -78,14 +81,31 @@ fn main() -> Result<(), Box<dyn Error>> {
             }
         }
     }
-    let mut ws = Owned::<i32>::new(CAPACITY);
+    run::<fixshade::num::Fast>(|spec, ws| {
+        if let Some(dir) = &ppm {
+            fs::create_dir_all(dir)?;
+            let rgb = whole_frame(spec, ws)?;
+            let mut out = fs::File::create(dir.join(format!("{}.ppm", spec.name)))?;
+            write!(out, "P6\n{} {}\n255\n", spec.width, spec.height)?;
+            out.write_all(&rgb)?;
+        }
+        Ok(())
+    })
+}
+
+/// Every scene with profile `P`, one `scene` line each, and `then` after
+/// each (given the scene and the workspace).
+fn run<P: Profile>(
+    mut then: impl FnMut(&SceneSpec, &mut Owned<P::Lerp>) -> Result<(), Box<dyn Error>>,
+) -> Result<(), Box<dyn Error>> {
+    let mut ws = Owned::<P::Lerp>::new(fixshade_scenes::capacity_for::<P>());
+    let mut pool = Box::new(ProfilePool::<P>::new());
     let mut px = vec![0u16; BAND_PIXELS];
     let mut z = vec![0u16; DEPTH_PIXELS];
-    let mut pool = Box::new(BandPool::new());
-    println!("fixshade-host-check target=host profile=fast");
+    println!("fixshade-host-check target=host profile={}", P::NAME);
     for spec in SCENES.iter() {
         let (w, order) = ws.split();
-        let s = render_frame(
+        let s = render_frame_with::<P, _>(
             spec,
             w,
             &mut px,
@@ -101,13 +121,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             chip: None,
         };
         println!("{line}");
-        if let Some(dir) = &ppm {
-            fs::create_dir_all(dir)?;
-            let rgb = whole_frame(spec, &mut ws)?;
-            let mut out = fs::File::create(dir.join(format!("{}.ppm", spec.name)))?;
-            write!(out, "P6\n{} {}\n255\n", spec.width, spec.height)?;
-            out.write_all(&rgb)?;
-        }
+        then(spec, &mut ws)?;
     }
     Ok(())
 }
@@ -115,7 +129,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 /// The frame of `spec` as 8-bit RGB, rendered in one piece (a band as
 /// tall as the frame); fails unless its CRC equals the banded frame's.
 fn whole_frame(
-    spec: &fixshade_scenes::SceneSpec,
+    spec: &SceneSpec,
     ws: &mut Owned<i32>,
 ) -> Result<Vec<u8>, Box<dyn Error>> {
     use fixshade::num::Fast;
@@ -163,44 +177,15 @@ fn whole_frame(
 fn other_profile(name: &str) -> Result<(), Box<dyn Error>> {
     use fixshade::num::{F32Pc, F64Pc, FastPc, Precise, PrecisePc, F32, F64};
     match name {
-        "precise" => with::<Precise>(),
-        "f32" => with::<F32>(),
-        "f64" => with::<F64>(),
-        "fast-pc" => with::<FastPc>(),
-        "precise-pc" => with::<PrecisePc>(),
-        "f32-pc" => with::<F32Pc>(),
-        "f64-pc" => with::<F64Pc>(),
+        "precise" => run::<Precise>(|_, _| Ok(())),
+        "f32" => run::<F32>(|_, _| Ok(())),
+        "f64" => run::<F64>(|_, _| Ok(())),
+        "fast-pc" => run::<FastPc>(|_, _| Ok(())),
+        "precise-pc" => run::<PrecisePc>(|_, _| Ok(())),
+        "f32-pc" => run::<F32Pc>(|_, _| Ok(())),
+        "f64-pc" => run::<F64Pc>(|_, _| Ok(())),
         _ => Err(format!("unknown profile {name} (precise, f32, f64, fast-pc, precise-pc, f32-pc, f64-pc; the default is fast)").into()),
     }
-}
-
-fn with<P: fixshade::num::Profile>() -> Result<(), Box<dyn Error>> {
-    use fixshade_scenes::profiled::render_frame_with;
-    let mut ws = Owned::<P::Lerp>::new(fixshade_scenes::capacity_for::<P>());
-    let mut pool = Box::new(fixshade_scenes::profiled::ProfilePool::<P>::new());
-    let mut px = vec![0u16; BAND_PIXELS];
-    let mut z = vec![0u16; DEPTH_PIXELS];
-    println!("fixshade-host-check target=host profile={}", P::NAME);
-    for spec in SCENES.iter() {
-        let (w, order) = ws.split();
-        let s = render_frame_with::<P, _>(
-            spec,
-            w,
-            &mut px,
-            spec.depth.then_some(&mut z[..]),
-            order,
-            &mut pool,
-            &mut NoProbe,
-        )
-        .map_err(|e| format!("scene {}: {e}", spec.name))?;
-        let line = fixshade_scenes::SceneLine {
-            spec,
-            stats: &s,
-            chip: None,
-        };
-        println!("{line}");
-    }
-    Ok(())
 }
 
 /// `--knobs`: the knob variants (band rows, 32-bit depth, subpixel bits).
