@@ -68,7 +68,10 @@ use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
 use super::position::PosFrame;
 use super::prepare::{self, eye_lights};
-use super::{Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats};
+use super::{
+    Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats, FACE_BAND,
+    FACE_KEPT,
+};
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
 use crate::raster::{
@@ -233,18 +236,24 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     /// End of the entries of the order starting in the current band (or
     /// above).
     band_end: usize,
-    /// End of each band's entries of the order, when the sort found them
-    /// (at most `2^RADIX_BITS` bands), so that a band's run needs no
-    /// triangle's rows again.
-    ends: Option<[u16; 1 << RADIX_BITS]>,
+    /// End of each band's entries of the order (band `epoch + b`'s in
+    /// `ends[b]`), so that a band's run needs no triangle's rows again.
+    ends: [u16; 1 << RADIX_BITS],
+    /// The first band of those ordered (every [`EPOCH`] bands the
+    /// triangles starting in the next ones are ordered).
+    epoch: u32,
+    /// A triangle put off while the pool was full found the queue full
+    /// too (the rest of the order): the band is reported as an error.
+    lost: bool,
     /// Pool ring: first entry, entries of the band above still to resume,
     /// entries in all.
     ring_head: usize,
     ring_cur: usize,
     ring_len: usize,
     free_len: usize,
-    /// Queue of triangles that found the pool full (in `order[n..2n]`):
-    /// first entry, entries of the band above, entries in all.
+    /// Queue of triangles that found the pool full (a ring in `order[n..]`,
+    /// the order's entries past the kept triangles): first entry, entries
+    /// of the band above, entries in all.
     def_head: usize,
     def_cur: usize,
     def_len: usize,
@@ -274,7 +283,7 @@ impl<'w, P: Profile> Frame<'w, P> {
     ) -> Result<Bands<'a, 'w, P, CAP, V>, RenderError> {
         let n = self.triangle_count();
         let order = &mut *state.order;
-        if order.len() < 2 * n || n > u16::MAX as usize {
+        if order.len() < n || self.triangle_numbers() > u16::MAX as usize {
             return Err(RenderError::Capacity {
                 part: Part::Order,
                 object: 0,
@@ -288,7 +297,7 @@ impl<'w, P: Profile> Frame<'w, P> {
         for (i, f) in pool.free.iter_mut().enumerate() {
             *f = (CAP - 1 - i) as u16;
         }
-        let ends = sort_by_band(self, order, rows, self.height);
+        let ends = sort_by_band(self, order, rows, self.height, 0);
         Ok(Bands {
             frame: self,
             scene,
@@ -301,6 +310,8 @@ impl<'w, P: Profile> Frame<'w, P> {
             cursor: 0,
             band_end: 0,
             ends,
+            epoch: 0,
+            lost: false,
             ring_head: 0,
             ring_cur: 0,
             ring_len: 0,
@@ -364,88 +375,86 @@ pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
     }
 }
 
-/// Orders the indices of `frame`'s triangles by the band of their first
-/// row, stably, into `order[..n]` (`order[n..2n]` is scratch): one
-/// counting-sort pass for up to 64 bands (each triangle's band computed
-/// once, from its vertices' rows, kept in the scratch for the pass; the
-/// end of each band's entries returned), two (by the low and the high 6
-/// bits) for more.
+/// Bands ordered at once: a kept triangle's band, relative to the first
+/// of them, lies in the band bits of its [`Workspace::faces`] byte
+/// ([`FACE_BAND`], 6 bits) while ordering, [`EPOCH`] marking one starting
+/// in a later run of bands (or an earlier one). A frame of more bands is
+/// ordered again every `EPOCH` bands.
+///
+/// [`Workspace::faces`]: super::Workspace::faces
+const EPOCH: u32 = FACE_BAND as u32;
+
+/// Orders the numbers of `frame`'s kept triangles starting in bands
+/// `first..first + EPOCH` by band, stably (ascending numbers within a
+/// band), into `order` (at least [`Frame::triangle_count`] entries): each
+/// kept triangle's band computed once, from its vertices' rows, and kept
+/// in its [`Workspace::faces`] byte ([`FACE_BAND`]) for the counting
+/// sort's placing pass over the numbers, which needs no other scratch.
+/// Returns the end of each band's entries (band `first + b`'s in
+/// `ends[b]`).
+///
+/// [`Workspace::faces`]: super::Workspace::faces
 fn sort_by_band<P: Profile>(
     frame: &Frame<'_, P>,
     order: &mut [u16],
     rows: u32,
     height: u32,
-) -> Option<[u16; 1 << RADIX_BITS]> {
-    let n = frame.triangle_count();
+    first: u32,
+) -> [u16; 1 << RADIX_BITS] {
     let (shift, m) = band_consts(rows);
     let last = height.div_ceil(rows.max(1)).saturating_sub(1);
-    // Rows lie within the screen (at most 4096): keys below 2^12.
-    let key = |i: u16| {
-        let r = frame
-            .tri_vertices(usize::from(i))
-            .map_or(0, |v| frame.tri_first_row(v));
-        band_of(u32::from(r).min(4095), rows, shift, m).min(last)
+    // The key of a triangle starting in band `b`: `b - first` within the
+    // run, else `EPOCH`.
+    #[allow(clippy::cast_possible_truncation)]
+    let rel = |b: u32| match b.checked_sub(first) {
+        Some(k) if k < EPOCH => k as u8,
+        _ => EPOCH as u8,
     };
-    let (lo, hi) = order.split_at_mut_checked(n)?;
-    let hi = hi.get_mut(..n)?;
-    if last < 1 << RADIX_BITS {
-        match (shift, frame.ws.tris.get(..n)) {
-            // A power-of-two band height: the band is the top `y`'s first
-            // row shifted once more, `(y + round) >> (sub + s)` (one
-            // floor division by `2^(sub + s)`), clamped to `0..=last`;
-            // the same key as `key` (the row's clamps to the height and
-            // to 4095 both give a band at or beyond `last`).
-            (Some(s), Some(tris)) => {
-                let sub = P::SUBPIXEL_BITS;
-                let sc = sub.scale();
-                let o = prepare::xy_origin::<P>(frame.width, frame.height).0[1];
-                let round = o - sc / 2 + sc - 1;
-                let sh = sub.get() + s;
-                let xy: &[super::ScreenXy] = frame.ws.xy;
-                let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
-                for (k, t) in hi.iter_mut().zip(tris) {
-                    let [a, b, c] = t.v();
-                    let top = y(a).min(y(b)).min(y(c));
-                    *k = (((top + round) >> sh).max(0) as u32).min(last) as u16;
-                }
-            }
-            _ => {
-                for (i, k) in hi.iter_mut().enumerate() {
-                    *k = key(i as u16) as u16;
-                }
-            }
+    let sub = P::SUBPIXEL_BITS;
+    let sc = sub.scale();
+    let o = prepare::xy_origin::<P>(frame.width, frame.height).0[1];
+    let xy: &[super::ScreenXy] = frame.ws.xy;
+    let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
+    // A power-of-two band height: the band is the top `y`'s first row
+    // shifted once more, `(y + round) >> (sub + s)` (one floor division by
+    // `2^(sub + s)`), clamped to `0..=last`; the same band as the first row
+    // clamped to the height and to 4095 (both give a band at or beyond
+    // `last`). Rows lie within the screen (at most 4096): keys below 2^12.
+    let (round, sh) = (o - sc / 2 + sc - 1, sub.get() + shift.unwrap_or(0));
+    #[allow(clippy::cast_sign_loss)]
+    let band = |v: [u16; 3]| match shift {
+        Some(_) => {
+            let top = y(v[0]).min(y(v[1])).min(y(v[2]));
+            (((top + round) >> sh).max(0) as u32).min(last)
         }
-        let keys: &[u16] = hi;
-        let k = |i: u16| keys.get(usize::from(i)).map_or(0, |&k| u32::from(k));
-        let count = counting_pass(0..n as u16, lo, k);
-        let mut ends = [0u16; 1 << RADIX_BITS];
-        for (e, c) in ends.iter_mut().zip(count.iter()) {
-            *e = *c;
-        }
-        Some(ends)
-    } else {
-        let mask = (1 << RADIX_BITS) - 1;
-        counting_pass(0..n as u16, hi, |i| key(i) & mask);
-        let src: &[u16] = hi;
-        counting_pass(src.iter().copied(), lo, |i| key(i) >> RADIX_BITS);
-        None
-    }
-}
-
-/// One stable counting-sort pass of the indices `src` by `key` (below
-/// 64) into `dst`; returns the counts after it, `count[b]` the end of key
-/// `b`'s entries.
-#[inline(always)]
-fn counting_pass(
-    src: impl Iterator<Item = u16> + Clone,
-    dst: &mut [u16],
-    key: impl Fn(u16) -> u32,
-) -> [u16; (1 << RADIX_BITS) + 1] {
+        None => band_of(u32::from(frame.tri_first_row(v)).min(4095), rows, shift, m).min(last),
+    };
     let mut count = [0u16; (1 << RADIX_BITS) + 1];
-    let k = |i: u16| key(i) as usize & 63;
-    for i in src.clone() {
-        if let Some(c) = count.get_mut(k(i) + 1) {
+    let mut key = |f: &core::cell::Cell<u8>, v: [u16; 3]| {
+        let k = rel(band(v));
+        f.set(f.get() & !FACE_BAND | k);
+        if let Some(c) = count.get_mut(usize::from(k) + 1) {
             *c += 1;
+        }
+    };
+    for po in frame.objects() {
+        let faces = frame
+            .faces
+            .get(usize::from(po.tris.start)..usize::from(po.tris.end))
+            .unwrap_or(&[]);
+        let mesh = frame.meshes.get(usize::from(po.object)).map_or(&[][..], |m| m);
+        let base = po.verts.start;
+        let nm = usize::from(po.made.saturating_sub(po.tris.start));
+        for (f, t) in faces.iter().zip(mesh) {
+            if f.get() & FACE_KEPT != 0 {
+                key(f, t.map(|x| base.wrapping_add(x)));
+            }
+        }
+        let made = frame.ws.tris.get(usize::from(po.made_base)..).unwrap_or(&[]);
+        for (f, t) in faces.get(nm..).unwrap_or(&[]).iter().zip(made) {
+            if f.get() & FACE_KEPT != 0 {
+                key(f, t.v());
+            }
         }
     }
     let mut sum = 0;
@@ -453,15 +462,25 @@ fn counting_pass(
         sum += *c;
         *c = sum;
     }
-    for i in src {
-        if let Some(c) = count.get_mut(k(i)) {
-            if let Some(d) = dst.get_mut(*c as usize) {
-                *d = i;
+    let n = frame.triangle_numbers();
+    for (i, f) in frame.faces.iter().take(n).enumerate() {
+        let b = f.get();
+        // Kept, and starting in these bands.
+        if b & FACE_KEPT == 0 || u32::from(b & FACE_BAND) == EPOCH {
+            continue;
+        }
+        if let Some(c) = count.get_mut(usize::from(b & FACE_BAND)) {
+            if let Some(d) = order.get_mut(usize::from(*c)) {
+                *d = i as u16;
             }
             *c += 1;
         }
     }
-    count
+    let mut ends = [0u16; 1 << RADIX_BITS];
+    for (e, c) in ends.iter_mut().zip(count.iter()) {
+        *e = *c;
+    }
+    ends
 }
 
 /// The row kernel's sink: a band's colour and depth slices and a shader.
@@ -558,20 +577,21 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let band_index = y0 / self.rows.max(1);
         // The triangles starting in this band: the next run of the order
         // (each triangle's band found once per frame, here).
-        self.band_end = match &self.ends {
-            // Bands past the last hold no start (keys are clamped to it).
-            Some(ends) => ends
-                .get(band_index as usize)
-                .map_or(self.n, |&e| usize::from(e))
-                .max(self.cursor),
-            None => {
-                let mut k = self.cursor;
-                while k < self.n && self.bucket_at(k, band_index) != NONE {
-                    k += 1;
-                }
-                k
-            }
-        };
+        if band_index >= self.epoch + EPOCH {
+            // The next run of bands: its triangles ordered (into the
+            // entries before the queue's).
+            let n = self.n.min(self.order.len());
+            let order = self.order.get_mut(..n).unwrap_or_default();
+            self.ends = sort_by_band(self.frame, order, self.rows, self.frame.height, band_index);
+            self.epoch = band_index;
+            self.cursor = 0;
+        }
+        // Bands past the last hold no start (keys are clamped to it).
+        self.band_end = self
+            .ends
+            .get((band_index - self.epoch) as usize)
+            .map_or(self.n, |&e| usize::from(e))
+            .max(self.cursor);
         let frame = self.frame;
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
@@ -655,6 +675,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             }
         }
         self.y = y1;
+        if self.lost {
+            return Err(RenderError::Capacity {
+                part: Part::Order,
+                object: 0,
+            });
+        }
         Ok(Some(Window { width: w, y0, y1 }))
     }
 
@@ -687,36 +713,6 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             self.order.get(self.cursor).map_or(NONE, |&i| i as u32)
         } else {
             NONE
-        }
-    }
-
-    /// Entry `k` of the order when its triangle starts in band `band` or
-    /// above, else [`NONE`].
-    #[inline(always)]
-    fn bucket_at(&self, k: usize, band: u32) -> u32 {
-        let Some(&i) = self.order.get(k) else {
-            return NONE;
-        };
-        let (shift, m) = band_consts(self.rows);
-        let last = self
-            .frame
-            .height
-            .div_ceil(self.rows.max(1))
-            .saturating_sub(1);
-        match self.frame.tri_vertices(usize::from(i)) {
-            Some(v)
-                if band_of(
-                    u32::from(self.frame.tri_first_row(v)).min(4095),
-                    self.rows,
-                    shift,
-                    m,
-                )
-                .min(last)
-                    <= band =>
-            {
-                i as u32
-            }
-            _ => NONE,
         }
     }
 
@@ -892,7 +888,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             Some((ti, Src::Slot(si)))
         } else {
             if ti == tb {
-                self.def_head = wrap(self.def_head + 1, self.n);
+                self.def_head = wrap(self.def_head + 1, self.order.len() - self.n);
                 self.def_cur -= 1;
                 self.def_len -= 1;
             } else {
@@ -1035,16 +1031,22 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// set up afresh in the next band.
     #[inline(always)]
     fn defer(&mut self, ti: u16) {
-        let tail = wrap(self.def_head + self.def_len, self.n);
-        if let Some(q) = self.order.get_mut(self.n + tail) {
-            *q = ti;
-            self.def_len += 1;
+        // The queue: a ring in the order's entries past the kept
+        // triangles (`n <= order.len()`, checked by `Frame::bands`).
+        let len = self.order.len() - self.n;
+        let tail = wrap(self.def_head + self.def_len, len);
+        match self.order.get_mut(self.n + tail) {
+            Some(q) if self.def_len < len => {
+                *q = ti;
+                self.def_len += 1;
+            }
+            _ => self.lost = true,
         }
     }
 }
 
 /// `x mod m` for `x < 2·m`, the positions in the pool's ring (`m` =
-/// its slots) and in the queue (`m` = the prepared triangles): a head
+/// its slots) and in the queue (`m` = its entries): a head
 /// below `m` plus an entry count at most `m`. No division (a library call
 /// on ARMv6-M: bunny-gouraud raster thumbv6m 3 151 780 -> 3 112 736,
 /// thumbv7em 2 172 222 -> 2 148 352). A

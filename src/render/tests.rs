@@ -19,6 +19,7 @@ struct Mem<L> {
     vals: Vec<L>,
     tris: Vec<Tri>,
     colors: Vec<Rgb8>,
+    faces: Vec<u8>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -28,6 +29,7 @@ impl<L: Copy + Default> Mem<L> {
             vals: vec![L::default(); verts * 7],
             tris: vec![Tri::default(); tris],
             colors: vec![Rgb8::BLACK; tris],
+            faces: vec![0; tris],
         }
     }
     fn ws(&mut self) -> Workspace<'_, L> {
@@ -36,6 +38,7 @@ impl<L: Copy + Default> Mem<L> {
             vals: &mut self.vals,
             tris: &mut self.tris,
             colors: &mut self.colors,
+            faces: &mut self.faces,
         }
     }
 }
