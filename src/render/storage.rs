@@ -563,22 +563,36 @@ mod tests {
             .object(&CUBE, Layout::GouraudRgb, Reach::Clipped);
         let mut st = Box::new(<crate::storage!(i32, C)>::new());
         let (ws, order) = st.split();
-        assert_eq!(order.len(), 2 * C.triangles);
+        assert_eq!(order.len(), C.triangles);
         let frame = prepare::<Fast>(&s, 64, 64, ws).unwrap();
-        // The clipped cube added vertices beyond its mesh's.
+        // The clipped cube added vertices beyond its mesh's, and made
+        // triangles; the two-sided one made its back faces.
         assert!(frame.objects()[1].verts.len() > CUBE.vertex_count());
+        assert!(frame.made_count() > 0 && frame.made_count() <= C.made);
         assert!(frame.vertex_count() <= C.vertices && frame.triangle_count() <= C.triangles);
+        assert!(frame.triangle_numbers() <= C.triangles);
         // Sized as if both were inside: too small.
         const IN: Capacity = Capacity::EMPTY
             .object(&CUBE, Layout::GouraudRgb, Reach::Inside)
             .object(&CUBE, Layout::GouraudRgb, Reach::Inside);
         let mut small = Box::new(<crate::storage!(i32, IN)>::new());
-        assert!(matches!(
-            prepare::<Fast>(&s, 64, 64, small.workspace()),
-            Err(RenderError::Capacity {
+        // No room for the two-sided cube's back faces.
+        assert_eq!(
+            prepare::<Fast>(&s, 64, 64, small.workspace()).unwrap_err(),
+            RenderError::Capacity {
+                part: Part::Made,
+                object: 0
+            }
+        );
+        // Room for them, but the clipped cube's vertices do not fit.
+        const MADE: Capacity = Capacity { made: C.made, triangles: C.triangles, ..IN };
+        let mut small = Box::new(<crate::storage!(i32, MADE)>::new());
+        assert_eq!(
+            prepare::<Fast>(&s, 64, 64, small.workspace()).unwrap_err(),
+            RenderError::Capacity {
                 part: Part::Vertices,
-                ..
-            })
-        ));
+                object: 1
+            }
+        );
     }
 }

@@ -28,8 +28,10 @@ impl<L: Copy + Default> Mem<L> {
             xy: vec![super::ScreenXy::ZERO; verts],
             vals: vec![L::default(); verts * 7],
             tris: vec![Tri::default(); tris],
-            colors: vec![Rgb8::BLACK; tris],
-            faces: vec![0; tris],
+            // Triangle numbers (and flat colours): every mesh triangle's
+            // (more than the kept triangles of `tris`).
+            colors: vec![Rgb8::BLACK; 4 * tris],
+            faces: vec![0; 4 * tris],
         }
     }
     fn ws(&mut self) -> Workspace<'_, L> {
@@ -432,7 +434,7 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 fn memory_figures_are_as_documented() {
     assert_eq!(core::mem::size_of::<Tri>(), 6);
     assert_eq!(core::mem::size_of::<Rgb8>(), 3);
-    assert_eq!(core::mem::size_of::<PreparedObject>(), 20);
+    assert_eq!(core::mem::size_of::<PreparedObject>(), 28);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
@@ -466,7 +468,9 @@ fn memory_figures_are_as_documented() {
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
-    assert_eq!(frame.bytes_used(), 1839 * (4 + 4) + t * 6);
+    // A byte per mesh triangle (whether the view keeps it), none copied.
+    assert_eq!(frame.triangle_numbers(), 3674);
+    assert_eq!(frame.bytes_used(), 1839 * (4 + 4) + 3674);
     // Phong with a point light and a local viewer carries positions.
     let objs = [object::<crate::num::Q16>(
         shapes::CUBE,
