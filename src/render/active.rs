@@ -231,7 +231,7 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     y: u32,
     /// Prepared triangles.
     n: usize,
-    /// Next entry of the order.
+    /// Next entry of the order (from `run_at` on).
     cursor: usize,
     /// End of the entries of the order starting in the current band (or
     /// above).
@@ -245,6 +245,11 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     /// A triangle put off while the pool was full found the queue full
     /// too (the rest of the order): the band is reported as an error.
     lost: bool,
+    /// Where the run of the order (the kept triangles by band) starts.
+    run_at: usize,
+    /// Where the queue starts in the order, and its entries.
+    q_at: usize,
+    q_len: usize,
     /// Pool ring: first entry, entries of the band above still to resume,
     /// entries in all.
     ring_head: usize,
@@ -297,7 +302,13 @@ impl<'w, P: Profile> Frame<'w, P> {
         for (i, f) in pool.free.iter_mut().enumerate() {
             *f = (CAP - 1 - i) as u16;
         }
-        let ends = sort_by_band(self, order, rows, self.height, 0);
+        let (ends, run_at) = sort_by_band(self, order, n, rows, self.height, 0, None);
+        // The queue: the entries outside the run.
+        let (q_at, q_len) = if run_at == 0 {
+            (n, order.len() - n)
+        } else {
+            (0, run_at)
+        };
         Ok(Bands {
             frame: self,
             scene,
@@ -307,11 +318,14 @@ impl<'w, P: Profile> Frame<'w, P> {
             rows,
             y: 0,
             n,
-            cursor: 0,
+            cursor: run_at,
             band_end: 0,
             ends,
             epoch: 0,
             lost: false,
+            run_at,
+            q_at,
+            q_len,
             ring_head: 0,
             ring_cur: 0,
             ring_len: 0,
@@ -384,37 +398,82 @@ pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
 /// [`Workspace::faces`]: super::Workspace::faces
 const EPOCH: u32 = FACE_BAND as u32;
 
-/// Orders the numbers of `frame`'s kept triangles starting in bands
+/// The band keys of an object's kept mesh triangles (`faces`, the
+/// object's mesh triangles' bytes; `mesh` its triangles, corners numbered
+/// in `xy`, positions stored from `o`): `band(top)` of each one's top `y`
+/// (stored), relative to `first` ([`EPOCH`] outside the run), into the
+/// band bits of its byte and counted in `count[key + 1]`; each kept
+/// number (`start` + its index) listed in `list` from `listed` on (when
+/// `list` has room). Returns the new `listed`. Out of line, its state in
+/// registers.
+#[inline(never)]
+#[allow(clippy::cast_possible_truncation)]
+fn mesh_keys(
+    faces: &[core::cell::Cell<u8>],
+    mesh: &[[u16; 3]],
+    (xy, o): (&[super::ScreenXy], i32),
+    start: usize,
+    (count, list, mut listed, first): (&mut [u16; (1 << RADIX_BITS) + 1], &mut [u16], usize, u32),
+    band: impl Fn(i32) -> u32,
+) -> usize {
+    let n = faces.len().min(mesh.len());
+    let (faces, mesh) = (&faces[..n], &mesh[..n]);
+    for t in 0..n {
+        let b = faces[t].get();
+        if b & FACE_KEPT == 0 {
+            continue;
+        }
+        let v = mesh[t];
+        let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
+        let top = y(v[0]).min(y(v[1])).min(y(v[2]));
+        // A band before `first` wraps past `EPOCH`.
+        let k = band(top).wrapping_sub(first).min(EPOCH) as u8;
+        faces[t].set(b & !FACE_BAND | k);
+        count[usize::from(k & FACE_BAND) + 1] += 1;
+        if let Some(d) = list.get_mut(listed) {
+            // Numbers below `MAX_TRIANGLES`.
+            *d = (start + t) as u16;
+        }
+        listed += 1;
+    }
+    listed
+}
+
+/// Orders the numbers of `frame`'s `n` kept triangles starting in bands
 /// `first..first + EPOCH` by band, stably (ascending numbers within a
-/// band), into `order` (at least [`Frame::triangle_count`] entries): each
-/// kept triangle's band computed once, from its vertices' rows, and kept
-/// in its [`Workspace::faces`] byte ([`FACE_BAND`]) for the counting
-/// sort's placing pass over the numbers, which needs no other scratch.
-/// Returns the end of each band's entries (band `first + b`'s in
-/// `ends[b]`).
+/// band), into `order` (at least `n` entries): each kept triangle's band
+/// computed once, from its vertices' rows, and kept in its
+/// [`Workspace::faces`] byte ([`FACE_BAND`]). Returns the end of each
+/// band's entries (band `first + b`'s in `ends[b]`, relative to the
+/// start of the ordered run) and where the run starts in `order`.
+///
+/// The first ordering (`at` = `None`), when `order` holds the kept
+/// triangles twice, lists them in `order[..n]` while finding their bands
+/// and places them from there into the run `order[len - n..]` (the
+/// counting sort's passes over the kept triangles only); else, and for a
+/// later run of bands (`at`: where the run starts), the placing pass
+/// reads the numbers' bytes and writes the run at `at` (or 0), which
+/// needs no other scratch. The rest of `order` is the queue of the
+/// triangles put off while the pool is full.
 ///
 /// [`Workspace::faces`]: super::Workspace::faces
+#[allow(clippy::too_many_arguments)]
 fn sort_by_band<P: Profile>(
     frame: &Frame<'_, P>,
     order: &mut [u16],
+    n: usize,
     rows: u32,
     height: u32,
     first: u32,
-) -> [u16; 1 << RADIX_BITS] {
+    at: Option<usize>,
+) -> ([u16; 1 << RADIX_BITS], usize) {
     let (shift, m) = band_consts(rows);
     let last = height.div_ceil(rows.max(1)).saturating_sub(1);
-    // The key of a triangle starting in band `b`: `b - first` within the
-    // run, else `EPOCH`.
-    #[allow(clippy::cast_possible_truncation)]
-    let rel = |b: u32| match b.checked_sub(first) {
-        Some(k) if k < EPOCH => k as u8,
-        _ => EPOCH as u8,
-    };
     let sub = P::SUBPIXEL_BITS;
     let sc = sub.scale();
+    // Stored positions count from `o` (`xy_origin`).
     let o = prepare::xy_origin::<P>(frame.width, frame.height).0[1];
-    let xy: &[super::ScreenXy] = frame.ws.xy;
-    let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
+    let h = frame.height.min(u32::from(u16::MAX)) as i32;
     // A power-of-two band height: the band is the top `y`'s first row
     // shifted once more, `(y + round) >> (sub + s)` (one floor division by
     // `2^(sub + s)`), clamped to `0..=last`; the same band as the first row
@@ -422,65 +481,100 @@ fn sort_by_band<P: Profile>(
     // `last`). Rows lie within the screen (at most 4096): keys below 2^12.
     let (round, sh) = (o - sc / 2 + sc - 1, sub.get() + shift.unwrap_or(0));
     #[allow(clippy::cast_sign_loss)]
-    let band = |v: [u16; 3]| match shift {
-        Some(_) => {
-            let top = y(v[0]).min(y(v[1])).min(y(v[2]));
-            (((top + round) >> sh).max(0) as u32).min(last)
-        }
-        None => band_of(u32::from(frame.tri_first_row(v)).min(4095), rows, shift, m).min(last),
+    let pow2 = |top: i32| (((top + round) >> sh).max(0) as u32).min(last);
+    #[allow(clippy::cast_sign_loss)]
+    let general = |top: i32| {
+        let r = crate::raster::first_row(top + o, sub).max(0).min(h) as u32;
+        band_of(r.min(4095), rows, shift, m).min(last)
     };
+    let list_all = at.is_none() && n <= order.len() / 2;
     let mut count = [0u16; (1 << RADIX_BITS) + 1];
-    let mut key = |f: &core::cell::Cell<u8>, v: [u16; 3]| {
-        let k = rel(band(v));
-        f.set(f.get() & !FACE_BAND | k);
-        if let Some(c) = count.get_mut(usize::from(k) + 1) {
-            *c += 1;
-        }
-    };
+    let list: &mut [u16] = if list_all { order } else { &mut [] };
+    let mut listed = 0;
+    let xy_all: &[super::ScreenXy] = frame.ws.xy;
     for po in frame.objects() {
         let faces = frame
             .faces
             .get(usize::from(po.tris.start)..usize::from(po.tris.end))
             .unwrap_or(&[]);
         let mesh = frame.meshes.get(usize::from(po.object)).map_or(&[][..], |m| m);
-        let base = po.verts.start;
-        let nm = usize::from(po.made.saturating_sub(po.tris.start));
-        for (f, t) in faces.iter().zip(mesh) {
-            if f.get() & FACE_KEPT != 0 {
-                key(f, t.map(|x| base.wrapping_add(x)));
-            }
-        }
+        let xy = xy_all
+            .get(usize::from(po.verts.start)..usize::from(po.verts.end))
+            .unwrap_or(&[]);
+        let nm = mesh.len().min(faces.len());
+        let (mesh_faces, made_faces) = faces.split_at(nm);
+        let start = usize::from(po.tris.start);
+        let keys = (&mut count, &mut *list, listed, first);
+        listed = match shift {
+            Some(_) => mesh_keys(mesh_faces, mesh, (xy, o), start, keys, pow2),
+            None => mesh_keys(mesh_faces, mesh, (xy, o), start, keys, general),
+        };
+        // Made triangles (corners numbered in `xy_all`).
         let made = frame.ws.tris.get(usize::from(po.made_base)..).unwrap_or(&[]);
-        for (f, t) in faces.get(nm..).unwrap_or(&[]).iter().zip(made) {
-            if f.get() & FACE_KEPT != 0 {
-                key(f, t.v());
+        for (j, (f, t)) in made_faces.iter().zip(made).enumerate() {
+            let b = f.get();
+            if b & FACE_KEPT == 0 {
+                continue;
             }
+            let y = |v: u16| xy_all.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
+            let v = t.v();
+            let top = y(v[0]).min(y(v[1])).min(y(v[2]));
+            let band = if shift.is_some() { pow2(top) } else { general(top) };
+            let k = band.wrapping_sub(first).min(EPOCH) as u8;
+            f.set(b & !FACE_BAND | k);
+            if let Some(c) = count.get_mut(usize::from(k) + 1) {
+                *c += 1;
+            }
+            if let Some(d) = list.get_mut(listed) {
+                *d = (start + nm + j) as u16;
+            }
+            listed += 1;
         }
     }
+    let listed = if list_all { listed } else { 0 };
+    let compact = list_all;
     let mut sum = 0;
     for c in count.iter_mut() {
         sum += *c;
         *c = sum;
     }
-    let n = frame.triangle_numbers();
-    for (i, f) in frame.faces.iter().take(n).enumerate() {
-        let b = f.get();
-        // Kept, and starting in these bands.
-        if b & FACE_KEPT == 0 || u32::from(b & FACE_BAND) == EPOCH {
-            continue;
-        }
-        if let Some(c) = count.get_mut(usize::from(b & FACE_BAND)) {
-            if let Some(d) = order.get_mut(usize::from(*c)) {
-                *d = i as u16;
+    let faces = frame.faces;
+    let place = |count: &mut [u16; (1 << RADIX_BITS) + 1], dst: &mut [u16], i: u16, k: u8| {
+        if let Some(c) = count.get_mut(usize::from(k)) {
+            if let Some(d) = dst.get_mut(usize::from(*c)) {
+                *d = i;
             }
             *c += 1;
         }
-    }
+    };
+    let run_at = if compact {
+        let (src, dst) = order.split_at_mut(order.len() - n);
+        for &i in src.iter().take(listed) {
+            let k = faces.get(usize::from(i)).map_or(EPOCH as u8, |f| f.get() & FACE_BAND);
+            // Kept, and starting in these bands.
+            if u32::from(k) != EPOCH {
+                place(&mut count, dst, i, k);
+            }
+        }
+        order.len() - n
+    } else {
+        let at = at.unwrap_or(0);
+        let dst = order.get_mut(at..).unwrap_or_default();
+        for (i, f) in faces.iter().take(frame.triangle_numbers()).enumerate() {
+            let b = f.get();
+            // Kept, and starting in these bands.
+            if b & FACE_KEPT == 0 || u32::from(b & FACE_BAND) == EPOCH {
+                continue;
+            }
+            place(&mut count, dst, i as u16, b & FACE_BAND);
+        }
+        at
+    };
     let mut ends = [0u16; 1 << RADIX_BITS];
     for (e, c) in ends.iter_mut().zip(count.iter()) {
         *e = *c;
     }
-    ends
+    (ends, run_at)
 }
 
 /// The row kernel's sink: a band's colour and depth slices and a shader.
@@ -580,18 +674,26 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         if band_index >= self.epoch + EPOCH {
             // The next run of bands: its triangles ordered (into the
             // entries before the queue's).
-            let n = self.n.min(self.order.len());
-            let order = self.order.get_mut(..n).unwrap_or_default();
-            self.ends = sort_by_band(self.frame, order, self.rows, self.frame.height, band_index);
+            let (ends, _) = sort_by_band(
+                self.frame,
+                self.order,
+                self.n,
+                self.rows,
+                self.frame.height,
+                band_index,
+                Some(self.run_at),
+            );
+            self.ends = ends;
             self.epoch = band_index;
-            self.cursor = 0;
+            self.cursor = self.run_at;
         }
         // Bands past the last hold no start (keys are clamped to it).
-        self.band_end = self
-            .ends
-            .get((band_index - self.epoch) as usize)
-            .map_or(self.n, |&e| usize::from(e))
-            .max(self.cursor);
+        self.band_end = (self.run_at
+            + self
+                .ends
+                .get((band_index - self.epoch) as usize)
+                .map_or(self.n, |&e| usize::from(e)))
+        .max(self.cursor);
         let frame = self.frame;
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
@@ -698,7 +800,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         let b = if self.def_cur > 0 {
             self.order
-                .get(self.n + self.def_head)
+                .get(self.q_at + self.def_head)
                 .map_or(NONE, |&t| t as u32)
         } else {
             NONE
@@ -870,7 +972,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         let tb = if self.def_cur > 0 {
             self.order
-                .get(self.n + self.def_head)
+                .get(self.q_at + self.def_head)
                 .map_or(NONE, |&t| t as u32)
         } else {
             NONE
@@ -888,7 +990,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             Some((ti, Src::Slot(si)))
         } else {
             if ti == tb {
-                self.def_head = wrap(self.def_head + 1, self.order.len() - self.n);
+                self.def_head = wrap(self.def_head + 1, self.q_len);
                 self.def_cur -= 1;
                 self.def_len -= 1;
             } else {
@@ -1031,11 +1133,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// set up afresh in the next band.
     #[inline(always)]
     fn defer(&mut self, ti: u16) {
-        // The queue: a ring in the order's entries past the kept
-        // triangles (`n <= order.len()`, checked by `Frame::bands`).
-        let len = self.order.len() - self.n;
+        // The queue: a ring in the order's entries outside the run.
+        let len = self.q_len;
         let tail = wrap(self.def_head + self.def_len, len);
-        match self.order.get_mut(self.n + tail) {
+        match self.order.get_mut(self.q_at + tail) {
             Some(q) if self.def_len < len => {
                 *q = ti;
                 self.def_len += 1;

@@ -496,17 +496,26 @@ impl<P: Profile> Frame<'_, P> {
     #[inline(always)]
     pub fn tri(&self, po: &PreparedObject, i: usize) -> Option<PreparedTri> {
         let k = i.checked_sub(usize::from(po.tris.start))?;
-        let (v, back) = match k.checked_sub(usize::from(po.made - po.tris.start)) {
-            None => {
-                let t = self.meshes.get(usize::from(po.object))?.get(k)?;
+        // (`MAX_OBJECTS` is a power of two: the mask is the bound check.)
+        const _: () = assert!(MAX_OBJECTS.is_power_of_two());
+        let mesh = self
+            .meshes
+            .get(usize::from(po.object) & (MAX_OBJECTS - 1))
+            .map_or(&[][..], |m| m);
+        // An object that keeps a triangle numbers its mesh's triangles
+        // from `tris.start` on, its made ones from `made` =
+        // `tris.start + mesh.len()` on.
+        let (v, back) = match mesh.get(k) {
+            Some(t) => {
                 let b = po.verts.start;
                 // Below `MAX_VERTICES` (checked by the vertex pass).
                 (
                     t.map(|x| b.wrapping_add(x)),
-                    self.faces.get(i)?.get() & FACE_BACK != 0,
+                    self.faces.get(i).is_some_and(|f| f.get() & FACE_BACK != 0),
                 )
             }
-            Some(m) => {
+            None => {
+                let m = k - mesh.len();
                 let p = *self.ws.tris.get(usize::from(po.made_base) + m)?;
                 (p.v(), p.back())
             }

@@ -639,8 +639,10 @@ fn triangles_inside(
     mut color: impl FnMut(usize, bool) -> bool,
 ) -> Option<usize> {
     let mut kept = 0;
-    for (t, (tri, face)) in tris.iter().zip(faces.iter_mut()).enumerate() {
-        *face = 0;
+    // Not kept unless found so below (cleared at once: cheaper than a
+    // store per triangle).
+    faces.fill(0);
+    for (t, tri) in tris.iter().enumerate() {
         let q = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or_default());
         if marked && (q[0].0[0] == UNUSED || q[1].0[0] == UNUSED || q[2].0[0] == UNUSED) {
             // Culled in object space.
@@ -663,7 +665,9 @@ fn triangles_inside(
         if !color(t, back) {
             return None;
         }
-        *face = face_byte(back);
+        if let Some(f) = faces.get_mut(t) {
+            *f = face_byte(back);
+        }
         kept += 1;
     }
     Some(kept)
@@ -691,8 +695,10 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
     mut color: impl FnMut(usize, bool) -> bool,
 ) -> Option<usize> {
     let mut kept = 0;
-    for (t, (tri, face)) in tris.iter().zip(faces.iter_mut()).enumerate() {
-        *face = 0;
+    // Not kept unless found so below (cleared at once: cheaper than a
+    // store per triangle).
+    faces.fill(0);
+    for (t, tri) in tris.iter().enumerate() {
         if MARKED {
             // Projected x is at least 0 here, `UNUSED` negative: a corner
             // left unprojected means the triangle was culled in object
@@ -730,7 +736,9 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if !color(t, back) {
             return None;
         }
-        *face = face_byte(back);
+        if let Some(f) = faces.get_mut(t) {
+            *f = face_byte(back);
+        }
         kept += 1;
     }
     Some(kept)
