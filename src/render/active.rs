@@ -67,10 +67,10 @@
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
 use super::position::PosFrame;
-use super::prepare::{self, eye_lights};
+use super::prepare::eye_lights;
 use super::{
-    Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats, FACE_BAND,
-    FACE_KEPT,
+    face_shift, Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats,
+    FACE_ROW,
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
@@ -302,7 +302,7 @@ impl<'w, P: Profile> Frame<'w, P> {
         for (i, f) in pool.free.iter_mut().enumerate() {
             *f = (CAP - 1 - i) as u16;
         }
-        let (ends, run_at) = sort_by_band(self, order, n, rows, self.height, 0, None);
+        let (ends, run_at) = sort_by_band(self, order, rows, self.height, 0, None);
         // The queue: the entries outside the run.
         let (q_at, q_len) = if run_at == 0 {
             (n, order.len() - n)
@@ -389,184 +389,147 @@ pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
     }
 }
 
-/// Bands ordered at once: a kept triangle's band, relative to the first
-/// of them, lies in the band bits of its [`Workspace::faces`] byte
-/// ([`FACE_BAND`], 6 bits) while ordering, [`EPOCH`] marking one starting
-/// in a later run of bands (or an earlier one). A frame of more bands is
-/// ordered again every `EPOCH` bands.
+/// Bands ordered at once (a run): a frame of more bands is ordered again
+/// every `EPOCH` bands (`first..first + EPOCH`, counted in 64 buckets).
+const EPOCH: u32 = 1 << RADIX_BITS;
+
+/// The band of kept triangles from their [`Workspace::faces`] bytes.
 ///
 /// [`Workspace::faces`]: super::Workspace::faces
-const EPOCH: u32 = FACE_BAND as u32;
-
-/// The band keys of an object's kept mesh triangles (`faces`, the
-/// object's mesh triangles' bytes; `mesh` its triangles, corners numbered
-/// in `xy`, positions stored from `o`): `band(top)` of each one's top `y`
-/// (stored), relative to `first` ([`EPOCH`] outside the run), into the
-/// band bits of its byte and counted in `count[key + 1]`; each kept
-/// number (`start` + its index) listed in `list` from `listed` on (when
-/// `list` has room). Returns the new `listed`. Out of line, its state in
-/// registers.
-#[inline(never)]
-#[allow(clippy::cast_possible_truncation)]
-fn mesh_keys(
-    faces: &[core::cell::Cell<u8>],
-    mesh: &[[u16; 3]],
-    (xy, o): (&[super::ScreenXy], i32),
-    start: usize,
-    (count, list, mut listed, first): (&mut [u16; (1 << RADIX_BITS) + 1], &mut [u16], usize, u32),
-    band: impl Fn(i32) -> u32,
-) -> usize {
-    let n = faces.len().min(mesh.len());
-    let (faces, mesh) = (&faces[..n], &mesh[..n]);
-    for t in 0..n {
-        let b = faces[t].get();
-        if b & FACE_KEPT == 0 {
-            continue;
-        }
-        let v = mesh[t];
-        let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
-        let top = y(v[0]).min(y(v[1])).min(y(v[2]));
-        // A band before `first` wraps past `EPOCH`.
-        let k = band(top).wrapping_sub(first).min(EPOCH) as u8;
-        faces[t].set(b & !FACE_BAND | k);
-        count[usize::from(k & FACE_BAND) + 1] += 1;
-        if let Some(d) = list.get_mut(listed) {
-            // Numbers below `MAX_TRIANGLES`.
-            *d = (start + t) as u16;
-        }
-        listed += 1;
-    }
-    listed
+#[derive(Clone, Copy, Debug)]
+struct BandOf {
+    /// `Some`: the band height a multiple of `2^q` (`q` the frame's row
+    /// shift, [`face_shift`]): the band is the stored row `(r >> q)`
+    /// divided by `rows >> q` ([`band_of`] with these constants), exact
+    /// (`floor(r / rows) = floor(floor(r / 2^q) / (rows / 2^q))`); `None`:
+    /// from the triangle's vertices.
+    coarse: Option<(u32, Option<u32>, u32)>,
+    rows: u32,
+    shift: Option<u32>,
+    m: u32,
+    /// The last band.
+    last: u32,
 }
 
-/// Orders the numbers of `frame`'s `n` kept triangles starting in bands
+impl BandOf {
+    fn new(rows: u32, height: u32) -> Self {
+        let q = face_shift(height);
+        let (shift, m) = band_consts(rows);
+        let coarse = (rows.trailing_zeros() >= q).then(|| {
+            let r = rows >> q;
+            let (s, m) = band_consts(r);
+            (r, s, m)
+        });
+        Self {
+            coarse,
+            rows,
+            shift,
+            m,
+            last: height.div_ceil(rows.max(1)).saturating_sub(1),
+        }
+    }
+
+    /// The band of kept triangle number `i` with byte `b`.
+    #[inline(always)]
+    fn band<P: Profile>(&self, frame: &Frame<'_, P>, i: usize, b: u8) -> u32 {
+        match self.coarse {
+            Some((rows, shift, m)) => {
+                band_of(u32::from(b & FACE_ROW).wrapping_sub(1), rows, shift, m).min(self.last)
+            }
+            None => self.band_slow(frame, i),
+        }
+    }
+
+    /// [`Self::band`] from the vertices (the band height not a multiple
+    /// of `2^q`): the object of the triangle found among the objects.
+    #[inline(never)]
+    #[cold]
+    fn band_slow<P: Profile>(&self, frame: &Frame<'_, P>, i: usize) -> u32 {
+        let r = frame
+            .tri_vertices(i)
+            .map_or(0, |v| u32::from(frame.tri_first_row(v)));
+        band_of(r.min(4095), self.rows, self.shift, self.m).min(self.last)
+    }
+}
+
+/// Orders the numbers of `frame`'s kept triangles starting in bands
 /// `first..first + EPOCH` by band, stably (ascending numbers within a
-/// band), into `order` (at least `n` entries): each kept triangle's band
-/// computed once, from its vertices' rows, and kept in its
-/// [`Workspace::faces`] byte ([`FACE_BAND`]). Returns the end of each
-/// band's entries (band `first + b`'s in `ends[b]`, relative to the
-/// start of the ordered run) and where the run starts in `order`.
+/// band), into `order` (at least [`Frame::triangle_count`] entries): each
+/// kept triangle's band read from its [`Workspace::faces`] byte (its first
+/// row), a counting sort. Returns the end of each band's entries (band
+/// `first + b`'s in `ends[b]`, relative to the start of the run) and where
+/// the run starts in `order`.
 ///
-/// The first ordering (`at` = `None`), when `order` holds the kept
-/// triangles twice, lists them in `order[..n]` while finding their bands
-/// and places them from there into the run `order[len - n..]` (the
-/// counting sort's passes over the kept triangles only); else, and for a
-/// later run of bands (`at`: where the run starts), the placing pass
-/// reads the numbers' bytes and writes the run at `at` (or 0), which
-/// needs no other scratch. The rest of `order` is the queue of the
+/// The first ordering (`at` = `None`) lists the kept numbers in `order`
+/// while counting; when `order` holds them twice, it places them from
+/// there into the run `order[len - n..]` (the placing pass over the kept
+/// triangles only); else, and for a later run of bands (`at`: where the
+/// run starts), the placing pass reads the numbers' bytes again and writes
+/// the run at `at` (or 0). The rest of `order` is the queue of the
 /// triangles put off while the pool is full.
 ///
 /// [`Workspace::faces`]: super::Workspace::faces
-#[allow(clippy::too_many_arguments)]
 fn sort_by_band<P: Profile>(
     frame: &Frame<'_, P>,
     order: &mut [u16],
-    n: usize,
     rows: u32,
     height: u32,
     first: u32,
     at: Option<usize>,
 ) -> ([u16; 1 << RADIX_BITS], usize) {
-    let (shift, m) = band_consts(rows);
-    let last = height.div_ceil(rows.max(1)).saturating_sub(1);
-    let sub = P::SUBPIXEL_BITS;
-    let sc = sub.scale();
-    // Stored positions count from `o` (`xy_origin`).
-    let o = prepare::xy_origin::<P>(frame.width, frame.height).0[1];
-    let h = frame.height.min(u32::from(u16::MAX)) as i32;
-    // A power-of-two band height: the band is the top `y`'s first row
-    // shifted once more, `(y + round) >> (sub + s)` (one floor division by
-    // `2^(sub + s)`), clamped to `0..=last`; the same band as the first row
-    // clamped to the height and to 4095 (both give a band at or beyond
-    // `last`). Rows lie within the screen (at most 4096): keys below 2^12.
-    let (round, sh) = (o - sc / 2 + sc - 1, sub.get() + shift.unwrap_or(0));
-    #[allow(clippy::cast_sign_loss)]
-    let pow2 = |top: i32| (((top + round) >> sh).max(0) as u32).min(last);
-    #[allow(clippy::cast_sign_loss)]
-    let general = |top: i32| {
-        let r = crate::raster::first_row(top + o, sub).max(0).min(h) as u32;
-        band_of(r.min(4095), rows, shift, m).min(last)
-    };
-    let list_all = at.is_none() && n <= order.len() / 2;
+    let key = BandOf::new(rows, height);
+    let n = frame.triangle_count();
+    let faces = frame
+        .faces
+        .get(..frame.triangle_numbers())
+        .unwrap_or_default();
     let mut count = [0u16; (1 << RADIX_BITS) + 1];
-    let list: &mut [u16] = if list_all { order } else { &mut [] };
+    let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
     let mut listed = 0;
-    let xy_all: &[super::ScreenXy] = frame.ws.xy;
-    for po in frame.objects() {
-        let faces = frame
-            .faces
-            .get(usize::from(po.tris.start)..usize::from(po.tris.end))
-            .unwrap_or(&[]);
-        let mesh = frame.meshes.get(usize::from(po.object)).map_or(&[][..], |m| m);
-        let xy = xy_all
-            .get(usize::from(po.verts.start)..usize::from(po.verts.end))
-            .unwrap_or(&[]);
-        let nm = mesh.len().min(faces.len());
-        let (mesh_faces, made_faces) = faces.split_at(nm);
-        let start = usize::from(po.tris.start);
-        let keys = (&mut count, &mut *list, listed, first);
-        listed = match shift {
-            Some(_) => mesh_keys(mesh_faces, mesh, (xy, o), start, keys, pow2),
-            None => mesh_keys(mesh_faces, mesh, (xy, o), start, keys, general),
-        };
-        // Made triangles (corners numbered in `xy_all`).
-        let made = frame.ws.tris.get(usize::from(po.made_base)..).unwrap_or(&[]);
-        for (j, (f, t)) in made_faces.iter().zip(made).enumerate() {
-            let b = f.get();
-            if b & FACE_KEPT == 0 {
-                continue;
-            }
-            let y = |v: u16| xy_all.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
-            let v = t.v();
-            let top = y(v[0]).min(y(v[1])).min(y(v[2]));
-            let band = if shift.is_some() { pow2(top) } else { general(top) };
-            let k = band.wrapping_sub(first).min(EPOCH) as u8;
-            f.set(b & !FACE_BAND | k);
-            if let Some(c) = count.get_mut(usize::from(k) + 1) {
-                *c += 1;
-            }
-            if let Some(d) = list.get_mut(listed) {
-                *d = (start + nm + j) as u16;
-            }
-            listed += 1;
+    for (i, &b) in faces.iter().enumerate() {
+        if b & FACE_ROW == 0 {
+            continue;
         }
+        // A band before `first` wraps past `EPOCH`.
+        let k = key.band(frame, i, b).wrapping_sub(first);
+        if k < EPOCH {
+            count[k as usize + 1] += 1;
+        }
+        if let Some(d) = list.get_mut(listed) {
+            // Numbers below `MAX_TRIANGLES`.
+            *d = i as u16;
+        }
+        listed += 1;
     }
-    let listed = if list_all { listed } else { 0 };
-    let compact = list_all;
     let mut sum = 0;
     for c in count.iter_mut() {
         sum += *c;
         *c = sum;
     }
-    let faces = frame.faces;
-    let place = |count: &mut [u16; (1 << RADIX_BITS) + 1], dst: &mut [u16], i: u16, k: u8| {
-        if let Some(c) = count.get_mut(usize::from(k)) {
+    let mut place = |dst: &mut [u16], i: usize, b: u8| {
+        let k = key.band(frame, i, b).wrapping_sub(first);
+        if k < EPOCH {
+            let c = &mut count[k as usize];
             if let Some(d) = dst.get_mut(usize::from(*c)) {
-                *d = i;
+                *d = i as u16;
             }
             *c += 1;
         }
     };
-    let run_at = if compact {
+    let run_at = if at.is_none() && listed == n && n <= order.len() / 2 {
         let (src, dst) = order.split_at_mut(order.len() - n);
-        for &i in src.iter().take(listed) {
-            let k = faces.get(usize::from(i)).map_or(EPOCH as u8, |f| f.get() & FACE_BAND);
-            // Kept, and starting in these bands.
-            if u32::from(k) != EPOCH {
-                place(&mut count, dst, i, k);
-            }
+        for &i in src.iter().take(n) {
+            let i = usize::from(i);
+            place(dst, i, faces.get(i).copied().unwrap_or(0));
         }
         order.len() - n
     } else {
         let at = at.unwrap_or(0);
         let dst = order.get_mut(at..).unwrap_or_default();
-        for (i, f) in faces.iter().take(frame.triangle_numbers()).enumerate() {
-            let b = f.get();
-            // Kept, and starting in these bands.
-            if b & FACE_KEPT == 0 || u32::from(b & FACE_BAND) == EPOCH {
-                continue;
+        for (i, &b) in faces.iter().enumerate() {
+            if b & FACE_ROW != 0 {
+                place(dst, i, b);
             }
-            place(&mut count, dst, i as u16, b & FACE_BAND);
         }
         at
     };
@@ -677,7 +640,6 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             let (ends, _) = sort_by_band(
                 self.frame,
                 self.order,
-                self.n,
                 self.rows,
                 self.frame.height,
                 band_index,

@@ -81,7 +81,6 @@ use crate::num::Profile;
 use crate::raster::{RasterError, Vertex};
 use crate::scene::{SceneError, Shading, MAX_OBJECTS};
 use crate::target::{BufferError, Rgb8};
-use core::cell::Cell;
 use core::fmt;
 use core::ops::Range;
 
@@ -102,15 +101,36 @@ pub const MAX_TRIANGLES: usize = u16::MAX as usize;
 /// Bit 15 of a [`Tri`]'s first index: a back face.
 const BACK: u16 = 1 << 15;
 
-/// A [`Workspace::faces`] byte: the view keeps the triangle.
-pub(crate) const FACE_KEPT: u8 = 1 << 7;
 /// A [`Workspace::faces`] byte: a back face (of an object drawn
 /// two-sided).
-pub(crate) const FACE_BACK: u8 = 1 << 6;
-/// The bits of a [`Workspace::faces`] byte the band renderer keeps a
-/// kept triangle's band in (relative to the bands being ordered: below
-/// 64) while ordering the triangles.
-pub(crate) const FACE_BAND: u8 = (1 << 6) - 1;
+pub(crate) const FACE_BACK: u8 = 1 << 7;
+/// The bits of a [`Workspace::faces`] byte that hold a kept triangle's
+/// first row `r` as `(r >> face_shift(height)) + 1` (1 to 127; 0: not
+/// kept).
+pub(crate) const FACE_ROW: u8 = FACE_BACK - 1;
+
+/// The shift of the rows in [`Workspace::faces`] bytes for a screen of
+/// `height` rows: the least `q` with `(height - 1) >> q` at most 126, so
+/// that every first row `r` of a kept triangle (below the height) stores
+/// as `(r >> q) + 1` in 7 bits (0 for 127 rows or fewer, 1 for 240, 6 for
+/// [`MAX_SCREEN`](crate::target::MAX_SCREEN) = 4096).
+#[inline(always)]
+pub(crate) const fn face_shift(height: u32) -> u32 {
+    let mut q = 0;
+    while q < 31 && (height.saturating_sub(1) >> q) > 126 {
+        q += 1;
+    }
+    q
+}
+
+/// The [`Workspace::faces`] byte of a kept triangle whose first row is
+/// `row` (below the height) on a screen of row shift `q`
+/// ([`face_shift`]).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+pub(crate) const fn face_byte(row: u32, q: u32, back: bool) -> u8 {
+    (((row >> q) + 1) as u8 & FACE_ROW) | if back { FACE_BACK } else { 0 }
+}
 
 /// One triangle made while preparing (a fan of a clipped triangle, or a
 /// back face of a two-sided Gouraud object) as stored: three
@@ -238,8 +258,10 @@ pub struct Workspace<'a, L> {
     pub colors: &'a mut [Rgb8],
     /// One byte per triangle number: each object numbers its mesh's
     /// triangles, then the triangles it made ([`Self::tris`]); the byte
-    /// says whether the view keeps the triangle and whether it is a back
-    /// face (the band renderer keeps its band there while ordering).
+    /// says whether the view keeps the triangle, where it starts (its
+    /// first row, coarsened to 7 bits on screens of more than 127 rows:
+    /// the band renderer orders the kept triangles by band from it) and
+    /// whether it is a back face.
     pub faces: &'a mut [u8],
 }
 
@@ -412,9 +434,8 @@ impl PreparedObject {
 #[derive(Debug)]
 pub struct Frame<'w, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
-    /// [`Workspace::faces`], whose band bits the band renderer sets while
-    /// ordering the triangles (the kept and back bits stay).
-    faces: &'w [Cell<u8>],
+    /// [`Workspace::faces`].
+    faces: &'w [u8],
     /// Each object's mesh triangles (an array, not a `heapless::Vec`:
     /// no drop glue, so the frame's borrows end with its last use).
     meshes: [&'w [[u16; 3]]; MAX_OBJECTS],
@@ -485,7 +506,7 @@ impl<P: Profile> Frame<'_, P> {
     /// Whether the view keeps triangle number `i`.
     #[inline(always)]
     pub fn kept(&self, i: usize) -> bool {
-        self.faces.get(i).is_some_and(|f| f.get() & FACE_KEPT != 0)
+        self.faces.get(i).is_some_and(|f| f & FACE_ROW != 0)
     }
 
     /// Triangle number `i` of object `po` (a number in `po.tris`; read
@@ -511,7 +532,7 @@ impl<P: Profile> Frame<'_, P> {
                 // Below `MAX_VERTICES` (checked by the vertex pass).
                 (
                     t.map(|x| b.wrapping_add(x)),
-                    self.faces.get(i).is_some_and(|f| f.get() & FACE_BACK != 0),
+                    self.faces.get(i).is_some_and(|f| f & FACE_BACK != 0),
                 )
             }
             None => {

@@ -50,9 +50,8 @@ use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
 use super::{
     Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri, Workspace,
-    FACE_BACK, FACE_KEPT, MAX_TRIANGLES, MAX_VERTICES,
+    face_byte, face_shift, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
 };
-use core::cell::Cell;
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
 use crate::geom::q16::{face_normal_q14, Proj16, Xform16};
@@ -424,7 +423,7 @@ pub fn prepare<'w, 'm: 'w, P: Profile>(
             colors,
             faces: &mut [],
         },
-        faces: Cell::from_mut(faces).as_slice_of_cells(),
+        faces,
         meshes,
         objects,
         kept: p.kept,
@@ -622,8 +621,9 @@ fn rows_in(xy: [Subpx; 3], width: u32, height: u32, sub: SubpixelBits) -> Option
 /// The triangle loop of an object wholly inside the planes whose back
 /// faces are culled or drawn with its own vertices (every layout but
 /// two-sided Gouraud): each mesh triangle's [`Workspace::faces`] byte
-/// written into `faces` ([`FACE_KEPT`], [`FACE_BACK`], or 0 when the view
-/// does not keep it), `color(t, back)` storing the flat colour of kept
+/// written into `faces` ([`face_byte`] of its first row and screen row
+/// shift `q`, or 0 when the view does not keep it), `color(t, back)`
+/// storing the flat colour of kept
 /// mesh triangle `t` (false when the colours are full; a no-op for the
 /// other layouts). Bit for bit what the general loop keeps; a free
 /// function over slices, so that its state stays in registers. Returns
@@ -633,7 +633,7 @@ fn triangles_inside(
     tris: &[[u16; 3]],
     (xy, origin): (&[ScreenXy], Subpx),
     faces: &mut [u8],
-    (width, height): (u32, u32),
+    (width, height, shift): (u32, u32, u32),
     sub: SubpixelBits,
     (cull, marked): (bool, bool),
     mut color: impl FnMut(usize, bool) -> bool,
@@ -659,24 +659,18 @@ fn triangles_inside(
         if back && cull {
             continue;
         }
-        if rows_in(p, width, height, sub).is_none() {
+        let Some(rows) = rows_in(p, width, height, sub) else {
             continue;
-        }
+        };
         if !color(t, back) {
             return None;
         }
         if let Some(f) = faces.get_mut(t) {
-            *f = face_byte(back);
+            *f = face_byte(u32::from(rows[0]), shift, back);
         }
         kept += 1;
     }
     Some(kept)
-}
-
-/// The [`Workspace::faces`] byte of a kept triangle.
-#[inline(always)]
-fn face_byte(back: bool) -> u8 {
-    FACE_KEPT | if back { FACE_BACK } else { 0 }
 }
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
@@ -691,7 +685,7 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
     tris: &[[u16; 3]],
     xy: &[ScreenXy],
     faces: &mut [u8],
-    sub: SubpixelBits,
+    (sub, q): (SubpixelBits, u32),
     mut color: impl FnMut(usize, bool) -> bool,
 ) -> Option<usize> {
     let mut kept = 0;
@@ -736,8 +730,11 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if !color(t, back) {
             return None;
         }
+        // The first row: `first_row` of the top `y` (at least 0 here).
+        #[allow(clippy::cast_sign_loss)]
+        let row = (ea.min(eb).min(ec) >> sub.get()) as u32;
         if let Some(f) = faces.get_mut(t) {
-            *f = face_byte(back);
+            *f = face_byte(row, q, back);
         }
         kept += 1;
     }
@@ -1571,7 +1568,7 @@ impl<P: Profile> Preparer<'_, P> {
     ) -> Result<(), RenderError> {
         let xy = v.map(|v| self.xy(usize::from(v)));
         match self.rows_of(xy) {
-            Some(_) => self.store_made(v, color, back),
+            Some(rows) => self.store_made(v, color, back, rows[0]),
             None => Ok(()),
         }
     }
@@ -1593,7 +1590,7 @@ impl<P: Profile> Preparer<'_, P> {
         let mut hi = i32::MIN;
         let faces = self.ws.faces.get(tris.clone()).unwrap_or(&[]);
         for (i, f) in tris.zip(faces) {
-            if f & FACE_KEPT == 0 {
+            if f & FACE_ROW == 0 {
                 continue;
             }
             let v = match i.checked_sub(self.made_start) {
@@ -1645,14 +1642,21 @@ impl<P: Profile> Preparer<'_, P> {
         rows_in(xy, self.width, self.height, P::SUBPIXEL_BITS)
     }
 
-    /// Marks triangle number `i` kept (a back face or not), with its
-    /// colour when `color` is given (a flat object's).
+    /// Marks triangle number `i` kept (a back face or not, first row
+    /// `row`), with its colour when `color` is given (a flat object's).
     #[inline(always)]
-    fn keep(&mut self, i: usize, color: Option<Rgb8>, back: bool) -> Result<(), RenderError> {
+    fn keep(
+        &mut self,
+        i: usize,
+        color: Option<Rgb8>,
+        back: bool,
+        row: u16,
+    ) -> Result<(), RenderError> {
+        let q = face_shift(self.height);
         let Some(face) = self.ws.faces.get_mut(i) else {
             return Err(self.cap(Part::Triangles));
         };
-        *face = face_byte(back);
+        *face = face_byte(u32::from(row), q, back);
         if let Some(color) = color {
             let c = self.nc + (i - self.t_start);
             let Some(c) = self.ws.colors.get_mut(c) else {
@@ -1672,13 +1676,14 @@ impl<P: Profile> Preparer<'_, P> {
         v: [u16; 3],
         color: Option<Rgb8>,
         back: bool,
+        row: u16,
     ) -> Result<(), RenderError> {
         let Some(slot) = self.ws.tris.get_mut(self.nm) else {
             return Err(self.cap(Part::Made));
         };
         *slot = Tri::new(v, back);
         let i = self.nt;
-        self.keep(i, color, back)?;
+        self.keep(i, color, back, row)?;
         self.nm += 1;
         self.nt += 1;
         Ok(())
@@ -1771,7 +1776,9 @@ impl<P: Profile> Preparer<'_, P> {
             let visible = self.bbox.is_some_and(|[x1, y1, _]| {
                 i64::from(x1) <= xl && i64::from(y1) <= yl && xl < 1 << 15 && yl < 1 << 15
             });
+            // (Marked vertices only on culled objects.)
             let (origin, marked) = (self.origin(), self.marked && ctx.cull);
+            let q = face_shift(self.height);
             // The mesh triangles' bytes (their room checked by the
             // caller) and, flat, colours.
             let t0 = self.t_start;
@@ -1813,32 +1820,32 @@ impl<P: Profile> Preparer<'_, P> {
                             cs.get_mut(t).map(|s| *s = c).is_some()
                         };
                         if marked {
-                            triangles_visible::<true, true>(tris, xy, faces, sub, c)
+                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), c)
                         } else {
-                            triangles_visible::<true, false>(tris, xy, faces, sub, c)
+                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), c)
                         }
                     }
                     (cull, flat, _) => match (cull, flat, marked) {
                         (true, true, false) => {
                             let c = put(cs, col);
-                            triangles_visible::<true, false>(tris, xy, faces, sub, c)
+                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), c)
                         }
                         (true, true, true) => {
                             let c = put(cs, col);
-                            triangles_visible::<true, true>(tris, xy, faces, sub, c)
+                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), c)
                         }
                         (true, false, false) => {
-                            triangles_visible::<true, false>(tris, xy, faces, sub, none)
+                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), none)
                         }
                         (true, false, true) => {
-                            triangles_visible::<true, true>(tris, xy, faces, sub, none)
+                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), none)
                         }
                         (false, true, _) => {
                             let c = put(cs, col);
-                            triangles_visible::<false, false>(tris, xy, faces, sub, c)
+                            triangles_visible::<false, false>(tris, xy, faces, (sub, q), c)
                         }
                         (false, false, _) => {
-                            triangles_visible::<false, false>(tris, xy, faces, sub, none)
+                            triangles_visible::<false, false>(tris, xy, faces, (sub, q), none)
                         }
                     },
                 };
@@ -1861,7 +1868,7 @@ impl<P: Profile> Preparer<'_, P> {
                 ctx.tris,
                 (xy, origin),
                 faces,
-                (self.width, self.height),
+                (self.width, self.height, q),
                 P::SUBPIXEL_BITS,
                 (ctx.cull, marked),
                 |t, back| {
@@ -1924,15 +1931,15 @@ impl<P: Profile> Preparer<'_, P> {
                     continue;
                 }
             }
-            if self.rows_of(xy).is_none() {
+            let Some(rows) = self.rows_of(xy) else {
                 continue;
-            }
+            };
             let color = if ctx.layout == Layout::Flat {
                 Some(Self::flat_color(ctx, t, back))
             } else {
                 None
             };
-            self.keep(number, color, back)?;
+            self.keep(number, color, back, rows[0])?;
         }
         Ok(())
     }
