@@ -452,6 +452,85 @@ impl BandOf {
     }
 }
 
+/// [`sort_by_band`] when the bands follow from the bytes' rows
+/// ([`BandOf::coarse`], `(rows, shift, m)` for [`band_of`] of a stored row,
+/// the last band, the run's first): the kept triangles counted by stored
+/// row (127 of them), each row's band (within the run, or none) found
+/// once, then placed by a table lookup. The same order.
+#[inline(never)]
+#[allow(clippy::cast_possible_truncation)]
+fn sort_coarse(
+    faces: &[u8],
+    order: &mut [u16],
+    n: usize,
+    ((rows, shift, m), last, first): ((u32, Option<u32>, u32), u32, u32),
+    at: Option<usize>,
+) -> ([u16; 1 << RADIX_BITS], usize) {
+    // Kept triangles per stored row (`FACE_ROW + 1` codes, 0: not kept).
+    let mut per_row = [0u16; FACE_ROW as usize + 1];
+    let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
+    let mut listed = list.iter_mut();
+    for (i, &b) in faces.iter().enumerate() {
+        let c = usize::from(b & FACE_ROW);
+        if c == 0 {
+            continue;
+        }
+        per_row[c] += 1;
+        if let Some(d) = listed.next() {
+            // Numbers below `MAX_TRIANGLES`.
+            *d = i as u16;
+        }
+    }
+    // Each stored row's band within the run (`EPOCH`: outside).
+    let mut band = [EPOCH as u8; FACE_ROW as usize + 1];
+    let mut count = [0u16; (1 << RADIX_BITS) + 1];
+    for (c, (k, &p)) in band.iter_mut().zip(per_row.iter()).enumerate().skip(1) {
+        // A band before `first` wraps past `EPOCH`.
+        let b = band_of(c as u32 - 1, rows, shift, m)
+            .min(last)
+            .wrapping_sub(first);
+        if b < EPOCH {
+            *k = b as u8;
+            count[b as usize + 1] += p;
+        }
+    }
+    let mut sum = 0;
+    for c in count.iter_mut() {
+        sum += *c;
+        *c = sum;
+    }
+    let mut place = |dst: &mut [u16], i: u16, b: u8| {
+        let k = band[usize::from(b & FACE_ROW)];
+        if let Some(c) = count.get_mut(usize::from(k)) {
+            if let Some(d) = dst.get_mut(usize::from(*c)) {
+                *d = i;
+            }
+            *c += 1;
+        }
+    };
+    let run_at = if at.is_none() && n <= order.len() / 2 {
+        let (src, dst) = order.split_at_mut(order.len() - n);
+        for &i in src.iter().take(n) {
+            place(dst, i, faces.get(usize::from(i)).copied().unwrap_or(0));
+        }
+        order.len() - n
+    } else {
+        let at = at.unwrap_or(0);
+        let dst = order.get_mut(at..).unwrap_or_default();
+        for (i, &b) in faces.iter().enumerate() {
+            if b & FACE_ROW != 0 {
+                place(dst, i as u16, b);
+            }
+        }
+        at
+    };
+    let mut ends = [0u16; 1 << RADIX_BITS];
+    for (e, c) in ends.iter_mut().zip(count.iter()) {
+        *e = *c;
+    }
+    (ends, run_at)
+}
+
 /// Orders the numbers of `frame`'s kept triangles starting in bands
 /// `first..first + EPOCH` by band, stably (ascending numbers within a
 /// band), into `order` (at least [`Frame::triangle_count`] entries): each
@@ -483,6 +562,9 @@ fn sort_by_band<P: Profile>(
         .faces
         .get(..frame.triangle_numbers())
         .unwrap_or_default();
+    if let Some(coarse) = key.coarse {
+        return sort_coarse(faces, order, n, (coarse, key.last, first), at);
+    }
     let mut count = [0u16; (1 << RADIX_BITS) + 1];
     let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
     let mut listed = 0;
