@@ -470,20 +470,40 @@ fn sort_coarse(
     let mut per_row = [0u16; FACE_ROW as usize + 1];
     let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
     let mut listed = list.iter_mut();
-    for (i, &b) in faces.iter().enumerate() {
-        let c = usize::from(b & FACE_ROW);
-        if c == 0 {
-            continue;
+    // Four bytes at a time: a word of triangles none of which is kept is
+    // skipped at once.
+    let mut quads = faces.chunks_exact(4);
+    let mut i = 0;
+    for q in quads.by_ref() {
+        let w = u32::from_le_bytes([q[0], q[1], q[2], q[3]]);
+        if w & u32::from_le_bytes([FACE_ROW; 4]) != 0 {
+            for (j, &b) in q.iter().enumerate() {
+                let c = usize::from(b & FACE_ROW);
+                if c != 0 {
+                    per_row[c] += 1;
+                    if let Some(d) = listed.next() {
+                        // Numbers below `MAX_TRIANGLES`.
+                        *d = (i + j) as u16;
+                    }
+                }
+            }
         }
-        per_row[c] += 1;
-        if let Some(d) = listed.next() {
-            // Numbers below `MAX_TRIANGLES`.
-            *d = i as u16;
+        i += 4;
+    }
+    for (j, &b) in quads.remainder().iter().enumerate() {
+        let c = usize::from(b & FACE_ROW);
+        if c != 0 {
+            per_row[c] += 1;
+            if let Some(d) = listed.next() {
+                *d = (i + j) as u16;
+            }
         }
     }
     // Each stored row's band within the run (`EPOCH`: outside).
     let mut band = [EPOCH as u8; FACE_ROW as usize + 1];
-    let mut count = [0u16; (1 << RADIX_BITS) + 1];
+    // (Indexed by a `u8`: no bound check. Entries from `EPOCH` on count
+    // the triangles outside the run, placed after the run's.)
+    let mut count = [0u16; 256];
     for (c, (k, &p)) in band.iter_mut().zip(per_row.iter()).enumerate().skip(1) {
         // A band before `first` wraps past `EPOCH`.
         let b = band_of(c as u32 - 1, rows, shift, m)
@@ -500,13 +520,11 @@ fn sort_coarse(
         *c = sum;
     }
     let mut place = |dst: &mut [u16], i: u16, b: u8| {
-        let k = band[usize::from(b & FACE_ROW)];
-        if let Some(c) = count.get_mut(usize::from(k)) {
-            if let Some(d) = dst.get_mut(usize::from(*c)) {
-                *d = i;
-            }
-            *c += 1;
+        let c = &mut count[usize::from(band[usize::from(b & FACE_ROW)])];
+        if let Some(d) = dst.get_mut(usize::from(*c)) {
+            *d = i;
         }
+        *c += 1;
     };
     let run_at = if at.is_none() && n <= order.len() / 2 {
         let (src, dst) = order.split_at_mut(order.len() - n);
