@@ -505,6 +505,9 @@ fn sort_coarse(
     // the triangles outside the run, placed after the run's.)
     let mut count = [0u16; 256];
     for (c, (k, &p)) in band.iter_mut().zip(per_row.iter()).enumerate().skip(1) {
+        if p == 0 {
+            continue;
+        }
         // A band before `first` wraps past `EPOCH`.
         let b = band_of(c as u32 - 1, rows, shift, m)
             .min(last)
@@ -515,7 +518,7 @@ fn sort_coarse(
         }
     }
     let mut sum = 0;
-    for c in count.iter_mut() {
+    for c in count.iter_mut().take(EPOCH as usize + 1) {
         sum += *c;
         *c = sum;
     }
