@@ -50,7 +50,7 @@ use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
 use super::{
     Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri, Workspace,
-    face_byte, face_shift, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
+    face_byte, face_shift, FACE_BACK, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
 };
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
@@ -692,6 +692,11 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
     // Not kept unless found so below (cleared at once: cheaper than a
     // store per triangle).
     faces.fill(0);
+    // As many bytes as triangles (the caller's slices): no bound check.
+    let n = tris.len().min(faces.len());
+    let (tris, faces) = (tris.get(..n).unwrap_or(&[]), faces.get_mut(..n).unwrap_or_default());
+    // The stored row: `first_row(y) >> q` = `(y + k) >> (sub + q)`.
+    let row_shift = sub.get() + q;
     for (t, tri) in tris.iter().enumerate() {
         if MARKED {
             // Projected x is at least 0 here, `UNUSED` negative: a corner
@@ -730,11 +735,12 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if !color(t, back) {
             return None;
         }
-        // The first row: `first_row` of the top `y` (at least 0 here).
-        #[allow(clippy::cast_sign_loss)]
-        let row = (ea.min(eb).min(ec) >> sub.get()) as u32;
+        // The first row of the top `y` (at least 0, below the height
+        // here), as `face_byte` stores it: `(row >> q) + 1`, at most 127.
+        #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+        let code = ((ea.min(eb).min(ec) >> row_shift) + 1) as u8;
         if let Some(f) = faces.get_mut(t) {
-            *f = face_byte(row, q, back);
+            *f = code | if back { FACE_BACK } else { 0 };
         }
         kept += 1;
     }
