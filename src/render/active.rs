@@ -286,23 +286,27 @@ impl<'w, P: Profile> Frame<'w, P> {
         state: &'a mut BandState<'_, P::Lerp, CAP, V>,
         rows: u32,
     ) -> Result<Bands<'a, 'w, P, CAP, V>, RenderError> {
-        let n = self.triangle_count();
         let order = &mut *state.order;
-        if order.len() < n || self.triangle_numbers() > u16::MAX as usize {
-            return Err(RenderError::Capacity {
-                part: Part::Order,
-                object: 0,
-            });
-        }
         if rows == 0 {
             return Err(RenderError::Window);
+        }
+        let short = RenderError::Capacity {
+            part: Part::Order,
+            object: 0,
+        };
+        if self.triangle_numbers() > u16::MAX as usize {
+            return Err(short);
         }
         let lights = eye_lights(scene)?;
         let pool = &mut *state.pool;
         for (i, f) in pool.free.iter_mut().enumerate() {
             *f = (CAP - 1 - i) as u16;
         }
-        let (ends, run_at) = sort_by_band(self, order, rows, self.height, 0, None);
+        // (The kept triangles counted while ordering.)
+        let (ends, run_at, n) = sort_by_band(self, order, rows, self.height, 0, None);
+        if order.len() < n {
+            return Err(short);
+        }
         // The queue: the entries outside the run.
         let (q_at, q_len) = if run_at == 0 {
             (n, order.len() - n)
@@ -462,10 +466,9 @@ impl BandOf {
 fn sort_coarse(
     faces: &[u8],
     order: &mut [u16],
-    n: usize,
     ((rows, shift, m), last, first): ((u32, Option<u32>, u32), u32, u32),
-    at: Option<usize>,
-) -> ([u16; 1 << RADIX_BITS], usize) {
+    at: Option<(usize, usize)>,
+) -> ([u16; 1 << RADIX_BITS], usize, usize) {
     // Kept triangles per stored row (`FACE_ROW + 1` codes, 0: not kept).
     let mut per_row = [0u16; FACE_ROW as usize + 1];
     let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
@@ -499,6 +502,11 @@ fn sort_coarse(
             }
         }
     }
+    // The kept triangles.
+    let n = at.map_or_else(
+        || per_row.iter().map(|&p| usize::from(p)).sum(),
+        |a| a.1,
+    );
     // Each stored row's band within the run (`EPOCH`: outside).
     let mut band = [EPOCH as u8; FACE_ROW as usize + 1];
     // (Indexed by a `u8`: no bound check. Entries from `EPOCH` on count
@@ -536,7 +544,7 @@ fn sort_coarse(
         }
         order.len() - n
     } else {
-        let at = at.unwrap_or(0);
+        let at = at.map_or(0, |a| a.0);
         let dst = order.get_mut(at..).unwrap_or_default();
         for (i, &b) in faces.iter().enumerate() {
             if b & FACE_ROW != 0 {
@@ -549,7 +557,7 @@ fn sort_coarse(
     for (e, c) in ends.iter_mut().zip(count.iter()) {
         *e = *c;
     }
-    (ends, run_at)
+    (ends, run_at, n)
 }
 
 /// Orders the numbers of `frame`'s kept triangles starting in bands
@@ -575,16 +583,15 @@ fn sort_by_band<P: Profile>(
     rows: u32,
     height: u32,
     first: u32,
-    at: Option<usize>,
-) -> ([u16; 1 << RADIX_BITS], usize) {
+    at: Option<(usize, usize)>,
+) -> ([u16; 1 << RADIX_BITS], usize, usize) {
     let key = BandOf::new(rows, height);
-    let n = frame.triangle_count();
     let faces = frame
         .faces
         .get(..frame.triangle_numbers())
         .unwrap_or_default();
     if let Some(coarse) = key.coarse {
-        return sort_coarse(faces, order, n, (coarse, key.last, first), at);
+        return sort_coarse(faces, order, (coarse, key.last, first), at);
     }
     let mut count = [0u16; (1 << RADIX_BITS) + 1];
     let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
@@ -619,7 +626,8 @@ fn sort_by_band<P: Profile>(
             *c += 1;
         }
     };
-    let run_at = if at.is_none() && listed == n && n <= order.len() / 2 {
+    let n = at.map_or(listed, |a| a.1);
+    let run_at = if at.is_none() && n <= order.len() / 2 {
         let (src, dst) = order.split_at_mut(order.len() - n);
         for &i in src.iter().take(n) {
             let i = usize::from(i);
@@ -627,7 +635,7 @@ fn sort_by_band<P: Profile>(
         }
         order.len() - n
     } else {
-        let at = at.unwrap_or(0);
+        let at = at.map_or(0, |a| a.0);
         let dst = order.get_mut(at..).unwrap_or_default();
         for (i, &b) in faces.iter().enumerate() {
             if b & FACE_ROW != 0 {
@@ -640,7 +648,7 @@ fn sort_by_band<P: Profile>(
     for (e, c) in ends.iter_mut().zip(count.iter()) {
         *e = *c;
     }
-    (ends, run_at)
+    (ends, run_at, n)
 }
 
 /// The row kernel's sink: a band's colour and depth slices and a shader.
@@ -740,13 +748,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         if band_index >= self.epoch + EPOCH {
             // The next run of bands: its triangles ordered (into the
             // entries before the queue's).
-            let (ends, _) = sort_by_band(
+            let (ends, ..) = sort_by_band(
                 self.frame,
                 self.order,
                 self.rows,
                 self.frame.height,
                 band_index,
-                Some(self.run_at),
+                Some((self.run_at, self.n)),
             );
             self.ends = ends;
             self.epoch = band_index;

@@ -388,7 +388,6 @@ pub fn prepare<'w, 'm: 'w, P: Profile>(
         nt: 0,
         nc: 0,
         nm: 0,
-        kept: 0,
         t_start: 0,
         made_start: 0,
         object: 0,
@@ -426,7 +425,6 @@ pub fn prepare<'w, 'm: 'w, P: Profile>(
         faces,
         meshes,
         objects,
-        kept: p.kept,
         width,
         height,
     })
@@ -443,8 +441,6 @@ struct Preparer<'w, P: Profile> {
     nc: usize,
     /// Made triangles in use ([`Workspace::tris`]).
     nm: usize,
-    /// Triangles kept.
-    kept: usize,
     /// The current object's first triangle number.
     t_start: usize,
     /// The current object's first made triangle's number.
@@ -627,7 +623,7 @@ fn rows_in(xy: [Subpx; 3], width: u32, height: u32, sub: SubpixelBits) -> Option
 /// mesh triangle `t` (false when the colours are full; a no-op for the
 /// other layouts). Bit for bit what the general loop keeps; a free
 /// function over slices, so that its state stays in registers. Returns
-/// the triangles kept, or `None` when the colours are full.
+/// `None` when the colours are full.
 #[inline(never)]
 fn triangles_inside(
     tris: &[[u16; 3]],
@@ -637,8 +633,7 @@ fn triangles_inside(
     sub: SubpixelBits,
     (cull, marked): (bool, bool),
     mut color: impl FnMut(usize, bool) -> bool,
-) -> Option<usize> {
-    let mut kept = 0;
+) -> Option<()> {
     // Not kept unless found so below (cleared at once: cheaper than a
     // store per triangle).
     faces.fill(0);
@@ -668,9 +663,8 @@ fn triangles_inside(
         if let Some(f) = faces.get_mut(t) {
             *f = face_byte(u32::from(rows[0]), shift, back);
         }
-        kept += 1;
     }
-    Some(kept)
+    Some(())
 }
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
@@ -687,17 +681,14 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
     faces: &mut [u8],
     (sub, q): (SubpixelBits, u32),
     mut color: impl FnMut(usize, bool) -> bool,
-) -> Option<usize> {
-    let mut kept = 0;
+) -> Option<()> {
     // Not kept unless found so below (cleared at once: cheaper than a
     // store per triangle).
     faces.fill(0);
-    // As many bytes as triangles (the caller's slices): no bound check.
-    let n = tris.len().min(faces.len());
-    let (tris, faces) = (tris.get(..n).unwrap_or(&[]), faces.get_mut(..n).unwrap_or_default());
     // The stored row: `first_row(y) >> q` = `(y + k) >> (sub + q)`.
     let row_shift = sub.get() + q;
-    for (t, tri) in tris.iter().enumerate() {
+    // (As many bytes as triangles: the caller's slices.)
+    for (t, (tri, face)) in tris.iter().zip(faces.iter_mut()).enumerate() {
         if MARKED {
             // Projected x is at least 0 here, `UNUSED` negative: a corner
             // left unprojected means the triangle was culled in object
@@ -739,12 +730,9 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         // here), as `face_byte` stores it: `(row >> q) + 1`, at most 127.
         #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
         let code = ((ea.min(eb).min(ec) >> row_shift) + 1) as u8;
-        if let Some(f) = faces.get_mut(t) {
-            *f = code | if back { FACE_BACK } else { 0 };
-        }
-        kept += 1;
+        *face = code | if back { FACE_BACK } else { 0 };
     }
-    Some(kept)
+    Some(())
 }
 
 /// The projection loop of the fused kernel: screen positions into `xy`,
@@ -986,7 +974,7 @@ impl<P: Profile> Preparer<'_, P> {
         let t_start = self.nt;
         self.t_start = t_start;
         self.made_start = t_start + mesh.triangle_count();
-        let (made_base, kept) = (self.nm, self.kept);
+        let made_base = self.nm;
         let color_base = self.nc;
         self.bbox = None;
         self.rows = None;
@@ -1040,7 +1028,10 @@ impl<P: Profile> Preparer<'_, P> {
             }
         }
         // An object that keeps no triangle takes no number.
-        if self.kept == kept {
+        let faces = self.ws.faces.get(t_start..self.nt).unwrap_or(&[]);
+        let any = faces.iter().any(|&b| b & FACE_ROW != 0);
+        if !any {
+            self.rows = None;
             self.nt = t_start;
             self.made_start = t_start;
         }
@@ -1670,7 +1661,6 @@ impl<P: Profile> Preparer<'_, P> {
             };
             *c = color;
         }
-        self.kept += 1;
         Ok(())
     }
 
@@ -1855,19 +1845,19 @@ impl<P: Profile> Preparer<'_, P> {
                         }
                     },
                 };
-                let Some(kept) = kept else {
+                if kept.is_none() {
                     return Err(self.cap(Part::Colors));
-                };
+                }
                 // The rows of every projected vertex: they hold the rows
                 // of every kept triangle (`first_row` is monotonic; every
                 // y within `0..=height << sub` here), without a pass over
                 // the triangles (1 498 of them: 14 K instructions on the
                 // Cortex-M4).
-                if let (Some([_, y1, y0]), true) = (self.bbox, ROWS_FROM_BOX && kept > 0) {
+                // (Unused when the object keeps no triangle.)
+                if let (Some([_, y1, y0]), true) = (self.bbox, ROWS_FROM_BOX) {
                     let r = |y: u32| first_row(y as i32, sub) as u16;
                     self.rows = Some([r(y0), r(y1)]);
                 }
-                self.kept += kept;
                 return Ok(());
             }
             let kept = triangles_inside(
@@ -1886,10 +1876,7 @@ impl<P: Profile> Preparer<'_, P> {
                 },
             );
             return match kept {
-                Some(kept) => {
-                    self.kept += kept;
-                    Ok(())
-                }
+                Some(()) => Ok(()),
                 None => Err(self.cap(Part::Colors)),
             };
         }
