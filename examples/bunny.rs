@@ -54,11 +54,13 @@ fn run<P: Profile>(out: &str, shading: Shading) -> Result<(), Box<dyn Error>> {
         vec![Tri::default(); 8000],
     );
     let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
+    let mut faces = vec![0u8; tris.len()];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
         colors: &mut colors,
+        faces: &mut faces,
     };
     let frame = prepare::<P>(&scene, W, W, ws)?;
     let mut band = vec![0u16; (W * 16) as usize];

@@ -20,6 +20,7 @@ struct Mem<L> {
     vals: Vec<L>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
+    faces: Vec<u8>,
     band: Vec<u16>,
     z: Vec<u16>,
     order: Vec<u16>,
@@ -33,6 +34,7 @@ fn one_frame<P: Profile>(scene: &Scene<'_, '_, P::Real>, m: &mut Mem<P::Lerp>) -
         vals: &mut m.vals,
         tris: &mut m.tris,
         colors: &mut m.colors,
+        faces: &mut m.faces,
     };
     let frame = prepare::<P>(scene, 240, 240, ws).expect("prepare");
     let mut crc = 0u32;
@@ -87,6 +89,7 @@ fn run<P: Profile>() {
         vals: vec![P::Lerp::default(); 16000],
         tris: vec![Tri::default(); 4000],
         colors: vec![fixshade::target::Rgb8::BLACK; 4000],
+        faces: vec![0; 4000],
         band: vec![0; 240 * 16],
         z: vec![0; 240 * 16],
         order: vec![0; 8000],

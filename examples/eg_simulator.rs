@@ -80,11 +80,13 @@ fn render_to<C: PixelColor + FromShaded>(
         [Tri::default(); 64],
     );
     let mut colors = vec![fixshade::target::Rgb8::BLACK; tris.len()];
+    let mut faces = [0u8; 64];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
         colors: &mut colors,
+        faces: &mut faces,
     };
     let frame = prepare::<Fast>(&scene, w, h, ws)?;
     let mut pixels = vec![0u16; (w * 16) as usize];

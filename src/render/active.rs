@@ -180,7 +180,7 @@ const RADIX_BITS: u32 = 6;
 /// use fixshade::illum::{Light, Material, Specular, Viewer};
 /// use fixshade::mesh::shapes::DODECAHEDRON;
 /// use fixshade::num::{Fast, Real, Q16};
-/// use fixshade::render::{prepare, BandState, Pool, ScreenXy, Tri, Workspace};
+/// use fixshade::render::{prepare, BandState, Pool, ScreenXy, Workspace};
 /// use fixshade::scene::{Camera, Object, Scene, Shading};
 /// use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 ///
@@ -194,8 +194,10 @@ const RADIX_BITS: u32 = 6;
 /// let lights = [Light::point(Vec3::new(q(0, 1), q(0, 1), q(2, 1)), q(1, 1))];
 /// let scene = Scene { camera, objects: &objects, lights: &lights, ambient: q(1, 1),
 ///                     specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
-/// let (mut xy, mut vals, mut tris) = ([ScreenXy::ZERO; 64], [0i32; 64 * 7], [Tri::default(); 64]);
-/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris, colors: &mut [] };
+/// // Room for the dodecahedron's 20 vertices and a byte per triangle (36);
+/// // inside the clipping planes it makes no triangle.
+/// let (mut xy, mut vals, mut faces) = ([ScreenXy::ZERO; 64], [0i32; 64 * 7], [0u8; 64]);
+/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut [], colors: &mut [], faces: &mut faces };
 /// let frame = prepare::<Fast>(&scene, 96, 96, ws)?;
 ///
 /// // Two band buffers of 8 rows: one is rendered while the other is sent.
@@ -205,7 +207,7 @@ const RADIX_BITS: u32 = 6;
 ///     BandBuf::<Rgb565Be>::new(&mut p0, Some(&mut z0), 96, 8)?,
 ///     BandBuf::<Rgb565Be>::new(&mut p1, Some(&mut z1), 96, 8)?,
 /// ];
-/// let (mut order, mut pool) = ([0u16; 128], Pool::<i32, 16, 4>::new());
+/// let (mut order, mut pool) = ([0u16; 64], Pool::<i32, 16, 4>::new());
 /// let mut state = BandState::new(&mut order, &mut pool);
 /// let mut bands = frame.bands(&scene, &mut state, 8)?;
 /// let mut i = 0;
