@@ -505,10 +505,7 @@ fn sort_coarse(
         }
     }
     // The kept triangles.
-    let n = at.map_or_else(
-        || per_row.iter().map(|&p| usize::from(p)).sum(),
-        |a| a.1,
-    );
+    let n = at.map_or_else(|| per_row.iter().map(|&p| usize::from(p)).sum(), |a| a.1);
     // Each stored row's band within the run (`EPOCH`: outside).
     let mut band = [EPOCH as u8; FACE_ROW as usize + 1];
     // (Indexed by a `u8`: no bound check. Entries from `EPOCH` on count

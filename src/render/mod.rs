@@ -569,7 +569,10 @@ impl<P: Profile> Frame<'_, P> {
             }
         };
         let color = if po.layout == Layout::Flat {
-            self.ws.colors.get(usize::from(po.color_base) + k).copied()?
+            self.ws
+                .colors
+                .get(usize::from(po.color_base) + k)
+                .copied()?
         } else {
             Rgb8::BLACK
         };

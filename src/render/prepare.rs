@@ -49,8 +49,8 @@
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
 use super::{
-    Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri, Workspace,
-    face_byte, face_shift, FACE_BACK, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
+    face_byte, face_shift, Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri,
+    Workspace, FACE_BACK, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
 };
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;

@@ -473,8 +473,7 @@ mod tests {
         assert_eq!(CUBE_GREY.bytes(4), (4 * v + 8 * v + 3 * t + 3) & !3);
         // Made triangles (6 bytes) and colours (3) counted as `size_of`
         // counts them, padding included.
-        const CLIPPED: Capacity =
-            Capacity::EMPTY.object(&CUBE, Layout::Flat, Reach::Clipped);
+        const CLIPPED: Capacity = Capacity::EMPTY.object(&CUBE, Layout::Flat, Reach::Clipped);
         type Clipped = crate::storage!(i32, CLIPPED);
         assert_eq!(Clipped::BYTES, CLIPPED.bytes(4));
         const ALL: Capacity = Capacity::of(&[&CUBE, &CUBE]);
@@ -585,7 +584,11 @@ mod tests {
             }
         );
         // Room for them, but the clipped cube's vertices do not fit.
-        const MADE: Capacity = Capacity { made: C.made, triangles: C.triangles, ..IN };
+        const MADE: Capacity = Capacity {
+            made: C.made,
+            triangles: C.triangles,
+            ..IN
+        };
         let mut small = Box::new(<crate::storage!(i32, MADE)>::new());
         assert_eq!(
             prepare::<Fast>(&s, 64, 64, small.workspace()).unwrap_err(),
