@@ -31,7 +31,9 @@ use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 
 mod scene;
 
-use scene::{BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
+use scene::{
+    BandPool, BAND_PX, COLORS, FRAMES, H, MADE, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W,
+};
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
@@ -65,7 +67,8 @@ fn main() -> ! {
     let mut depth = [0u16; BAND_PX];
     let mut xy = [fixshade::render::ScreenXy::ZERO; VERTICES];
     let mut vals = [0i32; VALUES];
-    let mut tris = [Tri::EMPTY; TRIANGLES];
+    let mut tris = [Tri::EMPTY; MADE];
+    let mut faces = [0u8; TRIANGLES];
     let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];
     let mut order = [0u16; ORDER];
     let mut pool = BandPool::new();
@@ -89,6 +92,7 @@ fn main() -> ! {
             vals: &mut vals,
             tris: &mut tris,
             colors: &mut colors,
+            faces: &mut faces,
         };
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,

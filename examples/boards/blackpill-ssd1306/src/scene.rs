@@ -34,12 +34,18 @@ pub const CAPACITY: Capacity =
 pub const VERTICES: usize = CAPACITY.vertices;
 /// Values of the workspace (7 per vertex).
 pub const VALUES: usize = CAPACITY.values;
-/// Triangles of the workspace.
+/// Triangle numbers of the workspace (a byte each: kept or not, first
+/// row, back face; the mesh's triangles are read from flash, not copied).
 pub const TRIANGLES: usize = CAPACITY.triangles;
+/// Triangles the workspace makes (none: inside the clipping planes,
+/// culled).
+pub const MADE: usize = CAPACITY.made;
 /// Flat-triangle colours (none: the dodecahedron is shaded Phong).
 pub const COLORS: usize = CAPACITY.colors;
-/// The band renderer's order scratch: 2 `u16` per prepared triangle.
-pub const ORDER: usize = 2 * TRIANGLES;
+/// The band renderer's order scratch: a `u16` per triangle number (the
+/// kept triangles by band, and the queue of those put off while the pool
+/// is full).
+pub const ORDER: usize = TRIANGLES;
 
 /// Active-triangle pool: the most triangles kept across a band border in
 /// any frame of the turn is 12 (`Bands::active_peak`, measured on the host
@@ -64,8 +70,8 @@ const _: () = assert!(
     "the workspace holds fewer triangles than the mesh has"
 );
 const _: () = assert!(
-    ORDER >= 2 * TRIANGLES,
-    "the order scratch needs 2 entries per workspace triangle"
+    ORDER >= TRIANGLES,
+    "the order scratch needs an entry per triangle number"
 );
 
 /// Frames per turn (10° apart).

@@ -55,7 +55,9 @@ const XTAL_FREQ_HZ: u32 = 12_000_000;
 
 mod scene;
 
-use scene::{BandPool, BAND_PX, COLORS, FRAMES, H, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W};
+use scene::{
+    BandPool, BAND_PX, COLORS, FRAMES, H, MADE, ORDER, ROWS, TRIANGLES, VALUES, VERTICES, W,
+};
 
 type Mosi = Pin<Gpio19, FunctionSpi, PullDown>;
 type Sck = Pin<Gpio18, FunctionSpi, PullDown>;
@@ -216,11 +218,12 @@ fn main() -> ! {
     };
     let mut spare: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(b));
     let mut next: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(a));
-    let (Some(depth), Some(xy), Some(vals), Some(tris), Some(colors), Some(order), Some(pool)) = (
+    let (Some(depth), Some(xy), Some(vals), Some(tris), Some(faces), Some(colors), Some(order), Some(pool)) = (
         cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
         cortex_m::singleton!(: [fixshade::render::ScreenXy; VERTICES] = [fixshade::render::ScreenXy::ZERO; VERTICES]),
         cortex_m::singleton!(: [i32; VALUES] = [0; VALUES]),
-        cortex_m::singleton!(: [Tri; TRIANGLES] = [Tri::EMPTY; TRIANGLES]),
+        cortex_m::singleton!(: [Tri; MADE] = [Tri::EMPTY; MADE]),
+        cortex_m::singleton!(: [u8; TRIANGLES] = [0; TRIANGLES]),
         cortex_m::singleton!(: [Rgb8; COLORS] = [Rgb8::BLACK; COLORS]),
         cortex_m::singleton!(: [u16; ORDER] = [0; ORDER]),
         cortex_m::singleton!(: BandPool = BandPool::new()),
@@ -243,6 +246,7 @@ fn main() -> ! {
             vals: &mut vals[..],
             tris: &mut tris[..],
             colors: &mut colors[..],
+            faces: &mut faces[..],
         };
         let frame = match prepare::<Fast>(&scene, W, H, ws) {
             Ok(f) => f,

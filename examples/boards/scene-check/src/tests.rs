@@ -110,8 +110,9 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     use crate::pico::*;
     let mut xy = vec![fixshade::render::ScreenXy::ZERO; VERTICES];
     let mut vals = vec![0i32; VALUES];
-    let mut tris = vec![Tri::EMPTY; TRIANGLES];
+    let mut tris = vec![Tri::EMPTY; MADE];
     let mut colors = vec![fixshade::target::Rgb8::BLACK; TRIANGLES];
+    let mut faces = vec![0u8; TRIANGLES];
     let mut order = vec![0u16; ORDER];
     let mut pool = Box::new(BandPool::new());
     let camera = camera().unwrap();
@@ -126,6 +127,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
             vals: &mut vals,
             tris: &mut tris,
             colors: &mut colors,
+            faces: &mut faces,
         };
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
         let u = bands::<Rgb565Be, POOL_SLOTS, POOL_VALUES>(
@@ -150,6 +152,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
             vals: &mut vals,
             tris: &mut tris,
             colors: &mut colors,
+            faces: &mut faces,
         };
         let f = firmware_frame(i as u32, ws, &mut order);
         assert_eq!(
@@ -162,7 +165,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     assert_eq!(most.peak, PICO_PEAK);
     assert_eq!(
         (most.vertices, most.triangles, most.bytes),
-        (1839, 1574, 24_156)
+        (1839, 1574, 18_386)
     );
     assert_eq!(
         [turn[0].crc, turn[1].crc, turn[2].crc],
@@ -180,8 +183,9 @@ fn blackpill_turn_fits() {
     use crate::blackpill::*;
     let mut xy = [fixshade::render::ScreenXy::ZERO; VERTICES];
     let mut vals = [0i32; VALUES];
-    let mut tris = [Tri::EMPTY; TRIANGLES];
+    let mut tris = [Tri::EMPTY; MADE];
     let mut colors = [fixshade::target::Rgb8::BLACK; COLORS];
+    let mut faces = [0u8; TRIANGLES];
     let mut order = [0u16; ORDER];
     let mut pool = BandPool::new();
     let camera = camera().unwrap();
@@ -196,6 +200,7 @@ fn blackpill_turn_fits() {
             vals: &mut vals,
             tris: &mut tris,
             colors: &mut colors,
+            faces: &mut faces,
         };
         let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
         let u =
@@ -214,7 +219,7 @@ fn blackpill_turn_fits() {
         );
     }
     assert_eq!(most.peak, BLACKPILL_PEAK);
-    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2_028));
+    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 1_956));
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
     assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
     assert_eq!(most.pixels, 2488);
@@ -228,10 +233,12 @@ const BLACKPILL_PEAK: usize = 12;
 #[test]
 fn memory_figures() {
     use core::mem::size_of;
-    let ws = |v: usize, vals: usize, t: usize, c: usize| {
+    // A byte per triangle number, 6 per made triangle.
+    let ws = |v: usize, vals: usize, t: usize, m: usize, c: usize| {
         v * size_of::<fixshade::render::ScreenXy>()
             + vals * 4
-            + t * size_of::<Tri>()
+            + t
+            + m * size_of::<Tri>()
             + c * size_of::<fixshade::target::Rgb8>()
     };
     let pico = (
@@ -240,6 +247,7 @@ fn memory_figures() {
             crate::pico::VERTICES,
             crate::pico::VALUES,
             crate::pico::TRIANGLES,
+            crate::pico::MADE,
             crate::pico::COLORS,
         ),
         2 * crate::pico::ORDER,
@@ -250,11 +258,12 @@ fn memory_figures() {
             crate::blackpill::VERTICES,
             crate::blackpill::VALUES,
             crate::blackpill::TRIANGLES,
+            crate::blackpill::MADE,
             crate::blackpill::COLORS,
         ),
         2 * crate::blackpill::ORDER,
     );
     println!("pool, workspace, order bytes: pico {pico:?}, blackpill {blackpill:?}");
-    assert_eq!(pico, (11_200, 58_824, 14_696));
-    assert_eq!(blackpill, (3_008, 2_136, 144));
+    assert_eq!(pico, (11_200, 40_454, 7_348));
+    assert_eq!(blackpill, (3_008, 1_956, 72));
 }
