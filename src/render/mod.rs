@@ -79,7 +79,7 @@ pub use storage::{Capacity, Reach, Storage};
 
 use crate::num::Profile;
 use crate::raster::{RasterError, Vertex};
-use crate::scene::{SceneError, Shading, MAX_OBJECTS};
+use crate::scene::{Object, SceneError, Shading, MAX_OBJECTS};
 use crate::target::{BufferError, Rgb8};
 use core::fmt;
 use core::ops::Range;
@@ -382,7 +382,7 @@ pub(crate) fn pack_grey(d: i32, l: i32) -> i32 {
     grey_depth(d) | grey_level(l)
 }
 
-/// One object of a prepared frame: 28 bytes (indices as `u16`: below
+/// One object of a prepared frame: 24 bytes (indices as `u16`: below
 /// [`MAX_VERTICES`] vertices and [`MAX_TRIANGLES`] triangle numbers;
 /// values below `MAX_VERTICES × 8`), so that a frame's object list
 /// ([`MAX_OBJECTS`] of them) stays small on the stack.
@@ -397,12 +397,9 @@ pub struct PreparedObject {
     /// Index of its first value in [`Workspace::vals`].
     pub val_base: u32,
     /// Its triangle numbers: its mesh's triangles (those the view keeps
-    /// are marked in [`Workspace::faces`]), then from [`Self::made`] on
-    /// the triangles it made (all kept). Empty when it keeps none.
+    /// are marked in [`Workspace::faces`]), then the triangles it made
+    /// (all kept). Empty when it keeps none.
     pub tris: Range<u16>,
-    /// Its first made triangle's number (`tris.start` + the mesh's
-    /// triangles).
-    pub made: u16,
     /// Index of its first made triangle in [`Workspace::tris`].
     pub made_base: u16,
     /// Its index in the scene (whose mesh holds its triangles).
@@ -436,9 +433,8 @@ pub struct Frame<'w, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
     /// [`Workspace::faces`].
     faces: &'w [u8],
-    /// Each object's mesh triangles (an array, not a `heapless::Vec`:
-    /// no drop glue, so the frame's borrows end with its last use).
-    meshes: [&'w [[u16; 3]]; MAX_OBJECTS],
+    /// The scene's objects, whose meshes hold the triangles.
+    scene: &'w [Object<'w, P::Real>],
     objects: heapless::Vec<PreparedObject, MAX_OBJECTS>,
     width: u32,
     height: u32,
@@ -500,7 +496,7 @@ impl<P: Profile> Frame<'_, P> {
     pub fn made_count(&self) -> usize {
         self.objects
             .iter()
-            .map(|o| usize::from(o.tris.end.saturating_sub(o.made)))
+            .map(|o| o.tris.len().saturating_sub(self.mesh_tris(o).len()))
             .sum()
     }
 
@@ -544,12 +540,7 @@ impl<P: Profile> Frame<'_, P> {
     #[inline(always)]
     pub fn tri(&self, po: &PreparedObject, i: usize) -> Option<PreparedTri> {
         let k = i.checked_sub(usize::from(po.tris.start))?;
-        // (`MAX_OBJECTS` is a power of two: the mask is the bound check.)
-        const _: () = assert!(MAX_OBJECTS.is_power_of_two());
-        let mesh = self
-            .meshes
-            .get(usize::from(po.object) & (MAX_OBJECTS - 1))
-            .map_or(&[][..], |m| m);
+        let mesh = self.mesh_tris(po);
         // An object that keeps a triangle numbers its mesh's triangles
         // from `tris.start` on, its made ones from `made` =
         // `tris.start + mesh.len()` on.
@@ -577,6 +568,14 @@ impl<P: Profile> Frame<'_, P> {
             Rgb8::BLACK
         };
         Some(PreparedTri { v, color, back })
+    }
+
+    /// The triangles of object `po`'s mesh.
+    #[inline(always)]
+    fn mesh_tris(&self, po: &PreparedObject) -> &[[u16; 3]] {
+        self.scene
+            .get(usize::from(po.object))
+            .map_or(&[], |o| o.mesh.triangles())
     }
 
     /// The object of triangle number `i` (`None` past the last).

@@ -434,7 +434,7 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 fn memory_figures_are_as_documented() {
     assert_eq!(core::mem::size_of::<Tri>(), 6);
     assert_eq!(core::mem::size_of::<Rgb8>(), 3);
-    assert_eq!(core::mem::size_of::<PreparedObject>(), 28);
+    assert_eq!(core::mem::size_of::<PreparedObject>(), 24);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
