@@ -508,9 +508,10 @@ fn sort_coarse(
     let n = at.map_or_else(|| per_row.iter().map(|&p| usize::from(p)).sum(), |a| a.1);
     // Each stored row's band within the run (`EPOCH`: outside).
     let mut band = [EPOCH as u8; FACE_ROW as usize + 1];
-    // (Indexed by a `u8`: no bound check. Entries from `EPOCH` on count
-    // the triangles outside the run, placed after the run's.)
-    let mut count = [0u16; 256];
+    // (Indexed by a band below 128, masked: no bound check. Entry
+    // `EPOCH` counts the triangles outside the run, placed after the
+    // run's.)
+    let mut count = [0u16; 128];
     for (c, (k, &p)) in band.iter_mut().zip(per_row.iter()).enumerate().skip(1) {
         if p == 0 {
             continue;
@@ -530,7 +531,7 @@ fn sort_coarse(
         *c = sum;
     }
     let mut place = |dst: &mut [u16], i: u16, b: u8| {
-        let c = &mut count[usize::from(band[usize::from(b & FACE_ROW)])];
+        let c = &mut count[usize::from(band[usize::from(b & FACE_ROW)]) & 127];
         if let Some(d) = dst.get_mut(usize::from(*c)) {
             *d = i;
         }
