@@ -218,7 +218,16 @@ fn main() -> ! {
     };
     let mut spare: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(b));
     let mut next: Option<Band> = Some(bytemuck::cast_slice_mut::<u16, u8>(a));
-    let (Some(depth), Some(xy), Some(vals), Some(tris), Some(faces), Some(colors), Some(order), Some(pool)) = (
+    let (
+        Some(depth),
+        Some(xy),
+        Some(vals),
+        Some(tris),
+        Some(faces),
+        Some(colors),
+        Some(order),
+        Some(pool),
+    ) = (
         cortex_m::singleton!(: [u16; BAND_PX] = [0; BAND_PX]),
         cortex_m::singleton!(: [fixshade::render::ScreenXy; VERTICES] = [fixshade::render::ScreenXy::ZERO; VERTICES]),
         cortex_m::singleton!(: [i32; VALUES] = [0; VALUES]),
@@ -227,7 +236,8 @@ fn main() -> ! {
         cortex_m::singleton!(: [Rgb8; COLORS] = [Rgb8::BLACK; COLORS]),
         cortex_m::singleton!(: [u16; ORDER] = [0; ORDER]),
         cortex_m::singleton!(: BandPool = BandPool::new()),
-    ) else {
+    )
+    else {
         defmt::panic!("workspace taken twice");
     };
 
