@@ -1,8 +1,10 @@
 //! The band renderer: an active triangle list walked band to band.
 //!
 //! [`Frame::bands`] orders the prepared triangles by the band of their
-//! first row (a stable counting sort of their indices, about 10
-//! instructions per triangle, into the caller's [`BandState`]). Each band
+//! first row (a stable counting sort of their numbers into the caller's
+//! [`BandState`], the first rows read from the [`Workspace::faces`]
+//! bytes: about 2 instructions per triangle number and 20 per kept
+//! triangle). Each band
 //! then draws, in triangle order (so that ties of equal depth resolve as
 //! in a full frame), the merge of three ordered streams:
 //!
@@ -43,7 +45,7 @@
 //! # Memory
 //! | part | bytes |
 //! |------|-------|
-//! | order scratch ([`BandState`]) | 4 per prepared triangle (`2 ×` [`Frame::triangle_count`] `u16`: the order, and the queue of triangles that found the pool full) |
+//! | order scratch ([`BandState`]) | 2 per triangle number (one `u16` per entry of [`Workspace::faces`], at least [`Frame::triangle_count`]: the kept triangles by band, and in the rest the queue of triangles that found the pool full) |
 //! | pool slot ([`Pool::SLOT_BYTES`]) | 88 (the walk: three edge walkers of 20 bytes, five `i32` rows, three flags; the triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
 //!
 //! With `i32` values: 112 bytes per active triangle for `V = 2` (depth
@@ -62,7 +64,10 @@
 //! per resumed triangle: kept unpacked, exact QEMU counts, bunny-flat
 //! raster thumbv7em 1.901 -> 1.847 M, thumbv6m 2.725 -> 2.693 M;
 //! bunny-gouraud 2.175 -> 2.172 M and 3.180 -> 3.152 M. The order scratch
-//! for its 1 498 triangles is 5 992 bytes.
+//! for its 3 674 triangle numbers is 7 348 bytes (1 498 kept, the rest
+//! room for the queue).
+//!
+//! [`Workspace::faces`]: super::Workspace::faces
 
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader, SpecCache};
@@ -134,7 +139,10 @@ impl<L: Lerp, const CAP: usize, const V: usize> Default for Pool<L, CAP, V> {
 }
 
 /// The band renderer's memory besides the band buffer: the triangle order
-/// (`2 ×` [`Frame::triangle_count`] `u16`) and the active pool.
+/// (at least [`Frame::triangle_count`] `u16`, one per triangle number as
+/// [`Storage`](super::Storage) sizes it: the kept triangles by band, and
+/// in the rest the queue of those put off while the pool is full) and
+/// the active pool.
 #[derive(Debug)]
 pub struct BandState<'a, L, const CAP: usize, const V: usize = 8> {
     /// Scratch for the order of the triangles.
@@ -144,7 +152,7 @@ pub struct BandState<'a, L, const CAP: usize, const V: usize = 8> {
 }
 
 impl<'a, L: Lerp, const CAP: usize, const V: usize> BandState<'a, L, CAP, V> {
-    /// The state in `order` (at least two entries per prepared triangle)
+    /// The state in `order` (at least one entry per prepared triangle)
     /// and `pool`.
     pub fn new(order: &'a mut [u16], pool: &'a mut Pool<L, CAP, V>) -> Self {
         Self { order, pool }
@@ -161,8 +169,10 @@ const RADIX_BITS: u32 = 6;
 /// next band into a band buffer.
 ///
 /// The triangles are ordered once by the band of their first row (a
-/// stable counting sort into the [`BandState`]'s order scratch, about 10
-/// instructions per triangle). Each band then draws, in triangle order
+/// stable counting sort into the [`BandState`]'s order scratch, from the
+/// first rows prepare stored, see [`Workspace::faces`](super::Workspace::faces);
+/// frames of more than 64 bands ordered again every 64). Each band then
+/// draws, in triangle order
 /// (so that ties of equal depth resolve as in a full frame), the merge of
 /// the triangles kept from the bands above (resumed with their edge
 /// walkers and row values: no setup), those starting in the band (set up
@@ -279,7 +289,11 @@ impl<'w, P: Profile> Frame<'w, P> {
     ///
     /// # Errors
     /// [`RenderError::Capacity`] ([`Part::Order`]) when the order scratch
-    /// holds fewer than two entries per prepared triangle;
+    /// holds fewer entries than the prepared triangles (and from
+    /// [`Bands::next_band`] when a triangle put off while the pool was
+    /// full finds no room in the rest of it: with an order of one entry
+    /// per triangle number, as [`Storage`](super::Storage) gives, the rest
+    /// holds every triangle a view does not keep);
     /// [`RenderError::Window`] for `rows == 0`; a scene with too many
     /// lights gives [`RenderError::Scene`].
     pub fn bands<'a, const CAP: usize, const V: usize>(

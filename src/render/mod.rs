@@ -13,7 +13,7 @@
 //! window), with a depth buffer of the same window or none. Rendering a
 //! 240×240 frame in 16-row bands needs a band buffer of 7 680 bytes
 //! (RGB565) and a depth band of 7 680 bytes (16-bit), plus the band state
-//! (4 bytes per prepared triangle and the pool of active triangles), and
+//! (2 bytes per triangle number and the pool of active triangles), and
 //! gives byte for byte the frame a full-screen render gives.
 //!
 //! [`Target`]: crate::target::Target
@@ -26,9 +26,10 @@
 //! | stride, Gouraud | 2 (depth, grey level; 1 in `fast`, which packs both in 16 bits each: [`Layout::GouraudMono`]) or 4 (depth, red, green, blue) |
 //! | stride, Phong | 4 (depth, normal), or 7 (depth, normal, eye position) when a point light or the local viewer needs the position |
 //! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
-//! | per prepared triangle | 6 ([`Tri`]), and 3 (an [`Rgb8`] colour) in a flat object |
-//! | band state ([`BandState`]) | 4 per prepared triangle (order scratch) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
-//! | the [`Frame`]'s object list (in the frame value itself: the caller's stack) | 20 per [`PreparedObject`], [`MAX_OBJECTS`] = 32 of them: 640 |
+//! | per triangle number (every mesh triangle of a prepared object, kept or not) | 1 ([`Workspace::faces`]: kept, first row, back face; a mesh triangle's vertices are read from the mesh, never copied), and 3 (an [`Rgb8`] colour) in a flat object |
+//! | per made triangle (fans of clipped triangles, two-sided Gouraud back faces) | 6 ([`Tri`]) and a triangle number |
+//! | band state ([`BandState`]) | 2 per triangle number (order scratch: the kept triangles by band, the rest a queue) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
+//! | the [`Frame`] value itself (the caller's stack) | 24 per [`PreparedObject`] and 8 per object's mesh triangles, [`MAX_OBJECTS`] = 32 of each: 1 024 |
 //!
 //! A prepared vertex is made per mesh vertex (one per distinct position
 //! and normal), in one linear pass, so shared vertices are transformed and

@@ -1191,3 +1191,92 @@ fn packed_grey_values_are_within_their_bounds() {
     // At the far plane the depth saturates to the last step.
     assert_eq!(unpack_grey(pack_grey(1 << 30, 0)).0, (1 << 30) - (1 << 13));
 }
+
+/// Renders band by band with an order scratch of `len(n, numbers)`
+/// entries (`n` prepared triangles, `numbers` triangle numbers) and a pool
+/// of `CAP` slots of eight values: the bytes, or the error.
+fn banded_order<const CAP: usize>(
+    s: &Scene<'_, 'static, crate::num::Q16>,
+    (w, h, rows): (u32, u32, u32),
+    len: impl Fn(usize, usize) -> usize,
+) -> Result<Vec<u8>, RenderError> {
+    let mut mem = Mem::<i32>::new(12_000, 12_000);
+    let frame = prepare::<Fast>(s, w, h, mem.ws()).unwrap();
+    let mut px = vec![0u16; (w * rows) as usize];
+    let mut z = vec![0u16; (w * rows) as usize];
+    let mut band = BandBuf::<Rgb565Be>::new(&mut px, Some(&mut z[..]), w, rows).unwrap();
+    let mut order = vec![0u16; len(frame.triangle_count(), frame.triangle_numbers())];
+    let mut pool = Box::new(Pool::<i32, CAP, 8>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
+    let mut out = vec![];
+    frame.render_bands(s, &mut state, &mut band, |b| {
+        out.extend(b.bytes());
+        Ok::<(), RenderError>(())
+    })?;
+    Ok(out)
+}
+
+#[test]
+fn bands_read_from_the_faces_bytes_equal_the_full_frame() {
+    // 200 rows: the faces bytes keep first rows halved (`face_shift` 1):
+    // even band heights read the band from them, odd ones from the
+    // vertices; beyond 64 bands (1, 2 and 3 rows) the bands are ordered
+    // in runs of 64.
+    assert_eq!(
+        [127, 128, 200, 240, 254, 255, 4096].map(face_shift),
+        [0, 1, 1, 1, 1, 2, 6]
+    );
+    let objs = every_shape::<crate::num::Q16>(Shading::Gouraud);
+    let ls = lights();
+    let s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
+    let (w, h) = (96, 200);
+    let whole = full::<Fast>(&s, w, h, true);
+    for rows in [1, 2, 3, 8, 13, 200] {
+        let at = (w, h, rows);
+        // The kept triangles twice: listed, then placed from the list.
+        assert_eq!(
+            banded_order::<256>(&s, at, |n, _| 2 * n).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        // One entry per triangle number (as `Storage` gives): placed from
+        // the bytes when the kept triangles fill more than half of it; a
+        // pool of two slots queues the others in the rest.
+        assert_eq!(
+            banded_order::<256>(&s, at, |_, t| t).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        assert_eq!(
+            banded_order::<2>(&s, at, |_, t| t).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        // No room for the queue: the same frame when nothing is put off,
+        // else an error naming the order, never another frame.
+        assert_eq!(
+            banded_order::<256>(&s, at, |n, _| n).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        match banded_order::<2>(&s, at, |n, _| n) {
+            Ok(b) => assert_eq!(b, whole, "rows {rows}"),
+            Err(e) => assert_eq!(
+                e,
+                RenderError::Capacity {
+                    part: Part::Order,
+                    object: 0
+                },
+                "rows {rows}"
+            ),
+        }
+        // Shorter than the kept triangles: refused.
+        assert_eq!(
+            banded_order::<256>(&s, at, |n, _| n - 1).unwrap_err(),
+            RenderError::Capacity {
+                part: Part::Order,
+                object: 0
+            }
+        );
+    }
+}
