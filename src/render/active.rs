@@ -730,7 +730,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// [`RenderError::Window`] when the band buffer's width differs from
     /// the frame's or its rows from those the bands were ordered for;
     /// [`RenderError::Raster`] for a vertex outside the rasterizer's
-    /// limits (not after [`super::prepare`]).
+    /// limits (not after [`super::prepare`]); [`RenderError::Capacity`]
+    /// ([`Part::Order`]) when a triangle continuing below the band found
+    /// the pool full and no room in the order scratch's queue (the band
+    /// is drawn; the frame would miss the triangle's rest).
     pub fn next_band<F: PixelFormat, D: DepthFormat>(
         &mut self,
         band: &mut BandBuf<'_, F, D>,
