@@ -522,11 +522,14 @@ fn sort_coarse(
     let n = at.map_or_else(|| per_row.iter().map(|&p| usize::from(p)).sum(), |a| a.1);
     // Each stored row's band within the run (`EPOCH`: outside).
     let mut band = [EPOCH as u8; FACE_ROW as usize + 1];
-    // (Indexed by a band below 128, masked: no bound check. Entry
-    // `EPOCH` counts the triangles outside the run, placed after the
-    // run's.)
-    let mut count = [0u16; 128];
-    for (c, (k, &p)) in band.iter_mut().zip(per_row.iter()).enumerate().skip(1) {
+    // The bands' counts, in place of the rows' (`count[b + 1]`: band `b`
+    // of the run; row `c`'s band `b` is at most `c - 1`, so its count
+    // lands in an entry already read). Indexed by a band below 128,
+    // masked: no bound check. Entry `EPOCH` counts the triangles outside
+    // the run, placed after the run's.
+    let mut count = per_row;
+    for c in 1..count.len() {
+        let p = core::mem::take(&mut count[c]);
         if p == 0 {
             continue;
         }
@@ -535,8 +538,8 @@ fn sort_coarse(
             .min(last)
             .wrapping_sub(first);
         if b < EPOCH {
-            *k = b as u8;
-            count[b as usize + 1] += p;
+            band[c] = b as u8;
+            count[(b as usize + 1) & 127] += p;
         }
     }
     let mut sum = 0;
