@@ -181,7 +181,8 @@ impl Owned {
             xy: vec![fixshade::render::ScreenXy::ZERO; cap.vertices],
             vals: vec![0; cap.values],
             tris: vec![Tri::default(); cap.made],
-            colors: vec![fixshade::target::Rgb8::BLACK; cap.colors],
+            // A colour per triangle number: room for any layout.
+            colors: vec![fixshade::target::Rgb8::BLACK; cap.triangles],
             faces: vec![0; cap.triangles],
         }
     }
