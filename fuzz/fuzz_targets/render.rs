@@ -397,11 +397,13 @@ fn scene_for<P: Profile>(b: &mut Bytes<'_>) {
     let mut vals = vec![P::Lerp::default(); cap(b, 6000 * 8)];
     let mut tris = vec![Tri::default(); cap(b, 8000)];
     let mut colors = vec![fixshade::target::Rgb8::BLACK; cap(b, 8000)];
+    let mut faces = vec![0u8; cap(b, 8000)];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tris,
         colors: &mut colors,
+        faces: &mut faces,
     };
     let frame = match prepare::<P>(&scene, w, h, ws) {
         Ok(f) => f,

@@ -443,6 +443,7 @@ pub struct Renderer<P: Profile, F: CorePixelFormat> {
     vals: Vec<P::Lerp>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
+    faces: Vec<u8>,
     band: Vec<F::Raw>,
     depth: Vec<u16>,
     order: Vec<u16>,
@@ -463,6 +464,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
             vals: vec![P::Lerp::default(); verts * 8],
             tris: vec![Tri::default(); tris],
             colors: vec![fixshade::target::Rgb8::BLACK; tris],
+            faces: vec![0; tris],
             band: vec![F::Raw::default(); band_len],
             depth: vec![0; band_len],
             order: vec![0; 2 * tris],
@@ -490,6 +492,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
             vals: &mut self.vals,
             tris: &mut self.tris,
             colors: &mut self.colors,
+            faces: &mut self.faces,
         };
         let frame = prepare::<P>(scene, w, h, ws)?;
         let mut stats = FrameStats {

@@ -172,6 +172,7 @@ struct Owned {
     vals: Vec<i32>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
+    faces: Vec<u8>,
 }
 
 impl Owned {
@@ -179,8 +180,10 @@ impl Owned {
         Self {
             xy: vec![fixshade::render::ScreenXy::ZERO; cap.vertices],
             vals: vec![0; cap.values],
-            tris: vec![Tri::default(); cap.triangles],
+            tris: vec![Tri::default(); cap.made],
+            // A colour per triangle number: room for any layout.
             colors: vec![fixshade::target::Rgb8::BLACK; cap.triangles],
+            faces: vec![0; cap.triangles],
         }
     }
 
@@ -190,6 +193,7 @@ impl Owned {
             vals: &mut self.vals,
             tris: &mut self.tris,
             colors: &mut self.colors,
+            faces: &mut self.faces,
         }
     }
 }
@@ -311,7 +315,7 @@ fn render_crc(
     let mut band = vec![0u16; (w * BAND_ROWS) as usize];
     let mut z = vec![0u16; (w * BAND_ROWS) as usize];
     let mut buf = BandBuf::<Rgb565Be>::new(&mut band, depth.then_some(&mut z[..]), w, BAND_ROWS)?;
-    let mut order = vec![0u16; 2 * cap.triangles];
+    let mut order = vec![0u16; cap.triangles];
     let mut pool = Box::new(Pool::<i32, 256, 8>::new());
     let mut state = BandState::new(&mut order, &mut pool);
     let mut bytes = Vec::with_capacity((w * h * 2) as usize);

@@ -490,10 +490,10 @@ fn the_users_scene_files_are_swept_and_picked_by_ram() {
         "--fps",
         "10",
         "--ram-kb",
-        // 58 KB: room for the affine profiles' bunny, not for the
-        // perspective-correct ones' (one more value per vertex, 7 356 bytes:
-        // 63 168 bytes for `fast-pc`).
-        "58",
+        // 50 KB: room for the affine profiles' bunny (about 44 KB with
+        // `fast`), not for the perspective-correct ones' (one more value
+        // per vertex, 7 356 bytes: 57 862 bytes for `fast-pc`).
+        "50",
         "--scene",
         bunny,
         "--allow-stale",

@@ -1,8 +1,10 @@
 //! The band renderer: an active triangle list walked band to band.
 //!
 //! [`Frame::bands`] orders the prepared triangles by the band of their
-//! first row (a stable counting sort of their indices, about 10
-//! instructions per triangle, into the caller's [`BandState`]). Each band
+//! first row (a stable counting sort of their numbers into the caller's
+//! [`BandState`], the first rows read from the [`Workspace::faces`]
+//! bytes: about 2 instructions per triangle number and 20 per kept
+//! triangle). Each band
 //! then draws, in triangle order (so that ties of equal depth resolve as
 //! in a full frame), the merge of three ordered streams:
 //!
@@ -43,7 +45,7 @@
 //! # Memory
 //! | part | bytes |
 //! |------|-------|
-//! | order scratch ([`BandState`]) | 4 per prepared triangle (`2 ×` [`Frame::triangle_count`] `u16`: the order, and the queue of triangles that found the pool full) |
+//! | order scratch ([`BandState`]) | 2 per triangle number (one `u16` per entry of [`Workspace::faces`], at least [`Frame::triangle_count`]: the kept triangles by band, and in the rest the queue of triangles that found the pool full) |
 //! | pool slot ([`Pool::SLOT_BYTES`]) | 88 (the walk: three edge walkers of 20 bytes, five `i32` rows, three flags; the triangle index) + `12 × V` (value, x step, y step of each of the `V` values a slot holds), plus 4 for the pool's two lists |
 //!
 //! With `i32` values: 112 bytes per active triangle for `V = 2` (depth
@@ -62,13 +64,19 @@
 //! per resumed triangle: kept unpacked, exact QEMU counts, bunny-flat
 //! raster thumbv7em 1.901 -> 1.847 M, thumbv6m 2.725 -> 2.693 M;
 //! bunny-gouraud 2.175 -> 2.172 M and 3.180 -> 3.152 M. The order scratch
-//! for its 1 498 triangles is 5 992 bytes.
+//! for its 3 674 triangle numbers is 7 348 bytes (1 498 kept, the rest
+//! room for the queue).
+//!
+//! [`Workspace::faces`]: super::Workspace::faces
 
 use super::band::PhongShader;
 use super::phong_span::{PhongKernel, PhongKernelShader, PosPlane, SpecCache};
 use super::position::PosFrame;
-use super::prepare::{self, eye_lights};
-use super::{Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats};
+use super::prepare::eye_lights;
+use super::{
+    face_shift, Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats,
+    FACE_ROW,
+};
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
 use crate::raster::{
@@ -131,7 +139,10 @@ impl<L: Lerp, const CAP: usize, const V: usize> Default for Pool<L, CAP, V> {
 }
 
 /// The band renderer's memory besides the band buffer: the triangle order
-/// (`2 ×` [`Frame::triangle_count`] `u16`) and the active pool.
+/// (at least [`Frame::triangle_count`] `u16`, one per triangle number as
+/// [`Storage`](super::Storage) sizes it: the kept triangles by band, and
+/// in the rest the queue of those put off while the pool is full) and
+/// the active pool.
 #[derive(Debug)]
 pub struct BandState<'a, L, const CAP: usize, const V: usize = 8> {
     /// Scratch for the order of the triangles.
@@ -141,7 +152,7 @@ pub struct BandState<'a, L, const CAP: usize, const V: usize = 8> {
 }
 
 impl<'a, L: Lerp, const CAP: usize, const V: usize> BandState<'a, L, CAP, V> {
-    /// The state in `order` (at least two entries per prepared triangle)
+    /// The state in `order` (at least one entry per prepared triangle)
     /// and `pool`.
     pub fn new(order: &'a mut [u16], pool: &'a mut Pool<L, CAP, V>) -> Self {
         Self { order, pool }
@@ -158,8 +169,10 @@ const RADIX_BITS: u32 = 6;
 /// next band into a band buffer.
 ///
 /// The triangles are ordered once by the band of their first row (a
-/// stable counting sort into the [`BandState`]'s order scratch, about 10
-/// instructions per triangle). Each band then draws, in triangle order
+/// stable counting sort into the [`BandState`]'s order scratch, from the
+/// first rows prepare stored, see [`Workspace::faces`](super::Workspace::faces);
+/// frames of more than 64 bands ordered again every 64). Each band then
+/// draws, in triangle order
 /// (so that ties of equal depth resolve as in a full frame), the merge of
 /// the triangles kept from the bands above (resumed with their edge
 /// walkers and row values: no setup), those starting in the band (set up
@@ -177,7 +190,7 @@ const RADIX_BITS: u32 = 6;
 /// use fixshade::illum::{Light, Material, Specular, Viewer};
 /// use fixshade::mesh::shapes::DODECAHEDRON;
 /// use fixshade::num::{Fast, Real, Q16};
-/// use fixshade::render::{prepare, BandState, Pool, ScreenXy, Tri, Workspace};
+/// use fixshade::render::{prepare, BandState, Pool, ScreenXy, Workspace};
 /// use fixshade::scene::{Camera, Object, Scene, Shading};
 /// use fixshade::target::{BandBuf, Rgb565Be, Rgb8};
 ///
@@ -191,8 +204,10 @@ const RADIX_BITS: u32 = 6;
 /// let lights = [Light::point(Vec3::new(q(0, 1), q(0, 1), q(2, 1)), q(1, 1))];
 /// let scene = Scene { camera, objects: &objects, lights: &lights, ambient: q(1, 1),
 ///                     specular: Specular::Phong, viewer: Viewer::Local, background: Rgb8::BLACK };
-/// let (mut xy, mut vals, mut tris) = ([ScreenXy::ZERO; 64], [0i32; 64 * 7], [Tri::default(); 64]);
-/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut tris, colors: &mut [] };
+/// // Room for the dodecahedron's 20 vertices and a byte per triangle (36);
+/// // inside the clipping planes it makes no triangle.
+/// let (mut xy, mut vals, mut faces) = ([ScreenXy::ZERO; 64], [0i32; 64 * 7], [0u8; 64]);
+/// let ws = Workspace { xy: &mut xy, vals: &mut vals, tris: &mut [], colors: &mut [], faces: &mut faces };
 /// let frame = prepare::<Fast>(&scene, 96, 96, ws)?;
 ///
 /// // Two band buffers of 8 rows: one is rendered while the other is sent.
@@ -202,7 +217,7 @@ const RADIX_BITS: u32 = 6;
 ///     BandBuf::<Rgb565Be>::new(&mut p0, Some(&mut z0), 96, 8)?,
 ///     BandBuf::<Rgb565Be>::new(&mut p1, Some(&mut z1), 96, 8)?,
 /// ];
-/// let (mut order, mut pool) = ([0u16; 128], Pool::<i32, 16, 4>::new());
+/// let (mut order, mut pool) = ([0u16; 64], Pool::<i32, 16, 4>::new());
 /// let mut state = BandState::new(&mut order, &mut pool);
 /// let mut bands = frame.bands(&scene, &mut state, 8)?;
 /// let mut i = 0;
@@ -228,23 +243,34 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     y: u32,
     /// Prepared triangles.
     n: usize,
-    /// Next entry of the order.
+    /// Next entry of the order (from `run_at` on).
     cursor: usize,
     /// End of the entries of the order starting in the current band (or
     /// above).
     band_end: usize,
-    /// End of each band's entries of the order, when the sort found them
-    /// (at most `2^RADIX_BITS` bands), so that a band's run needs no
-    /// triangle's rows again.
-    ends: Option<[u16; 1 << RADIX_BITS]>,
+    /// End of each band's entries of the order (band `epoch + b`'s in
+    /// `ends[b]`), so that a band's run needs no triangle's rows again.
+    ends: [u16; 1 << RADIX_BITS],
+    /// The first band of those ordered (every [`EPOCH`] bands the
+    /// triangles starting in the next ones are ordered).
+    epoch: u32,
+    /// A triangle put off while the pool was full found the queue full
+    /// too (the rest of the order): the band is reported as an error.
+    lost: bool,
+    /// Where the run of the order (the kept triangles by band) starts.
+    run_at: usize,
+    /// Where the queue starts in the order, and its entries.
+    q_at: usize,
+    q_len: usize,
     /// Pool ring: first entry, entries of the band above still to resume,
     /// entries in all.
     ring_head: usize,
     ring_cur: usize,
     ring_len: usize,
     free_len: usize,
-    /// Queue of triangles that found the pool full (in `order[n..2n]`):
-    /// first entry, entries of the band above, entries in all.
+    /// Queue of triangles that found the pool full (a ring in `order[n..]`,
+    /// the order's entries past the kept triangles): first entry, entries
+    /// of the band above, entries in all.
     def_head: usize,
     def_cur: usize,
     def_len: usize,
@@ -263,7 +289,11 @@ impl<'w, P: Profile> Frame<'w, P> {
     ///
     /// # Errors
     /// [`RenderError::Capacity`] ([`Part::Order`]) when the order scratch
-    /// holds fewer than two entries per prepared triangle;
+    /// holds fewer entries than the prepared triangles (and from
+    /// [`Bands::next_band`] when a triangle put off while the pool was
+    /// full finds no room in the rest of it: with an order of one entry
+    /// per triangle number, as [`Storage`](super::Storage) gives, the rest
+    /// holds every triangle a view does not keep);
     /// [`RenderError::Window`] for `rows == 0`; a scene with too many
     /// lights gives [`RenderError::Scene`].
     pub fn bands<'a, const CAP: usize, const V: usize>(
@@ -272,23 +302,33 @@ impl<'w, P: Profile> Frame<'w, P> {
         state: &'a mut BandState<'_, P::Lerp, CAP, V>,
         rows: u32,
     ) -> Result<Bands<'a, 'w, P, CAP, V>, RenderError> {
-        let n = self.triangle_count();
         let order = &mut *state.order;
-        if order.len() < 2 * n || n > u16::MAX as usize {
-            return Err(RenderError::Capacity {
-                part: Part::Order,
-                object: 0,
-            });
-        }
         if rows == 0 {
             return Err(RenderError::Window);
+        }
+        let short = RenderError::Capacity {
+            part: Part::Order,
+            object: 0,
+        };
+        if self.triangle_numbers() > u16::MAX as usize {
+            return Err(short);
         }
         let lights = eye_lights(scene)?;
         let pool = &mut *state.pool;
         for (i, f) in pool.free.iter_mut().enumerate() {
             *f = (CAP - 1 - i) as u16;
         }
-        let ends = sort_by_band(self, order, rows, self.height);
+        // (The kept triangles counted while ordering.)
+        let (ends, run_at, n) = sort_by_band(self, order, rows, self.height, 0, None);
+        if order.len() < n {
+            return Err(short);
+        }
+        // The queue: the entries outside the run.
+        let (q_at, q_len) = if run_at == 0 {
+            (n, order.len() - n)
+        } else {
+            (0, run_at)
+        };
         Ok(Bands {
             frame: self,
             scene,
@@ -298,9 +338,14 @@ impl<'w, P: Profile> Frame<'w, P> {
             rows,
             y: 0,
             n,
-            cursor: 0,
+            cursor: run_at,
             band_end: 0,
             ends,
+            epoch: 0,
+            lost: false,
+            run_at,
+            q_at,
+            q_len,
             ring_head: 0,
             ring_cur: 0,
             ring_len: 0,
@@ -364,104 +409,263 @@ pub(super) fn band_consts(rows: u32) -> (Option<u32>, u32) {
     }
 }
 
-/// Orders the indices of `frame`'s triangles by the band of their first
-/// row, stably, into `order[..n]` (`order[n..2n]` is scratch): one
-/// counting-sort pass for up to 64 bands (each triangle's band computed
-/// once, from its vertices' rows, kept in the scratch for the pass; the
-/// end of each band's entries returned), two (by the low and the high 6
-/// bits) for more.
+/// Bands ordered at once (a run): a frame of more bands is ordered again
+/// every `EPOCH` bands (`first..first + EPOCH`, counted in 64 buckets).
+const EPOCH: u32 = 1 << RADIX_BITS;
+
+/// The band of kept triangles from their [`Workspace::faces`] bytes.
+///
+/// [`Workspace::faces`]: super::Workspace::faces
+#[derive(Clone, Copy, Debug)]
+struct BandOf {
+    /// `Some`: the band height a multiple of `2^q` (`q` the frame's row
+    /// shift, [`face_shift`]): the band is the stored row `(r >> q)`
+    /// divided by `rows >> q` ([`band_of`] with these constants), exact
+    /// (`floor(r / rows) = floor(floor(r / 2^q) / (rows / 2^q))`); `None`:
+    /// from the triangle's vertices.
+    coarse: Option<(u32, Option<u32>, u32)>,
+    rows: u32,
+    shift: Option<u32>,
+    m: u32,
+    /// The last band.
+    last: u32,
+}
+
+impl BandOf {
+    fn new(rows: u32, height: u32) -> Self {
+        let q = face_shift(height);
+        let (shift, m) = band_consts(rows);
+        let coarse = (rows.trailing_zeros() >= q).then(|| {
+            let r = rows >> q;
+            let (s, m) = band_consts(r);
+            (r, s, m)
+        });
+        Self {
+            coarse,
+            rows,
+            shift,
+            m,
+            last: height.div_ceil(rows.max(1)).saturating_sub(1),
+        }
+    }
+
+    /// The band of kept triangle number `i` with byte `b`.
+    #[inline(always)]
+    fn band<P: Profile>(&self, frame: &Frame<'_, P>, i: usize, b: u8) -> u32 {
+        match self.coarse {
+            Some((rows, shift, m)) => {
+                band_of(u32::from(b & FACE_ROW).wrapping_sub(1), rows, shift, m).min(self.last)
+            }
+            None => self.band_slow(frame, i),
+        }
+    }
+
+    /// [`Self::band`] from the vertices (the band height not a multiple
+    /// of `2^q`): the object of the triangle found among the objects.
+    #[inline(never)]
+    #[cold]
+    fn band_slow<P: Profile>(&self, frame: &Frame<'_, P>, i: usize) -> u32 {
+        let r = frame
+            .tri_vertices(i)
+            .map_or(0, |v| u32::from(frame.tri_first_row(v)));
+        band_of(r.min(4095), self.rows, self.shift, self.m).min(self.last)
+    }
+}
+
+/// [`sort_by_band`] when the bands follow from the bytes' rows
+/// ([`BandOf::coarse`], `(rows, shift, m)` for [`band_of`] of a stored row,
+/// the last band, the run's first): the kept triangles counted by stored
+/// row (127 of them), each row's band (within the run, or none) found
+/// once, then placed by a table lookup. The same order.
+#[inline(never)]
+#[allow(clippy::cast_possible_truncation)]
+fn sort_coarse(
+    faces: &[u8],
+    order: &mut [u16],
+    ((rows, shift, m), last, first): ((u32, Option<u32>, u32), u32, u32),
+    at: Option<(usize, usize)>,
+) -> ([u16; 1 << RADIX_BITS], usize, usize) {
+    // Kept triangles per stored row (`FACE_ROW + 1` codes, 0: not kept).
+    let mut per_row = [0u16; FACE_ROW as usize + 1];
+    let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
+    let mut listed = list.iter_mut();
+    // Four bytes at a time: a word of triangles none of which is kept is
+    // skipped at once.
+    let mut quads = faces.chunks_exact(4);
+    let mut i = 0;
+    for q in quads.by_ref() {
+        let w = u32::from_le_bytes([q[0], q[1], q[2], q[3]]);
+        if w & u32::from_le_bytes([FACE_ROW; 4]) != 0 {
+            for (j, &b) in q.iter().enumerate() {
+                let c = usize::from(b & FACE_ROW);
+                if c != 0 {
+                    per_row[c] += 1;
+                    if let Some(d) = listed.next() {
+                        // Numbers below `MAX_TRIANGLES`.
+                        *d = (i + j) as u16;
+                    }
+                }
+            }
+        }
+        i += 4;
+    }
+    for (j, &b) in quads.remainder().iter().enumerate() {
+        let c = usize::from(b & FACE_ROW);
+        if c != 0 {
+            per_row[c] += 1;
+            if let Some(d) = listed.next() {
+                *d = (i + j) as u16;
+            }
+        }
+    }
+    // The kept triangles.
+    let n = at.map_or_else(|| per_row.iter().map(|&p| usize::from(p)).sum(), |a| a.1);
+    // Each stored row's band within the run (`EPOCH`: outside).
+    let mut band = [EPOCH as u8; FACE_ROW as usize + 1];
+    // The bands' counts, in place of the rows' (`count[b + 1]`: band `b`
+    // of the run; row `c`'s band `b` is at most `c - 1`, so its count
+    // lands in an entry already read). Indexed by a band below 128,
+    // masked: no bound check. Entry `EPOCH` counts the triangles outside
+    // the run, placed after the run's.
+    let mut count = per_row;
+    for c in 1..count.len() {
+        let p = core::mem::take(&mut count[c]);
+        if p == 0 {
+            continue;
+        }
+        // A band before `first` wraps past `EPOCH`.
+        let b = band_of(c as u32 - 1, rows, shift, m)
+            .min(last)
+            .wrapping_sub(first);
+        if b < EPOCH {
+            band[c] = b as u8;
+            count[(b as usize + 1) & 127] += p;
+        }
+    }
+    let mut sum = 0;
+    for c in count.iter_mut().take(EPOCH as usize + 1) {
+        sum += *c;
+        *c = sum;
+    }
+    let mut place = |dst: &mut [u16], i: u16, b: u8| {
+        let c = &mut count[usize::from(band[usize::from(b & FACE_ROW)]) & 127];
+        if let Some(d) = dst.get_mut(usize::from(*c)) {
+            *d = i;
+        }
+        *c += 1;
+    };
+    let run_at = if at.is_none() && n <= order.len() / 2 {
+        let (src, dst) = order.split_at_mut(order.len() - n);
+        for &i in src.iter().take(n) {
+            place(dst, i, faces.get(usize::from(i)).copied().unwrap_or(0));
+        }
+        order.len() - n
+    } else {
+        let at = at.map_or(0, |a| a.0);
+        let dst = order.get_mut(at..).unwrap_or_default();
+        for (i, &b) in faces.iter().enumerate() {
+            if b & FACE_ROW != 0 {
+                place(dst, i as u16, b);
+            }
+        }
+        at
+    };
+    let mut ends = [0u16; 1 << RADIX_BITS];
+    for (e, c) in ends.iter_mut().zip(count.iter()) {
+        *e = *c;
+    }
+    (ends, run_at, n)
+}
+
+/// Orders the numbers of `frame`'s kept triangles starting in bands
+/// `first..first + EPOCH` by band, stably (ascending numbers within a
+/// band), into `order` (at least [`Frame::triangle_count`] entries): each
+/// kept triangle's band read from its [`Workspace::faces`] byte (its first
+/// row), a counting sort. Returns the end of each band's entries (band
+/// `first + b`'s in `ends[b]`, relative to the start of the run) and where
+/// the run starts in `order`.
+///
+/// The first ordering (`at` = `None`) lists the kept numbers in `order`
+/// while counting; when `order` holds them twice, it places them from
+/// there into the run `order[len - n..]` (the placing pass over the kept
+/// triangles only); else, and for a later run of bands (`at`: where the
+/// run starts), the placing pass reads the numbers' bytes again and writes
+/// the run at `at` (or 0). The rest of `order` is the queue of the
+/// triangles put off while the pool is full.
+///
+/// [`Workspace::faces`]: super::Workspace::faces
 fn sort_by_band<P: Profile>(
     frame: &Frame<'_, P>,
     order: &mut [u16],
     rows: u32,
     height: u32,
-) -> Option<[u16; 1 << RADIX_BITS]> {
-    let n = frame.triangle_count();
-    let (shift, m) = band_consts(rows);
-    let last = height.div_ceil(rows.max(1)).saturating_sub(1);
-    // Rows lie within the screen (at most 4096): keys below 2^12.
-    let key = |i: u16| {
-        let r = frame
-            .tri_vertices(usize::from(i))
-            .map_or(0, |v| frame.tri_first_row(v));
-        band_of(u32::from(r).min(4095), rows, shift, m).min(last)
-    };
-    let (lo, hi) = order.split_at_mut_checked(n)?;
-    let hi = hi.get_mut(..n)?;
-    if last < 1 << RADIX_BITS {
-        match (shift, frame.ws.tris.get(..n)) {
-            // A power-of-two band height: the band is the top `y`'s first
-            // row shifted once more, `(y + round) >> (sub + s)` (one
-            // floor division by `2^(sub + s)`), clamped to `0..=last`;
-            // the same key as `key` (the row's clamps to the height and
-            // to 4095 both give a band at or beyond `last`).
-            (Some(s), Some(tris)) => {
-                let sub = P::SUBPIXEL_BITS;
-                let sc = sub.scale();
-                let o = prepare::xy_origin::<P>(frame.width, frame.height).0[1];
-                let round = o - sc / 2 + sc - 1;
-                let sh = sub.get() + s;
-                let xy: &[super::ScreenXy] = frame.ws.xy;
-                let y = |v: u16| xy.get(usize::from(v)).map_or(-o, |p| i32::from(p.0[1]));
-                for (k, t) in hi.iter_mut().zip(tris) {
-                    let [a, b, c] = t.v();
-                    let top = y(a).min(y(b)).min(y(c));
-                    *k = (((top + round) >> sh).max(0) as u32).min(last) as u16;
-                }
-            }
-            _ => {
-                for (i, k) in hi.iter_mut().enumerate() {
-                    *k = key(i as u16) as u16;
-                }
-            }
-        }
-        let keys: &[u16] = hi;
-        let k = |i: u16| keys.get(usize::from(i)).map_or(0, |&k| u32::from(k));
-        let count = counting_pass(0..n as u16, lo, k);
-        let mut ends = [0u16; 1 << RADIX_BITS];
-        for (e, c) in ends.iter_mut().zip(count.iter()) {
-            *e = *c;
-        }
-        Some(ends)
-    } else {
-        let mask = (1 << RADIX_BITS) - 1;
-        counting_pass(0..n as u16, hi, |i| key(i) & mask);
-        let src: &[u16] = hi;
-        counting_pass(src.iter().copied(), lo, |i| key(i) >> RADIX_BITS);
-        None
+    first: u32,
+    at: Option<(usize, usize)>,
+) -> ([u16; 1 << RADIX_BITS], usize, usize) {
+    let key = BandOf::new(rows, height);
+    let faces = frame
+        .faces
+        .get(..frame.triangle_numbers())
+        .unwrap_or_default();
+    if let Some(coarse) = key.coarse {
+        return sort_coarse(faces, order, (coarse, key.last, first), at);
     }
-}
-
-/// One stable counting-sort pass of the indices `src` by `key` (below
-/// 64) into `dst`; returns the counts after it, `count[b]` the end of key
-/// `b`'s entries.
-#[inline(always)]
-fn counting_pass(
-    src: impl Iterator<Item = u16> + Clone,
-    dst: &mut [u16],
-    key: impl Fn(u16) -> u32,
-) -> [u16; (1 << RADIX_BITS) + 1] {
     let mut count = [0u16; (1 << RADIX_BITS) + 1];
-    let k = |i: u16| key(i) as usize & 63;
-    for i in src.clone() {
-        if let Some(c) = count.get_mut(k(i) + 1) {
-            *c += 1;
+    let list: &mut [u16] = if at.is_none() { order } else { &mut [] };
+    let mut listed = 0;
+    for (i, &b) in faces.iter().enumerate() {
+        if b & FACE_ROW == 0 {
+            continue;
         }
+        // A band before `first` wraps past `EPOCH`.
+        let k = key.band(frame, i, b).wrapping_sub(first);
+        if k < EPOCH {
+            count[k as usize + 1] += 1;
+        }
+        if let Some(d) = list.get_mut(listed) {
+            // Numbers below `MAX_TRIANGLES`.
+            *d = i as u16;
+        }
+        listed += 1;
     }
     let mut sum = 0;
     for c in count.iter_mut() {
         sum += *c;
         *c = sum;
     }
-    for i in src {
-        if let Some(c) = count.get_mut(k(i)) {
-            if let Some(d) = dst.get_mut(*c as usize) {
-                *d = i;
+    let mut place = |dst: &mut [u16], i: usize, b: u8| {
+        let k = key.band(frame, i, b).wrapping_sub(first);
+        if k < EPOCH {
+            let c = &mut count[k as usize];
+            if let Some(d) = dst.get_mut(usize::from(*c)) {
+                *d = i as u16;
             }
             *c += 1;
         }
+    };
+    let n = at.map_or(listed, |a| a.1);
+    let run_at = if at.is_none() && n <= order.len() / 2 {
+        let (src, dst) = order.split_at_mut(order.len() - n);
+        for &i in src.iter().take(n) {
+            let i = usize::from(i);
+            place(dst, i, faces.get(i).copied().unwrap_or(0));
+        }
+        order.len() - n
+    } else {
+        let at = at.map_or(0, |a| a.0);
+        let dst = order.get_mut(at..).unwrap_or_default();
+        for (i, &b) in faces.iter().enumerate() {
+            if b & FACE_ROW != 0 {
+                place(dst, i, b);
+            }
+        }
+        at
+    };
+    let mut ends = [0u16; 1 << RADIX_BITS];
+    for (e, c) in ends.iter_mut().zip(count.iter()) {
+        *e = *c;
     }
-    count
+    (ends, run_at, n)
 }
 
 /// The row kernel's sink: a band's colour and depth slices and a shader.
@@ -529,7 +733,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// [`RenderError::Window`] when the band buffer's width differs from
     /// the frame's or its rows from those the bands were ordered for;
     /// [`RenderError::Raster`] for a vertex outside the rasterizer's
-    /// limits (not after [`super::prepare`]).
+    /// limits (not after [`super::prepare`]); [`RenderError::Capacity`]
+    /// ([`Part::Order`]) when a triangle continuing below the band found
+    /// the pool full and no room in the order scratch's queue (the band
+    /// is drawn; the frame would miss the triangle's rest).
     pub fn next_band<F: PixelFormat, D: DepthFormat>(
         &mut self,
         band: &mut BandBuf<'_, F, D>,
@@ -558,20 +765,28 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let band_index = y0 / self.rows.max(1);
         // The triangles starting in this band: the next run of the order
         // (each triangle's band found once per frame, here).
-        self.band_end = match &self.ends {
-            // Bands past the last hold no start (keys are clamped to it).
-            Some(ends) => ends
-                .get(band_index as usize)
-                .map_or(self.n, |&e| usize::from(e))
-                .max(self.cursor),
-            None => {
-                let mut k = self.cursor;
-                while k < self.n && self.bucket_at(k, band_index) != NONE {
-                    k += 1;
-                }
-                k
-            }
-        };
+        if band_index >= self.epoch + EPOCH {
+            // The next run of bands: its triangles ordered (into the
+            // entries before the queue's).
+            let (ends, ..) = sort_by_band(
+                self.frame,
+                self.order,
+                self.rows,
+                self.frame.height,
+                band_index,
+                Some((self.run_at, self.n)),
+            );
+            self.ends = ends;
+            self.epoch = band_index;
+            self.cursor = self.run_at;
+        }
+        // Bands past the last hold no start (keys are clamped to it).
+        self.band_end = (self.run_at
+            + self
+                .ends
+                .get((band_index - self.epoch) as usize)
+                .map_or(self.n, |&e| usize::from(e)))
+        .max(self.cursor);
         let frame = self.frame;
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
@@ -666,6 +881,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             }
         }
         self.y = y1;
+        if self.lost {
+            return Err(RenderError::Capacity {
+                part: Part::Order,
+                object: 0,
+            });
+        }
         Ok(Some(Window { width: w, y0, y1 }))
     }
 
@@ -683,7 +904,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         let b = if self.def_cur > 0 {
             self.order
-                .get(self.n + self.def_head)
+                .get(self.q_at + self.def_head)
                 .map_or(NONE, |&t| t as u32)
         } else {
             NONE
@@ -698,36 +919,6 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             self.order.get(self.cursor).map_or(NONE, |&i| i as u32)
         } else {
             NONE
-        }
-    }
-
-    /// Entry `k` of the order when its triangle starts in band `band` or
-    /// above, else [`NONE`].
-    #[inline(always)]
-    fn bucket_at(&self, k: usize, band: u32) -> u32 {
-        let Some(&i) = self.order.get(k) else {
-            return NONE;
-        };
-        let (shift, m) = band_consts(self.rows);
-        let last = self
-            .frame
-            .height
-            .div_ceil(self.rows.max(1))
-            .saturating_sub(1);
-        match self.frame.tri_vertices(usize::from(i)) {
-            Some(v)
-                if band_of(
-                    u32::from(self.frame.tri_first_row(v)).min(4095),
-                    self.rows,
-                    shift,
-                    m,
-                )
-                .min(last)
-                    <= band =>
-            {
-                i as u32
-            }
-            _ => NONE,
         }
     }
 
@@ -885,7 +1076,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         let tb = if self.def_cur > 0 {
             self.order
-                .get(self.n + self.def_head)
+                .get(self.q_at + self.def_head)
                 .map_or(NONE, |&t| t as u32)
         } else {
             NONE
@@ -903,7 +1094,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             Some((ti, Src::Slot(si)))
         } else {
             if ti == tb {
-                self.def_head = wrap(self.def_head + 1, self.n);
+                self.def_head = wrap(self.def_head + 1, self.q_len);
                 self.def_cur -= 1;
                 self.def_len -= 1;
             } else {
@@ -1046,16 +1237,21 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// set up afresh in the next band.
     #[inline(always)]
     fn defer(&mut self, ti: u16) {
-        let tail = wrap(self.def_head + self.def_len, self.n);
-        if let Some(q) = self.order.get_mut(self.n + tail) {
-            *q = ti;
-            self.def_len += 1;
+        // The queue: a ring in the order's entries outside the run.
+        let len = self.q_len;
+        let tail = wrap(self.def_head + self.def_len, len);
+        match self.order.get_mut(self.q_at + tail) {
+            Some(q) if self.def_len < len => {
+                *q = ti;
+                self.def_len += 1;
+            }
+            _ => self.lost = true,
         }
     }
 }
 
 /// `x mod m` for `x < 2·m`, the positions in the pool's ring (`m` =
-/// its slots) and in the queue (`m` = the prepared triangles): a head
+/// its slots) and in the queue (`m` = its entries): a head
 /// below `m` plus an entry count at most `m`. No division (a library call
 /// on ARMv6-M: bunny-gouraud raster thumbv6m 3 151 780 -> 3 112 736,
 /// thumbv7em 2 172 222 -> 2 148 352). A

@@ -13,7 +13,7 @@
 //! window), with a depth buffer of the same window or none. Rendering a
 //! 240×240 frame in 16-row bands needs a band buffer of 7 680 bytes
 //! (RGB565) and a depth band of 7 680 bytes (16-bit), plus the band state
-//! (4 bytes per prepared triangle and the pool of active triangles), and
+//! (2 bytes per triangle number and the pool of active triangles), and
 //! gives byte for byte the frame a full-screen render gives.
 //!
 //! [`Target`]: crate::target::Target
@@ -26,9 +26,10 @@
 //! | stride, Gouraud | 2 (depth, grey level; 1 in `fast`, which packs both in 16 bits each: [`Layout::GouraudMono`]) or 4 (depth, red, green, blue) |
 //! | stride, Phong | 4 (depth, normal), or 7 (depth, normal, eye position) when a point light or the local viewer needs the position |
 //! | perspective-correct profiles | one more value per vertex (the weight `q = near/w`), but flat |
-//! | per prepared triangle | 6 ([`Tri`]), and 3 (an [`Rgb8`] colour) in a flat object |
-//! | band state ([`BandState`]) | 4 per prepared triangle (order scratch) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
-//! | the [`Frame`]'s object list (in the frame value itself: the caller's stack) | 20 per [`PreparedObject`], [`MAX_OBJECTS`] = 32 of them: 640 |
+//! | per triangle number (every mesh triangle of a prepared object, kept or not) | 1 ([`Workspace::faces`]: kept, first row, back face; a mesh triangle's vertices are read from the mesh, never copied), and 3 (an [`Rgb8`] colour) in a flat object |
+//! | per made triangle (fans of clipped triangles, two-sided Gouraud back faces) | 6 ([`Tri`]) and a triangle number |
+//! | band state ([`BandState`]) | 2 per triangle number (order scratch: the kept triangles by band, the rest a queue) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
+//! | the [`Frame`] value itself (the caller's stack) | 24 per [`PreparedObject`] and 8 per object's mesh triangles, [`MAX_OBJECTS`] = 32 of each: 1 024 |
 //!
 //! A prepared vertex is made per mesh vertex (one per distinct position
 //! and normal), in one linear pass, so shared vertices are transformed and
@@ -89,22 +90,57 @@ use core::ops::Range;
 /// marks a back face).
 pub const MAX_VERTICES: usize = 1 << 15;
 
-/// Prepared triangles a frame can hold: `u16::MAX` = 65 535 (the band
-/// renderer orders them by `u16` index; [`PreparedObject::tris`] holds
+/// Triangle numbers a frame can hold: `u16::MAX` = 65 535 (each object
+/// numbers its mesh's triangles and the triangles it made; the band
+/// renderer orders them by `u16` number; [`PreparedObject::tris`] holds
 /// them as a `u16` range). [`prepare`] uses at most this many entries of
-/// [`Workspace::tris`] and [`Workspace::colors`]: a frame that needs more
-/// is a [`RenderError::Capacity`] error ([`Part::Triangles`]).
+/// [`Workspace::faces`], [`Workspace::tris`] and [`Workspace::colors`]: a
+/// frame that needs more is a [`RenderError::Capacity`] error
+/// ([`Part::Triangles`]).
 pub const MAX_TRIANGLES: usize = u16::MAX as usize;
 
 /// Bit 15 of a [`Tri`]'s first index: a back face.
 const BACK: u16 = 1 << 15;
 
-/// One prepared triangle as stored: three prepared-vertex indices, 6
-/// bytes. Bit 15 of the first marks a back face (of an object drawn
-/// two-sided), so vertex indices stay below [`MAX_VERTICES`]. The rows a
-/// triangle can cover are recomputed from its vertices' `y`
-/// ([`Frame::tri_rows`]); a flat triangle's colour lies in
-/// [`Workspace::colors`].
+/// A [`Workspace::faces`] byte: a back face (of an object drawn
+/// two-sided).
+pub(crate) const FACE_BACK: u8 = 1 << 7;
+/// The bits of a [`Workspace::faces`] byte that hold a kept triangle's
+/// first row `r` as `(r >> face_shift(height)) + 1` (1 to 127; 0: not
+/// kept).
+pub(crate) const FACE_ROW: u8 = FACE_BACK - 1;
+
+/// The shift of the rows in [`Workspace::faces`] bytes for a screen of
+/// `height` rows: the least `q` with `(height - 1) >> q` at most 126, so
+/// that every first row `r` of a kept triangle (below the height) stores
+/// as `(r >> q) + 1` in 7 bits (0 for 127 rows or fewer, 1 for 240, 6 for
+/// [`MAX_SCREEN`](crate::target::MAX_SCREEN) = 4096).
+#[inline(always)]
+pub(crate) const fn face_shift(height: u32) -> u32 {
+    let mut q = 0;
+    while q < 31 && (height.saturating_sub(1) >> q) > 126 {
+        q += 1;
+    }
+    q
+}
+
+/// The [`Workspace::faces`] byte of a kept triangle whose first row is
+/// `row` (below the height) on a screen of row shift `q`
+/// ([`face_shift`]).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+pub(crate) const fn face_byte(row: u32, q: u32, back: bool) -> u8 {
+    (((row >> q) + 1) as u8 & FACE_ROW) | if back { FACE_BACK } else { 0 }
+}
+
+/// One triangle made while preparing (a fan of a clipped triangle, or a
+/// back face of a two-sided Gouraud object) as stored: three
+/// prepared-vertex indices, 6 bytes. Bit 15 of the first marks a back
+/// face (of an object drawn two-sided), so vertex indices stay below
+/// [`MAX_VERTICES`]. The rows a triangle can cover are recomputed from its
+/// vertices' `y` ([`Frame::tri_rows`]); a flat triangle's colour lies in
+/// [`Workspace::colors`]. Mesh triangles are not stored: the frame reads
+/// their vertices from the mesh.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Tri([u16; 3]);
 
@@ -134,8 +170,9 @@ impl Tri {
 
 /// One prepared triangle as read ([`Frame::tri`]): three prepared-vertex
 /// indices, the flat colour (flat shading; black otherwise) and whether
-/// it is a back face drawn two-sided. Stored as a [`Tri`] and, for
-/// a flat object, a colour.
+/// it is a back face drawn two-sided. Read from the mesh and a
+/// [`Workspace::faces`] byte (or a made [`Tri`]) and, for a flat object,
+/// a colour.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PreparedTri {
     /// Prepared vertices.
@@ -212,11 +249,21 @@ pub struct Workspace<'a, L> {
     pub xy: &'a mut [ScreenXy],
     /// Depth and attributes of prepared vertices, `stride` per vertex.
     pub vals: &'a mut [L],
-    /// Prepared triangles.
+    /// Triangles made while preparing: the fans of clipped triangles and
+    /// the back faces of two-sided Gouraud objects (lit in vertices of
+    /// their own). A mesh triangle is never copied here: the frame reads
+    /// its vertices from the mesh.
     pub tris: &'a mut [Tri],
-    /// Colours of the prepared triangles of flat objects, one per
-    /// triangle, object after object.
+    /// Colours of the triangles of flat objects, one per triangle number
+    /// (see [`Self::faces`]), object after object.
     pub colors: &'a mut [Rgb8],
+    /// One byte per triangle number: each object numbers its mesh's
+    /// triangles, then the triangles it made ([`Self::tris`]); the byte
+    /// says whether the view keeps the triangle, where it starts (its
+    /// first row, coarsened to 7 bits on screens of more than 127 rows:
+    /// the band renderer orders the kept triangles by band from it) and
+    /// whether it is a back face.
+    pub faces: &'a mut [u8],
 }
 
 /// How an object's prepared vertices are laid out and shaded.
@@ -336,9 +383,9 @@ pub(crate) fn pack_grey(d: i32, l: i32) -> i32 {
     grey_depth(d) | grey_level(l)
 }
 
-/// One object of a prepared frame: 20 bytes (indices as `u16`: below
-/// [`MAX_VERTICES`] vertices and [`MAX_TRIANGLES`] triangles; values
-/// below `MAX_VERTICES × 8`), so that a frame's object list
+/// One object of a prepared frame: 24 bytes (indices as `u16`: below
+/// [`MAX_VERTICES`] vertices and [`MAX_TRIANGLES`] triangle numbers;
+/// values below `MAX_VERTICES × 8`), so that a frame's object list
 /// ([`MAX_OBJECTS`] of them) stays small on the stack.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PreparedObject {
@@ -350,10 +397,17 @@ pub struct PreparedObject {
     pub verts: Range<u16>,
     /// Index of its first value in [`Workspace::vals`].
     pub val_base: u32,
-    /// Its prepared triangles.
+    /// Its triangle numbers: its mesh's triangles (those the view keeps
+    /// are marked in [`Workspace::faces`]), then the triangles it made
+    /// (all kept). Empty when it keeps none.
     pub tris: Range<u16>,
+    /// Index of its first made triangle in [`Workspace::tris`].
+    pub made_base: u16,
+    /// Its index in the scene (whose mesh holds its triangles).
+    pub object: u8,
     /// Index of its first triangle's colour in [`Workspace::colors`] (flat
-    /// objects; the others have none).
+    /// objects; the others have none): triangle number `t`'s colour is at
+    /// `color_base + t - tris.start`.
     pub color_base: u16,
     /// Rows `rows[0]..rows[1]` that hold every row its triangles can cover
     /// (possibly a few more: for an object wholly on screen, the range of
@@ -363,8 +417,8 @@ pub struct PreparedObject {
 }
 
 impl PreparedObject {
-    /// Flat-triangle colours it holds (its triangles when flat, else
-    /// none).
+    /// Flat-triangle colours it holds (one per triangle number when flat,
+    /// else none).
     pub fn color_count(&self) -> usize {
         if self.layout == Layout::Flat {
             self.tris.len()
@@ -378,6 +432,14 @@ impl PreparedObject {
 #[derive(Debug)]
 pub struct Frame<'w, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
+    /// [`Workspace::faces`].
+    faces: &'w [u8],
+    /// Each object's mesh triangles (an array, not a `heapless::Vec`:
+    /// no drop glue, so the frame's borrows end with its last use; not
+    /// the scene's object slice either: a slice of 8-byte entries is one
+    /// load per triangle, measured 17 K instructions less per bunny
+    /// frame on the Cortex-M4, for 256 bytes of the frame).
+    meshes: [&'w [[u16; 3]]; MAX_OBJECTS],
     objects: heapless::Vec<PreparedObject, MAX_OBJECTS>,
     width: u32,
     height: u32,
@@ -394,9 +456,53 @@ impl<P: Profile> Frame<'_, P> {
         self.objects.last().map_or(0, |o| usize::from(o.verts.end))
     }
 
-    /// Prepared triangles in use.
+    /// Prepared triangles: the triangles the view keeps (those the band
+    /// renderer orders), counted from their [`Workspace::faces`] bytes,
+    /// four at a time (about two instructions per triangle number).
     pub fn triangle_count(&self) -> usize {
+        let faces = self.faces.get(..self.triangle_numbers()).unwrap_or(&[]);
+        let mut quads = faces.chunks_exact(4);
+        let mut n = 0;
+        // Per byte lane: 1 when the byte is a kept triangle's (its low 7
+        // bits plus 0x7F carry into bit 7, never into the next lane);
+        // summed over at most 255 words per lane before folding.
+        let rows = u32::from_le_bytes([FACE_ROW; 4]);
+        loop {
+            let mut lanes = 0u32;
+            let mut words = 0;
+            for q in quads.by_ref() {
+                let w = u32::from_le_bytes([q[0], q[1], q[2], q[3]]) & rows;
+                lanes += ((w + rows) >> 7) & 0x0101_0101;
+                words += 1;
+                if words == 255 {
+                    break;
+                }
+            }
+            n += (lanes & 0xFF) + ((lanes >> 8) & 0xFF) + ((lanes >> 16) & 0xFF) + (lanes >> 24);
+            if words < 255 {
+                break;
+            }
+        }
+        n as usize
+            + quads
+                .remainder()
+                .iter()
+                .filter(|&&b| b & FACE_ROW != 0)
+                .count()
+    }
+
+    /// Triangle numbers in use (the kept ones among them: see
+    /// [`Workspace::faces`]).
+    pub fn triangle_numbers(&self) -> usize {
         self.objects.last().map_or(0, |o| usize::from(o.tris.end))
+    }
+
+    /// Triangles made while preparing in use ([`Workspace::tris`]).
+    pub fn made_count(&self) -> usize {
+        self.objects
+            .iter()
+            .map(|o| o.tris.len().saturating_sub(self.mesh_tris(o).len()))
+            .sum()
     }
 
     /// Flat-triangle colours in use.
@@ -405,8 +511,9 @@ impl<P: Profile> Frame<'_, P> {
     }
 
     /// Bytes of workspace in use: the prepared vertices' positions,
-    /// values, triangles and flat colours, each counted at its stored
-    /// size (`size_of`), without the band renderer's order scratch.
+    /// values, the triangle numbers' bytes ([`Workspace::faces`]), the made
+    /// triangles and flat colours, each counted at its stored size
+    /// (`size_of`), without the band renderer's order scratch.
     pub fn bytes_used(&self) -> usize {
         use core::mem::size_of;
         let vals = self.objects.last().map_or(0, |o| {
@@ -414,7 +521,8 @@ impl<P: Profile> Frame<'_, P> {
         });
         self.vertex_count() * size_of::<ScreenXy>()
             + vals * size_of::<P::Lerp>()
-            + self.triangle_count() * size_of::<Tri>()
+            + self.triangle_numbers()
+            + self.made_count() * size_of::<Tri>()
             + self.color_count() * size_of::<Rgb8>()
     }
 
@@ -423,28 +531,71 @@ impl<P: Profile> Frame<'_, P> {
         (self.width, self.height)
     }
 
-    /// Prepared triangle `i` of object `po` (an index in `po.tris`).
+    /// Whether the view keeps triangle number `i`.
+    #[inline(always)]
+    pub fn kept(&self, i: usize) -> bool {
+        self.faces.get(i).is_some_and(|f| f & FACE_ROW != 0)
+    }
+
+    /// Triangle number `i` of object `po` (a number in `po.tris`; read
+    /// whether the view keeps it or not: [`Self::kept`]): a mesh
+    /// triangle's vertices from the mesh (offset by the object's first
+    /// vertex), its back-face bit from [`Workspace::faces`]; a made
+    /// triangle from [`Workspace::tris`].
     #[inline(always)]
     pub fn tri(&self, po: &PreparedObject, i: usize) -> Option<PreparedTri> {
-        let p = *self.ws.tris.get(i)?;
+        let k = i.checked_sub(usize::from(po.tris.start))?;
+        let mesh = self.mesh_tris(po);
+        // An object that keeps a triangle numbers its mesh's triangles
+        // from `tris.start` on, its made ones from `made` =
+        // `tris.start + mesh.len()` on.
+        let (v, back) = match mesh.get(k) {
+            Some(t) => {
+                let b = po.verts.start;
+                // Below `MAX_VERTICES` (checked by the vertex pass).
+                (
+                    t.map(|x| b.wrapping_add(x)),
+                    self.faces.get(i).is_some_and(|f| f & FACE_BACK != 0),
+                )
+            }
+            None => {
+                let m = k - mesh.len();
+                let p = *self.ws.tris.get(usize::from(po.made_base) + m)?;
+                (p.v(), p.back())
+            }
+        };
         let color = if po.layout == Layout::Flat {
-            let c = usize::from(po.color_base) + i.checked_sub(usize::from(po.tris.start))?;
-            self.ws.colors.get(c).copied()?
+            self.ws
+                .colors
+                .get(usize::from(po.color_base) + k)
+                .copied()?
         } else {
             Rgb8::BLACK
         };
-        Some(PreparedTri {
-            v: p.v(),
-            color,
-            back: p.back(),
-        })
+        Some(PreparedTri { v, color, back })
     }
 
-    /// The prepared vertices of triangle `i` (an index below
-    /// [`Self::triangle_count`]).
+    /// The triangles of object `po`'s mesh.
     #[inline(always)]
+    fn mesh_tris(&self, po: &PreparedObject) -> &[[u16; 3]] {
+        // (`MAX_OBJECTS` is a power of two: the mask is the bound check.)
+        const _: () = assert!(MAX_OBJECTS.is_power_of_two());
+        self.meshes
+            .get(usize::from(po.object) & (MAX_OBJECTS - 1))
+            .map_or(&[], |m| m)
+    }
+
+    /// The object of triangle number `i` (`None` past the last).
+    pub fn object_of(&self, i: usize) -> Option<&PreparedObject> {
+        self.objects
+            .iter()
+            .find(|o| i >= usize::from(o.tris.start) && i < usize::from(o.tris.end))
+    }
+
+    /// The prepared vertices of triangle number `i` (below
+    /// [`Self::triangle_numbers`]).
     pub fn tri_vertices(&self, i: usize) -> Option<[u16; 3]> {
-        self.ws.tris.get(i).map(|p| p.v())
+        self.tri(self.object_of(i)?, i).map(|t| t.v)
     }
 
     /// Rows `rows[0]..rows[1]` of the screen whose centres lie within the
@@ -475,16 +626,17 @@ impl<P: Profile> Frame<'_, P> {
             .min(h) as u16
     }
 
-    /// The prepared triangles of object `po`, in order.
+    /// The kept triangles of object `po`, in order.
     #[inline(always)]
     pub fn object_tris(&self, po: &PreparedObject) -> impl Iterator<Item = PreparedTri> + '_ {
         let po = po.clone();
         po.tris
             .clone()
+            .filter(move |&i| self.kept(usize::from(i)))
             .map_while(move |i| self.tri(&po, usize::from(i)))
     }
 
-    /// Every prepared triangle, object after object.
+    /// Every kept triangle, object after object.
     pub fn tris(&self) -> impl Iterator<Item = PreparedTri> + '_ {
         self.objects.iter().flat_map(|po| self.object_tris(po))
     }
@@ -540,13 +692,17 @@ pub enum Part {
     Vertices,
     /// [`Workspace::vals`].
     Values,
-    /// [`Workspace::tris`].
+    /// [`Workspace::faces`]: the triangle numbers.
     Triangles,
     /// [`Workspace::colors`].
     Colors,
-    /// The order scratch of a [`BandState`] (shorter than two entries per
-    /// prepared triangle).
+    /// The order scratch of a [`BandState`]: shorter than the prepared
+    /// triangles ([`Frame::triangle_count`]), or its rest (the queue of
+    /// triangles put off while the pool was full) too short for them.
     Order,
+    /// [`Workspace::tris`]: the triangles made while preparing (fans of
+    /// clipped triangles, back faces of two-sided Gouraud objects).
+    Made,
 }
 
 /// Why a frame could not be prepared or rendered.

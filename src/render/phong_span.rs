@@ -504,8 +504,10 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         })
     }
 
-    /// `true` when the renderers set a [`PosPlane`] per triangle for
-    /// this kernel (see [`PLANE_MIN_SHININESS`]).
+    /// `true` when the renderers set the triangle's exact position plane
+    /// per triangle for this kernel: a specular term of shininess 512 or
+    /// more in the position-walking kernel, where the walked Q16
+    /// position's rounding shows in the highlight.
     pub fn wants_plane(&self) -> bool {
         self.plane
     }

@@ -49,8 +49,8 @@
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
 use super::{
-    Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri, Workspace,
-    MAX_TRIANGLES, MAX_VERTICES,
+    face_byte, face_shift, Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri,
+    Workspace, FACE_BACK, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
 };
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
@@ -62,7 +62,7 @@ use crate::num::approx16;
 use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
 use crate::num::{Kernels, Profile, Real};
 use crate::raster::{first_row, Lerp, SubpixelBits, COORD_LIMIT_PX};
-use crate::scene::{Object, Scene, SceneError, Shading};
+use crate::scene::{Object, Scene, SceneError, Shading, MAX_OBJECTS};
 use crate::target::{Rgb8, MAX_SCREEN};
 
 /// Largest magnitude of a stored screen coordinate ([`ScreenXy`]), in
@@ -314,8 +314,8 @@ impl<R: Real> View<R> {
 /// default 4), a mesh without
 /// normals for smooth shading, or a workspace part too small (naming the
 /// part and the object).
-pub fn prepare<'w, P: Profile>(
-    scene: &Scene<'_, '_, P::Real>,
+pub fn prepare<'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'_, 'm, P::Real>,
     width: u32,
     height: u32,
     ws: Workspace<'w, P::Lerp>,
@@ -363,21 +363,25 @@ pub fn prepare<'w, P: Profile>(
         ..view
     };
     let lights = eye_lights(scene)?;
-    // At most `MAX_TRIANGLES` triangles (and as many flat colours): their
-    // indices are `u16` in the object list and the band order.
+    // At most `MAX_TRIANGLES` triangle numbers (and as many made triangles
+    // and flat colours): they are `u16` in the object list and the band
+    // order.
     let Workspace {
         xy,
         vals,
         tris,
         colors,
+        faces,
     } = ws;
     let nt = tris.len().min(MAX_TRIANGLES);
     let nc = colors.len().min(MAX_TRIANGLES);
+    let nf = faces.len().min(MAX_TRIANGLES);
     let ws = Workspace {
         xy,
         vals,
         tris: tris.get_mut(..nt).unwrap_or_default(),
         colors: colors.get_mut(..nc).unwrap_or_default(),
+        faces: faces.get_mut(..nf).unwrap_or_default(),
     };
     let mut p = Preparer::<P> {
         ws,
@@ -386,7 +390,9 @@ pub fn prepare<'w, P: Profile>(
         nval: 0,
         nt: 0,
         nc: 0,
+        nm: 0,
         t_start: 0,
+        made_start: 0,
         object: 0,
         width,
         height,
@@ -395,13 +401,32 @@ pub fn prepare<'w, P: Profile>(
         marked: false,
     };
     let mut objects = heapless::Vec::new();
+    let mut meshes: [&'w [[u16; 3]]; MAX_OBJECTS] = [&[]; MAX_OBJECTS];
     for (oi, obj) in scene.objects.iter().enumerate() {
         p.object = oi;
         let po = p.object_pass(scene, obj, &lights)?;
         objects.push(po).map_err(|_| SceneError::TooManyObjects)?;
+        if let Some(m) = meshes.get_mut(oi) {
+            *m = obj.mesh.triangles();
+        }
     }
+    let Workspace {
+        xy,
+        vals,
+        tris,
+        colors,
+        faces,
+    } = p.ws;
     Ok(Frame {
-        ws: p.ws,
+        ws: Workspace {
+            xy,
+            vals,
+            tris,
+            colors,
+            faces: &mut [],
+        },
+        faces,
+        meshes,
         objects,
         width,
         height,
@@ -413,11 +438,16 @@ struct Preparer<'w, P: Profile> {
     view: View<P::Real>,
     nv: usize,
     nval: usize,
+    /// Triangle numbers in use.
     nt: usize,
     /// Flat-triangle colours in use.
     nc: usize,
-    /// The current object's first triangle.
+    /// Made triangles in use ([`Workspace::tris`]).
+    nm: usize,
+    /// The current object's first triangle number.
     t_start: usize,
+    /// The current object's first made triangle's number.
+    made_start: usize,
     object: usize,
     width: u32,
     height: u32,
@@ -589,26 +619,27 @@ fn rows_in(xy: [Subpx; 3], width: u32, height: u32, sub: SubpixelBits) -> Option
 
 /// The triangle loop of an object wholly inside the planes whose back
 /// faces are culled or drawn with its own vertices (every layout but
-/// two-sided Gouraud): the kept triangles appended to `out` from `nt` on,
-/// `color(k, t, back)` storing the flat colour of the `k`-th kept triangle,
+/// two-sided Gouraud): each mesh triangle's [`Workspace::faces`] byte
+/// written into `faces` ([`face_byte`] of its first row and screen row
+/// shift `q`, or 0 when the view does not keep it), `color(t, back)`
+/// storing the flat colour of kept
 /// mesh triangle `t` (false when the colours are full; a no-op for the
 /// other layouts). Bit for bit what the general loop keeps; a free
-/// function over slices, so that its state stays in registers. Returns the
-/// new count, or `None` when `out` or the colours are full.
+/// function over slices, so that its state stays in registers. Returns
+/// `None` when the colours are full.
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
 fn triangles_inside(
     tris: &[[u16; 3]],
-    base: usize,
     (xy, origin): (&[ScreenXy], Subpx),
-    out: &mut [Tri],
-    mut nt: usize,
-    (width, height): (u32, u32),
+    faces: &mut [u8],
+    (width, height, shift): (u32, u32, u32),
     sub: SubpixelBits,
     (cull, marked): (bool, bool),
-    mut color: impl FnMut(usize, usize, bool) -> bool,
-) -> Option<usize> {
-    let nt0 = nt;
+    mut color: impl FnMut(usize, bool) -> bool,
+) -> Option<()> {
+    // Not kept unless found so below (cleared at once: cheaper than a
+    // store per triangle).
+    faces.fill(0);
     for (t, tri) in tris.iter().enumerate() {
         let q = tri.map(|i| xy.get(usize::from(i)).copied().unwrap_or_default());
         if marked && (q[0].0[0] == UNUSED || q[1].0[0] == UNUSED || q[2].0[0] == UNUSED) {
@@ -626,24 +657,17 @@ fn triangles_inside(
         if back && cull {
             continue;
         }
-        if rows_in(p, width, height, sub).is_none() {
+        let Some(rows) = rows_in(p, width, height, sub) else {
             continue;
-        }
-        if !color(nt - nt0, t, back) {
+        };
+        if !color(t, back) {
             return None;
         }
-        put_tri(out.get_mut(nt)?, tri, base, back);
-        nt += 1;
+        if let Some(f) = faces.get_mut(t) {
+            *f = face_byte(u32::from(rows[0]), shift, back);
+        }
     }
-    Some(nt)
-}
-
-/// Writes a kept triangle of mesh corners `tri` (prepared vertices from
-/// `base` on) into `slot`.
-#[inline(always)]
-fn put_tri(slot: &mut Tri, tri: &[u16; 3], base: usize, back: bool) {
-    // base + index < MAX_VERTICES (checked by the vertex pass).
-    *slot = Tri::new(tri.map(|i| (base + usize::from(i)) as u16), back);
+    Some(())
 }
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
@@ -654,19 +678,20 @@ fn put_tri(slot: &mut Tri, tri: &[u16; 3], base: usize, back: bool) {
 /// without clamps, no column test (it always passes there). The same
 /// triangles, bit for bit.
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
 fn triangles_visible<const CULL: bool, const MARKED: bool>(
     tris: &[[u16; 3]],
-    base: usize,
     xy: &[ScreenXy],
-    out: &mut [Tri],
-    mut nt: usize,
-    sub: SubpixelBits,
-    mut color: impl FnMut(usize, usize, bool) -> bool,
-) -> Option<usize> {
-    let nt0 = nt;
-    let mut slots = out.get_mut(nt..)?.iter_mut();
-    for (t, tri) in tris.iter().enumerate() {
+    faces: &mut [u8],
+    (sub, q): (SubpixelBits, u32),
+    mut color: impl FnMut(usize, bool) -> bool,
+) -> Option<()> {
+    // Not kept unless found so below (cleared at once: cheaper than a
+    // store per triangle).
+    faces.fill(0);
+    // The stored row: `first_row(y) >> q` = `(y + k) >> (sub + q)`.
+    let row_shift = sub.get() + q;
+    // (As many bytes as triangles: the caller's slices.)
+    for (t, (tri, face)) in tris.iter().zip(faces.iter_mut()).enumerate() {
         if MARKED {
             // Projected x is at least 0 here, `UNUSED` negative: a corner
             // left unprojected means the triangle was culled in object
@@ -701,14 +726,16 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if ((ea ^ eb) | (ea ^ ec)) >> sub.get() == 0 {
             continue;
         }
-        let slot = slots.next()?;
-        if !color(nt - nt0, t, back) {
+        if !color(t, back) {
             return None;
         }
-        put_tri(slot, tri, base, back);
-        nt += 1;
+        // The first row of the top `y` (at least 0, below the height
+        // here), as `face_byte` stores it: `(row >> q) + 1`, at most 127.
+        #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+        let code = ((ea.min(eb).min(ec) >> row_shift) + 1) as u8;
+        *face = code | if back { FACE_BACK } else { 0 };
     }
-    Some(nt)
+    Some(())
 }
 
 /// The projection loop of the fused kernel: screen positions into `xy`,
@@ -949,6 +976,8 @@ impl<P: Profile> Preparer<'_, P> {
         };
         let t_start = self.nt;
         self.t_start = t_start;
+        self.made_start = t_start + mesh.triangle_count();
+        let made_base = self.nm;
         let color_base = self.nc;
         self.bbox = None;
         self.rows = None;
@@ -985,6 +1014,11 @@ impl<P: Profile> Preparer<'_, P> {
             });
         }
         if place != Sphere::Outside {
+            // A number for each mesh triangle (and one per triangle made).
+            if self.made_start > self.ws.faces.len() {
+                return Err(self.cap(Part::Triangles));
+            }
+            self.nt = self.made_start;
             if place == Sphere::Inside && !P::PERSPECTIVE {
                 self.vertex_pass_fast(&ctx)?;
             } else {
@@ -996,23 +1030,34 @@ impl<P: Profile> Preparer<'_, P> {
                 self.triangle_pass::<false>(&ctx)?;
             }
         }
+        // An object that keeps no triangle takes no number.
+        let faces = self.ws.faces.get(t_start..self.nt).unwrap_or(&[]);
+        let any = faces.iter().any(|&b| b & FACE_ROW != 0);
+        if !any {
+            self.rows = None;
+            self.nt = t_start;
+            self.made_start = t_start;
+        }
         let tris = t_start..self.nt;
         let rows = match self.rows {
             Some(rows) => rows,
-            None => self.rows_of_tris(tris.clone()),
+            None => self.rows_of_tris(&ctx, tris.clone()),
         };
         if layout == Layout::Flat {
             self.nc = color_base + tris.len();
         }
         // Vertices below `MAX_VERTICES` (2^15), values below 8 per
-        // vertex (2^18), triangles and colours below `MAX_TRIANGLES` (the
-        // workspace's parts are cut to it): every index fits.
+        // vertex (2^18), triangle numbers, made triangles and colours
+        // below `MAX_TRIANGLES` (the workspace's parts are cut to it), at
+        // most `MAX_OBJECTS` (32) objects: every index fits.
         Ok(PreparedObject {
             layout,
             stride: ctx.stride as u8,
             verts: ctx.v_start as u16..self.nv as u16,
             val_base: ctx.val_base as u32,
             tris: tris.start as u16..tris.end as u16,
+            made_base: made_base as u16,
+            object: self.object as u8,
             color_base: color_base as u16,
             rows: if rows[0] < rows[1] { rows } else { [0; 2] },
         })
@@ -1512,7 +1557,7 @@ impl<P: Profile> Preparer<'_, P> {
         Ok(i as u16)
     }
 
-    /// Keeps the triangle of vertices `v` when it can cover a pixel
+    /// Keeps the made triangle of vertices `v` when it can cover a pixel
     /// centre of the screen (`color`: its colour when flat).
     fn push_tri(
         &mut self,
@@ -1522,14 +1567,18 @@ impl<P: Profile> Preparer<'_, P> {
     ) -> Result<(), RenderError> {
         let xy = v.map(|v| self.xy(usize::from(v)));
         match self.rows_of(xy) {
-            Some(_) => self.store_tri(v, color, back),
+            Some(rows) => self.store_made(v, color, back, rows[0]),
             None => Ok(()),
         }
     }
 
-    /// The rows of the triangles `tris` (the union of the rows each can
-    /// cover; `[u16::MAX, 0]` for none).
-    fn rows_of_tris(&self, tris: core::ops::Range<usize>) -> [u16; 2] {
+    /// The rows of the kept triangles numbered `tris` (the union of the
+    /// rows each can cover; `[u16::MAX, 0]` for none).
+    fn rows_of_tris(
+        &self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        tris: core::ops::Range<usize>,
+    ) -> [u16; 2] {
         let xy = &*self.ws.xy;
         let o = self.origin();
         let (sub, h) = (
@@ -1538,10 +1587,24 @@ impl<P: Profile> Preparer<'_, P> {
         );
         let mut lo = i32::MAX;
         let mut hi = i32::MIN;
-        for t in self.ws.tris.get(tris).unwrap_or(&[]) {
-            let y = t
-                .v()
-                .map(|v| xy.get(usize::from(v)).map_or(0, |p| p.unpack(o).0[1]));
+        let faces = self.ws.faces.get(tris.clone()).unwrap_or(&[]);
+        for (i, f) in tris.zip(faces) {
+            if f & FACE_ROW == 0 {
+                continue;
+            }
+            let v = match i.checked_sub(self.made_start) {
+                // Mesh triangles: base + index < MAX_VERTICES.
+                None => ctx
+                    .tris
+                    .get(i - self.t_start)
+                    .map_or([0; 3], |t| t.map(|x| (ctx.v_start + usize::from(x)) as u16)),
+                Some(m) => self
+                    .ws
+                    .tris
+                    .get(m + self.nm - (self.nt - self.made_start))
+                    .map_or([0; 3], |t| t.v()),
+            };
+            let y = v.map(|v| xy.get(usize::from(v)).map_or(0, |p| p.unpack(o).0[1]));
             lo = lo.min(y[0].min(y[1]).min(y[2]));
             hi = hi.max(y[0].max(y[1]).max(y[2]));
         }
@@ -1578,26 +1641,48 @@ impl<P: Profile> Preparer<'_, P> {
         rows_in(xy, self.width, self.height, P::SUBPIXEL_BITS)
     }
 
-    /// Appends a kept triangle, and its colour when `color` is given (a
-    /// flat object's).
+    /// Marks triangle number `i` kept (a back face or not, first row
+    /// `row`), with its colour when `color` is given (a flat object's).
     #[inline(always)]
-    fn store_tri(
+    fn keep(
         &mut self,
-        v: [u16; 3],
+        i: usize,
         color: Option<Rgb8>,
         back: bool,
+        row: u16,
     ) -> Result<(), RenderError> {
-        let Some(slot) = self.ws.tris.get_mut(self.nt) else {
+        let q = face_shift(self.height);
+        let Some(face) = self.ws.faces.get_mut(i) else {
             return Err(self.cap(Part::Triangles));
         };
-        *slot = Tri::new(v, back);
+        *face = face_byte(u32::from(row), q, back);
         if let Some(color) = color {
-            let c = self.nc + (self.nt - self.t_start);
+            let c = self.nc + (i - self.t_start);
             let Some(c) = self.ws.colors.get_mut(c) else {
                 return Err(self.cap(Part::Colors));
             };
             *c = color;
         }
+        Ok(())
+    }
+
+    /// Appends a made triangle (numbered after the object's mesh
+    /// triangles and the triangles it made before), kept.
+    #[inline(always)]
+    fn store_made(
+        &mut self,
+        v: [u16; 3],
+        color: Option<Rgb8>,
+        back: bool,
+        row: u16,
+    ) -> Result<(), RenderError> {
+        let Some(slot) = self.ws.tris.get_mut(self.nm) else {
+            return Err(self.cap(Part::Made));
+        };
+        *slot = Tri::new(v, back);
+        let i = self.nt;
+        self.keep(i, color, back, row)?;
+        self.nm += 1;
         self.nt += 1;
         Ok(())
     }
@@ -1689,28 +1774,34 @@ impl<P: Profile> Preparer<'_, P> {
             let visible = self.bbox.is_some_and(|[x1, y1, _]| {
                 i64::from(x1) <= xl && i64::from(y1) <= yl && xl < 1 << 15 && yl < 1 << 15
             });
-            // Flat: the colours from the object's first on.
-            let full = |ws: &Workspace<'_, P::Lerp>, nt: usize, nc: usize| {
-                if flat && ws.colors.len().saturating_sub(nc) < ws.tris.len().saturating_sub(nt) {
-                    Part::Colors
-                } else {
-                    Part::Triangles
-                }
-            };
+            // (Marked vertices only on culled objects.)
+            let (origin, marked) = (self.origin(), self.marked && ctx.cull);
+            let q = face_shift(self.height);
+            // The mesh triangles' bytes (their room checked by the
+            // caller) and, flat, colours.
+            let t0 = self.t_start;
+            let faces = self
+                .ws
+                .faces
+                .get_mut(t0..t0 + ctx.tris.len())
+                .unwrap_or_default();
+            let cs = self.ws.colors.get_mut(self.nc..).unwrap_or_default();
+            if flat && cs.len() < ctx.tris.len() {
+                return Err(self.cap(Part::Colors));
+            }
             if visible {
                 let col = |t, back| Self::flat_color(ctx, t, back);
-                // Stores the colour of kept triangle `k` into `cs`.
+                // Stores the colour of kept triangle `t` into `cs`.
                 fn put<'a>(
                     cs: &'a mut [Rgb8],
                     mut col: impl FnMut(usize, bool) -> Rgb8 + 'a,
-                ) -> impl FnMut(usize, usize, bool) -> bool + 'a {
-                    move |k, t, back| {
+                ) -> impl FnMut(usize, bool) -> bool + 'a {
+                    move |t, back| {
                         let c = col(t, back);
-                        cs.get_mut(k).map(|s| *s = c).is_some()
+                        cs.get_mut(t).map(|s| *s = c).is_some()
                     }
                 }
-                let (tris, out, nt) = (ctx.tris, &mut *self.ws.tris, self.nt);
-                let cs = self.ws.colors.get_mut(self.nc..).unwrap_or(&mut []);
+                let tris = ctx.tris;
                 // Baked face normals under one light: the colour inline
                 // (the same as `flat_color`).
                 let one = match (flat, ctx.one, ctx.mesh.face_normals()) {
@@ -1718,89 +1809,86 @@ impl<P: Profile> Preparer<'_, P> {
                     _ => None,
                 };
                 let grey = ctx.grey;
-                // (Marked vertices only on culled objects.)
-                let marked = self.marked && ctx.cull;
-                let none = |_, _, _| true;
-                let nt = match (ctx.cull, flat, one) {
-                    (true, true, Some((o, faces))) => {
-                        let c = |k: usize, t: usize, back| {
-                            let c =
-                                one_color(&o, grey, faces.get(t).copied().unwrap_or([0; 3]), back);
-                            cs.get_mut(k).map(|s| *s = c).is_some()
+                let none = |_, _| true;
+                let kept = match (ctx.cull, flat, one) {
+                    (true, true, Some((o, normals))) => {
+                        let c = |t: usize, back| {
+                            let n = normals.get(t).copied().unwrap_or([0; 3]);
+                            let c = one_color(&o, grey, n, back);
+                            cs.get_mut(t).map(|s| *s = c).is_some()
                         };
                         if marked {
-                            triangles_visible::<true, true>(tris, base, xy, out, nt, sub, c)
+                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), c)
                         } else {
-                            triangles_visible::<true, false>(tris, base, xy, out, nt, sub, c)
+                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), c)
                         }
                     }
                     (cull, flat, _) => match (cull, flat, marked) {
                         (true, true, false) => {
                             let c = put(cs, col);
-                            triangles_visible::<true, false>(tris, base, xy, out, nt, sub, c)
+                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), c)
                         }
                         (true, true, true) => {
                             let c = put(cs, col);
-                            triangles_visible::<true, true>(tris, base, xy, out, nt, sub, c)
+                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), c)
                         }
                         (true, false, false) => {
-                            triangles_visible::<true, false>(tris, base, xy, out, nt, sub, none)
+                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), none)
                         }
                         (true, false, true) => {
-                            triangles_visible::<true, true>(tris, base, xy, out, nt, sub, none)
+                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), none)
                         }
                         (false, true, _) => {
                             let c = put(cs, col);
-                            triangles_visible::<false, false>(tris, base, xy, out, nt, sub, c)
+                            triangles_visible::<false, false>(tris, xy, faces, (sub, q), c)
                         }
                         (false, false, _) => {
-                            triangles_visible::<false, false>(tris, base, xy, out, nt, sub, none)
+                            triangles_visible::<false, false>(tris, xy, faces, (sub, q), none)
                         }
                     },
                 };
-                let Some(nt_new) = nt else {
-                    return Err(self.cap(full(&self.ws, self.nt, self.nc)));
-                };
+                if kept.is_none() {
+                    return Err(self.cap(Part::Colors));
+                }
                 // The rows of every projected vertex: they hold the rows
                 // of every kept triangle (`first_row` is monotonic; every
                 // y within `0..=height << sub` here), without a pass over
                 // the triangles (1 498 of them: 14 K instructions on the
                 // Cortex-M4).
-                if let (Some([_, y1, y0]), true) = (self.bbox, ROWS_FROM_BOX && nt_new > self.nt) {
+                // (Unused when the object keeps no triangle.)
+                if let (Some([_, y1, y0]), true) = (self.bbox, ROWS_FROM_BOX) {
                     let r = |y: u32| first_row(y as i32, sub) as u16;
                     self.rows = Some([r(y0), r(y1)]);
                 }
-                self.nt = nt_new;
                 return Ok(());
             }
-            let o = self.origin();
-            let colors = self.ws.colors.get_mut(self.nc..).unwrap_or(&mut []);
-            let nt = triangles_inside(
+            let kept = triangles_inside(
                 ctx.tris,
-                base,
-                (xy, o),
-                self.ws.tris,
-                self.nt,
-                (self.width, self.height),
+                (xy, origin),
+                faces,
+                (self.width, self.height, q),
                 P::SUBPIXEL_BITS,
-                (ctx.cull, self.marked && ctx.cull),
-                |k, t, back| {
+                (ctx.cull, marked),
+                |t, back| {
                     !flat
-                        || colors
-                            .get_mut(k)
+                        || cs
+                            .get_mut(t)
                             .map(|c| *c = Self::flat_color(ctx, t, back))
                             .is_some()
                 },
             );
-            return match nt {
-                Some(nt) => {
-                    self.nt = nt;
-                    Ok(())
-                }
-                None => Err(self.cap(full(&self.ws, self.nt, self.nc))),
+            return match kept {
+                Some(()) => Ok(()),
+                None => Err(self.cap(Part::Colors)),
             };
         }
         for (t, tri) in ctx.tris.iter().enumerate() {
+            // Not kept unless said below (its number's room checked by
+            // the caller).
+            let number = self.t_start + t;
+            if let Some(f) = self.ws.faces.get_mut(number) {
+                *f = 0;
+            }
             // base + index < MAX_VERTICES (checked by the vertex pass).
             let vs = tri.map(|i| (base + usize::from(i)) as u16);
             let q = vs.map(|v| self.ws.xy.get(usize::from(v)).copied().unwrap_or_default());
@@ -1838,15 +1926,15 @@ impl<P: Profile> Preparer<'_, P> {
                     continue;
                 }
             }
-            if self.rows_of(xy).is_none() {
+            let Some(rows) = self.rows_of(xy) else {
                 continue;
-            }
+            };
             let color = if ctx.layout == Layout::Flat {
                 Some(Self::flat_color(ctx, t, back))
             } else {
                 None
             };
-            self.store_tri(vs, color, back)?;
+            self.keep(number, color, back, rows[0])?;
         }
         Ok(())
     }

@@ -7,8 +7,9 @@ use crate::raster::Lerp;
 use crate::target::Rgb8;
 
 /// Lengths of a prepared frame's parts: vertices (`Workspace::xy`),
-/// values (`Workspace::vals`), triangles (`Workspace::tris`, and two
-/// order entries each for the band renderer) and flat triangles' colours
+/// values (`Workspace::vals`), triangle numbers (`Workspace::faces`, and
+/// one order entry each for the band renderer), triangles made while
+/// preparing (`Workspace::tris`) and flat triangles' colours
 /// (`Workspace::colors`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Capacity {
@@ -22,9 +23,13 @@ pub struct Capacity {
     /// ([`Profile::PACKED_GREY`]): as `values`, but one per vertex of a
     /// [`Layout::GouraudMono`] object instead of two.
     pub packed_values: usize,
-    /// Prepared triangles.
+    /// Triangle numbers: every object's mesh triangles and the triangles
+    /// it can make.
     pub triangles: usize,
-    /// Colours of prepared triangles of flat objects.
+    /// Triangles made while preparing: fans of clipped triangles, back
+    /// faces of two-sided Gouraud objects.
+    pub made: usize,
+    /// Colours of the triangles of flat objects (one per number).
     pub colors: usize,
 }
 
@@ -52,6 +57,7 @@ impl Capacity {
         values: 0,
         packed_values: 0,
         triangles: 0,
+        made: 0,
         colors: 0,
     };
 
@@ -82,14 +88,15 @@ impl Capacity {
         // Saturating: a sum beyond `usize` stays `usize::MAX` (no storage
         // of that size builds, and `prepare` never indexes past `u16`
         // vertices) instead of wrapping to a small capacity.
-        let (vertices, triangles) = match reach {
-            Reach::Inside => (v, t),
+        let (vertices, made) = match reach {
+            Reach::Inside => (v, 0),
             Reach::TwoSided => (v.saturating_add(3usize.saturating_mul(t)), t),
             Reach::Clipped => (
                 v.saturating_add(POLY.saturating_mul(t)),
                 (POLY - 2).saturating_mul(t),
             ),
         };
+        let triangles = t.saturating_add(made);
         Self {
             vertices: self.vertices.saturating_add(vertices),
             values: self
@@ -102,6 +109,7 @@ impl Capacity {
                 },
             )),
             triangles: self.triangles.saturating_add(triangles),
+            made: self.made.saturating_add(made),
             colors: match layout {
                 Layout::Flat => self.colors.saturating_add(triangles),
                 _ => self.colors,
@@ -150,37 +158,41 @@ impl Capacity {
             values: m(self.values, o.values),
             packed_values: m(self.packed_values, o.packed_values),
             triangles: m(self.triangles, o.triangles),
+            made: m(self.made, o.made),
             colors: m(self.colors, o.colors),
         }
     }
 
     /// Bytes of a [`Storage`] of these lengths with `value_bytes`-byte
-    /// values: 4 per vertex (a [`ScreenXy`]), `value_bytes` per value, 6 + 4 (order) per
-    /// triangle, 3 per colour (with the arrays' padding to 4-byte
-    /// alignment: the colours' bytes rounded up to a multiple of 4, as
-    /// `size_of` counts them after the other parts).
+    /// values: 4 per vertex (a [`ScreenXy`]), `value_bytes` per value, 1
+    /// (its [`Workspace::faces`] byte) + 2 (its order entry) per triangle
+    /// number, 6 per made triangle ([`Tri`]), 3 per colour, the sum
+    /// rounded up to the values' alignment (4 bytes, 8 for 8-byte values),
+    /// as `size_of` counts it.
     pub const fn bytes(self, value_bytes: usize) -> usize {
-        let colors = self
-            .colors
-            .saturating_mul(core::mem::size_of::<Rgb8>())
-            .saturating_add(3)
-            & !3;
-        let tris = self
-            .triangles
-            .saturating_mul(core::mem::size_of::<Tri>() + 4);
-        self.vertices
+        let align = if value_bytes >= 8 { 8 } else { 4 };
+        let sum = self
+            .vertices
             .saturating_mul(core::mem::size_of::<ScreenXy>())
             .saturating_add(self.values.saturating_mul(value_bytes))
-            .saturating_add(tris)
-            .saturating_add(colors)
+            .saturating_add(self.triangles.saturating_mul(3))
+            .saturating_add(self.made.saturating_mul(core::mem::size_of::<Tri>()))
+            .saturating_add(self.colors.saturating_mul(core::mem::size_of::<Rgb8>()));
+        match sum.checked_add(align - 1) {
+            Some(s) => s & !(align - 1),
+            None => usize::MAX,
+        }
     }
 }
 
 /// A prepared frame's memory as arrays: `V` vertices, `N` values of type
-/// `L`, `T` triangles (with the band renderer's order scratch, two
-/// entries per triangle) and `C` flat-triangle colours, sized by the
-/// compiler from a [`Capacity`].
-/// `const` ([`Self::EMPTY`]): it may live in a `static` (in `.bss`).
+/// `L`, `T` triangle numbers (a [`Workspace::faces`] byte each, and an
+/// entry of the band renderer's order), `C` flat-triangle colours and `M`
+/// triangles made while preparing (clipped fans, two-sided Gouraud back
+/// faces; none when the scene's objects lie inside the clipping planes
+/// and are culled or not Gouraud), sized by the compiler from a
+/// [`Capacity`]. `const` ([`Self::EMPTY`]): it may live in a `static` (in
+/// `.bss`).
 ///
 /// Storage sized by the compiler: a prepared frame's memory as arrays
 /// whose lengths are const generics, computed by a `const fn` from the
@@ -191,8 +203,14 @@ impl Capacity {
 /// use fixshade::render::{Capacity, Storage};
 ///
 /// const CAP: Capacity = Capacity::of(&[&CUBE, &CUBE]);
-/// type CubeStorage =
-///     Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }, { CAP.colors }>;
+/// type CubeStorage = Storage<
+///     i32,
+///     { CAP.vertices },
+///     { CAP.values },
+///     { CAP.triangles },
+///     { CAP.colors },
+///     { CAP.made },
+/// >;
 /// static STORAGE: CubeStorage = CubeStorage::EMPTY;
 /// // The same type, written with the macro:
 /// static SAME: fixshade::storage!(i32, CAP) = CubeStorage::EMPTY;
@@ -207,15 +225,18 @@ impl Capacity {
 ///
 /// # What the bound covers
 /// [`prepare`](super::prepare) takes, per object, room for every mesh
-/// vertex (one linear pass) with `stride` values each, then one prepared
-/// triangle per kept triangle; clipping and the back sides of two-sided
-/// Gouraud objects add vertices. A [`Capacity`] adds per object:
+/// vertex (one linear pass) with `stride` values each and a number for
+/// every mesh triangle (its [`Workspace::faces`] byte says whether the
+/// view keeps it: mesh triangles are read from the mesh, never copied);
+/// clipping and the back sides of two-sided Gouraud objects add vertices
+/// and made triangles, numbered after the mesh's. A [`Capacity`] adds per
+/// object:
 ///
-/// | object ([`Reach`]) | vertices | triangles |
-/// |--------------------|----------|-----------|
-/// | [`Reach::Inside`]: culled, or two-sided flat or Phong | `V` | `T` |
-/// | [`Reach::TwoSided`]: two-sided Gouraud (back faces lit on their own) | `V + 3T` | `T` |
-/// | [`Reach::Clipped`]: may be cut by the near, far or guard planes | `V + 9T` | `7T` |
+/// | object ([`Reach`]) | vertices | triangle numbers | made triangles |
+/// |--------------------|----------|------------------|----------------|
+/// | [`Reach::Inside`]: culled, or two-sided flat or Phong | `V` | `T` | 0 |
+/// | [`Reach::TwoSided`]: two-sided Gouraud (back faces lit on their own) | `V + 3T` | `2T` | `T` |
+/// | [`Reach::Clipped`]: may be cut by the near, far or guard planes | `V + 9T` | `8T` | `7T` |
 ///
 /// with `V`, `T` the mesh's vertices and triangles, and `stride` values
 /// per vertex of the object ([`Layout::stride`]); a clipped triangle
@@ -224,29 +245,39 @@ impl Capacity {
 /// [`Capacity::perspective`] adds the perspective-correct profiles' weight
 /// (one value per vertex); `packed_values` counts one value per grey
 /// Gouraud vertex for the profiles that pack its depth and level
-/// ([`Capacity::in_profile`] picks what a profile needs). The triangle bound is every mesh triangle:
-/// how many a view keeps (the front faces on the screen) is known only
-/// when the view is (the bunny keeps 1 498 of its 3 674 in the benchmark
-/// view). A storage smaller than what a frame uses makes `prepare` return
+/// ([`Capacity::in_profile`] picks what a profile needs). The band order
+/// holds the kept triangles (how many a view keeps is known only when
+/// the view is: the bunny keeps 1 498 of its 3 674 in the benchmark view)
+/// and, in the rest, the triangles put off while the pool is full. A
+/// storage smaller than what a frame uses makes `prepare` return
 /// [`RenderError::Capacity`](super::RenderError::Capacity), never a panic.
 #[derive(Clone, Debug)]
-pub struct Storage<L, const V: usize, const N: usize, const T: usize, const C: usize> {
+pub struct Storage<
+    L,
+    const V: usize,
+    const N: usize,
+    const T: usize,
+    const C: usize,
+    const M: usize = 0,
+> {
     xy: [ScreenXy; V],
     vals: [L; N],
-    tris: [Tri; T],
-    order: [[u16; 2]; T],
+    order: [u16; T],
+    faces: [u8; T],
+    tris: [Tri; M],
     colors: [Rgb8; C],
 }
 
-impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize>
-    Storage<L, V, N, T, C>
+impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize, const M: usize>
+    Storage<L, V, N, T, C, M>
 {
     /// Empty storage.
     pub const EMPTY: Self = Self {
         xy: [ScreenXy::ZERO; V],
         vals: [L::ZERO; N],
-        tris: [Tri::EMPTY; T],
-        order: [[0; 2]; T],
+        order: [0; T],
+        faces: [0; T],
+        tris: [Tri::EMPTY; M],
         colors: [Rgb8::BLACK; C],
     };
 
@@ -256,6 +287,7 @@ impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize>
         values: N,
         packed_values: N,
         triangles: T,
+        made: M,
         colors: C,
     };
 
@@ -278,7 +310,8 @@ impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize>
     }
 
     /// The workspace for [`prepare`](super::prepare) and the order scratch
-    /// for a [`BandState`](super::BandState) (two entries per triangle).
+    /// for a [`BandState`](super::BandState) (one entry per triangle
+    /// number).
     pub fn split(&mut self) -> (Workspace<'_, L>, &mut [u16]) {
         (
             Workspace {
@@ -286,15 +319,16 @@ impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize>
                 vals: &mut self.vals,
                 tris: &mut self.tris,
                 colors: &mut self.colors,
+                faces: &mut self.faces,
             },
-            self.order.as_flattened_mut(),
+            &mut self.order,
         )
     }
 }
 
 /// The [`Storage`] of a [`Capacity`] constant: `storage!(i32, CAP)` is
 /// `Storage<i32, { CAP.vertices }, { CAP.values }, { CAP.triangles }, {
-/// CAP.colors }>`.
+/// CAP.colors }, { CAP.made }>`.
 ///
 /// ```
 /// use fixshade::mesh::CUBE;
@@ -313,12 +347,13 @@ macro_rules! storage {
             { $cap.values },
             { $cap.triangles },
             { $cap.colors },
+            { $cap.made },
         >
     };
 }
 
-impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize> Default
-    for Storage<L, V, N, T, C>
+impl<L: Lerp, const V: usize, const N: usize, const T: usize, const C: usize, const M: usize>
+    Default for Storage<L, V, N, T, C, M>
 {
     fn default() -> Self {
         Self::EMPTY
@@ -399,6 +434,7 @@ mod tests {
                 values: 2 * v,
                 packed_values: v,
                 triangles: t,
+                made: 0,
                 colors: 0
             }
         );
@@ -408,13 +444,13 @@ mod tests {
         assert_eq!(CUBE_GREY.in_profile::<FastPc>().values, 3 * v);
         let c = Capacity::EMPTY.object(&CUBE, Layout::GouraudRgb, Reach::TwoSided);
         assert_eq!(
-            (c.vertices, c.values, c.triangles),
-            (v + 3 * t, 4 * (v + 3 * t), t)
+            (c.vertices, c.values, c.triangles, c.made),
+            (v + 3 * t, 4 * (v + 3 * t), 2 * t, t)
         );
         let c = Capacity::EMPTY.object(&CUBE, Layout::Flat, Reach::Clipped);
         assert_eq!(
-            (c.vertices, c.values, c.triangles, c.colors),
-            (v + 9 * t, v + 9 * t, 7 * t, 7 * t)
+            (c.vertices, c.values, c.triangles, c.made, c.colors),
+            (v + 9 * t, v + 9 * t, 8 * t, 7 * t, 8 * t)
         );
         let all = Capacity::of(&[&BUNNY, &CUBE]);
         assert_eq!(
@@ -424,6 +460,7 @@ mod tests {
                 values: 8 * (BUNNY.vertex_count() + v),
                 packed_values: 8 * (BUNNY.vertex_count() + v),
                 triangles: BUNNY.triangle_count() + t,
+                made: 0,
                 colors: BUNNY.triangle_count() + t
             }
         );
@@ -431,8 +468,17 @@ mod tests {
         assert_eq!(
             Grey::BYTES,
             CUBE_GREY.bytes(4),
-            "4 per vertex, 4 per value, 10 per triangle"
+            "4 per vertex, 4 per value, 3 per triangle number"
         );
+        assert_eq!(CUBE_GREY.bytes(4), (4 * v + 8 * v + 3 * t + 3) & !3);
+        // Made triangles (6 bytes) and colours (3) counted as `size_of`
+        // counts them, padding included.
+        const CLIPPED: Capacity = Capacity::EMPTY.object(&CUBE, Layout::Flat, Reach::Clipped);
+        type Clipped = crate::storage!(i32, CLIPPED);
+        assert_eq!(Clipped::BYTES, CLIPPED.bytes(4));
+        const ALL: Capacity = Capacity::of(&[&CUBE, &CUBE]);
+        type All = crate::storage!(i32, ALL);
+        assert_eq!(All::BYTES, ALL.bytes(4));
         assert_eq!(CUBE_GREY.max(all), all);
         // Beyond `usize`: saturated, never wrapped to a small capacity.
         let huge = Capacity {
@@ -440,6 +486,7 @@ mod tests {
             values: usize::MAX - 1,
             packed_values: usize::MAX - 1,
             triangles: usize::MAX / 2,
+            made: 0,
             colors: 0,
         };
         let c = huge
@@ -447,7 +494,7 @@ mod tests {
             .perspective();
         assert_eq!(
             (c.vertices, c.values, c.triangles),
-            (usize::MAX, usize::MAX, usize::MAX / 2 + 7 * t)
+            (usize::MAX, usize::MAX, usize::MAX / 2 + 8 * t)
         );
         assert_eq!(huge.bytes(4), usize::MAX);
     }
@@ -515,22 +562,40 @@ mod tests {
             .object(&CUBE, Layout::GouraudRgb, Reach::Clipped);
         let mut st = Box::new(<crate::storage!(i32, C)>::new());
         let (ws, order) = st.split();
-        assert_eq!(order.len(), 2 * C.triangles);
+        assert_eq!(order.len(), C.triangles);
         let frame = prepare::<Fast>(&s, 64, 64, ws).unwrap();
-        // The clipped cube added vertices beyond its mesh's.
+        // The clipped cube added vertices beyond its mesh's, and made
+        // triangles; the two-sided one made its back faces.
         assert!(frame.objects()[1].verts.len() > CUBE.vertex_count());
+        assert!(frame.made_count() > 0 && frame.made_count() <= C.made);
         assert!(frame.vertex_count() <= C.vertices && frame.triangle_count() <= C.triangles);
+        assert!(frame.triangle_numbers() <= C.triangles);
         // Sized as if both were inside: too small.
         const IN: Capacity = Capacity::EMPTY
             .object(&CUBE, Layout::GouraudRgb, Reach::Inside)
             .object(&CUBE, Layout::GouraudRgb, Reach::Inside);
         let mut small = Box::new(<crate::storage!(i32, IN)>::new());
-        assert!(matches!(
-            prepare::<Fast>(&s, 64, 64, small.workspace()),
-            Err(RenderError::Capacity {
+        // No room for the two-sided cube's back faces.
+        assert_eq!(
+            prepare::<Fast>(&s, 64, 64, small.workspace()).unwrap_err(),
+            RenderError::Capacity {
+                part: Part::Made,
+                object: 0
+            }
+        );
+        // Room for them, but the clipped cube's vertices do not fit.
+        const MADE: Capacity = Capacity {
+            made: C.made,
+            triangles: C.triangles,
+            ..IN
+        };
+        let mut small = Box::new(<crate::storage!(i32, MADE)>::new());
+        assert_eq!(
+            prepare::<Fast>(&s, 64, 64, small.workspace()).unwrap_err(),
+            RenderError::Capacity {
                 part: Part::Vertices,
-                ..
-            })
-        ));
+                object: 1
+            }
+        );
     }
 }

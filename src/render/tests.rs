@@ -19,6 +19,7 @@ struct Mem<L> {
     vals: Vec<L>,
     tris: Vec<Tri>,
     colors: Vec<Rgb8>,
+    faces: Vec<u8>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -27,7 +28,10 @@ impl<L: Copy + Default> Mem<L> {
             xy: vec![super::ScreenXy::ZERO; verts],
             vals: vec![L::default(); verts * 7],
             tris: vec![Tri::default(); tris],
-            colors: vec![Rgb8::BLACK; tris],
+            // Triangle numbers (and flat colours): every mesh triangle's
+            // (more than the kept triangles of `tris`).
+            colors: vec![Rgb8::BLACK; 4 * tris],
+            faces: vec![0; 4 * tris],
         }
     }
     fn ws(&mut self) -> Workspace<'_, L> {
@@ -36,6 +40,7 @@ impl<L: Copy + Default> Mem<L> {
             vals: &mut self.vals,
             tris: &mut self.tris,
             colors: &mut self.colors,
+            faces: &mut self.faces,
         }
     }
 }
@@ -429,7 +434,7 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 fn memory_figures_are_as_documented() {
     assert_eq!(core::mem::size_of::<Tri>(), 6);
     assert_eq!(core::mem::size_of::<Rgb8>(), 3);
-    assert_eq!(core::mem::size_of::<PreparedObject>(), 20);
+    assert_eq!(core::mem::size_of::<PreparedObject>(), 24);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
@@ -463,7 +468,9 @@ fn memory_figures_are_as_documented() {
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
-    assert_eq!(frame.bytes_used(), 1839 * (4 + 4) + t * 6);
+    // A byte per mesh triangle (whether the view keeps it), none copied.
+    assert_eq!(frame.triangle_numbers(), 3674);
+    assert_eq!(frame.bytes_used(), 1839 * (4 + 4) + 3674);
     // Phong with a point light and a local viewer carries positions.
     let objs = [object::<crate::num::Q16>(
         shapes::CUBE,
@@ -1183,4 +1190,93 @@ fn packed_grey_values_are_within_their_bounds() {
     assert!(worst.1 <= 1 << 7, "{worst:?}");
     // At the far plane the depth saturates to the last step.
     assert_eq!(unpack_grey(pack_grey(1 << 30, 0)).0, (1 << 30) - (1 << 13));
+}
+
+/// Renders band by band with an order scratch of `len(n, numbers)`
+/// entries (`n` prepared triangles, `numbers` triangle numbers) and a pool
+/// of `CAP` slots of eight values: the bytes, or the error.
+fn banded_order<const CAP: usize>(
+    s: &Scene<'_, 'static, crate::num::Q16>,
+    (w, h, rows): (u32, u32, u32),
+    len: impl Fn(usize, usize) -> usize,
+) -> Result<Vec<u8>, RenderError> {
+    let mut mem = Mem::<i32>::new(12_000, 12_000);
+    let frame = prepare::<Fast>(s, w, h, mem.ws()).unwrap();
+    let mut px = vec![0u16; (w * rows) as usize];
+    let mut z = vec![0u16; (w * rows) as usize];
+    let mut band = BandBuf::<Rgb565Be>::new(&mut px, Some(&mut z[..]), w, rows).unwrap();
+    let mut order = vec![0u16; len(frame.triangle_count(), frame.triangle_numbers())];
+    let mut pool = Box::new(Pool::<i32, CAP, 8>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
+    let mut out = vec![];
+    frame.render_bands(s, &mut state, &mut band, |b| {
+        out.extend(b.bytes());
+        Ok::<(), RenderError>(())
+    })?;
+    Ok(out)
+}
+
+#[test]
+fn bands_read_from_the_faces_bytes_equal_the_full_frame() {
+    // 200 rows: the faces bytes keep first rows halved (`face_shift` 1):
+    // even band heights read the band from them, odd ones from the
+    // vertices; beyond 64 bands (1, 2 and 3 rows) the bands are ordered
+    // in runs of 64.
+    assert_eq!(
+        [127, 128, 200, 240, 254, 255, 4096].map(face_shift),
+        [0, 1, 1, 1, 1, 2, 6]
+    );
+    let objs = every_shape::<crate::num::Q16>(Shading::Gouraud);
+    let ls = lights();
+    let s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
+    let (w, h) = (96, 200);
+    let whole = full::<Fast>(&s, w, h, true);
+    for rows in [1, 2, 3, 8, 13, 200] {
+        let at = (w, h, rows);
+        // The kept triangles twice: listed, then placed from the list.
+        assert_eq!(
+            banded_order::<256>(&s, at, |n, _| 2 * n).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        // One entry per triangle number (as `Storage` gives): placed from
+        // the bytes when the kept triangles fill more than half of it; a
+        // pool of two slots queues the others in the rest.
+        assert_eq!(
+            banded_order::<256>(&s, at, |_, t| t).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        assert_eq!(
+            banded_order::<2>(&s, at, |_, t| t).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        // No room for the queue: the same frame when nothing is put off,
+        // else an error naming the order, never another frame.
+        assert_eq!(
+            banded_order::<256>(&s, at, |n, _| n).unwrap(),
+            whole,
+            "rows {rows}"
+        );
+        match banded_order::<2>(&s, at, |n, _| n) {
+            Ok(b) => assert_eq!(b, whole, "rows {rows}"),
+            Err(e) => assert_eq!(
+                e,
+                RenderError::Capacity {
+                    part: Part::Order,
+                    object: 0
+                },
+                "rows {rows}"
+            ),
+        }
+        // Shorter than the kept triangles: refused.
+        assert_eq!(
+            banded_order::<256>(&s, at, |n, _| n - 1).unwrap_err(),
+            RenderError::Capacity {
+                part: Part::Order,
+                object: 0
+            }
+        );
+    }
 }

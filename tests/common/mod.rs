@@ -206,12 +206,15 @@ pub fn with_scene<P: Profile, T>(
     let mut xy = vec![fixshade::render::ScreenXy::ZERO; verts];
     let mut vals = vec![P::Lerp::default(); verts * 7];
     let mut tri_buf = vec![Tri::default(); 4 * tris + 16];
-    let mut colors = vec![fixshade::target::Rgb8::BLACK; tri_buf.len()];
+    // Triangle numbers: the meshes' and the made triangles'.
+    let mut faces = vec![0u8; 8 * tris + 16];
+    let mut colors = vec![fixshade::target::Rgb8::BLACK; faces.len()];
     let ws = Workspace {
         xy: &mut xy,
         vals: &mut vals,
         tris: &mut tri_buf,
         colors: &mut colors,
+        faces: &mut faces,
     };
     let frame = prepare::<P>(scene, w, h, ws).expect("prepare");
     let mut px = vec![[0u8; 3]; (w * h) as usize];

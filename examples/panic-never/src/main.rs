@@ -299,6 +299,7 @@ fn main() -> ! {
     static mut TRIS: [Tri; MAX_TRIS] = [Tri::EMPTY; MAX_TRIS];
     static mut COLORS: [fixshade::target::Rgb8; MAX_TRIS] =
         [fixshade::target::Rgb8::BLACK; MAX_TRIS];
+    static mut FACES: [u8; MAX_TRIS] = [0; MAX_TRIS];
     static mut BAND: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     static mut DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
     // The band state: triangle order and active pool.
@@ -322,6 +323,7 @@ fn main() -> ! {
             vals: &mut VALS[..],
             tris: &mut TRIS[..],
             colors: &mut COLORS[..],
+            faces: &mut FACES[..],
         };
         match frame(
             f,

@@ -90,6 +90,7 @@ pub struct Mem<L> {
     pub vals: Vec<L>,
     pub tris: Vec<Tri>,
     pub colors: Vec<fixshade::target::Rgb8>,
+    pub faces: Vec<u8>,
 }
 
 impl<L: Copy + Default> Mem<L> {
@@ -101,6 +102,7 @@ impl<L: Copy + Default> Mem<L> {
             vals: vec![L::default(); verts * 8],
             tris: vec![Tri::default(); tris],
             colors: vec![fixshade::target::Rgb8::BLACK; tris],
+            faces: vec![0; tris],
         }
     }
 
@@ -110,6 +112,7 @@ impl<L: Copy + Default> Mem<L> {
             vals: &mut self.vals,
             tris: &mut self.tris,
             colors: &mut self.colors,
+            faces: &mut self.faces,
         }
     }
 }

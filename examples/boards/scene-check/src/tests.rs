@@ -148,7 +148,7 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     assert_eq!(most.peak, PICO_PEAK);
     assert_eq!(
         (most.vertices, most.triangles, most.bytes),
-        (1839, 1574, 24_156)
+        (1839, 1574, 18_386)
     );
     assert_eq!(
         [turn[0].crc, turn[1].crc, turn[2].crc],
@@ -190,7 +190,7 @@ fn blackpill_turn_fits() {
         );
     }
     assert_eq!(most.peak, BLACKPILL_PEAK);
-    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 2_028));
+    assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 1_956));
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
     assert_eq!(turn.iter().map(|u| u.pixels).min(), Some(2376));
     assert_eq!(most.pixels, 2488);
@@ -204,10 +204,11 @@ const BLACKPILL_PEAK: usize = 12;
 #[test]
 fn memory_figures() {
     use core::mem::size_of;
-    // The workspace (4-byte values) and the order scratch (2 `u16` a
-    // triangle): together the board's `Store`.
+    // The workspace (4-byte values, a byte per triangle number, 6 per
+    // made triangle) and the band order (a `u16` per triangle number):
+    // together the board's `Store`.
     let parts = |c: Capacity, store: usize| {
-        let order = 4 * c.triangles;
+        let order = 2 * c.triangles;
         assert_eq!(c.bytes(4), store);
         (store - order, order)
     };
@@ -223,6 +224,6 @@ fn memory_figures() {
         ),
     );
     println!("pool, workspace, order bytes: pico {pico:?}, blackpill {blackpill:?}");
-    assert_eq!(pico, (11_200, (58_824, 14_696)));
-    assert_eq!(blackpill, (3_008, (2_136, 144)));
+    assert_eq!(pico, (11_200, (40_456, 7_348)));
+    assert_eq!(blackpill, (3_008, (1_956, 72)));
 }

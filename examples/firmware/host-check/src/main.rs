@@ -31,6 +31,7 @@ struct Owned<L> {
     vals: Vec<L>,
     tris: Vec<Tri>,
     colors: Vec<fixshade::target::Rgb8>,
+    faces: Vec<u8>,
     order: Vec<u16>,
 }
 
@@ -39,9 +40,10 @@ impl<L: fixshade::raster::Lerp> Owned<L> {
         Self {
             xy: vec![fixshade::render::ScreenXy::ZERO; n.vertices],
             vals: vec![L::ZERO; n.values],
-            tris: vec![Tri::default(); n.triangles],
+            tris: vec![Tri::default(); n.made],
             colors: vec![fixshade::target::Rgb8::BLACK; n.colors],
-            order: vec![0; 2 * n.triangles],
+            faces: vec![0; n.triangles],
+            order: vec![0; n.triangles],
         }
     }
 
@@ -56,6 +58,7 @@ impl<L: fixshade::raster::Lerp> Owned<L> {
                 vals: &mut self.vals,
                 tris: &mut self.tris,
                 colors: &mut self.colors,
+                faces: &mut self.faces,
             },
             &mut self.order,
         )

@@ -6,16 +6,19 @@
 //! [`dodeca`]: the dodecahedron scenes (feature `dodeca` of this crate
 //! and of the firmware, `cargo build --release --features dodeca` in
 //! `examples/firmware`). One convex object with back faces culled needs
-//! no depth band; its 36 triangles need 1 108 bytes of storage at most
-//! (Phong with the eye position, the widest of the three), so the static
-//! RAM is the colour band, that storage and the pool:
+//! no depth band; its 20 vertices and 36 triangles need 856 bytes of
+//! storage at most (Phong with the eye position, the widest of the three:
+//! 20 × (4 + 7 × 4) for the vertices, 36 × (1 + 2) for the triangle
+//! numbers' bytes and order entries, 36 × 3 for the flat scene's
+//! colours), so the static RAM is the colour band, that storage and the
+//! pool:
 //!
 //! | part | bytes |
 //! |------|------:|
 //! | colour band: 160 px × 8 rows × 2 (RGB565) | 2 560 |
-//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 1 108 |
+//! | storage ([`dodeca::CAPACITY`], `Capacity::bytes(4)`) | 856 |
 //! | pool: 12 slots of 7 values ([`dodeca::DodecaPool`]) | `size_of` (about 2 100) |
-//! | total, within the 8 KB = 8 192 bytes budget | about 5 500 |
+//! | total, within the 8 KB = 8 192 bytes budget | about 5 300 |
 //!
 //! (The tests check the sum against 8 192 bytes less 512 for the rest of
 //! the firmware's `.data` and `.bss`; `.ci/firmware` checks the ELF's.)
@@ -228,19 +231,21 @@ alone! {
     /// |------|------:|
     /// | colour band: 240 px × 8 rows × 2 (RGB565) | 3 840 |
     /// | depth band: 240 px × 8 rows × 2 (16-bit) | 3 840 |
-    /// | storage: 1 839 vertices × (4 + 4) + 3 674 triangles × (6 + 4) | 51 452 |
+    /// | storage: 1 839 vertices × (4 + 4) + 3 674 triangle numbers × (1 + 2), rounded to 4 | 25 736 |
     /// | pool: 62 slots of 2 values, 112 + 4 bytes each ([`bunny::BunnyPool`]: the walk, 88, kept unpacked) | 7 192 |
-    /// | total | 66 324 |
+    /// | total, within the 40 KB = 40 960 bytes budget | 40 608 |
     ///
     /// The storage's parts: screen positions 1 839 × 4 = 7 356 (`i16`
     /// subpixels, [`fixshade::render::ScreenXy`]), values 1 839 × 4 =
-    /// 7 356 (depth and grey level, 16 bits each), triangles 3 674 × 6 =
-    /// 22 044 and the band order 3 674 × 4 = 14 696: the triangle parts
-    /// hold every mesh triangle (what a view keeps is known only with the
-    /// view: 1 498 here), 36 740 of the 51 452 bytes. The budget is 40 KB
-    /// = 40 960 bytes; the storage alone exceeds it (the tests check
-    /// these figures). The prepared frame itself is 23 700 bytes (7 356 +
-    /// 7 356 + 1 498 × 6).
+    /// 7 356 (depth and grey level, 16 bits each), a byte per mesh
+    /// triangle 3 674 (whether the view keeps it, its first row, whether
+    /// it is a back face: no copy of the mesh's triangles, whose vertices
+    /// the frame reads from the mesh in flash) and the band order 3 674 ×
+    /// 2 = 7 348 (the kept triangles by band, 1 498 here, and in the rest
+    /// the queue of those put off while the pool is full); no made
+    /// triangle (the bunny lies inside the clipping planes, culled) and no
+    /// colour (Gouraud). The tests check these figures. The prepared frame
+    /// itself is 18 386 bytes (7 356 + 7 356 + 3 674).
     pub mod bunny {
         prefix: "bunny-gouraud",
         /// Rows per band: 8 (3 840 bytes of colour band and as many of depth
@@ -281,7 +286,7 @@ mod tests {
         const { assert!(!dodeca::DEPTH) };
         assert_eq!(dodeca::WIDTH, 160);
         assert_eq!(dodeca::BAND_BYTES, 2560);
-        assert_eq!(dodeca::CAPACITY.bytes(4), 1108);
+        assert_eq!(dodeca::CAPACITY.bytes(4), 856);
         // The statics other than storage, pool and band (a few hundred
         // bytes) must fit in what is left of 8 KB.
         const { assert!(dodeca::STATIC_BYTES <= 8192 - 512) };
@@ -346,18 +351,26 @@ mod tests {
         assert_eq!(bunny::WIDTH, 240);
         assert_eq!(bunny::BAND_BYTES, 3840);
         // 1 839 vertices × (4 + 4: depth and grey level packed in one
-        // value) + 3 674 triangles × (6 + 4); 2 values a vertex in the
-        // profiles that do not pack.
+        // value) + 3 674 triangle numbers × (1 byte + a 2-byte order
+        // entry), no triangle made (inside the clipping planes, culled),
+        // rounded up to 4 bytes; 2 values a vertex in the profiles that do
+        // not pack.
         const C: fixshade::render::Capacity = bunny::CAPACITY.in_profile::<Fast>();
-        assert_eq!(C.bytes(4), 1839 * 8 + 3674 * 10);
-        assert_eq!(C.bytes(4), 51_452);
-        assert_eq!(bunny::CAPACITY.bytes(4), 1839 * 12 + 3674 * 10);
+        assert_eq!((C.triangles, C.made, C.colors), (3674, 0, 0));
+        assert_eq!(C.bytes(4), (1839 * 8 + 3674 * 3 + 3) & !3);
+        assert_eq!(C.bytes(4), 25_736);
+        assert_eq!(
+            core::mem::size_of::<fixshade::storage!(i32, C)>(),
+            C.bytes(4)
+        );
+        assert_eq!(bunny::CAPACITY.bytes(4), (1839 * 12 + 3674 * 3 + 3) & !3);
         assert_eq!(
             core::mem::size_of::<bunny::BunnyPool>(),
             bunny::POOL_SLOTS * 116
         );
-        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 51_452 + 62 * 116);
-        assert_eq!(bunny::STATIC_BYTES, 66_324);
+        assert_eq!(bunny::STATIC_BYTES, 2 * 3840 + 25_736 + 62 * 116);
+        assert_eq!(bunny::STATIC_BYTES, 40_608);
+        const { assert!(bunny::STATIC_BYTES <= 40 * 1024) };
         let mut st = Box::new(<fixshade::storage!(i32, C)>::new());
         // The build's pool: 56 slots by default (the peak it reports is
         // the bunny build's need), 62 with the feature `bunny`.
@@ -370,11 +383,12 @@ mod tests {
             let (ws, order) = st.split();
             let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
             // 1 839 vertices × (4 bytes xy + 4: depth and grey level packed
-            // in one value) + 1 498 kept triangles × 6.
+            // in one value) + a byte per mesh triangle (1 498 of the
+            // 3 674 kept).
             assert_eq!(frame.vertex_count(), 1839);
             assert_eq!(frame.triangle_count(), 1498);
-            assert_eq!(frame.bytes_used(), 1839 * 8 + 1498 * 6);
-            assert_eq!(frame.bytes_used(), 23_700);
+            assert_eq!(frame.bytes_used(), 1839 * 8 + 3674);
+            assert_eq!(frame.bytes_used(), 18_386);
             let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
             let mut z = vec![0u16; (spec.width * rows) as usize];
             let s = raster_bands_in::<Fast, Depth16, _>(

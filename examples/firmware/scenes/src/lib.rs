@@ -395,14 +395,16 @@ mod tests {
             let (mut xy, mut vals, mut tris) = (
                 vec![fixshade::render::ScreenXy::ZERO; c.vertices],
                 vec![0i32; c.values],
-                vec![fixshade::render::Tri::EMPTY; c.triangles],
+                vec![fixshade::render::Tri::EMPTY; c.made],
             );
             let mut colors = vec![fixshade::target::Rgb8::BLACK; c.colors];
+            let mut faces = vec![0u8; c.triangles];
             let ws = Workspace {
                 xy: &mut xy[..],
                 vals: &mut vals[..],
                 tris: &mut tris[..],
                 colors: &mut colors[..],
+                faces: &mut faces[..],
             };
             check(spec, ws).unwrap();
             let short = Workspace {
@@ -410,6 +412,7 @@ mod tests {
                 vals: &mut vals[..],
                 tris: &mut tris[..],
                 colors: &mut colors[..],
+                faces: &mut faces[..],
             };
             let e = check(spec, short).unwrap_err();
             assert_eq!(

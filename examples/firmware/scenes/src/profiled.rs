@@ -248,18 +248,20 @@ mod tests {
         let (mut xy, mut vals, mut tris) = (
             vec![fixshade::render::ScreenXy::ZERO; n.vertices],
             vec![<P::Lerp as fixshade::raster::Lerp>::ZERO; n.values],
-            vec![Tri::default(); n.triangles],
+            vec![Tri::default(); n.made],
         );
         let mut colors = vec![fixshade::target::Rgb8::BLACK; n.colors];
+        let mut faces = vec![0u8; n.triangles];
         let ws = Workspace {
             xy: &mut xy,
             vals: &mut vals,
             tris: &mut tris,
             colors: &mut colors,
+            faces: &mut faces,
         };
         let mut px = vec![0u16; BAND_PIXELS];
         let mut z = vec![0u16; BAND_PIXELS];
-        let mut order = vec![0u16; 2 * n.triangles];
+        let mut order = vec![0u16; n.triangles];
         let mut pool = Box::new(ProfilePool::<P>::new());
         render_frame_with::<P, _>(
             spec,
