@@ -14,9 +14,9 @@
 //! line each, as the firmware prints them, without the stack) and counts
 //! the pixels where the 32-bit depth frame differs from the 16-bit one.
 
+use fixshade::num::Profile;
 use fixshade::render::{Capacity, Tri, Workspace};
 use fixshade::target::{PixelFormat, Rgb565Be};
-use fixshade::num::Profile;
 use fixshade_scenes::profiled::{render_frame_with, ProfilePool};
 use fixshade_scenes::{
     render_frame, BandPool, Crc32, NoProbe, Pixel, SceneSpec, BAND_PIXELS, CAPACITY, DEPTH_PIXELS,
@@ -131,10 +131,7 @@ fn run<P: Profile>(
 
 /// The frame of `spec` as 8-bit RGB, rendered in one piece (a band as
 /// tall as the frame); fails unless its CRC equals the banded frame's.
-fn whole_frame(
-    spec: &SceneSpec,
-    ws: &mut Owned<i32>,
-) -> Result<Vec<u8>, Box<dyn Error>> {
+fn whole_frame(spec: &SceneSpec, ws: &mut Owned<i32>) -> Result<Vec<u8>, Box<dyn Error>> {
     use fixshade::num::Fast;
     use fixshade::render::prepare;
     use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Target};
