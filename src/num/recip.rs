@@ -390,6 +390,20 @@ impl InvArea {
         Some(self.quot_high(nu, kk))
     }
 
+    /// [`InvArea::quot_scaled`]`(n, k, sh)` for `k <= sh`, given `u = sh -
+    /// k` (below 32): the same value, `quot_high(n · 2^u, 0)`, without
+    /// selecting the shifts at run time; `None` where `n · 2^u` does not
+    /// fit an `i32` (as there). Tested equal to `quot_scaled`.
+    #[inline(always)]
+    pub(crate) fn quot_up(&self, n: i32, u: u32) -> Option<i32> {
+        let u = u & 31;
+        let nu = n << u;
+        if nu >> u != n {
+            return None;
+        }
+        Some(self.quot_high(nu, 0))
+    }
+
     /// [`InvArea::quot`]`(n, s)` for `n` within an `i32` and `k` from
     /// [`InvArea::high_shift`]`(s)`: the very value, with one product and
     /// no normalisation (`t = 0`; `|h| < 2^30` and `k <= 30`, so nothing
@@ -938,5 +952,50 @@ mod tests {
         assert_eq!(Recip::new(3).mul_shift(9, 0), 3);
         assert_eq!(Recip::new(1).mul_shift(-(1 << 40), 8), -(1 << 48));
         assert_eq!(Recip::new(0).mul_shift(5, 0), 5);
+    }
+
+    /// [`InvArea::quot_up`] is [`InvArea::quot_scaled`] wherever `k <= sh`.
+    #[test]
+    fn quot_up_equals_quot_scaled() {
+        let mut g = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g as u32
+        };
+        let ends = [
+            0,
+            1,
+            -1,
+            i32::MAX,
+            i32::MIN,
+            0xffff,
+            -0x10000,
+            1 << 17,
+            -(1 << 17),
+        ];
+        for i in 0..300_000u32 {
+            let a = ((next() as i32) >> (next() % 32)).max(1);
+            let inv = InvArea::new_fast(if i & 1 == 0 { a } else { -a });
+            let Some(k) = inv.high_shift(4) else {
+                continue;
+            };
+            let r = next();
+            let n = match i % 3 {
+                0 => ends[(r % ends.len() as u32) as usize],
+                1 => (r as i32) >> (r % 32),
+                _ => r as i32,
+            };
+            for sh in [8, 14] {
+                if k <= sh {
+                    assert_eq!(
+                        inv.quot_up(n, sh - k),
+                        inv.quot_scaled(n, k, sh),
+                        "a={a} n={n} k={k} sh={sh}"
+                    );
+                }
+            }
+        }
     }
 }

@@ -447,7 +447,7 @@ impl Grad {
     #[inline(never)]
     #[cold]
     fn plane_fields_cold(&self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
-        self.plane_fields(f, v0, sh)
+        self.plane_fields::<false>(f, v0, sh)
     }
 
     /// The plane of packed values ([`crate::num::Profile::PACKED_GREY`]:
@@ -464,16 +464,24 @@ impl Grad {
     /// where it declines (a gradient then reaches `2^29`, and the values
     /// mean nothing). The very gradients and row
     /// origin of [`Grad::plane`] and of the general setup ([`setup`]).
+    /// With `UP` the caller promises `k <= sh`: the gradients by
+    /// [`InvArea::quot_up`] (the same values, the shifts not selected).
     #[inline(always)]
-    fn plane_fields(&self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
+    fn plane_fields<const UP: bool>(&self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
         let [dx1, dy1, dx2, dy2] = self.d;
         let (f1, f2) = (f[1].wrapping_sub(f[0]), f[2].wrapping_sub(f[0]));
         let nx = f1.wrapping_mul(dy2).wrapping_sub(f2.wrapping_mul(dy1));
         let ny = f2.wrapping_mul(dx1).wrapping_sub(f1.wrapping_mul(dx2));
-        let (gx, gy) = (
-            self.inv.quot_scaled(nx, self.k, sh),
-            self.inv.quot_scaled(ny, self.k, sh),
-        );
+        // `k <= sh` by the caller's bound: the shifts known per triangle.
+        let (gx, gy) = if UP {
+            let u = sh.wrapping_sub(self.k);
+            (self.inv.quot_up(nx, u), self.inv.quot_up(ny, u))
+        } else {
+            (
+                self.inv.quot_scaled(nx, self.k, sh),
+                self.inv.quot_scaled(ny, self.k, sh),
+            )
+        };
         let ok = gx.is_some() & gy.is_some();
         let (gx, gy) = (gx.unwrap_or(0), gy.unwrap_or(0));
         let o = if SHORT_NUMERATORS {
@@ -796,12 +804,14 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     let lim = (1u32 << 30) >> (32 - clz32(mxy));
     // Packed values by their 16-bit fields where the offsets allow it.
     let fields = packed & (mxy < 1 << 14);
-    let pk = PACKED_FIELDS & fields;
+    // With `k <= 8` (doubled areas below 2^15 subpixels² at 4 subpixel
+    // bits) both fields' shifts `sh - k` are known per triangle.
+    let pk = PACKED_FIELDS & fields & (k <= 8);
     // ARMv6-M: the fields, out of line, where the 32-bit numerators of the
     // values refuse them.
     let rescue = FIELDS_RESCUE & fields;
     let (gx, gy, z0, mut ok) = if pk {
-        g.plane_fields([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14)
+        g.plane_fields::<true>([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14)
     } else {
         match g.plane_small::<false>(a.z, b.z, c.z, lim) {
             p if !p.3 & rescue => g.plane_fields_cold([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14),
@@ -816,7 +826,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     for k in 0..N {
         let (gx, gy, o, oka) = if pk {
             let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
-            g.plane_fields(f, a.attrs[k], 8)
+            g.plane_fields::<true>(f, a.attrs[k], 8)
         } else {
             match g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim) {
                 p if !p.3 & rescue => {
