@@ -723,7 +723,7 @@ fn walk_edges(
 ///   ones, [`crate::num::Profile::PACKED_GREY`]: depths `f·2^14 + 2^13`,
 ///   levels `f·2^8` for 16-bit fields `f`), for offsets below `2^14` (and,
 ///   on ARMv7-M and in test builds, the reciprocal's shift `k <= 8`:
-///   doubled areas below `2^15` subpixels², both shifts of
+///   doubled areas below `2^15` subpixels² at 4 subpixel bits; both shifts of
 ///   [`InvArea::quot_up`] known per triangle): the
 ///   planes from the fields ([`Grad::plane_fields`], numerators in 32 bits
 ///   for any depth difference, the gradients below `2^29`) instead, on
