@@ -252,6 +252,28 @@ pub(super) struct OneSpan {
     qm_a: i64,
 }
 
+/// Longest span run with a single plan ([`Whole`]): the 32-bit forward
+/// differences, rounded down once at its first pixel, are then at most
+/// `k + k(k - 1)/2 < 2^15` units of the last place off after `k` steps:
+/// `2^-15` of `|n|²` and `2^-5` of a table segment.
+pub(super) const WHOLE_MAX: u32 = 256;
+
+/// The 32-bit state of a span run with a single plan: `|n|² - 1/4` (Q30),
+/// `Qm` (Q20 segments) and `n·L` with their differences, and whether the
+/// span has a specular term and `n·L > 0` at every pixel.
+pub(super) struct Whole {
+    nn: i32,
+    nd1: i32,
+    nd2: i32,
+    q: i32,
+    qd1: i32,
+    qd2: i32,
+    nl: i32,
+    dnl: i32,
+    spec: bool,
+    lit: bool,
+}
+
 /// How a chunk runs: the 32-bit loop with or without the specular
 /// term (`|n|²` and `Qm` as 32-bit forward differences, `n·L` and its
 /// step), or pixel by pixel in 64 bits.
@@ -292,12 +314,77 @@ impl<R: Real> PhongKernel<'_, R> {
         }
         let mut st = self.one_begin(l, n, dn);
         let c = Colour::of(self, l);
+        let mut whole = self.one_whole(&st, len);
         drive(
             len,
-            |i, k, buf| self.one_chunk(l, n, dn, &mut st, i, k, buf),
+            |i, k, buf| match &mut whole {
+                Some(w) => self.whole_chunk(w, k, buf),
+                None => self.one_chunk(l, n, dn, &mut st, i, k, buf),
+            },
             |t| c.of_terms(t),
             &mut out,
         )
+    }
+
+    /// The span's single plan ([`Whole`]) when the span is at most
+    /// [`WHOLE_MAX`] pixels long and its whole length can be proven as a
+    /// chunk is (the plan of one chunk of `len` pixels), with `|n|²` at
+    /// least `2^-13` above `1/4` (the 32-bit stepping's error margin).
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn one_whole(&self, st: &OneSpan, len: u32) -> Option<Whole> {
+        if len > WHOLE_MAX {
+            return None;
+        }
+        let (nn_b, _) = advance(st.nn, st.nn_d1, st.nn_d2, len);
+        let nn_lo = st
+            .nn
+            .min(nn_b)
+            .saturating_sub(st.nn_d2.saturating_mul(u64::from(len * len)) / 8);
+        if nn_lo < (1 << 58) + (1 << 45) {
+            return None;
+        }
+        let lit = |nl: i32, dnl: i32| {
+            nl > 0 && i64::from(nl) + i64::from(dnl) * i64::from(len - 1) > 0
+        };
+        match self.one_plan(&mut st.clone(), 0, len) {
+            Plan::Spec((a, b, d), (qa, qb, qc), nl, dnl) => Some(Whole {
+                nn: a.wrapping_sub(1 << 28),
+                nd1: b,
+                nd2: d,
+                q: qa,
+                qd1: qb,
+                qd2: qc,
+                nl,
+                dnl,
+                spec: true,
+                lit: lit(nl, dnl),
+            }),
+            Plan::NoSpec((a, b, d), nl, dnl) => Some(Whole {
+                nn: a.wrapping_sub(1 << 28),
+                nd1: b,
+                nd2: d,
+                q: 0,
+                qd1: 0,
+                qd2: 0,
+                nl,
+                dnl,
+                spec: false,
+                lit: false,
+            }),
+            Plan::Exact => None,
+        }
+    }
+
+    /// The next `k` pixels' light terms of a span with a single plan
+    /// ([`Whole`]): its 32-bit state stepped on, no chunk set-up.
+    #[inline(never)]
+    fn whole_chunk(&self, w: &mut Whole, k: u32, buf: &mut [u32; CHUNK]) -> bool {
+        match (w.spec, w.lit) {
+            (true, true) => self.chunk_run::<true, true>(k, w, buf),
+            (true, false) => self.chunk_run::<true, false>(k, w, buf),
+            _ => self.chunk_run::<false, false>(k, w, buf),
+        }
+        true
     }
 
     /// The span's exact state (see the module docs).
@@ -456,13 +543,38 @@ impl<R: Real> PhongKernel<'_, R> {
         k: u32,
         nn: (i32, i32, i32),
         qm: (i32, i32, i32),
-        mut nl: i32,
+        nl: i32,
         dnl: i32,
         buf: &mut [u32; CHUNK],
     ) {
-        let (nn, mut nd1, nd2) = nn;
-        let mut nn = nn.wrapping_sub(1 << 28);
-        let (mut q, mut qd1, qd2) = qm;
+        let mut w = Whole {
+            nn: nn.0.wrapping_sub(1 << 28),
+            nd1: nn.1,
+            nd2: nn.2,
+            q: qm.0,
+            qd1: qm.1,
+            qd2: qm.2,
+            nl,
+            dnl,
+            spec: SPEC,
+            lit: LIT,
+        };
+        self.chunk_run::<SPEC, LIT>(k, &mut w, buf);
+    }
+
+    /// The loop of [`PhongKernel::chunk`] over the state `w` (`|n|²` less
+    /// `1/4`), left stepped past the `k` pixels.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn chunk_run<const SPEC: bool, const LIT: bool>(
+        &self,
+        k: u32,
+        w: &mut Whole,
+        buf: &mut [u32; CHUNK],
+    ) {
+        let (mut nn, mut nd1, nd2) = (w.nn, w.nd1, w.nd2);
+        let (mut q, mut qd1, qd2) = (w.q, w.qd1, w.qd2);
+        let (mut nl, dnl) = (w.nl, w.dnl);
         let rs = core::hint::black_box(&RS_PACKED);
         let buf = buf.get_mut(..k as usize).unwrap_or_default();
         // The terms `N·L` and the specular factor (packed: both below
@@ -483,6 +595,7 @@ impl<R: Real> PhongKernel<'_, R> {
             }
             nl = nl.wrapping_add(dnl);
         }
+        (w.nn, w.nd1, w.q, w.qd1, w.nl) = (nn, nd1, q, qd1, nl);
     }
 
     /// One pixel's colour (`r | g << 8 | b << 16`) from `|n|²` (Q30,
