@@ -44,8 +44,13 @@
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits; a full
 //! chunk's set-up with its length a constant, so that the products by it
-//! fold into shifts); measured on the firmware's span sweep, 86.52
-//! instructions a pixel on the M4 (was 167, 106.97, 104.88, 94.63 with
+//! fold into shifts; a span of more than one chunk and at most
+//! `one::WHOLE_MAX` pixels whose whole length is proven as a chunk is
+//! runs with that single plan, its 32-bit state stepped on from chunk to
+//! chunk without re-seeding: `2^-15` of `|n|²` and `2^-5` of a table
+//! segment at most, tested); measured on the firmware's span sweep, 81.91
+//! instructions a pixel on the M4 (148.94 on the M0; before the single
+//! plan 86.52 and 169.72; was 167, 106.97, 104.88, 94.63 with
 //! the channels in the loop of the depth test, then 92.23, 90.95, 89.31;
 //! then `1/|n|` from one load of a packed table, `one::RS_PACKED`, whose
 //! address stays in a register, `|n|²` stepped less `1/4`, and no `n·L`

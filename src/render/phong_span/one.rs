@@ -19,7 +19,10 @@
 //! `Q` (`Qm >= min(ends) - d2·k²/8` over `k` pixels) and runs without it;
 //! one that can be proven neither way, or whose `|n|²` leaves `[0, 2)`,
 //! takes [`PhongKernel::one_exact`] per pixel (the same quantities from the
-//! pixel's normal in 64 bits).
+//! pixel's normal in 64 bits). A span of more than one chunk and at most
+//! [`WHOLE_MAX`] pixels that can be proven as one chunk is skips the
+//! chunk set-up: one plan, its 32-bit state carried from chunk to chunk
+//! ([`Whole`]).
 
 use super::{
     cross, drive, fallback, lin, pack, quad, sq3, unpack, KLight, Out, PhongKernel, CHUNK, RS,
@@ -343,9 +346,8 @@ impl<R: Real> PhongKernel<'_, R> {
         if nn_lo < (1 << 58) + (1 << 45) {
             return None;
         }
-        let lit = |nl: i32, dnl: i32| {
-            nl > 0 && i64::from(nl) + i64::from(dnl) * i64::from(len - 1) > 0
-        };
+        let lit =
+            |nl: i32, dnl: i32| nl > 0 && i64::from(nl) + i64::from(dnl) * i64::from(len - 1) > 0;
         match self.one_plan(&mut st.clone(), 0, len) {
             Plan::Spec((a, b, d), (qa, qb, qc), nl, dnl) => Some(Whole {
                 nn: a.wrapping_sub(1 << 28),
@@ -795,6 +797,70 @@ mod tests {
 
     /// `advance` by `k` steps is `k` single steps, wrapping (the set-up
     /// of a full chunk, `k` a constant, and of a partial one).
+    /// A span run with a single plan ([`Whole`]): its 32-bit `|n|²` and
+    /// `Qm` within `k + k(k - 1)/2` units of the last place below the
+    /// exact values (`u64` forward differences) after `k` steps, over
+    /// spans of [`WHOLE_MAX`] pixels.
+    #[test]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn whole_span_stepping_within_bound() {
+        use crate::geom::Vec3;
+        use crate::illum::{Light, Material, Shade, Specular, Viewer};
+        use crate::num::Q16;
+        let q = Q16::from_f64;
+        let mat = Material {
+            color: Vec3::new(q(1.0), q(0.8), q(0.6)),
+            ka: q(0.1),
+            kd: q(0.7),
+            ks: q(0.5),
+            shininess: q(40.0),
+        };
+        let lights = [Light::directional(
+            Vec3::new(q(0.3), q(0.4), q(0.866)),
+            q(1.0),
+        )];
+        let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+        let k = PhongKernel::new(&shade).unwrap();
+        let l = &k.lights[0];
+        let mut runs = 0;
+        for (n, dn) in [
+            ([0, 0, 1 << 30], [1 << 21, -(1 << 20), -(1 << 18)]),
+            ([-(1 << 28), 1 << 27, 1 << 30], [1 << 20, 3 << 18, 1 << 16]),
+            (
+                [300_000_000, 400_000_000, 880_000_000],
+                [-777_777, 123_457, 54_321],
+            ),
+        ] {
+            let st = k.one_begin(l, n, dn);
+            let Some(mut w) = k.one_whole(&st, WHOLE_MAX) else {
+                continue;
+            };
+            runs += 1;
+            let (mut nn, mut nn_d1) = (st.nn, st.nn_d1);
+            let (mut qx, mut q_d1) = (st.q, st.q_d1);
+            for i in 0..WHOLE_MAX {
+                let bound = i64::from(i + i * i.saturating_sub(1) / 2) + 1;
+                let e_nn = i64::from(((nn >> 30) as i32).wrapping_sub(1 << 28)) - i64::from(w.nn);
+                assert!((0..=bound).contains(&e_nn), "|n|² {i}: {e_nn}");
+                if w.spec {
+                    let e_q = mul_shr48(qx as i64, k.kf) - i64::from(w.q);
+                    assert!((0..=bound).contains(&e_q), "Qm {i}: {e_q}");
+                }
+                (nn, nn_d1) = advance(nn, nn_d1, st.nn_d2, 1);
+                (qx, q_d1) = advance(qx, q_d1, st.q_d2, 1);
+                let (a, b, c, d, e) = (w.nd1, w.nd2, w.qd1, w.qd2, w.dnl);
+                (w.nn, w.nd1, w.q, w.qd1, w.nl) = (
+                    w.nn.wrapping_add(a),
+                    a.wrapping_add(b),
+                    w.q.wrapping_add(c),
+                    c.wrapping_add(d),
+                    w.nl.wrapping_add(e),
+                );
+            }
+        }
+        assert!(runs >= 2, "{runs}");
+    }
+
     #[test]
     fn advance_by_constant_and_variable_k_agree() {
         for &(v, d1, d2) in &[
