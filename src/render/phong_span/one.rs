@@ -265,16 +265,16 @@ pub(super) const WHOLE_MAX: u32 = 256;
 /// `Qm` (Q20 segments) and `n·L` with their differences, and whether the
 /// span has a specular term and `n·L > 0` at every pixel.
 pub(super) struct Whole {
-    nn: i32,
-    nd1: i32,
-    nd2: i32,
-    q: i32,
-    qd1: i32,
-    qd2: i32,
-    nl: i32,
-    dnl: i32,
-    spec: bool,
-    lit: bool,
+    pub(super) nn: i32,
+    pub(super) nd1: i32,
+    pub(super) nd2: i32,
+    pub(super) q: i32,
+    pub(super) qd1: i32,
+    pub(super) qd2: i32,
+    pub(super) nl: i32,
+    pub(super) dnl: i32,
+    pub(super) spec: bool,
+    pub(super) lit: bool,
 }
 
 /// How a chunk runs: the 32-bit loop with or without the specular
@@ -329,13 +329,14 @@ impl<R: Real> PhongKernel<'_, R> {
         )
     }
 
-    /// The span's single plan ([`Whole`]) when the span is at most
-    /// [`WHOLE_MAX`] pixels long and its whole length can be proven as a
+    /// The span's single plan ([`Whole`]) when the span is longer than a
+    /// chunk and at most [`WHOLE_MAX`] pixels long and its whole length can be proven as a
     /// chunk is (the plan of one chunk of `len` pixels), with `|n|²` at
     /// least `2^-13` above `1/4` (the 32-bit stepping's error margin).
     #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
-    fn one_whole(&self, st: &OneSpan, len: u32) -> Option<Whole> {
-        if len > WHOLE_MAX {
+    pub(super) fn one_whole(&self, st: &OneSpan, len: u32) -> Option<Whole> {
+        // One chunk or less: its own plan is the whole span's.
+        if len <= CHUNK as u32 || len > WHOLE_MAX {
             return None;
         }
         let (nn_b, _) = advance(st.nn, st.nn_d1, st.nn_d2, len);
