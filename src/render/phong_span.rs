@@ -44,8 +44,13 @@
 //! proven range per chunk, chunks whose `Q` is provably past the table
 //! skip the specular term, the rest per pixel in 64 bits; a full
 //! chunk's set-up with its length a constant, so that the products by it
-//! fold into shifts); measured on the firmware's span sweep, 86.52
-//! instructions a pixel on the M4 (was 167, 106.97, 104.88, 94.63 with
+//! fold into shifts; a span of more than one chunk and at most
+//! `one::WHOLE_MAX` pixels whose whole length is proven as a chunk is
+//! runs with that single plan, its 32-bit state stepped on from chunk to
+//! chunk without re-seeding: `2^-15` of `|n|²` and `2^-5` of a table
+//! segment at most, tested); measured on the firmware's span sweep, 81.91
+//! instructions a pixel on the M4 (148.94 on the M0; before the single
+//! plan 86.52 and 169.72; was 167, 106.97, 104.88, 94.63 with
 //! the channels in the loop of the depth test, then 92.23, 90.95, 89.31;
 //! then `1/|n|` from one load of a packed table, `one::RS_PACKED`, whose
 //! address stays in a register, `|n|²` stepped less `1/4`, and no `n·L`
@@ -82,12 +87,17 @@
 //! form in the sums' start. Taken when every channel sum stays below
 //! `2^31` with each light at its largest terms (eight white lights of
 //! `Ip·kd = Ip·ks = 0.9`; beyond, the per-pixel path of
-//! [`PhongKernel::begin`]). Measured on the firmware's span sweep, per
-//! pixel with 1, 2 and 4 lights: 86.52, 196.49 and 316.20 instructions on
-//! the M4 (the per-pixel path before: 280.33 and 434.96 with 2 and 4),
-//! 169.25, 356.07 and 592.59 on the M0 (before: 392.94 and 643.29): each
-//! light beyond the second adds 59.9 a pixel on the M4 and 118.3 on the
-//! M0 (its terms, its channel sums and its share of the chunk plans).
+//! [`PhongKernel::begin`]); a span whose lights all have a single plan
+//! (as one light's above) steps their 32-bit states on from chunk to
+//! chunk. Measured on the firmware's span sweep, per pixel with 1, 2 and
+//! 4 lights: 81.91, 181.58 and 289.49 instructions on the M4, 148.94,
+//! 326.58 and 544.72 on the M0 (with a plan a chunk: 86.52, 196.49 and
+//! 316.20 on the M4, 169.72, 356.07 and 592.59 on the M0; the per-pixel
+//! path before: 280.33 and 434.96 with 2 and 4 on the M4, 392.94 and
+//! 643.29 on the M0): each
+//! light beyond the second adds 54.0 a pixel on the M4 and 109.1 on the
+//! M0 (its terms and its channel sums; 59.9 and 118.3 with its share of
+//! the chunk plans).
 //! (The test-free lit chunks of one light made this loop slower, 201.13
 //! and 324.98 on the M4 with 2 and 4 lights, 203.40 and 329.11 with the
 //! packed `1/|n|` table too, 198.43 and 319.67 with the table alone: not

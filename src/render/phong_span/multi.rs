@@ -23,7 +23,7 @@
 //! loop's (tests: `random_spans_against_f64`, one to four lights).
 
 use super::one::{
-    exact_chunk, mul_shr48, rsq, short_span, OneSpan, Plan, QM_FRAC, QM_MAX, SHORT_SPAN,
+    exact_chunk, mul_shr48, rsq, short_span, OneSpan, Plan, Whole, QM_FRAC, QM_MAX, SHORT_SPAN,
 };
 use super::{
     cross, drive, fallback, lin, pack, sq3, unpack_q19, KLight, Out, PhongKernel, CHUNK, MAX_LIGHTS,
@@ -55,6 +55,8 @@ pub(super) fn start(amb19: [i32; 3], lights: &[KLight]) -> Option<[i32; 3]> {
 
 /// The exact states of a span's lights (`None` past the last light).
 type States = [Option<OneSpan>; MAX_LIGHTS];
+/// Each light's single plan ([`Whole`]).
+type Wholes = [Option<Whole>; MAX_LIGHTS];
 
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for two or more directional lights, viewer
@@ -75,12 +77,67 @@ impl<R: Real> PhongKernel<'_, R> {
         }
         let mut st: States =
             core::array::from_fn(|j| self.lights.get(j).map(|l| self.one_begin(l, n, dn)));
+        let mut wholes = self.multi_whole(&st, len);
         drive(
             len,
-            |i, k, buf| self.multi_chunk(start, n, dn, &mut st, i, k, buf),
+            |i, k, buf| match &mut wholes {
+                Some(w) => self.multi_whole_chunk(start, w, k, buf),
+                None => self.multi_chunk(start, n, dn, &mut st, i, k, buf),
+            },
             unpack_q19,
             &mut out,
         )
+    }
+
+    /// Every light's single plan ([`PhongKernel::one_whole`]) when each
+    /// has one.
+    fn multi_whole(&self, st: &States, len: u32) -> Option<Wholes> {
+        let mut w: Wholes = [const { None }; MAX_LIGHTS];
+        for (o, s) in w.iter_mut().zip(st.iter()) {
+            if let Some(s) = s {
+                *o = Some(self.one_whole(s, len)?);
+            }
+        }
+        Some(w)
+    }
+
+    /// [`PhongKernel::multi_chunk`] of a span whose lights all run with a
+    /// single plan: their 32-bit states stepped on, no chunk set-up.
+    #[inline(never)]
+    fn multi_whole_chunk(
+        &self,
+        start: [i32; 3],
+        ws: &mut Wholes,
+        k: u32,
+        buf: &mut [u32; CHUNK],
+    ) -> bool {
+        let k = (k as usize).min(CHUNK);
+        let mut rb = [0u32; CHUNK];
+        let mut acc = [[0i32; 3]; CHUNK];
+        if let Some(w) = ws[0].as_mut() {
+            let (mut nn, mut nd1, nd2) = (w.nn.wrapping_add(1 << 28), w.nd1, w.nd2);
+            for (r, a) in rb.iter_mut().zip(acc.iter_mut()).take(k) {
+                *r = rsq(nn);
+                *a = start;
+                nn = nn.wrapping_add(nd1);
+                nd1 = nd1.wrapping_add(nd2);
+            }
+            (w.nn, w.nd1) = (nn.wrapping_sub(1 << 28), nd1);
+        }
+        for (w, l) in ws.iter_mut().zip(self.lights.iter()) {
+            if let Some(w) = w {
+                let qm = (w.q, w.qd1, w.qd2);
+                (w.q, w.qd1, w.nl) = if w.spec {
+                    self.multi_light::<true>(l, qm, (w.nl, w.dnl), &rb, &mut acc, k)
+                } else {
+                    self.multi_light::<false>(l, qm, (w.nl, w.dnl), &rb, &mut acc, k)
+                };
+            }
+        }
+        for (o, a) in buf.iter_mut().zip(acc.iter()).take(k) {
+            *o = pack(level_q19(*a));
+        }
+        false
     }
 
     /// The colours (`r | g << 8 | b << 16`) of the `k` pixels from pixel
@@ -132,10 +189,10 @@ impl<R: Real> PhongKernel<'_, R> {
         for (plan, l) in plans.iter().zip(self.lights.iter()) {
             match *plan {
                 Some(Plan::Spec(_, q32, nl, dnl)) => {
-                    self.multi_light::<true>(l, q32, (nl, dnl), &rb, &mut acc, k);
+                    let _ = self.multi_light::<true>(l, q32, (nl, dnl), &rb, &mut acc, k);
                 }
                 Some(Plan::NoSpec(_, nl, dnl)) => {
-                    self.multi_light::<false>(l, (0, 0, 0), (nl, dnl), &rb, &mut acc, k);
+                    let _ = self.multi_light::<false>(l, (0, 0, 0), (nl, dnl), &rb, &mut acc, k);
                 }
                 _ => {}
             }
@@ -148,7 +205,8 @@ impl<R: Real> PhongKernel<'_, R> {
 
     /// One light's terms over a chunk (`qm`: `Qm` in Q20 segments and its
     /// differences, `nl`: `n·L` and its step) added to the sums `acc`
-    /// (module docs) from `1/|n|` in `rb`.
+    /// (module docs) from `1/|n|` in `rb`; returns `Qm`, its difference
+    /// and `n·L` stepped past the `k` pixels.
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
     fn multi_light<const SPEC: bool>(
@@ -159,7 +217,7 @@ impl<R: Real> PhongKernel<'_, R> {
         rb: &[u32; CHUNK],
         acc: &mut [[i32; 3]; CHUNK],
         k: usize,
-    ) {
+    ) -> (i32, i32, i32) {
         let ds = [0, 1, 2].map(|c| i32::from(l.d4[c]) | i32::from(l.s4[c]) << 16);
         let (mut q, mut qd1, qd2) = qm;
         for (&r, a) in rb.iter().zip(acc.iter_mut()).take(k) {
@@ -177,6 +235,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 qd1 = qd1.wrapping_add(qd2);
             }
         }
+        (q, qd1, nl)
     }
 
     /// One pixel of normal `n` (Q30) in 64 bits, every light (`n0`, `dn`,

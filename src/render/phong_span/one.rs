@@ -19,7 +19,10 @@
 //! `Q` (`Qm >= min(ends) - d2·k²/8` over `k` pixels) and runs without it;
 //! one that can be proven neither way, or whose `|n|²` leaves `[0, 2)`,
 //! takes [`PhongKernel::one_exact`] per pixel (the same quantities from the
-//! pixel's normal in 64 bits).
+//! pixel's normal in 64 bits). A span of more than one chunk and at most
+//! [`WHOLE_MAX`] pixels that can be proven as one chunk is skips the
+//! chunk set-up: one plan, its 32-bit state carried from chunk to chunk
+//! ([`Whole`]).
 
 use super::{
     cross, drive, fallback, lin, pack, quad, sq3, unpack, KLight, Out, PhongKernel, CHUNK, RS,
@@ -252,6 +255,28 @@ pub(super) struct OneSpan {
     qm_a: i64,
 }
 
+/// Longest span run with a single plan ([`Whole`]): the 32-bit forward
+/// differences, rounded down once at its first pixel, are then at most
+/// `k + k(k - 1)/2 < 2^15` units of the last place off after `k` steps:
+/// `2^-15` of `|n|²` and `2^-5` of a table segment.
+pub(super) const WHOLE_MAX: u32 = 256;
+
+/// The 32-bit state of a span run with a single plan: `|n|² - 1/4` (Q30),
+/// `Qm` (Q20 segments) and `n·L` with their differences, and whether the
+/// span has a specular term and `n·L > 0` at every pixel.
+pub(super) struct Whole {
+    pub(super) nn: i32,
+    pub(super) nd1: i32,
+    pub(super) nd2: i32,
+    pub(super) q: i32,
+    pub(super) qd1: i32,
+    pub(super) qd2: i32,
+    pub(super) nl: i32,
+    pub(super) dnl: i32,
+    pub(super) spec: bool,
+    pub(super) lit: bool,
+}
+
 /// How a chunk runs: the 32-bit loop with or without the specular
 /// term (`|n|²` and `Qm` as 32-bit forward differences, `n·L` and its
 /// step), or pixel by pixel in 64 bits.
@@ -292,12 +317,77 @@ impl<R: Real> PhongKernel<'_, R> {
         }
         let mut st = self.one_begin(l, n, dn);
         let c = Colour::of(self, l);
+        let mut whole = self.one_whole(&st, len);
         drive(
             len,
-            |i, k, buf| self.one_chunk(l, n, dn, &mut st, i, k, buf),
+            |i, k, buf| match &mut whole {
+                Some(w) => self.whole_chunk(w, k, buf),
+                None => self.one_chunk(l, n, dn, &mut st, i, k, buf),
+            },
             |t| c.of_terms(t),
             &mut out,
         )
+    }
+
+    /// The span's single plan ([`Whole`]) when the span is longer than a
+    /// chunk and at most [`WHOLE_MAX`] pixels long and its whole length can be proven as a
+    /// chunk is (the plan of one chunk of `len` pixels), with `|n|²` at
+    /// least `2^-13` above `1/4` (the 32-bit stepping's error margin).
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    pub(super) fn one_whole(&self, st: &OneSpan, len: u32) -> Option<Whole> {
+        // One chunk or less: its own plan is the whole span's.
+        if len <= CHUNK as u32 || len > WHOLE_MAX {
+            return None;
+        }
+        let (nn_b, _) = advance(st.nn, st.nn_d1, st.nn_d2, len);
+        let nn_lo = st
+            .nn
+            .min(nn_b)
+            .saturating_sub(st.nn_d2.saturating_mul(u64::from(len * len)) / 8);
+        if nn_lo < (1 << 58) + (1 << 45) {
+            return None;
+        }
+        let lit =
+            |nl: i32, dnl: i32| nl > 0 && i64::from(nl) + i64::from(dnl) * i64::from(len - 1) > 0;
+        match self.one_plan(&mut st.clone(), 0, len) {
+            Plan::Spec((a, b, d), (qa, qb, qc), nl, dnl) => Some(Whole {
+                nn: a.wrapping_sub(1 << 28),
+                nd1: b,
+                nd2: d,
+                q: qa,
+                qd1: qb,
+                qd2: qc,
+                nl,
+                dnl,
+                spec: true,
+                lit: lit(nl, dnl),
+            }),
+            Plan::NoSpec((a, b, d), nl, dnl) => Some(Whole {
+                nn: a.wrapping_sub(1 << 28),
+                nd1: b,
+                nd2: d,
+                q: 0,
+                qd1: 0,
+                qd2: 0,
+                nl,
+                dnl,
+                spec: false,
+                lit: false,
+            }),
+            Plan::Exact => None,
+        }
+    }
+
+    /// The next `k` pixels' light terms of a span with a single plan
+    /// ([`Whole`]): its 32-bit state stepped on, no chunk set-up.
+    #[inline(never)]
+    fn whole_chunk(&self, w: &mut Whole, k: u32, buf: &mut [u32; CHUNK]) -> bool {
+        match (w.spec, w.lit) {
+            (true, true) => self.chunk_run::<true, true>(k, w, buf),
+            (true, false) => self.chunk_run::<true, false>(k, w, buf),
+            _ => self.chunk_run::<false, false>(k, w, buf),
+        }
+        true
     }
 
     /// The span's exact state (see the module docs).
@@ -456,13 +546,38 @@ impl<R: Real> PhongKernel<'_, R> {
         k: u32,
         nn: (i32, i32, i32),
         qm: (i32, i32, i32),
-        mut nl: i32,
+        nl: i32,
         dnl: i32,
         buf: &mut [u32; CHUNK],
     ) {
-        let (nn, mut nd1, nd2) = nn;
-        let mut nn = nn.wrapping_sub(1 << 28);
-        let (mut q, mut qd1, qd2) = qm;
+        let mut w = Whole {
+            nn: nn.0.wrapping_sub(1 << 28),
+            nd1: nn.1,
+            nd2: nn.2,
+            q: qm.0,
+            qd1: qm.1,
+            qd2: qm.2,
+            nl,
+            dnl,
+            spec: SPEC,
+            lit: LIT,
+        };
+        self.chunk_run::<SPEC, LIT>(k, &mut w, buf);
+    }
+
+    /// The loop of [`PhongKernel::chunk`] over the state `w` (`|n|²` less
+    /// `1/4`), left stepped past the `k` pixels.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn chunk_run<const SPEC: bool, const LIT: bool>(
+        &self,
+        k: u32,
+        w: &mut Whole,
+        buf: &mut [u32; CHUNK],
+    ) {
+        let (mut nn, mut nd1, nd2) = (w.nn, w.nd1, w.nd2);
+        let (mut q, mut qd1, qd2) = (w.q, w.qd1, w.qd2);
+        let (mut nl, dnl) = (w.nl, w.dnl);
         let rs = core::hint::black_box(&RS_PACKED);
         let buf = buf.get_mut(..k as usize).unwrap_or_default();
         // The terms `N·L` and the specular factor (packed: both below
@@ -483,6 +598,7 @@ impl<R: Real> PhongKernel<'_, R> {
             }
             nl = nl.wrapping_add(dnl);
         }
+        (w.nn, w.nd1, w.q, w.qd1, w.nl) = (nn, nd1, q, qd1, nl);
     }
 
     /// One pixel's colour (`r | g << 8 | b << 16`) from `|n|²` (Q30,
@@ -682,6 +798,70 @@ mod tests {
 
     /// `advance` by `k` steps is `k` single steps, wrapping (the set-up
     /// of a full chunk, `k` a constant, and of a partial one).
+    /// A span run with a single plan ([`Whole`]): its 32-bit `|n|²` and
+    /// `Qm` within `k + k(k - 1)/2` units of the last place below the
+    /// exact values (`u64` forward differences) after `k` steps, over
+    /// spans of [`WHOLE_MAX`] pixels.
+    #[test]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn whole_span_stepping_within_bound() {
+        use crate::geom::Vec3;
+        use crate::illum::{Light, Material, Shade, Specular, Viewer};
+        use crate::num::Q16;
+        let q = Q16::from_f64;
+        let mat = Material {
+            color: Vec3::new(q(1.0), q(0.8), q(0.6)),
+            ka: q(0.1),
+            kd: q(0.7),
+            ks: q(0.5),
+            shininess: q(40.0),
+        };
+        let lights = [Light::directional(
+            Vec3::new(q(0.3), q(0.4), q(0.866)),
+            q(1.0),
+        )];
+        let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+        let k = PhongKernel::new(&shade).unwrap();
+        let l = &k.lights[0];
+        let mut runs = 0;
+        for (n, dn) in [
+            ([0, 0, 1 << 30], [1 << 21, -(1 << 20), -(1 << 18)]),
+            ([-(1 << 28), 1 << 27, 1 << 30], [1 << 20, 3 << 18, 1 << 16]),
+            (
+                [300_000_000, 400_000_000, 880_000_000],
+                [-777_777, 123_457, 54_321],
+            ),
+        ] {
+            let st = k.one_begin(l, n, dn);
+            let Some(mut w) = k.one_whole(&st, WHOLE_MAX) else {
+                continue;
+            };
+            runs += 1;
+            let (mut nn, mut nn_d1) = (st.nn, st.nn_d1);
+            let (mut qx, mut q_d1) = (st.q, st.q_d1);
+            for i in 0..WHOLE_MAX {
+                let bound = i64::from(i + i * i.saturating_sub(1) / 2) + 1;
+                let e_nn = i64::from(((nn >> 30) as i32).wrapping_sub(1 << 28)) - i64::from(w.nn);
+                assert!((0..=bound).contains(&e_nn), "|n|² {i}: {e_nn}");
+                if w.spec {
+                    let e_q = mul_shr48(qx as i64, k.kf) - i64::from(w.q);
+                    assert!((0..=bound).contains(&e_q), "Qm {i}: {e_q}");
+                }
+                (nn, nn_d1) = advance(nn, nn_d1, st.nn_d2, 1);
+                (qx, q_d1) = advance(qx, q_d1, st.q_d2, 1);
+                let (a, b, c, d, e) = (w.nd1, w.nd2, w.qd1, w.qd2, w.dnl);
+                (w.nn, w.nd1, w.q, w.qd1, w.nl) = (
+                    w.nn.wrapping_add(a),
+                    a.wrapping_add(b),
+                    w.q.wrapping_add(c),
+                    c.wrapping_add(d),
+                    w.nl.wrapping_add(e),
+                );
+            }
+        }
+        assert!(runs >= 2, "{runs}");
+    }
+
     #[test]
     fn advance_by_constant_and_variable_k_agree() {
         for &(v, d1, d2) in &[

@@ -250,6 +250,48 @@ fn random_spans_against_f64() {
     assert!(worst[0] <= 1.0 && worst[1] <= 1.0, "{worst:?}");
 }
 
+/// One to four directional lights with the viewer at infinity on spans
+/// of 33 to 256 pixels (the spans run with a single plan, `one::Whole`,
+/// and the longer ones past it): random materials, light colours and
+/// directions, both models, shininess 1 to 10 000, normals up to 60°
+/// apart over 256 pixels: within 1 level of `f64`.
+#[test]
+fn long_directional_spans_against_f64() {
+    let mut s = 0x1234_5678_9abc_def1u64;
+    let mut f =
+        |lo: f64, hi: f64| lo + (hi - lo) * ((xorshift(&mut s) >> 11) as f64 / (1u64 << 53) as f64);
+    let mut worst = [0f64; 2];
+    for it in 0..1600 {
+        let nl = 1 + it % 4;
+        let mut lights = Vec::new();
+        for _ in 0..nl {
+            let mut l =
+                Light::directional(v3(f(-1.0, 1.0), f(-1.0, 1.0), f(0.0, 1.0)), q(f(0.2, 1.5)));
+            l.color = v3(f(0.3, 1.0), f(0.3, 1.0), f(0.3, 1.0));
+            lights.push(l);
+        }
+        let specular = if it % 8 >= 4 {
+            Specular::Blinn
+        } else {
+            Specular::Phong
+        };
+        let c = random_case(&mut f, lights, it % 3 == 0, specular, Viewer::Infinite);
+        let n0 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
+        let n1 = unit([f(-0.7, 0.7), f(-0.7, 0.7), 1.0]);
+        let len = 33 + f(0.0, 250.99) as i32;
+        let dn = [0, 1, 2].map(|k| (n1[k] - n0[k]) / 256.0);
+        let e = span_error(&c, n0, dn, [0.0; 3], [0.0; 3], len);
+        let w = &mut worst[usize::from(nl > 1)];
+        *w = w.max(e);
+    }
+    std::println!(
+        "kernel vs f64, long spans: one light {:.3}, two to four {:.3} levels",
+        worst[0],
+        worst[1]
+    );
+    assert!(worst[0] <= 1.0 && worst[1] <= 1.0, "{worst:?}");
+}
+
 /// Two to eight directional lights with the viewer at infinity (the
 /// loop of several lights, module `multi`): random materials, light
 /// colours and directions, both models, shininess 1 to 10 000, spans of
