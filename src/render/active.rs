@@ -941,11 +941,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let end = po.tris.end as u32;
         let band = t.y0 / self.rows.max(1);
         let (y1, width) = (t.y1 as i32, t.width as i32);
+        let mesh = self.frame.mesh_tris(po);
         loop {
             let Some((ti, src)) = self.take(band, end) else {
                 return Ok(());
             };
-            let Some(tri) = self.frame.tri(po, ti as usize) else {
+            let Some(tri) = self.frame.tri_of(po, mesh, ti as usize) else {
                 return Ok(());
             };
             per_tri(&mut shader, &tri);
@@ -1007,6 +1008,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let end = po.tris.end as u32;
         let band = t.y0 / self.rows.max(1);
         let frame = self.frame;
+        let mesh = frame.mesh_tris(po);
         let (y0, y1, width) = (t.y0 as i32, t.y1 as i32, t.width as i32);
         // A triangle that finds no free slot is set up here.
         let mut scratch = (Walk::EMPTY, [[0i32; 3]; V]);
@@ -1014,7 +1016,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             let Some((ti, src)) = self.take(band, end) else {
                 return Ok(());
             };
-            let Some(tri) = frame.tri(po, ti as usize) else {
+            let Some(tri) = frame.tri_of(po, mesh, ti as usize) else {
                 return Ok(());
             };
             per_tri(&mut shader, &tri);

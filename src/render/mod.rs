@@ -80,7 +80,7 @@ pub use storage::{Capacity, Reach, Storage};
 
 use crate::num::Profile;
 use crate::raster::{RasterError, Vertex};
-use crate::scene::{SceneError, Shading, MAX_OBJECTS};
+use crate::scene::{Object, SceneError, Shading, MAX_OBJECTS};
 use crate::target::{BufferError, Rgb8};
 use core::fmt;
 use core::ops::Range;
@@ -434,12 +434,8 @@ pub struct Frame<'w, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
     /// [`Workspace::faces`].
     faces: &'w [u8],
-    /// Each object's mesh triangles (an array, not a `heapless::Vec`:
-    /// no drop glue, so the frame's borrows end with its last use; not
-    /// the scene's object slice either: a slice of 8-byte entries is one
-    /// load per triangle, measured 17 K instructions less per bunny
-    /// frame on the Cortex-M4, for 256 bytes of the frame).
-    meshes: [&'w [[u16; 3]]; MAX_OBJECTS],
+    /// The scene's objects, whose meshes hold the triangles.
+    scene: &'w [Object<'w, P::Real>],
     objects: heapless::Vec<PreparedObject, MAX_OBJECTS>,
     width: u32,
     height: u32,
@@ -544,8 +540,19 @@ impl<P: Profile> Frame<'_, P> {
     /// triangle from [`Workspace::tris`].
     #[inline(always)]
     pub fn tri(&self, po: &PreparedObject, i: usize) -> Option<PreparedTri> {
+        self.tri_of(po, self.mesh_tris(po), i)
+    }
+
+    /// [`Self::tri`] with `po`'s mesh triangles ([`Self::mesh_tris`])
+    /// looked up by the caller, once per object rather than per triangle.
+    #[inline(always)]
+    pub(crate) fn tri_of(
+        &self,
+        po: &PreparedObject,
+        mesh: &[[u16; 3]],
+        i: usize,
+    ) -> Option<PreparedTri> {
         let k = i.checked_sub(usize::from(po.tris.start))?;
-        let mesh = self.mesh_tris(po);
         // An object that keeps a triangle numbers its mesh's triangles
         // from `tris.start` on, its made ones from `made` =
         // `tris.start + mesh.len()` on.
@@ -577,12 +584,10 @@ impl<P: Profile> Frame<'_, P> {
 
     /// The triangles of object `po`'s mesh.
     #[inline(always)]
-    fn mesh_tris(&self, po: &PreparedObject) -> &[[u16; 3]] {
-        // (`MAX_OBJECTS` is a power of two: the mask is the bound check.)
-        const _: () = assert!(MAX_OBJECTS.is_power_of_two());
-        self.meshes
-            .get(usize::from(po.object) & (MAX_OBJECTS - 1))
-            .map_or(&[], |m| m)
+    pub(crate) fn mesh_tris(&self, po: &PreparedObject) -> &[[u16; 3]] {
+        self.scene
+            .get(usize::from(po.object))
+            .map_or(&[], |o| o.mesh.triangles())
     }
 
     /// The object of triangle number `i` (`None` past the last).
