@@ -794,7 +794,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             if po.tris.is_empty() || self.peek(band_index) >= po.tris.end as u32 {
                 continue;
             }
-            match po.layout {
+            match po.layout() {
                 Layout::Flat if fixed => {
                     self.run_fast::<0, _, _, _>(po, &mut t, Flat(Rgb8::BLACK), |s, t| {
                         s.0 = t.color
@@ -826,7 +826,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         sc.viewer,
                     )
                     .map_err(|_| SceneError::TooManyLights)?;
-                    let normal = po.layout == Layout::PhongNormal;
+                    let normal = po.layout() == Layout::PhongNormal;
                     // The span kernel (`phong_span`) where the profile has
                     // one (the affine Q16 profiles), else the per-pixel
                     // shader.
@@ -1336,7 +1336,7 @@ where
     };
     let sub = P::SUBPIXEL_BITS;
     // Packed grey vertices: depths and levels from their 16-bit fields.
-    let packed = N == 1 && po.layout.packed_in::<P>();
+    let packed = N == 1 && po.layout().packed_in::<P>();
     if let Some(r) =
         draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, packed, shader)
     {

@@ -1046,17 +1046,17 @@ impl<P: Profile> Preparer<'_, P> {
         // vertex (2^18), triangle numbers, made triangles and colours
         // below `MAX_TRIANGLES` (the workspace's parts are cut to it), at
         // most `MAX_OBJECTS` (32) objects: every index fits.
-        Ok(PreparedObject {
+        Ok(PreparedObject::new(
             layout,
-            stride: ctx.stride as u8,
-            verts: ctx.v_start as u16..self.nv as u16,
-            val_base: ctx.val_base as u32,
-            tris: tris.start as u16..tris.end as u16,
-            made_base: made_base as u16,
-            object: self.object as u8,
-            color_base: color_base as u16,
-            rows: if rows[0] < rows[1] { rows } else { [0; 2] },
-        })
+            ctx.stride,
+            ctx.val_base,
+            self.object,
+            ctx.v_start as u16..self.nv as u16,
+            tris.start as u16..tris.end as u16,
+            made_base as u16,
+            color_base as u16,
+            if rows[0] < rows[1] { rows } else { [0; 2] },
+        ))
     }
 
     /// The eye-space position of mesh vertex `i`.
