@@ -29,7 +29,7 @@
 //! | per triangle number (every mesh triangle of a prepared object, kept or not) | 1 ([`Workspace::faces`]: kept, first row, back face; a mesh triangle's vertices are read from the mesh, never copied), and 3 (an [`Rgb8`] colour) in a flat object |
 //! | per made triangle (fans of clipped triangles, two-sided Gouraud back faces) | 6 ([`Tri`]) and a triangle number |
 //! | band state ([`BandState`]) | 2 per triangle number (order scratch: the kept triangles by band, the rest a queue) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
-//! | the [`Frame`] value itself (the caller's stack) | 24 per [`PreparedObject`] and 8 per object's mesh triangles, [`MAX_OBJECTS`] = 32 of each: 1 024 |
+//! | the [`Frame`] value itself (the caller's stack) | 20 per [`PreparedObject`], [`MAX_OBJECTS`] = 32 of them: 640 (the mesh triangles are read through the scene's object slice) |
 //!
 //! A prepared vertex is made per mesh vertex (one per distinct position
 //! and normal), in one linear pass, so shared vertices are transformed and

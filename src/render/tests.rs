@@ -464,7 +464,7 @@ fn memory_figures_are_as_documented() {
     let s = scene(&objs, &ls, [0.0, 0.0, 3.922]);
     let mut mem = Mem::<i32>::new(4000, 4000);
     let frame = prepare::<Fast>(&s, 240, 240, mem.ws()).unwrap();
-    assert_eq!(frame.objects()[0].layout, Layout::GouraudMono);
+    assert_eq!(frame.objects()[0].layout(), Layout::GouraudMono);
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
@@ -481,7 +481,7 @@ fn memory_figures_are_as_documented() {
     let s = scene(&objs, &ls, [0.0, 0.0, 5.0]);
     let mut mem = Mem::<i32>::new(100, 100);
     let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
-    assert_eq!(frame.objects()[0].layout, Layout::PhongPosition);
+    assert_eq!(frame.objects()[0].layout(), Layout::PhongPosition);
     // Directional light and a viewer at infinity: normals only.
     let ls = [Light::directional(
         Vec3::from_f32([0.0, 0.0, 1.0]),
@@ -493,7 +493,7 @@ fn memory_figures_are_as_documented() {
     };
     let mut mem = Mem::<i32>::new(100, 100);
     let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
-    assert_eq!(frame.objects()[0].layout, Layout::PhongNormal);
+    assert_eq!(frame.objects()[0].layout(), Layout::PhongNormal);
 }
 
 #[test]
