@@ -234,9 +234,9 @@ fn rooms(
             } else {
                 Reach::Inside
             };
-            cap = cap.object(&o.mesh, p.layout, reach);
+            cap = cap.object(&o.mesh, p.layout(), reach);
             ObjectRoom {
-                layout: p.layout,
+                layout: p.layout(),
                 reach,
             }
         })

@@ -218,7 +218,7 @@ impl<P: Profile> Frame<'_, P> {
         let mut spec_cache = None;
         for (po, obj) in self.objects.iter().zip(scene.objects.iter()) {
             let d = depth.as_deref_mut();
-            match po.layout {
+            match po.layout() {
                 Layout::Flat => {
                     let mut f = Fill::new(target, d, Flat(Rgb8::BLACK))?;
                     self.draw_object::<0, _, _, _>(po, &mut f, &mut stats, |s, t| s.0 = t.color)?;
@@ -268,7 +268,7 @@ impl<P: Profile> Frame<'_, P> {
                     if let Some(k) = &kernel {
                         let mut f = PhongFill::new(&mut *target, d, k)?;
                         let w = f.window();
-                        if po.layout == Layout::PhongNormal {
+                        if po.layout() == Layout::PhongNormal {
                             let set =
                                 |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
                                  t: &PreparedTri| f.back = t.back;
@@ -291,7 +291,7 @@ impl<P: Profile> Frame<'_, P> {
                         let mut f = Fill::new(target, d, Persp(sh))?;
                         let set =
                             |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| s.0.back = t.back;
-                        if po.layout == Layout::PhongNormal {
+                        if po.layout() == Layout::PhongNormal {
                             self.draw_object::<4, _, _, _>(po, &mut f, &mut stats, set)?;
                         } else {
                             self.draw_object::<7, _, _, _>(po, &mut f, &mut stats, set)?;
@@ -300,7 +300,7 @@ impl<P: Profile> Frame<'_, P> {
                     } else {
                         let mut f = Fill::new(target, d, sh)?;
                         let set = |s: &mut PhongShader<'_, P>, t: &PreparedTri| s.back = t.back;
-                        if po.layout == Layout::PhongNormal {
+                        if po.layout() == Layout::PhongNormal {
                             self.draw_object::<3, _, _, _>(po, &mut f, &mut stats, set)?;
                         } else {
                             self.draw_object::<6, _, _, _>(po, &mut f, &mut stats, set)?;

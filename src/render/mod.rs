@@ -29,7 +29,7 @@
 //! | per triangle number (every mesh triangle of a prepared object, kept or not) | 1 ([`Workspace::faces`]: kept, first row, back face; a mesh triangle's vertices are read from the mesh, never copied), and 3 (an [`Rgb8`] colour) in a flat object |
 //! | per made triangle (fans of clipped triangles, two-sided Gouraud back faces) | 6 ([`Tri`]) and a triangle number |
 //! | band state ([`BandState`]) | 2 per triangle number (order scratch: the kept triangles by band, the rest a queue) + [`Pool::SLOT_BYTES`] + 4 per active triangle slot |
-//! | the [`Frame`] value itself (the caller's stack) | 24 per [`PreparedObject`] and 8 per object's mesh triangles, [`MAX_OBJECTS`] = 32 of each: 1 024 |
+//! | the [`Frame`] value itself (the caller's stack) | 20 per [`PreparedObject`], [`MAX_OBJECTS`] = 32 of them: 640 (the mesh triangles are read through the scene's object slice) |
 //!
 //! A prepared vertex is made per mesh vertex (one per distinct position
 //! and normal), in one linear pass, so shared vertices are transformed and
@@ -80,7 +80,7 @@ pub use storage::{Capacity, Reach, Storage};
 
 use crate::num::Profile;
 use crate::raster::{RasterError, Vertex};
-use crate::scene::{SceneError, Shading, MAX_OBJECTS};
+use crate::scene::{Object, SceneError, Shading, MAX_OBJECTS};
 use crate::target::{BufferError, Rgb8};
 use core::fmt;
 use core::ops::Range;
@@ -383,28 +383,21 @@ pub(crate) fn pack_grey(d: i32, l: i32) -> i32 {
     grey_depth(d) | grey_level(l)
 }
 
-/// One object of a prepared frame: 24 bytes (indices as `u16`: below
+/// One object of a prepared frame: 20 bytes (indices as `u16`: below
 /// [`MAX_VERTICES`] vertices and [`MAX_TRIANGLES`] triangle numbers;
-/// values below `MAX_VERTICES × 8`), so that a frame's object list
-/// ([`MAX_OBJECTS`] of them) stays small on the stack.
+/// values below `MAX_VERTICES × 8` = 2^18, packed in one word with the
+/// stride, the layout and the object's index), so that a frame's object
+/// list ([`MAX_OBJECTS`] of them) stays small on the stack.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PreparedObject {
-    /// Layout of its vertices.
-    pub layout: Layout,
-    /// Values per prepared vertex.
-    pub stride: u8,
     /// Its prepared vertices.
     pub verts: Range<u16>,
-    /// Index of its first value in [`Workspace::vals`].
-    pub val_base: u32,
     /// Its triangle numbers: its mesh's triangles (those the view keeps
     /// are marked in [`Workspace::faces`]), then the triangles it made
     /// (all kept). Empty when it keeps none.
     pub tris: Range<u16>,
     /// Index of its first made triangle in [`Workspace::tris`].
     pub made_base: u16,
-    /// Its index in the scene (whose mesh holds its triangles).
-    pub object: u8,
     /// Index of its first triangle's colour in [`Workspace::colors`] (flat
     /// objects; the others have none): triangle number `t`'s colour is at
     /// `color_base + t - tris.start`.
@@ -414,13 +407,80 @@ pub struct PreparedObject {
     /// its projected vertices; empty when it has no triangle): a band
     /// outside them skips the object.
     pub rows: [u16; 2],
+    /// [`Self::val_base`] (bits 0 to 17), [`Self::stride`] (bits 18 to
+    /// 21), [`Self::layout`] (bits 22 to 24) and [`Self::object`] (bits 25
+    /// to 29).
+    packed: u32,
 }
 
+/// Bits of [`PreparedObject::val_base`] in its packed word.
+const VAL_BITS: u32 = 18;
+
 impl PreparedObject {
+    /// An object of layout `layout` whose `stride` values per vertex start
+    /// at `val_base` (below 2^18; `stride` below 16), object `object`
+    /// (below [`MAX_OBJECTS`]) of its scene.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn new(
+        layout: Layout,
+        stride: usize,
+        val_base: usize,
+        object: usize,
+        verts: Range<u16>,
+        tris: Range<u16>,
+        made_base: u16,
+        color_base: u16,
+        rows: [u16; 2],
+    ) -> Self {
+        const _: () = assert!(MAX_VERTICES * 8 <= 1 << VAL_BITS && MAX_OBJECTS <= 32);
+        let packed = (val_base as u32 & ((1 << VAL_BITS) - 1))
+            | (stride as u32 & 15) << VAL_BITS
+            | (layout as u32) << (VAL_BITS + 4)
+            | (object as u32 & 31) << (VAL_BITS + 7);
+        Self {
+            verts,
+            tris,
+            made_base,
+            color_base,
+            rows,
+            packed,
+        }
+    }
+
+    /// Layout of its vertices.
+    #[inline(always)]
+    pub fn layout(&self) -> Layout {
+        match (self.packed >> (VAL_BITS + 4)) & 7 {
+            0 => Layout::Flat,
+            1 => Layout::GouraudMono,
+            2 => Layout::GouraudRgb,
+            3 => Layout::PhongNormal,
+            _ => Layout::PhongPosition,
+        }
+    }
+
+    /// Values per prepared vertex.
+    #[inline(always)]
+    pub fn stride(&self) -> usize {
+        ((self.packed >> VAL_BITS) & 15) as usize
+    }
+
+    /// Index of its first value in [`Workspace::vals`].
+    #[inline(always)]
+    pub fn val_base(&self) -> usize {
+        (self.packed & ((1 << VAL_BITS) - 1)) as usize
+    }
+
+    /// Its index in the scene (whose mesh holds its triangles).
+    #[inline(always)]
+    pub fn object(&self) -> usize {
+        ((self.packed >> (VAL_BITS + 7)) & 31) as usize
+    }
+
     /// Flat-triangle colours it holds (one per triangle number when flat,
     /// else none).
     pub fn color_count(&self) -> usize {
-        if self.layout == Layout::Flat {
+        if self.layout() == Layout::Flat {
             self.tris.len()
         } else {
             0
@@ -434,12 +494,8 @@ pub struct Frame<'w, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
     /// [`Workspace::faces`].
     faces: &'w [u8],
-    /// Each object's mesh triangles (an array, not a `heapless::Vec`:
-    /// no drop glue, so the frame's borrows end with its last use; not
-    /// the scene's object slice either: a slice of 8-byte entries is one
-    /// load per triangle, measured 17 K instructions less per bunny
-    /// frame on the Cortex-M4, for 256 bytes of the frame).
-    meshes: [&'w [[u16; 3]]; MAX_OBJECTS],
+    /// The scene's objects, whose meshes hold the triangles.
+    scene: &'w [Object<'w, P::Real>],
     objects: heapless::Vec<PreparedObject, MAX_OBJECTS>,
     width: u32,
     height: u32,
@@ -516,9 +572,10 @@ impl<P: Profile> Frame<'_, P> {
     /// (`size_of`), without the band renderer's order scratch.
     pub fn bytes_used(&self) -> usize {
         use core::mem::size_of;
-        let vals = self.objects.last().map_or(0, |o| {
-            o.val_base as usize + o.verts.len() * usize::from(o.stride)
-        });
+        let vals = self
+            .objects
+            .last()
+            .map_or(0, |o| o.val_base() + o.verts.len() * o.stride());
         self.vertex_count() * size_of::<ScreenXy>()
             + vals * size_of::<P::Lerp>()
             + self.triangle_numbers()
@@ -544,8 +601,19 @@ impl<P: Profile> Frame<'_, P> {
     /// triangle from [`Workspace::tris`].
     #[inline(always)]
     pub fn tri(&self, po: &PreparedObject, i: usize) -> Option<PreparedTri> {
+        self.tri_of(po, self.mesh_tris(po), i)
+    }
+
+    /// [`Self::tri`] with `po`'s mesh triangles ([`Self::mesh_tris`])
+    /// looked up by the caller, once per object rather than per triangle.
+    #[inline(always)]
+    pub(crate) fn tri_of(
+        &self,
+        po: &PreparedObject,
+        mesh: &[[u16; 3]],
+        i: usize,
+    ) -> Option<PreparedTri> {
         let k = i.checked_sub(usize::from(po.tris.start))?;
-        let mesh = self.mesh_tris(po);
         // An object that keeps a triangle numbers its mesh's triangles
         // from `tris.start` on, its made ones from `made` =
         // `tris.start + mesh.len()` on.
@@ -564,7 +632,7 @@ impl<P: Profile> Frame<'_, P> {
                 (p.v(), p.back())
             }
         };
-        let color = if po.layout == Layout::Flat {
+        let color = if po.layout() == Layout::Flat {
             self.ws
                 .colors
                 .get(usize::from(po.color_base) + k)
@@ -577,12 +645,10 @@ impl<P: Profile> Frame<'_, P> {
 
     /// The triangles of object `po`'s mesh.
     #[inline(always)]
-    fn mesh_tris(&self, po: &PreparedObject) -> &[[u16; 3]] {
-        // (`MAX_OBJECTS` is a power of two: the mask is the bound check.)
-        const _: () = assert!(MAX_OBJECTS.is_power_of_two());
-        self.meshes
-            .get(usize::from(po.object) & (MAX_OBJECTS - 1))
-            .map_or(&[], |m| m)
+    pub(crate) fn mesh_tris(&self, po: &PreparedObject) -> &[[u16; 3]] {
+        self.scene
+            .get(po.object())
+            .map_or(&[], |o| o.mesh.triangles())
     }
 
     /// The object of triangle number `i` (`None` past the last).
@@ -658,11 +724,10 @@ impl<P: Profile> Frame<'_, P> {
         [x, y]: [i32; 2],
     ) -> Option<Vertex<P::Lerp, N>> {
         let i = usize::from(i);
-        let base = po.val_base as usize
-            + i.checked_sub(usize::from(po.verts.start))? * usize::from(po.stride);
+        let base = po.val_base() + i.checked_sub(usize::from(po.verts.start))? * po.stride();
         // (Grey objects read one value besides the depth: the other
         // readers need no test.)
-        if N == 1 && po.layout.packed_in::<P>() {
+        if N == 1 && po.layout().packed_in::<P>() {
             let (z, l) = unpack_grey(crate::raster::Lerp::fixed_raw(*self.ws.vals.get(base)?)?);
             let l = <P::Lerp as crate::raster::Lerp>::from_fixed_raw(l);
             return Some(Vertex {

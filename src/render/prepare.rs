@@ -62,7 +62,7 @@ use crate::num::approx16;
 use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
 use crate::num::{Kernels, Profile, Real};
 use crate::raster::{first_row, Lerp, SubpixelBits, COORD_LIMIT_PX};
-use crate::scene::{Object, Scene, SceneError, Shading, MAX_OBJECTS};
+use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
 
 /// Largest magnitude of a stored screen coordinate ([`ScreenXy`]), in
@@ -314,8 +314,8 @@ impl<R: Real> View<R> {
 /// default 4), a mesh without
 /// normals for smooth shading, or a workspace part too small (naming the
 /// part and the object).
-pub fn prepare<'w, 'm: 'w, P: Profile>(
-    scene: &Scene<'_, 'm, P::Real>,
+pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'s, 'm, P::Real>,
     width: u32,
     height: u32,
     ws: Workspace<'w, P::Lerp>,
@@ -401,14 +401,10 @@ pub fn prepare<'w, 'm: 'w, P: Profile>(
         marked: false,
     };
     let mut objects = heapless::Vec::new();
-    let mut meshes: [&'w [[u16; 3]]; MAX_OBJECTS] = [&[]; MAX_OBJECTS];
     for (oi, obj) in scene.objects.iter().enumerate() {
         p.object = oi;
         let po = p.object_pass(scene, obj, &lights)?;
         objects.push(po).map_err(|_| SceneError::TooManyObjects)?;
-        if let Some(m) = meshes.get_mut(oi) {
-            *m = obj.mesh.triangles();
-        }
     }
     let Workspace {
         xy,
@@ -426,7 +422,7 @@ pub fn prepare<'w, 'm: 'w, P: Profile>(
             faces: &mut [],
         },
         faces,
-        meshes,
+        scene: scene.objects,
         objects,
         width,
         height,
@@ -1050,17 +1046,17 @@ impl<P: Profile> Preparer<'_, P> {
         // vertex (2^18), triangle numbers, made triangles and colours
         // below `MAX_TRIANGLES` (the workspace's parts are cut to it), at
         // most `MAX_OBJECTS` (32) objects: every index fits.
-        Ok(PreparedObject {
+        Ok(PreparedObject::new(
             layout,
-            stride: ctx.stride as u8,
-            verts: ctx.v_start as u16..self.nv as u16,
-            val_base: ctx.val_base as u32,
-            tris: tris.start as u16..tris.end as u16,
-            made_base: made_base as u16,
-            object: self.object as u8,
-            color_base: color_base as u16,
-            rows: if rows[0] < rows[1] { rows } else { [0; 2] },
-        })
+            ctx.stride,
+            ctx.val_base,
+            self.object,
+            ctx.v_start as u16..self.nv as u16,
+            tris.start as u16..tris.end as u16,
+            made_base as u16,
+            color_base as u16,
+            if rows[0] < rows[1] { rows } else { [0; 2] },
+        ))
     }
 
     /// The eye-space position of mesh vertex `i`.

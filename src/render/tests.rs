@@ -434,7 +434,7 @@ fn a_convex_object_with_culling_needs_no_depth_buffer() {
 fn memory_figures_are_as_documented() {
     assert_eq!(core::mem::size_of::<Tri>(), 6);
     assert_eq!(core::mem::size_of::<Rgb8>(), 3);
-    assert_eq!(core::mem::size_of::<PreparedObject>(), 24);
+    assert_eq!(core::mem::size_of::<PreparedObject>(), 20);
     let strides = [
         (Layout::Flat, 1),
         (Layout::GouraudMono, 2),
@@ -464,7 +464,7 @@ fn memory_figures_are_as_documented() {
     let s = scene(&objs, &ls, [0.0, 0.0, 3.922]);
     let mut mem = Mem::<i32>::new(4000, 4000);
     let frame = prepare::<Fast>(&s, 240, 240, mem.ws()).unwrap();
-    assert_eq!(frame.objects()[0].layout, Layout::GouraudMono);
+    assert_eq!(frame.objects()[0].layout(), Layout::GouraudMono);
     assert_eq!(frame.vertex_count(), 1839);
     let t = frame.triangle_count();
     assert!((1400..1900).contains(&t), "{t} front faces");
@@ -481,7 +481,7 @@ fn memory_figures_are_as_documented() {
     let s = scene(&objs, &ls, [0.0, 0.0, 5.0]);
     let mut mem = Mem::<i32>::new(100, 100);
     let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
-    assert_eq!(frame.objects()[0].layout, Layout::PhongPosition);
+    assert_eq!(frame.objects()[0].layout(), Layout::PhongPosition);
     // Directional light and a viewer at infinity: normals only.
     let ls = [Light::directional(
         Vec3::from_f32([0.0, 0.0, 1.0]),
@@ -493,7 +493,7 @@ fn memory_figures_are_as_documented() {
     };
     let mut mem = Mem::<i32>::new(100, 100);
     let frame = prepare::<Fast>(&s, 64, 64, mem.ws()).unwrap();
-    assert_eq!(frame.objects()[0].layout, Layout::PhongNormal);
+    assert_eq!(frame.objects()[0].layout(), Layout::PhongNormal);
 }
 
 #[test]
@@ -875,7 +875,7 @@ fn non_uniform_scale_lights_with_the_inverse_transpose() {
         let mut mem = Mem::<P::Lerp>::new(4000, 4000);
         let frame = prepare::<P>(&s, 128, 128, mem.ws()).unwrap();
         let po = &frame.objects()[0];
-        assert_eq!(po.layout, Layout::GouraudMono);
+        assert_eq!(po.layout(), Layout::GouraudMono);
         // The exact inverse-transpose of the (f64) matrix, in world
         // space (the camera is a translation along z).
         let mf = m.rows.map(|r| r.to_f64());
@@ -908,8 +908,8 @@ fn non_uniform_scale_lights_with_the_inverse_transpose() {
             let len = (ne[0] * ne[0] + ne[1] * ne[1] + ne[2] * ne[2]).sqrt();
             let nl = (0..3).map(|k| ne[k] / len * ln[k]).sum::<f64>().max(0.0);
             let want = 255.0 * (0.2 + 0.8 * nl).min(1.0);
-            let at = po.val_base as usize + i * usize::from(po.stride);
-            let v = if po.layout.packed_in::<P>() {
+            let at = po.val_base() + i * po.stride();
+            let v = if po.layout().packed_in::<P>() {
                 // Depth and level in one value: the level, in Q16.
                 use crate::raster::Lerp;
                 let raw = frame.ws.vals[at].fixed_raw().unwrap();
