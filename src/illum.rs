@@ -592,16 +592,14 @@ impl<R: Real> ObjectLight<R> {
 }
 
 impl<R: Real> ObjectLight<R> {
-    /// The integer form of these lights for the `fast` vertex kernel:
-    /// colour levels (Q16, `255 = 255 · 2^16`) straight from a Q1.14
-    /// normal, or `None` unless `R` is `Q16` and every diffuse factor is
-    /// below `2^8 / 255 ≈ 1.004` (brighter lights use [`ObjectLight::at`]).
-    pub(crate) fn levels(&self) -> Option<LevelLight> {
-        R::Kernels::pick(|_| self.levels_q16(), || None)
-    }
-
-    /// [`ObjectLight::levels`] of `Q16` lights.
-    fn levels_q16(&self) -> Option<LevelLight> {
+    /// The integer form of these `Q16` lights (`q`: the raw access that
+    /// [`Kernels`](crate::num::Kernels) hands out for `Q16` only) for the
+    /// `fast` vertex kernel: colour levels (Q16, `255 = 255 · 2^16`)
+    /// straight from a Q1.14 normal, or `None` unless every diffuse
+    /// factor is below `2^8 / 255 ≈ 1.004` (brighter lights use
+    /// [`ObjectLight::at`]).
+    pub(crate) fn levels(&self, q: Raw16<R>) -> Option<LevelLight> {
+        let raw3 = |v: Vec3<R>| [q.raw(v.x), q.raw(v.y), q.raw(v.z)];
         #[allow(clippy::cast_possible_truncation)]
         let ambient =
             raw3(self.ambient).map(|a| (i64::from(a) * 255).clamp(-(1 << 29), 1 << 29) as i32);
@@ -766,15 +764,12 @@ pub(crate) type RawShade = (
 );
 
 impl<R: Real> Shade<R> {
-    /// The folded material and lights as raw `Q16` bits (`None` unless
-    /// `R` is `Q16`, [`Q16Kernels`](crate::num::Q16Kernels)): ambient, lights, shininess
-    /// (Q16), whether the specular term is on, its model and the viewer.
-    pub(crate) fn raw_q16(&self) -> Option<RawShade> {
-        R::Kernels::pick(|_| Some(self.raw_parts()), || None)
-    }
-
-    /// [`Shade::raw_q16`] of a `Q16` shade.
-    fn raw_parts(&self) -> RawShade {
+    /// The folded material and lights of a `Q16` shade as raw bits (`q`:
+    /// the raw access that [`Kernels`](crate::num::Kernels) hands out for
+    /// `Q16` only): ambient, lights, shininess (Q16), whether the
+    /// specular term is on, its model and the viewer.
+    pub(crate) fn raw_q16(&self, q: Raw16<R>) -> RawShade {
+        let raw3 = |v: Vec3<R>| [q.raw(v.x), q.raw(v.y), q.raw(v.z)];
         let mut terms = heapless::Vec::new();
         for t in &self.terms {
             // Never fails: as many terms as `self.terms` holds.
@@ -788,7 +783,7 @@ impl<R: Real> Shade<R> {
         (
             raw3(self.ambient),
             terms,
-            raw(self.shininess),
+            q.raw(self.shininess),
             self.has_specular(),
             self.specular,
             self.viewer,

@@ -7,7 +7,7 @@
 use super::Affine;
 use crate::num::approx16::{recip_mant, rsqrt_newton};
 use crate::num::wide::{clz32, wmul, wmul_u32};
-use crate::num::{Kernels, Raw16, Real};
+use crate::num::{Raw16, Real, COORD_LIMIT_PX};
 
 /// Largest matrix entry magnitude (exclusive) of the integer transform:
 /// 256 (a model scale up to about 256). Larger transforms use the generic
@@ -75,14 +75,11 @@ fn row_split_pre(mh: &[i32; 3], ml: &[i32; 3], c: [i16; 3]) -> i32 {
 }
 
 impl Xform16 {
-    /// The integer form of `a`, or `None` when the scalar is not `Q16` or
-    /// an entry of the linear part reaches 256.
-    pub(crate) fn new<R: Real>(a: &Affine<R>) -> Option<Self> {
-        R::Kernels::pick(|q| Self::of_raw(q, a), || None)
-    }
-
-    /// [`Xform16::new`] of a `Q16` transform.
-    fn of_raw<R: Real>(q: Raw16<R>, a: &Affine<R>) -> Option<Self> {
+    /// The integer form of `Q16` transform `a` (its raw bits read by `q`,
+    /// which [`Kernels`](crate::num::Kernels) hands out for
+    /// `Q16` only), or `None` when an entry of the linear part reaches
+    /// 256.
+    pub(crate) fn new<R: Real>(q: Raw16<R>, a: &Affine<R>) -> Option<Self> {
         let raw = |v: R| q.raw(v);
         let m = a.m.rows.map(|r| [raw(r.x), raw(r.y), raw(r.z)]);
         if m.iter().flatten().any(|v| v.unsigned_abs() >= M_LIMIT) {
@@ -381,6 +378,20 @@ fn shr_round_clamp_wide(p: i64, s: u32, lim: i32) -> i32 {
 }
 
 impl Proj16 {
+    /// The projection of scale `k` (pixels per unit at distance 1), near
+    /// plane `near` and screen centre `(cx, cy)` (pixels) for `sub`
+    /// subpixel bits (at most [`SubpixelBits::MAX`](crate::num::SubpixelBits::MAX)),
+    /// of a `Q16` scalar (its raw bits read by `q`).
+    pub(crate) fn new<R: Real>(q: Raw16<R>, k: R, near: R, [cx, cy]: [R; 2], sub: u32) -> Self {
+        Self {
+            k: q.raw(k),
+            near: q.raw(near),
+            cx: cx.to_fixed_i32(sub),
+            cy: cy.to_fixed_i32(sub),
+            lim: COORD_LIMIT_PX << sub,
+        }
+    }
+
     /// Screen position in subpixels (`sub <= 15` fraction bits) and the weight `q = near/w` in raw Q16 of the
     /// eye-space point `p` (raw Q16) with `w = -z > 0`.
     ///

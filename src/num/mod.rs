@@ -27,7 +27,7 @@ pub use self::profile::{
     F32Pc, F64Pc, Fast, FastPc, FastSub, Precise, PrecisePc, Profile, COORD_FRAC_BITS,
     COORD_FRAC_BITS_PC, DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,
 };
-pub use self::real::{GenericKernels, Kernels, Q16Kernels, Raw16, Real};
+pub use self::real::{GenericKernels, Kernels, Only, Q16Kernels, Raw16, Real};
 pub use self::recip::{InvArea, Recip};
 pub use self::subpixel::{BadSubpixelBits, SubpixelBits, COORD_LIMIT_PX};
 pub use self::tables::{rsqrt_quarter_table, spec_table};

@@ -160,11 +160,42 @@ pub trait Real:
 /// and the generic form on the scalar's own operations. The type picks
 /// one; the other is never instantiated for it, so no branch and no dead
 /// path is compiled into either.
+///
+/// Values that only the integer form uses (its constants, built once and
+/// kept in a generic caller's state) are held as [`Kernels::Only`]: the
+/// value itself for [`Q16Kernels`], nothing (`()`) for
+/// [`GenericKernels`], so generic code stores no `Option` field that is
+/// `None` by type, and the other types neither compute nor store the
+/// integer constants. [`Kernels::only`] builds one, [`Kernels::map`]
+/// makes one from another, [`Kernels::get`] reads it.
 pub trait Kernels<R: Real>: sealed::Sealed {
+    /// A value of the integer form: `T` for [`Q16Kernels`], `()` for
+    /// [`GenericKernels`].
+    type Only<T>;
+
     /// `q16(Raw16)` for [`Q16Kernels`], `generic()` for
     /// [`GenericKernels`].
     fn pick<T>(q16: impl FnOnce(Raw16<R>) -> T, generic: impl FnOnce() -> T) -> T;
+
+    /// The integer form's value `q16(Raw16)` for [`Q16Kernels`]; nothing
+    /// (`q16` not called) for [`GenericKernels`].
+    fn only<T>(q16: impl FnOnce(Raw16<R>) -> T) -> Self::Only<T>;
+
+    /// The integer form's value `f(Raw16, v)` made from its value `v`
+    /// ([`Q16Kernels`]); nothing for [`GenericKernels`].
+    fn map<T, U>(v: &Self::Only<T>, f: impl FnOnce(Raw16<R>, &T) -> U) -> Self::Only<U>;
+
+    /// The integer form's value with the raw access: `Some` for
+    /// [`Q16Kernels`], `None` for [`GenericKernels`]. A constant of the
+    /// type, so each type compiles one arm of a `match` on it (unlike a
+    /// closure handed to [`Kernels::pick`], the arm is inlined where it
+    /// stands: the vertex paths that read an object's constants per
+    /// vertex use this).
+    fn get<T>(v: &Self::Only<T>) -> Option<(Raw16<R>, &T)>;
 }
+
+/// [`Kernels::Only`] of scalar `R`: `T` for `Q16`, `()` for the others.
+pub type Only<R, T> = <<R as Real>::Kernels as Kernels<R>>::Only<T>;
 
 mod sealed {
     /// Only the two kernel sets of `num` implement [`Kernels`](super::Kernels).
@@ -178,9 +209,22 @@ mod sealed {
 pub enum GenericKernels {}
 
 impl<R: Real> Kernels<R> for GenericKernels {
+    type Only<T> = ();
+
     #[inline(always)]
     fn pick<T>(_: impl FnOnce(Raw16<R>) -> T, generic: impl FnOnce() -> T) -> T {
         generic()
+    }
+
+    #[inline(always)]
+    fn only<T>(_: impl FnOnce(Raw16<R>) -> T) {}
+
+    #[inline(always)]
+    fn map<T, U>(_: &(), _: impl FnOnce(Raw16<R>, &T) -> U) {}
+
+    #[inline(always)]
+    fn get<T>(_: &()) -> Option<(Raw16<R>, &T)> {
+        None
     }
 }
 
@@ -190,9 +234,26 @@ impl<R: Real> Kernels<R> for GenericKernels {
 pub enum Q16Kernels {}
 
 impl Kernels<super::Q16> for Q16Kernels {
+    type Only<T> = T;
+
     #[inline(always)]
     fn pick<T>(q16: impl FnOnce(Raw16<super::Q16>) -> T, _: impl FnOnce() -> T) -> T {
         q16(Raw16::Q16)
+    }
+
+    #[inline(always)]
+    fn only<T>(q16: impl FnOnce(Raw16<super::Q16>) -> T) -> T {
+        q16(Raw16::Q16)
+    }
+
+    #[inline(always)]
+    fn map<T, U>(v: &T, f: impl FnOnce(Raw16<super::Q16>, &T) -> U) -> U {
+        f(Raw16::Q16, v)
+    }
+
+    #[inline(always)]
+    fn get<T>(v: &T) -> Option<(Raw16<super::Q16>, &T)> {
+        Some((Raw16::Q16, v))
     }
 }
 
@@ -248,6 +309,30 @@ mod tests {
         assert_eq!(kernels::<Q32>(), "generic");
         assert_eq!(kernels::<f32>(), "generic");
         assert_eq!(kernels::<f64>(), "generic");
+    }
+
+    /// The integer form's value: built and read for `Q16` only.
+    fn only_sum<R: Real>() -> i32 {
+        let v = R::Kernels::only(|q| q.raw(R::ONE) + 1);
+        let v = R::Kernels::map(&v, |_, v| v * 2);
+        match R::Kernels::get(&v) {
+            Some((_, v)) => 5 + v,
+            None => -5,
+        }
+    }
+
+    /// An integer-form value exists for `Q16` (read by the integer form)
+    /// and is nothing for the other types (only the generic form runs).
+    #[test]
+    fn only_by_type() {
+        assert_eq!(only_sum::<Q16>(), 5 + 2 * 65_537);
+        assert_eq!(only_sum::<Q32>(), -5);
+        assert_eq!(only_sum::<f32>(), -5);
+        assert_eq!(only_sum::<f64>(), -5);
+        let size = |n| n * core::mem::size_of::<i32>();
+        assert_eq!(core::mem::size_of::<super::Only<Q16, [i32; 8]>>(), size(8));
+        assert_eq!(core::mem::size_of::<super::Only<Q32, [i32; 8]>>(), size(0));
+        assert_eq!(core::mem::size_of::<super::Only<f32, [i32; 8]>>(), size(0));
     }
 
     /// `Raw16` reads and writes `Q16`'s bits exactly.

@@ -152,7 +152,7 @@
 use crate::illum::{RawTerm, Shade, Specular, Viewer, MAX_LIGHTS};
 use crate::num::approx16;
 use crate::num::wide::{clz32, wmul};
-use crate::num::Real;
+use crate::num::{Kernels, Real};
 use crate::raster::{Lerp, RasterError, Span, Spans};
 use crate::target::{level_q19, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 use core::fmt;
@@ -363,7 +363,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         cache: &mut Option<SpecCache>,
     ) -> Result<Self, KernelError> {
         let (ambient, terms, shin, spec, model, viewer) =
-            shade.raw_q16().ok_or(KernelError::Profile)?;
+            R::Kernels::pick(|q| Ok(shade.raw_q16(q)), || Err(KernelError::Profile))?;
         let blinn = model == Specular::Blinn;
         let local = viewer == Viewer::Local;
         if spec && shin < 1 << 16 {

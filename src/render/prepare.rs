@@ -60,7 +60,7 @@ use crate::illum::{LevelLight, Light, LightKind, ObjectLight, OneLight, Shade, M
 use crate::mesh::{Mesh, MAX_AXIS2};
 use crate::num::approx16;
 use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
-use crate::num::{Kernels, Profile, Real};
+use crate::num::{Kernels, Only, Profile, Raw16, Real};
 use crate::raster::{first_row, Lerp, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
 use crate::target::{Rgb8, MAX_SCREEN};
@@ -211,14 +211,14 @@ pub(super) fn layout_of<R: Real>(
 }
 
 /// Projection constants of a frame.
-struct View<R> {
+struct View<R: Real> {
     planes: Planes<R>,
     k: R,
     cx: R,
     cy: R,
     depth_scale: Option<R>,
     /// The integer projection (`Q16` only).
-    fast: Option<Proj16>,
+    fast: Only<R, Proj16>,
 }
 
 /// The raw bits of a Q16.16 value (`to_fixed_i32(16)`): eye-space
@@ -334,6 +334,10 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
     if k >= P::Real::MAX.half() {
         return Err(SceneError::Screen.into());
     }
+    let (cx, cy) = (
+        P::Real::from_i32(width as i32).half(),
+        P::Real::from_i32(height as i32).half(),
+    );
     let view = View {
         planes: Planes {
             near: cam.near,
@@ -341,26 +345,12 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
             guard: P::Real::from_i32(guard).div(k),
         },
         k,
-        cx: P::Real::from_i32(width as i32).half(),
-        cy: P::Real::from_i32(height as i32).half(),
+        cx,
+        cy,
         depth_scale: cam.far.map(|f| f.div(f - cam.near)),
-        fast: None,
-    };
-    let sub = P::SUBPIXEL_BITS.get();
-    let view = View {
-        fast: <P::Real as Real>::Kernels::pick(
-            |q| {
-                (sub <= 15).then(|| Proj16 {
-                    k: q.raw(view.k),
-                    near: q.raw(view.planes.near),
-                    cx: view.cx.to_fixed_i32(sub),
-                    cy: view.cy.to_fixed_i32(sub),
-                    lim: COORD_LIMIT_PX << sub,
-                })
-            },
-            || None,
-        ),
-        ..view
+        fast: <P::Real as Real>::Kernels::only(|q| {
+            Proj16::new(q, k, cam.near, [cx, cy], P::SUBPIXEL_BITS.get())
+        }),
     };
     let lights = eye_lights(scene)?;
     // At most `MAX_TRIANGLES` triangle numbers (and as many made triangles
@@ -849,8 +839,24 @@ pub(super) enum Sphere {
     Across,
 }
 
+/// The integer kernels' constants of an object ([`ObjCtx::q16`]: `Q16`
+/// only).
+struct Q16Consts {
+    /// The integer transform (`None`: a scale of 256 or more).
+    x: Option<Xform16>,
+    /// The integer normal transform (`None` as `x`).
+    n: Option<Xform16>,
+    /// The integer projection.
+    pj: Proj16,
+    /// The object-space lights as integer levels (flat objects: the face
+    /// colours; `None` for lights too bright for them).
+    levels: Option<LevelLight>,
+    /// `levels` of one light.
+    one: Option<OneLight>,
+}
+
 /// Per-object constants while preparing.
-struct ObjCtx<'a, 'm, R> {
+struct ObjCtx<'a, 'm, R: Real> {
     mesh: Mesh<'m>,
     /// The mesh's triangles, positions and vertex normals (empty without
     /// normals, or for flat shading).
@@ -864,10 +870,9 @@ struct ObjCtx<'a, 'm, R> {
     /// Directional lights in object space (Gouraud and flat without
     /// point lights or specular term, uniform scale).
     olight: Option<ObjectLight<R>>,
-    /// `olight` as integer levels (`Q16` flat objects: the face colours).
-    levels: Option<LevelLight>,
-    /// `levels` of one light.
-    one: Option<OneLight>,
+    /// The integer kernels' constants (`Q16` only: nothing for the other
+    /// scalars).
+    q16: &'a Only<R, Q16Consts>,
     /// Grey material under white lights: one colour channel computed.
     grey: bool,
     layout: Layout,
@@ -875,13 +880,19 @@ struct ObjCtx<'a, 'm, R> {
     cull: bool,
     val_base: usize,
     v_start: usize,
-    /// The integer transform (`Q16`, moderate scales).
-    fast: Option<Xform16>,
-    /// The integer normal transform (`Q16`).
-    fast_n: Option<Xform16>,
     /// How Phong positions are stored (`render::position`; `None` for
     /// the profiles without a frame).
     pos: Option<&'a PosFrame<R>>,
+}
+
+impl<R: Real> ObjCtx<'_, '_, R> {
+    /// The integer kernels' constants with the raw access: `Some` for
+    /// `Q16`, `None` for the other scalars ([`Kernels::get`]: a constant
+    /// of the type, so each compiles one arm).
+    #[inline(always)]
+    fn q16(&self) -> Option<(Raw16<R>, &Q16Consts)> {
+        R::Kernels::get(self.q16)
+    }
 }
 
 impl<P: Profile> Preparer<'_, P> {
@@ -934,6 +945,19 @@ impl<P: Profile> Preparer<'_, P> {
         };
         // Only the profiles that frame positions keep a frame.
         let frame = P::POSITION_FRAME.then(|| PosFrame::new::<P>(&mesh, &mv));
+        let q16 = <P::Real as Real>::Kernels::map(&self.view.fast, |q, pj| {
+            let levels = match layout {
+                Layout::Flat => olight.as_ref().and_then(|o| o.levels(q)),
+                _ => None,
+            };
+            Q16Consts {
+                x: Xform16::new(q, &mv),
+                n: Xform16::new(q, &nm),
+                pj: *pj,
+                one: levels.as_ref().and_then(LevelLight::one),
+                levels,
+            }
+        });
         let ctx = ObjCtx {
             mesh,
             tris: mesh.triangles(),
@@ -942,23 +966,11 @@ impl<P: Profile> Preparer<'_, P> {
                 Layout::Flat => &[],
                 _ => mesh.vertex_normals().unwrap_or(&[]),
             },
-            fast: Xform16::new(&mv),
-            fast_n: Xform16::new(&nm),
+            q16: &q16,
             pos: frame.as_ref(),
             mv,
             nm,
             shade: &shade,
-            levels: match layout {
-                Layout::Flat => olight.as_ref().and_then(ObjectLight::levels),
-                _ => None,
-            },
-            one: match layout {
-                Layout::Flat => olight
-                    .as_ref()
-                    .and_then(ObjectLight::levels)
-                    .and_then(|l| l.one()),
-                _ => None,
-            },
             olight,
             grey: {
                 let grey = |c: Vec3<P::Real>| c.x == c.y && c.y == c.z;
@@ -1063,7 +1075,7 @@ impl<P: Profile> Preparer<'_, P> {
     #[inline(always)]
     fn eye_pos(ctx: &ObjCtx<'_, '_, P::Real>, i: usize) -> Vec3<P::Real> {
         let pos = ctx.positions.get(i).copied().unwrap_or([0; 3]);
-        match &ctx.fast {
+        match ctx.q16().and_then(|(_, c)| c.x.as_ref()) {
             Some(x) => from_raw3(x.point(pos).map(Q16Bits)),
             None => ctx.mv.point(Vec3::from_q14(pos)),
         }
@@ -1073,7 +1085,7 @@ impl<P: Profile> Preparer<'_, P> {
     /// normal matrix.
     #[inline]
     fn eye_normal(ctx: &ObjCtx<'_, '_, P::Real>, raw: [i16; 3], flip: bool) -> Vec3<P::Real> {
-        let n = match &ctx.fast_n {
+        let n = match ctx.q16().and_then(|(_, c)| c.n.as_ref()) {
             Some(x) => from_raw3(approx16::unit(x.vector(raw)).map(Q16Bits)),
             None => ctx.nm.vector(Vec3::from_q14(raw)).normalize(),
         };
@@ -1173,10 +1185,22 @@ impl<P: Profile> Preparer<'_, P> {
     /// the rounding to the grid) and lights with [`LevelLight`]; otherwise the exact-rounding kernel
     /// gives the same values as the generic pass, bit for bit.
     fn vertex_pass_fast(&mut self, ctx: &ObjCtx<'_, '_, P::Real>) -> Result<(), RenderError> {
-        let (Some(x), Some(pj)) = (&ctx.fast, &self.view.fast) else {
-            return self.vertex_pass(ctx, true);
-        };
-        let (x, pj) = (*x, *pj);
+        match ctx.q16() {
+            Some((q, &Q16Consts { x: Some(x), pj, .. })) => self.vertex_pass_q16(ctx, q, x, pj),
+            _ => self.vertex_pass(ctx, true),
+        }
+    }
+
+    /// [`Preparer::vertex_pass_fast`] with the object's integer transform
+    /// `x` and projection `pj`.
+    #[inline(always)]
+    fn vertex_pass_q16(
+        &mut self,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        q: Raw16<P::Real>,
+        x: Xform16,
+        pj: Proj16,
+    ) -> Result<(), RenderError> {
         let packed = ctx.layout.packed_in::<P>();
         let (m, t) = x.parts();
         let fused = Fused::new(
@@ -1192,7 +1216,7 @@ impl<P: Profile> Preparer<'_, P> {
             let levels = ctx
                 .olight
                 .as_ref()
-                .and_then(ObjectLight::levels)
+                .and_then(|o| o.levels(q))
                 .filter(|_| ctx.normals.len() == ctx.positions.len());
             let one = levels.as_ref().and_then(|l| l.one());
             // Back faces decided in object space (culled objects with
@@ -1449,6 +1473,39 @@ impl<P: Profile> Preparer<'_, P> {
         Ok(())
     }
 
+    /// The subpixel position, depth and perspective weight of eye-space
+    /// point `p` by the integer projection (`Q16`), clamped to the
+    /// rasterizer's range.
+    #[inline(always)]
+    fn project_q16(
+        &self,
+        q16: Raw16<P::Real>,
+        pj: &Proj16,
+        p: Vec3<P::Real>,
+    ) -> ([i32; 2], P::Real, P::Real) {
+        let (xy, q) = pj.project(raw3(p).map(|Q16Bits(b)| b), P::SUBPIXEL_BITS.get());
+        let q = q16.from_raw(q);
+        let d = P::Real::ONE - q;
+        // `*`, inlined (`*=` measured as a call on the M0).
+        let d = self.view.depth_scale.map_or(d, |s| d * s);
+        (xy, d.clamp(P::Real::ZERO, P::Real::ONE), q)
+    }
+
+    /// [`Preparer::project_q16`] by the scalar's own operations.
+    #[inline(always)]
+    fn project(&self, p: Vec3<P::Real>) -> ([i32; 2], P::Real, P::Real) {
+        let sub = P::SUBPIXEL_BITS.get();
+        let (sx, sy, d, q) = self.view.project(p);
+        // Clipping keeps a corner within the guard band, but saturated
+        // fixed-point arithmetic or float precision lost on huge
+        // coordinates can move a clipped corner out of the rasterizer's
+        // range: clamp to it (NaN to its lower end) rather than have the
+        // rasterizer refuse the whole frame. No-op for in-range corners.
+        let lim = P::Real::from_i32(COORD_LIMIT_PX);
+        let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
+        ([sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)], d, q)
+    }
+
     /// Projects and stores an eye-space vertex inside the planes as
     /// prepared vertex `v` with values at `base` (both in range).
     #[inline(always)]
@@ -1461,26 +1518,9 @@ impl<P: Profile> Preparer<'_, P> {
     ) {
         // `ctx.stride`, recomputed so the optimiser sees `stride >= 1`.
         let stride = ctx.layout.values_in::<P>();
-        let sub = P::SUBPIXEL_BITS.get();
-        let (xy, d, q) = if let Some(pj) = &self.view.fast {
-            // Q16: integer projection, clamped to the rasterizer's range.
-            let (xy, q) = pj.project(raw3(cv.pos).map(|Q16Bits(b)| b), sub);
-            let q = P::Real::from_fixed_i32(q, 16);
-            let d = P::Real::ONE - q;
-            // `*`, inlined (`*=` measured as a call on the M0).
-            let d = self.view.depth_scale.map_or(d, |s| d * s);
-            (xy, d.clamp(P::Real::ZERO, P::Real::ONE), q)
-        } else {
-            let (sx, sy, d, q) = self.view.project(cv.pos);
-            // Clipping keeps a corner within the guard band, but
-            // saturated Q16 arithmetic or float precision lost on huge
-            // coordinates can move a clipped corner out of the
-            // rasterizer's range: clamp to it (NaN to its lower end)
-            // rather than have the rasterizer refuse the whole frame.
-            // No-op for in-range corners.
-            let lim = P::Real::from_i32(COORD_LIMIT_PX);
-            let (sx, sy) = (sx.clamp(-lim, lim), sy.clamp(-lim, lim));
-            ([sx.to_fixed_i32(sub), sy.to_fixed_i32(sub)], d, q)
+        let (xy, d, q) = match ctx.q16() {
+            Some((q16, c)) => self.project_q16(q16, &c.pj, cv.pos),
+            None => self.project(cv.pos),
         };
         let o = self.origin();
         if let Some(slot) = self.ws.xy.get_mut(v) {
@@ -1699,18 +1739,20 @@ impl<P: Profile> Preparer<'_, P> {
                 face_normal_q14(pos[0], pos[1], pos[2])
             }
         };
-        if let Some(o) = &ctx.one {
-            return one_color(o, ctx.grey, n, back);
-        }
-        if let Some(l) = &ctx.levels {
-            // Face normals are Q1.14 units: the negation is exact.
-            let n = if back { n.map(i16::saturating_neg) } else { n };
-            let c = if ctx.grey {
-                [l.at::<true>(n)[0]; 3]
-            } else {
-                l.at::<false>(n)
-            };
-            return level_rgb(c.map(Q16Bits));
+        if let Some((_, c)) = ctx.q16() {
+            if let Some(o) = &c.one {
+                return one_color(o, ctx.grey, n, back);
+            }
+            if let Some(l) = &c.levels {
+                // Face normals are Q1.14 units: the negation is exact.
+                let n = if back { n.map(i16::saturating_neg) } else { n };
+                let c = if ctx.grey {
+                    [l.at::<true>(n)[0]; 3]
+                } else {
+                    l.at::<false>(n)
+                };
+                return level_rgb(c.map(Q16Bits));
+            }
         }
         let col = match &ctx.olight {
             Some(ol) => ol.at(n, back, ctx.grey),
@@ -1734,7 +1776,7 @@ impl<P: Profile> Preparer<'_, P> {
                 } else {
                     Vec3::ZERO
                 };
-                let n = match &ctx.fast_n {
+                let n = match ctx.q16().and_then(|(_, c)| c.n.as_ref()) {
                     Some(x) => from_raw3::<P::Real>(x.vector(n).map(Q16Bits)).normalize_geom(),
                     None => ctx.nm.vector(Vec3::from_q14(n)).normalize(),
                 };
@@ -1800,7 +1842,8 @@ impl<P: Profile> Preparer<'_, P> {
                 let tris = ctx.tris;
                 // Baked face normals under one light: the colour inline
                 // (the same as `flat_color`).
-                let one = match (flat, ctx.one, ctx.mesh.face_normals()) {
+                let one = ctx.q16().and_then(|(_, c)| c.one);
+                let one = match (flat, one, ctx.mesh.face_normals()) {
                     (true, Some(o), Some(faces)) => Some((o, faces)),
                     _ => None,
                 };
