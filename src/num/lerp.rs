@@ -105,16 +105,12 @@ pub trait Lerp: Copy + Debug + PartialEq + Default {
     /// a fixed raw `d·2^30` or a float `d`.
     fn depth30(self) -> u32;
 
-    /// `true` when every pixel of a triangle whose vertex depths are `z`
-    /// and whose depth gradients per pixel are `gx`, `gy` gets a depth
-    /// within `[0, 65535·2^14)` as the walker computes it (fixed; the
-    /// conversions then need no clamp, and the span loop no per-span
-    /// check). Conservative: `false` (the default, and always for floats)
-    /// selects the checks.
+    /// The raw `i64` of a fixed-point gradient (`Some` for `i32`'s, as
+    /// [`Lerp::fixed_raw`] for values); `None` for the float twins.
     #[inline(always)]
-    fn depth16_plane_in_range(z: [Self; 3], gx: Self::Grad, gy: Self::Grad) -> bool {
-        let _ = (z, gx, gy);
-        false
+    fn fixed_grad(g: Self::Grad) -> Option<i64> {
+        let _ = g;
+        None
     }
 
     /// Rounded to the nearest integer after removing `frac` fraction bits
@@ -187,11 +183,6 @@ fn numerators32(a: [i32; 3], d: [i32; 4]) -> (i64, i64) {
     }
     (wmul(d1, dy2) - wmul(d2, dy1), wmul(d2, dx1) - wmul(d1, dx2))
 }
-
-/// Upper end (excluded) of the depths whose 16-bit value needs no clamp:
-/// `65535·2^14` (the 16-bit depth format's conversions,
-/// `target::Depth16`, and [`Lerp::depth16_plane_in_range`]).
-pub(crate) const DEPTH16_LIM: u32 = 65535 << 14;
 
 /// `a0 + round((gx·ox + gy·oy) / S)` from the 64-bit sum, wrapping.
 #[inline(always)]
@@ -319,24 +310,9 @@ impl Lerp for i32 {
         self.clamp(0, DEPTH_ONE) as u32
     }
 
-    /// Every vertex depth within `[2^15, 65535·2^14 - 2^15)` and both
-    /// gradients below 2^24 per pixel. A covered pixel centre lies in the
-    /// triangle, so the exact plane there lies between the vertex depths;
-    /// the walker's value is `origin + gx·x + gy·y` with the rounded
-    /// gradients ([`InvArea::quot`], within `½ + |g|·2^-28` of the exact
-    /// ones) through the rounded origin (`½`), so it is within `½ + (½ +
-    /// 2^-4)·(|Δx| + |Δy|) < 2^15` of the plane for pixels at most 2^14
-    /// apart (vertices within ±2^13 pixels, `COORD_LIMIT_PX`): in range,
-    /// without wrapping.
     #[inline(always)]
-    fn depth16_plane_in_range(z: [i32; 3], gx: i64, gy: i64) -> bool {
-        const M: u32 = 1 << 15;
-        let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < DEPTH16_LIM - 2 * M;
-        ok(z[0])
-            && ok(z[1])
-            && ok(z[2])
-            && gx.unsigned_abs() < 1 << 24
-            && gy.unsigned_abs() < 1 << 24
+    fn fixed_grad(g: i64) -> Option<i64> {
+        Some(g)
     }
 
     #[inline(always)]

@@ -21,7 +21,6 @@ mod testkit;
 pub use self::fixed_point::{Q16, Q32};
 pub use self::isqrt::isqrt_u64;
 pub(crate) use self::isqrt::{isqrt_rem_u128, isqrt_rem_u64};
-pub(crate) use self::lerp::DEPTH16_LIM;
 pub use self::lerp::{Lerp, ATTR_LIMIT, DEPTH_ONE, LEVEL_FRAC_BITS};
 pub use self::profile::{
     F32Pc, F64Pc, Fast, FastPc, FastSub, Precise, PrecisePc, Profile, COORD_FRAC_BITS,

@@ -28,7 +28,7 @@ use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
 use crate::num::wide::{clz32, mul_i32_i16_soft, NO_LONG_MUL};
-use crate::target::DepthFormat;
+use crate::target::{Depth16, DepthFormat};
 
 /// A band's memory as the fused row kernel sees it: colour and depth
 /// slices of `width`-pixel rows starting at screen row `y0`.
@@ -301,30 +301,6 @@ fn setup_slow<const N: usize, const V: usize>(
         }
         None => false,
     }
-}
-
-/// [`Lerp::depth16_plane_in_range`] for `i32` gradients: the same test
-/// (the same bounds on the vertex depths and on `|gx|`, `|gy|`).
-#[inline(always)]
-fn depth16_plane_in_range32(z: [i32; 3], gx: i32, gy: i32) -> bool {
-    depth16_vertices_in_range(z) & depth16_gradients_in_range(gx, gy)
-}
-
-/// The vertex part of [`depth16_plane_in_range32`]: every depth within
-/// `[2^15, 2^15 + 65535·2^14 - 2^16)`, so that their differences lie
-/// below `2^30` in magnitude (nothing wraps).
-#[inline(always)]
-fn depth16_vertices_in_range(z: [i32; 3]) -> bool {
-    const M: u32 = 1 << 15;
-    const LIM: u32 = (65535 << 14) - 2 * M;
-    let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < LIM;
-    ok(z[0]) & ok(z[1]) & ok(z[2])
-}
-
-/// The gradient part of [`depth16_plane_in_range32`].
-#[inline(always)]
-fn depth16_gradients_in_range(gx: i32, gy: i32) -> bool {
-    (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
 }
 
 /// What [`setup32`] computes a value's plane from: the vertex offsets
@@ -630,7 +606,7 @@ fn setup32<const N: usize, const V: usize>(
         o: [h - a.x, h - a.y],
     };
     let (gx, gy, z0, okz) = g.plane(a.z, b.z, c.z);
-    let z16 = depth16_plane_in_range32([a.z, b.z, c.z], gx, gy);
+    let z16 = Depth16::plane_in_range32([a.z, b.z, c.z], gx, gy);
     if let Some(v) = vals.get_mut(0) {
         *v = [z0, gx, gy];
     }
@@ -790,7 +766,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     }
     // The kernel needs every depth in range (the vertex part of `z16`,
     // below): tested first, the depth differences then do not wrap.
-    let zv = depth16_vertices_in_range([a.z, b.z, c.z]);
+    let zv = Depth16::vertices_in_range([a.z, b.z, c.z]);
     if !(zv & D::plane_in_range(true)) {
         return None;
     }
@@ -821,7 +797,7 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
             p => p,
         }
     };
-    let z16 = depth16_gradients_in_range(gx, gy);
+    let z16 = Depth16::gradients_in_range(gx, gy);
     ok &= D::plane_in_range(z16);
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };

@@ -23,6 +23,7 @@
 use super::triangle::first_row;
 use super::{Edge, Lerp, SubpixelBits, Vertex};
 use crate::num::wide::{fits_i16, wmul, NO_LONG_MUL};
+use crate::target::Depth16;
 
 /// Depth and attributes together, stepped as one.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,7 +78,7 @@ pub(crate) struct Walk {
     /// The triangle's columns lie within `0..=width`: no clipping.
     pub(super) inside: bool,
     /// Every pixel's depth converts to 16 bits without a clamp
-    /// ([`Lerp::depth16_plane_in_range`]).
+    /// ([`Depth16::plane_in_range`]).
     pub(super) z16: bool,
 }
 
@@ -248,7 +249,7 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
     let z16;
     {
         let (gx, gy) = L::gradients([a.z, b.z, c.z], d, &setup, sub);
-        z16 = L::depth16_plane_in_range([a.z, b.z, c.z], gx, gy);
+        z16 = Depth16::plane_in_range([a.z, b.z, c.z], gx, gy);
         row.z = start(a.z, gx, gy);
         sx.z = L::step(gx);
         sy.z = L::step(gy);

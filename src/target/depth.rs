@@ -14,7 +14,11 @@
 use super::format::fill_u16;
 use super::{check_window, span_range, BufferError, Window};
 use crate::num::wide::NO_LONG_MUL;
-use crate::num::{Lerp, DEPTH16_LIM};
+use crate::num::Lerp;
+
+/// Upper end (excluded) of the depths whose 16-bit value needs no clamp:
+/// `65535·2^14` ([`Depth16`]'s conversions and its range tests).
+pub(crate) const DEPTH16_LIM: u32 = 65535 << 14;
 
 /// A depth value format.
 pub trait DepthFormat: Copy + core::fmt::Debug {
@@ -51,7 +55,7 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     }
 
     /// `true` when a triangle whose depths convert to 16 bits without a
-    /// clamp (`z16`, [`Lerp::depth16_plane_in_range`]) has
+    /// clamp (`z16`, [`Depth16::plane_in_range`]) has
     /// every span in range as [`DepthFormat::span_in_range`] says (then
     /// not asked per span). `false` by default.
     #[inline(always)]
@@ -210,6 +214,60 @@ fn span_in_range32(z: i32, step: i32, n: u32) -> bool {
     }
 }
 
+impl Depth16 {
+    /// `true` when every pixel of a triangle whose vertex depths are `z`
+    /// and whose depth gradients per pixel are `gx`, `gy` gets a depth
+    /// within `[0, 65535·2^14)` as the walker computes it (fixed; the
+    /// conversions then need no clamp, and the span loop no per-span
+    /// check). Conservative: `false` (always for floats) selects the
+    /// checks.
+    ///
+    /// Fixed: every vertex depth within `[2^15, 65535·2^14 - 2^15)`
+    /// ([`Depth16::vertices_in_range`]) and both gradients below 2^24 per
+    /// pixel. A covered pixel centre lies in the triangle, so the exact
+    /// plane there lies between the vertex depths; the walker's value is
+    /// `origin + gx·x + gy·y` with the rounded gradients
+    /// ([`InvArea::quot`](crate::num::InvArea::quot), within `½ +
+    /// |g|·2^-28` of the exact ones) through the rounded origin (`½`), so
+    /// it is within `½ + (½ + 2^-4)·(|Δx| + |Δy|) < 2^15` of the plane
+    /// for pixels at most 2^14 apart (vertices within ±2^13 pixels,
+    /// `COORD_LIMIT_PX`): in range, without wrapping.
+    #[inline(always)]
+    pub(crate) fn plane_in_range<L: Lerp>(z: [L; 3], gx: L::Grad, gy: L::Grad) -> bool {
+        match (z.map(L::fixed_raw), L::fixed_grad(gx), L::fixed_grad(gy)) {
+            ([Some(z0), Some(z1), Some(z2)], Some(gx), Some(gy)) => {
+                Self::vertices_in_range([z0, z1, z2])
+                    && gx.unsigned_abs() < 1 << 24
+                    && gy.unsigned_abs() < 1 << 24
+            }
+            _ => false,
+        }
+    }
+
+    /// [`Depth16::plane_in_range`] for fixed depths and `i32` gradients:
+    /// the same test.
+    #[inline(always)]
+    pub(crate) fn plane_in_range32(z: [i32; 3], gx: i32, gy: i32) -> bool {
+        Self::vertices_in_range(z) & Self::gradients_in_range(gx, gy)
+    }
+
+    /// The vertex part of [`Depth16::plane_in_range`]: every depth within
+    /// `[2^15, 2^15 + 65535·2^14 - 2^16)`, so that their differences lie
+    /// below `2^30` in magnitude (nothing wraps).
+    #[inline(always)]
+    pub(crate) fn vertices_in_range(z: [i32; 3]) -> bool {
+        const M: u32 = 1 << 15;
+        let ok = |v: i32| (v.wrapping_sub(M as i32) as u32) < DEPTH16_LIM - 2 * M;
+        ok(z[0]) & ok(z[1]) & ok(z[2])
+    }
+
+    /// The gradient part of [`Depth16::plane_in_range32`].
+    #[inline(always)]
+    pub(crate) fn gradients_in_range(gx: i32, gy: i32) -> bool {
+        (gx.unsigned_abs() < 1 << 24) & (gy.unsigned_abs() < 1 << 24)
+    }
+}
+
 /// 32-bit depth: the full 30-bit value.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Depth32;
@@ -320,6 +378,34 @@ impl<'a, D: DepthFormat> DepthBuffer<'a, D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The plane test's bounds, at their edges: vertex depths in `[2^15,
+    /// 65535·2^14 - 2^15)`, gradients below 2^24; the 32-bit form agrees
+    /// with the 64-bit one; floats always take the checks.
+    #[test]
+    fn plane_in_range_bounds() {
+        const M: i32 = 1 << 15;
+        let hi = (DEPTH16_LIM as i32) - M;
+        let g = (1 << 24) - 1;
+        for (z, gx, gy, want) in [
+            ([M, M, M], 0, 0, true),
+            ([M - 1, M, M], 0, 0, false),
+            ([M, hi - 1, M], g, -g, true),
+            ([M, M, hi], 0, 0, false),
+            ([-1, M, M], 0, 0, false),
+            ([M, M, M], g + 1, 0, false),
+            ([M, M, M], 0, -(g + 1), false),
+            ([1 << 29; 3], -g, g, true),
+        ] {
+            let wide = Depth16::plane_in_range::<i32>(z, i64::from(gx), i64::from(gy));
+            assert_eq!(wide, want, "{z:?} {gx} {gy}");
+            assert_eq!(Depth16::plane_in_range32(z, gx, gy), want);
+        }
+        // Gradients beyond `i32`: only the 64-bit form sees them.
+        assert!(!Depth16::plane_in_range::<i32>([M; 3], 1 << 32, 0));
+        assert!(!Depth16::plane_in_range::<f32>([0.5; 3], 0.0, 0.0));
+        assert!(!Depth16::plane_in_range::<f64>([0.5; 3], 0.0, 0.0));
+    }
 
     #[test]
     fn conversions_saturate() {
