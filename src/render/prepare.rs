@@ -356,23 +356,11 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
     // At most `MAX_TRIANGLES` triangle numbers (and as many made triangles
     // and flat colours): they are `u16` in the object list and the band
     // order.
-    let Workspace {
-        xy,
-        vals,
-        tris,
-        colors,
-        faces,
-    } = ws;
-    let nt = tris.len().min(MAX_TRIANGLES);
-    let nc = colors.len().min(MAX_TRIANGLES);
-    let nf = faces.len().min(MAX_TRIANGLES);
-    let ws = Workspace {
-        xy,
-        vals,
-        tris: tris.get_mut(..nt).unwrap_or_default(),
-        colors: colors.get_mut(..nc).unwrap_or_default(),
-        faces: faces.get_mut(..nf).unwrap_or_default(),
-    };
+    fn cut<T>(s: &mut [T]) -> &mut [T] {
+        let n = s.len().min(MAX_TRIANGLES);
+        s.get_mut(..n).unwrap_or_default()
+    }
+    let ws = ws.map_triangle_parts(|t, c, f| (cut(t), cut(c), cut(f)));
     let mut p = Preparer::<P> {
         ws,
         view,
@@ -396,27 +384,51 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
         let po = p.object_pass(scene, obj, &lights)?;
         objects.push(po).map_err(|_| SceneError::TooManyObjects)?;
     }
-    let Workspace {
-        xy,
-        vals,
-        tris,
-        colors,
-        faces,
-    } = p.ws;
+    // The frame keeps the face bytes apart from the workspace.
+    let mut faces: &mut [u8] = &mut [];
+    let ws = p.ws.map_triangle_parts(|t, c, f| {
+        faces = f;
+        (t, c, &mut [])
+    });
     Ok(Frame {
-        ws: Workspace {
-            xy,
-            vals,
-            tris,
-            colors,
-            faces: &mut [],
-        },
+        ws,
         faces,
         scene: scene.objects,
         objects,
         width,
         height,
     })
+}
+
+impl<'a, L> Workspace<'a, L> {
+    /// The workspace with its triangle parts (made triangles, colours,
+    /// face bytes) replaced by `f` of them.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn map_triangle_parts(
+        self,
+        f: impl FnOnce(
+            &'a mut [Tri],
+            &'a mut [Rgb8],
+            &'a mut [u8],
+        ) -> (&'a mut [Tri], &'a mut [Rgb8], &'a mut [u8]),
+    ) -> Self {
+        let Workspace {
+            xy,
+            vals,
+            tris,
+            colors,
+            faces,
+        } = self;
+        let (tris, colors, faces) = f(tris, colors, faces);
+        Workspace {
+            xy,
+            vals,
+            tris,
+            colors,
+            faces,
+        }
+    }
 }
 
 struct Preparer<'w, P: Profile> {
@@ -1306,6 +1318,32 @@ impl<P: Profile> Preparer<'_, P> {
         }
     }
 
+    /// The object's `n` vertices' slots in the workspace of object
+    /// `object`: `(n, end, screen positions, values)`, `S` values per
+    /// vertex from `ctx.val_base`, the vertices `ctx.v_start..end`; a
+    /// capacity error naming the part that is too short.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn vertex_slots<'s, const S: usize>(
+        ws: &'s mut Workspace<'_, P::Lerp>,
+        ctx: &ObjCtx<'_, '_, P::Real>,
+        object: usize,
+    ) -> Result<(usize, usize, &'s mut [ScreenXy], &'s mut [P::Lerp]), RenderError> {
+        let cap = |part| RenderError::Capacity { part, object };
+        let n = ctx.positions.len();
+        let end = ctx.v_start + n;
+        if end >= MAX_VERTICES {
+            return Err(cap(Part::Vertices));
+        }
+        let Some(xy) = ws.xy.get_mut(ctx.v_start..end) else {
+            return Err(cap(Part::Vertices));
+        };
+        let Some(vals) = ws.vals.get_mut(ctx.val_base..ctx.val_base + n * S) else {
+            return Err(cap(Part::Values));
+        };
+        Ok((n, end, xy, vals))
+    }
+
     /// The vertex loop of [`Preparer::vertex_pass_fast`] with the fused
     /// integer kernel ([`Fused`]) for a layout of `S` values per vertex
     /// (1 flat or packed grey, 2 grey, 4 RGB), lit by `levels` (colour
@@ -1320,20 +1358,7 @@ impl<P: Profile> Preparer<'_, P> {
         levels: Option<impl Fn([i16; 3]) -> [i32; 3]>,
         early: Option<&EarlyCull>,
     ) -> Result<(), RenderError> {
-        let n = ctx.positions.len();
-        let end = ctx.v_start + n;
-        if end >= MAX_VERTICES {
-            return Err(self.cap(Part::Vertices));
-        }
-        let Some(xy) = self.ws.xy.get_mut(ctx.v_start..end) else {
-            return Err(self.cap(Part::Vertices));
-        };
-        let Some(vals) = self.ws.vals.get_mut(ctx.val_base..ctx.val_base + n * S) else {
-            return Err(RenderError::Capacity {
-                part: Part::Values,
-                object: self.object,
-            });
-        };
+        let (n, end, xy, vals) = Self::vertex_slots::<S>(&mut self.ws, ctx, self.object)?;
         // Two loops (positions, then normals): fewer constants live at
         // once, fewer spills (measured: 136 -> 127 instructions per vertex
         // on the Cortex-M4).
@@ -1414,20 +1439,7 @@ impl<P: Profile> Preparer<'_, P> {
         ol: Option<&ObjectLight<P::Real>>,
     ) -> Result<(), RenderError> {
         type R<P> = <P as Profile>::Real;
-        let n = ctx.positions.len();
-        let end = ctx.v_start + n;
-        if end >= MAX_VERTICES {
-            return Err(self.cap(Part::Vertices));
-        }
-        let Some(xy) = self.ws.xy.get_mut(ctx.v_start..end) else {
-            return Err(self.cap(Part::Vertices));
-        };
-        let Some(vals) = self.ws.vals.get_mut(ctx.val_base..ctx.val_base + n * S) else {
-            return Err(RenderError::Capacity {
-                part: Part::Values,
-                object: self.object,
-            });
-        };
+        let (n, end, xy, vals) = Self::vertex_slots::<S>(&mut self.ws, ctx, self.object)?;
         let sub = P::SUBPIXEL_BITS.get();
         let scale = self.view.depth_scale;
         // The depth scale `far / (far - near)` as raw Q16 when at most 2
