@@ -67,6 +67,14 @@ fn cross(a: [i32; 3], b: [i32; 3]) -> [i32; 3] {
     ]
 }
 
+/// Entry `i` of a non-increasing table moved toward entry `i + 1` by
+/// `f / 2^16` (`a - (a - b)·f >> 16`, both kernel tables' lookup), or
+/// `None` past the table's end.
+fn between<T: Copy + Into<u32>>(t: &[T], i: usize, f: u32) -> Option<u32> {
+    let (a, b) = ((*t.get(i)?).into(), (*t.get(i + 1)?).into());
+    Some(a - ((a.saturating_sub(b) * f) >> 16))
+}
+
 fn sq_sum(v: &[i32]) -> u64 {
     v.iter()
         .fold(0u64, |s, &c| s.wrapping_add(wmul(c, c) as u64))
@@ -271,9 +279,7 @@ impl Model {
     /// `2^16 / |n|` from `|n|²` (Q28) in `[1/4, 5/4)`.
     fn rsqrt_n(&self, f: i32) -> Option<u32> {
         let j = (f.wrapping_sub(1 << 26) >> self.rs_shift) as u32 as usize;
-        let (a, b) = (*self.rs.get(j)?, *self.rs.get(j + 1)?);
-        let t = ((f >> (self.rs_shift - 16)) & 0xFFFF) as u32;
-        Some(a - (((a - b) * t) >> 16))
+        between(&self.rs, j, ((f >> (self.rs_shift - 16)) & 0xFFFF) as u32)
     }
 
     /// The specular factor (Q15) for `qs` (Q28 of `Q`) and `rr14`.
@@ -282,17 +288,9 @@ impl Model {
         if qs >= 1 << 15 {
             return 0;
         }
-        let g = (rr14.wrapping_mul(self.c16)) >> self.cb;
-        let pos = qs.wrapping_mul(g);
-        let idx = (pos >> POS_FRAC) as usize;
-        match (self.spec.get(idx), self.spec.get(idx + 1)) {
-            (Some(&a), Some(&b)) => {
-                let f = (pos >> (POS_FRAC - 16)) & 0xFFFF;
-                let (a, b) = (u32::from(a), u32::from(b));
-                a - ((a.saturating_sub(b) * f) >> 16)
-            }
-            _ => 0,
-        }
+        let pos = qs.wrapping_mul(rr14.wrapping_mul(self.c16) >> self.cb);
+        let f = (pos >> (POS_FRAC - 16)) & 0xFFFF;
+        between(&self.spec, (pos >> POS_FRAC) as usize, f).unwrap_or(0)
     }
 
     /// The colour at a pixel whose interpolated normal is `n` (Q30), or
