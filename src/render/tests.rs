@@ -65,6 +65,22 @@ fn object<R: Real>(mesh: Mesh<'static>, shading: Shading, angles: [f32; 3]) -> O
     }
 }
 
+/// A two-sided matte object (no specular term) of `mesh` placed by
+/// `transform`.
+fn matte<R: Real>(
+    mesh: Mesh<'static>,
+    transform: Affine<R>,
+    shading: Shading,
+) -> Object<'static, R> {
+    Object {
+        mesh,
+        transform,
+        material: material(0.0),
+        shading,
+        cull_backfaces: false,
+    }
+}
+
 fn scene<'s, R: Real>(
     objects: &'s [Object<'static, R>],
     lights: &'s [Light<R>],
@@ -158,13 +174,7 @@ fn projection_matches_the_f64_formula() {
             Vec3::ZERO,
             Vec3::from_f32([0.25, -0.5, 0.0]),
         );
-        let objs = [Object {
-            mesh,
-            transform: t,
-            material: material(0.0),
-            shading: Shading::Flat,
-            cull_backfaces: false,
-        }];
+        let objs = [matte(mesh, t, Shading::Flat)];
         let ls = lights();
         let s = scene(&objs, &ls, [1.0, 2.0, 6.0]);
         let (w, h) = (200u32, 150u32);
@@ -315,13 +325,7 @@ fn triangles_behind_the_eye_draw_nothing_and_the_camera_may_sit_inside_a_mesh() 
         Vec3::ZERO,
         Vec3::from_f32([0.0, 0.0, 9.0]),
     );
-    let objs = [Object {
-        mesh,
-        transform: t,
-        material: material(0.0),
-        shading: Shading::Flat,
-        cull_backfaces: false,
-    }];
+    let objs = [matte(mesh, t, Shading::Flat)];
     let ls = lights();
     let s = scene(&objs, &ls, [0.0, 0.0, 6.0]);
     let bytes = full::<Precise>(&s, 64, 48, true);
@@ -503,85 +507,51 @@ fn bad_camera_input_is_an_error() {
     let ok = |e: [f32; 3], t: [f32; 3], u: [f32; 3], fov: f32, n: f32, f: Option<f32>| {
         C::look_at_f32(e, t, u, fov, n, f).map(|_| ())
     };
-    assert_eq!(
-        ok([1.0; 3], [1.0; 3], [0.0, 1.0, 0.0], 40.0, 0.5, None),
-        Err(E::EyeAtTarget)
-    );
-    assert_eq!(
-        ok([0.0, 5.0, 0.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0, 0.5, None),
-        Err(E::UpParallelToView)
-    );
-    assert_eq!(
-        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 0.0, 0.5, None),
-        Err(E::FieldOfView)
-    );
-    assert_eq!(
-        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 180.0, 0.5, None),
-        Err(E::FieldOfView)
-    );
-    assert_eq!(
-        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0, 0.0, None),
-        Err(E::Near)
-    );
-    assert_eq!(
-        ok([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 40.0, -1.0, None),
-        Err(E::Near)
-    );
-    assert_eq!(
-        ok(
-            [0.0, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
+    let (eye, at, up) = ([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0]);
+    let (nan, inf) = (f32::NAN, f32::INFINITY);
+    for (e, t, u, fov, n, f, want) in [
+        ([1.0; 3], [1.0; 3], up, 40.0, 0.5, None, E::EyeAtTarget),
+        (
+            [0.0, 5.0, 0.0],
+            at,
+            up,
+            40.0,
+            0.5,
+            None,
+            E::UpParallelToView,
+        ),
+        (eye, at, up, 0.0, 0.5, None, E::FieldOfView),
+        (eye, at, up, 180.0, 0.5, None, E::FieldOfView),
+        (eye, at, up, 40.0, 0.0, None, E::Near),
+        (eye, at, up, 40.0, -1.0, None, E::Near),
+        (eye, at, up, 40.0, 1.0, Some(1.0), E::Far),
+        (
+            [nan, 0.0, 5.0],
+            at,
+            up,
             40.0,
             1.0,
-            Some(1.0)
+            None,
+            E::NotFinite("eye"),
         ),
-        Err(E::Far)
-    );
-    assert_eq!(
-        ok(
-            [f32::NAN, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
+        (
+            eye,
+            at,
+            [0.0, inf, 0.0],
             40.0,
             1.0,
-            None
+            None,
+            E::NotFinite("up"),
         ),
-        Err(E::NotFinite("eye"))
-    );
-    assert_eq!(
-        ok(
-            [0.0, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, f32::INFINITY, 0.0],
-            40.0,
-            1.0,
-            None
-        ),
-        Err(E::NotFinite("up"))
-    );
-    assert_eq!(
-        ok(
-            [0.0, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
-            f32::NAN,
-            1.0,
-            None
-        ),
-        Err(E::NotFinite("fov_y_deg"))
-    );
-    assert_eq!(
-        ok(
-            [0.0, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
-            40.0,
-            1.0,
-            Some(f32::NAN)
-        ),
-        Err(E::NotFinite("far"))
-    );
+        (eye, at, up, nan, 1.0, None, E::NotFinite("fov_y_deg")),
+        (eye, at, up, 40.0, 1.0, Some(nan), E::NotFinite("far")),
+    ] {
+        assert_eq!(
+            ok(e, t, u, fov, n, f),
+            Err(want),
+            "{e:?} {u:?} {fov} {n} {f:?}"
+        );
+    }
     // The seed's VRP convention: eye at (0, 0, 6).
     let q = |v: f32| crate::num::Q16::from_f32(v);
     let c = C::from_vrp(
@@ -1016,17 +986,11 @@ fn walks_within_the_guard_band_pack_with_the_same_bytes() {
     fn run<P: Profile>(shading: Shading) {
         let mesh = Mesh::new(&POS, &[[0, 2, 1]], None).unwrap();
         let f = P::Real::from_f32;
-        let objs = [Object {
+        let objs = [matte(
             mesh,
-            transform: Affine::from_parts(
-                f(200.0),
-                Vec3::ZERO,
-                Vec3::new(f(0.0), f(0.03953), f(0.0)),
-            ),
-            material: material(0.0),
+            Affine::from_parts(f(200.0), Vec3::ZERO, Vec3::new(f(0.0), f(0.03953), f(0.0))),
             shading,
-            cull_backfaces: false,
-        }];
+        )];
         let ls = lights();
         let s = scene(&objs, &ls, [0.0, 0.0, 6.0]);
         let (w, h) = (64, 48);
@@ -1114,13 +1078,11 @@ fn compact_positions_hold_the_screen_and_its_guard_band() {
     fn run<P: Profile>(n: u32) -> Result<(), RenderError> {
         let mesh = Mesh::new(&POS, &[[0, 1, 2]], None).unwrap();
         let f = P::Real::from_f32;
-        let objs = [Object {
+        let objs = [matte(
             mesh,
-            transform: Affine::from_parts(f(5.0), Vec3::ZERO, Vec3::ZERO),
-            material: material(0.0),
-            shading: Shading::Flat,
-            cull_backfaces: false,
-        }];
+            Affine::from_parts(f(5.0), Vec3::ZERO, Vec3::ZERO),
+            Shading::Flat,
+        )];
         let ls = lights();
         let s = scene(&objs, &ls, [0.0, 0.0, 1.0]);
         let mut mem = Mem::<P::Lerp>::new(64, 64);
