@@ -1029,6 +1029,22 @@ fn check_small<const N: usize>(
     Some((n, more))
 }
 
+/// Random pixels and depths for a band of `n` pixels: the depths mostly
+/// far (most pixels pass), some near.
+fn band_buffers(rng: &mut Rng, n: i32) -> (Vec<u32>, Vec<u16>) {
+    let px = (0..n).map(|_| rng.next() as u32).collect();
+    let zb = (0..n)
+        .map(|_| {
+            if rng.range(0, 4) == 0 {
+                rng.range(0, 65535) as u16
+            } else {
+                65534
+            }
+        })
+        .collect();
+    (px, zb)
+}
+
 #[test]
 fn small_kernel_equals_the_fused_walk() {
     let mut rng = Rng(0x5a11_7e57);
@@ -1039,17 +1055,7 @@ fn small_kernel_equals_the_fused_walk() {
     let mut carried = 0;
     for i in 0..20_000 {
         let y0 = [0, 16, 112, 224][i % 4];
-        let px: Vec<u32> = (0..w * rows).map(|_| rng.next() as u32).collect();
-        // Depths mostly far (most pixels pass), some near.
-        let zb: Vec<u16> = (0..w * rows)
-            .map(|_| {
-                if rng.range(0, 4) == 0 {
-                    rng.range(0, 65535) as u16
-                } else {
-                    65534
-                }
-            })
-            .collect();
+        let (px, zb) = band_buffers(&mut rng, w * rows);
         // Mostly small triangles around the band (in it, across its
         // edges, at the window's sides), some large or at the limits.
         let (cx, cy, span) = match i % 8 {
@@ -1218,16 +1224,7 @@ fn small_kernel_on_packed_values_equals_the_fused_walk() {
     let zdepth = |f: i32| (f << 14) | (1 << 13);
     for i in 0..20_000 {
         let y0 = [0, 16, 112, 224][i % 4];
-        let px: Vec<u32> = (0..w * rows).map(|_| rng.next() as u32).collect();
-        let zb: Vec<u16> = (0..w * rows)
-            .map(|_| {
-                if rng.range(0, 4) == 0 {
-                    rng.range(0, 65535) as u16
-                } else {
-                    65534
-                }
-            })
-            .collect();
+        let (px, zb) = band_buffers(&mut rng, w * rows);
         let span = match i % 4 {
             0 => 1100 * 16,
             1 => 40 * 16,
