@@ -6,9 +6,10 @@
 
 mod common;
 
+use common::per_profile;
 use common::{render, square, Desc, Image, Lamp, Mat, Obj, WHITE};
 use fixshade::illum::{Shade, Specular, Viewer};
-use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
+use fixshade::num::{Profile, Real};
 use fixshade::scene::Shading;
 
 /// `Shade::at` for profile `P`, as `f64` (checked finite and in `[0, 1]`).
@@ -110,13 +111,9 @@ fn zero_normal_and_light_at_point<P: Profile>() {
     }
 }
 
-#[test]
-fn zero_normal_and_light_at_the_shaded_point() {
-    zero_normal_and_light_at_point::<Fast>();
-    zero_normal_and_light_at_point::<Precise>();
-    zero_normal_and_light_at_point::<F32>();
-    zero_normal_and_light_at_point::<F64>();
-}
+per_profile!(
+    fn zero_normal_and_light_at_the_shaded_point = zero_normal_and_light_at_point
+);
 
 fn shininess<P: Profile>() {
     let t = tol(P::NAME);
@@ -208,13 +205,9 @@ fn shininess<P: Profile>() {
     assert!((head_on - 1.0).abs() <= t_peak, "{}: {head_on}", P::NAME);
 }
 
-#[test]
-fn shininess_zero_and_huge() {
-    shininess::<Fast>();
-    shininess::<Precise>();
-    shininess::<F32>();
-    shininess::<F64>();
-}
+per_profile!(
+    fn shininess_zero_and_huge = shininess
+);
 
 fn coefficients<P: Profile>() {
     let t = tol(P::NAME);
@@ -273,13 +266,9 @@ fn coefficients<P: Profile>() {
     assert!(close(lo, [0.5, 0.0, 0.0], t), "{}: {lo:?}", P::NAME);
 }
 
-#[test]
-fn coefficients_outside_unit_range_are_clamped() {
-    coefficients::<Fast>();
-    coefficients::<Precise>();
-    coefficients::<F32>();
-    coefficients::<F64>();
-}
+per_profile!(
+    fn coefficients_outside_unit_range_are_clamped = coefficients
+);
 
 const UP: [i16; 3] = [0, 0, 16384];
 const DOWN: [i16; 3] = [0, 0, -16384];
@@ -371,10 +360,6 @@ fn zero_normals_render<P: Profile>() {
     }
 }
 
-#[test]
-fn zero_and_cancelling_normals_render_defined() {
-    zero_normals_render::<Fast>();
-    zero_normals_render::<Precise>();
-    zero_normals_render::<F32>();
-    zero_normals_render::<F64>();
-}
+per_profile!(
+    fn zero_and_cancelling_normals_render_defined = zero_normals_render
+);

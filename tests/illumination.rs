@@ -12,6 +12,7 @@
 
 mod common;
 
+use common::per_profile;
 use common::rng::Rng;
 use common::{phong_f64, Lamp, Mat, WHITE};
 use fixshade::illum::{Shade, Specular, Viewer};
@@ -463,13 +464,9 @@ fn white_highlight<P: Profile>() {
     assert!((212..=214).contains(&o[0]), "{}: {o:?}", P::NAME);
 }
 
-#[test]
-fn red_object_white_light_white_highlight() {
-    white_highlight::<Fast>();
-    white_highlight::<Precise>();
-    white_highlight::<F32>();
-    white_highlight::<F64>();
-}
+per_profile!(
+    fn red_object_white_light_white_highlight = white_highlight
+);
 
 fn saturation<P: Profile>() {
     // Eight white lights: each channel sums to about 4.5 and is clamped
@@ -509,13 +506,9 @@ fn saturation<P: Profile>() {
     assert_eq!(levels::<P>(&c3), [255; 3], "{}", P::NAME);
 }
 
-#[test]
-fn many_lights_clamp_after_summation() {
-    saturation::<Fast>();
-    saturation::<Precise>();
-    saturation::<F32>();
-    saturation::<F64>();
-}
+per_profile!(
+    fn many_lights_clamp_after_summation = saturation
+);
 
 /// Sanity of the table: it does reach the regimes it names (so the bounds
 /// above are measured where they matter).

@@ -8,8 +8,11 @@
 //! by extending the row's span by one step, exactly as the rasterizer would
 //! step it.
 
+mod common;
+
+use common::per_profile;
 use fixshade::geom::Vec3;
-use fixshade::num::{Fast, Precise, Profile, Real, F32, F64};
+use fixshade::num::{Profile, Real};
 use fixshade::raster::{draw_triangle, Lerp, Span, Spans, SubpixelBits, Vertex};
 use fixshade::target::Window;
 
@@ -205,21 +208,17 @@ fn check<P: Profile>() {
     assert!((n10[2] - SEED_AT_10[2]).abs() > 0.05);
 }
 
-/// Seed 000's Phong example at (10, 11): the seed normalises the normals at
-/// the span's two ends, (0.9675, 0.2527, 0) at (7, 11) and (0.7071, 0,
-/// 0.7071) at (13, 11), and interpolates those, giving (0.9127, 0.1378,
-/// 0.3854). This crate interpolates the three *vertex* normals with
-/// per-triangle gradients (one plane per component, as for every
-/// attribute) and normalises per pixel, giving (0.9303, 0.1564, 0.3317).
-/// Both agree at the span ends; in between they differ by up to 0.053 per
-/// component, because the plane interpolation weighs the vertex normals by
-/// barycentric weight while the span-end method weighs the already
-/// normalised end normals by distance along the span. The crate's method
-/// is rotation invariant per triangle and costs no normalisation per span.
-#[test]
-fn phong_normal_at_row_11_per_profile() {
-    check::<Fast>();
-    check::<Precise>();
-    check::<F32>();
-    check::<F64>();
-}
+per_profile!(
+    /// Seed 000's Phong example at (10, 11): the seed normalises the normals at
+    /// the span's two ends, (0.9675, 0.2527, 0) at (7, 11) and (0.7071, 0,
+    /// 0.7071) at (13, 11), and interpolates those, giving (0.9127, 0.1378,
+    /// 0.3854). This crate interpolates the three *vertex* normals with
+    /// per-triangle gradients (one plane per component, as for every
+    /// attribute) and normalises per pixel, giving (0.9303, 0.1564, 0.3317).
+    /// Both agree at the span ends; in between they differ by up to 0.053 per
+    /// component, because the plane interpolation weighs the vertex normals by
+    /// barycentric weight while the span-end method weighs the already
+    /// normalised end normals by distance along the span. The crate's method
+    /// is rotation invariant per triangle and costs no normalisation per span.
+    fn phong_normal_at_row_11_per_profile = check
+);

@@ -5,6 +5,24 @@
 
 pub mod rng;
 
+/// A test running the check `$check::<P>()` for each of the four
+/// profiles `P`: `Fast`, `Precise`, `F32` and `F64`.
+#[allow(unused_macros)] // not every test binary runs per-profile checks
+macro_rules! per_profile {
+    ($(#[$m:meta])* fn $test:ident = $check:ident) => {
+        $(#[$m])*
+        #[test]
+        fn $test() {
+            $check::<fixshade::num::Fast>();
+            $check::<fixshade::num::Precise>();
+            $check::<fixshade::num::F32>();
+            $check::<fixshade::num::F64>();
+        }
+    };
+}
+#[allow(unused_imports)] // not every test binary runs per-profile checks
+pub(crate) use per_profile;
+
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
