@@ -26,18 +26,24 @@ fn win(w: u32, h: u32) -> Window {
     }
 }
 
+/// The vertices of `tri` (subpixels, cut to `i32` as they are) with no
+/// depth and no attributes.
+fn flat_vertices(tri: [(i64, i64); 3]) -> [Vertex<i32, 0>; 3] {
+    tri.map(|(x, y)| Vertex {
+        x: x as i32,
+        y: y as i32,
+        z: 0,
+        attrs: [],
+    })
+}
+
 /// Draws a flat triangle (any `N`, attributes ignored) into a counter and
 /// checks every pixel against the exact coverage; returns the pixel count.
 fn exact_coverage(tri: [(i64, i64); 3], s: SubpixelBits, w: u32, h: u32) -> u64 {
     let mut t = Counter::new(w, h);
     {
         let mut f = Fill::<_, Depth16, _>::new(&mut t, None, Flat(Rgb8::WHITE)).unwrap();
-        let v = tri.map(|(x, y)| Vertex::<i32, 0> {
-            x: x as i32,
-            y: y as i32,
-            z: 0,
-            attrs: [],
-        });
+        let v = flat_vertices(tri);
         f.draw(&v, s).unwrap();
     }
     for y in 0..h {
@@ -255,12 +261,7 @@ fn vertices_at_and_beyond_the_coordinate_limit() {
                 tri[i] = bad;
                 let mut t = Counter::new(8, 8);
                 let mut f = Fill::<_, Depth16, _>::new(&mut t, None, Flat(Rgb8::WHITE)).unwrap();
-                let v = tri.map(|(x, y)| Vertex::<i32, 0> {
-                    x: x as i32,
-                    y: y as i32,
-                    z: 0,
-                    attrs: [],
-                });
+                let v = flat_vertices(tri);
                 assert_eq!(f.draw(&v, s), Err(RasterError::OutOfRange(i as u8)));
                 assert_eq!(t.total(), 0);
             }
@@ -522,12 +523,7 @@ fn targets_of_zero_and_one_pixel() {
     for (w, h) in [(0, 0), (0, 5), (5, 0)] {
         let mut t = Counter::new(w, h);
         let mut f = Fill::<_, Depth16, _>::new(&mut t, None, Flat(Rgb8::WHITE)).unwrap();
-        let v = huge.map(|(x, y)| Vertex::<i32, 0> {
-            x: x as i32,
-            y: y as i32,
-            z: 0,
-            attrs: [],
-        });
+        let v = flat_vertices(huge);
         f.draw(&v, s).unwrap();
         assert_eq!(f.drawn(), 0);
         let mut empty: [[u8; 1]; 0] = [];

@@ -20,6 +20,30 @@ fn run(args: &[&str]) -> Output {
     Command::new(EXE).args(args).output().expect("run fixshade")
 }
 
+/// `fixshade report EXTRA... --quick --allow-stale --out OUT`, and its
+/// standard error.
+fn quick_report(out: &Path, extra: &[&str]) -> (Output, String) {
+    let mut args = vec!["report"];
+    args.extend_from_slice(extra);
+    args.extend(["--quick", "--allow-stale", "--out", out.to_str().unwrap()]);
+    let o = run(&args);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    (o, stderr)
+}
+
+/// `fixshade pick --chip m0 --fps FPS EXTRA... --allow-stale`: its exit
+/// code and standard output.
+fn pick_m0(fps: &str, extra: &[&str]) -> (Option<i32>, String) {
+    let mut args = vec!["pick", "--chip", "m0", "--fps", fps];
+    args.extend_from_slice(extra);
+    args.push("--allow-stale");
+    let o = run(&args);
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+    )
+}
+
 fn text(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
@@ -28,14 +52,7 @@ fn text(path: &Path) -> String {
 fn quick_report_has_every_record_the_summary_and_the_plots() {
     let tmp = TempDir::new("report-quick");
     let out = tmp.0.join("out");
-    let o = run(&[
-        "report",
-        "--quick",
-        "--allow-stale",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
+    let (o, stderr) = quick_report(&out, &[]);
     assert!(o.status.success(), "{stderr}");
     // No progress bar when stderr is not a terminal.
     assert!(stderr.is_empty(), "{stderr}");
@@ -290,14 +307,7 @@ fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
     std::fs::write(&file, "x").unwrap();
     let under_file = file.join("out");
     let start = std::time::Instant::now();
-    let o = run(&[
-        "report",
-        "--quick",
-        "--allow-stale",
-        "--out",
-        under_file.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
+    let (o, stderr) = quick_report(&under_file, &[]);
     assert_eq!(o.status.code(), Some(1), "{stderr}");
     assert!(stderr.starts_with("error: "), "{stderr}");
     assert!(stderr.contains("a-file"), "{stderr}");
@@ -314,16 +324,7 @@ fn unwritable_folder_and_bad_firmware_results_fail_before_any_work() {
     std::fs::write(out.join("index.html"), "old").unwrap();
     let fw = tmp.0.join("fw.txt");
     std::fs::write(&fw, "RESULT target=m7 scene=x insns=1\n").unwrap();
-    let o = run(&[
-        "report",
-        "--quick",
-        "--out",
-        out.to_str().unwrap(),
-        "--firmware-results",
-        fw.to_str().unwrap(),
-        "--allow-stale",
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
+    let (o, stderr) = quick_report(&out, &["--firmware-results", fw.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     assert!(
         stderr.contains("fw.txt: line 1: target: unknown target `m7`"),
@@ -409,18 +410,8 @@ fn pick_fits_a_budget_or_says_how_far_off_it_is() {
         "{stdout}"
     );
     // 60 fps in 8 KiB: nothing fits, exit 1 with the closest.
-    let o = run(&[
-        "pick",
-        "--chip",
-        "m0",
-        "--fps",
-        "60",
-        "--ram-kb",
-        "8",
-        "--allow-stale",
-    ]);
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(o.status.code(), Some(1), "{stdout}");
+    let (code, stdout) = pick_m0("60", &["--ram-kb", "8"]);
+    assert_eq!(code, Some(1), "{stdout}");
     assert!(stdout.contains("nothing fits. closest: "), "{stdout}");
     assert!(stdout.contains("bytes over the RAM"), "{stdout}");
     // Bad input: exit 2, nothing on stdout.
@@ -463,18 +454,8 @@ fn the_users_scene_files_are_swept_and_picked_by_ram() {
     let bunny = bunny.to_str().unwrap();
     // The bunny needs more than 32 KiB in every configuration: exit 1,
     // with the bytes it needs.
-    let o = run(&[
-        "pick",
-        "--chip",
-        "m0",
-        "--fps",
-        "10",
-        "--scene",
-        bunny,
-        "--allow-stale",
-    ]);
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(o.status.code(), Some(1), "{stdout}");
+    let (code, stdout) = pick_m0("10", &["--scene", bunny]);
+    assert_eq!(code, Some(1), "{stdout}");
     assert!(
         stdout.contains("cycles: not measured for your scene"),
         "{stdout}"
@@ -483,23 +464,11 @@ fn the_users_scene_files_are_swept_and_picked_by_ram() {
         stdout.contains("your scene is too big for 32768 bytes of RAM"),
         "{stdout}"
     );
-    let o = run(&[
-        "pick",
-        "--chip",
-        "m0",
-        "--fps",
-        "10",
-        "--ram-kb",
-        // 50 KB: room for the affine profiles' bunny (about 44 KB with
-        // `fast`), not for the perspective-correct ones' (one more value
-        // per vertex, 7 356 bytes: 57 862 bytes for `fast-pc`).
-        "50",
-        "--scene",
-        bunny,
-        "--allow-stale",
-    ]);
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(o.status.code(), Some(0), "{stdout}");
+    // 50 KB: room for the affine profiles' bunny (about 44 KB with
+    // `fast`), not for the perspective-correct ones' (one more value per
+    // vertex, 7 356 bytes: 57 862 bytes for `fast-pc`).
+    let (code, stdout) = pick_m0("10", &["--ram-kb", "50", "--scene", bunny]);
+    assert_eq!(code, Some(0), "{stdout}");
     assert!(stdout.contains("pick: fast / Gouraud"), "{stdout}");
 
     // `report SCENE.toml...`: the files instead of the built-ins, with
@@ -507,16 +476,8 @@ fn the_users_scene_files_are_swept_and_picked_by_ram() {
     let tmp = TempDir::new("report-user");
     let out = tmp.0.join("out");
     let dodeca = scenes.join("dodeca-phong-n100.toml");
-    let o = run(&[
-        "report",
-        dodeca.to_str().unwrap(),
-        bunny,
-        "--quick",
-        "--allow-stale",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (o, stderr) = quick_report(&out, &[dodeca.to_str().unwrap(), bunny]);
+    assert!(o.status.success(), "{stderr}");
     let data: ReportData = serde_json::from_str(&text(&out.join("results.json"))).unwrap();
     let names: Vec<&str> = data.meta.scenes.iter().map(|s| s.name.as_str()).collect();
     assert_eq!(names, ["dodeca-phong-n100", "bunny-gouraud"]);
@@ -533,15 +494,8 @@ fn the_users_scene_files_are_swept_and_picked_by_ram() {
     );
     // A missing file: bad input, no output.
     let out2 = tmp.0.join("out2");
-    let o = run(&[
-        "report",
-        "/nonexistent/scene.toml",
-        "--quick",
-        "--allow-stale",
-        "--out",
-        out2.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
+    let (o, stderr) = quick_report(&out2, &["/nonexistent/scene.toml"]);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
     assert!(!out2.exists());
 }
 
