@@ -556,30 +556,37 @@ impl<R: Real> ObjectLight<R> {
             if nl <= R::ZERO {
                 continue;
             }
-            // `Q16`'s `*` in 32-bit products, bit for bit (|diffuse| <
-            // 2^24 checked when built, |N·L| <= 2^17 for unit vectors),
-            // where `N·L` is in that range.
-            let small = R::Kernels::pick(
+            // The term `diffuse · N·L` (only its first channel when
+            // `mono`): for `Q16` in 32-bit products, bit for bit `*`
+            // (|diffuse| < 2^24 checked when built, |N·L| <= 2^17 for unit
+            // vectors), where `N·L` is in that range.
+            let generic = || {
+                if mono {
+                    Vec3::new(t.diffuse.x * nl, R::ZERO, R::ZERO)
+                } else {
+                    t.diffuse.scale(nl)
+                }
+            };
+            let term = R::Kernels::pick(
                 |q| {
                     let nlr = q.raw(nl);
-                    (nlr.unsigned_abs() <= SMALL).then_some((q, nlr))
+                    if nlr.unsigned_abs() > SMALL {
+                        return generic();
+                    }
+                    let d = raw3(t.diffuse);
+                    let p = |c: i32| q.from_raw(mul16_small(c, nlr));
+                    if mono {
+                        Vec3::new(p(d[0]), R::ZERO, R::ZERO)
+                    } else {
+                        Vec3::new(p(d[0]), p(d[1]), p(d[2]))
+                    }
                 },
-                || None,
+                generic,
             );
-            if let Some((q, nlr)) = small {
-                let d = raw3(t.diffuse);
-                let p = |c: i32| q.from_raw(mul16_small(c, nlr));
-                if mono {
-                    sum.x += p(d[0]);
-                } else {
-                    sum = sum + Vec3::new(p(d[0]), p(d[1]), p(d[2]));
-                }
-                continue;
-            }
             if mono {
-                sum.x += t.diffuse.x * nl;
+                sum.x += term.x;
             } else {
-                sum = sum + t.diffuse.scale(nl);
+                sum = sum + term;
             }
         }
         if mono {
