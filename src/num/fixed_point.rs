@@ -308,26 +308,7 @@ mod tests {
     /// `2^47` resp. `2^95`) and the extreme operands.
     #[test]
     fn round_product_matches_shift_then_saturate() {
-        let edges32 = [
-            0,
-            1,
-            -1,
-            2,
-            0x7FFF,
-            0x8000,
-            -0x8000,
-            0xFFFF,
-            0x1_0000,
-            -0x1_0000,
-            0x7FFF_FFFF,
-            i32::MIN,
-            i32::MIN + 1,
-            0x00B5_04F3,
-            0x00B5_04F4,
-            -0x00B5_04F4,
-            0x0080_0000,
-            -0x0080_0000,
-        ];
+        let edges32 = crate::num::testkit::EDGES_I32;
         for &a in &edges32 {
             for &b in &edges32 {
                 check16(a, b);

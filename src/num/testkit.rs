@@ -9,6 +9,33 @@ use std::vec::Vec;
 
 use super::Real;
 
+/// Edge operands of 32-bit products: 0, ±1, 2, the borders of the 16-bit
+/// halves (`0x7FFF` to `±2^16`), the ends of `i32`, `2^23` and the
+/// neighbours of `2^23.5` (where Q16 products reach `2^47` and saturate),
+/// and a value with mixed bits.
+pub(super) const EDGES_I32: [i32; 20] = [
+    0,
+    1,
+    -1,
+    2,
+    0x7FFF,
+    0x8000,
+    -0x8000,
+    0xFFFF,
+    0x1_0000,
+    -0x1_0000,
+    0x7FFF_FFFF,
+    i32::MIN,
+    i32::MIN + 1,
+    0x00B5_04F3,
+    0x00B5_04F4,
+    -0x00B5_04F4,
+    0x0080_0000,
+    -0x0080_0000,
+    0x1234_5678,
+    -0x1234_5678,
+];
+
 /// Deterministic pseudo-random `u64` stream (xorshift64*).
 pub(super) struct Rng(pub(super) u64);
 

@@ -436,21 +436,7 @@ mod tests {
 
     #[test]
     fn split_product_is_exact() {
-        let edge = [
-            0,
-            1,
-            -1,
-            0xFFFF,
-            0x1_0000,
-            -0x1_0000,
-            0x7FFF_FFFF,
-            i32::MIN,
-            i32::MIN + 1,
-            0x8000,
-            -0x8000,
-            0x1234_5678,
-            -0x1234_5678,
-        ];
+        let edge = crate::num::testkit::EDGES_I32;
         for &a in &edge {
             for &b in &edge {
                 assert_eq!(wmul_split(a, b), i64::from(a) * i64::from(b), "{a} {b}");
