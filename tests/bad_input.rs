@@ -7,7 +7,7 @@
 mod common;
 
 use common::per_profile;
-use common::{render, square, Desc, Image, Lamp, Mat, Obj, WHITE};
+use common::{render, square_scene, Desc, Image, Lamp, Mat, WHITE};
 use fixshade::illum::{Shade, Specular, Viewer};
 use fixshade::num::{Profile, Real};
 use fixshade::scene::Shading;
@@ -149,17 +149,10 @@ fn shininess<P: Profile>() {
     // -0.50. At n = 0 the specular term is max(0, R·V)^0 = 0^0 = 1 (as
     // `Real::powf` defines it and the ideal renderer does); at n = 1 it
     // is 0.
-    let tilted = |n: f64| {
-        shade::<P>(
-            m(n),
-            0.0,
-            &[Lamp::Dir([0.5f64.sin(), 0.0, 0.5f64.cos()], 1.0, WHITE)],
-            Specular::Phong,
-            Viewer::Infinite,
-            [(-0.8f64).sin(), 0.0, (-0.8f64).cos()],
-            [0.0, 0.0, -1.0],
-        )[0]
-    };
+    let lamp = [Lamp::Dir([0.5f64.sin(), 0.0, 0.5f64.cos()], 1.0, WHITE)];
+    let normal = [(-0.8f64).sin(), 0.0, (-0.8f64).cos()];
+    let (model, view, at) = (Specular::Phong, Viewer::Infinite, [0.0, 0.0, -1.0]);
+    let tilted = |n: f64| shade::<P>(m(n), 0.0, &lamp, model, view, normal, at)[0];
     assert!(
         (tilted(0.0) - 1.0).abs() <= t,
         "{} n=0: {}",
@@ -168,17 +161,7 @@ fn shininess<P: Profile>() {
     );
     assert_eq!(tilted(1.0), 0.0, "{} n=1", P::NAME);
     // The reference agrees.
-    let want = |n: f64| {
-        common::phong_f64(
-            &m(n),
-            0.0,
-            &[Lamp::Dir([0.5f64.sin(), 0.0, 0.5f64.cos()], 1.0, WHITE)],
-            Specular::Phong,
-            Viewer::Infinite,
-            [(-0.8f64).sin(), 0.0, (-0.8f64).cos()],
-            [0.0, 0.0, -1.0],
-        )[0]
-    };
+    let want = |n: f64| common::phong_f64(&m(n), 0.0, &lamp, model, view, normal, at)[0];
     assert_eq!((want(0.0), want(1.0)), (1.0, 0.0));
     // Huge shininess is clamped to 10 000: at R·V = cos(0.01), 10 000
     // gives 0.99995^10000 = e^-0.5 = 0.6065, where 1e6 would give
@@ -274,30 +257,14 @@ const UP: [i16; 3] = [0, 0, 16384];
 const DOWN: [i16; 3] = [0, 0, -16384];
 
 fn scene(normals: [[i16; 3]; 4], shading: Shading, lamps: Vec<Lamp>) -> Desc {
-    Desc {
-        eye: [0.0, 0.0, 3.0],
-        target: [0.0; 3],
-        fov_deg: 45.0,
-        objects: vec![Obj {
-            mesh: square(normals),
-            scale: 1.0,
-            angles: [0.0; 3],
-            offset: [0.0; 3],
-            mat: Mat {
-                color: WHITE,
-                ka: 1.0,
-                kd: 0.7,
-                ks: 0.3,
-                n: 20.0,
-            },
-            shading,
-            cull: true,
-        }],
-        lamps,
-        ambient: 0.2,
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-    }
+    let mat = Mat {
+        color: WHITE,
+        ka: 1.0,
+        kd: 0.7,
+        ks: 0.3,
+        n: 20.0,
+    };
+    square_scene(normals, mat, lamps, shading, 0.2)
 }
 
 /// Every covered pixel's level, and the count of covered pixels.

@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{render, square, Desc, Image, Lamp, Mat, Obj, WHITE};
+use common::{render, square_scene, Desc, Image, Lamp, Mat, Obj, WHITE};
 use fixshade::illum::{Specular, Viewer};
 use fixshade::mesh::CAN;
 use fixshade::num::{Precise, F64};
@@ -29,33 +29,6 @@ fn k() -> f64 {
 /// from (0, 0, 3).
 fn screen(x: f64, y: f64) -> (f64, f64) {
     (60.0 + k() * x / 3.0, 60.0 - k() * y / 3.0)
-}
-
-fn square_scene(
-    normals: [[i16; 3]; 4],
-    mat: Mat,
-    lamps: Vec<Lamp>,
-    shading: Shading,
-    ambient: f64,
-) -> Desc {
-    Desc {
-        eye: [0.0, 0.0, 3.0],
-        target: [0.0; 3],
-        fov_deg: 45.0,
-        objects: vec![Obj {
-            mesh: square(normals),
-            scale: 1.0,
-            angles: [0.0; 3],
-            offset: [0.0; 3],
-            mat,
-            shading,
-            cull: true,
-        }],
-        lamps,
-        ambient,
-        specular: Specular::Phong,
-        viewer: Viewer::Local,
-    }
 }
 
 /// The four corner pixels of the square, one pixel inside.

@@ -319,6 +319,36 @@ pub fn leak<T>(v: Vec<T>) -> &'static [T] {
     Box::leak(v.into_boxed_slice())
 }
 
+/// The square of [`square`] with vertex normals `normals`, seen
+/// head-on from (0, 0, 3) at 45°, culled, under `lamps` (Phong, local
+/// viewer).
+pub fn square_scene(
+    normals: [[i16; 3]; 4],
+    mat: Mat,
+    lamps: Vec<Lamp>,
+    shading: Shading,
+    ambient: f64,
+) -> Desc {
+    Desc {
+        eye: [0.0, 0.0, 3.0],
+        target: [0.0; 3],
+        fov_deg: 45.0,
+        objects: vec![Obj {
+            mesh: square(normals),
+            scale: 1.0,
+            angles: [0.0; 3],
+            offset: [0.0; 3],
+            mat,
+            shading,
+            cull: true,
+        }],
+        lamps,
+        ambient,
+        specular: Specular::Phong,
+        viewer: Viewer::Local,
+    }
+}
+
 /// A square `[-1, 1]²` in the plane z = 0 facing +z, as two triangles
 /// with the diagonal from (-1, -1) to (1, 1), and one normal per corner
 /// (`normals` in corner order (-1,-1), (1,-1), (1,1), (-1,1), not
