@@ -263,7 +263,8 @@ fn random(count: usize) -> Vec<Case> {
     out
 }
 
-fn shade<P: Profile>(c: &Case) -> [f64; 3] {
+/// The case's colour by profile `P`'s `Shade::at`.
+fn shade_at<P: Profile>(c: &Case) -> fixshade::geom::Vec3<P::Real> {
     let lights: Vec<_> = c.lamps.iter().map(|l| l.to::<P::Real>()).collect();
     let s = Shade::new(
         &c.mat.to::<P::Real>(),
@@ -273,7 +274,11 @@ fn shade<P: Profile>(c: &Case) -> [f64; 3] {
         c.viewer,
     )
     .unwrap();
-    let out = s.at(common::v3(c.n), common::v3(c.p)).to_f64();
+    s.at(common::v3(c.n), common::v3(c.p))
+}
+
+fn shade<P: Profile>(c: &Case) -> [f64; 3] {
+    let out = shade_at::<P>(c).to_f64();
     for v in out {
         assert!(
             v.is_finite() && (0.0..=1.0).contains(&v),
@@ -424,16 +429,7 @@ fn reference_hand_values() {
 /// Shade of profile `P` for the case, as levels rounded like the shaders
 /// (`Real::to_level`).
 fn levels<P: Profile>(c: &Case) -> [u8; 3] {
-    let lights: Vec<_> = c.lamps.iter().map(|l| l.to::<P::Real>()).collect();
-    let s = Shade::new(
-        &c.mat.to::<P::Real>(),
-        P::Real::from_f64(c.ambient),
-        &lights,
-        c.spec,
-        c.viewer,
-    )
-    .unwrap();
-    let v = s.at(common::v3(c.n), common::v3(c.p));
+    let v = shade_at::<P>(c);
     [v.x.to_level(), v.y.to_level(), v.z.to_level()]
 }
 
