@@ -219,16 +219,10 @@ fn is_softfloat(name: &str) -> bool {
         })
 }
 
-/// The CRCs of `host-check` for a profile, by scene.
-fn host_crcs(
-    fw: &Path,
-    profile: CoreProfile,
-    target_dir: Option<&Path>,
-) -> Result<BTreeMap<String, String>, Error> {
+/// `cargo run` of the firmware workspace's `host-check` (profile `host`)
+/// in `fw`; its arguments follow a `--`.
+fn host_check(fw: &Path) -> Command {
     let mut cmd = Command::new("cargo");
-    if let Some(dir) = target_dir {
-        cmd.env("CARGO_TARGET_DIR", dir);
-    }
     cmd.current_dir(fw).args([
         "run",
         "-q",
@@ -237,6 +231,19 @@ fn host_crcs(
         "-p",
         "fixshade-host-check",
     ]);
+    cmd
+}
+
+/// The CRCs of `host-check` for a profile, by scene.
+fn host_crcs(
+    fw: &Path,
+    profile: CoreProfile,
+    target_dir: Option<&Path>,
+) -> Result<BTreeMap<String, String>, Error> {
+    let mut cmd = host_check(fw);
+    if let Some(dir) = target_dir {
+        cmd.env("CARGO_TARGET_DIR", dir);
+    }
     if profile != CoreProfile::Fast {
         cmd.args(["--", "--profile", profile.name()]);
     }
@@ -692,19 +699,7 @@ fn measure_knobs(
 /// host-check `--knobs`: CRCs by `rows/depth/subpixel`, and the pixels
 /// where the 32-bit depth frame differs from the 16-bit one.
 fn host_knobs(fw: &Path) -> Result<(BTreeMap<String, String>, u64), Error> {
-    let out = run(
-        Command::new("cargo").current_dir(fw).args([
-            "run",
-            "-q",
-            "--profile",
-            "host",
-            "-p",
-            "fixshade-host-check",
-            "--",
-            "--knobs",
-        ]),
-        "host-check --knobs",
-    )?;
+    let out = run(host_check(fw).args(["--", "--knobs"]), "host-check --knobs")?;
     let crcs = out
         .lines()
         .filter(|l| l.starts_with("knob "))
