@@ -430,6 +430,43 @@ pub struct FrameStats {
     pub pixels: u32,
 }
 
+/// A workspace on the heap, of lengths chosen at run time (the core's
+/// `Storage` takes them as const generics).
+#[derive(Debug)]
+pub struct OwnedWorkspace<L> {
+    xy: Vec<fixshade::render::ScreenXy>,
+    vals: Vec<L>,
+    tris: Vec<Tri>,
+    colors: Vec<fixshade::target::Rgb8>,
+    faces: Vec<u8>,
+}
+
+impl<L: Copy + Default> OwnedWorkspace<L> {
+    /// Room for `vertices` prepared vertices, `values` values, `made`
+    /// made triangles and `triangles` triangle numbers (a face byte and a
+    /// flat colour each).
+    pub fn new(vertices: usize, values: usize, made: usize, triangles: usize) -> Self {
+        Self {
+            xy: vec![fixshade::render::ScreenXy::ZERO; vertices],
+            vals: vec![L::default(); values],
+            tris: vec![Tri::default(); made],
+            colors: vec![fixshade::target::Rgb8::BLACK; triangles],
+            faces: vec![0; triangles],
+        }
+    }
+
+    /// The workspace over these vectors.
+    pub fn ws(&mut self) -> Workspace<'_, L> {
+        Workspace {
+            xy: &mut self.xy,
+            vals: &mut self.vals,
+            tris: &mut self.tris,
+            colors: &mut self.colors,
+            faces: &mut self.faces,
+        }
+    }
+}
+
 /// Active triangles the host renderer keeps from band to band (every
 /// layout: 8 values a slot); more at a band border are set up afresh.
 const POOL: usize = 512;
@@ -439,11 +476,7 @@ const POOL: usize = 512;
 /// band and a 16-bit depth band, allocated once.
 #[derive(Debug)]
 pub struct Renderer<P: Profile, F: CorePixelFormat> {
-    xy: Vec<fixshade::render::ScreenXy>,
-    vals: Vec<P::Lerp>,
-    tris: Vec<Tri>,
-    colors: Vec<fixshade::target::Rgb8>,
-    faces: Vec<u8>,
+    ws: OwnedWorkspace<P::Lerp>,
     band: Vec<F::Raw>,
     depth: Vec<u16>,
     order: Vec<u16>,
@@ -460,11 +493,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
         let rows = rows.max(1);
         let band_len = (width * rows.min(height.max(1))) as usize;
         Self {
-            xy: vec![fixshade::render::ScreenXy::ZERO; verts],
-            vals: vec![P::Lerp::default(); verts * 8],
-            tris: vec![Tri::default(); tris],
-            colors: vec![fixshade::target::Rgb8::BLACK; tris],
-            faces: vec![0; tris],
+            ws: OwnedWorkspace::new(verts, verts * 8, tris, tris),
             band: vec![F::Raw::default(); band_len],
             depth: vec![0; band_len],
             order: vec![0; 2 * tris],
@@ -487,14 +516,7 @@ impl<P: Profile, F: CorePixelFormat> Renderer<P, F> {
         mut band: impl FnMut(&BandBuf<'_, F>),
     ) -> Result<FrameStats, CoreError> {
         let (w, h) = (self.width, self.height);
-        let ws = Workspace {
-            xy: &mut self.xy,
-            vals: &mut self.vals,
-            tris: &mut self.tris,
-            colors: &mut self.colors,
-            faces: &mut self.faces,
-        };
-        let frame = prepare::<P>(scene, w, h, ws)?;
+        let frame = prepare::<P>(scene, w, h, self.ws.ws())?;
         let mut stats = FrameStats {
             vertices: frame.vertex_count(),
             triangles: frame.triangle_count(),

@@ -28,14 +28,14 @@ use fixshade::geom::Vec3;
 use fixshade::illum::LightKind;
 use fixshade::mesh::Mesh;
 use fixshade::num::{Fast, Real, Q16};
-use fixshade::render::{prepare, BandState, Layout, Pool, Reach, RenderError, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Layout, Pool, Reach, RenderError};
 
 pub use fixshade::render::Capacity;
 use fixshade::scene::{Scene, Shading};
 use fixshade::target::{BandBuf, Rgb565Be};
 
 use crate::builtin::load_builtin;
-use crate::core_render::{crc32, CameraInputs, CoreError, CoreScene, BAND_ROWS};
+use crate::core_render::{crc32, CameraInputs, CoreError, CoreScene, OwnedWorkspace, BAND_ROWS};
 use crate::scene_file::{PixelFormat, SceneDesc, SceneError, SceneMesh, BUILTIN_MESHES};
 
 /// Why a scene cannot be one of the firmware's, or its frame not rendered
@@ -164,38 +164,10 @@ fn q16_scene(desc: &SceneDesc) -> Result<CoreScene<'_, Q16>, CoreError> {
     CoreScene::new(desc)
 }
 
-/// A `Fast` workspace of the lengths `cap`, on the heap (lengths a host
-/// chooses at run time: the core's `Storage` takes them as const
-/// generics).
-struct Owned {
-    xy: Vec<fixshade::render::ScreenXy>,
-    vals: Vec<i32>,
-    tris: Vec<Tri>,
-    colors: Vec<fixshade::target::Rgb8>,
-    faces: Vec<u8>,
-}
-
-impl Owned {
-    fn new(cap: Capacity) -> Self {
-        Self {
-            xy: vec![fixshade::render::ScreenXy::ZERO; cap.vertices],
-            vals: vec![0; cap.values],
-            tris: vec![Tri::default(); cap.made],
-            // A colour per triangle number: room for any layout.
-            colors: vec![fixshade::target::Rgb8::BLACK; cap.triangles],
-            faces: vec![0; cap.triangles],
-        }
-    }
-
-    fn ws(&mut self) -> Workspace<'_, i32> {
-        Workspace {
-            xy: &mut self.xy,
-            vals: &mut self.vals,
-            tris: &mut self.tris,
-            colors: &mut self.colors,
-            faces: &mut self.faces,
-        }
-    }
+/// A `Fast` workspace of the lengths `cap`, on the heap.
+fn owned(cap: Capacity) -> OwnedWorkspace<i32> {
+    // A colour per triangle number: room for any layout.
+    OwnedWorkspace::new(cap.vertices, cap.values, cap.made, cap.triangles)
 }
 
 /// The storage of `scene` as the firmware sizes it: per object the
@@ -219,7 +191,7 @@ fn rooms(
     let any = scene.objects.iter().fold(Capacity::EMPTY, |c, o| {
         c.object(&o.mesh, Layout::PhongPosition, Reach::Clipped)
     });
-    let mut mem = Owned::new(any);
+    let mut mem = owned(any);
     let frame = prepare::<Fast>(scene, w, h, mem.ws())?;
     let mut cap = Capacity::EMPTY;
     let rooms = scene
@@ -310,7 +282,7 @@ fn render_crc(
     cap: Capacity,
     depth: bool,
 ) -> Result<HostFrame, RenderError> {
-    let mut mem = Owned::new(cap);
+    let mut mem = owned(cap);
     let frame = prepare::<Fast>(scene, w, h, mem.ws())?;
     let mut band = vec![0u16; (w * BAND_ROWS) as usize];
     let mut z = vec![0u16; (w * BAND_ROWS) as usize];
@@ -423,7 +395,7 @@ impl FirmwareScene {
     pub fn prepare_with(&self, cap: Capacity) -> Result<(), RenderError> {
         let q = q16_scene(&self.desc).map_err(|_| RenderError::Window)?;
         let scene = q.scene();
-        let mut mem = Owned::new(cap.in_profile::<Fast>());
+        let mut mem = owned(cap.in_profile::<Fast>());
         prepare::<Fast>(&scene, self.desc.width, self.desc.height, mem.ws()).map(|_| ())
     }
 

@@ -642,7 +642,7 @@ fn window<P: Profile>(s: &Spec<'_>, y0: u32, y1: u32) -> (Vec<[u8; 3]>, Vec<bool
     use fixshade::target::{Depth32, DepthBuffer, FrameBuf, Rgb888, Target};
     let (camera, lights, objects) = s.core::<P::Real>();
     let scene = s.scene(camera, &lights, &objects);
-    let mut mem = Mem::<P::Lerp>::new(2_000, 2_000);
+    let mut mem = mem::<P::Lerp>(2_000, 2_000);
     let frame = prepare::<P>(&scene, s.width, s.height, mem.ws()).unwrap();
     let n = (s.width * (y1 - y0)) as usize;
     let mut px = vec![[0u8; 3]; n];

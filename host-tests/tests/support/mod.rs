@@ -12,11 +12,12 @@ use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material, Specular, Viewer};
 use fixshade::mesh::Mesh;
 use fixshade::num::{Profile, Real};
-use fixshade::render::{prepare, BandState, Pool, RenderError, RenderStats, Tri, Workspace};
+use fixshade::render::{prepare, BandState, Pool, RenderError, RenderStats};
 use fixshade::scene::{Camera, Object, Scene, SceneError, Shading};
 use fixshade::target::{
     BandBuf, Depth32, DepthBuffer, FrameBuf, Gray8, PixelFormat, Rgb8, Rgb888, Target, Window,
 };
+use fixshade_host::core_render::OwnedWorkspace;
 use fixshade_host::ideal::{self, IdealScene};
 
 /// The `fixshade` command under test.
@@ -84,37 +85,10 @@ pub fn fixshade(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
         .expect("run fixshade")
 }
 
-/// Owned workspace memory.
-pub struct Mem<L> {
-    pub xy: Vec<fixshade::render::ScreenXy>,
-    pub vals: Vec<L>,
-    pub tris: Vec<Tri>,
-    pub colors: Vec<fixshade::target::Rgb8>,
-    pub faces: Vec<u8>,
-}
-
-impl<L: Copy + Default> Mem<L> {
-    /// Room for `verts` prepared vertices (of any layout), `tris`
-    /// triangles and meshes of up to 2000 vertices.
-    pub fn new(verts: usize, tris: usize) -> Self {
-        Self {
-            xy: vec![fixshade::render::ScreenXy::ZERO; verts],
-            vals: vec![L::default(); verts * 8],
-            tris: vec![Tri::default(); tris],
-            colors: vec![fixshade::target::Rgb8::BLACK; tris],
-            faces: vec![0; tris],
-        }
-    }
-
-    pub fn ws(&mut self) -> Workspace<'_, L> {
-        Workspace {
-            xy: &mut self.xy,
-            vals: &mut self.vals,
-            tris: &mut self.tris,
-            colors: &mut self.colors,
-            faces: &mut self.faces,
-        }
-    }
+/// Owned workspace memory: room for `verts` prepared vertices (of any
+/// layout: 8 values each) and `tris` triangles.
+pub fn mem<L: Copy + Default>(verts: usize, tris: usize) -> OwnedWorkspace<L> {
+    OwnedWorkspace::new(verts, verts * 8, tris, tris)
 }
 
 /// A rendered core frame: colours, and coverage read back from the depth
@@ -145,7 +119,7 @@ pub fn render_full<P: Profile>(
     w: u32,
     h: u32,
 ) -> Result<CoreFrame, RenderError> {
-    let mut mem = Mem::<P::Lerp>::new(20_000, 20_000);
+    let mut mem = mem::<P::Lerp>(20_000, 20_000);
     let frame = prepare::<P>(scene, w, h, mem.ws())?;
     let n = (w * h) as usize;
     let mut px = vec![[0u8; 3]; n];
@@ -173,7 +147,7 @@ pub fn render_banded<P: Profile>(
     h: u32,
     rows: u32,
 ) -> Result<Vec<[u8; 3]>, RenderError> {
-    let mut mem = Mem::<P::Lerp>::new(20_000, 20_000);
+    let mut mem = mem::<P::Lerp>(20_000, 20_000);
     let frame = prepare::<P>(scene, w, h, mem.ws())?;
     let mut px = vec![[0u8; 3]; (w * rows) as usize];
     let mut z = vec![0u32; (w * rows) as usize];
