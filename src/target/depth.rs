@@ -55,9 +55,10 @@ pub trait DepthFormat: Copy + core::fmt::Debug {
     }
 
     /// `true` when a triangle whose depths convert to 16 bits without a
-    /// clamp (`z16`, [`Depth16::plane_in_range`]) has
-    /// every span in range as [`DepthFormat::span_in_range`] says (then
-    /// not asked per span). `false` by default.
+    /// clamp (`z16`: its vertex depths and gradients pass [`Depth16`]'s
+    /// plane test) has every span in range as
+    /// [`DepthFormat::span_in_range`] says (then not asked per span).
+    /// `false` by default.
     #[inline(always)]
     fn plane_in_range(z16: bool) -> bool {
         let _ = z16;
