@@ -101,6 +101,11 @@ struct Dn {
 
 impl Up {
     /// `v · 2^e`, rounded up to a 32-bit mantissa.
+    // Not inlined (nor are the other 128-bit steps of the set-up): a
+    // 128-bit variable shift takes a stack slot of its own on the
+    // Cortex-M targets, inlined copies one each (about 2.6 KB of stack
+    // in all under the object pass).
+    #[inline(never)]
     fn new(v: u128, e: i32) -> Self {
         let bits = 128 - v.leading_zeros();
         if bits <= 32 {
@@ -136,6 +141,7 @@ impl Up {
     }
 
     /// Both mantissas at the smaller exponent (`None` beyond 2^90 apart).
+    #[inline(never)]
     fn align(self, o: Self) -> Option<(u128, u128, i32)> {
         let e = self.e.min(o.e);
         let (da, db) = ((self.e - e) as u32, (o.e - e) as u32);
@@ -182,6 +188,7 @@ impl Up {
 
 impl Dn {
     /// `v · 2^e`, rounded down to a 32-bit mantissa.
+    #[inline(never)]
     fn new(v: u128, e: i32) -> Self {
         let bits = 128 - v.leading_zeros();
         let s = bits.saturating_sub(32);
@@ -202,6 +209,33 @@ const _: () = assert!(SLACK_LENGTH == 64);
 /// `1.0002 · √3 · 2^14 < 28 384`: the error of `a · E` with `E` rounded
 /// down to `2^-fe` (`|a| <= 1.0002`), in units of `2^-(14 + fe)`.
 const BIAS: i32 = 28_384;
+
+/// Whether every `|num_k| 2^fe` is below `4000 · det` (`fe` in
+/// `-16..=12`, `|num_k| < 3·2^72`: no shift leaves 128 bits).
+#[inline(never)]
+fn below(num: &[i128; 3], dt: i128, fe: i32) -> bool {
+    num.iter().all(|v| {
+        if fe >= 0 {
+            v.unsigned_abs() << fe < 4000 * dt.unsigned_abs()
+        } else {
+            v.unsigned_abs() < (4000 * dt.unsigned_abs()) << -fe
+        }
+    })
+}
+
+/// `⌊v 2^fe / dt⌋` (`dt > 0`; `|v| < 3·2^72`, `fe` in `-16..=12`: no
+/// shift leaves i128) when it is below `2^12` in magnitude: within
+/// `2^-fe` below `v / dt`.
+#[inline(never)]
+fn scaled_quotient(v: i128, fe: i32, dt: i128) -> Option<i32> {
+    let q = if fe >= 0 {
+        (v << fe).checked_div_euclid(dt)
+    } else {
+        v.checked_div_euclid(dt << -fe)
+    };
+    q.and_then(|q| i32::try_from(q).ok())
+        .filter(|q| q.unsigned_abs() < 1 << 12)
+}
 
 impl EarlyCull {
     /// The test of an object with `Q16` model-view `m` (linear part) and
@@ -254,17 +288,8 @@ impl EarlyCull {
         // The largest fe <= 12 with every |E_k| 2^fe below 4000 (|E_k|
         // 2^fe < 2^12 after rounding; fe is lowered further below to scale
         // the threshold).
-        let below = |fe: i32| {
-            num.iter().all(|v| {
-                if fe >= 0 {
-                    v.unsigned_abs() << fe < 4000 * dt.unsigned_abs()
-                } else {
-                    v.unsigned_abs() < (4000 * dt.unsigned_abs()) << -fe
-                }
-            })
-        };
         let mut fe_max = 12i32;
-        while !below(fe_max) {
+        while !below(&num, dt, fe_max) {
             fe_max -= 1;
             if fe_max < -16 {
                 return None;
@@ -337,19 +362,13 @@ impl EarlyCull {
         // The spread's factor: R_E 2^fe (spread in 2^-14 units).
         let rk = re.shl(fe).ceil().filter(|&r| r < 8191)?;
         let dt = i128::from(det);
-        let e = num.map(|v| {
-            // ⌊v 2^fe / det⌋ (det > 0; |v| < 3·2^72, fe in -16..=12: no
-            // shift leaves i128): within 2^-fe below E.
-            let q = if fe >= 0 {
-                (v << fe).checked_div_euclid(dt)
-            } else {
-                v.checked_div_euclid(dt << -fe)
-            };
-            q.and_then(|q| i32::try_from(q).ok())
-                .filter(|q| q.unsigned_abs() < 1 << 12)
-        });
+        let e = [
+            scaled_quotient(num[0], fe, dt)?,
+            scaled_quotient(num[1], fe, dt)?,
+            scaled_quotient(num[2], fe, dt)?,
+        ];
         Some(Self {
-            e: [e[0]?, e[1]?, e[2]?],
+            e,
             sh: (14 - fe) as u32,
             bias: BIAS,
             // Both below 2^14 (checked above).

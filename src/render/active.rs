@@ -83,7 +83,7 @@ use crate::raster::{
     draw_small, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud,
     GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex, Walk,
 };
-use crate::scene::{Scene, SceneError};
+use crate::scene::{Object, Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
 
 /// One active triangle: its index, walk and values.
@@ -816,68 +816,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     self.run::<4, _, _, _>(po, &mut t, Persp(Gouraud), |_, _| {})?
                 }
                 Layout::GouraudRgb => self.run::<3, _, _, _>(po, &mut t, Gouraud, |_, _| {})?,
-                Layout::PhongNormal | Layout::PhongPosition => {
-                    let sc = self.scene;
-                    let shade = Shade::new(
-                        &obj.material,
-                        sc.ambient,
-                        &self.lights,
-                        sc.specular,
-                        sc.viewer,
-                    )
-                    .map_err(|_| SceneError::TooManyLights)?;
-                    let normal = po.layout() == Layout::PhongNormal;
-                    // The span kernel (`phong_span`) where the profile has
-                    // one (the affine Q16 profiles), else the per-pixel
-                    // shader.
-                    let kernel = if P::PERSPECTIVE {
-                        None
-                    } else {
-                        PhongKernel::new_cached(&shade, &mut self.spec_cache).ok()
-                    };
-                    if let Some(k) = &kernel {
-                        let sh = PhongKernelShader::new(k);
-                        if normal {
-                            let set = |s: &mut PhongKernelShader<'_, '_, P::Real>,
-                                       t: &PreparedTri| {
-                                s.back = t.back
-                            };
-                            self.run::<3, _, _, _>(po, &mut t, sh, set)?;
-                        } else {
-                            // The exact position plane per triangle
-                            // (`PosPlane`).
-                            let plane = k.wants_plane();
-                            let set = |s: &mut PhongKernelShader<'_, '_, P::Real>,
-                                       t: &PreparedTri| {
-                                s.back = t.back;
-                                if plane {
-                                    s.plane = PosPlane::of_tri(frame, po, t);
-                                }
-                            };
-                            self.run::<6, _, _, _>(po, &mut t, sh, set)?;
-                        }
-                        continue;
-                    }
-                    let frame = PosFrame::of_object::<P>(sc, obj);
-                    let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
-                    if P::PERSPECTIVE {
-                        let set = |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| {
-                            s.0.set_back(t.back)
-                        };
-                        if normal {
-                            self.run::<4, _, _, _>(po, &mut t, Persp(sh), set)?;
-                        } else {
-                            self.run::<7, _, _, _>(po, &mut t, Persp(sh), set)?;
-                        }
-                    } else {
-                        let set = |s: &mut PhongShader<'_, P>, t: &PreparedTri| s.set_back(t.back);
-                        if normal {
-                            self.run::<3, _, _, _>(po, &mut t, sh, set)?;
-                        } else {
-                            self.run::<6, _, _, _>(po, &mut t, sh, set)?;
-                        }
-                    }
-                }
+                // Out of line: its shade and kernel take a stack frame
+                // only while a Phong object is drawn.
+                Layout::PhongNormal | Layout::PhongPosition => self.phong(po, obj, &mut t)?,
             }
         }
         self.y = y1;
@@ -888,6 +829,74 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             });
         }
         Ok(Some(Window { width: w, y0, y1 }))
+    }
+
+    /// Draws this band's part of Phong object `po` (scene object `obj`):
+    /// its shade, and the span kernel where the profile has one.
+    #[inline(never)]
+    fn phong<F: PixelFormat, D: DepthFormat>(
+        &mut self,
+        po: &PreparedObject,
+        obj: &Object<'_, P::Real>,
+        t: &mut Target<'_, F, D>,
+    ) -> Result<(), RenderError> {
+        let frame = self.frame;
+        let sc = self.scene;
+        let shade = Shade::new(
+            &obj.material,
+            sc.ambient,
+            &self.lights,
+            sc.specular,
+            sc.viewer,
+        )
+        .map_err(|_| SceneError::TooManyLights)?;
+        let normal = po.layout() == Layout::PhongNormal;
+        // The span kernel (`phong_span`) where the profile has
+        // one (the affine Q16 profiles), else the per-pixel
+        // shader.
+        let kernel = if P::PERSPECTIVE {
+            None
+        } else {
+            PhongKernel::new_cached(&shade, &mut self.spec_cache).ok()
+        };
+        if let Some(k) = &kernel {
+            let sh = PhongKernelShader::new(k);
+            if normal {
+                let set =
+                    |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| s.back = t.back;
+                self.run::<3, _, _, _>(po, t, sh, set)?;
+            } else {
+                // The exact position plane per triangle
+                // (`PosPlane`).
+                let plane = k.wants_plane();
+                let set = |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| {
+                    s.back = t.back;
+                    if plane {
+                        s.plane = PosPlane::of_tri(frame, po, t);
+                    }
+                };
+                self.run::<6, _, _, _>(po, t, sh, set)?;
+            }
+            return Ok(());
+        }
+        let frame = PosFrame::of_object::<P>(sc, obj);
+        let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
+        if P::PERSPECTIVE {
+            let set = |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| s.0.set_back(t.back);
+            if normal {
+                self.run::<4, _, _, _>(po, t, Persp(sh), set)?;
+            } else {
+                self.run::<7, _, _, _>(po, t, Persp(sh), set)?;
+            }
+        } else {
+            let set = |s: &mut PhongShader<'_, P>, t: &PreparedTri| s.set_back(t.back);
+            if normal {
+                self.run::<3, _, _, _>(po, t, sh, set)?;
+            } else {
+                self.run::<6, _, _, _>(po, t, sh, set)?;
+            }
+        }
+        Ok(())
     }
 
     /// The smallest triangle index the three streams offer this band.
