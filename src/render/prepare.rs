@@ -171,8 +171,18 @@ pub const fn max_screen(sub: u32) -> u32 {
 pub(super) fn eye_lights<R: Real>(
     scene: &Scene<'_, '_, R>,
 ) -> Result<heapless::Vec<Light<R>, MAX_LIGHTS>, SceneError> {
-    let view = &scene.camera.view;
     let mut out = heapless::Vec::new();
+    eye_lights_into(scene, &mut out)?;
+    Ok(out)
+}
+
+/// [`eye_lights`] into `out` (empty): no `Result` of the whole list to
+/// move (a stack slot of its own in the caller).
+fn eye_lights_into<R: Real>(
+    scene: &Scene<'_, '_, R>,
+    out: &mut heapless::Vec<Light<R>, MAX_LIGHTS>,
+) -> Result<(), SceneError> {
+    let view = &scene.camera.view;
     for l in scene.lights {
         let kind = match l.kind {
             LightKind::Point(p) => LightKind::Point(view.point(p)),
@@ -181,7 +191,7 @@ pub(super) fn eye_lights<R: Real>(
         out.push(Light { kind, ..*l })
             .map_err(|_| SceneError::TooManyLights)?;
     }
-    Ok(out)
+    Ok(())
 }
 
 /// The shading layout an object needs: pay only for what is used.
@@ -362,7 +372,8 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
         ),
         ..view
     };
-    let lights = eye_lights(scene)?;
+    let mut lights = heapless::Vec::new();
+    eye_lights_into(scene, &mut lights)?;
     // At most `MAX_TRIANGLES` triangle numbers (and as many made triangles
     // and flat colours): they are `u16` in the object list and the band
     // order.
@@ -400,33 +411,62 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
         rows: None,
         marked: false,
     };
-    let mut objects = heapless::Vec::new();
-    for (oi, obj) in scene.objects.iter().enumerate() {
-        p.object = oi;
-        let po = p.object_pass(scene, obj, &lights)?;
-        objects.push(po).map_err(|_| SceneError::TooManyObjects)?;
-    }
-    let Workspace {
-        xy,
-        vals,
-        tris,
-        colors,
-        faces,
-    } = p.ws;
-    Ok(Frame {
+    // The frame is made first, inside the result, and its object list
+    // filled in place: no list or frame to move into another (each move
+    // of one can take a stack slot of its own in the caller's frame).
+    let mut out = Ok(Frame {
         ws: Workspace {
+            xy: &mut [],
+            vals: &mut [],
+            tris: &mut [],
+            colors: &mut [],
+            faces: &mut [],
+        },
+        faces: &[],
+        scene: scene.objects,
+        objects: heapless::Vec::new(),
+        width,
+        height,
+    });
+    // (An error is stored in the result too, not returned apart: the
+    // result is then one value, which the caller's own can replace.)
+    let mut failed = None;
+    if let Ok(frame) = &mut out {
+        for (oi, obj) in scene.objects.iter().enumerate() {
+            p.object = oi;
+            match p.object_pass(scene, obj, &lights) {
+                Ok(po) => {
+                    if frame.objects.push(po).is_err() {
+                        failed = Some(SceneError::TooManyObjects.into());
+                        break;
+                    }
+                }
+                Err(e) => {
+                    failed = Some(e);
+                    break;
+                }
+            }
+        }
+        let Workspace {
+            xy,
+            vals,
+            tris,
+            colors,
+            faces,
+        } = p.ws;
+        frame.ws = Workspace {
             xy,
             vals,
             tris,
             colors,
             faces: &mut [],
-        },
-        faces,
-        scene: scene.objects,
-        objects,
-        width,
-        height,
-    })
+        };
+        frame.faces = faces;
+    }
+    if let Some(e) = failed {
+        out = Err(e);
+    }
+    out
 }
 
 struct Preparer<'w, P: Profile> {
@@ -849,6 +889,43 @@ pub(super) enum Sphere {
     Across,
 }
 
+/// The shade of `obj` under the eye-space `lights` (`None`: too many
+/// lights). Not inlined, nor are [`object_light_of`] and [`levels_of`]:
+/// their temporaries (several arrays of per-light terms) then take a
+/// frame of their own while they run, not room in the object pass's
+/// frame under the vertex kernels.
+#[inline(never)]
+fn shade_of<R: Real>(
+    obj: &Object<'_, R>,
+    scene: &Scene<'_, '_, R>,
+    lights: &[Light<R>],
+) -> Option<Shade<R>> {
+    Shade::new(
+        &obj.material,
+        scene.ambient,
+        lights,
+        scene.specular,
+        scene.viewer,
+    )
+    .ok()
+}
+
+/// [`Shade::object_light`], not inlined (see [`shade_of`]).
+#[inline(never)]
+fn object_light_of<R: Real>(
+    shade: &Shade<R>,
+    k: &crate::geom::Mat3<R>,
+    s: R,
+) -> Option<ObjectLight<R>> {
+    shade.object_light(k, s)
+}
+
+/// [`ObjectLight::levels`], not inlined (see [`shade_of`]).
+#[inline(never)]
+fn levels_of<R: Real>(olight: Option<&ObjectLight<R>>) -> Option<LevelLight> {
+    olight.and_then(ObjectLight::levels)
+}
+
 /// Per-object constants while preparing.
 struct ObjCtx<'a, 'm, R> {
     mesh: Mesh<'m>,
@@ -863,9 +940,12 @@ struct ObjCtx<'a, 'm, R> {
     shade: &'a Shade<R>,
     /// Directional lights in object space (Gouraud and flat without
     /// point lights or specular term, uniform scale).
-    olight: Option<ObjectLight<R>>,
+    olight: Option<&'a ObjectLight<R>>,
     /// `olight` as integer levels (`Q16` flat objects: the face colours).
-    levels: Option<LevelLight>,
+    levels: Option<&'a LevelLight>,
+    /// `olight` as integer levels, every layout (the fused vertex
+    /// kernel's lighting).
+    all_levels: Option<&'a LevelLight>,
     /// `levels` of one light.
     one: Option<OneLight>,
     /// Grey material under white lights: one colour channel computed.
@@ -902,15 +982,15 @@ impl<P: Profile> Preparer<'_, P> {
         obj: &Object<'_, P::Real>,
         lights: &[Light<P::Real>],
     ) -> Result<PreparedObject, RenderError> {
-        let shade = Shade::new(
-            &obj.material,
-            scene.ambient,
-            lights,
-            scene.specular,
-            scene.viewer,
-        )
-        .map_err(|_| SceneError::TooManyLights)?;
-        let layout = layout_of(obj, &shade, lights);
+        // The shade, the object-space lights and their levels are built
+        // out of line (see `shade_of`): their temporaries stay out of
+        // this frame, under which the vertex kernels run.
+        let shade = shade_of(obj, scene, lights);
+        // (Borrowed where it is made: no move to another slot.)
+        let Some(shade) = &shade else {
+            return Err(SceneError::TooManyLights.into());
+        };
+        let layout = layout_of(obj, shade, lights);
         let mesh = obj.mesh;
         if layout != Layout::Flat && !mesh.has_normals() {
             return Err(RenderError::MissingNormals {
@@ -928,11 +1008,11 @@ impl<P: Profile> Preparer<'_, P> {
                 layout,
                 Layout::Flat | Layout::GouraudMono | Layout::GouraudRgb
             ) {
-            shade.object_light(&nm.m, s)
+            object_light_of(shade, &nm.m, s)
         } else {
             None
         };
-        // Only the profiles that frame positions keep a frame.
+        let levels = levels_of(olight.as_ref());
         let frame = P::POSITION_FRAME.then(|| PosFrame::new::<P>(&mesh, &mv));
         let ctx = ObjCtx {
             mesh,
@@ -947,19 +1027,17 @@ impl<P: Profile> Preparer<'_, P> {
             pos: frame.as_ref(),
             mv,
             nm,
-            shade: &shade,
+            shade,
             levels: match layout {
-                Layout::Flat => olight.as_ref().and_then(ObjectLight::levels),
+                Layout::Flat => levels.as_ref(),
                 _ => None,
             },
             one: match layout {
-                Layout::Flat => olight
-                    .as_ref()
-                    .and_then(ObjectLight::levels)
-                    .and_then(|l| l.one()),
+                Layout::Flat => levels.as_ref().and_then(LevelLight::one),
                 _ => None,
             },
-            olight,
+            all_levels: levels.as_ref(),
+            olight: olight.as_ref(),
             grey: {
                 let grey = |c: Vec3<P::Real>| c.x == c.y && c.y == c.z;
                 grey(obj.material.color) && lights.iter().all(|l| grey(l.color))
@@ -1187,14 +1265,12 @@ impl<P: Profile> Preparer<'_, P> {
             self.view.depth_scale.map(|s| s.to_fixed_i32(16)),
             &ctx.mesh.bound(),
         );
-        if let Some(f) = fused {
+        if let Some(f) = &fused {
             // (One normal per vertex: the kernel zips them.)
             let levels = ctx
-                .olight
-                .as_ref()
-                .and_then(ObjectLight::levels)
+                .all_levels
                 .filter(|_| ctx.normals.len() == ctx.positions.len());
-            let one = levels.as_ref().and_then(|l| l.one());
+            let one = levels.and_then(LevelLight::one);
             // Back faces decided in object space (culled objects with
             // baked culling cones, not mirrored, large enough to pay for
             // the set-up), computed only for the layouts that use it.
@@ -1274,10 +1350,10 @@ impl<P: Profile> Preparer<'_, P> {
         match (ctx.layout, &ctx.olight) {
             (Layout::Flat, _) => self.kernel_q16::<1>(ctx, &x, &pj, None),
             (Layout::GouraudMono, Some(ol)) if packed => {
-                self.kernel_q16::<1>(ctx, &x, &pj, Some(ol))
+                self.kernel_q16::<1>(ctx, &x, &pj, Some(*ol))
             }
-            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, &x, &pj, Some(ol)),
-            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, &x, &pj, Some(ol)),
+            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, &x, &pj, Some(*ol)),
+            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, &x, &pj, Some(*ol)),
             _ => self.vertex_pass(ctx, true),
         }
     }

@@ -64,19 +64,26 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
     // Geometry.
     probe.resume();
     let parts = crate::profiled::Parts::<P::Real>::new(spec);
-    let prepared = match parts.camera {
-        Ok(camera) => {
-            let scene = parts.scene(spec, camera);
-            prepare::<P>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
+    // The scene and the frame stay where they are made (borrowed below,
+    // never moved): each move of a large value can take a stack slot of
+    // its own in this frame, which the whole render stands on.
+    let scene = match &parts.camera {
+        Ok(c) => parts.scene(spec, *c),
+        Err(e) => {
+            probe.pause();
+            probe.close();
+            return Err((*e).into());
         }
-        Err(e) => Err(e.into()),
     };
+    let prepared = prepare::<P>(&scene, spec.width, spec.height, ws);
     probe.pause();
     probe.close();
-    let (scene, frame) = prepared?;
-    raster_bands_in::<P, D, Q>(
-        &frame, &scene, pixels, depth, with_depth, rows, order, pool, probe,
-    )
+    match &prepared {
+        Ok(frame) => raster_bands_in::<P, D, Q>(
+            frame, &scene, pixels, depth, with_depth, rows, order, pool, probe,
+        ),
+        Err(e) => Err((*e).into()),
+    }
 }
 
 // The knob scene (the bunny) is not in the `dodeca` build.
