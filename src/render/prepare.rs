@@ -330,6 +330,53 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
     height: u32,
     ws: Workspace<'w, P::Lerp>,
 ) -> Result<Frame<'w, P>, RenderError> {
+    let mut out = None;
+    prepare_into(scene, width, height, ws, &mut out)?;
+    // (Always a frame after `Ok`.)
+    out.ok_or(RenderError::Window)
+}
+
+/// [`prepare`] into `out`: the frame is made in `out` (`Some` after `Ok`,
+/// `None` after an error) rather than returned. The frame, with its list
+/// of prepared objects, is large (about 700 bytes on a 32-bit target): a
+/// caller that keeps it on its stack for the whole render (a firmware's
+/// frame loop) holds it once this way, where a returned `Result` may be
+/// moved into a slot of its own.
+///
+/// ```
+/// # use fixshade::render::{prepare_in, Frame, Storage};
+/// # use fixshade::scene::{Camera, Object, Scene};
+/// # use fixshade::num::Fast;
+/// # fn demo(scene: &Scene<'_, '_, fixshade::num::Q16>, ws: fixshade::render::Workspace<'_, i32>) {
+/// let mut frame: Option<Frame<'_, Fast>> = None;
+/// if prepare_in(scene, 240, 240, ws, &mut frame).is_ok() {
+///     assert!(frame.is_some());
+/// }
+/// # }
+/// ```
+///
+/// # Errors
+/// As [`prepare`].
+pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'s, 'm, P::Real>,
+    width: u32,
+    height: u32,
+    ws: Workspace<'w, P::Lerp>,
+    out: &mut Option<Frame<'w, P>>,
+) -> Result<(), RenderError> {
+    prepare_into(scene, width, height, ws, out)
+}
+
+/// The body of [`prepare`] and [`prepare_in`].
+#[inline(always)]
+fn prepare_into<'w, 's: 'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'s, 'm, P::Real>,
+    width: u32,
+    height: u32,
+    ws: Workspace<'w, P::Lerp>,
+    out: &mut Option<Frame<'w, P>>,
+) -> Result<(), RenderError> {
+    *out = None;
     scene.check()?;
     // The guard band that keeps stored positions within `±XY_LIMIT`
     // (`None`: the screen is beyond `max_screen`).
@@ -411,10 +458,10 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
         rows: None,
         marked: false,
     };
-    // The frame is made first, inside the result, and its object list
-    // filled in place: no list or frame to move into another (each move
-    // of one can take a stack slot of its own in the caller's frame).
-    let mut out = Ok(Frame {
+    // The frame is made first, in `out`, and its object list filled in
+    // place: no list or frame to move into another (each move of one can
+    // take a stack slot of its own in the caller's frame).
+    let frame = out.insert(Frame {
         ws: Workspace {
             xy: &mut [],
             vals: &mut [],
@@ -428,45 +475,36 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
         width,
         height,
     });
-    // (An error is stored in the result too, not returned apart: the
-    // result is then one value, which the caller's own can replace.)
-    let mut failed = None;
-    if let Ok(frame) = &mut out {
-        for (oi, obj) in scene.objects.iter().enumerate() {
-            p.object = oi;
-            match p.object_pass(scene, obj, &lights) {
-                Ok(po) => {
-                    if frame.objects.push(po).is_err() {
-                        failed = Some(SceneError::TooManyObjects.into());
-                        break;
-                    }
-                }
-                Err(e) => {
-                    failed = Some(e);
-                    break;
-                }
-            }
-        }
-        let Workspace {
-            xy,
-            vals,
-            tris,
-            colors,
-            faces,
-        } = p.ws;
-        frame.ws = Workspace {
-            xy,
-            vals,
-            tris,
-            colors,
-            faces: &mut [],
+    for (oi, obj) in scene.objects.iter().enumerate() {
+        p.object = oi;
+        let pushed = match p.object_pass(scene, obj, &lights) {
+            Ok(po) => frame
+                .objects
+                .push(po)
+                .map_err(|_| SceneError::TooManyObjects.into()),
+            Err(e) => Err(e),
         };
-        frame.faces = faces;
+        if let Err(e) = pushed {
+            *out = None;
+            return Err(e);
+        }
     }
-    if let Some(e) = failed {
-        out = Err(e);
-    }
-    out
+    let Workspace {
+        xy,
+        vals,
+        tris,
+        colors,
+        faces,
+    } = p.ws;
+    frame.ws = Workspace {
+        xy,
+        vals,
+        tris,
+        colors,
+        faces: &mut [],
+    };
+    frame.faces = faces;
+    Ok(())
 }
 
 struct Preparer<'w, P: Profile> {

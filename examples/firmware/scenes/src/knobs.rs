@@ -10,7 +10,7 @@ use crate::profiled::{depth_in, raster_bands_in, ProfilePool};
 use crate::{FrameError, FrameStats, Pixel, Probe, SceneSpec, WIDTH};
 pub use fixshade::num::FastSub;
 use fixshade::num::Profile;
-use fixshade::render::{prepare, Workspace};
+use fixshade::render::{prepare_in, RenderError, Workspace};
 use fixshade::target::DepthFormat;
 
 /// The scene the knobs are measured on.
@@ -65,7 +65,7 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
     probe.resume();
     let parts = crate::profiled::Parts::<P::Real>::new(spec);
     // The scene and the frame stay where they are made (borrowed below,
-    // never moved): each move of a large value can take a stack slot of
+    // never moved; the frame made in place by `prepare_in`): each move of a large value can take a stack slot of
     // its own in this frame, which the whole render stands on.
     let scene = match &parts.camera {
         Ok(c) => parts.scene(spec, *c),
@@ -75,14 +75,17 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
             return Err((*e).into());
         }
     };
-    let prepared = prepare::<P>(&scene, spec.width, spec.height, ws);
+    let mut frame = None;
+    let prepared = prepare_in::<P>(&scene, spec.width, spec.height, ws, &mut frame);
     probe.pause();
     probe.close();
-    match &prepared {
-        Ok(frame) => raster_bands_in::<P, D, Q>(
+    prepared?;
+    match &frame {
+        Some(frame) => raster_bands_in::<P, D, Q>(
             frame, &scene, pixels, depth, with_depth, rows, order, pool, probe,
         ),
-        Err(e) => Err((*e).into()),
+        // (`prepare_in` leaves a frame after `Ok`.)
+        None => Err(RenderError::Window.into()),
     }
 }
 
