@@ -344,15 +344,17 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
 /// moved into a slot of its own.
 ///
 /// ```
-/// # use fixshade::render::{prepare_in, Frame, Storage};
-/// # use fixshade::scene::{Camera, Object, Scene};
-/// # use fixshade::num::Fast;
-/// # fn demo(scene: &Scene<'_, '_, fixshade::num::Q16>, ws: fixshade::render::Workspace<'_, i32>) {
-/// let mut frame: Option<Frame<'_, Fast>> = None;
-/// if prepare_in(scene, 240, 240, ws, &mut frame).is_ok() {
-///     assert!(frame.is_some());
+/// use fixshade::num::{Fast, Q16};
+/// use fixshade::render::{prepare_in, Frame, Workspace};
+/// use fixshade::scene::Scene;
+///
+/// fn frame_loop(scene: &Scene<'_, '_, Q16>, ws: Workspace<'_, i32>) {
+///     let mut frame: Option<Frame<'_, Fast>> = None;
+///     match prepare_in(scene, 240, 240, ws, &mut frame) {
+///         Ok(()) => assert!(frame.is_some()), // render it in bands here
+///         Err(_) => assert!(frame.is_none()),
+///     }
 /// }
-/// # }
 /// ```
 ///
 /// # Errors
@@ -1332,43 +1334,43 @@ impl<P: Profile> Preparer<'_, P> {
                     let e = early();
                     let l = Some(|n| o.at_bounded::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) if bounded => {
                     let e = early();
                     let l = Some(|n| o.at_bounded::<false>(n));
-                    return self.kernel_fused::<4, false>(ctx, &f, l, e.as_ref());
+                    return self.kernel_fused::<4, false>(ctx, f, l, e.as_ref());
                 }
                 (Layout::Flat, _, _) => {
                     let e = early();
-                    return self.kernel_fused::<1, false>(ctx, &f, None::<fn(_) -> _>, e.as_ref());
+                    return self.kernel_fused::<1, false>(ctx, f, None::<fn(_) -> _>, e.as_ref());
                 }
                 (Layout::GouraudMono, _, Some(o)) => {
                     let e = early();
                     let l = Some(|n| o.at::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudMono, Some(l), None) => {
                     let e = early();
                     let l = Some(|n| l.at::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) => {
                     let e = early();
                     return self.kernel_fused::<4, false>(
                         ctx,
-                        &f,
+                        f,
                         Some(|n| o.at::<false>(n)),
                         e.as_ref(),
                     );
@@ -1377,7 +1379,7 @@ impl<P: Profile> Preparer<'_, P> {
                     let e = early();
                     return self.kernel_fused::<4, false>(
                         ctx,
-                        &f,
+                        f,
                         Some(|n| l.at::<false>(n)),
                         e.as_ref(),
                     );
