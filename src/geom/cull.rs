@@ -83,6 +83,23 @@ fn sqrt_up(n: u64) -> u64 {
     crate::num::isqrt_u64(n) + 1
 }
 
+/// Significant bits of `v` (`128 - v.leading_zeros()`), from its highest
+/// non-zero 32-bit word: one count of leading zeros (a library call on
+/// the Cortex-M0, which has no instruction for it) rather than four.
+#[inline(always)]
+fn bits128(v: u128) -> u32 {
+    #[allow(clippy::cast_possible_truncation)]
+    let words = [(v >> 96) as u32, (v >> 64) as u32, (v >> 32) as u32, v as u32];
+    let mut top = 128;
+    for w in words {
+        if w != 0 {
+            return top - w.leading_zeros();
+        }
+        top -= 32;
+    }
+    0
+}
+
 /// An upper bound `m · 2^e` of a positive quantity (`m < 2^32` once
 /// normalised): every operation rounds up, so the result bounds the exact
 /// value from above. Integer only (no soft-float on the Cortex-M0).
@@ -107,7 +124,7 @@ impl Up {
     // in all under the object pass).
     #[inline(never)]
     fn new(v: u128, e: i32) -> Self {
-        let bits = 128 - v.leading_zeros();
+        let bits = bits128(v);
         if bits <= 32 {
             return Self { m: v as u64, e };
         }
@@ -190,7 +207,7 @@ impl Dn {
     /// `v · 2^e`, rounded down to a 32-bit mantissa.
     #[inline(never)]
     fn new(v: u128, e: i32) -> Self {
-        let bits = 128 - v.leading_zeros();
+        let bits = bits128(v);
         let s = bits.saturating_sub(32);
         Self {
             m: (v >> s) as u64,
@@ -417,6 +434,18 @@ impl EarlyCull {
 mod tests {
     extern crate std;
     use super::*;
+
+    #[test]
+    fn bits128_counts_the_significant_bits() {
+        assert_eq!(bits128(0), 0);
+        for k in 0..128 {
+            let v = 1u128 << k;
+            assert_eq!(bits128(v), k + 1);
+            assert_eq!(bits128(v | (v >> 1) | 1), k + 1);
+            assert_eq!(bits128(v - 1), k);
+        }
+        assert_eq!(bits128(u128::MAX), 128);
+    }
     use crate::geom::exact::{cone_covers, face_normal, face_plane, MAX_AXIS2};
     use crate::geom::fused::Fused;
     use crate::geom::testkit::{proj, rotation, uniform};
