@@ -89,7 +89,12 @@ fn sqrt_up(n: u64) -> u64 {
 #[inline(always)]
 fn bits128(v: u128) -> u32 {
     #[allow(clippy::cast_possible_truncation)]
-    let words = [(v >> 96) as u32, (v >> 64) as u32, (v >> 32) as u32, v as u32];
+    let words = [
+        (v >> 96) as u32,
+        (v >> 64) as u32,
+        (v >> 32) as u32,
+        v as u32,
+    ];
     let mut top = 128;
     for w in words {
         if w != 0 {
