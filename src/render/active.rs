@@ -842,24 +842,25 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     ) -> Result<(), RenderError> {
         let frame = self.frame;
         let sc = self.scene;
+        // The shade and the kernel are borrowed where they are made (no
+        // move of either out of its `Result`: a stack slot each).
         let shade = Shade::new(
             &obj.material,
             sc.ambient,
             &self.lights,
             sc.specular,
             sc.viewer,
-        )
-        .map_err(|_| SceneError::TooManyLights)?;
+        );
+        let Ok(shade) = &shade else {
+            return Err(SceneError::TooManyLights.into());
+        };
         let normal = po.layout() == Layout::PhongNormal;
         // The span kernel (`phong_span`) where the profile has
         // one (the affine Q16 profiles), else the per-pixel
         // shader.
-        let kernel = if P::PERSPECTIVE {
-            None
-        } else {
-            PhongKernel::new_cached(&shade, &mut self.spec_cache).ok()
-        };
-        if let Some(k) = &kernel {
+        let kernel =
+            (!P::PERSPECTIVE).then(|| PhongKernel::new_cached(shade, &mut self.spec_cache));
+        if let Some(Ok(k)) = &kernel {
             let sh = PhongKernelShader::new(k);
             if normal {
                 let set =
@@ -880,7 +881,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             return Ok(());
         }
         let frame = PosFrame::of_object::<P>(sc, obj);
-        let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
+        let sh = PhongShader::<P>::for_object(shade, frame.as_ref());
         if P::PERSPECTIVE {
             let set = |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| s.0.set_back(t.back);
             if normal {
