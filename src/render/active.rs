@@ -296,6 +296,10 @@ impl<'w, P: Profile> Frame<'w, P> {
     /// holds every triangle a view does not keep);
     /// [`RenderError::Window`] for `rows == 0`; a scene with too many
     /// lights gives [`RenderError::Scene`].
+    // Not inlined: the set-up's temporaries (the eye-space lights, the
+    // band ends) then stay out of the caller's stack frame, which stands
+    // under every band.
+    #[inline(never)]
     pub fn bands<'a, const CAP: usize, const V: usize>(
         &'a self,
         scene: &'a Scene<'_, '_, P::Real>,

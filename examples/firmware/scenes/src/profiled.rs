@@ -195,9 +195,13 @@ pub(crate) fn raster_bands_in<P: Profile, D: DepthFormat, Q: Probe>(
     let mut band = BandBuf::<Rgb565Be, D>::with_depth(px, z, w, rows)?;
     let mut state = BandState::new(order, pool);
     probe.resume();
-    let bands = frame.bands(scene, &mut state, rows);
+    let mut bands = frame.bands(scene, &mut state, rows);
     probe.pause();
-    let mut bands = bands?;
+    // Borrowed in its `Result` (not moved out: a stack slot of its own).
+    let bands = match &mut bands {
+        Ok(b) => b,
+        Err(e) => return Err((*e).into()),
+    };
     loop {
         probe.resume();
         let r = bands.next_band(&mut band);
