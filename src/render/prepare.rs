@@ -1301,7 +1301,8 @@ impl<P: Profile> Preparer<'_, P> {
         let (Some(x), Some(pj)) = (&ctx.fast, &self.view.fast) else {
             return self.vertex_pass(ctx, true);
         };
-        let (x, pj) = (*x, *pj);
+        // (The transform borrowed, not copied: a copy takes a stack slot.)
+        let pj = *pj;
         let packed = ctx.layout.packed_in::<P>();
         let (m, t) = x.parts();
         let fused = Fused::new(

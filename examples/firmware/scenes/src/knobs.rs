@@ -10,7 +10,8 @@ use crate::profiled::{depth_in, raster_bands_in, ProfilePool};
 use crate::{FrameError, FrameStats, Pixel, Probe, SceneSpec, WIDTH};
 pub use fixshade::num::FastSub;
 use fixshade::num::Profile;
-use fixshade::render::{prepare_in, RenderError, Workspace};
+use fixshade::render::{prepare_in, Frame, RenderError, Workspace};
+use fixshade::scene::Scene;
 use fixshade::target::DepthFormat;
 
 /// The scene the knobs are measured on.
@@ -76,7 +77,7 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
         }
     };
     let mut frame = None;
-    let prepared = prepare_in::<P>(&scene, spec.width, spec.height, ws, &mut frame);
+    let prepared = prepare_frame::<P>(&scene, spec, ws, &mut frame);
     probe.pause();
     probe.close();
     prepared?;
@@ -87,6 +88,19 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
         // (`prepare_in` leaves a frame after `Ok`.)
         None => Err(RenderError::Window.into()),
     }
+}
+
+/// [`prepare_in`] of `scene` at `spec`'s size into `frame`. Not inlined:
+/// its locals (the eye-space lights, the preparer) then take a stack
+/// frame only while the geometry runs, not under the bands.
+#[inline(never)]
+fn prepare_frame<'w, 's: 'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'s, 'm, P::Real>,
+    spec: &SceneSpec,
+    ws: Workspace<'w, P::Lerp>,
+    frame: &mut Option<Frame<'w, P>>,
+) -> Result<(), RenderError> {
+    prepare_in::<P>(scene, spec.width, spec.height, ws, frame)
 }
 
 // The knob scene (the bunny) is not in the `dodeca` build.
