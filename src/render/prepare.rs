@@ -1337,9 +1337,17 @@ impl<P: Profile> Preparer<'_, P> {
             // MAX_AXIS2`) under a light that keeps the clamps idle.
             let bounded = ctx.mesh.vertex_cones().is_some()
                 && one.as_ref().is_some_and(|o| o.bounded(MAX_AXIS2));
+            // Set up once, for exactly the layouts of the arms below (a
+            // flat object, or a Gouraud one with levels: `one` implies
+            // `levels`): one result in this frame, not one per arm.
+            let fused_arm = match ctx.layout {
+                Layout::Flat => true,
+                Layout::GouraudMono | Layout::GouraudRgb => levels.is_some(),
+                _ => false,
+            };
+            let e = if fused_arm { early() } else { None };
             match (ctx.layout, &levels, one) {
                 (Layout::GouraudMono, _, Some(o)) if bounded => {
-                    let e = early();
                     let l = Some(|n| o.at_bounded::<true>(n));
                     return if packed {
                         self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
@@ -1348,16 +1356,13 @@ impl<P: Profile> Preparer<'_, P> {
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) if bounded => {
-                    let e = early();
                     let l = Some(|n| o.at_bounded::<false>(n));
                     return self.kernel_fused::<4, false>(ctx, f, l, e.as_ref());
                 }
                 (Layout::Flat, _, _) => {
-                    let e = early();
                     return self.kernel_fused::<1, false>(ctx, f, None::<fn(_) -> _>, e.as_ref());
                 }
                 (Layout::GouraudMono, _, Some(o)) => {
-                    let e = early();
                     let l = Some(|n| o.at::<true>(n));
                     return if packed {
                         self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
@@ -1366,7 +1371,6 @@ impl<P: Profile> Preparer<'_, P> {
                     };
                 }
                 (Layout::GouraudMono, Some(l), None) => {
-                    let e = early();
                     let l = Some(|n| l.at::<true>(n));
                     return if packed {
                         self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
@@ -1375,7 +1379,6 @@ impl<P: Profile> Preparer<'_, P> {
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) => {
-                    let e = early();
                     return self.kernel_fused::<4, false>(
                         ctx,
                         f,
@@ -1384,7 +1387,6 @@ impl<P: Profile> Preparer<'_, P> {
                     );
                 }
                 (Layout::GouraudRgb, Some(l), None) => {
-                    let e = early();
                     return self.kernel_fused::<4, false>(
                         ctx,
                         f,
