@@ -70,7 +70,7 @@
 //! [`Workspace::faces`]: super::Workspace::faces
 
 use super::band::PhongShader;
-use super::phong_span::{PhongKernel, PhongKernelShader, PosPlane, SpecCache};
+use super::phong_span::{KernelError, PhongKernel, PhongKernelShader, PosPlane, SpecCache};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{
@@ -78,7 +78,7 @@ use super::{
     FACE_ROW,
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
-use crate::num::Profile;
+use crate::num::{Profile, Real};
 use crate::raster::{
     draw_small, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud,
     GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex, Walk,
@@ -281,6 +281,18 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     /// The Phong kernel's specular table, built once a frame per
     /// shininess rather than once a band.
     spec_cache: Option<SpecCache>,
+}
+
+/// [`PhongKernel::new_cached`], not inlined: its temporaries (the
+/// lights' terms, the specular table) then take a stack frame only while
+/// the kernel is made, not room in the Phong arm's frame under the span
+/// loops.
+#[inline(never)]
+fn kernel_of<'s, R: Real>(
+    shade: &'s Shade<R>,
+    cache: &mut Option<SpecCache>,
+) -> Result<PhongKernel<'s, R>, KernelError> {
+    PhongKernel::new_cached(shade, cache)
 }
 
 impl<'w, P: Profile> Frame<'w, P> {
@@ -862,8 +874,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         // The span kernel (`phong_span`) where the profile has
         // one (the affine Q16 profiles), else the per-pixel
         // shader.
-        let kernel =
-            (!P::PERSPECTIVE).then(|| PhongKernel::new_cached(shade, &mut self.spec_cache));
+        let kernel = (!P::PERSPECTIVE).then(|| kernel_of(shade, &mut self.spec_cache));
         if let Some(Ok(k)) = &kernel {
             let sh = PhongKernelShader::new(k);
             if normal {

@@ -229,6 +229,10 @@ pub(crate) fn raster_bands_in<P: Profile, D: DepthFormat, Q: Probe>(
 ///
 /// # Errors
 /// The core's error, e.g. a workspace part too small.
+// Not inlined: its locals (the scene's parts, the prepared frame) then
+// take a stack frame only during the check, not one in the caller's
+// (a firmware's `main`, under every frame rendered after it).
+#[inline(never)]
 pub fn check_with<P: Profile>(
     spec: &SceneSpec,
     ws: Workspace<'_, P::Lerp>,
