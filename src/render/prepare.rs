@@ -1398,12 +1398,12 @@ impl<P: Profile> Preparer<'_, P> {
             }
         }
         match (ctx.layout, &ctx.olight) {
-            (Layout::Flat, _) => self.kernel_q16::<1>(ctx, &x, &pj, None),
+            (Layout::Flat, _) => self.kernel_q16::<1>(ctx, x, &pj, None),
             (Layout::GouraudMono, Some(ol)) if packed => {
-                self.kernel_q16::<1>(ctx, &x, &pj, Some(*ol))
+                self.kernel_q16::<1>(ctx, x, &pj, Some(*ol))
             }
-            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, &x, &pj, Some(*ol)),
-            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, &x, &pj, Some(*ol)),
+            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, x, &pj, Some(*ol)),
+            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, x, &pj, Some(*ol)),
             _ => self.vertex_pass(ctx, true),
         }
     }
