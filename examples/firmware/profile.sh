@@ -33,7 +33,7 @@ elf="target/$t/release/fixshade-firmware"
 # shellcheck disable=SC2086
 qemu-system-arm $board -nographic -semihosting-config enable=on,target=native \
     -kernel "$elf" >"$out/run.txt"
-idx=$(awk -v s="$scene" '$1 == "scene" { if ($2 == s) { print n; exit } n++ }' "$out/run.txt")
+idx=$(awk -v s="$scene" '$1 == "scene" { if ($2 == s) { print n + 0; exit } n++ }' "$out/run.txt")
 if [ -z "$idx" ]; then
     echo "no scene $scene; the firmware renders:" >&2
     awk '$1 == "scene" { print "  " $2 }' "$out/run.txt" >&2

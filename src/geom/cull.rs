@@ -83,6 +83,28 @@ fn sqrt_up(n: u64) -> u64 {
     crate::num::isqrt_u64(n) + 1
 }
 
+/// Significant bits of `v` (`128 - v.leading_zeros()`), from its highest
+/// non-zero 32-bit word: one count of leading zeros (a library call on
+/// the Cortex-M0, which has no instruction for it) rather than four.
+#[inline(always)]
+fn bits128(v: u128) -> u32 {
+    #[allow(clippy::cast_possible_truncation)]
+    let words = [
+        (v >> 96) as u32,
+        (v >> 64) as u32,
+        (v >> 32) as u32,
+        v as u32,
+    ];
+    let mut top = 128;
+    for w in words {
+        if w != 0 {
+            return top - w.leading_zeros();
+        }
+        top -= 32;
+    }
+    0
+}
+
 /// An upper bound `m · 2^e` of a positive quantity (`m < 2^32` once
 /// normalised): every operation rounds up, so the result bounds the exact
 /// value from above. Integer only (no soft-float on the Cortex-M0).
@@ -101,8 +123,13 @@ struct Dn {
 
 impl Up {
     /// `v · 2^e`, rounded up to a 32-bit mantissa.
+    // Not inlined (nor are the other 128-bit steps of the set-up): a
+    // 128-bit variable shift takes a stack slot of its own on the
+    // Cortex-M targets, inlined copies one each (about 2.6 KB of stack
+    // in all under the object pass).
+    #[inline(never)]
     fn new(v: u128, e: i32) -> Self {
-        let bits = 128 - v.leading_zeros();
+        let bits = bits128(v);
         if bits <= 32 {
             return Self { m: v as u64, e };
         }
@@ -136,6 +163,7 @@ impl Up {
     }
 
     /// Both mantissas at the smaller exponent (`None` beyond 2^90 apart).
+    #[inline(never)]
     fn align(self, o: Self) -> Option<(u128, u128, i32)> {
         let e = self.e.min(o.e);
         let (da, db) = ((self.e - e) as u32, (o.e - e) as u32);
@@ -182,8 +210,9 @@ impl Up {
 
 impl Dn {
     /// `v · 2^e`, rounded down to a 32-bit mantissa.
+    #[inline(never)]
     fn new(v: u128, e: i32) -> Self {
-        let bits = 128 - v.leading_zeros();
+        let bits = bits128(v);
         let s = bits.saturating_sub(32);
         Self {
             m: (v >> s) as u64,
@@ -202,6 +231,33 @@ const _: () = assert!(SLACK_LENGTH == 64);
 /// `1.0002 · √3 · 2^14 < 28 384`: the error of `a · E` with `E` rounded
 /// down to `2^-fe` (`|a| <= 1.0002`), in units of `2^-(14 + fe)`.
 const BIAS: i32 = 28_384;
+
+/// Whether every `|num_k| 2^fe` is below `4000 · det` (`fe` in
+/// `-16..=12`, `|num_k| < 3·2^72`: no shift leaves 128 bits).
+#[inline(never)]
+fn below(num: &[i128; 3], dt: i128, fe: i32) -> bool {
+    num.iter().all(|v| {
+        if fe >= 0 {
+            v.unsigned_abs() << fe < 4000 * dt.unsigned_abs()
+        } else {
+            v.unsigned_abs() < (4000 * dt.unsigned_abs()) << -fe
+        }
+    })
+}
+
+/// `⌊v 2^fe / dt⌋` (`dt > 0`; `|v| < 3·2^72`, `fe` in `-16..=12`: no
+/// shift leaves i128) when it is below `2^12` in magnitude: within
+/// `2^-fe` below `v / dt`.
+#[inline(never)]
+fn scaled_quotient(v: i128, fe: i32, dt: i128) -> Option<i32> {
+    let q = if fe >= 0 {
+        (v << fe).checked_div_euclid(dt)
+    } else {
+        v.checked_div_euclid(dt << -fe)
+    };
+    q.and_then(|q| i32::try_from(q).ok())
+        .filter(|q| q.unsigned_abs() < 1 << 12)
+}
 
 impl EarlyCull {
     /// The test of an object with `Q16` model-view `m` (linear part) and
@@ -254,17 +310,8 @@ impl EarlyCull {
         // The largest fe <= 12 with every |E_k| 2^fe below 4000 (|E_k|
         // 2^fe < 2^12 after rounding; fe is lowered further below to scale
         // the threshold).
-        let below = |fe: i32| {
-            num.iter().all(|v| {
-                if fe >= 0 {
-                    v.unsigned_abs() << fe < 4000 * dt.unsigned_abs()
-                } else {
-                    v.unsigned_abs() < (4000 * dt.unsigned_abs()) << -fe
-                }
-            })
-        };
         let mut fe_max = 12i32;
-        while !below(fe_max) {
+        while !below(&num, dt, fe_max) {
             fe_max -= 1;
             if fe_max < -16 {
                 return None;
@@ -337,19 +384,13 @@ impl EarlyCull {
         // The spread's factor: R_E 2^fe (spread in 2^-14 units).
         let rk = re.shl(fe).ceil().filter(|&r| r < 8191)?;
         let dt = i128::from(det);
-        let e = num.map(|v| {
-            // ⌊v 2^fe / det⌋ (det > 0; |v| < 3·2^72, fe in -16..=12: no
-            // shift leaves i128): within 2^-fe below E.
-            let q = if fe >= 0 {
-                (v << fe).checked_div_euclid(dt)
-            } else {
-                v.checked_div_euclid(dt << -fe)
-            };
-            q.and_then(|q| i32::try_from(q).ok())
-                .filter(|q| q.unsigned_abs() < 1 << 12)
-        });
+        let e = [
+            scaled_quotient(num[0], fe, dt)?,
+            scaled_quotient(num[1], fe, dt)?,
+            scaled_quotient(num[2], fe, dt)?,
+        ];
         Some(Self {
-            e: [e[0]?, e[1]?, e[2]?],
+            e,
             sh: (14 - fe) as u32,
             bias: BIAS,
             // Both below 2^14 (checked above).
@@ -398,6 +439,18 @@ impl EarlyCull {
 mod tests {
     extern crate std;
     use super::*;
+
+    #[test]
+    fn bits128_counts_the_significant_bits() {
+        assert_eq!(bits128(0), 0);
+        for k in 0..128 {
+            let v = 1u128 << k;
+            assert_eq!(bits128(v), k + 1);
+            assert_eq!(bits128(v | (v >> 1) | 1), k + 1);
+            assert_eq!(bits128(v - 1), k);
+        }
+        assert_eq!(bits128(u128::MAX), 128);
+    }
     use crate::geom::exact::{cone_covers, face_normal, face_plane, MAX_AXIS2};
     use crate::geom::fused::Fused;
     use crate::geom::testkit::{proj, rotation, uniform};

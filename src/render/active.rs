@@ -70,7 +70,7 @@
 //! [`Workspace::faces`]: super::Workspace::faces
 
 use super::band::PhongShader;
-use super::phong_span::{PhongKernel, PhongKernelShader, PosPlane, SpecCache};
+use super::phong_span::{KernelError, PhongKernel, PhongKernelShader, PosPlane, SpecCache};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{
@@ -78,12 +78,12 @@ use super::{
     FACE_ROW,
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
-use crate::num::Profile;
+use crate::num::{Profile, Real};
 use crate::raster::{
     draw_small, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud,
     GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex, Walk,
 };
-use crate::scene::{Scene, SceneError};
+use crate::scene::{Object, Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
 
 /// One active triangle: its index, walk and values.
@@ -283,6 +283,18 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     spec_cache: Option<SpecCache>,
 }
 
+/// [`PhongKernel::new_cached`], not inlined: its temporaries (the
+/// lights' terms, the specular table) then take a stack frame only while
+/// the kernel is made, not room in the Phong arm's frame under the span
+/// loops.
+#[inline(never)]
+fn kernel_of<'s, R: Real>(
+    shade: &'s Shade<R>,
+    cache: &mut Option<SpecCache>,
+) -> Result<PhongKernel<'s, R>, KernelError> {
+    PhongKernel::new_cached(shade, cache)
+}
+
 impl<'w, P: Profile> Frame<'w, P> {
     /// Starts rendering the frame in bands of `rows` rows (see [`Bands`]):
     /// orders the triangles into `state`.
@@ -296,6 +308,10 @@ impl<'w, P: Profile> Frame<'w, P> {
     /// holds every triangle a view does not keep);
     /// [`RenderError::Window`] for `rows == 0`; a scene with too many
     /// lights gives [`RenderError::Scene`].
+    // Not inlined: the set-up's temporaries (the eye-space lights, the
+    // band ends) then stay out of the caller's stack frame, which stands
+    // under every band.
+    #[inline(never)]
     pub fn bands<'a, const CAP: usize, const V: usize>(
         &'a self,
         scene: &'a Scene<'_, '_, P::Real>,
@@ -816,68 +832,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     self.run::<4, _, _, _>(po, &mut t, Persp(Gouraud), |_, _| {})?
                 }
                 Layout::GouraudRgb => self.run::<3, _, _, _>(po, &mut t, Gouraud, |_, _| {})?,
-                Layout::PhongNormal | Layout::PhongPosition => {
-                    let sc = self.scene;
-                    let shade = Shade::new(
-                        &obj.material,
-                        sc.ambient,
-                        &self.lights,
-                        sc.specular,
-                        sc.viewer,
-                    )
-                    .map_err(|_| SceneError::TooManyLights)?;
-                    let normal = po.layout() == Layout::PhongNormal;
-                    // The span kernel (`phong_span`) where the profile has
-                    // one (the affine Q16 profiles), else the per-pixel
-                    // shader.
-                    let kernel = if P::PERSPECTIVE {
-                        None
-                    } else {
-                        PhongKernel::new_cached(&shade, &mut self.spec_cache).ok()
-                    };
-                    if let Some(k) = &kernel {
-                        let sh = PhongKernelShader::new(k);
-                        if normal {
-                            let set = |s: &mut PhongKernelShader<'_, '_, P::Real>,
-                                       t: &PreparedTri| {
-                                s.back = t.back
-                            };
-                            self.run::<3, _, _, _>(po, &mut t, sh, set)?;
-                        } else {
-                            // The exact position plane per triangle
-                            // (`PosPlane`).
-                            let plane = k.wants_plane();
-                            let set = |s: &mut PhongKernelShader<'_, '_, P::Real>,
-                                       t: &PreparedTri| {
-                                s.back = t.back;
-                                if plane {
-                                    s.plane = PosPlane::of_tri(frame, po, t);
-                                }
-                            };
-                            self.run::<6, _, _, _>(po, &mut t, sh, set)?;
-                        }
-                        continue;
-                    }
-                    let frame = PosFrame::of_object::<P>(sc, obj);
-                    let sh = PhongShader::<P>::for_object(&shade, frame.as_ref());
-                    if P::PERSPECTIVE {
-                        let set = |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| {
-                            s.0.set_back(t.back)
-                        };
-                        if normal {
-                            self.run::<4, _, _, _>(po, &mut t, Persp(sh), set)?;
-                        } else {
-                            self.run::<7, _, _, _>(po, &mut t, Persp(sh), set)?;
-                        }
-                    } else {
-                        let set = |s: &mut PhongShader<'_, P>, t: &PreparedTri| s.set_back(t.back);
-                        if normal {
-                            self.run::<3, _, _, _>(po, &mut t, sh, set)?;
-                        } else {
-                            self.run::<6, _, _, _>(po, &mut t, sh, set)?;
-                        }
-                    }
-                }
+                // Out of line: its shade and kernel take a stack frame
+                // only while a Phong object is drawn.
+                Layout::PhongNormal | Layout::PhongPosition => self.phong(po, obj, &mut t)?,
             }
         }
         self.y = y1;
@@ -888,6 +845,74 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             });
         }
         Ok(Some(Window { width: w, y0, y1 }))
+    }
+
+    /// Draws this band's part of Phong object `po` (scene object `obj`):
+    /// its shade, and the span kernel where the profile has one.
+    #[inline(never)]
+    fn phong<F: PixelFormat, D: DepthFormat>(
+        &mut self,
+        po: &PreparedObject,
+        obj: &Object<'_, P::Real>,
+        t: &mut Target<'_, F, D>,
+    ) -> Result<(), RenderError> {
+        let frame = self.frame;
+        let sc = self.scene;
+        // The shade and the kernel are borrowed where they are made (no
+        // move of either out of its `Result`: a stack slot each).
+        let shade = Shade::new(
+            &obj.material,
+            sc.ambient,
+            &self.lights,
+            sc.specular,
+            sc.viewer,
+        );
+        let Ok(shade) = &shade else {
+            return Err(SceneError::TooManyLights.into());
+        };
+        let normal = po.layout() == Layout::PhongNormal;
+        // The span kernel (`phong_span`) where the profile has
+        // one (the affine Q16 profiles), else the per-pixel
+        // shader.
+        let kernel = (!P::PERSPECTIVE).then(|| kernel_of(shade, &mut self.spec_cache));
+        if let Some(Ok(k)) = &kernel {
+            let sh = PhongKernelShader::new(k);
+            if normal {
+                let set =
+                    |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| s.back = t.back;
+                self.run::<3, _, _, _>(po, t, sh, set)?;
+            } else {
+                // The exact position plane per triangle
+                // (`PosPlane`).
+                let plane = k.wants_plane();
+                let set = |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| {
+                    s.back = t.back;
+                    if plane {
+                        s.plane = PosPlane::of_tri(frame, po, t);
+                    }
+                };
+                self.run::<6, _, _, _>(po, t, sh, set)?;
+            }
+            return Ok(());
+        }
+        let frame = PosFrame::of_object::<P>(sc, obj);
+        let sh = PhongShader::<P>::for_object(shade, frame.as_ref());
+        if P::PERSPECTIVE {
+            let set = |s: &mut Persp<PhongShader<'_, P>>, t: &PreparedTri| s.0.set_back(t.back);
+            if normal {
+                self.run::<4, _, _, _>(po, t, Persp(sh), set)?;
+            } else {
+                self.run::<7, _, _, _>(po, t, Persp(sh), set)?;
+            }
+        } else {
+            let set = |s: &mut PhongShader<'_, P>, t: &PreparedTri| s.set_back(t.back);
+            if normal {
+                self.run::<3, _, _, _>(po, t, sh, set)?;
+            } else {
+                self.run::<6, _, _, _>(po, t, sh, set)?;
+            }
+        }
+        Ok(())
     }
 
     /// The smallest triangle index the three streams offer this band.

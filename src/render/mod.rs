@@ -74,8 +74,8 @@ pub use phong_span::{
     KernelError, PhongFill, PhongKernel, PhongKernelShader, PhongSpan, SpecCache, RSQRT_N,
     SPEC_SEGMENTS,
 };
-pub use prepare::prepare;
 pub use prepare::{max_screen, XY_LIMIT};
+pub use prepare::{prepare, prepare_in};
 pub use storage::{Capacity, Reach, Storage};
 
 use crate::num::Profile;

@@ -171,8 +171,18 @@ pub const fn max_screen(sub: u32) -> u32 {
 pub(super) fn eye_lights<R: Real>(
     scene: &Scene<'_, '_, R>,
 ) -> Result<heapless::Vec<Light<R>, MAX_LIGHTS>, SceneError> {
-    let view = &scene.camera.view;
     let mut out = heapless::Vec::new();
+    eye_lights_into(scene, &mut out)?;
+    Ok(out)
+}
+
+/// [`eye_lights`] into `out` (empty): no `Result` of the whole list to
+/// move (a stack slot of its own in the caller).
+fn eye_lights_into<R: Real>(
+    scene: &Scene<'_, '_, R>,
+    out: &mut heapless::Vec<Light<R>, MAX_LIGHTS>,
+) -> Result<(), SceneError> {
+    let view = &scene.camera.view;
     for l in scene.lights {
         let kind = match l.kind {
             LightKind::Point(p) => LightKind::Point(view.point(p)),
@@ -181,7 +191,7 @@ pub(super) fn eye_lights<R: Real>(
         out.push(Light { kind, ..*l })
             .map_err(|_| SceneError::TooManyLights)?;
     }
-    Ok(out)
+    Ok(())
 }
 
 /// The shading layout an object needs: pay only for what is used.
@@ -320,6 +330,55 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
     height: u32,
     ws: Workspace<'w, P::Lerp>,
 ) -> Result<Frame<'w, P>, RenderError> {
+    let mut out = None;
+    prepare_into(scene, width, height, ws, &mut out)?;
+    // (Always a frame after `Ok`.)
+    out.ok_or(RenderError::Window)
+}
+
+/// [`prepare`] into `out`: the frame is made in `out` (`Some` after `Ok`,
+/// `None` after an error) rather than returned. The frame, with its list
+/// of prepared objects, is large (about 700 bytes on a 32-bit target): a
+/// caller that keeps it on its stack for the whole render (a firmware's
+/// frame loop) holds it once this way, where a returned `Result` may be
+/// moved into a slot of its own.
+///
+/// ```
+/// use fixshade::num::{Fast, Q16};
+/// use fixshade::render::{prepare_in, Frame, Workspace};
+/// use fixshade::scene::Scene;
+///
+/// fn frame_loop(scene: &Scene<'_, '_, Q16>, ws: Workspace<'_, i32>) {
+///     let mut frame: Option<Frame<'_, Fast>> = None;
+///     match prepare_in(scene, 240, 240, ws, &mut frame) {
+///         Ok(()) => assert!(frame.is_some()), // render it in bands here
+///         Err(_) => assert!(frame.is_none()),
+///     }
+/// }
+/// ```
+///
+/// # Errors
+/// As [`prepare`].
+pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'s, 'm, P::Real>,
+    width: u32,
+    height: u32,
+    ws: Workspace<'w, P::Lerp>,
+    out: &mut Option<Frame<'w, P>>,
+) -> Result<(), RenderError> {
+    prepare_into(scene, width, height, ws, out)
+}
+
+/// The body of [`prepare`] and [`prepare_in`].
+#[inline(always)]
+fn prepare_into<'w, 's: 'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'s, 'm, P::Real>,
+    width: u32,
+    height: u32,
+    ws: Workspace<'w, P::Lerp>,
+    out: &mut Option<Frame<'w, P>>,
+) -> Result<(), RenderError> {
+    *out = None;
     scene.check()?;
     // The guard band that keeps stored positions within `±XY_LIMIT`
     // (`None`: the screen is beyond `max_screen`).
@@ -352,7 +411,8 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
             Proj16::new(q, k, cam.near, [cx, cy], P::SUBPIXEL_BITS.get())
         }),
     };
-    let lights = eye_lights(scene)?;
+    let mut lights = heapless::Vec::new();
+    eye_lights_into(scene, &mut lights)?;
     // At most `MAX_TRIANGLES` triangle numbers (and as many made triangles
     // and flat colours): they are `u16` in the object list and the band
     // order.
@@ -378,26 +438,45 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
         rows: None,
         marked: false,
     };
-    let mut objects = heapless::Vec::new();
+    // The frame is made first, in `out`, and its object list filled in
+    // place: no list or frame to move into another (each move of one can
+    // take a stack slot of its own in the caller's frame).
+    let frame = out.insert(Frame {
+        ws: Workspace {
+            xy: &mut [],
+            vals: &mut [],
+            tris: &mut [],
+            colors: &mut [],
+            faces: &mut [],
+        },
+        faces: &[],
+        scene: scene.objects,
+        objects: heapless::Vec::new(),
+        width,
+        height,
+    });
     for (oi, obj) in scene.objects.iter().enumerate() {
         p.object = oi;
-        let po = p.object_pass(scene, obj, &lights)?;
-        objects.push(po).map_err(|_| SceneError::TooManyObjects)?;
+        let pushed = match p.object_pass(scene, obj, &lights) {
+            Ok(po) => frame
+                .objects
+                .push(po)
+                .map_err(|_| SceneError::TooManyObjects.into()),
+            Err(e) => Err(e),
+        };
+        if let Err(e) = pushed {
+            *out = None;
+            return Err(e);
+        }
     }
     // The frame keeps the face bytes apart from the workspace.
     let mut faces: &mut [u8] = &mut [];
-    let ws = p.ws.map_triangle_parts(|t, c, f| {
+    frame.ws = p.ws.map_triangle_parts(|t, c, f| {
         faces = f;
         (t, c, &mut [])
     });
-    Ok(Frame {
-        ws,
-        faces,
-        scene: scene.objects,
-        objects,
-        width,
-        height,
-    })
+    frame.faces = faces;
+    Ok(())
 }
 
 impl<'a, L> Workspace<'a, L> {
@@ -851,6 +930,43 @@ pub(super) enum Sphere {
     Across,
 }
 
+/// The shade of `obj` under the eye-space `lights` (`None`: too many
+/// lights). Not inlined, nor are [`object_light_of`] and [`levels_of`]:
+/// their temporaries (several arrays of per-light terms) then take a
+/// frame of their own while they run, not room in the object pass's
+/// frame under the vertex kernels.
+#[inline(never)]
+fn shade_of<R: Real>(
+    obj: &Object<'_, R>,
+    scene: &Scene<'_, '_, R>,
+    lights: &[Light<R>],
+) -> Option<Shade<R>> {
+    Shade::new(
+        &obj.material,
+        scene.ambient,
+        lights,
+        scene.specular,
+        scene.viewer,
+    )
+    .ok()
+}
+
+/// [`Shade::object_light`], not inlined (see [`shade_of`]).
+#[inline(never)]
+fn object_light_of<R: Real>(
+    shade: &Shade<R>,
+    k: &crate::geom::Mat3<R>,
+    s: R,
+) -> Option<ObjectLight<R>> {
+    shade.object_light(k, s)
+}
+
+/// [`ObjectLight::levels`], not inlined (see [`shade_of`]).
+#[inline(never)]
+fn levels_of<R: Real>(q: Raw16<R>, olight: Option<&ObjectLight<R>>) -> Option<LevelLight> {
+    olight.and_then(|o| o.levels(q))
+}
+
 /// The integer kernels' constants of an object ([`ObjCtx::q16`]: `Q16`
 /// only).
 struct Q16Consts {
@@ -860,14 +976,20 @@ struct Q16Consts {
     n: Option<Xform16>,
     /// The integer projection.
     pj: Proj16,
-    /// The object-space lights as integer levels (flat objects: the face
-    /// colours; `None` for lights too bright for them).
+    /// The object-space lights as integer levels, every layout (flat
+    /// objects: the face colours; the fused vertex kernel's lighting;
+    /// `None` for lights too bright for them).
     levels: Option<LevelLight>,
-    /// `levels` of one light.
+    /// `levels` of one light (flat objects).
     one: Option<OneLight>,
 }
 
-/// Per-object constants while preparing.
+/// Per-object constants while preparing. `repr(C)`: the fields in this
+/// order, which the compiler would otherwise choose; the fused vertex
+/// kernel's code on the Cortex-M0 was measured to depend on it (bunny
+/// Gouraud: 324 225 instructions in `kernel_fused` in this order, 326 328
+/// in the compiler's).
+#[repr(C)]
 struct ObjCtx<'a, 'm, R: Real> {
     mesh: Mesh<'m>,
     /// The mesh's triangles, positions and vertex normals (empty without
@@ -879,9 +1001,6 @@ struct ObjCtx<'a, 'm, R: Real> {
     /// The normal matrix ([`crate::geom::Mat3::normal_matrix`]).
     nm: Affine<R>,
     shade: &'a Shade<R>,
-    /// Directional lights in object space (Gouraud and flat without
-    /// point lights or specular term, uniform scale).
-    olight: Option<ObjectLight<R>>,
     /// The integer kernels' constants (`Q16` only: nothing for the other
     /// scalars).
     q16: &'a Only<R, Q16Consts>,
@@ -895,6 +1014,9 @@ struct ObjCtx<'a, 'm, R: Real> {
     /// How Phong positions are stored (`render::position`; `None` for
     /// the profiles without a frame).
     pos: Option<&'a PosFrame<R>>,
+    /// Directional lights in object space (Gouraud and flat without
+    /// point lights or specular term, uniform scale).
+    olight: Option<&'a ObjectLight<R>>,
 }
 
 impl<R: Real> ObjCtx<'_, '_, R> {
@@ -925,15 +1047,15 @@ impl<P: Profile> Preparer<'_, P> {
         obj: &Object<'_, P::Real>,
         lights: &[Light<P::Real>],
     ) -> Result<PreparedObject, RenderError> {
-        let shade = Shade::new(
-            &obj.material,
-            scene.ambient,
-            lights,
-            scene.specular,
-            scene.viewer,
-        )
-        .map_err(|_| SceneError::TooManyLights)?;
-        let layout = layout_of(obj, &shade, lights);
+        // The shade, the object-space lights and their levels are built
+        // out of line (see `shade_of`): their temporaries stay out of
+        // this frame, under which the vertex kernels run.
+        let shade = shade_of(obj, scene, lights);
+        // (Borrowed where it is made: no move to another slot.)
+        let Some(shade) = &shade else {
+            return Err(SceneError::TooManyLights.into());
+        };
+        let layout = layout_of(obj, shade, lights);
         let mesh = obj.mesh;
         if layout != Layout::Flat && !mesh.has_normals() {
             return Err(RenderError::MissingNormals {
@@ -951,22 +1073,21 @@ impl<P: Profile> Preparer<'_, P> {
                 layout,
                 Layout::Flat | Layout::GouraudMono | Layout::GouraudRgb
             ) {
-            shade.object_light(&nm.m, s)
+            object_light_of(shade, &nm.m, s)
         } else {
             None
         };
-        // Only the profiles that frame positions keep a frame.
         let frame = P::POSITION_FRAME.then(|| PosFrame::new::<P>(&mesh, &mv));
         let q16 = <P::Real as Real>::Kernels::map(&self.view.fast, |q, pj| {
-            let levels = match layout {
-                Layout::Flat => olight.as_ref().and_then(|o| o.levels(q)),
-                _ => None,
-            };
+            let levels = levels_of(q, olight.as_ref());
             Q16Consts {
                 x: Xform16::new(q, &mv),
                 n: Xform16::new(q, &nm),
                 pj: *pj,
-                one: levels.as_ref().and_then(LevelLight::one),
+                one: match layout {
+                    Layout::Flat => levels.as_ref().and_then(LevelLight::one),
+                    _ => None,
+                },
                 levels,
             }
         });
@@ -982,8 +1103,8 @@ impl<P: Profile> Preparer<'_, P> {
             pos: frame.as_ref(),
             mv,
             nm,
-            shade: &shade,
-            olight,
+            shade,
+            olight: olight.as_ref(),
             grey: {
                 let grey = |c: Vec3<P::Real>| c.x == c.y && c.y == c.z;
                 grey(obj.material.color) && lights.iter().all(|l| grey(l.color))
@@ -1198,7 +1319,9 @@ impl<P: Profile> Preparer<'_, P> {
     /// gives the same values as the generic pass, bit for bit.
     fn vertex_pass_fast(&mut self, ctx: &ObjCtx<'_, '_, P::Real>) -> Result<(), RenderError> {
         match ctx.q16() {
-            Some((q, &Q16Consts { x: Some(x), pj, .. })) => self.vertex_pass_q16(ctx, q, x, pj),
+            // (The transform borrowed, not copied: a copy takes a stack
+            // slot.)
+            Some((_, Q16Consts { x: Some(x), pj, .. })) => self.vertex_pass_q16(ctx, x, *pj),
             _ => self.vertex_pass(ctx, true),
         }
     }
@@ -1209,8 +1332,7 @@ impl<P: Profile> Preparer<'_, P> {
     fn vertex_pass_q16(
         &mut self,
         ctx: &ObjCtx<'_, '_, P::Real>,
-        q: Raw16<P::Real>,
-        x: Xform16,
+        x: &Xform16,
         pj: Proj16,
     ) -> Result<(), RenderError> {
         let packed = ctx.layout.packed_in::<P>();
@@ -1223,14 +1345,13 @@ impl<P: Profile> Preparer<'_, P> {
             self.view.depth_scale.map(|s| s.to_fixed_i32(16)),
             &ctx.mesh.bound(),
         );
-        if let Some(f) = fused {
+        if let Some(f) = &fused {
             // (One normal per vertex: the kernel zips them.)
             let levels = ctx
-                .olight
-                .as_ref()
-                .and_then(|o| o.levels(q))
+                .q16()
+                .and_then(|(_, c)| c.levels.as_ref())
                 .filter(|_| ctx.normals.len() == ctx.positions.len());
-            let one = levels.as_ref().and_then(|l| l.one());
+            let one = levels.and_then(LevelLight::one);
             // Back faces decided in object space (culled objects with
             // baked culling cones, not mirrored, large enough to pay for
             // the set-up), computed only for the layouts that use it.
@@ -1249,57 +1370,59 @@ impl<P: Profile> Preparer<'_, P> {
             // MAX_AXIS2`) under a light that keeps the clamps idle.
             let bounded = ctx.mesh.vertex_cones().is_some()
                 && one.as_ref().is_some_and(|o| o.bounded(MAX_AXIS2));
+            // Set up once, for exactly the layouts of the arms below (a
+            // flat object, or a Gouraud one with levels: `one` implies
+            // `levels`): one result in this frame, not one per arm.
+            let fused_arm = match ctx.layout {
+                Layout::Flat => true,
+                Layout::GouraudMono | Layout::GouraudRgb => levels.is_some(),
+                _ => false,
+            };
+            let e = if fused_arm { early() } else { None };
             match (ctx.layout, &levels, one) {
                 (Layout::GouraudMono, _, Some(o)) if bounded => {
-                    let e = early();
                     let l = Some(|n| o.at_bounded::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) if bounded => {
-                    let e = early();
                     let l = Some(|n| o.at_bounded::<false>(n));
-                    return self.kernel_fused::<4, false>(ctx, &f, l, e.as_ref());
+                    return self.kernel_fused::<4, false>(ctx, f, l, e.as_ref());
                 }
                 (Layout::Flat, _, _) => {
-                    let e = early();
-                    return self.kernel_fused::<1, false>(ctx, &f, None::<fn(_) -> _>, e.as_ref());
+                    return self.kernel_fused::<1, false>(ctx, f, None::<fn(_) -> _>, e.as_ref());
                 }
                 (Layout::GouraudMono, _, Some(o)) => {
-                    let e = early();
                     let l = Some(|n| o.at::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudMono, Some(l), None) => {
-                    let e = early();
                     let l = Some(|n| l.at::<true>(n));
                     return if packed {
-                        self.kernel_fused::<1, true>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<1, true>(ctx, f, l, e.as_ref())
                     } else {
-                        self.kernel_fused::<2, false>(ctx, &f, l, e.as_ref())
+                        self.kernel_fused::<2, false>(ctx, f, l, e.as_ref())
                     };
                 }
                 (Layout::GouraudRgb, _, Some(o)) => {
-                    let e = early();
                     return self.kernel_fused::<4, false>(
                         ctx,
-                        &f,
+                        f,
                         Some(|n| o.at::<false>(n)),
                         e.as_ref(),
                     );
                 }
                 (Layout::GouraudRgb, Some(l), None) => {
-                    let e = early();
                     return self.kernel_fused::<4, false>(
                         ctx,
-                        &f,
+                        f,
                         Some(|n| l.at::<false>(n)),
                         e.as_ref(),
                     );
@@ -1308,12 +1431,12 @@ impl<P: Profile> Preparer<'_, P> {
             }
         }
         match (ctx.layout, &ctx.olight) {
-            (Layout::Flat, _) => self.kernel_q16::<1>(ctx, &x, &pj, None),
+            (Layout::Flat, _) => self.kernel_q16::<1>(ctx, x, &pj, None),
             (Layout::GouraudMono, Some(ol)) if packed => {
-                self.kernel_q16::<1>(ctx, &x, &pj, Some(ol))
+                self.kernel_q16::<1>(ctx, x, &pj, Some(*ol))
             }
-            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, &x, &pj, Some(ol)),
-            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, &x, &pj, Some(ol)),
+            (Layout::GouraudMono, Some(ol)) => self.kernel_q16::<2>(ctx, x, &pj, Some(*ol)),
+            (Layout::GouraudRgb, Some(ol)) => self.kernel_q16::<4>(ctx, x, &pj, Some(*ol)),
             _ => self.vertex_pass(ctx, true),
         }
     }

@@ -1242,3 +1242,42 @@ fn bands_read_from_the_faces_bytes_equal_the_full_frame() {
         );
     }
 }
+
+#[test]
+fn prepare_in_makes_the_frame_prepare_returns() {
+    let objs = [
+        object::<crate::num::Q16>(shapes::SPHERE, Shading::Gouraud, [0.3, 0.2, 0.0]),
+        object::<crate::num::Q16>(shapes::CUBE, Shading::Flat, [0.1, 0.5, 0.0]),
+    ];
+    let ls = lights();
+    let s = scene(&objs, &ls, [0.0, 0.0, 5.0]);
+    let mut a = Mem::<i32>::new(2000, 2000);
+    let mut b = Mem::<i32>::new(2000, 2000);
+    let want = prepare::<Fast>(&s, 64, 48, a.ws()).unwrap();
+    let mut out = None;
+    prepare_in::<Fast>(&s, 64, 48, b.ws(), &mut out).unwrap();
+    let got = out.as_ref().unwrap();
+    assert_eq!(got.objects(), want.objects());
+    assert_eq!(
+        (got.vertex_count(), got.triangle_count(), got.bytes_used()),
+        (
+            want.vertex_count(),
+            want.triangle_count(),
+            want.bytes_used()
+        )
+    );
+    assert!(got.triangle_count() > 0);
+    drop(want);
+    assert_eq!((&a.xy, &a.vals, &a.faces), (&b.xy, &b.vals, &b.faces));
+    // An error leaves no frame, also where one was.
+    let mut small = Mem::<i32>::new(10, 2000);
+    let mut out = Some(prepare::<Fast>(&s, 64, 48, a.ws()).unwrap());
+    assert_eq!(
+        prepare_in::<Fast>(&s, 64, 48, small.ws(), &mut out),
+        Err(RenderError::Capacity {
+            part: Part::Vertices,
+            object: 0
+        })
+    );
+    assert!(out.is_none());
+}

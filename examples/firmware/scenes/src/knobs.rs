@@ -10,7 +10,8 @@ use crate::profiled::{depth_in, raster_bands_in, ProfilePool};
 use crate::{FrameError, FrameStats, Pixel, Probe, SceneSpec, WIDTH};
 pub use fixshade::num::FastSub;
 use fixshade::num::Profile;
-use fixshade::render::{prepare, Workspace};
+use fixshade::render::{prepare_in, Frame, RenderError, Workspace};
+use fixshade::scene::Scene;
 use fixshade::target::DepthFormat;
 
 /// The scene the knobs are measured on.
@@ -64,19 +65,42 @@ pub(crate) fn render_frame_knobs_in<P: Profile, D: DepthFormat, Q: Probe>(
     // Geometry.
     probe.resume();
     let parts = crate::profiled::Parts::<P::Real>::new(spec);
-    let prepared = match parts.camera {
-        Ok(camera) => {
-            let scene = parts.scene(spec, camera);
-            prepare::<P>(&scene, spec.width, spec.height, ws).map(|f| (scene, f))
+    // The scene and the frame stay where they are made (borrowed below,
+    // never moved; the frame made in place by `prepare_in`): each move of a large value can take a stack slot of
+    // its own in this frame, which the whole render stands on.
+    let scene = match &parts.camera {
+        Ok(c) => parts.scene(spec, *c),
+        Err(e) => {
+            probe.pause();
+            probe.close();
+            return Err((*e).into());
         }
-        Err(e) => Err(e.into()),
     };
+    let mut frame = None;
+    let prepared = prepare_frame::<P>(&scene, spec, ws, &mut frame);
     probe.pause();
     probe.close();
-    let (scene, frame) = prepared?;
-    raster_bands_in::<P, D, Q>(
-        &frame, &scene, pixels, depth, with_depth, rows, order, pool, probe,
-    )
+    prepared?;
+    match &frame {
+        Some(frame) => raster_bands_in::<P, D, Q>(
+            frame, &scene, pixels, depth, with_depth, rows, order, pool, probe,
+        ),
+        // (`prepare_in` leaves a frame after `Ok`.)
+        None => Err(RenderError::Window.into()),
+    }
+}
+
+/// [`prepare_in`] of `scene` at `spec`'s size into `frame`. Not inlined:
+/// its locals (the eye-space lights, the preparer) then take a stack
+/// frame only while the geometry runs, not under the bands.
+#[inline(never)]
+fn prepare_frame<'w, 's: 'w, 'm: 'w, P: Profile>(
+    scene: &Scene<'s, 'm, P::Real>,
+    spec: &SceneSpec,
+    ws: Workspace<'w, P::Lerp>,
+    frame: &mut Option<Frame<'w, P>>,
+) -> Result<(), RenderError> {
+    prepare_in::<P>(scene, spec.width, spec.height, ws, frame)
 }
 
 // The knob scene (the bunny) is not in the `dodeca` build.

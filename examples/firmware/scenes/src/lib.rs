@@ -53,6 +53,34 @@ use fixshade::num::{Fast, Profile};
 use fixshade::render::{Capacity, Pool, RenderError, Workspace};
 use fixshade::target::{BandBuf, BufferError, Rgb565Be};
 
+/// Most objects of a scene of the build ([`SCENES`]): the frame loop
+/// holds a scene's objects in its stack frame, for the whole frame.
+pub const SCENE_OBJECTS: usize = {
+    let mut n = 0;
+    let mut i = 0;
+    while i < SCENES.len() {
+        if SCENES[i].objects.len() > n {
+            n = SCENES[i].objects.len();
+        }
+        i += 1;
+    }
+    n
+};
+
+/// Most lights of a scene of the build ([`SCENES`]; at most the core's
+/// `MAX_LIGHTS`, checked by a test), held as [`SCENE_OBJECTS`].
+pub const SCENE_LIGHTS: usize = {
+    let mut n = 0;
+    let mut i = 0;
+    while i < SCENES.len() {
+        if SCENES[i].lights.len() > n {
+            n = SCENES[i].lights.len();
+        }
+        i += 1;
+    }
+    n
+};
+
 /// Rows per band: 16 ([`alone::dodeca::BAND_ROWS`] with the feature
 /// `dodeca`, [`alone::bunny::BAND_ROWS`] with `bunny`).
 pub const BAND_ROWS: u32 = if cfg!(feature = "dodeca") {
@@ -437,6 +465,14 @@ mod tests {
         for spec in SCENES.iter() {
             assert_eq!(spec.capacity.max(CAPACITY), CAPACITY);
             assert!(spec.width <= WIDTH && spec.objects.len() <= MAX_OBJECTS);
+            assert!(spec.objects.len() <= SCENE_OBJECTS && spec.lights.len() <= SCENE_LIGHTS);
+        }
+        assert!(SCENE_OBJECTS <= MAX_OBJECTS);
+        assert!(SCENE_LIGHTS <= fixshade::illum::MAX_LIGHTS);
+        assert!(SCENES
+            .iter()
+            .any(|s| s.objects.len() == SCENE_OBJECTS && s.lights.len() == SCENE_LIGHTS));
+        for spec in SCENES.iter() {
             assert!(DEPTH || !spec.depth);
         }
         // (A storage's `packed_values` are its values: it holds them in

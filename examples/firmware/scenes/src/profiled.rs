@@ -13,11 +13,11 @@
 //! bands of [`BAND_ROWS`] rows, RGB565 big-endian, 16-bit depth band.
 
 use crate::{
-    Crc32, FrameError, FrameStats, ObjectSpec, Pixel, Probe, SceneSpec, BAND_ROWS, MAX_OBJECTS,
-    POOL_SLOTS, POOL_VALUES,
+    Crc32, FrameError, FrameStats, ObjectSpec, Pixel, Probe, SceneSpec, BAND_ROWS, POOL_SLOTS,
+    POOL_VALUES, SCENE_LIGHTS, SCENE_OBJECTS,
 };
 use fixshade::geom::{Affine, Vec3};
-use fixshade::illum::{Light, LightKind, Material, MAX_LIGHTS};
+use fixshade::illum::{Light, LightKind, Material};
 use fixshade::num::{Profile, Real, Q16};
 use fixshade::render::{prepare, BandState, Frame, Pool, Workspace};
 use fixshade::scene::{Camera, Object, Scene, SceneError};
@@ -66,11 +66,14 @@ fn light<R: Real>(l: &Light<Q16>) -> Light<R> {
 /// The parts of a scene in the scalar `R` that the core's `Scene` borrows.
 pub(crate) struct Parts<R: Real> {
     pub(crate) camera: Result<Camera<R>, SceneError>,
-    objects: heapless::Vec<Object<'static, R>, MAX_OBJECTS>,
-    lights: heapless::Vec<Light<R>, MAX_LIGHTS>,
+    objects: heapless::Vec<Object<'static, R>, SCENE_OBJECTS>,
+    lights: heapless::Vec<Light<R>, SCENE_LIGHTS>,
 }
 
 impl<R: Real> Parts<R> {
+    // Not inlined: the collected object list's temporaries then stay out
+    // of the caller's frame (the frame loop's, under the whole render).
+    #[inline(never)]
     pub(crate) fn new(spec: &SceneSpec) -> Self {
         Self {
             camera: Camera::look_at(
@@ -82,9 +85,7 @@ impl<R: Real> Parts<R> {
                 spec.far.map(widen),
             ),
             objects: spec.objects.iter().map(object).collect(),
-            // More lights than the core takes: the rest are dropped here
-            // and `Scene::check` cannot see them; the generator never
-            // writes more (the host's scene files allow `MAX_LIGHTS`).
+            // (Both sized by the build's scenes: every scene fits.)
             lights: spec.lights.iter().map(light).collect(),
         }
     }
@@ -194,9 +195,13 @@ pub(crate) fn raster_bands_in<P: Profile, D: DepthFormat, Q: Probe>(
     let mut band = BandBuf::<Rgb565Be, D>::with_depth(px, z, w, rows)?;
     let mut state = BandState::new(order, pool);
     probe.resume();
-    let bands = frame.bands(scene, &mut state, rows);
+    let mut bands = frame.bands(scene, &mut state, rows);
     probe.pause();
-    let mut bands = bands?;
+    // Borrowed in its `Result` (not moved out: a stack slot of its own).
+    let bands = match &mut bands {
+        Ok(b) => b,
+        Err(e) => return Err((*e).into()),
+    };
     loop {
         probe.resume();
         let r = bands.next_band(&mut band);
@@ -224,6 +229,10 @@ pub(crate) fn raster_bands_in<P: Profile, D: DepthFormat, Q: Probe>(
 ///
 /// # Errors
 /// The core's error, e.g. a workspace part too small.
+// Not inlined: its locals (the scene's parts, the prepared frame) then
+// take a stack frame only during the check, not one in the caller's
+// (a firmware's `main`, under every frame rendered after it).
+#[inline(never)]
 pub fn check_with<P: Profile>(
     spec: &SceneSpec,
     ws: Workspace<'_, P::Lerp>,
