@@ -58,10 +58,29 @@ pub(super) const PCHUNK: usize = CHUNK;
 /// loop runs (`m < 256`, see the module docs).
 pub(super) const KF_MAX: u32 = 1 << 20;
 
-/// `round(x / 2^s)` for `s` in `1..64`, `None` past `i32`.
+/// `round(x / 2^s)` for `s` in `1..64`, `x·2^-s` (exact) for `s` in
+/// `-31..=0`; `None` past `i32`.
 #[inline(always)]
-fn shr_round(x: i64, s: u32) -> Option<i32> {
-    i32::try_from((x >> (s - 1)).wrapping_add(1) >> 1).ok()
+fn shr_round(x: i64, s: i32) -> Option<i32> {
+    if s >= 1 {
+        i32::try_from((x >> (s - 1)).wrapping_add(1) >> 1).ok()
+    } else {
+        let y = i32::try_from(x).ok()?;
+        let k = s.unsigned_abs();
+        let z = y.checked_shl(k)?;
+        (z >> k == y).then_some(z)
+    }
+}
+
+/// `x / 2^s` as [`shr_round`], modulo `2^32` (no range check).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn shr_wrap(x: i64, s: i32) -> i32 {
+    if s >= 1 {
+        ((x >> (s - 1)).wrapping_add(1) >> 1) as i32
+    } else {
+        (x as i32).wrapping_shl(s.unsigned_abs())
+    }
 }
 
 /// `(f(0), f(1) - f(0), f(2) - 2 f(1) + f(0))` of `f(i) = (a + i·da)·(b
@@ -84,7 +103,7 @@ fn prod(a: [i32; 3], da: [i32; 3], b: [i32; 3], db: [i32; 3]) -> [i64; 3] {
 /// forward difference over `k` steps, with bounds of its values over them
 /// (`None`: a value may leave `i32`).
 #[inline(always)]
-fn fwd32(c: [i64; 3], s: u32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
+fn fwd32(c: [i64; 3], s: i32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
     let x0 = shr_round(c[0], s)?;
     let x1 = shr_round(c[1], s)?;
     let x2 = shr_round(c[2], s)?;
@@ -101,6 +120,31 @@ fn fwd32(c: [i64; 3], s: u32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
         return None;
     }
     Some(((x0, x1, x2), lo, hi))
+}
+
+/// Bounds of the values over `t` steps of the exact quadratic whose
+/// difference triple is `c` divided by `2^s`, and its second difference
+/// so rounded (`None`: a value may leave `i32`). From the triple rounded
+/// to 32 bits: stepped, its values leave the exact ones by at most `½ +
+/// ½·t + ¼·t(t - 1)` units (the roundings of the first and the second
+/// difference), which the bounds add.
+#[inline(always)]
+fn span_bounds(c: [i64; 3], s: i32, t: i32) -> Option<(i32, i64, i64)> {
+    let x0 = shr_round(c[0], s)?;
+    let x1 = shr_round(c[1], s)?;
+    let x2 = shr_round(c[2], s)?;
+    // t < 2^12: every product below 2^56 (`wmul`: no 64-bit multiply
+    // call on ARMv6-M).
+    let w0 = i64::from(x0);
+    let xe = w0 + wmul(x1, t) + wmul(x2, t * (t - 1) / 2);
+    // A quadratic leaves its chord by at most |x2|·t²/8.
+    let bow = (wmul(x2, t * t).abs() >> 3) + i64::from((t * t + t) / 4 + 1);
+    let lo = w0.min(xe) - bow;
+    let hi = w0.max(xe) + bow;
+    if lo <= i64::from(i32::MIN) || hi >= i64::from(i32::MAX) {
+        return None;
+    }
+    Some((x2, lo, hi))
 }
 
 /// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s` within `2^-6`
@@ -129,6 +173,61 @@ struct Chunk {
     /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29).
     yl: (i32, i32),
     yv: (i32, i32),
+}
+
+/// A span's plan: the six quadratics' exact difference triples ([`prod`]
+/// of the span's scaled vectors: `A = |n|²`, `B = |l̃|²`, `C = |ṽ|²`, `D
+/// = n·l̃`, `E = n·ṽ`, `F = l̃·ṽ`) at the first pixel of the chunk to come,
+/// made once a span ([`PhongKernel::point_plan`], which proves the
+/// ranges over the whole span) and stepped a chunk at a time by shifts
+/// and adds ([`Plan::step_chunk`]). Wrapping `i64` arithmetic is exact
+/// modulo `2^64` and every true value is within `i64` (`|n|² < 2^62.6`,
+/// `|l̃|²`, `|ṽ|² < 2^60`, the others between), so a chunk starts from the
+/// very products of its first pixel's vectors.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Plan {
+    q: [[i64; 3]; 6],
+}
+
+impl Plan {
+    /// The triples [`PCHUNK`] pixels on: `f(t + 32) = f + 32 f' + 496 f''`,
+    /// `f'(t + 32) = f' + 32 f''`. Not inlined: inlined, its shifts of
+    /// the plan were hoisted to every span's start, planned or not.
+    #[inline(never)]
+    fn step_chunk(&mut self) {
+        const { assert!(PCHUNK == 32) };
+        for c in &mut self.q {
+            let d2 = c[2];
+            c[0] = c[0]
+                .wrapping_add(c[1] << 5)
+                .wrapping_add(d2 << 9)
+                .wrapping_sub(d2 << 4);
+            c[1] = c[1].wrapping_add(d2 << 5);
+        }
+    }
+
+    /// The chunk's 32-bit state: the triples rounded (`A`, `D`, `E` Q30 of
+    /// their product units, `B`, `C` Q29, `F` Q28: [`shr_wrap`] by 30, 29,
+    /// 30), within `i32` by the plan's ranges, and the Newton seeds from
+    /// the table (`None`: a seed out of the table). Not inlined (as
+    /// `point_setup`).
+    #[inline(never)]
+    fn chunk(&self) -> Option<Chunk> {
+        let r = |c: [i64; 3], s: i32| (shr_wrap(c[0], s), shr_wrap(c[1], s), shr_wrap(c[2], s));
+        let [qa, qb, qc, qd, qe, qf] = self.q;
+        let b = r(qb, 29);
+        let c = r(qc, 29);
+        Some(Chunk {
+            a: r(qa, 30),
+            b,
+            c,
+            d: r(qd, 30),
+            e: r(qe, 30),
+            f: r(qf, 30),
+            yl: seeds(b.0, b.1)?,
+            yv: seeds(c.0, c.1)?,
+        })
+    }
 }
 
 /// `v` and its step `d` times `2^s`, `s` making the largest component
@@ -220,9 +319,17 @@ impl<R: Real> PhongKernel<'_, R> {
             return passed;
         }
         let c = Colour::of(self, l);
+        // Spans of one chunk set it up from its vectors (`point_setup`),
+        // longer ones from their plan stepped on (`point_plan`, else a
+        // set-up a chunk).
+        let mut plan = if len > PCHUNK as u32 {
+            self.point_plan(l, span, len)
+        } else {
+            None
+        };
         drive(
             len,
-            |i, k, buf| self.point_chunk(l, span, i, k as usize, buf),
+            |i, k, buf| self.point_chunk(l, span, &mut plan, i, k as usize, buf),
             |t| c.of_terms(t),
             &mut out,
         )
@@ -237,16 +344,24 @@ impl<R: Real> PhongKernel<'_, R> {
         &self,
         l: &KLight,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        plan: &mut Option<Plan>,
         i: u32,
         k: usize,
         buf: &mut [u32; CHUNK],
     ) -> bool {
         // Below 4 pixels the 64-bit path costs less than the set-up (M4:
         // ~360 instructions a pixel against ~1 100 a chunk).
-        let st = if k >= SHORT_SPAN as usize {
-            self.point_setup(l, span, i, k)
-        } else {
-            None
+        let st = match plan {
+            _ if k < SHORT_SPAN as usize => None,
+            Some(pl) => {
+                // The driver's chunks follow one another, PCHUNK pixels
+                // apart.
+                if i > 0 {
+                    pl.step_chunk();
+                }
+                pl.chunk()
+            }
+            None => self.point_setup(l, span, i, k),
         };
         match st {
             Some(st) if self.spec => {
@@ -340,7 +455,7 @@ impl<R: Real> PhongKernel<'_, R> {
     }
 
     /// Whether the chunk of `k` pixels from pixel `i` runs the 32-bit loop
-    /// (the tests' check that it is taken).
+    /// from its own set-up (the tests' check that it is taken).
     #[cfg(test)]
     pub(super) fn point_loop_runs(
         &self,
@@ -351,6 +466,76 @@ impl<R: Real> PhongKernel<'_, R> {
         self.lights
             .first()
             .is_some_and(|l| self.point_setup(l, span, i, k).is_some())
+    }
+
+    /// The span's plan (`None`: a value outside the proven ranges
+    /// somewhere in the span of `len` pixels, `4..=4096`). Not inlined:
+    /// its 64-bit set-up would share the loop's frame and registers.
+    #[inline(never)]
+    #[allow(clippy::cast_possible_wrap, clippy::type_complexity)]
+    fn point_plan(
+        &self,
+        l: &KLight,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+    ) -> Option<Plan> {
+        // Steps of the normal below 2^29 (1/2 a pixel), of l̃ and ṽ below
+        // 2^26 (1/4 of their largest component): the products below stay
+        // within i64 (|dn|² · 6 < 2^61).
+        let small = |d: [i32; 3], b: u32| d.iter().all(|c| c.unsigned_abs() < 1 << b);
+        if !small(dn, 29) || !(SHORT_SPAN..=4096).contains(&len) {
+            return None;
+        }
+        let t = len as i32 - 1;
+        let v = p.map(i32::wrapping_neg);
+        let dv = dp.map(i32::wrapping_neg);
+        let lv = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
+        let (lt, dlt) = scale(lv, dv)?;
+        let (vt, dvt) = scale(v, dv)?;
+        if !small(dlt, 26) || !small(dvt, 26) {
+            return None;
+        }
+        let q = [
+            prod(n, dn, n, dn),
+            prod(lt, dlt, lt, dlt),
+            prod(vt, dvt, vt, dvt),
+            prod(n, dn, lt, dlt),
+            prod(n, dn, vt, dvt),
+            prod(lt, dlt, vt, dvt),
+        ];
+        let (_, alo, ahi) = span_bounds(q[0], 30, t)?;
+        // The `1/|n|` table's range, with a chunk's drift (248 units) to
+        // spare.
+        if alo < (1 << 28) + 256 || ahi >= (5 << 28) - 256 {
+            return None;
+        }
+        // |l̃|², |ṽ|² (Q29, from [1/4, 3) at the first pixel) within (1/6,
+        // 4), and steps of at most 1/16 of the length: |dl̃|² · 2^8 <= |l̃|²
+        // (x2 = 2 |dl̃|²).
+        for c in [q[1], q[2]] {
+            let (x2, lo, hi) = span_bounds(c, 29, t)?;
+            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x2) << 7 > lo - 256 {
+                return None;
+            }
+        }
+        // |D̃| <= |n| |l̃| < 1.12 · 2 and |Ẽ| < 1.12 · 2 (Q29), |F̃| < 2 · 2
+        // (Q28): within i32 over the span (a chunk's drift aside) by the
+        // checks above; the first and second differences wrap harmlessly
+        // (the values are exact modulo 2^32).
+        Some(Plan { q })
+    }
+
+    /// Whether a span of `len` pixels runs the 32-bit loop from its plan
+    /// (the tests' check that it is taken).
+    #[cfg(test)]
+    pub(super) fn point_plan_runs(
+        &self,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+    ) -> bool {
+        self.lights
+            .first()
+            .is_some_and(|l| self.point_plan(l, span, len).is_some())
     }
 
     /// The chunk's colours (`r | g << 8 | b << 16`) from its state, in

@@ -590,6 +590,7 @@ fn point_loop_runs() {
             let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
             let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
             let span = (q30(n0), q30(dn), q16(p0), q16(dp));
+            assert!(k.point_plan_runs(span, len), "n {n} light {lp:?}");
             for i in (0..len).step_by(point::PCHUNK) {
                 let kk = (len - i).min(point::PCHUNK as u32) as usize;
                 assert!(
