@@ -687,24 +687,26 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         if let [l] = &self.lights[..] {
             if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
                 // Positions and light offsets within ±2^29 over the span,
-                // steps within 2^18 (the point loop's 64-bit set-up).
-                let end = |c: i32, d: i32| i64::from(c) + i64::from(d) * i64::from(len);
-                let near = |v: i64| v.unsigned_abs() < 1 << 29;
-                // Zipped, not indexed: out of line (ARMv6-M) the indices
-                // of `(0..3).all(..)` kept a bounds check.
-                let ok = p
-                    .iter()
-                    .zip(dp.iter())
-                    .zip(l.at.iter())
-                    .all(|((&c, &d), &lp)| {
-                        let (p0, p1) = (i64::from(c), end(c, d));
-                        let lp = i64::from(lp);
-                        d.unsigned_abs() <= 1 << 18
-                            && near(p0)
-                            && near(p1)
-                            && near(lp - p0)
-                            && near(lp - p1)
-                    });
+                // steps within 2^18 (the point loop's 64-bit set-up), for
+                // spans below 2^13 pixels: `d·len` below 2^31, the sums
+                // below 2^32 in i64 (no 64-bit multiply: on ARMv6-M the
+                // check was a call of ~370 instructions a span).
+                #[inline(always)]
+                #[allow(clippy::cast_possible_wrap)]
+                fn comp(c: i32, d: i32, lp: i32, len: u32) -> bool {
+                    let near = |v: i64| v.unsigned_abs() < 1 << 29;
+                    let (c, lp) = (i64::from(c), i64::from(lp));
+                    let p1 = c + i64::from(d.wrapping_mul(len as i32));
+                    d.unsigned_abs() <= 1 << 18
+                        && near(c)
+                        && near(p1)
+                        && near(lp - c)
+                        && near(lp - p1)
+                }
+                let ok = len < 1 << 13
+                    && comp(p[0], dp[0], l.at[0], len)
+                    && comp(p[1], dp[1], l.at[1], len)
+                    && comp(p[2], dp[2], l.at[2], len);
                 if ok {
                     let (n, dn) = if back {
                         (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
