@@ -238,8 +238,10 @@ impl Plan {
 }
 
 /// `v` and its step `d` times `2^s`, `s` making the largest component
-/// of `v` lie in `[2^28, 2^29)` (`None`: `v` zero or above `2^29`, or
-/// the step past `i32`).
+/// of `v` lie in `[2^28, 2^29)`, each component of the scaled step below
+/// `2^26` (`None`: `v` zero or above `2^29`, or a larger step). One test
+/// of the step's components ORed (they are all below `2^(26 - s)` when
+/// their OR is).
 #[inline(always)]
 fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
     let m = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
@@ -247,14 +249,11 @@ fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
         return None;
     }
     let s = clz32(m) - 3;
-    let sh = |x: i32| {
-        let y = x.wrapping_shl(s);
-        (y >> s == x).then_some(y)
-    };
-    Some((
-        [sh(v[0])?, sh(v[1])?, sh(v[2])?],
-        [sh(d[0])?, sh(d[1])?, sh(d[2])?],
-    ))
+    let md = d[0].unsigned_abs() | d[1].unsigned_abs() | d[2].unsigned_abs();
+    if u64::from(md) << s >= 1 << 26 {
+        return None;
+    }
+    Some((v.map(|x| x << s), d.map(|x| x << s)))
 }
 
 /// Newton states `(y0 - 2δ, y0 - δ)` from table estimates `y0`, `y1` of
@@ -428,9 +427,6 @@ impl<R: Real> PhongKernel<'_, R> {
         let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
         let (lt, dlt) = scale(lj, dv)?;
         let (vt, dvt) = scale(vj, dv)?;
-        if !small(dlt, 26) || !small(dvt, 26) {
-            return None;
-        }
         let (a32, alo, ahi) = fwd32(prod(nj, dn, nj, dn), 30, k)?;
         // The `1/|n|` table's range, with the drift (248 units) to spare.
         if alo < (1 << 28) + 256 || ahi >= (5 << 28) - 256 {
@@ -505,9 +501,6 @@ impl<R: Real> PhongKernel<'_, R> {
         let lv = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
         let (lt, dlt) = scale(lv, dv)?;
         let (vt, dvt) = scale(v, dv)?;
-        if !small(dlt, 26) || !small(dvt, 26) {
-            return None;
-        }
         let q = [
             prod(n, dn, n, dn),
             prod(lt, dlt, lt, dlt),
