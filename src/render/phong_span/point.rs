@@ -170,6 +170,7 @@ fn newton(s: i32, b: i32) -> i32 {
 }
 
 /// A chunk's 32-bit state.
+#[cfg_attr(test, derive(Debug, PartialEq, Eq))]
 struct Chunk {
     a: (i32, i32, i32),
     b: (i32, i32, i32),
@@ -190,7 +191,11 @@ struct Chunk {
 /// and adds ([`Plan::step_chunk`]). Wrapping `i64` arithmetic is exact
 /// modulo `2^64` and every true value is within `i64` (`|n|² < 2^62.6`,
 /// `|l̃|²`, `|ṽ|² < 2^60`, the others between), so a chunk starts from the
-/// very products of its first pixel's vectors.
+/// very products of its first pixel's vectors scaled by the span's powers
+/// of two: the state of the chunk's own set-up (`point_setup`) whenever
+/// its first pixel's scales are the span's (`point_plan_equals_chunk_setup`
+/// checks it), else the same quantities at another scale, within the
+/// same proven ranges.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Plan {
     q: [[i64; 3]; 6],
@@ -542,6 +547,44 @@ impl<R: Real> PhongKernel<'_, R> {
         self.lights
             .first()
             .is_some_and(|l| self.point_plan(l, span, len).is_some())
+    }
+
+    /// The chunks of a span of `len` pixels whose state the plan, stepped
+    /// on, and the chunk's own set-up (`point_setup`) both give with the
+    /// same scales: how many, and whether the two states are equal in
+    /// each (the tests' check that the plan changes no value). `None`: no
+    /// plan.
+    #[cfg(test)]
+    pub(super) fn plan_matches_setup(
+        &self,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+    ) -> Option<(u32, bool)> {
+        let l = self.lights.first()?;
+        let mut plan = self.point_plan(l, span, len)?;
+        let (mut both, mut equal) = (0, true);
+        let mut i = 0;
+        while i < len {
+            let k = (len - i).min(PCHUNK as u32) as usize;
+            if i > 0 {
+                plan.step_chunk();
+            }
+            // The powers of two of l and v at the chunk's first pixel.
+            let sh = |j: u32| {
+                let p = [0, 1, 2].map(|a| span.2[a].wrapping_add(span.3[a].wrapping_mul(j as i32)));
+                let or = |v: [i32; 3]| v.iter().fold(0, |m, c| m | c.unsigned_abs());
+                let lv = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
+                (clz32(or(lv)), clz32(or(p)))
+            };
+            let same = sh(i) == sh(0);
+            if let (true, Some(a), Some(b)) = (same, plan.chunk(), self.point_setup(l, span, i, k))
+            {
+                both += 1;
+                equal &= a == b;
+            }
+            i += PCHUNK as u32;
+        }
+        Some((both, equal))
     }
 
     /// The chunk's colours (`r | g << 8 | b << 16`) from its state, in

@@ -606,6 +606,53 @@ fn point_loop_runs() {
     assert!(worst <= 1.0, "{worst}");
 }
 
+/// A span's plan (module `point`), stepped from chunk to chunk by shifts
+/// and adds, gives each chunk the very 32-bit state of the chunk's own
+/// set-up from its first pixel's vectors where the two scale them alike
+/// (spans of 40 to 400 pixels, lights near and far, a viewer close up).
+#[test]
+fn point_plan_equals_chunk_setup() {
+    let (mut chunks, mut spans) = (0, 0);
+    for &(lp, p0, dp) in &[
+        ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+        ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.004, 0.0, 0.002]),
+        ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.003, 0.001, -0.001]),
+        ([10.0, 20.0, 5.0], [-2.0, 1.0, -9.0], [0.002, 0.001, 0.0]),
+    ] {
+        let c = Case {
+            mat: Material {
+                color: v3(1.0, 0.7, 0.5),
+                ka: q(0.1),
+                kd: q(0.6),
+                ks: q(0.9),
+                shininess: q(40.0),
+            },
+            lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
+            ambient: q(0.2),
+            specular: Specular::Phong,
+            viewer: Viewer::Local,
+        };
+        let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+        let k = PhongKernel::new(&shade).unwrap();
+        let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
+        let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
+        for &len in &[40u32, 65, 100, 200, 400] {
+            let n0 = unit([-0.4, 0.1, 1.0]);
+            let dn = [0.6 / f64::from(len), 0.0, -0.2 / f64::from(len)];
+            let span = (q30(n0), q30(dn), q16(p0), q16(dp));
+            // (A span whose proven ranges the plan's bounds over the
+            // whole span miss has no plan: each chunk sets itself up.)
+            if let Some((both, equal)) = k.plan_matches_setup(span, len) {
+                assert!(equal, "light {lp:?} len {len}");
+                chunks += both;
+                spans += 1;
+            }
+        }
+    }
+    std::println!("{chunks} chunks of {spans} spans equal");
+    assert!(spans >= 16 && chunks >= 80, "{spans} {chunks}");
+}
+
 /// The specular table built with the stepped quotient (`PhongKernel::new`)
 /// equals `spec_entry` at every entry, for shininesses around the
 /// branches (8, 32) and up to 10 000.
