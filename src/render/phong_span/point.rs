@@ -46,7 +46,7 @@
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
 
-use super::one::Colour;
+use super::one::{rsq_biased, Colour, RS_PACKED};
 use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
@@ -605,6 +605,9 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut f, mut f1, f2) = st.f;
         let (mut a, mut a1, a2) = st.a;
         let kc = (self.kf << 11) as i32;
+        // `1/|n|` from the packed table, its address in a register
+        // (`one::rsq_biased`: the same values as `terms`).
+        let rs = core::hint::black_box(&RS_PACKED);
         for cg in col.get_mut(..k).unwrap_or_default().chunks_mut(GROUP) {
             // 1/|l̃| and n·L̂.
             for (o, nl) in px.iter_mut().zip(cg.iter_mut()) {
@@ -664,7 +667,8 @@ impl<R: Real> PhongKernel<'_, R> {
                 } else {
                     0
                 };
-                let (nl15, sp) = self.terms::<SPEC>(a, nl, q >> 8);
+                let r = rsq_biased(rs, a.wrapping_sub(1 << 28));
+                let (nl15, sp) = self.terms_r::<SPEC>(r, nl, q >> 8);
                 *o = (nl15 & 0xFFFF) | sp << 16;
                 a = a.wrapping_add(a1);
                 a1 = a1.wrapping_add(a2);
