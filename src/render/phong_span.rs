@@ -115,11 +115,14 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 192.15 instructions a pixel on the M4
+//! on the firmware's span sweep, 178.65 instructions a pixel on the M4
 //! (was 517, 219.06, 205.85 with the channels in the loop of the depth
-//! test, then 203.69) and 765.99 on the M0 (was 1 357, 797.56, 776.22,
-//! then 772.15), its chunk set-up (`point_setup`, ~950 instructions on
-//! the M4) a function of its own; its buffers (256 bytes) live in
+//! test, then 203.69, 192.15, 191.05 with a set-up a chunk) and 692.78 on
+//! the M0 (was 1 357, 797.56, 776.22, then 772.15, 765.99, 763.10), a
+//! span of more than one chunk set up once and stepped from chunk to
+//! chunk by shifts (module `point`'s plan), a single chunk's set-up
+//! (`point_setup`, ~900 instructions on the M4) a function of its own;
+//! its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
