@@ -66,7 +66,7 @@ use super::one::{rsq_biased, Colour, RS_PACKED};
 use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
-use crate::target::Rgb8;
+use crate::target::{level_q19, Rgb8};
 
 /// Spans and chunks below this many pixels take the 64-bit path pixel by
 /// pixel (after the depth test): below it that path costs less than a
@@ -284,24 +284,26 @@ fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
 /// `y0` and about `y1` (within `3 · 2^-11.4`).
 #[inline(always)]
 fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
-    // rsqrt_n: 2^16 / sqrt(f) for f in [1/4, 5/4) (Q28): f = x/4, x, 4x.
-    // A function inlined (as a closure it was a call per seed).
-    #[inline(always)]
-    fn t(x: i32) -> Option<i32> {
-        let (f, s) = if x >= 1 << 29 {
-            (x >> 3, 12)
-        } else if x >= 1 << 27 {
-            (x >> 1, 13)
-        } else {
-            (x << 1, 14)
-        };
-        let r = rsqrt_n(f)?;
-        i32::try_from(r << s).ok()
-    }
-    let y0 = t(x0)?;
-    let y1 = t(x0.wrapping_add(x1))?;
+    let y0 = seed(x0)?;
+    let y1 = seed(x0.wrapping_add(x1))?;
     let dl = y1.wrapping_sub(y0);
     Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
+}
+
+/// `1/sqrt(x)` (Q29) within `2^-11.4` relative for `x` (Q29) in `(1/6,
+/// 4)`, from the table of [`rsqrt_n`] (`f = x/4`, `x` or `4x` in `[1/4,
+/// 5/4)`, Q28). A function inlined (as a closure it was a call per seed).
+#[inline(always)]
+fn seed(x: i32) -> Option<i32> {
+    let (f, s) = if x >= 1 << 29 {
+        (x >> 3, 12)
+    } else if x >= 1 << 27 {
+        (x >> 1, 13)
+    } else {
+        (x << 1, 14)
+    };
+    let r = rsqrt_n(f)?;
+    i32::try_from(r << s).ok()
 }
 
 /// Per-pixel values between the passes of a chunk: `g`, first `1/|l̃|`
@@ -342,11 +344,11 @@ impl<R: Real> PhongKernel<'_, R> {
         if len < SHORT_SPAN {
             // The depth test first, then the 64-bit path for the passing
             // pixels alone (as `point_chunk` for chunks this short).
-            let (n, dn, p, dp) = span;
+            let c = Colour::of(self, l);
             let mut passed = 0;
             for i in 0..len {
                 if out.test(i) {
-                    out.write(i, self.point_exact(l, n, dn, p, dp, i));
+                    out.write(i, self.point_px(l, &c, span, i));
                     passed += 1;
                 }
             }
@@ -363,7 +365,7 @@ impl<R: Real> PhongKernel<'_, R> {
         };
         drive(
             len,
-            |i, k, buf| self.point_chunk(l, span, &mut plan, i, k as usize, buf),
+            |i, k, buf| self.point_chunk(l, &c, span, &mut plan, i, k as usize, buf),
             |t| c.of_terms(t),
             &mut out,
         )
@@ -374,9 +376,11 @@ impl<R: Real> PhongKernel<'_, R> {
     /// pixels from pixel `i` into `buf`.
     #[inline(never)]
     #[allow(clippy::type_complexity)]
+    #[allow(clippy::too_many_arguments)]
     fn point_chunk(
         &self,
         l: &KLight,
+        c: &Colour,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
         plan: &mut Option<Plan>,
         i: u32,
@@ -407,9 +411,8 @@ impl<R: Real> PhongKernel<'_, R> {
                 true
             }
             None => {
-                let (n, dn, p, dp) = span;
                 for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
-                    *o = pack(self.point_exact(l, n, dn, p, dp, j));
+                    *o = pack(self.point_px(l, c, span, j));
                 }
                 false
             }
@@ -691,6 +694,89 @@ impl<R: Real> PhongKernel<'_, R> {
                 a1 = a1.wrapping_add(a2);
             }
         }
+    }
+
+    /// One pixel `j` of the span alone: the loop's arithmetic at that
+    /// pixel ([`PhongKernel::point_one`]), else (outside its ranges) the
+    /// 64-bit per-pixel path.
+    #[inline(never)]
+    fn point_px(
+        &self,
+        l: &KLight,
+        c: &Colour,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        j: u32,
+    ) -> Rgb8 {
+        self.point_one(l, c, (n, dn, p, dp), j)
+            .unwrap_or_else(|| self.point_exact(l, n, dn, p, dp, j))
+    }
+
+    /// The loop's arithmetic ([`PhongKernel::point_run`]) at pixel `j`
+    /// alone: the six quadratics' values at the pixel computed exactly
+    /// (64-bit products of its vectors, scaled as a chunk's, rounded),
+    /// `1/|l̃|` and `1/|ṽ|` by one series step ([`newton`]) from the table
+    /// ([`seed`]: `2^-11.4`, the step takes it to `2^-30`); within the
+    /// loop's error at its first pixel (no forward-difference drift).
+    /// `None` outside the loop's ranges (`|n|²` in `[1/4, 5/4)`, `|l̃|²`
+    /// and `|ṽ|²` in `(1/6, 4)`).
+    #[inline(always)]
+    #[allow(
+        clippy::cast_possible_wrap,
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss
+    )]
+    fn point_one(
+        &self,
+        l: &KLight,
+        c: &Colour,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        j: u32,
+    ) -> Option<Rgb8> {
+        let at = |v: [i32; 3], d: [i32; 3]| {
+            [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(j as i32)))
+        };
+        let nj = at(n, dn);
+        let pj = at(p, dp);
+        let vj = pj.map(i32::wrapping_neg);
+        let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
+        let (lt, _) = scale(lj, [0; 3])?;
+        let (vt, _) = scale(vj, [0; 3])?;
+        // round(a·b / 2^s), wrapping (the ranges below checked in i64).
+        let dot = |a: [i32; 3], b: [i32; 3], s: u32| -> i64 {
+            wmul(a[0], b[0])
+                .wrapping_add(wmul(a[1], b[1]))
+                .wrapping_add(wmul(a[2], b[2]))
+                .wrapping_add(1 << (s - 1))
+                >> s
+        };
+        let a = dot(nj, nj, 30);
+        if !((1 << 28)..(5 << 28)).contains(&a) {
+            return None;
+        }
+        let b = dot(lt, lt, 29);
+        let cc = dot(vt, vt, 29);
+        let ok = |x: i64| x > (1 << 29) / 6 && x < (1 << 31) - 1;
+        if !ok(b) || !ok(cc) {
+            return None;
+        }
+        let (a, b) = (a as i32, b as i32);
+        // n·L̂ (Q30), as the loop's first pass.
+        let yl = newton(seed(b)?, b);
+        let nl = mulhi(dot(nj, lt, 30) as i32, yl) << 4;
+        let (nl15, sp) = if self.spec {
+            let yv = newton(seed(cc as i32)?, cc as i32);
+            let nlnv = mulhi(nl, mulhi(dot(nj, vt, 30) as i32, yv) << 4);
+            let g = mulhi(yl, yv) << 2;
+            let fg = mulhi(dot(lt, vt, 30) as i32, g) << 2;
+            let wa = (a >> 6)
+                .wrapping_add(mulhi(a, fg))
+                .wrapping_sub(nlnv >> 3);
+            let q = mulhi(wa.clamp(0, (1 << 26) - 1) << 4, (self.kf << 11) as i32);
+            self.terms::<true>(a, nl, q >> 8)
+        } else {
+            self.terms::<false>(a, nl, 0)
+        };
+        Some(level_q19(c.of_terms((nl15 & 0xFFFF) | sp << 16)))
     }
 
     /// One pixel `j` of the span by the 64-bit per-pixel path.
