@@ -68,14 +68,17 @@ use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
 use crate::target::{level_q19, Rgb8};
 
-/// Spans and chunks below this many pixels take the 64-bit path pixel by
-/// pixel (after the depth test): below it that path costs less than a
-/// chunk's set-up (`point_setup`, ~960 instructions on the M4). Measured
-/// on the dodecahedron Phong frame, raster (M4, M0): 4 pixels 2 020 376,
-/// 6 638 466; 2 pixels 2 080 579, 6 769 434; 6 pixels 2 008 015,
-/// 6 605 652; 8 pixels 2 040 850 on the M4; later, against 6 pixels'
-/// 1 974 841 and 6 415 672, 7 pixels 1 988 909 and 6 444 635.
-const SHORT_SPAN: u32 = 6;
+/// Spans and chunks below this many pixels take their pixels one by one
+/// (after the depth test; [`PhongKernel::point_one`], else the 64-bit
+/// path): below it that costs less than a chunk's set-up (`point_setup`,
+/// ~900 instructions on the M4). Measured on the dodecahedron Phong
+/// frame, raster (M4, M0), with the 64-bit path alone: 4 pixels
+/// 2 020 376, 6 638 466; 2 pixels 2 080 579, 6 769 434; 6 pixels
+/// 2 008 015, 6 605 652; 8 pixels 2 040 850 on the M4; later, against 6
+/// pixels' 1 974 841 and 6 415 672, 7 pixels 1 988 909 and 6 444 635.
+/// With `point_one`: 6 pixels 1 894 107 and 6 274 357, 8 pixels
+/// 1 892 522 and 6 261 194, 12 pixels 1 951 815 and 6 417 166.
+const SHORT_SPAN: u32 = 8;
 /// Pixels per chunk (the span driver's).
 pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
@@ -768,9 +771,7 @@ impl<R: Real> PhongKernel<'_, R> {
             let nlnv = mulhi(nl, mulhi(dot(nj, vt, 30) as i32, yv) << 4);
             let g = mulhi(yl, yv) << 2;
             let fg = mulhi(dot(lt, vt, 30) as i32, g) << 2;
-            let wa = (a >> 6)
-                .wrapping_add(mulhi(a, fg))
-                .wrapping_sub(nlnv >> 3);
+            let wa = (a >> 6).wrapping_add(mulhi(a, fg)).wrapping_sub(nlnv >> 3);
             let q = mulhi(wa.clamp(0, (1 << 26) - 1) << 4, (self.kf << 11) as i32);
             self.terms::<true>(a, nl, q >> 8)
         } else {
