@@ -780,6 +780,19 @@ impl<R: Real> PhongKernel<'_, R> {
         Some(level_q19(c.of_terms((nl15 & 0xFFFF) | sp << 16)))
     }
 
+    /// Whether pixel `j` of the span takes [`PhongKernel::point_one`] (the
+    /// tests' check that it is taken).
+    #[cfg(test)]
+    pub(super) fn point_one_runs(
+        &self,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        j: u32,
+    ) -> bool {
+        self.lights
+            .first()
+            .is_some_and(|l| self.point_one(l, &Colour::of(self, l), span, j).is_some())
+    }
+
     /// One pixel `j` of the span by the 64-bit per-pixel path.
     #[cold]
     #[inline(never)]

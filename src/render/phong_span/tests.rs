@@ -606,6 +606,56 @@ fn point_loop_runs() {
     assert!(worst <= 1.0, "{worst}");
 }
 
+/// Short spans of the point loop (below `point::SHORT_SPAN` pixels: the
+/// loop's arithmetic a pixel alone, `point_one`) across the highlight:
+/// every pixel takes `point_one`, within 1 level of `f64`.
+#[test]
+fn point_short_spans() {
+    let mut worst = 0f64;
+    let mut pixels = 0;
+    for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
+        for &(lp, p0, dp) in &[
+            ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+            ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.02, 0.0, 0.002]),
+            ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.01, 0.003, -0.004]),
+        ] {
+            let c = Case {
+                mat: Material {
+                    color: v3(1.0, 0.7, 0.5),
+                    ka: q(0.1),
+                    kd: q(0.6),
+                    ks: q(0.9),
+                    shininess: q(n),
+                },
+                lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
+                ambient: q(0.2),
+                specular: Specular::Phong,
+                viewer: Viewer::Local,
+            };
+            let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
+            let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
+            let dn = [0.006, 0.0, -0.002];
+            // Spans of 1 to 7 pixels from every 9th pixel of a 100-pixel one.
+            for s in (0..100).step_by(9) {
+                let t = f64::from(s);
+                let n0 = unit([-0.4 + 0.006 * t, 0.1, 1.0 - 0.002 * t]);
+                let ps = [0, 1, 2].map(|a| p0[a] + t * dp[a]);
+                let len = 1 + s % 7;
+                let span = (q30(n0), q30(dn), q16(ps), q16(dp));
+                for j in 0..len as u32 {
+                    assert!(k.point_one_runs(span, j), "n {n} light {lp:?} at {s}");
+                }
+                worst = worst.max(span_error(&c, n0, dn, ps, dp, len));
+                pixels += len;
+            }
+        }
+    }
+    std::println!("point short spans vs f64: {worst:.3} levels over {pixels} pixels");
+    assert!(worst <= 1.0, "{worst}");
+}
+
 /// A span's plan (module `point`), stepped from chunk to chunk by shifts
 /// and adds, gives each chunk the very 32-bit state of the chunk's own
 /// set-up from its first pixel's vectors where the two scale them alike
