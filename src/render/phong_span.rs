@@ -115,13 +115,15 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 178.65 instructions a pixel on the M4
+//! on the firmware's span sweep, 176.38 instructions a pixel on the M4
 //! (was 517, 219.06, 205.85 with the channels in the loop of the depth
-//! test, then 203.69, 192.15, 191.05 with a set-up a chunk) and 692.78 on
+//! test, then 203.69, 192.15, 191.05 with a set-up a chunk) and 698.56 on
 //! the M0 (was 1 357, 797.56, 776.22, then 772.15, 765.99, 763.10), a
 //! span of more than one chunk set up once and stepped from chunk to
 //! chunk by shifts (module `point`'s plan), a single chunk's set-up
-//! (`point_setup`, ~900 instructions on the M4) a function of its own;
+//! (`point_setup`, ~900 instructions on the M4) a function of its own,
+//! spans below 8 pixels a pixel at a time by the same arithmetic
+//! (`point_one`, ~280 instructions a pixel on the M4);
 //! its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the

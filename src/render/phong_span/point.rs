@@ -44,14 +44,16 @@
 //! then rounds them and takes its seeds, without products or range tests
 //! (the same 32-bit state as its own set-up when its scales are the
 //! span's: `point_plan_equals_chunk_setup`). A single-chunk span keeps
-//! the set-up from its vectors (`point_setup`), spans below
-//! [`SHORT_SPAN`] pixels the 64-bit path. Measured on the firmware (span
-//! sweep of 200-pixel spans, a pixel; dodecahedron Phong raster), M4
-//! 191.05 -> 178.65 and 2 010 978 -> 1 974 841, M0 763.10 -> 692.78 and
-//! 6 699 059 -> 6 415 672 (with the plan, the short-span threshold, a
-//! cheaper per-span range check and step test, the packed `1/|n|` table
-//! and, on the M0, `F̃·G` in the last pass); frames unchanged on the
-//! firmware.
+//! the set-up from its vectors (`point_setup`); spans and chunks below
+//! [`SHORT_SPAN`] pixels take their pixels one by one, each by the
+//! loop's arithmetic at that pixel alone (`PhongKernel::point_one`: exact
+//! values, table seed and one series step; else the 64-bit path).
+//! Measured on the firmware (span sweep of 200-pixel spans less 1-pixel
+//! ones, a pixel; dodecahedron Phong raster): M4 191.05 -> 176.38 and
+//! 2 010 978 -> 1 892 522, M0 763.10 -> 698.56 and 6 699 059 ->
+//! 6 261 194 (the plan, `point_one` and its threshold, a cheaper
+//! per-span range check and step test, the packed `1/|n|` table and, on
+//! the M0, `F̃·G` in the last pass); frames unchanged on the firmware.
 //!
 //! Per pixel (three passes over the chunk, few live values each, all
 //! 32-bit): `1/|l̃|` and `n·L̂`; `1/|ṽ|`, `n·V̂` and `L̂·V̂`; `A`, `w·A`,
