@@ -347,8 +347,8 @@ impl<R: Real> PhongKernel<'_, R> {
         mut out: impl Out,
     ) -> u32 {
         if len < SHORT_SPAN {
-            // The depth test first, then the 64-bit path for the passing
-            // pixels alone (as `point_chunk` for chunks this short).
+            // The depth test first, then the passing pixels one by one
+            // (`point_px`, as `point_chunk` for chunks this short).
             let c = Colour::of(self, l);
             let mut passed = 0;
             for i in 0..len {
@@ -392,8 +392,8 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         buf: &mut [u32; CHUNK],
     ) -> bool {
-        // Below SHORT_SPAN pixels the 64-bit path costs less than the
-        // set-up.
+        // Below SHORT_SPAN pixels, pixel by pixel (`point_px`) costs
+        // less than the set-up.
         let st = match plan {
             _ if k < SHORT_SPAN as usize => None,
             Some(pl) => {
@@ -508,7 +508,8 @@ impl<R: Real> PhongKernel<'_, R> {
     }
 
     /// The span's plan (`None`: a value outside the proven ranges
-    /// somewhere in the span of `len` pixels, `4..=4096`). Not inlined:
+    /// somewhere in the span of `len` pixels, `SHORT_SPAN..=4096`). Not
+    /// inlined:
     /// its 64-bit set-up would share the loop's frame and registers.
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap, clippy::type_complexity)]
