@@ -115,11 +115,16 @@
 //! module `point` instead: the six quadratics `|n|²`, `|l|²`, `|v|²`,
 //! `n·l`, `n·v`, `l·v` as per-chunk forward differences, `1/|l|` and
 //! `1/|v|` by a series step seeded from the two previous pixels; measured
-//! on the firmware's span sweep, 192.15 instructions a pixel on the M4
+//! on the firmware's span sweep, 176.38 instructions a pixel on the M4
 //! (was 517, 219.06, 205.85 with the channels in the loop of the depth
-//! test, then 203.69) and 765.99 on the M0 (was 1 357, 797.56, 776.22,
-//! then 772.15), its chunk set-up (`point_setup`, ~950 instructions on
-//! the M4) a function of its own; its buffers (256 bytes) live in
+//! test, then 203.69, 192.15, 191.05 with a set-up a chunk) and 698.56 on
+//! the M0 (was 1 357, 797.56, 776.22, then 772.15, 765.99, 763.10), a
+//! span of more than one chunk set up once and stepped from chunk to
+//! chunk by shifts (module `point`'s plan), a single chunk's set-up
+//! (`point_setup`, ~900 instructions on the M4) a function of its own,
+//! spans below 8 pixels a pixel at a time by the same arithmetic
+//! (`point_one`, ~280 instructions a pixel on the M4);
+//! its buffers (256 bytes) live in
 //! its own frames, zeroed once a span and a chunk, so that the other
 //! shaders' span stages do not carry them (the 640 bytes kept by the
 //! shader before cost 8 a pixel less on the M4 and 19 more on the M0).
@@ -687,24 +692,26 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         if let [l] = &self.lights[..] {
             if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
                 // Positions and light offsets within ±2^29 over the span,
-                // steps within 2^18 (the point loop's 64-bit set-up).
-                let end = |c: i32, d: i32| i64::from(c) + i64::from(d) * i64::from(len);
-                let near = |v: i64| v.unsigned_abs() < 1 << 29;
-                // Zipped, not indexed: out of line (ARMv6-M) the indices
-                // of `(0..3).all(..)` kept a bounds check.
-                let ok = p
-                    .iter()
-                    .zip(dp.iter())
-                    .zip(l.at.iter())
-                    .all(|((&c, &d), &lp)| {
-                        let (p0, p1) = (i64::from(c), end(c, d));
-                        let lp = i64::from(lp);
-                        d.unsigned_abs() <= 1 << 18
-                            && near(p0)
-                            && near(p1)
-                            && near(lp - p0)
-                            && near(lp - p1)
-                    });
+                // steps within 2^18 (the point loop's 64-bit set-up), for
+                // spans below 2^13 pixels: `d·len` below 2^31, the sums
+                // below 2^32 in i64 (no 64-bit multiply: on ARMv6-M the
+                // check was a call of ~370 instructions a span).
+                #[inline(always)]
+                #[allow(clippy::cast_possible_wrap)]
+                fn comp(c: i32, d: i32, lp: i32, len: u32) -> bool {
+                    let near = |v: i64| v.unsigned_abs() < 1 << 29;
+                    let (c, lp) = (i64::from(c), i64::from(lp));
+                    let p1 = c + i64::from(d.wrapping_mul(len as i32));
+                    d.unsigned_abs() <= 1 << 18
+                        && near(c)
+                        && near(p1)
+                        && near(lp - c)
+                        && near(lp - p1)
+                }
+                let ok = len < 1 << 13
+                    && comp(p[0], dp[0], l.at[0], len)
+                    && comp(p[1], dp[1], l.at[1], len)
+                    && comp(p[2], dp[2], l.at[2], len);
                 if ok {
                     let (n, dn) = if back {
                         (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))

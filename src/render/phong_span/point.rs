@@ -37,6 +37,24 @@
 //! 64-bit per-pixel path. Measured against `f64` in this module's tests
 //! (`random_spans_against_f64`, `highlight_peak_set`, `point_loop_runs`).
 //!
+//! A span of more than one chunk takes its 64-bit triples once, at its
+//! first pixel, with its ranges proven over the whole span ([`Plan`],
+//! `PhongKernel::point_plan`), and steps them exactly from chunk to chunk
+//! by shifts and adds (`f(t + 32) = f + 32 f' + 496 f''`): each chunk
+//! then rounds them and takes its seeds, without products or range tests
+//! (the same 32-bit state as its own set-up when its scales are the
+//! span's: `point_plan_equals_chunk_setup`). A single-chunk span keeps
+//! the set-up from its vectors (`point_setup`); spans and chunks below
+//! [`SHORT_SPAN`] pixels take their pixels one by one, each by the
+//! loop's arithmetic at that pixel alone (`PhongKernel::point_one`: exact
+//! values, table seed and one series step; else the 64-bit path).
+//! Measured on the firmware (span sweep of 200-pixel spans less 1-pixel
+//! ones, a pixel; dodecahedron Phong raster): M4 191.05 -> 176.38 and
+//! 2 010 978 -> 1 892 522, M0 763.10 -> 698.56 and 6 699 059 ->
+//! 6 261 194 (the plan, `point_one` and its threshold, a cheaper
+//! per-span range check and step test, the packed `1/|n|` table and, on
+//! the M0, `F̃·G` in the last pass); frames unchanged on the firmware.
+//!
 //! Per pixel (three passes over the chunk, few live values each, all
 //! 32-bit): `1/|l̃|` and `n·L̂`; `1/|ṽ|`, `n·V̂` and `L̂·V̂`; `A`, `w·A`,
 //! then the light terms as the directional loop ([`PhongKernel::terms`]),
@@ -46,22 +64,52 @@
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
 
-use super::one::{Colour, SHORT_SPAN};
+use super::one::{rsq_biased, Colour, RS_PACKED};
 use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
-use crate::target::Rgb8;
+use crate::target::{level_q19, Rgb8};
 
+/// Spans and chunks below this many pixels take their pixels one by one
+/// (after the depth test; [`PhongKernel::point_one`], else the 64-bit
+/// path): below it that costs less than a chunk's set-up (`point_setup`,
+/// ~900 instructions on the M4). Measured on the dodecahedron Phong
+/// frame, raster (M4, M0), with the 64-bit path alone: 4 pixels
+/// 2 020 376, 6 638 466; 2 pixels 2 080 579, 6 769 434; 6 pixels
+/// 2 008 015, 6 605 652; 8 pixels 2 040 850 on the M4; later, against 6
+/// pixels' 1 974 841 and 6 415 672, 7 pixels 1 988 909 and 6 444 635.
+/// With `point_one`: 6 pixels 1 894 107 and 6 274 357, 8 pixels
+/// 1 892 522 and 6 261 194, 12 pixels 1 951 815 and 6 417 166.
+const SHORT_SPAN: u32 = 8;
 /// Pixels per chunk (the span driver's).
 pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
 /// loop runs (`m < 256`, see the module docs).
 pub(super) const KF_MAX: u32 = 1 << 20;
 
-/// `round(x / 2^s)` for `s` in `1..64`, `None` past `i32`.
+/// `round(x / 2^s)` for `s` in `1..64`, `x·2^-s` (exact) for `s` in
+/// `-31..=0`; `None` past `i32`.
 #[inline(always)]
-fn shr_round(x: i64, s: u32) -> Option<i32> {
-    i32::try_from((x >> (s - 1)).wrapping_add(1) >> 1).ok()
+fn shr_round(x: i64, s: i32) -> Option<i32> {
+    if s >= 1 {
+        i32::try_from((x >> (s - 1)).wrapping_add(1) >> 1).ok()
+    } else {
+        let y = i32::try_from(x).ok()?;
+        let k = s.unsigned_abs();
+        let z = y.checked_shl(k)?;
+        (z >> k == y).then_some(z)
+    }
+}
+
+/// `x / 2^s` as [`shr_round`], modulo `2^32` (no range check).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn shr_wrap(x: i64, s: i32) -> i32 {
+    if s >= 1 {
+        ((x >> (s - 1)).wrapping_add(1) >> 1) as i32
+    } else {
+        (x as i32).wrapping_shl(s.unsigned_abs())
+    }
 }
 
 /// `(f(0), f(1) - f(0), f(2) - 2 f(1) + f(0))` of `f(i) = (a + i·da)·(b
@@ -84,7 +132,7 @@ fn prod(a: [i32; 3], da: [i32; 3], b: [i32; 3], db: [i32; 3]) -> [i64; 3] {
 /// forward difference over `k` steps, with bounds of its values over them
 /// (`None`: a value may leave `i32`).
 #[inline(always)]
-fn fwd32(c: [i64; 3], s: u32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
+fn fwd32(c: [i64; 3], s: i32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
     let x0 = shr_round(c[0], s)?;
     let x1 = shr_round(c[1], s)?;
     let x2 = shr_round(c[2], s)?;
@@ -103,6 +151,31 @@ fn fwd32(c: [i64; 3], s: u32, k: usize) -> Option<((i32, i32, i32), i64, i64)> {
     Some(((x0, x1, x2), lo, hi))
 }
 
+/// Bounds of the values over `t` steps of the exact quadratic whose
+/// difference triple is `c` divided by `2^s`, and its second difference
+/// so rounded (`None`: a value may leave `i32`). From the triple rounded
+/// to 32 bits: stepped, its values leave the exact ones by at most `½ +
+/// ½·t + ¼·t(t - 1)` units (the roundings of the first and the second
+/// difference), which the bounds add.
+#[inline(always)]
+fn span_bounds(c: [i64; 3], s: i32, t: i32) -> Option<(i32, i64, i64)> {
+    let x0 = shr_round(c[0], s)?;
+    let x1 = shr_round(c[1], s)?;
+    let x2 = shr_round(c[2], s)?;
+    // t < 2^12: every product below 2^56 (`wmul`: no 64-bit multiply
+    // call on ARMv6-M).
+    let w0 = i64::from(x0);
+    let xe = w0 + wmul(x1, t) + wmul(x2, t * (t - 1) / 2);
+    // A quadratic leaves its chord by at most |x2|·t²/8.
+    let bow = (wmul(x2, t * t).abs() >> 3) + i64::from((t * t + t) / 4 + 1);
+    let lo = w0.min(xe) - bow;
+    let hi = w0.max(xe) + bow;
+    if lo <= i64::from(i32::MIN) || hi >= i64::from(i32::MAX) {
+        return None;
+    }
+    Some((x2, lo, hi))
+}
+
 /// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s` within `2^-6`
 /// (relative): `s (1 + e/2 + 3e²/8 + 5e³/16)` with `e = 1 - b s²` (the
 /// series of `(1 - e)^(-1/2)` to its fourth term: within `0.28 e⁴`, plus
@@ -119,6 +192,7 @@ fn newton(s: i32, b: i32) -> i32 {
 }
 
 /// A chunk's 32-bit state.
+#[cfg_attr(test, derive(Debug, PartialEq, Eq))]
 struct Chunk {
     a: (i32, i32, i32),
     b: (i32, i32, i32),
@@ -131,9 +205,70 @@ struct Chunk {
     yv: (i32, i32),
 }
 
+/// A span's plan: the six quadratics' exact difference triples ([`prod`]
+/// of the span's scaled vectors: `A = |n|²`, `B = |l̃|²`, `C = |ṽ|²`, `D
+/// = n·l̃`, `E = n·ṽ`, `F = l̃·ṽ`) at the first pixel of the chunk to come,
+/// made once a span ([`PhongKernel::point_plan`], which proves the
+/// ranges over the whole span) and stepped a chunk at a time by shifts
+/// and adds ([`Plan::step_chunk`]). Wrapping `i64` arithmetic is exact
+/// modulo `2^64` and every true value is within `i64` (`|n|² < 2^62.6`,
+/// `|l̃|²`, `|ṽ|² < 2^60`, the others between), so a chunk starts from the
+/// very products of its first pixel's vectors scaled by the span's powers
+/// of two: the state of the chunk's own set-up (`point_setup`) whenever
+/// its first pixel's scales are the span's (`point_plan_equals_chunk_setup`
+/// checks it), else the same quantities at another scale, within the
+/// same proven ranges.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Plan {
+    q: [[i64; 3]; 6],
+}
+
+impl Plan {
+    /// The triples [`PCHUNK`] pixels on: `f(t + 32) = f + 32 f' + 496 f''`,
+    /// `f'(t + 32) = f' + 32 f''`. Not inlined: inlined, its shifts of
+    /// the plan were hoisted to every span's start, planned or not.
+    #[inline(never)]
+    fn step_chunk(&mut self) {
+        const { assert!(PCHUNK == 32) };
+        for c in &mut self.q {
+            let d2 = c[2];
+            c[0] = c[0]
+                .wrapping_add(c[1] << 5)
+                .wrapping_add(d2 << 9)
+                .wrapping_sub(d2 << 4);
+            c[1] = c[1].wrapping_add(d2 << 5);
+        }
+    }
+
+    /// The chunk's 32-bit state: the triples rounded (`A`, `D`, `E` Q30 of
+    /// their product units, `B`, `C` Q29, `F` Q28: [`shr_wrap`] by 30, 29,
+    /// 30), within `i32` by the plan's ranges, and the Newton seeds from
+    /// the table (`None`: a seed out of the table). Not inlined (as
+    /// `point_setup`).
+    #[inline(never)]
+    fn chunk(&self) -> Option<Chunk> {
+        let r = |c: [i64; 3], s: i32| (shr_wrap(c[0], s), shr_wrap(c[1], s), shr_wrap(c[2], s));
+        let [qa, qb, qc, qd, qe, qf] = self.q;
+        let b = r(qb, 29);
+        let c = r(qc, 29);
+        Some(Chunk {
+            a: r(qa, 30),
+            b,
+            c,
+            d: r(qd, 30),
+            e: r(qe, 30),
+            f: r(qf, 30),
+            yl: seeds(b.0, b.1)?,
+            yv: seeds(c.0, c.1)?,
+        })
+    }
+}
+
 /// `v` and its step `d` times `2^s`, `s` making the largest component
-/// of `v` lie in `[2^28, 2^29)` (`None`: `v` zero or above `2^29`, or
-/// the step past `i32`).
+/// of `v` lie in `[2^28, 2^29)`, each component of the scaled step below
+/// `2^26` (`None`: `v` zero or above `2^29`, or a larger step). One test
+/// of the step's components ORed (they are all below `2^(26 - s)` when
+/// their OR is).
 #[inline(always)]
 fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
     let m = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
@@ -141,14 +276,11 @@ fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
         return None;
     }
     let s = clz32(m) - 3;
-    let sh = |x: i32| {
-        let y = x.wrapping_shl(s);
-        (y >> s == x).then_some(y)
-    };
-    Some((
-        [sh(v[0])?, sh(v[1])?, sh(v[2])?],
-        [sh(d[0])?, sh(d[1])?, sh(d[2])?],
-    ))
+    let md = d[0].unsigned_abs() | d[1].unsigned_abs() | d[2].unsigned_abs();
+    if u64::from(md) << s >= 1 << 26 {
+        return None;
+    }
+    Some((v.map(|x| x << s), d.map(|x| x << s)))
 }
 
 /// Newton states `(y0 - 2δ, y0 - δ)` from table estimates `y0`, `y1` of
@@ -157,24 +289,26 @@ fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
 /// `y0` and about `y1` (within `3 · 2^-11.4`).
 #[inline(always)]
 fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
-    // rsqrt_n: 2^16 / sqrt(f) for f in [1/4, 5/4) (Q28): f = x/4, x, 4x.
-    // A function inlined (as a closure it was a call per seed).
-    #[inline(always)]
-    fn t(x: i32) -> Option<i32> {
-        let (f, s) = if x >= 1 << 29 {
-            (x >> 3, 12)
-        } else if x >= 1 << 27 {
-            (x >> 1, 13)
-        } else {
-            (x << 1, 14)
-        };
-        let r = rsqrt_n(f)?;
-        i32::try_from(r << s).ok()
-    }
-    let y0 = t(x0)?;
-    let y1 = t(x0.wrapping_add(x1))?;
+    let y0 = seed(x0)?;
+    let y1 = seed(x0.wrapping_add(x1))?;
     let dl = y1.wrapping_sub(y0);
     Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
+}
+
+/// `1/sqrt(x)` (Q29) within `2^-11.4` relative for `x` (Q29) in `(1/6,
+/// 4)`, from the table of [`rsqrt_n`] (`f = x/4`, `x` or `4x` in `[1/4,
+/// 5/4)`, Q28). A function inlined (as a closure it was a call per seed).
+#[inline(always)]
+fn seed(x: i32) -> Option<i32> {
+    let (f, s) = if x >= 1 << 29 {
+        (x >> 3, 12)
+    } else if x >= 1 << 27 {
+        (x >> 1, 13)
+    } else {
+        (x << 1, 14)
+    };
+    let r = rsqrt_n(f)?;
+    i32::try_from(r << s).ok()
 }
 
 /// Per-pixel values between the passes of a chunk: `g`, first `1/|l̃|`
@@ -185,6 +319,12 @@ struct Px {
     g: i32,
     nlnv: i32,
 }
+
+/// `F̃·G` in the last pass of the point loop (ARMv6-M), else in a pass of
+/// its own (ARMv7-M): the same values. Measured, fused: dodecahedron
+/// Phong raster M0 6 605 652 -> 6 552 519, span sweep 695.81 -> 691.94
+/// a pixel; M4 the frame unchanged (+47), the sweep 177.81 -> 179.82.
+const FUSED_FG: bool = cfg!(armv6m);
 
 /// Pixels a group of the point loop's passes (the values between passes
 /// of a group are kept in [`Px`]s: 128 bytes of stack, zeroed once a
@@ -207,22 +347,30 @@ impl<R: Real> PhongKernel<'_, R> {
         mut out: impl Out,
     ) -> u32 {
         if len < SHORT_SPAN {
-            // The depth test first, then the 64-bit path for the passing
-            // pixels alone (as `point_chunk` for chunks this short).
-            let (n, dn, p, dp) = span;
+            // The depth test first, then the passing pixels one by one
+            // (`point_px`, as `point_chunk` for chunks this short).
+            let c = Colour::of(self, l);
             let mut passed = 0;
             for i in 0..len {
                 if out.test(i) {
-                    out.write(i, self.point_exact(l, n, dn, p, dp, i));
+                    out.write(i, self.point_px(l, &c, span, i));
                     passed += 1;
                 }
             }
             return passed;
         }
         let c = Colour::of(self, l);
+        // Spans of one chunk set it up from its vectors (`point_setup`),
+        // longer ones from their plan stepped on (`point_plan`, else a
+        // set-up a chunk).
+        let mut plan = if len > PCHUNK as u32 {
+            self.point_plan(l, span, len)
+        } else {
+            None
+        };
         drive(
             len,
-            |i, k, buf| self.point_chunk(l, span, i, k as usize, buf),
+            |i, k, buf| self.point_chunk(l, &c, span, &mut plan, i, k as usize, buf),
             |t| c.of_terms(t),
             &mut out,
         )
@@ -233,20 +381,30 @@ impl<R: Real> PhongKernel<'_, R> {
     /// pixels from pixel `i` into `buf`.
     #[inline(never)]
     #[allow(clippy::type_complexity)]
+    #[allow(clippy::too_many_arguments)]
     fn point_chunk(
         &self,
         l: &KLight,
+        c: &Colour,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        plan: &mut Option<Plan>,
         i: u32,
         k: usize,
         buf: &mut [u32; CHUNK],
     ) -> bool {
-        // Below 4 pixels the 64-bit path costs less than the set-up (M4:
-        // ~360 instructions a pixel against ~1 100 a chunk).
-        let st = if k >= SHORT_SPAN as usize {
-            self.point_setup(l, span, i, k)
-        } else {
-            None
+        // Below SHORT_SPAN pixels, pixel by pixel (`point_px`) costs
+        // less than the set-up.
+        let st = match plan {
+            _ if k < SHORT_SPAN as usize => None,
+            Some(pl) => {
+                // The driver's chunks follow one another, PCHUNK pixels
+                // apart.
+                if i > 0 {
+                    pl.step_chunk();
+                }
+                pl.chunk()
+            }
+            None => self.point_setup(l, span, i, k),
         };
         match st {
             Some(st) if self.spec => {
@@ -258,9 +416,8 @@ impl<R: Real> PhongKernel<'_, R> {
                 true
             }
             None => {
-                let (n, dn, p, dp) = span;
                 for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
-                    *o = pack(self.point_exact(l, n, dn, p, dp, j));
+                    *o = pack(self.point_px(l, c, span, j));
                 }
                 false
             }
@@ -300,9 +457,6 @@ impl<R: Real> PhongKernel<'_, R> {
         let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
         let (lt, dlt) = scale(lj, dv)?;
         let (vt, dvt) = scale(vj, dv)?;
-        if !small(dlt, 26) || !small(dvt, 26) {
-            return None;
-        }
         let (a32, alo, ahi) = fwd32(prod(nj, dn, nj, dn), 30, k)?;
         // The `1/|n|` table's range, with the drift (248 units) to spare.
         if alo < (1 << 28) + 256 || ahi >= (5 << 28) - 256 {
@@ -340,7 +494,7 @@ impl<R: Real> PhongKernel<'_, R> {
     }
 
     /// Whether the chunk of `k` pixels from pixel `i` runs the 32-bit loop
-    /// (the tests' check that it is taken).
+    /// from its own set-up (the tests' check that it is taken).
     #[cfg(test)]
     pub(super) fn point_loop_runs(
         &self,
@@ -351,6 +505,112 @@ impl<R: Real> PhongKernel<'_, R> {
         self.lights
             .first()
             .is_some_and(|l| self.point_setup(l, span, i, k).is_some())
+    }
+
+    /// The span's plan (`None`: a value outside the proven ranges
+    /// somewhere in the span of `len` pixels, `SHORT_SPAN..=4096`). Not
+    /// inlined:
+    /// its 64-bit set-up would share the loop's frame and registers.
+    #[inline(never)]
+    #[allow(clippy::cast_possible_wrap, clippy::type_complexity)]
+    fn point_plan(
+        &self,
+        l: &KLight,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+    ) -> Option<Plan> {
+        // Steps of the normal below 2^29 (1/2 a pixel), of l̃ and ṽ below
+        // 2^26 (1/4 of their largest component): the products below stay
+        // within i64 (|dn|² · 6 < 2^61).
+        let small = |d: [i32; 3], b: u32| d.iter().all(|c| c.unsigned_abs() < 1 << b);
+        if !small(dn, 29) || !(SHORT_SPAN..=4096).contains(&len) {
+            return None;
+        }
+        let t = len as i32 - 1;
+        let v = p.map(i32::wrapping_neg);
+        let dv = dp.map(i32::wrapping_neg);
+        let lv = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
+        let (lt, dlt) = scale(lv, dv)?;
+        let (vt, dvt) = scale(v, dv)?;
+        let q = [
+            prod(n, dn, n, dn),
+            prod(lt, dlt, lt, dlt),
+            prod(vt, dvt, vt, dvt),
+            prod(n, dn, lt, dlt),
+            prod(n, dn, vt, dvt),
+            prod(lt, dlt, vt, dvt),
+        ];
+        let (_, alo, ahi) = span_bounds(q[0], 30, t)?;
+        // The `1/|n|` table's range, with a chunk's drift (248 units) to
+        // spare.
+        if alo < (1 << 28) + 256 || ahi >= (5 << 28) - 256 {
+            return None;
+        }
+        // |l̃|², |ṽ|² (Q29, from [1/4, 3) at the first pixel) within (1/6,
+        // 4), and steps of at most 1/16 of the length: |dl̃|² · 2^8 <= |l̃|²
+        // (x2 = 2 |dl̃|²).
+        for c in [q[1], q[2]] {
+            let (x2, lo, hi) = span_bounds(c, 29, t)?;
+            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x2) << 7 > lo - 256 {
+                return None;
+            }
+        }
+        // |D̃| <= |n| |l̃| < 1.12 · 2 and |Ẽ| < 1.12 · 2 (Q29), |F̃| < 2 · 2
+        // (Q28): within i32 over the span (a chunk's drift aside) by the
+        // checks above; the first and second differences wrap harmlessly
+        // (the values are exact modulo 2^32).
+        Some(Plan { q })
+    }
+
+    /// Whether a span of `len` pixels runs the 32-bit loop from its plan
+    /// (the tests' check that it is taken).
+    #[cfg(test)]
+    pub(super) fn point_plan_runs(
+        &self,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+    ) -> bool {
+        self.lights
+            .first()
+            .is_some_and(|l| self.point_plan(l, span, len).is_some())
+    }
+
+    /// The chunks of a span of `len` pixels whose state the plan, stepped
+    /// on, and the chunk's own set-up (`point_setup`) both give with the
+    /// same scales: how many, and whether the two states are equal in
+    /// each (the tests' check that the plan changes no value). `None`: no
+    /// plan.
+    #[cfg(test)]
+    pub(super) fn plan_matches_setup(
+        &self,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+    ) -> Option<(u32, bool)> {
+        let l = self.lights.first()?;
+        let mut plan = self.point_plan(l, span, len)?;
+        let (mut both, mut equal) = (0, true);
+        let mut i = 0;
+        while i < len {
+            let k = (len - i).min(PCHUNK as u32) as usize;
+            if i > 0 {
+                plan.step_chunk();
+            }
+            // The powers of two of l and v at the chunk's first pixel.
+            let sh = |j: u32| {
+                let p = [0, 1, 2].map(|a| span.2[a].wrapping_add(span.3[a].wrapping_mul(j as i32)));
+                let or = |v: [i32; 3]| v.iter().fold(0, |m, c| m | c.unsigned_abs());
+                let lv = [0, 1, 2].map(|a| l.at[a].wrapping_sub(p[a]));
+                (clz32(or(lv)), clz32(or(p)))
+            };
+            let same = sh(i) == sh(0);
+            if let (true, Some(a), Some(b)) = (same, plan.chunk(), self.point_setup(l, span, i, k))
+            {
+                both += 1;
+                equal &= a == b;
+            }
+            i += PCHUNK as u32;
+        }
+        Some((both, equal))
     }
 
     /// The chunk's colours (`r | g << 8 | b << 16`) from its state, in
@@ -371,6 +631,9 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut f, mut f1, f2) = st.f;
         let (mut a, mut a1, a2) = st.a;
         let kc = (self.kf << 11) as i32;
+        // `1/|n|` from the packed table, its address in a register
+        // (`one::rsq_biased`: the same values as `terms`).
+        let rs = core::hint::black_box(&RS_PACKED);
         for cg in col.get_mut(..k).unwrap_or_default().chunks_mut(GROUP) {
             // 1/|l̃| and n·L̂.
             for (o, nl) in px.iter_mut().zip(cg.iter_mut()) {
@@ -397,11 +660,13 @@ impl<R: Real> PhongKernel<'_, R> {
                     e = e.wrapping_add(e1);
                     e1 = e1.wrapping_add(e2);
                 }
-                for o in px.iter_mut().take(cg.len()) {
-                    // F̃ (Q28) · G (Q28): Q24, as Q26 (in place of G).
-                    o.g = mulhi(f, o.g) << 2;
-                    f = f.wrapping_add(f1);
-                    f1 = f1.wrapping_add(f2);
+                if !FUSED_FG {
+                    for o in px.iter_mut().take(cg.len()) {
+                        // F̃ (Q28) · G (Q28): Q24, as Q26 (in place of G).
+                        o.g = mulhi(f, o.g) << 2;
+                        f = f.wrapping_add(f1);
+                        f1 = f1.wrapping_add(f2);
+                    }
                 }
             }
             // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the light
@@ -409,8 +674,17 @@ impl<R: Real> PhongKernel<'_, R> {
             for (x, o) in px.iter().zip(cg.iter_mut()) {
                 let nl = *o as i32;
                 let q = if SPEC {
+                    let fg = if FUSED_FG {
+                        // F̃ (Q28) · G (Q28): Q24, as Q26.
+                        let fg = mulhi(f, x.g) << 2;
+                        f = f.wrapping_add(f1);
+                        f1 = f1.wrapping_add(f2);
+                        fg
+                    } else {
+                        x.g
+                    };
                     let wa = (a >> 6)
-                        .wrapping_add(mulhi(a, x.g))
+                        .wrapping_add(mulhi(a, fg))
                         .wrapping_sub(x.nlnv >> 3);
                     // Within [0, 4) (Q24), as Q28: the position K·w·A in
                     // Q15 segments (saturated by `colour` beyond the
@@ -419,12 +693,107 @@ impl<R: Real> PhongKernel<'_, R> {
                 } else {
                     0
                 };
-                let (nl15, sp) = self.terms::<SPEC>(a, nl, q >> 8);
+                let r = rsq_biased(rs, a.wrapping_sub(1 << 28));
+                let (nl15, sp) = self.terms_r::<SPEC>(r, nl, q >> 8);
                 *o = (nl15 & 0xFFFF) | sp << 16;
                 a = a.wrapping_add(a1);
                 a1 = a1.wrapping_add(a2);
             }
         }
+    }
+
+    /// One pixel `j` of the span alone: the loop's arithmetic at that
+    /// pixel ([`PhongKernel::point_one`]), else (outside its ranges) the
+    /// 64-bit per-pixel path.
+    #[inline(never)]
+    fn point_px(
+        &self,
+        l: &KLight,
+        c: &Colour,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        j: u32,
+    ) -> Rgb8 {
+        self.point_one(l, c, (n, dn, p, dp), j)
+            .unwrap_or_else(|| self.point_exact(l, n, dn, p, dp, j))
+    }
+
+    /// The loop's arithmetic ([`PhongKernel::point_run`]) at pixel `j`
+    /// alone: the six quadratics' values at the pixel computed exactly
+    /// (64-bit products of its vectors, scaled as a chunk's, rounded),
+    /// `1/|l̃|` and `1/|ṽ|` by one series step ([`newton`]) from the table
+    /// ([`seed`]: `2^-11.4`, the step takes it to `2^-30`); within the
+    /// loop's error at its first pixel (no forward-difference drift).
+    /// `None` outside the loop's ranges (`|n|²` in `[1/4, 5/4)`, `|l̃|²`
+    /// and `|ṽ|²` in `(1/6, 4)`).
+    #[inline(always)]
+    #[allow(
+        clippy::cast_possible_wrap,
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss
+    )]
+    fn point_one(
+        &self,
+        l: &KLight,
+        c: &Colour,
+        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        j: u32,
+    ) -> Option<Rgb8> {
+        let at = |v: [i32; 3], d: [i32; 3]| {
+            [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(j as i32)))
+        };
+        let nj = at(n, dn);
+        let pj = at(p, dp);
+        let vj = pj.map(i32::wrapping_neg);
+        let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
+        let (lt, _) = scale(lj, [0; 3])?;
+        let (vt, _) = scale(vj, [0; 3])?;
+        // round(a·b / 2^s), wrapping (the ranges below checked in i64).
+        let dot = |a: [i32; 3], b: [i32; 3], s: u32| -> i64 {
+            wmul(a[0], b[0])
+                .wrapping_add(wmul(a[1], b[1]))
+                .wrapping_add(wmul(a[2], b[2]))
+                .wrapping_add(1 << (s - 1))
+                >> s
+        };
+        let a = dot(nj, nj, 30);
+        if !((1 << 28)..(5 << 28)).contains(&a) {
+            return None;
+        }
+        let b = dot(lt, lt, 29);
+        let cc = dot(vt, vt, 29);
+        let ok = |x: i64| x > (1 << 29) / 6 && x < (1 << 31) - 1;
+        if !ok(b) || !ok(cc) {
+            return None;
+        }
+        let (a, b) = (a as i32, b as i32);
+        // n·L̂ (Q30), as the loop's first pass.
+        let yl = newton(seed(b)?, b);
+        let nl = mulhi(dot(nj, lt, 30) as i32, yl) << 4;
+        let (nl15, sp) = if self.spec {
+            let yv = newton(seed(cc as i32)?, cc as i32);
+            let nlnv = mulhi(nl, mulhi(dot(nj, vt, 30) as i32, yv) << 4);
+            let g = mulhi(yl, yv) << 2;
+            let fg = mulhi(dot(lt, vt, 30) as i32, g) << 2;
+            let wa = (a >> 6).wrapping_add(mulhi(a, fg)).wrapping_sub(nlnv >> 3);
+            let q = mulhi(wa.clamp(0, (1 << 26) - 1) << 4, (self.kf << 11) as i32);
+            self.terms::<true>(a, nl, q >> 8)
+        } else {
+            self.terms::<false>(a, nl, 0)
+        };
+        Some(level_q19(c.of_terms((nl15 & 0xFFFF) | sp << 16)))
+    }
+
+    /// Whether pixel `j` of the span takes [`PhongKernel::point_one`] (the
+    /// tests' check that it is taken).
+    #[cfg(test)]
+    pub(super) fn point_one_runs(
+        &self,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        j: u32,
+    ) -> bool {
+        self.lights
+            .first()
+            .is_some_and(|l| self.point_one(l, &Colour::of(self, l), span, j).is_some())
     }
 
     /// One pixel `j` of the span by the 64-bit per-pixel path.

@@ -590,6 +590,7 @@ fn point_loop_runs() {
             let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
             let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
             let span = (q30(n0), q30(dn), q16(p0), q16(dp));
+            assert!(k.point_plan_runs(span, len), "n {n} light {lp:?}");
             for i in (0..len).step_by(point::PCHUNK) {
                 let kk = (len - i).min(point::PCHUNK as u32) as usize;
                 assert!(
@@ -603,6 +604,103 @@ fn point_loop_runs() {
     }
     std::println!("point loop vs f64: {worst:.3} levels");
     assert!(worst <= 1.0, "{worst}");
+}
+
+/// Short spans of the point loop (below `point::SHORT_SPAN` pixels: the
+/// loop's arithmetic a pixel alone, `point_one`) across the highlight:
+/// every pixel takes `point_one`, within 1 level of `f64`.
+#[test]
+fn point_short_spans() {
+    let mut worst = 0f64;
+    let mut pixels = 0;
+    for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
+        for &(lp, p0, dp) in &[
+            ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+            ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.02, 0.0, 0.002]),
+            ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.01, 0.003, -0.004]),
+        ] {
+            let c = Case {
+                mat: Material {
+                    color: v3(1.0, 0.7, 0.5),
+                    ka: q(0.1),
+                    kd: q(0.6),
+                    ks: q(0.9),
+                    shininess: q(n),
+                },
+                lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
+                ambient: q(0.2),
+                specular: Specular::Phong,
+                viewer: Viewer::Local,
+            };
+            let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
+            let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
+            let dn = [0.006, 0.0, -0.002];
+            // Spans of 1 to 7 pixels from every 9th pixel of a 100-pixel one.
+            for s in (0..100).step_by(9) {
+                let t = f64::from(s);
+                let n0 = unit([-0.4 + 0.006 * t, 0.1, 1.0 - 0.002 * t]);
+                let ps = [0, 1, 2].map(|a| p0[a] + t * dp[a]);
+                let len = 1 + s % 7;
+                let span = (q30(n0), q30(dn), q16(ps), q16(dp));
+                for j in 0..len as u32 {
+                    assert!(k.point_one_runs(span, j), "n {n} light {lp:?} at {s}");
+                }
+                worst = worst.max(span_error(&c, n0, dn, ps, dp, len));
+                pixels += len;
+            }
+        }
+    }
+    std::println!("point short spans vs f64: {worst:.3} levels over {pixels} pixels");
+    assert!(worst <= 1.0, "{worst}");
+}
+
+/// A span's plan (module `point`), stepped from chunk to chunk by shifts
+/// and adds, gives each chunk the very 32-bit state of the chunk's own
+/// set-up from its first pixel's vectors where the two scale them alike
+/// (spans of 40 to 400 pixels, lights near and far, a viewer close up).
+#[test]
+fn point_plan_equals_chunk_setup() {
+    let (mut chunks, mut spans) = (0, 0);
+    for &(lp, p0, dp) in &[
+        ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+        ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.004, 0.0, 0.002]),
+        ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.003, 0.001, -0.001]),
+        ([10.0, 20.0, 5.0], [-2.0, 1.0, -9.0], [0.002, 0.001, 0.0]),
+    ] {
+        let c = Case {
+            mat: Material {
+                color: v3(1.0, 0.7, 0.5),
+                ka: q(0.1),
+                kd: q(0.6),
+                ks: q(0.9),
+                shininess: q(40.0),
+            },
+            lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
+            ambient: q(0.2),
+            specular: Specular::Phong,
+            viewer: Viewer::Local,
+        };
+        let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+        let k = PhongKernel::new(&shade).unwrap();
+        let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
+        let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
+        for &len in &[40u32, 65, 100, 200, 400] {
+            let n0 = unit([-0.4, 0.1, 1.0]);
+            let dn = [0.6 / f64::from(len), 0.0, -0.2 / f64::from(len)];
+            let span = (q30(n0), q30(dn), q16(p0), q16(dp));
+            // (A span whose proven ranges the plan's bounds over the
+            // whole span miss has no plan: each chunk sets itself up.)
+            if let Some((both, equal)) = k.plan_matches_setup(span, len) {
+                assert!(equal, "light {lp:?} len {len}");
+                chunks += both;
+                spans += 1;
+            }
+        }
+    }
+    std::println!("{chunks} chunks of {spans} spans equal");
+    assert!(spans >= 16 && chunks >= 80, "{spans} {chunks}");
 }
 
 /// The specular table built with the stepped quotient (`PhongKernel::new`)
