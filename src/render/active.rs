@@ -547,17 +547,46 @@ fn sort_coarse(
         sum += *c;
         *c = sum;
     }
-    let mut place = |dst: &mut [u16], i: u16, b: u8| {
-        let c = &mut count[usize::from(band[usize::from(b & FACE_ROW)]) & 127];
-        if let Some(d) = dst.get_mut(usize::from(*c)) {
-            *d = i;
+    // Indexed by a band below 128, masked: no bound check.
+    place_run(faces, order, n, at, &mut count, |_, b| {
+        Some(usize::from(band[usize::from(b & FACE_ROW)]) & 127)
+    })
+}
+
+/// The placing pass of [`sort_coarse`] and [`sort_by_band`]: each kept
+/// triangle number (byte of `faces` with a row) placed at its bucket's
+/// next entry, `count` holding each bucket's first entry (the prefix sums
+/// of the counts; bucket `b` of the run at `count[b]`, `slot(i, byte)`
+/// giving the bucket of triangle `i`, `None` for one placed nowhere).
+/// From the kept numbers listed at the start of `order` (the first
+/// ordering, when `order` holds them twice: `n` of them, placed into
+/// `order[len - n..]`), else from `faces` into the run at `at` (or 0).
+/// Returns the end of each band's entries (relative to the run's start),
+/// where the run starts in `order`, and `n`.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn place_run<const C: usize>(
+    faces: &[u8],
+    order: &mut [u16],
+    n: usize,
+    at: Option<(usize, usize)>,
+    count: &mut [u16; C],
+    slot: impl Fn(usize, u8) -> Option<usize>,
+) -> ([u16; 1 << RADIX_BITS], usize, usize) {
+    let mut place = |dst: &mut [u16], i: usize, b: u8| {
+        if let Some(c) = slot(i, b).and_then(|k| count.get_mut(k)) {
+            if let Some(d) = dst.get_mut(usize::from(*c)) {
+                // Numbers below `MAX_TRIANGLES`.
+                *d = i as u16;
+            }
+            *c += 1;
         }
-        *c += 1;
     };
     let run_at = if at.is_none() && n <= order.len() / 2 {
         let (src, dst) = order.split_at_mut(order.len() - n);
         for &i in src.iter().take(n) {
-            place(dst, i, faces.get(usize::from(i)).copied().unwrap_or(0));
+            let i = usize::from(i);
+            place(dst, i, faces.get(i).copied().unwrap_or(0));
         }
         order.len() - n
     } else {
@@ -565,7 +594,7 @@ fn sort_coarse(
         let dst = order.get_mut(at..).unwrap_or_default();
         for (i, &b) in faces.iter().enumerate() {
             if b & FACE_ROW != 0 {
-                place(dst, i as u16, b);
+                place(dst, i, b);
             }
         }
         at
@@ -633,39 +662,11 @@ fn sort_by_band<P: Profile>(
         sum += *c;
         *c = sum;
     }
-    let mut place = |dst: &mut [u16], i: usize, b: u8| {
-        let k = key.band(frame, i, b).wrapping_sub(first);
-        if k < EPOCH {
-            let c = &mut count[k as usize];
-            if let Some(d) = dst.get_mut(usize::from(*c)) {
-                *d = i as u16;
-            }
-            *c += 1;
-        }
-    };
     let n = at.map_or(listed, |a| a.1);
-    let run_at = if at.is_none() && n <= order.len() / 2 {
-        let (src, dst) = order.split_at_mut(order.len() - n);
-        for &i in src.iter().take(n) {
-            let i = usize::from(i);
-            place(dst, i, faces.get(i).copied().unwrap_or(0));
-        }
-        order.len() - n
-    } else {
-        let at = at.map_or(0, |a| a.0);
-        let dst = order.get_mut(at..).unwrap_or_default();
-        for (i, &b) in faces.iter().enumerate() {
-            if b & FACE_ROW != 0 {
-                place(dst, i, b);
-            }
-        }
-        at
-    };
-    let mut ends = [0u16; 1 << RADIX_BITS];
-    for (e, c) in ends.iter_mut().zip(count.iter()) {
-        *e = *c;
-    }
-    (ends, run_at, n)
+    place_run(faces, order, n, at, &mut count, |i, b| {
+        let k = key.band(frame, i, b).wrapping_sub(first);
+        (k < EPOCH).then_some(k as usize)
+    })
 }
 
 /// The row kernel's sink: a band's colour and depth slices and a shader.
