@@ -274,6 +274,10 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     def_head: usize,
     def_cur: usize,
     def_len: usize,
+    /// The first triangle of each stream this band (the ring's, the
+    /// queue's, the order's; [`NONE`] when exhausted), kept as the streams
+    /// advance so that a take reads three words.
+    heads: [u32; 3],
     /// Most triangles kept at once so far (in the pool, or queued when it
     /// was full).
     peak: usize,
@@ -353,6 +357,7 @@ impl<'w, P: Profile> Frame<'w, P> {
             def_head: 0,
             def_cur: 0,
             def_len: 0,
+            heads: [NONE; 3],
             peak: 0,
             stats: RenderStats::default(),
             spec_cache: None,
@@ -788,6 +793,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 .get((band_index - self.epoch) as usize)
                 .map_or(self.n, |&e| usize::from(e)))
         .max(self.cursor);
+        self.heads = [self.ring_head_tri(), self.queue_head(), self.bucket_head()];
         let frame = self.frame;
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
@@ -893,8 +899,16 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
 
     /// The smallest triangle index the three streams offer this band.
     #[inline(always)]
-    fn peek(&self, band: u32) -> u32 {
-        let a = if self.ring_cur > 0 {
+    fn peek(&self, _band: u32) -> u32 {
+        let [a, b, c] = self.heads;
+        a.min(b).min(c)
+    }
+
+    /// The triangle at the head of the pool's ring when it is to be
+    /// resumed this band.
+    #[inline(always)]
+    fn ring_head_tri(&self) -> u32 {
+        if self.ring_cur > 0 {
             self.pool
                 .ring
                 .get(self.ring_head)
@@ -902,20 +916,25 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 .map_or(NONE, |s| s.tri as u32)
         } else {
             NONE
-        };
-        let b = if self.def_cur > 0 {
+        }
+    }
+
+    /// The triangle at the head of the queue when it is to be set up
+    /// this band.
+    #[inline(always)]
+    fn queue_head(&self) -> u32 {
+        if self.def_cur > 0 {
             self.order
                 .get(self.q_at + self.def_head)
                 .map_or(NONE, |&t| t as u32)
         } else {
             NONE
-        };
-        a.min(b).min(self.bucket_head(band))
+        }
     }
 
     /// The next triangle of the order when it starts in this band.
     #[inline(always)]
-    fn bucket_head(&self, _band: u32) -> u32 {
+    fn bucket_head(&self) -> u32 {
         if self.cursor < self.band_end {
             self.order.get(self.cursor).map_or(NONE, |&i| i as u32)
         } else {
@@ -1087,24 +1106,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// of those that found the pool full, and the order (those starting in
     /// the band); `None` when none is left.
     #[inline(always)]
-    fn take(&mut self, band: u32, end: u32) -> Option<(u32, Src)> {
-        let ta = if self.ring_cur > 0 {
-            let s = self.pool.ring.get(self.ring_head).copied().unwrap_or(0);
-            self.pool
-                .slots
-                .get(s as usize)
-                .map_or(NONE, |s| s.tri as u32)
-        } else {
-            NONE
-        };
-        let tb = if self.def_cur > 0 {
-            self.order
-                .get(self.q_at + self.def_head)
-                .map_or(NONE, |&t| t as u32)
-        } else {
-            NONE
-        };
-        let tc = self.bucket_head(band);
+    fn take(&mut self, _band: u32, end: u32) -> Option<(u32, Src)> {
+        let [ta, tb, tc] = self.heads;
         let ti = ta.min(tb).min(tc);
         if ti >= end {
             return None;
@@ -1114,14 +1117,17 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             self.ring_head = wrap(self.ring_head + 1, CAP);
             self.ring_cur -= 1;
             self.ring_len -= 1;
+            self.heads[0] = self.ring_head_tri();
             Some((ti, Src::Slot(si)))
         } else {
             if ti == tb {
                 self.def_head = wrap(self.def_head + 1, self.q_len);
                 self.def_cur -= 1;
                 self.def_len -= 1;
+                self.heads[1] = self.queue_head();
             } else {
                 self.cursor += 1;
+                self.heads[2] = self.bucket_head();
             }
             Some((ti, Src::Fresh))
         }
