@@ -589,7 +589,7 @@ fn place_run<const C: usize>(
     };
     let run_at = if at.is_none() && n <= order.len() / 2 {
         let (src, dst) = order.split_at_mut(order.len() - n);
-        for &i in src.iter().take(n) {
+        for &i in src.get(..n).unwrap_or_default() {
             let i = usize::from(i);
             place(dst, i, faces.get(i).copied().unwrap_or(0));
         }
