@@ -74,8 +74,8 @@ use super::phong_span::{PhongKernel, PhongKernelShader, PosPlane, SpecCache};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{
-    face_shift, Frame, Layout, Part, PreparedObject, PreparedTri, RenderError, RenderStats,
-    FACE_ROW,
+    face_shift, unpack_grey, Frame, Layout, Part, PreparedObject, PreparedTri, RenderError,
+    RenderStats, FACE_ROW,
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::Profile;
@@ -1383,6 +1383,24 @@ fn fetch_fixed<P: Profile, const N: usize>(
     let (p0, p1, p2) = (xy(tri.v[0])?, xy(tri.v[1])?, xy(tri.v[2])?);
     let [(i0, q0), (i1, q1), (i2, q2)] =
         sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
+    if N == 1 && po.layout().packed_in::<P>() {
+        // Packed grey: one value per vertex (the layout's stride, 1), read
+        // from the object's values as `Frame::vertex` reads it (`None` for
+        // a vertex not of the object), unpacked here.
+        let vals = frame.ws.vals.get(po.val_base()..).unwrap_or_default();
+        let first = usize::from(po.verts.start);
+        let grey = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
+            let k = usize::from(i).wrapping_sub(first);
+            let (z, l) = unpack_grey(vals.get(k)?.fixed_raw()?);
+            Some(Vertex {
+                x,
+                y,
+                z,
+                attrs: [l; N],
+            })
+        };
+        return Some([grey(i0, q0)?, grey(i1, q1)?, grey(i2, q2)?]);
+    }
     let raw = |v: Option<Vertex<P::Lerp, N>>| -> Option<Vertex<i32, N>> {
         let v = v?;
         let mut attrs = [0; N];
