@@ -1401,6 +1401,22 @@ fn fetch_fixed<P: Profile, const N: usize>(
         };
         return Some([grey(i0, q0)?, grey(i1, q1)?, grey(i2, q2)?]);
     }
+    if N == 0 && po.layout() == Layout::Flat {
+        // Flat: the depth alone, one value per vertex (the layout's
+        // stride, 1), read as `Frame::vertex` reads it.
+        let vals = frame.ws.vals.get(po.val_base()..).unwrap_or_default();
+        let first = usize::from(po.verts.start);
+        let flat = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
+            let k = usize::from(i).wrapping_sub(first);
+            Some(Vertex {
+                x,
+                y,
+                z: vals.get(k)?.fixed_raw()?,
+                attrs: [0; N],
+            })
+        };
+        return Some([flat(i0, q0)?, flat(i1, q1)?, flat(i2, q2)?]);
+    }
     let raw = |v: Option<Vertex<P::Lerp, N>>| -> Option<Vertex<i32, N>> {
         let v = v?;
         let mut attrs = [0; N];
