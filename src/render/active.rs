@@ -1373,11 +1373,15 @@ where
 /// their depths and first `N` values as fixed-point `i32`s (each corner
 /// and its values read once); `None` when a vertex is missing. Positions
 /// are not checked against the rasterizer's limits ([`in_limits_fixed`]).
-/// Packed grey and flat vertices (one value each) are read straight from
-/// the object's values, the same ones [`Frame::vertex`] reads: exact QEMU
-/// counts, bunny-gouraud raster thumbv7em 1 891 494 -> 1 840 648, thumbv6m
-/// 2 936 823 -> 2 919 764; bunny-flat 1 589 795 -> 1 584 846 and 2 454 888
-/// -> 2 443 138.
+/// The fast path's objects only ([`Bands::run_fast`]): flat ones for `N =
+/// 0`, grey Gouraud ones for `N = 1`, so that the layout follows from `N`
+/// (and the profile: packed or not) without reading it. Packed grey and
+/// flat vertices (one value each) are read straight from the object's
+/// values, the same ones [`Frame::vertex`] reads: exact QEMU counts,
+/// bunny-gouraud raster thumbv7em 1 891 494 -> 1 840 648 -> 1 837 546,
+/// thumbv6m 2 936 823 -> 2 919 764 -> 2 899 188; bunny-flat thumbv7em
+/// 1 589 795 -> 1 584 846 -> 1 571 349, thumbv6m 2 454 888 -> 2 443 138
+/// -> 2 430 264 (the second step: the layout from `N`).
 #[inline(always)]
 fn fetch_fixed<P: Profile, const N: usize>(
     frame: &Frame<'_, P>,
@@ -1388,10 +1392,11 @@ fn fetch_fixed<P: Profile, const N: usize>(
     let (p0, p1, p2) = (xy(tri.v[0])?, xy(tri.v[1])?, xy(tri.v[2])?);
     let [(i0, q0), (i1, q1), (i2, q2)] =
         sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
-    if N == 1 && po.layout().packed_in::<P>() {
-        // Packed grey: one value per vertex (the layout's stride, 1), read
-        // from the object's values as `Frame::vertex` reads it (`None` for
-        // a vertex not of the object), unpacked here.
+    if N == 1 && Layout::GouraudMono.packed_in::<P>() {
+        // Packed grey (`N = 1`: a grey Gouraud object): one value per
+        // vertex (the layout's stride, 1), read from the object's values
+        // as `Frame::vertex` reads it (`None` for a vertex not of the
+        // object), unpacked here.
         let vals = frame.ws.vals.get(po.val_base()..).unwrap_or_default();
         let first = usize::from(po.verts.start);
         let grey = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
@@ -1406,8 +1411,8 @@ fn fetch_fixed<P: Profile, const N: usize>(
         };
         return Some([grey(i0, q0)?, grey(i1, q1)?, grey(i2, q2)?]);
     }
-    if N == 0 && po.layout() == Layout::Flat {
-        // Flat: the depth alone, one value per vertex (the layout's
+    if N == 0 {
+        // Flat (`N = 0`): the depth alone, one value per vertex (the layout's
         // stride, 1), read as `Frame::vertex` reads it.
         let vals = frame.ws.vals.get(po.val_base()..).unwrap_or_default();
         let first = usize::from(po.verts.start);
