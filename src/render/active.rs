@@ -1042,9 +1042,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let (y0, y1, width) = (t.y0 as i32, t.y1 as i32, t.width as i32);
         // A triangle that finds no free slot is set up here.
         let mut scratch = (Walk::EMPTY, [[0i32; 3]; V]);
-        loop {
+        // Setups and pixels counted here, added to the stats at the end.
+        let (mut setups, mut pixels) = (0u32, 0u32);
+        let done = loop {
             let Some((ti, src)) = self.take(band, end) else {
-                return Ok(());
+                break Ok(());
             };
             // The mesh looked up once for the shaders without values
             // (flat), per triangle for the others, whose loop holds more
@@ -1057,7 +1059,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 frame.tri(po, ti as usize)
             };
             let Some(tri) = tri else {
-                return Ok(());
+                break Ok(());
             };
             per_tri(&mut shader, &tri);
             let mut mem = BandMem::<F::Raw, D::Raw> {
@@ -1069,11 +1071,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             let drawn = match src {
                 Src::Slot(si) => {
                     let Some(slot) = self.pool.slots.get_mut(si) else {
-                        return Ok(());
+                        break Ok(());
                     };
                     let walk = &mut slot.walk;
                     let Some(vals) = P::Lerp::fixed_slots(&mut slot.vals) else {
-                        return Ok(());
+                        break Ok(());
                     };
                     let drawn = draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader);
                     let done = walk.done();
@@ -1084,21 +1086,25 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let (walk, vals) = (&mut scratch.0, &mut scratch.1);
                     match fresh_fast::<P, N, V, S, F, D>(
                         frame, po, &tri, y1, &mut mem, walk, vals, &shader,
-                    )? {
-                        Some((drawn, more)) => {
-                            self.stats.triangles += 1;
+                    ) {
+                        Err(e) => break Err(e),
+                        Ok(Some((drawn, more))) => {
+                            setups += 1;
                             // Kept in a slot when it continues below the band.
                             if more {
                                 self.keep_fixed::<N>(ti as u16, walk, vals);
                             }
                             drawn
                         }
-                        None => 0,
+                        Ok(None) => 0,
                     }
                 }
             };
-            self.stats.pixels += drawn;
-        }
+            pixels += drawn;
+        };
+        self.stats.triangles += setups;
+        self.stats.pixels += pixels;
+        done
     }
 
     /// Takes the band's next triangle below index `end`, in triangle
