@@ -23,7 +23,7 @@
 //! Values are the same modulo 2^32 as the generic walker's `row + sx·x0 +
 //! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
 
-use super::span::{clamp_test, depth_loop, inr_span};
+use super::span::{clamp_test, depth_loop, inr_span, inr_span_inline};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
@@ -738,10 +738,10 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     // coordinate then lies within the module's limits, and nothing below
     // wraps.
     if (a.y <= (y0 - 1) * sc + h)
-        | (a.y > (until - 1) * sc + h)
-        | (c.y > sub.coord_limit())
-        | (xmin < 0)
-        | (xmax > width.saturating_mul(sc))
+        || (a.y > (until - 1) * sc + h)
+        || (c.y > sub.coord_limit())
+        || (xmin < 0)
+        || (xmax > width.saturating_mul(sc))
     {
         return None;
     }
@@ -828,14 +828,14 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     // The lower short edge from its first row: swapped in at `j_mid`, or
     // carried to the next band (every triangle with a lower half needs it).
     let low = if j_mid < j_bot {
-        Edge::new_first(b.x, b.y, c.x, c.y, j_mid, sub)
+        Edge::at_first_row(b.x, b.y, c.x, c.y, sub)
     } else {
         Edge::EMPTY
     };
-    let long = Edge::new_first(a.x, a.y, c.x, c.y, j_top, sub);
+    let long = Edge::at_first_row(a.x, a.y, c.x, c.y, sub);
     let upper = j_top < j_mid;
     let short = if upper {
-        Edge::new_first(a.x, a.y, b.x, b.y, j_top, sub)
+        Edge::at_first_row(a.x, a.y, b.x, b.y, sub)
     } else {
         low
     };
@@ -958,7 +958,13 @@ impl<const N: usize> SmallRows<N> {
             let s = self.v.add_n(sx, x0);
             let span = self.base.wrapping_add(x0 as usize)..self.base.wrapping_add(x1 as usize);
             if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
-                self.drawn += inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color);
+                // Depth alone (flat): the pixel loop inline (no call per
+                // span); with a value, the span stage's loops.
+                self.drawn += if N == 0 {
+                    inr_span_inline::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
+                } else {
+                    inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
+                };
             }
         }
         self.v = self.v.add_n(sy, 1);

@@ -729,6 +729,21 @@ pub(super) fn inr_span<L: Lerp, const N: usize, R, D: DepthFormat>(
     }
 }
 
+/// [`inr_span`] with the pixel loop inline, one pixel a step
+/// ([`depth_loop`] with [`in_range_test`]): no call per span.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(super) fn inr_span_inline<L: Lerp, const N: usize, R, D: DepthFormat>(
+    row: &mut [R],
+    drow: &mut [D::Raw],
+    z: L,
+    a: [L; N],
+    sx: &Vals<L, N>,
+    color: &impl Fn(&[L; N]) -> R,
+) -> u32 {
+    row.len() as u32 - depth_loop(row, drow, z, sx.z, a, &sx.a, color, in_range_test::<L, D>)
+}
+
 /// The depth test and write of a pixel, its depth converted with the
 /// format's clamp ([`DepthFormat::from_lerp`]).
 #[inline(always)]

@@ -838,6 +838,11 @@ fn first_row_edges_equal_the_general_walker() {
                 y0 + rng.range(1, r + 1).min(lim - y0).max(1),
             );
             let j0 = first_row(y0, sub);
+            assert_eq!(
+                Edge::at_first_row(x0, y0, x1, y1, sub),
+                Edge::new(x0, y0, x1, y1, j0, sub),
+                "({x0}, {y0}) -> ({x1}, {y1}) at its first row"
+            );
             // The first row, and rows after it (the general fallback).
             for j in [j0, j0 + 1, j0 + rng.range(0, 40)] {
                 assert_eq!(
