@@ -27,7 +27,9 @@
 //! prepared frame (`Frame::bytes_used`, measured on the chip) and the
 //! stack high-water mark (painted stack, measured on the chip). The
 //! measured firmware's own static RAM (its workspace sized for the largest
-//! scene, the bunny) is [`ChipResult::static_ram`].
+//! scene, the bunny) is [`ChipResult::static_ram`]; the firmware built
+//! for the bunny Gouraud scene alone (`--features bunny`, the build the
+//! static-RAM budget is about) is in [`Measurements::alone`].
 
 use std::collections::BTreeMap;
 use std::hash::Hasher;
@@ -286,6 +288,31 @@ pub struct Measurements {
     /// differs from the 16-bit one (z-fighting the 16 bits lose), host.
     #[serde(default)]
     pub knob_depth32_vs_depth16_pixels: u64,
+    /// The firmwares built for one scene alone (`--features bunny`: the
+    /// bunny Gouraud scene, what its RAM budget is measured in), per
+    /// target; empty in files measured before they were recorded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub alone: Vec<AloneBuild>,
+}
+
+/// A firmware built for some scenes alone (a cargo feature of
+/// `examples/firmware`, profile `fast`): its storage, pool and bands sized
+/// by the compiler for those scenes only.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AloneBuild {
+    /// `thumbv6m-none-eabi` or `thumbv7em-none-eabihf`.
+    pub target: String,
+    /// The firmware's feature (`bunny`).
+    pub features: String,
+    /// The scenes it rendered.
+    pub scenes: Vec<String>,
+    /// Flash: vector table + text + rodata + the `.data` image, bytes.
+    pub flash_bytes: u64,
+    /// Static RAM (`.data` + `.bss` + `.uninit`), bytes.
+    pub static_ram_bytes: u64,
+    /// The largest stack high-water mark of its scenes, bytes.
+    pub stack: u64,
 }
 
 impl Measurements {
@@ -375,6 +402,37 @@ impl Measurements {
         }
         for k in theirs.keys().filter(|k| !mine.contains_key(*k)) {
             out.push(format!("{} {} {}: newly measured", k.0, k.1, k.2));
+        }
+        if self.alone != other.alone {
+            for a in &other.alone {
+                let was = self
+                    .alone
+                    .iter()
+                    .find(|o| o.target == a.target && o.features == a.features);
+                if was != Some(a) {
+                    out.push(format!(
+                        "{} alone ({}): flash {} static RAM {} stack {} (was {:?})",
+                        a.features,
+                        a.target,
+                        a.flash_bytes,
+                        a.static_ram_bytes,
+                        a.stack,
+                        was.map(|o| (o.flash_bytes, o.static_ram_bytes, o.stack))
+                    ));
+                }
+            }
+            for a in &self.alone {
+                if !other
+                    .alone
+                    .iter()
+                    .any(|o| o.target == a.target && o.features == a.features)
+                {
+                    out.push(format!(
+                        "{} alone ({}): no longer measured",
+                        a.features, a.target
+                    ));
+                }
+            }
         }
         let bkey = |b: &Build| (b.target.clone(), b.profile.clone());
         let bmine: BTreeMap<_, &Build> = self.builds.iter().map(|b| (bkey(b), b)).collect();
@@ -626,6 +684,7 @@ mod tests {
             results: vec![r],
             knobs: vec![],
             knob_depth32_vs_depth16_pixels: 0,
+            alone: Vec::new(),
         }
     }
 
@@ -675,6 +734,37 @@ mod tests {
         );
         assert!(d[0].contains("insns 300 -> 350"), "{}", d[0]);
         assert!(d[0].contains("insns_raster 200 -> 250"), "{}", d[0]);
+    }
+
+    #[test]
+    fn the_alone_builds_are_read_from_old_files_and_compared() {
+        let a = sample();
+        let text = serde_json::to_string_pretty(&a).unwrap();
+        assert!(!text.contains("\"alone\""), "{text}");
+        assert_eq!(parse(&text, "f.json").unwrap().alone, []);
+        let mut b = a.clone();
+        b.alone.push(AloneBuild {
+            target: "thumbv6m-none-eabi".into(),
+            features: "bunny".into(),
+            scenes: vec!["bunny-gouraud".into()],
+            flash_bytes: 60_000,
+            static_ram_bytes: 40_616,
+            stack: 5_000,
+        });
+        let text = serde_json::to_string_pretty(&b).unwrap();
+        assert_eq!(parse(&text, "f.json").unwrap(), b);
+        assert_eq!(
+            a.differences(&b),
+            ["bunny alone (thumbv6m-none-eabi): flash 60000 static RAM 40616 stack 5000 (was None)"]
+        );
+        assert_eq!(
+            b.differences(&a),
+            ["bunny alone (thumbv6m-none-eabi): no longer measured"]
+        );
+        // A partial check still compares them.
+        let mut c = b.clone();
+        c.alone[0].static_ram_bytes += 4;
+        assert_eq!(b.restricted_to(&["fast"]).differences(&c).len(), 1);
     }
 
     #[test]

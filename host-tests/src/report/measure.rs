@@ -9,7 +9,9 @@
 //! the instruction-counting plugin (`qemu-plugin/insn_count.c`, built with
 //! `gcc`), and pairs the i-th `scene` line with the plugin's regions 2i
 //! (geometry) and 2i + 1 (bands). The host renders the same scenes with the
-//! same code (`host-check [--profile NAME]`) for the CRCs.
+//! same code (`host-check [--profile NAME]`) for the CRCs. Then the
+//! firmwares built for some scenes alone ([`ALONE`]: the bunny): their
+//! static RAM and stack, their frames the default build's.
 //!
 //! The builds are made from a copy of the sources at a fixed path (see
 //! `Stage`: counts are then the same on every clone), one target folder
@@ -44,7 +46,7 @@ use crate::firmware_scenes::{generate_for, FirmwareScene};
 use crate::scene_file::SceneDesc;
 
 use super::chips::{
-    self, Build, ChipResult, KnobResult, Measurements, SpanLoop, REGENERATE, SCHEMA,
+    self, AloneBuild, Build, ChipResult, KnobResult, Measurements, SpanLoop, REGENERATE, SCHEMA,
 };
 use super::{Error, Mode};
 
@@ -696,6 +698,55 @@ fn measure_knobs(
         .collect()
 }
 
+/// The firmware features built for some scenes alone and measured on
+/// every target (profile `fast`): `bunny`, the bunny Gouraud scene alone,
+/// the build its static-RAM budget is about.
+pub const ALONE: [&str; 1] = ["bunny"];
+
+/// The firmware built with `feature` (one of [`ALONE`]) on one target:
+/// its sizes and its scenes' largest stack; each scene's CRC must equal
+/// host-check's (`host`, profile `fast`): the same frame as the default
+/// build's. Its ELF and output are kept as `elf-/fw-TARGET-FEATURE` (see
+/// [`build_run`]).
+fn measure_alone(
+    stage: &Stage,
+    plugin: &Path,
+    t: (&str, &str, &str, &str),
+    feature: &str,
+    host: &BTreeMap<String, String>,
+) -> Result<AloneBuild, Error> {
+    let target = t.0;
+    let r = build_run(stage, plugin, t, Some(feature), feature)?;
+    let (flash, static_ram, _, _) = r.sizes;
+    let mut scenes = Vec::new();
+    let mut stack = 0;
+    for line in r.out.lines().filter(|l| l.starts_with("scene ")) {
+        let name = line.split_whitespace().nth(1).unwrap_or("").to_string();
+        let crc = kv(line, "crc").unwrap_or("");
+        let host_crc = host.get(&name).map_or("", String::as_str);
+        if crc != host_crc {
+            return Err(failed(format!(
+                "{target} {feature} alone {name}: CRC {crc} on the chip but {host_crc} on the host"
+            )));
+        }
+        stack = stack.max(num(line, "stack")?);
+        scenes.push(name);
+    }
+    if scenes.is_empty() {
+        return Err(failed(format!(
+            "{target} {feature} alone: the firmware rendered no scene"
+        )));
+    }
+    Ok(AloneBuild {
+        target: target.to_string(),
+        features: feature.to_string(),
+        scenes,
+        flash_bytes: flash,
+        static_ram_bytes: static_ram,
+        stack,
+    })
+}
+
 /// host-check `--knobs`: CRCs by `rows/depth/subpixel`, and the pixels
 /// where the 32-bit depth frame differs from the 16-bit one.
 fn host_knobs(fw: &Path) -> Result<(BTreeMap<String, String>, u64), Error> {
@@ -842,6 +893,7 @@ impl Session {
             results,
             knobs: Vec::new(),
             knob_depth32_vs_depth16_pixels: 0,
+            alone: Vec::new(),
         }
     }
 }
@@ -899,7 +951,8 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     let fw = firmware_dir(root)?;
     let session = Session::begin(root, fw)?;
     let (stage, plugin) = (&session.stage, &session.tools.plugin);
-    let total = ((opts.profiles.len() + 1) * (TARGETS.len() + 1)) as u64;
+    let total =
+        ((opts.profiles.len() + 1) * (TARGETS.len() + 1) + ALONE.len() * TARGETS.len()) as u64;
     let bar = progress_bar(opts.progress, total);
     // The host's CRCs first (one host build, cached), then both targets
     // at once: each builds in its own target folder (cargo locks a folder
@@ -913,6 +966,12 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     bar.set_message("knobs on the host");
     let (knob_host, depth_differ) = host_knobs(&session.fw)?;
     bar.inc(1);
+    // The frames of the firmwares built for some scenes alone are the
+    // default (`fast`) build's.
+    let fast_host = match hosts.iter().find(|(p, _)| *p == CoreProfile::Fast) {
+        Some((_, h)) => h.clone(),
+        None => host_crcs(&session.fw, CoreProfile::Fast, None)?,
+    };
     let per_target = on_targets(&TARGETS, |t| {
         let stage = stage.for_target(t.0);
         let (mut builds, mut results) = (Vec::new(), Vec::new());
@@ -926,13 +985,21 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
         bar.set_message(format!("knobs on {}", t.0));
         let knobs = measure_knobs(&stage, plugin, t, &knob_host)?;
         bar.inc(1);
-        Ok((builds, results, knobs))
+        let mut alone = Vec::new();
+        for feature in ALONE {
+            bar.set_message(format!("{feature} alone on {}", t.0));
+            alone.push(measure_alone(&stage, plugin, t, feature, &fast_host)?);
+            bar.inc(1);
+        }
+        Ok((builds, results, knobs, alone))
     });
-    let (mut builds, mut results, mut knobs) = (Vec::new(), Vec::new(), Vec::new());
-    for (b, r, k) in per_target? {
+    let (mut builds, mut results, mut knobs, mut alone) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (b, r, k, a) in per_target? {
         builds.extend(b);
         results.extend(r);
         knobs.extend(k);
+        alone.extend(a);
     }
     bar.finish_and_clear();
     let rank = |p: &str| CoreProfile::ALL.iter().position(|c| c.name() == p);
@@ -941,6 +1008,7 @@ pub fn measure_firmware(opts: &MeasureOptions) -> Result<Measurements, Error> {
     Ok(Measurements {
         knobs,
         knob_depth32_vs_depth16_pixels: depth_differ,
+        alone,
         ..session.finish(ABOUT.into(), REGENERATE.into(), builds, results)
     })
 }
