@@ -265,7 +265,7 @@ alone! {
 #[cfg(test)]
 mod tests {
     use super::dodeca;
-    use crate::profiled::{depth_in, raster_bands_in};
+    use crate::profiled::raster_bands_in;
     use crate::Pixel;
     use fixshade::num::Fast;
     use fixshade::render::prepare;
@@ -316,7 +316,7 @@ mod tests {
                 let (ws, order) = st.split();
                 let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
                 let mut px = vec![0u16 as Pixel; (spec.width * rows) as usize];
-                let (z, with_depth) = depth_in(None);
+                let (z, with_depth) = crate::profiled::depth_in(None);
                 let s = raster_bands_in::<Fast, Depth16, _>(
                     &frame,
                     &scene,

@@ -467,8 +467,8 @@ mod tests {
             assert!(spec.width <= WIDTH && spec.objects.len() <= MAX_OBJECTS);
             assert!(spec.objects.len() <= SCENE_OBJECTS && spec.lights.len() <= SCENE_LIGHTS);
         }
-        assert!(SCENE_OBJECTS <= MAX_OBJECTS);
-        assert!(SCENE_LIGHTS <= fixshade::illum::MAX_LIGHTS);
+        const { assert!(SCENE_OBJECTS <= MAX_OBJECTS) };
+        const { assert!(SCENE_LIGHTS <= fixshade::illum::MAX_LIGHTS) };
         assert!(SCENES
             .iter()
             .any(|s| s.objects.len() == SCENE_OBJECTS && s.lights.len() == SCENE_LIGHTS));
