@@ -119,30 +119,7 @@ impl Edge {
         if !(0..s).contains(&t) {
             return Self::new_cold(x0, y0, x1, y1, j, sub);
         }
-        let dx = x1 - x0;
-        let dy = (y1 - y0).max(1);
-        let d = (s * dy).max(1);
-        let small = if NO_DIVIDE {
-            small_floor_divmod(dx, dy)
-        } else {
-            None
-        };
-        let (q, rem) = match small {
-            Some(qr) => qr,
-            None => floor_divmod(dx, dy),
-        };
-        let r = s * rem;
-        let a_full = x0 - s / 2 + t * q;
-        let (a, b) = (a_full >> sub.get(), a_full & (s - 1));
-        let np = b * dy + t * rem;
-        let (x, e) = if np == 0 {
-            (a, 0)
-        } else if np <= d {
-            (a + 1, d - np)
-        } else {
-            (a + 2, 2 * d - np)
-        };
-        Self { x, e, q, r, d }
+        Self::at_step(x0, y0, x1, y1, t, sub)
     }
 
     /// [`Edge::new_first`] at the edge's own first row `first_row(y0)`
@@ -153,7 +130,17 @@ impl Edge {
     #[inline(always)]
     pub(crate) fn at_first_row(x0: i32, y0: i32, x1: i32, y1: i32, sub: SubpixelBits) -> Self {
         let s = sub.scale();
-        let t = (s / 2).wrapping_sub(y0) & (s - 1);
+        Self::at_step(x0, y0, x1, y1, (s / 2).wrapping_sub(y0) & (s - 1), sub)
+    }
+
+    /// The walker of [`Edge::new_first`] and [`Edge::at_first_row`]: the
+    /// edge at the row whose centre lies `t` subpixels below `y0`, `0 <= t
+    /// < S` (the first-row case of [`Edge::new`], in 32-bit arithmetic:
+    /// within the module's limits `S·dy <= 2^30`, so `d >= 1` without
+    /// [`Edge::new`]'s guard).
+    #[inline(always)]
+    fn at_step(x0: i32, y0: i32, x1: i32, y1: i32, t: i32, sub: SubpixelBits) -> Self {
+        let s = sub.scale();
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
         let d = s * dy;

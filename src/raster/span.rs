@@ -702,7 +702,7 @@ pub(super) fn inr_span<L: Lerp, const N: usize, R, D: DepthFormat>(
     color: &impl Fn(&[L; N]) -> R,
 ) -> u32 {
     if NO_LONG_MUL {
-        row.len() as u32 - depth_loop(row, drow, z, sx.z, a, &sx.a, color, in_range_test::<L, D>)
+        inr_span_inline::<L, N, R, D>(row, drow, z, a, sx, color)
     } else if let ([p], [zb]) = (&mut *row, &mut *drow) {
         let pass = in_range_test::<L, D>(z, zb);
         if pass {

@@ -331,7 +331,7 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
     ws: Workspace<'w, P::Lerp>,
 ) -> Result<Frame<'w, P>, RenderError> {
     let mut out = None;
-    prepare_into(scene, width, height, ws, &mut out)?;
+    prepare_in(scene, width, height, ws, &mut out)?;
     // (Always a frame after `Ok`.)
     out.ok_or(RenderError::Window)
 }
@@ -360,18 +360,6 @@ pub fn prepare<'w, 's: 'w, 'm: 'w, P: Profile>(
 /// # Errors
 /// As [`prepare`].
 pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
-    scene: &Scene<'s, 'm, P::Real>,
-    width: u32,
-    height: u32,
-    ws: Workspace<'w, P::Lerp>,
-    out: &mut Option<Frame<'w, P>>,
-) -> Result<(), RenderError> {
-    prepare_into(scene, width, height, ws, out)
-}
-
-/// The body of [`prepare`] and [`prepare_in`].
-#[inline(always)]
-fn prepare_into<'w, 's: 'w, 'm: 'w, P: Profile>(
     scene: &Scene<'s, 'm, P::Real>,
     width: u32,
     height: u32,

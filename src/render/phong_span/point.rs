@@ -311,6 +311,23 @@ fn seed(x: i32) -> Option<i32> {
     i32::try_from(r << s).ok()
 }
 
+/// The normal `n`, the view vector `-p` and the light vector `l - p` at
+/// pixel `j` of a span (`v + j·d` of each, wrapping).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap)]
+fn at_pixel(
+    l: &KLight,
+    (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+    j: u32,
+) -> ([i32; 3], [i32; 3], [i32; 3]) {
+    let at = |v: [i32; 3], d: [i32; 3]| {
+        [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(j as i32)))
+    };
+    let pj = at(p, dp);
+    let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
+    (at(n, dn), pj.map(i32::wrapping_neg), lj)
+}
+
 /// Per-pixel values between the passes of a chunk: `g`, first `1/|l̃|`
 /// (Q29), then `G = 1/(|l̃| |ṽ|)` (Q28), then `L̂·V̂` (Q26); `nlnv`,
 /// `(n·L̂)(n·V̂)` (Q28). (`n·L̂`, Q30, waits in the colour's place.)
@@ -738,13 +755,7 @@ impl<R: Real> PhongKernel<'_, R> {
         (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
         j: u32,
     ) -> Option<Rgb8> {
-        let at = |v: [i32; 3], d: [i32; 3]| {
-            [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(j as i32)))
-        };
-        let nj = at(n, dn);
-        let pj = at(p, dp);
-        let vj = pj.map(i32::wrapping_neg);
-        let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
+        let (nj, vj, lj) = at_pixel(l, (n, dn, p, dp), j);
         let (lt, _) = scale(lj, [0; 3])?;
         let (vt, _) = scale(vj, [0; 3])?;
         // round(a·b / 2^s), wrapping (the ranges below checked in i64).
@@ -809,13 +820,7 @@ impl<R: Real> PhongKernel<'_, R> {
         dp: [i32; 3],
         j: u32,
     ) -> Rgb8 {
-        let at = |v: [i32; 3], d: [i32; 3]| {
-            [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(j as i32)))
-        };
-        let nj = at(n, dn);
-        let pj = at(p, dp);
-        let vj = pj.map(i32::wrapping_neg);
-        let lj = [0, 1, 2].map(|a| l.at[a].wrapping_sub(pj[a]));
+        let (nj, vj, lj) = at_pixel(l, (n, dn, p, dp), j);
         let s = LightSpan {
             l: lj,
             q: sq3(lj),

@@ -78,8 +78,6 @@ fn span_error(c: &Case, n0: [f64; 3], dn: [f64; 3], p0: [f64; 3], dp: [f64; 3], 
         .collect();
     let twin = Shade::new(&mat64, c.ambient.to_f64(), &l64, c.specular, c.viewer).unwrap();
     let k = PhongKernel::new(&shade).unwrap();
-    let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
-    let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
     let (n0, dn, p0, dp) = (q30(n0), q30(dn), q16(p0), q16(dp));
     let mut sp = k.begin(n0, dn, p0, dp, false);
     // The span loop (`fill`, the renderer's) and `begin`/`next`.
@@ -555,6 +553,42 @@ fn seed_row_11_fast_shaders() {
     }
 }
 
+/// `v` in Q30 (unit normals and their steps).
+fn q30(v: [f64; 3]) -> [i32; 3] {
+    v.map(|c| (c * (1u64 << 30) as f64).round() as i32)
+}
+
+/// `v` in Q16 (positions and their steps).
+fn q16(v: [f64; 3]) -> [i32; 3] {
+    v.map(|c| (c * 65536.0).round() as i32)
+}
+
+/// The point loop's test material (shininess `n`) lit by one point light
+/// at `lp`, Phong, local viewer.
+fn point_case(n: f64, lp: [f64; 3]) -> Case {
+    Case {
+        mat: Material {
+            color: v3(1.0, 0.7, 0.5),
+            ka: q(0.1),
+            kd: q(0.6),
+            ks: q(0.9),
+            shininess: q(n),
+        },
+        lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
+        ambient: q(0.2),
+        specular: Specular::Phong,
+        viewer: Viewer::Local,
+    }
+}
+
+/// Light positions, first pixels and steps of the point loop's span
+/// tests (a light close to the surface: steps up to 1/20 of `|l|`).
+const POINT_SPANS: [([f64; 3], [f64; 3], [f64; 3]); 3] = [
+    ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+    ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.02, 0.0, 0.002]),
+    ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.01, 0.003, -0.004]),
+];
+
 /// The point loop (module `point`): one point light, local viewer,
 /// Phong, shininess below 256, on spans like the firmware's and the
 /// dodecahedron's (a light close to the surface: steps up to 1/20 of
@@ -564,31 +598,13 @@ fn seed_row_11_fast_shaders() {
 fn point_loop_runs() {
     let mut worst = 0f64;
     for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
-        for &(lp, p0, dp) in &[
-            ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
-            ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.02, 0.0, 0.002]),
-            ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.01, 0.003, -0.004]),
-        ] {
-            let c = Case {
-                mat: Material {
-                    color: v3(1.0, 0.7, 0.5),
-                    ka: q(0.1),
-                    kd: q(0.6),
-                    ks: q(0.9),
-                    shininess: q(n),
-                },
-                lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
-                ambient: q(0.2),
-                specular: Specular::Phong,
-                viewer: Viewer::Local,
-            };
+        for &(lp, p0, dp) in &POINT_SPANS {
+            let c = point_case(n, lp);
             let n0 = unit([-0.4, 0.1, 1.0]);
             let dn = [0.006, 0.0, -0.002];
             let len = 100;
             let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
             let k = PhongKernel::new(&shade).unwrap();
-            let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
-            let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
             let span = (q30(n0), q30(dn), q16(p0), q16(dp));
             assert!(k.point_plan_runs(span, len), "n {n} light {lp:?}");
             for i in (0..len).step_by(point::PCHUNK) {
@@ -614,28 +630,10 @@ fn point_short_spans() {
     let mut worst = 0f64;
     let mut pixels = 0;
     for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
-        for &(lp, p0, dp) in &[
-            ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
-            ([0.0, 0.0, -2.5], [-0.8, 0.1, -3.4], [0.02, 0.0, 0.002]),
-            ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.01, 0.003, -0.004]),
-        ] {
-            let c = Case {
-                mat: Material {
-                    color: v3(1.0, 0.7, 0.5),
-                    ka: q(0.1),
-                    kd: q(0.6),
-                    ks: q(0.9),
-                    shininess: q(n),
-                },
-                lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
-                ambient: q(0.2),
-                specular: Specular::Phong,
-                viewer: Viewer::Local,
-            };
+        for &(lp, p0, dp) in &POINT_SPANS {
+            let c = point_case(n, lp);
             let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
             let k = PhongKernel::new(&shade).unwrap();
-            let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
-            let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
             let dn = [0.006, 0.0, -0.002];
             // Spans of 1 to 7 pixels from every 9th pixel of a 100-pixel one.
             for s in (0..100).step_by(9) {
@@ -669,23 +667,9 @@ fn point_plan_equals_chunk_setup() {
         ([0.3, -0.2, -2.0], [0.5, 0.5, -2.8], [-0.003, 0.001, -0.001]),
         ([10.0, 20.0, 5.0], [-2.0, 1.0, -9.0], [0.002, 0.001, 0.0]),
     ] {
-        let c = Case {
-            mat: Material {
-                color: v3(1.0, 0.7, 0.5),
-                ka: q(0.1),
-                kd: q(0.6),
-                ks: q(0.9),
-                shininess: q(40.0),
-            },
-            lights: std::vec![Light::point(v3(lp[0], lp[1], lp[2]), q(1.0))],
-            ambient: q(0.2),
-            specular: Specular::Phong,
-            viewer: Viewer::Local,
-        };
+        let c = point_case(40.0, lp);
         let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
         let k = PhongKernel::new(&shade).unwrap();
-        let q30 = |v: [f64; 3]| v.map(|c| (c * (1u64 << 30) as f64).round() as i32);
-        let q16 = |v: [f64; 3]| v.map(|c| (c * 65536.0).round() as i32);
         for &len in &[40u32, 65, 100, 200, 400] {
             let n0 = unit([-0.4, 0.1, 1.0]);
             let dn = [0.6 / f64::from(len), 0.0, -0.2 / f64::from(len)];
