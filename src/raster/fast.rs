@@ -726,6 +726,78 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     packed: bool,
     color: impl Fn(&[i32; N]) -> R,
 ) -> Option<(u32, bool)> {
+    draw_small_in::<N, V, R, D, false>(v, sub, until, mem, carry, vals, packed, color)
+}
+
+/// [`draw_small`] for one grey level (`N = 1`; other `N` as
+/// [`draw_small`]; fixed, `2^16` a level:
+/// [`crate::raster::GouraudMono`]'s attribute) whose every pixel's rounded
+/// level lies in `0..=255`, decided per triangle ([`levels_in_range`]):
+/// `color` then receives the level in the form of
+/// [`crate::raster::GouraudMono`]'s [`Shader::in_range_values`](super::Shader::in_range_values)
+/// (`(v + 2^15) << 8`, the rounded level in the top 8 bits, stepped by
+/// `s << 8`), so that the pixel needs no clamp (its
+/// [`Shader::shade_raw_in_range`](super::Shader::shade_raw_in_range)).
+/// `None` as well for a triangle that fails the test (the caller's
+/// general path then clamps). The same pixels, walk and values as
+/// [`draw_small`] otherwise (the walk and values left for the next band
+/// in the original form). Tested against the general path.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_small_levels<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
+    v: &[Vertex<i32, N>; 3],
+    sub: SubpixelBits,
+    until: i32,
+    mem: &mut BandMem<'_, '_, R, D::Raw>,
+    carry: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+    packed: bool,
+    color: impl Fn(&[i32; N]) -> R,
+) -> Option<(u32, bool)> {
+    draw_small_in::<N, V, R, D, true>(v, sub, until, mem, carry, vals, packed, color)
+}
+
+/// `true` when every pixel a triangle draws from the planes of
+/// [`draw_small`] has its level attribute (fixed, `2^16` a level) rounded
+/// into `0..=255`, from the vertex values `l` and the attribute's
+/// gradients `gx`, `gy` (per pixel). A pixel centre drawn lies in the
+/// closed triangle, within `2^15` subpixels of vertex 0 on each axis
+/// (the kernel's bound on the offsets), where the exact plane lies between
+/// the least and the greatest vertex value; the kernel's value there is
+/// `v0 + (gx·dx + gy·dy + S/2) / S` floored (`dx`, `dy` the centre's
+/// subpixel offsets from vertex 0, `S = 2^s`, `s >= 1`), so it differs from
+/// the exact plane by less than `(|gx - Gx|·|dx| + |gy - Gy|·|dy|) / S +
+/// 1`;
+/// [`InvArea`]'s gradients are within `½ + |G|·2^-28` of the exact `G`,
+/// below 2 for `|g| < 2^28`: the error stays below `2·2·2^15 / S + 1 =
+/// 2^(17 - s) + 1`, below `m = 2^(18 - s)` (`s` in `1..=8`). Hence with
+/// every vertex value in `[-2^15 + m, 2^24 - 2^15 - m)` (at 4 subpixel
+/// bits `m = 2^14`, a quarter of a level: levels 0 and 255 pass) the
+/// value lies in `[-2^15, 2^24 - 2^15)`: rounded (`+ 2^15`, then `>> 16`)
+/// into `0..=255`, with no `i32` wrap on the way (the kernel's wrapping
+/// sums equal the true ones there). Conservative: `false` only sends the
+/// triangle to the clamping path.
+#[inline(always)]
+fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
+    let m = 1i32 << (18 - s);
+    let (lo_lim, hi_lim) = (m - (1 << 15), (1 << 24) - (1 << 15) - m);
+    let (lo, hi) = (l[0].min(l[1]).min(l[2]), l[0].max(l[1]).max(l[2]));
+    (lo >= lo_lim) & (hi < hi_lim) & ((gx.unsigned_abs() | gy.unsigned_abs()) < 1 << 28)
+}
+
+/// [`draw_small`], and with `LEVELS` [`draw_small_levels`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const LEVELS: bool>(
+    v: &[Vertex<i32, N>; 3],
+    sub: SubpixelBits,
+    until: i32,
+    mem: &mut BandMem<'_, '_, R, D::Raw>,
+    carry: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+    packed: bool,
+    color: impl Fn(&[i32; N]) -> R,
+) -> Option<(u32, bool)> {
     // Without a depth plane the general path, decided first.
     let z = mem.z.as_deref_mut()?;
     let [a, b, c] = v;
@@ -820,6 +892,16 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
         sx.a[k] = gx;
         sy.a[k] = gy;
     }
+    // One grey level: every pixel's level in range, else the general path.
+    let (mut tx, mut ty) = (sx, sy);
+    let mut t0 = row;
+    if LEVELS && N == 1 {
+        let l = [a.attrs[0], b.attrs[0], c.attrs[0]];
+        ok &= levels_in_range(l, sx.a[0], sy.a[0], s);
+        t0.a[0] = row.a[0].wrapping_add(1 << 15) << 8;
+        tx.a[0] = sx.a[0] << 8;
+        ty.a[0] = sy.a[0] << 8;
+    }
     if !ok {
         return None;
     }
@@ -847,12 +929,13 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     };
     let anchor = [a.x >> s, a.y >> s];
     let mut rows = SmallRows {
-        v: row.add_n(&sy, j_top),
+        v: t0.add_n(&ty, j_top),
         base: (j_top - y0).wrapping_mul(width) as usize,
         width: width as usize,
         drawn: 0,
     };
-    let (sx, sy) = (&sx, &sy);
+    let (sx0, sy0) = (&sx, &sy);
+    let (sx, sy) = (&tx, &ty);
     let stop = j_bot.min(until);
     let mut j = j_top;
     if upper {
@@ -888,7 +971,8 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
             [j, j_mid, j_bot],
             [long_left, z16],
         );
-        pack_fixed(vals, &rows.v.add_n(sy, j.wrapping_neg()), sx, sy);
+        // The values at pixel (0, 0) in their original form.
+        pack_fixed(vals, &row, sx0, sy0);
     }
     Some((rows.drawn, more))
 }
