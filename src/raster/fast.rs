@@ -1168,4 +1168,33 @@ mod tests {
             );
         }
     }
+
+    /// [`levels_in_range`]'s margins: `2^(18 - s)` at each end (at 4
+    /// subpixel bits a quarter of a level), gradients below `2^28`.
+    #[test]
+    fn levels_in_range_bounds() {
+        let top = 255 << 16;
+        assert!(levels_in_range([0, 0, top], 0, 0, 4));
+        assert!(levels_in_range([-(1 << 14), 5, 7], 0, 0, 4));
+        assert!(!levels_in_range([-(1 << 14) - 1, 5, 7], 0, 0, 4));
+        let hi = (1 << 24) - (1 << 15) - (1 << 14);
+        assert!(levels_in_range([0, hi - 1, 7], 0, 0, 4));
+        assert!(!levels_in_range([0, hi, 7], 0, 0, 4));
+        assert!(levels_in_range(
+            [0, 1, 2],
+            (1 << 28) - 1,
+            -((1 << 28) - 1),
+            4
+        ));
+        assert!(!levels_in_range([0, 1, 2], 1 << 28, 0, 4));
+        assert!(!levels_in_range([0, 1, 2], 0, i32::MIN, 4));
+        // One subpixel bit: margins of 2^17 (two levels).
+        assert!(!levels_in_range([0, 1, 2], 0, 0, 1));
+        assert!(levels_in_range(
+            [(1 << 17) - (1 << 15), 1 << 20, 1 << 23],
+            0,
+            0,
+            1
+        ));
+    }
 }
