@@ -23,7 +23,7 @@
 //! Values are the same modulo 2^32 as the generic walker's `row + sx·x0 +
 //! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
 
-use super::span::{clamp_test, depth_loop, inr_span, inr_span_inline};
+use super::span::{clamp_test, depth_loop, in_range_test, inr_span, inr_span_inline};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
@@ -726,6 +726,78 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     packed: bool,
     color: impl Fn(&[i32; N]) -> R,
 ) -> Option<(u32, bool)> {
+    draw_small_in::<N, V, R, D, false>(v, sub, until, mem, carry, vals, packed, color)
+}
+
+/// [`draw_small`] for one grey level (`N = 1`; other `N` as
+/// [`draw_small`]; fixed, `2^16` a level:
+/// [`crate::raster::GouraudMono`]'s attribute) whose every pixel's rounded
+/// level lies in `0..=255`, decided per triangle ([`levels_in_range`]):
+/// `color` then receives the level in the form of
+/// [`crate::raster::GouraudMono`]'s [`Shader::in_range_values`](super::Shader::in_range_values)
+/// (`(v + 2^15) << 8`, the rounded level in the top 8 bits, stepped by
+/// `s << 8`), so that the pixel needs no clamp (its
+/// [`Shader::shade_raw_in_range`](super::Shader::shade_raw_in_range)).
+/// `None` as well for a triangle that fails the test (the caller's
+/// general path then clamps). The same pixels, walk and values as
+/// [`draw_small`] otherwise (the walk and values left for the next band
+/// in the original form). Tested against the general path.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_small_levels<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
+    v: &[Vertex<i32, N>; 3],
+    sub: SubpixelBits,
+    until: i32,
+    mem: &mut BandMem<'_, '_, R, D::Raw>,
+    carry: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+    packed: bool,
+    color: impl Fn(&[i32; N]) -> R,
+) -> Option<(u32, bool)> {
+    draw_small_in::<N, V, R, D, true>(v, sub, until, mem, carry, vals, packed, color)
+}
+
+/// `true` when every pixel a triangle draws from the planes of
+/// [`draw_small`] has its level attribute (fixed, `2^16` a level) rounded
+/// into `0..=255`, from the vertex values `l` and the attribute's
+/// gradients `gx`, `gy` (per pixel). A pixel centre drawn lies in the
+/// closed triangle, within `2^15` subpixels of vertex 0 on each axis
+/// (the kernel's bound on the offsets), where the exact plane lies between
+/// the least and the greatest vertex value; the kernel's value there is
+/// `v0 + (gx·dx + gy·dy + S/2) / S` floored (`dx`, `dy` the centre's
+/// subpixel offsets from vertex 0, `S = 2^s`, `s >= 1`), so it differs from
+/// the exact plane by less than `(|gx - Gx|·|dx| + |gy - Gy|·|dy|) / S +
+/// 1`;
+/// [`InvArea`]'s gradients are within `½ + |G|·2^-28` of the exact `G`,
+/// below 2 for `|g| < 2^28`: the error stays below `2·2·2^15 / S + 1 =
+/// 2^(17 - s) + 1`, below `m = 2^(18 - s)` (`s` in `1..=8`). Hence with
+/// every vertex value in `[-2^15 + m, 2^24 - 2^15 - m)` (at 4 subpixel
+/// bits `m = 2^14`, a quarter of a level: levels 0 and 255 pass) the
+/// value lies in `[-2^15, 2^24 - 2^15)`: rounded (`+ 2^15`, then `>> 16`)
+/// into `0..=255`, with no `i32` wrap on the way (the kernel's wrapping
+/// sums equal the true ones there). Conservative: `false` only sends the
+/// triangle to the clamping path.
+#[inline(always)]
+fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
+    let m = 1i32 << (18 - s);
+    let (lo_lim, hi_lim) = (m - (1 << 15), (1 << 24) - (1 << 15) - m);
+    let (lo, hi) = (l[0].min(l[1]).min(l[2]), l[0].max(l[1]).max(l[2]));
+    (lo >= lo_lim) & (hi < hi_lim) & ((gx.unsigned_abs() | gy.unsigned_abs()) < 1 << 28)
+}
+
+/// [`draw_small`], and with `LEVELS` [`draw_small_levels`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const LEVELS: bool>(
+    v: &[Vertex<i32, N>; 3],
+    sub: SubpixelBits,
+    until: i32,
+    mem: &mut BandMem<'_, '_, R, D::Raw>,
+    carry: &mut Walk,
+    vals: &mut [[i32; 3]; V],
+    packed: bool,
+    color: impl Fn(&[i32; N]) -> R,
+) -> Option<(u32, bool)> {
     // Without a depth plane the general path, decided first.
     let z = mem.z.as_deref_mut()?;
     let [a, b, c] = v;
@@ -820,6 +892,16 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
         sx.a[k] = gx;
         sy.a[k] = gy;
     }
+    // One grey level: every pixel's level in range, else the general path.
+    let (mut tx, mut ty) = (sx, sy);
+    let mut t0 = row;
+    if LEVELS && N == 1 {
+        let l = [a.attrs[0], b.attrs[0], c.attrs[0]];
+        ok &= levels_in_range(l, sx.a[0], sy.a[0], s);
+        t0.a[0] = row.a[0].wrapping_add(1 << 15) << 8;
+        tx.a[0] = sx.a[0] << 8;
+        ty.a[0] = sy.a[0] << 8;
+    }
     if !ok {
         return None;
     }
@@ -847,12 +929,14 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
     };
     let anchor = [a.x >> s, a.y >> s];
     let mut rows = SmallRows {
-        v: row.add_n(&sy, j_top),
+        v: t0.add_n(&ty, j_top),
         base: (j_top - y0).wrapping_mul(width) as usize,
         width: width as usize,
         drawn: 0,
+        fails: 0,
     };
-    let (sx, sy) = (&sx, &sy);
+    let (sx0, sy0) = (&sx, &sy);
+    let (sx, sy) = (&tx, &ty);
     let stop = j_bot.min(until);
     let mut j = j_top;
     if upper {
@@ -888,9 +972,18 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
             [j, j_mid, j_bot],
             [long_left, z16],
         );
-        pack_fixed(vals, &rows.v.add_n(sy, j.wrapping_neg()), sx, sy);
+        // The values at pixel (0, 0) in their original form: kept (with
+        // `LEVELS`, and on ARMv6-M, where it cost bunny-flat raster 12 K
+        // instructions less), or `rows.v` stepped back (the same values,
+        // wrapping; on ARMv7-M the Gouraud bunny's raster 16 K less).
+        let v00 = if LEVELS || NO_LONG_MUL {
+            row
+        } else {
+            rows.v.add_n(sy0, j.wrapping_neg())
+        };
+        pack_fixed(vals, &v00, sx0, sy0);
     }
-    Some((rows.drawn, more))
+    Some((rows.drawn(), more))
 }
 
 /// [`draw_small`]'s walk of a triangle continuing below the band (its
@@ -931,15 +1024,32 @@ fn same_len<'p, 'z, R, Z>(px: &'p mut [R], z: &'z mut [Z]) -> (&'p mut [R], &'z 
 }
 
 /// The row state of [`draw_small`]: the values at column 0 of the row,
-/// the row's offset in the band and the pixels written so far.
+/// the row's offset in the band and the pixels covered so far; on
+/// ARMv6-M (and in test builds) also the pixels that failed the depth
+/// test (then `drawn` counts the covered ones: [`SmallRows::drawn`]).
 struct SmallRows<const N: usize> {
     v: Vals<i32, N>,
     base: usize,
     width: usize,
     drawn: u32,
+    fails: u32,
 }
 
+/// [`SmallRows`] counts a triangle's covered pixels per span and its
+/// failed depth tests across its spans ([`small_loop`]), its pixels drawn
+/// the difference at the end: on ARMv6-M (bunny-gouraud raster thumbv6m
+/// 2 866 494 -> 2 838 685, bunny-flat 2 423 668 -> 2 407 693) and in test
+/// builds (which check it); elsewhere the span
+/// stage's loops, each returning its span's pixels drawn.
+const RUNNING_FAILS: bool = NO_LONG_MUL || cfg!(test);
+
 impl<const N: usize> SmallRows<N> {
+    /// The pixels drawn so far.
+    #[inline(always)]
+    fn drawn(&self) -> u32 {
+        self.drawn.wrapping_sub(self.fails)
+    }
+
     /// Draws columns `x0..x1` of the current row (nothing when `x0 >=
     /// x1`) and moves to the next row.
     #[inline(always)]
@@ -958,17 +1068,60 @@ impl<const N: usize> SmallRows<N> {
             let s = self.v.add_n(sx, x0);
             let span = self.base.wrapping_add(x0 as usize)..self.base.wrapping_add(x1 as usize);
             if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
-                // Depth alone (flat): the pixel loop inline (no call per
-                // span); with a value, the span stage's loops.
-                self.drawn += if N == 0 {
-                    inr_span_inline::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
+                if RUNNING_FAILS {
+                    // The span's pixels covered here, its failed tests
+                    // counted on across the triangle's spans.
+                    self.drawn = self.drawn.wrapping_add(p.len() as u32);
+                    small_loop::<N, R, D>(p, d, s.z, s.a, sx, color, &mut self.fails);
                 } else {
-                    inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
-                };
+                    // Depth alone (flat): the pixel loop inline (no call
+                    // per span); with a value, the span stage's loops.
+                    self.drawn += if N == 0 {
+                        inr_span_inline::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
+                    } else {
+                        inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
+                    };
+                }
             }
         }
         self.v = self.v.add_n(sy, 1);
         self.base = self.base.wrapping_add(self.width);
+    }
+}
+
+/// The pixels of a span of [`draw_small`] whose depths stay in range (no
+/// clamp), one a step: each depth-tested ([`in_range_test`]) and, when
+/// it passes, shaded by `color`; `fails` counts the others (wrapping).
+/// The same pixels, in the same order, as the span stage's
+/// [`inr_span_inline`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn small_loop<const N: usize, R, D: DepthFormat>(
+    row: &mut [R],
+    drow: &mut [D::Raw],
+    mut z: i32,
+    mut a: [i32; N],
+    d: &Vals<i32, N>,
+    color: &impl Fn(&[i32; N]) -> R,
+    fails: &mut u32,
+) {
+    let mut it = row.iter_mut().zip(drow.iter_mut());
+    while let Some((p, zb)) = it.next() {
+        if in_range_test::<i32, D>(z, zb) {
+            *p = color(&a);
+        } else {
+            *fails = fails.wrapping_add(1);
+            // Never taken (a slice holds fewer than usize::MAX depths),
+            // but a second loop exit keeps LLVM's runtime unroller off
+            // this loop (as in the span stage's loop).
+            if it.len() == usize::MAX {
+                break;
+            }
+        }
+        z = z.wrapping_add(d.z);
+        for (v, s) in a.iter_mut().zip(d.a.iter()) {
+            *v = v.wrapping_add(*s);
+        }
     }
 }
 
@@ -1014,5 +1167,34 @@ mod tests {
                 "{gx} {gy} {ox} {oy} {s}"
             );
         }
+    }
+
+    /// [`levels_in_range`]'s margins: `2^(18 - s)` at each end (at 4
+    /// subpixel bits a quarter of a level), gradients below `2^28`.
+    #[test]
+    fn levels_in_range_bounds() {
+        let top = 255 << 16;
+        assert!(levels_in_range([0, 0, top], 0, 0, 4));
+        assert!(levels_in_range([-(1 << 14), 5, 7], 0, 0, 4));
+        assert!(!levels_in_range([-(1 << 14) - 1, 5, 7], 0, 0, 4));
+        let hi = (1 << 24) - (1 << 15) - (1 << 14);
+        assert!(levels_in_range([0, hi - 1, 7], 0, 0, 4));
+        assert!(!levels_in_range([0, hi, 7], 0, 0, 4));
+        assert!(levels_in_range(
+            [0, 1, 2],
+            (1 << 28) - 1,
+            -((1 << 28) - 1),
+            4
+        ));
+        assert!(!levels_in_range([0, 1, 2], 1 << 28, 0, 4));
+        assert!(!levels_in_range([0, 1, 2], 0, i32::MIN, 4));
+        // One subpixel bit: margins of 2^17 (two levels).
+        assert!(!levels_in_range([0, 1, 2], 0, 0, 1));
+        assert!(levels_in_range(
+            [(1 << 17) - (1 << 15), 1 << 20, 1 << 23],
+            0,
+            0,
+            1
+        ));
     }
 }

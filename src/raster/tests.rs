@@ -1288,3 +1288,129 @@ fn small_kernel_on_packed_values_equals_the_fused_walk() {
         let _ = check_small::<1>(&t, 0, rows, w, &px, &zb, true);
     }
 }
+
+/// Draws sorted grey triangle `v` into a band with
+/// [`draw_small_levels`] (the unclamped level of [`GouraudMono`]) and with
+/// the general fused walk (the clamped one), from fresh copies of the
+/// buffers: `None` when the kernel declines (then it wrote nothing), else
+/// the pixel counts, which must agree, as must every byte of both
+/// buffers and the walk and values left for the next band.
+fn check_small_levels(
+    v: &[Vertex<i32, 1>; 3],
+    y0: i32,
+    rows: i32,
+    w: i32,
+    z: &[u16],
+) -> Option<(u32, bool)> {
+    let px = vec![[0x5au8]; z.len()];
+    let (mut p, mut d) = (px.clone(), z.to_vec());
+    let (mut carry, mut kv) = (Walk::EMPTY, [[0; 3]; 4]);
+    let small = {
+        let (mut pr, mut dr) = (&mut p[..], Some(&mut d[..]));
+        let mut mem = BandMem::<[u8; 1], u16> {
+            px: &mut pr,
+            z: &mut dr,
+            y0,
+            width: w,
+        };
+        draw_small_levels::<1, 4, [u8; 1], Depth16>(
+            v,
+            SUB,
+            y0 + rows,
+            &mut mem,
+            &mut carry,
+            &mut kv,
+            false,
+            |a| GouraudMono.shade_raw_in_range::<Gray8>(a),
+        )
+    };
+    let Some((n, more)) = small else {
+        assert!(p == px && d == z, "declined but wrote: {v:?}");
+        return None;
+    };
+    let (mut gp, mut gd) = (px.clone(), z.to_vec());
+    let (mut walk, mut vals) = (Walk::EMPTY, [[0; 3]; 4]);
+    let mut drawn = 0;
+    if setup_fast::<1, 4>(&v[0], &v[1], &v[2], SUB, y0, w, &mut walk, &mut vals) {
+        let (mut pr, mut dr) = (&mut gp[..], Some(&mut gd[..]));
+        let mut mem = BandMem::<[u8; 1], u16> {
+            px: &mut pr,
+            z: &mut dr,
+            y0,
+            width: w,
+        };
+        drawn = walk.rows_fused::<1, 4, [u8; 1], Depth16>(&vals, y0 + rows, &mut mem, |a| {
+            GouraudMono.shade_raw::<Gray8>(a)
+        });
+    }
+    assert_eq!(more, !walk.done(), "{v:?}");
+    if more {
+        if walk.j > walk.mid {
+            walk.low = Edge::EMPTY;
+        }
+        assert_eq!(carry, walk, "{v:?}");
+        assert_eq!(kv[..2], vals[..2], "{v:?}");
+    }
+    assert_eq!(n, drawn, "{v:?}");
+    assert!(p == gp && d == gd, "pixels differ: {v:?} y0 {y0}");
+    Some((n, more))
+}
+
+/// The unclamped grey kernel ([`draw_small_levels`]) draws the very
+/// pixels of the clamped general path, on triangles whose levels reach
+/// 0 and 255 exactly, lie near them, or beyond (then declined).
+#[test]
+fn small_levels_equal_the_clamped_walk() {
+    let mut rng = Rng(0x1e7e_15ed);
+    let (w, rows) = (240, 16);
+    let (mut taken, mut declined, mut pixels, mut carried, mut dark, mut bright) =
+        (0, 0, 0u32, 0, 0, 0);
+    for i in 0..20_000 {
+        let y0 = [0, 16, 112, 224][i % 4];
+        let (_, zb) = band_buffers(&mut rng, w * rows);
+        let span = if i % 5 == 0 { 40 * 16 } else { 6 * 16 };
+        let (cx, cy) = (rng.range(0, w * 16), y0 * 16 + rng.range(0, rows * 16));
+        let mut p = || {
+            (
+                (cx + rng.range(-span, span + 1)).clamp(0, w * 16),
+                cy + rng.range(-span, span + 1),
+            )
+        };
+        let (p0, p1, p2) = (p(), p(), p());
+        let top = 255 << 16;
+        let level = |rng: &mut Rng| match i % 6 {
+            0 => 0,
+            1 => top,
+            2 => rng.range(0, 1 << 16),
+            3 => top - rng.range(0, 1 << 16),
+            4 => rng.range(-(1 << 16), top + (1 << 16)),
+            _ => rng.range(0, top + 1),
+        };
+        let zbase = rng.range(1 << 20, (1 << 30) - (1 << 20));
+        let vert = |(x, y): (i32, i32), rng: &mut Rng| Vertex {
+            x,
+            y,
+            z: zbase + rng.range(-(1 << 19), 1 << 19),
+            attrs: [level(rng)],
+        };
+        let v = sort3(
+            [vert(p0, &mut rng), vert(p1, &mut rng), vert(p2, &mut rng)],
+            |v| v.y,
+        );
+        match check_small_levels(&v, y0, rows, w, &zb) {
+            Some((n, more)) => {
+                taken += 1;
+                pixels += n;
+                carried += more as u32;
+                dark += (n > 0 && v.iter().any(|v| v.attrs[0] == 0)) as u32;
+                bright += (n > 0 && v.iter().any(|v| v.attrs[0] == top)) as u32;
+            }
+            None => declined += 1,
+        }
+    }
+    assert!(
+        taken > 8_000 && declined > 1_000 && pixels > 100_000 && carried > 1_000,
+        "{taken} {declined} {pixels} {carried}"
+    );
+    assert!(dark > 1_000 && bright > 1_000, "{dark} {bright}");
+}

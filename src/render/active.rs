@@ -78,10 +78,12 @@ use super::{
     RenderStats, FACE_ROW,
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
+use crate::num::wide::NO_LONG_MUL;
 use crate::num::{Profile, Real};
 use crate::raster::{
-    draw_small, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat, Gouraud,
-    GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex, Walk,
+    draw_small, draw_small_levels, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat,
+    Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex,
+    Walk,
 };
 use crate::scene::{Object, Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -1514,6 +1516,11 @@ fn out_of_limits<P: Profile>(frame: &Frame<'_, P>, tri: &PreparedTri) -> RenderE
     RasterError::OutOfRange(i as u8).into()
 }
 
+/// [`draw_small_shaded`] takes [`draw_small_levels`] for the grey level
+/// (`N = 1`): on ARMv6-M, where the clamp costs five instructions a pixel
+/// (bunny-gouraud raster thumbv6m 2 888 025 -> 2 866 494), and in test builds.
+const LEVELS_IN_RANGE: bool = NO_LONG_MUL || cfg!(test);
+
 /// Draws a fetched triangle ([`fetch_fixed`]) with the small-triangle
 /// kernel ([`draw_small`]) when it applies: the shader's constant colour
 /// encoded once, or its colour per pixel; `None` (nothing drawn) when the
@@ -1540,6 +1547,12 @@ fn draw_small_shaded<
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
         draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, move |_| raw)
+    } else if N == 1 && LEVELS_IN_RANGE {
+        // One grey level (the fast path's `N = 1` shader is
+        // [`GouraudMono`]): without the clamp where the triangle allows it.
+        draw_small_levels::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, |a| {
+            shader.shade_raw_in_range::<F>(a)
+        })
     } else {
         draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, |a| {
             shader.shade_raw::<F>(a)
