@@ -103,8 +103,10 @@ fn run<P: Profile>(
 ) -> Result<(), Box<dyn Error>> {
     let mut ws = Owned::<P::Lerp>::new(fixshade_scenes::capacity_for::<P>());
     let mut pool = Box::new(ProfilePool::<P>::new());
-    let mut px = vec![0u16; BAND_PIXELS];
-    let mut z = vec![0u16; DEPTH_PIXELS];
+    // The band memory as the firmware holds it: arrays (no depth band in
+    // the `dodeca` build, `DEPTH_PIXELS` = 0).
+    let mut px = [0u16; BAND_PIXELS];
+    let mut z = [0u16; DEPTH_PIXELS];
     println!("fixshade-host-check target=host profile={}", P::NAME);
     for spec in SCENES.iter() {
         let (w, order) = ws.split();
@@ -147,8 +149,8 @@ fn whole_frame(spec: &SceneSpec, ws: &mut Owned<i32>) -> Result<Vec<u8>, Box<dyn
     frame.render(&scene, &mut fb, Some(&mut db))?;
     let mut crc = Crc32::new();
     crc.update(fb.bytes());
-    let mut banded_px = vec![0u16; BAND_PIXELS];
-    let mut banded_z = vec![0u16; DEPTH_PIXELS];
+    let mut banded_px = [0u16; BAND_PIXELS];
+    let mut banded_z = [0u16; DEPTH_PIXELS];
     let mut pool = Box::new(BandPool::new());
     let (w, order) = ws.split();
     let banded = render_frame(

@@ -383,10 +383,10 @@ mod tests {
     fn bands_equal_the_whole_frame() {
         let mut st = Box::new(SceneStorage::new());
         let mut whole = Box::new(SceneStorage::new());
-        let mut px = vec![0u16; BAND_PIXELS];
-        // Small enough for an array in the `dodeca` build (no depth band).
-        #[allow(clippy::useless_vec)]
-        let mut z = vec![0u16; DEPTH_PIXELS];
+        // The band memory as the firmware holds it: arrays (no depth band
+        // in the `dodeca` build, `DEPTH_PIXELS` = 0).
+        let mut px = [0u16; BAND_PIXELS];
+        let mut z = [0u16; DEPTH_PIXELS];
         let mut pool = Box::new(BandPool::new());
         for spec in SCENES.iter() {
             let (ws, order) = st.split();
