@@ -7,13 +7,19 @@
 //! edge: not covered under the top-left rule), so the normal there is read
 //! by extending the row's span by one step, exactly as the rasterizer would
 //! step it.
+//!
+//! Each profile's normal is read through the Phong shader its renderers
+//! run ([`shipped_levels`]): the span kernel (`render::PhongKernel`) where
+//! the profile has one (`fast`), else the per-pixel `render::PhongShader`.
 
 mod common;
 
 use common::per_profile;
 use fixshade::geom::Vec3;
+use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
 use fixshade::num::{Profile, Real};
-use fixshade::raster::{draw_triangle, Lerp, Span, Spans, SubpixelBits, Vertex};
+use fixshade::raster::{draw_triangle, Lerp, Shader, Span, Spans, SubpixelBits, Vertex};
+use fixshade::render::{KernelError, PhongKernel, PhongKernelShader, PhongShader};
 use fixshade::target::Window;
 
 /// Records the interpolated normal (three attributes) of every pixel of
@@ -37,19 +43,10 @@ impl<L: Lerp> Spans<L, 3> for Row11<L> {
     }
 }
 
-/// The crate's normalised interpolated normal at (7, 11), (10, 11) and
-/// (13, 11) for profile `P`: the vertex normals converted with
-/// `Profile::unit`, interpolated by `draw_triangle`, converted back with
-/// `Profile::unit_back` and normalised with `Vec3::normalize`. That is
-/// what the per-pixel Phong shader (`render::PhongShader`) does for
-/// `precise`, `f32` and `f64`. `fast` ships other normalisations (the span
-/// kernel's table `1/|n|` for the affine profile, `approx16::unit` for
-/// `fast-pc`), which are internal: the unit test
-/// `render::phong_span::tests::seed_row_11_fast_shaders` runs this very
-/// triangle through both (measured 5.9e-5 and 8.7e-6 from the exact
-/// normal); here `fast` checks the rasterizer's interpolated normal with
-/// the same `normalize` as the others.
-fn row11_normals<P: Profile>() -> [[f64; 3]; 3] {
+/// The rasterizer's interpolated normal (in [`Profile::unit`] form) at
+/// (7, 11), (10, 11) and (13, 11) for profile `P`: the vertex normals
+/// converted with `Profile::unit` and interpolated by `draw_triangle`.
+fn row11_attrs<P: Profile>() -> [[P::Lerp; 3]; 3] {
     let r = |v: f64| P::unit(P::Real::from_f64(v));
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let c = |i: i32| i * 16 + 8;
@@ -83,12 +80,74 @@ fn row11_normals<P: Profile>() -> [[f64; 3]; 3] {
     );
     let (x_end, a_end) = probe.past_end.unwrap();
     assert_eq!(x_end, 13);
-    let unit = |a: [P::Lerp; 3]| {
+    [probe.px[0].1, probe.px[3].1, a_end]
+}
+
+/// The interpolated normals of [`row11_attrs`] converted back with
+/// `Profile::unit_back` and normalised with `Vec3::normalize`: what the
+/// per-pixel shader (`render::PhongShader`) does for `precise`, `f32` and
+/// `f64`, which have no span kernel. (`fast` normalises otherwise, see
+/// [`shipped_levels`].)
+fn row11_normals<P: Profile>() -> [[f64; 3]; 3] {
+    row11_attrs::<P>().map(|a| {
         Vec3::new(P::unit_back(a[0]), P::unit_back(a[1]), P::unit_back(a[2]))
             .normalize()
             .to_f64()
+    })
+}
+
+/// The levels the profile's shipped Phong shader gives at (7, 11),
+/// (10, 11) and (13, 11), lit so that they read the normal: a white,
+/// purely diffuse material (`kd` = 1, no ambient or specular term) under
+/// one white directional light along +x, +y or +z (viewer at infinity),
+/// so that each channel is `255 · max(N·L, 0)` = 255 times that
+/// component of the shader's normalised normal, rounded. The shader is
+/// the one the renderers choose: the span kernel
+/// ([`PhongKernelShader`], the colour its span loop computes at that
+/// pixel) where [`PhongKernel::new`] makes one (the `Q16` profile
+/// `fast`), else [`PhongShader`].
+fn shipped_levels<P: Profile>() -> [[u8; 3]; 3] {
+    let attrs = row11_attrs::<P>();
+    let one = P::Real::ONE;
+    let zero = P::Real::ZERO;
+    let white = Vec3::new(one, one, one);
+    let material = Material {
+        color: white,
+        ka: zero,
+        kd: one,
+        ks: zero,
+        shininess: one,
     };
-    [unit(probe.px[0].1), unit(probe.px[3].1), unit(a_end)]
+    let axes = [
+        Vec3::new(one, zero, zero),
+        Vec3::new(zero, one, zero),
+        Vec3::new(zero, zero, one),
+    ];
+    let mut levels = [[0u8; 3]; 3];
+    for (k, axis) in axes.into_iter().enumerate() {
+        let light = Light::directional(axis, one);
+        let shade =
+            Shade::new(&material, zero, &[light], Specular::Phong, Viewer::Infinite).unwrap();
+        let colours = match PhongKernel::new(&shade) {
+            Ok(kernel) => {
+                assert_eq!(P::NAME, "fast", "a span kernel for {}", P::NAME);
+                let sh = PhongKernelShader::new(&kernel);
+                attrs.map(|a| Shader::<P::Lerp, 3>::shade(&sh, &a))
+            }
+            Err(e) => {
+                assert_eq!(e, KernelError::Profile, "{}", P::NAME);
+                assert_ne!(P::NAME, "fast");
+                let sh = PhongShader::<P>::new(&shade, false);
+                attrs.map(|a| Shader::<P::Lerp, 3>::shade(&sh, &a))
+            }
+        };
+        for (i, c) in colours.iter().enumerate() {
+            // A white light on a white material: one grey level.
+            assert!(c.r == c.g && c.g == c.b, "{}: {c:?}", P::NAME);
+            levels[i][k] = c.r;
+        }
+    }
+    levels
 }
 
 /// The exact plane interpolation (barycentric, f64) of the vertex normals
@@ -147,29 +206,27 @@ fn reference_figures_follow_from_the_two_methods() {
     assert!(max_err(seed, n10) > 0.05);
 }
 
-/// Per-profile tolerance on each normalised component, from the documented
-/// error budget:
+/// Per-profile tolerance on each component of the normal normalised by
+/// `Vec3::normalize` ([`row11_normals`], the per-pixel shader's
+/// normalisation for the profiles without a span kernel), from the
+/// documented error budget:
 ///
 /// - vertex normals rounded to 2^-30 by `Profile::unit` (1/2 unit);
 /// - interpolation (`raster` module docs): `(n + 2)(1/2 + |g|·2^-30)` units
 ///   of 2^-30 at `n` pixels from the anchor pixel (3, 3); `n <= 18` on row
 ///   11 and `|g|·2^-30 < 0.1`, so at most 12 units, 1.1e-8 per component;
-/// - `unit_back` rounds to the scalar's resolution: 2^-17 for Q16 (exact for
-///   Q32, which has 32 fraction bits);
+/// - `unit_back` is exact for Q32 (32 fraction bits);
 /// - `normalize` divides those errors by the length of the interpolated
 ///   normal (at least 0.707 on row 11, so times 1.41), and adds its own:
-///   three products rounded (3 · 2^-17 for Q16), `rsqrt` (Q16: 2^-15
-///   relative + 1/2 ulp; Q32: 2^-30 relative + 1/2 ulp; f32: 2^-22
-///   relative), then three products rounded (2^-17 for Q16).
+///   `rsqrt` (Q32: 2^-30 relative + 1/2 ulp; f32: 2^-22 relative) and the
+///   products' rounding.
 ///
-/// Q16: about 2^-15 + 1.41 · 2^-17 + 4 · 2^-17 = 7.2e-5, allowed 1e-4.
 /// Q32: 1.41 · 1.2e-8 + 2^-30 + 2^-32 = 1.8e-8, allowed 2.5e-8 (the
 /// interpolation dominates: measured 1.2e-8 at (13, 11), 18 pixels from the
 /// anchor). f32: the same interpolation with f32 rounding (about 20 steps of
 /// 6e-8, times 1.41) plus 2^-22: 2e-6, allowed 3e-6. f64: 1e-12.
 fn tolerance(name: &str) -> f64 {
     match name {
-        "fast" => 1e-4,
         "precise" => 2.5e-8,
         "f32" => 3e-6,
         "f64" => 1e-12,
@@ -177,10 +234,68 @@ fn tolerance(name: &str) -> f64 {
     }
 }
 
+/// Per-profile bound on a level of [`shipped_levels`] against `255 ·` the
+/// exact normalised normal: 1/2 for the rounding to a level, plus 255 times
+/// the shader's error on `N·L`:
+///
+/// - `fast`, the span kernel (module `render::phong_span`, "Accuracy"):
+///   `1/|n|` from its 65-entry table, within 2^-11.4 relative at `|n|² =
+///   1/4` and 2^-15.4 at 1 (linear interpolation of `f^-1/2`, whose second
+///   derivative falls as `f^-5/2`: 2^-13.9 at `|n|² = 1/2`, the least on
+///   row 11, whose normals are at least 0.707 long), the coefficients'
+///   rounding 1/128 level, the Q30 light direction and Q16 interpolated
+///   normal below 2^-15 together: 0.5 + 255 · (2^-13.9 + 2^-15) + 1/128
+///   = 0.532, allowed 0.54;
+/// - `precise`, `f32`, `f64`: the per-pixel shader normalises with
+///   `Vec3::normalize` ([`tolerance`]) and lights in the profile's scalar
+///   (a few units of its resolution): 0.5 + 255 · 2.5e-8 (`precise`), 0.5 +
+///   255 · 4e-6 (`f32`), 0.5 + 1e-9 (`f64`).
+fn level_bound(name: &str) -> f64 {
+    match name {
+        "fast" => 0.54,
+        "precise" => 0.5 + 255.0 * 2.5e-8,
+        "f32" => 0.5 + 255.0 * 4e-6,
+        "f64" => 0.5 + 1e-9,
+        _ => unreachable!(),
+    }
+}
+
 fn check<P: Profile>() {
+    let exact = [7.0, 10.0, 13.0].map(|x| normalize(plane_normal(x, 11.0)));
+    // The shipped shader, every profile.
+    let bound = level_bound(P::NAME);
+    let levels = shipped_levels::<P>();
+    for ((got, want), x) in levels.iter().zip(exact).zip([7, 10, 13]) {
+        let e = (0..3)
+            .map(|k| (f64::from(got[k]) - 255.0 * want[k]).abs())
+            .fold(0.0, f64::max);
+        println!(
+            "{:>7} ({x}, 11): levels {got:?}, 255 n = ({:.3}, {:.3}, {:.3}), error {e:.4} (bound {bound:.4})",
+            P::NAME,
+            255.0 * want[0],
+            255.0 * want[1],
+            255.0 * want[2],
+        );
+        assert!(e <= bound, "{} at ({x}, 11): {got:?} vs {want:?}", P::NAME);
+    }
+    // Not the seed's span-end value at (10, 11): its z, 0.3854, is 13.7
+    // levels above the crate's.
+    let z10 = f64::from(levels[1][2]);
+    assert!(
+        (z10 - 255.0 * SEED_AT_10[2]).abs() > 13.0,
+        "{}: {:?}",
+        P::NAME,
+        levels[1]
+    );
+    if P::NAME == "fast" {
+        // Its span kernel's normal, to 1.2e-4 a component, and `fast-pc`'s
+        // `approx16::unit`, to 5e-5, on this very triangle: the unit test
+        // `render::phong_span::tests::seed_row_11_fast_shaders`.
+        return;
+    }
+    // The per-pixel shader's normalisation to its own tolerance.
     let tol = tolerance(P::NAME);
     let [n7, n10, n13] = row11_normals::<P>();
-    let exact = [7.0, 10.0, 13.0].map(|x| normalize(plane_normal(x, 11.0)));
     for (got, want, x) in [(n7, exact[0], 7), (n10, exact[1], 10), (n13, exact[2], 13)] {
         let e = max_err(got, want);
         println!(
