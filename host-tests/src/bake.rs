@@ -339,7 +339,14 @@ pub fn bake_rs(
         "[u16; 3]",
         &b.triangles,
     );
-    if !b.normals.is_empty() {
+    if b.normals == b.positions && !b.normals.is_empty() {
+        // A unit sphere about the origin: each normal is its position.
+        s.push_str(
+            "\n/// Unit vertex normals, Q1.14, one per vertex: the positions \
+             themselves\n/// (a unit sphere about the origin).\n\
+             const NORMALS: &[[i16; 3]] = POSITIONS;\n",
+        );
+    } else if !b.normals.is_empty() {
         table(
             &mut s,
             "Unit vertex normals, Q1.14, one per vertex.",
