@@ -67,6 +67,42 @@ fn max(a: Use, b: Use) -> Use {
     }
 }
 
+/// Every frame of a board's turn (the scene module's `camera`, `lights`,
+/// `objects(i)` for `i` in `0..FRAMES`), prepared in `$store` and rendered
+/// in the board's bands of pixel format `$fmt` with `$pool`, printed;
+/// checks that the pool holds every active triangle (each set up once)
+/// and that each frame covers more than `$covered` pixels. Gives each
+/// frame's [`Use`] and the most of each figure.
+macro_rules! turn {
+    ($name:literal, $fmt:ty, $store:ident, $pool:ident, $covered:expr) => {{
+        let camera = camera().unwrap();
+        let lights = lights();
+        let mut most = Use::default();
+        let mut turn = Vec::new();
+        for i in 0..FRAMES {
+            let objects = objects(i);
+            let scene = Scene::new(camera, &objects, &lights, AMBIENT);
+            let (ws, order) = $store.split();
+            let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
+            let u =
+                bands::<$fmt, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut $pool, order, W, ROWS);
+            println!("{} frame {i:2}: crc 0x{:08x} {u:?}", $name, u.crc);
+            turn.push(u);
+            most = max(most, u);
+        }
+        println!("{} turn, most: {most:?}", $name);
+        for (i, u) in turn.iter().enumerate() {
+            assert!(u.peak <= POOL_SLOTS, "frame {i}: {u:?}");
+            assert_eq!(u.setups as usize, u.triangles, "frame {i}");
+            assert!(
+                u.covered > $covered && u.pixels >= u.covered,
+                "frame {i}: {u:?}"
+            );
+        }
+        (turn, most)
+    }};
+}
+
 /// Frame `i` of the firmware animation's turn of `bunny-gouraud`
 /// (examples/firmware/src/bin/animate.rs: every object turned by
 /// `round(2π·i/24)` in Q16 more about Y), rendered in the Pico's bands.
@@ -111,30 +147,8 @@ fn pico_turn_fits_and_is_the_firmware_animation() {
     use crate::pico::*;
     let mut store = Box::new(Store::EMPTY);
     let mut pool = Box::new(BandPool::new());
-    let camera = camera().unwrap();
-    let lights = lights();
-    let mut most = Use::default();
-    let mut turn = Vec::new();
-    for i in 0..FRAMES {
-        let objects = objects(i);
-        let scene = Scene::new(camera, &objects, &lights, AMBIENT);
-        let (ws, order) = store.split();
-        let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
-        let u =
-            bands::<Rgb565Be, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut pool, order, W, ROWS);
-        println!("pico frame {i:2}: crc 0x{:08x} {u:?}", u.crc);
-        turn.push(u);
-        most = max(most, u);
-    }
-    println!("pico turn, most: {most:?}");
+    let (turn, most) = turn!("pico", Rgb565Be, store, pool, 5000);
     for (i, u) in turn.iter().enumerate() {
-        // The pool holds every active triangle: each set up once.
-        assert!(u.peak <= POOL_SLOTS, "frame {i}: {u:?}");
-        assert_eq!(u.setups as usize, u.triangles, "frame {i}");
-        assert!(
-            u.covered > 5000 && u.pixels >= u.covered,
-            "frame {i}: {u:?}"
-        );
         // The very frame the firmware animation renders (and QEMU measures).
         let (ws, order) = store.split();
         let f = firmware_frame(i as u32, ws, order);
@@ -166,29 +180,7 @@ fn blackpill_turn_fits() {
     use crate::blackpill::*;
     let mut store = Store::EMPTY;
     let mut pool = BandPool::new();
-    let camera = camera().unwrap();
-    let lights = lights();
-    let mut most = Use::default();
-    let mut turn = Vec::new();
-    for i in 0..FRAMES {
-        let objects = objects(i);
-        let scene = Scene::new(camera, &objects, &lights, AMBIENT);
-        let (ws, order) = store.split();
-        let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
-        let u = bands::<Gray8, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut pool, order, W, ROWS);
-        println!("blackpill frame {i:2}: {u:?}");
-        turn.push(u);
-        most = max(most, u);
-    }
-    println!("blackpill turn, most: {most:?}");
-    for (i, u) in turn.iter().enumerate() {
-        assert!(u.peak <= POOL_SLOTS, "frame {i}: {u:?}");
-        assert_eq!(u.setups as usize, u.triangles, "frame {i}");
-        assert!(
-            u.covered > 1500 && u.pixels >= u.covered,
-            "frame {i}: {u:?}"
-        );
-    }
+    let (turn, most) = turn!("blackpill", Gray8, store, pool, 1500);
     assert_eq!(most.peak, BLACKPILL_PEAK);
     assert_eq!((most.vertices, most.triangles, most.bytes), (60, 18, 1_956));
     assert_eq!(turn.iter().map(|u| u.peak).min(), Some(6));
