@@ -6,7 +6,7 @@
 
 use super::Affine;
 use crate::num::approx16::{recip_mant, rsqrt_newton};
-use crate::num::wide::{clz32, wmul, wmul_u32};
+use crate::num::wide::{clz32, mul_u16_u32, sq_u32, wmul, wmul_u32};
 use crate::num::{Raw16, Real, COORD_LIMIT_PX};
 
 /// Largest matrix entry magnitude (exclusive) of the integer transform:
@@ -160,21 +160,6 @@ pub(crate) fn face_cross(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3] {
             m
         }
     })
-}
-
-/// `x²` exactly for `x < 2^32`, from 16-bit halves (no 64-bit multiply
-/// on the Cortex-M0).
-#[inline(always)]
-fn sq_u32(x: u32) -> u64 {
-    let (h, l) = (x >> 16, x & 0xFFFF);
-    // h·l < 2^32; h², l² < 2^32.
-    (u64::from(h * h) << 32) + (u64::from(h * l) << 17) + u64::from(l * l)
-}
-
-/// `q · x` exactly for `q < 2^16`, `x < 2^32` (two 32-bit products).
-#[inline(always)]
-fn mul_u16_u32(q: u32, x: u32) -> u64 {
-    (u64::from(q * (x >> 16)) << 16) + u64::from(q * (x & 0xFFFF))
 }
 
 /// [`face_normal`](crate::mesh::face_normal), bit for bit, without its

@@ -74,6 +74,22 @@ pub(crate) fn wmul_u32_split(a: u32, b: u32) -> u64 {
         + u64::from(al * bl)
 }
 
+/// `x²` exactly for `x < 2^32`, from 16-bit halves: three 16×16-bit
+/// products on every target (no 64-bit multiply on the Cortex-M0).
+#[inline(always)]
+pub(crate) fn sq_u32(x: u32) -> u64 {
+    let (h, l) = (x >> 16, x & 0xFFFF);
+    // h·l < 2^32; h², l² < 2^32.
+    (u64::from(h * h) << 32) + (u64::from(h * l) << 17) + u64::from(l * l)
+}
+
+/// `q · x` exactly for `q < 2^16`, `x < 2^32`: two 32-bit products on
+/// every target.
+#[inline(always)]
+pub(crate) fn mul_u16_u32(q: u32, x: u32) -> u64 {
+    (u64::from(q * (x >> 16)) << 16) + u64::from(q * (x & 0xFFFF))
+}
+
 /// `floor(a·b / 2^32)`, exactly (ARMv6-M: [`mulhi_split`]; elsewhere
 /// one high-half multiply, `SMMUL` on the M4).
 #[inline(always)]
@@ -368,6 +384,24 @@ pub(crate) fn clz32_soft(x: u32) -> u32 {
 mod tests {
     extern crate std;
     use super::*;
+
+    #[test]
+    fn sq_u32_and_mul_u16_u32_are_exact() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut xs = std::vec![0u32, 1, 0xFFFF, 0x1_0000, 0xFFFF_FFFF, 0x8000_0000];
+        for _ in 0..10_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            xs.push(s as u32);
+        }
+        for &x in &xs {
+            assert_eq!(sq_u32(x), u64::from(x) * u64::from(x), "{x}");
+            for q in [0u32, 1, 0x7FFF, 0xFFFF, x >> 16] {
+                assert_eq!(mul_u16_u32(q, x), u64::from(q) * u64::from(x), "{q} {x}");
+            }
+        }
+    }
 
     #[test]
     fn det_sign_is_exact() {
