@@ -57,7 +57,7 @@ impl Bound {
             i += 1;
         }
         // ⌈√r2⌉: the floor root, plus one unless exact.
-        let r = r2.isqrt();
+        let r = crate::num::isqrt_u64(r2);
         let radius = if r * r == r2 { r } else { r + 1 } as u32;
         // The farther box side from the (floored) centre: below 2^16.
         let mut half = [0u16; 3];

@@ -1,7 +1,8 @@
 //! The integer square root with its remainder: `⌊√n⌋` from core's
 //! `isqrt` (exact for every `u64` and `u128`) and `n - ⌊√n⌋²`. The one
-//! square root behind the mesh's exact normals, the correctly rounded
-//! `Q16`/`Q32` square roots and the Phong kernels' unit vectors.
+//! square root behind the mesh's exact normals and bounding spheres, the
+//! correctly rounded `Q16`/`Q32` square roots, the Phong kernels' unit
+//! vectors and their `1/|n|` table (`rsqrt_quarter_table`).
 
 /// `(⌊√n⌋, n - ⌊√n⌋²)`, exactly, for every `u64`.
 #[inline]

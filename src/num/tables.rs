@@ -273,17 +273,7 @@ pub const fn rsqrt_quarter_table<const E: usize>() -> [u32; E] {
     while j < E {
         // (2 r)^2 = 2^36 · S / (S + 4 j) <= 2^38: r below 2^18.
         let v = ((1u64 << 36) * s) / (s + 4 * j as u64);
-        let mut lo = 0u64;
-        let mut hi = 1u64 << 21;
-        while lo < hi {
-            let mid = (lo + hi).div_ceil(2);
-            if mid * mid <= v {
-                lo = mid;
-            } else {
-                hi = mid - 1;
-            }
-        }
-        t[j] = lo.div_ceil(2) as u32;
+        t[j] = super::isqrt_u64(v).div_ceil(2) as u32;
         j += 1;
     }
     t
