@@ -104,8 +104,9 @@ fn row11_normals<P: Profile>() -> [[f64; 3]; 3] {
 /// component of the shader's normalised normal, rounded. The shader is
 /// the one the renderers choose: the span kernel
 /// ([`PhongKernelShader`], the colour its span loop computes at that
-/// pixel) where [`PhongKernel::new`] makes one (the `Q16` profile
-/// `fast`), else [`PhongShader`].
+/// pixel) where [`PhongKernel::new`] makes one (the affine `Q16` profile
+/// `fast`), else [`PhongShader`] (`fast-pc` normalises with
+/// `approx16::unit` there, the others with `Vec3::normalize`).
 fn shipped_levels<P: Profile>() -> [[u8; 3]; 3] {
     let attrs = row11_attrs::<P>();
     let one = P::Real::ONE;
@@ -128,15 +129,23 @@ fn shipped_levels<P: Profile>() -> [[u8; 3]; 3] {
         let light = Light::directional(axis, one);
         let shade =
             Shade::new(&material, zero, &[light], Specular::Phong, Viewer::Infinite).unwrap();
-        let colours = match PhongKernel::new(&shade) {
-            Ok(kernel) => {
+        // As the renderers: the kernel for the affine profiles that have
+        // one, else the per-pixel shader.
+        let kernel = (!P::PERSPECTIVE).then(|| PhongKernel::new(&shade));
+        let colours = match kernel {
+            Some(Ok(kernel)) => {
                 assert_eq!(P::NAME, "fast", "a span kernel for {}", P::NAME);
                 let sh = PhongKernelShader::new(&kernel);
                 attrs.map(|a| Shader::<P::Lerp, 3>::shade(&sh, &a))
             }
-            Err(e) => {
-                assert_eq!(e, KernelError::Profile, "{}", P::NAME);
+            other => {
+                if let Some(Err(e)) = other {
+                    assert_eq!(e, KernelError::Profile, "{}", P::NAME);
+                }
                 assert_ne!(P::NAME, "fast");
+                // (For `fast-pc`, perspective, the renderers wrap this
+                // shader to divide its attributes by the interpolated
+                // `1/w`; with no `w` here the normal reaches it as is.)
                 let sh = PhongShader::<P>::new(&shade, false);
                 attrs.map(|a| Shader::<P::Lerp, 3>::shade(&sh, &a))
             }
@@ -246,6 +255,10 @@ fn tolerance(name: &str) -> f64 {
 ///   rounding 1/128 level, the Q30 light direction and Q16 interpolated
 ///   normal below 2^-15 together: 0.5 + 255 · (2^-13.9 + 2^-15) + 1/128
 ///   = 0.532, allowed 0.54;
+/// - `fast-pc`, the per-pixel shader: `approx16::unit` within 2^-15 a
+///   component, the normal rounded to Q16 before it (2^-17, times 1.41 by
+///   the normalisation) and `N·L` after it (2^-17): 0.5 + 255 · (2^-15 +
+///   2.41 · 2^-17) = 0.5125, allowed 0.513;
 /// - `precise`, `f32`, `f64`: the per-pixel shader normalises with
 ///   `Vec3::normalize` ([`tolerance`]) and lights in the profile's scalar
 ///   (a few units of its resolution): 0.5 + 255 · 2.5e-8 (`precise`), 0.5 +
@@ -253,6 +266,7 @@ fn tolerance(name: &str) -> f64 {
 fn level_bound(name: &str) -> f64 {
     match name {
         "fast" => 0.54,
+        "fast-pc" => 0.513,
         "precise" => 0.5 + 255.0 * 2.5e-8,
         "f32" => 0.5 + 255.0 * 4e-6,
         "f64" => 0.5 + 1e-9,
@@ -287,8 +301,8 @@ fn check<P: Profile>() {
         P::NAME,
         levels[1]
     );
-    if P::NAME == "fast" {
-        // Its span kernel's normal, to 1.2e-4 a component, and `fast-pc`'s
+    if P::NAME.starts_with("fast") {
+        // The span kernel's normal, to 1.2e-4 a component, and `fast-pc`'s
         // `approx16::unit`, to 5e-5, on this very triangle: the unit test
         // `render::phong_span::tests::seed_row_11_fast_shaders`.
         return;
@@ -337,3 +351,10 @@ per_profile!(
     /// is rotation invariant per triangle and costs no normalisation per span.
     fn phong_normal_at_row_11_per_profile = check
 );
+
+/// The same for `fast-pc`, whose per-pixel shader normalises with
+/// `approx16::unit` (the perspective profiles take no span kernel).
+#[test]
+fn phong_normal_at_row_11_fast_pc() {
+    check::<fixshade::num::FastPc>();
+}
