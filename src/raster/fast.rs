@@ -725,8 +725,12 @@ fn walk_edges(
 /// `UMULL` and two `MLA`), and the rows reading the record cost more than
 /// reading registers: 2 356 317 with the record made per triangle (a
 /// `memcpy` each), 2 194 324 with it made once by the caller, 2 184 271
-/// with the rows copying it out first, 2 144 533 with the whole kernel
-/// (stage inlined into it) out of line.
+/// with the rows copying it out first, 2 162 038 with the rows out of
+/// line too (their prologue copies the record into their frame, 75
+/// instructions a triangle, and the swap at the lower half selects five
+/// fields through the stack, 43). The kernel as it is out of line
+/// (`draw_small_in`): 2 065 666; with the planes of one form computed in
+/// one piece, inlined 1 857 615, out of line 1 996 973.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
