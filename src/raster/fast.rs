@@ -417,6 +417,15 @@ impl Grad {
 }
 
 impl Grad {
+    /// [`Grad::plane_diff`] without the wrap test, out of line (on ARMv6-M,
+    /// for the depths [`Grad::plane_short`] refuses where the fields do
+    /// not apply: [`WIDE_RESCUE`]).
+    #[inline(never)]
+    #[cold]
+    fn plane_wide_cold(&self, v0: i32, v1: i32, v2: i32) -> (i32, i32, i32, bool) {
+        self.plane_diff::<false>(v0, v1, v2)
+    }
+
     /// [`Grad::plane_fields`] out of line (on ARMv6-M, for the values
     /// [`Grad::plane_short`] refuses: inlined there, it cost the kernel's
     /// other paths more than it saved).
@@ -483,6 +492,15 @@ const PACKED_FIELDS: bool = (cfg!(target_arch = "arm") && !NO_LONG_MUL) || cfg!(
 /// ([`Grad::plane_fields_cold`]): bunny-gouraud raster thumbv6m 3 005 292
 /// -> 2 980 115 (inlined there: 3 016 457).
 const FIELDS_RESCUE: bool = NO_LONG_MUL;
+
+/// On ARMv6-M [`draw_small`] takes the depth plane by [`Grad::plane_diff`]
+/// (64-bit numerators from [`wide`]'s two `MULS`, out of line:
+/// [`Grad::plane_wide_cold`]) where [`Grad::plane_short`] refuses it and
+/// the value is the depth alone (flat objects, `N = 0`: their depths
+/// are not packed, and their differences reach its bound), rather than
+/// handing the triangle to the general path; also in test builds, which
+/// check it against the general path.
+const WIDE_RESCUE: bool = NO_LONG_MUL || cfg!(test);
 
 /// [`draw_small`] takes [`Grad::plane_short`]: on ARMv6-M, and in test
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
@@ -887,6 +905,7 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     } else {
         match g.plane_small::<false>(a.z, b.z, c.z, lim) {
             p if !p.3 & rescue => g.plane_fields_cold([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14),
+            p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(a.z, b.z, c.z),
             p => p,
         }
     };
