@@ -417,6 +417,15 @@ impl Grad {
 }
 
 impl Grad {
+    /// [`Grad::plane_diff`] without the wrap test, out of line (on ARMv6-M,
+    /// for the depths [`Grad::plane_short`] refuses where the fields do
+    /// not apply: [`WIDE_RESCUE`]).
+    #[inline(never)]
+    #[cold]
+    fn plane_wide_cold(&self, v0: i32, v1: i32, v2: i32) -> (i32, i32, i32, bool) {
+        self.plane_diff::<false>(v0, v1, v2)
+    }
+
     /// [`Grad::plane_fields`] out of line (on ARMv6-M, for the values
     /// [`Grad::plane_short`] refuses: inlined there, it cost the kernel's
     /// other paths more than it saved).
@@ -483,6 +492,15 @@ const PACKED_FIELDS: bool = (cfg!(target_arch = "arm") && !NO_LONG_MUL) || cfg!(
 /// ([`Grad::plane_fields_cold`]): bunny-gouraud raster thumbv6m 3 005 292
 /// -> 2 980 115 (inlined there: 3 016 457).
 const FIELDS_RESCUE: bool = NO_LONG_MUL;
+
+/// On ARMv6-M [`draw_small`] takes the depth plane by [`Grad::plane_diff`]
+/// (64-bit numerators from [`wide`]'s two `MULS`, out of line:
+/// [`Grad::plane_wide_cold`]) where [`Grad::plane_short`] refuses it and
+/// the value is the depth alone (flat objects, `N = 0`: their depths
+/// are not packed, and their differences reach its bound), rather than
+/// handing the triangle to the general path; also in test builds, which
+/// check it against the general path.
+const WIDE_RESCUE: bool = NO_LONG_MUL || cfg!(test);
 
 /// [`draw_small`] takes [`Grad::plane_short`]: on ARMv6-M, and in test
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
@@ -714,6 +732,27 @@ fn walk_edges(
 /// the very walk and values (entries `0..=N`) [`setup_fast`] and
 /// [`Walk::rows_fused`] leave (but [`carry_over`]'s unused edge). Tested against the general path on random
 /// and extreme triangles, pixel for pixel and walk for walk.
+///
+/// Inlined, set-up and rows in one piece. Measured on the Cortex-M4
+/// (exact QEMU counts, bunny-gouraud raster 1 833 849 inlined): the
+/// set-up split from the rows as an out-of-line stage writing a
+/// `#[repr(C)]` record (one store a field, loaded by the rows) took about
+/// 470 instructions a triangle by itself, as many as inline (the stage
+/// alone keeps more than 14 values live: the three vertices, the offsets,
+/// the reciprocal; and the level plane's high products left `SMMUL` for
+/// `UMULL` and two `MLA`), and the rows reading the record cost more than
+/// reading registers: 2 356 317 with the record made per triangle (a
+/// `memcpy` each), 2 194 324 with it made once by the caller, 2 184 271
+/// with the rows copying it out first, 2 162 038 with the rows out of
+/// line too (their prologue copies the record into their frame, 75
+/// instructions a triangle, and the swap at the lower half selects five
+/// fields through the stack, 43). The kernel as it is out of line
+/// (`draw_small_in`): 2 065 666; with the planes of one form computed in
+/// one piece, inlined 1 857 615, out of line 1 996 973; out of line with
+/// the reciprocal's factor through `core::hint::black_box` in
+/// [`InvArea::quot_high`] (the products back to `SMMUL`) 2 033 963: the
+/// call costs about 72 instructions a triangle (the vertices stored for
+/// it, the band memory, the frame), the rows' start 29, each row 6.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
@@ -866,6 +905,7 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     } else {
         match g.plane_small::<false>(a.z, b.z, c.z, lim) {
             p if !p.3 & rescue => g.plane_fields_cold([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14),
+            p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(a.z, b.z, c.z),
             p => p,
         }
     };
