@@ -757,20 +757,22 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
     let row_shift = sub.get() + q;
     // (As many bytes as triangles: the caller's slices.)
     for (t, (tri, face)) in tris.iter().zip(faces.iter_mut()).enumerate() {
-        if MARKED {
-            // Projected x is at least 0 here, `UNUSED` negative: a corner
-            // left unprojected means the triangle was culled in object
-            // space. Corner by corner, before the loads of the sign.
-            let x = |k: usize| xy.get(usize::from(tri[k])).map_or(-1, |p| p.0[0]);
-            if x(0) < 0 || x(1) < 0 || x(2) < 0 {
-                continue;
-            }
+        // Each corner loaded once, checked as it comes (a missing
+        // corner: culled when MARKED, else the origin as before).
+        let miss = ScreenXy([if MARKED { -1 } else { 0 }, 0]);
+        let pa = xy.get(usize::from(tri[0])).copied().unwrap_or(miss);
+        if MARKED && pa.0[0] < 0 {
+            continue;
         }
-        // Stored from the screen's corner here (the caller checks it).
-        let [a, b, c] = tri.map(|i| {
-            let p = xy.get(usize::from(i)).copied().unwrap_or_default().0;
-            [i32::from(p[0]), i32::from(p[1])]
-        });
+        let pb = xy.get(usize::from(tri[1])).copied().unwrap_or(miss);
+        if MARKED && pb.0[0] < 0 {
+            continue;
+        }
+        let pc = xy.get(usize::from(tri[2])).copied().unwrap_or(miss);
+        if MARKED && pc.0[0] < 0 {
+            continue;
+        }
+        let [a, b, c] = [pa, pb, pc].map(|p| [i32::from(p.0[0]), i32::from(p.0[1])]);
         // |edges| < 2^15: each product below 2^30.
         let d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
         if d == 0 {
