@@ -70,7 +70,9 @@
 //! [`Workspace::faces`]: super::Workspace::faces
 
 use super::band::PhongShader;
-use super::phong_span::{KernelError, PhongKernel, PhongKernelShader, PosPlane, SpecCache};
+use super::phong_span::{
+    KernelError, PhongKernel, PhongKernelShader, PosPlane, SpecCache, TriQuad,
+};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{
@@ -894,10 +896,15 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 // The exact position plane per triangle
                 // (`PosPlane`).
                 let plane = k.wants_plane();
+                // The triangle's quadratics (`TriQuad`) for one point light.
+                let quad = k.wants_tri();
                 let set = |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| {
                     s.back = t.back;
                     if plane {
                         s.plane = PosPlane::of_tri(frame, po, t);
+                    }
+                    if quad {
+                        s.tri = TriQuad::of_tri(frame, po, t, k);
                     }
                 };
                 self.run::<6, _, _, _>(po, t, sh, set)?;

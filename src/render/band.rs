@@ -1,6 +1,6 @@
 //! Rasterizing a prepared frame into a band (or a whole frame).
 
-use super::phong_span::{PhongFill, PhongKernel, PosPlane};
+use super::phong_span::{PhongFill, PhongKernel, PosPlane, TriQuad};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, PreparedTri, RenderError};
@@ -277,11 +277,15 @@ impl<P: Profile> Frame<'_, P> {
                             // The exact position plane per triangle
                             // (`PosPlane`).
                             let plane = k.wants_plane();
+                            let quad = k.wants_tri();
                             let set = |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
                                        t: &PreparedTri| {
                                 f.back = t.back;
                                 if plane {
                                     f.plane = PosPlane::of_tri(self, po, t);
+                                }
+                                if quad {
+                                    f.tri = TriQuad::of_tri(self, po, t, k);
                                 }
                             };
                             self.draw_spans::<6, _>(po, w, &mut f, &mut stats, set)?;

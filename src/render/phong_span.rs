@@ -519,6 +519,24 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         })
     }
 
+    /// The light of the point loop (module `point`): one point light, a
+    /// local viewer and the Phong model at a shininess below 256 (`None`
+    /// for other kernels). The renderers set a triangle's quadratics
+    /// ([`TriQuad`]) for this kernel.
+    fn point_loop_light(&self) -> Option<&KLight> {
+        match &self.lights[..] {
+            [l] if l.point && self.local && !self.blinn && self.kf < point::KF_MAX => Some(l),
+            _ => None,
+        }
+    }
+
+    /// `true` when the renderers set a triangle's quadratics
+    /// ([`TriQuad`]) for this kernel (see
+    /// [`PhongKernel::point_loop_light`]).
+    pub fn wants_tri(&self) -> bool {
+        self.point_loop_light().is_some()
+    }
+
     /// `true` when the renderers set the triangle's exact position plane
     /// per triangle for this kernel: a specular term of shininess 512 or
     /// more in the position-walking kernel, where the walked Q16
@@ -657,7 +675,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         test: impl FnMut(u32) -> bool,
         write: impl FnMut(u32, Rgb8),
     ) -> u32 {
-        self.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
+        self.fill_with(n, dn, p, dp, back, len, FnOut { test, write }, None)
     }
 
     /// [`PhongKernel::fill`] (the span stages' entry).
@@ -672,6 +690,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         back: bool,
         len: u32,
         mut out: impl Out,
+        tri: Option<(&mut TriQuad, i32, i32)>,
     ) -> u32 {
         if let (true, [l]) = (self.duff, &self.lights[..]) {
             let (n, dn) = if back {
@@ -690,6 +709,16 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             return self.fill_multi(start, n, dn, len, out);
         }
         if let [l] = &self.lights[..] {
+            if let (Some((t, x, y)), Some(l)) = (tri, self.point_loop_light()) {
+                if t.ok() {
+                    let (n, dn) = if back {
+                        (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
+                    } else {
+                        (n, dn)
+                    };
+                    return self.fill_point_tri(l, t, (x, y), (n, dn, p, dp), len, out);
+                }
+            }
             if l.point && self.local && !self.blinn && self.kf < point::KF_MAX {
                 // Positions and light offsets within ±2^29 over the span,
                 // steps within 2^18 (the point loop's 64-bit set-up), for
@@ -1284,6 +1313,9 @@ pub struct PhongFill<'t, 'd, 'b, 'k, 's, T, D: DepthFormat, R> {
     pub back: bool,
     /// The next triangle's position plane (the `PhongPosition` layout).
     pub plane: PosPlane,
+    /// The next triangle's quadratics (the `PhongPosition` layout, one
+    /// point light: [`PhongKernel::wants_tri`]).
+    pub tri: TriQuad,
     drawn: u32,
 }
 
@@ -1312,6 +1344,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             kernel,
             back: false,
             plane: PosPlane::NONE,
+            tri: TriQuad::NONE,
             drawn: 0,
         })
     }
@@ -1328,6 +1361,9 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
 
     #[inline(always)]
     fn run<L: Lerp, const N: usize>(&mut self, s: &Span<L, N>, pp: Option<([i32; 3], [i32; 3])>) {
+        // The triangle's quadratics for the position layout.
+        let tri =
+            (pp.is_some() && self.tri.ok()).then_some((&mut self.tri, s.x0 as i32, s.y as i32));
         let n = [raw(s.a[0]), raw(s.a[1]), raw(s.a[2])];
         let dn = [raw(s.da[0]), raw(s.da[1]), raw(s.da[2])];
         let (p, dp) = pp.unwrap_or(([0; 3], [0; 3]));
@@ -1345,7 +1381,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             None => None,
         };
         let count = if let Some(row) = self.target.span_mut(y, x0, x1) {
-            row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back)
+            row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back, tri)
         } else {
             let t = &mut *self.target;
             let write = move |i: u32, c| t.write_pixel(x0 + i, y, enc(c));
@@ -1358,7 +1394,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         in_range: false,
                     };
                     let test = move |i| d.test(i);
-                    k.fill_with(n, dn, p, dp, back, len, FnOut { test, write })
+                    k.fill_with(n, dn, p, dp, back, len, FnOut { test, write }, tri)
                 }
                 None => k.fill_with(
                     n,
@@ -1371,6 +1407,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
                         test: |_| true,
                         write,
                     },
+                    tri,
                 ),
             }
         };
@@ -1390,6 +1427,9 @@ pub struct PhongKernelShader<'k, 's, R> {
     pub back: bool,
     /// The next triangle's position plane (the `PhongPosition` layout).
     pub plane: PosPlane,
+    /// The next triangle's quadratics (the `PhongPosition` layout, one
+    /// point light: [`PhongKernel::wants_tri`]).
+    pub tri: TriQuad,
 }
 
 impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
@@ -1399,6 +1439,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
             kernel,
             back: false,
             plane: PosPlane::NONE,
+            tri: TriQuad::NONE,
         }
     }
 
@@ -1423,11 +1464,25 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         a: &[L],
         da: &[L],
         pp: ([i32; 3], [i32; 3]),
+        at: Option<(i32, i32)>,
     ) -> u32 {
         let n = [raw(a[0]), raw(a[1]), raw(a[2])];
         let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
         let (p, dp) = pp;
-        row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, (n, dn, p, dp), self.back)
+        let tri = match at {
+            Some((x, y)) if self.tri.ok() => Some((&mut self.tri, x, y)),
+            _ => None,
+        };
+        row_fill::<L, F, D, R>(
+            self.kernel,
+            row,
+            drow,
+            z,
+            dz,
+            (n, dn, p, dp),
+            self.back,
+            tri,
+        )
     }
 }
 
@@ -1447,7 +1502,7 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 3> for PhongKernelShader<'_, '_,
         da: &[L; 3],
         _at: (i32, i32),
     ) -> Option<u32> {
-        Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, ([0; 3], [0; 3])))
+        Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, ([0; 3], [0; 3]), None))
     }
 }
 
@@ -1470,7 +1525,7 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 6> for PhongKernelShader<'_, '_,
         let p = [raw(a[3]), raw(a[4]), raw(a[5])];
         let dp = [raw(da[3]), raw(da[4]), raw(da[5])];
         let pp = (self.plane.start(x0, y, row.len() as u32, p, dp), dp);
-        Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, pp))
+        Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, pp, Some((x0, y))))
     }
 }
 
@@ -1531,6 +1586,7 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     dz: L,
     (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
     back: bool,
+    tri: Option<(&mut TriQuad, i32, i32)>,
 ) -> u32 {
     let len = row.len() as u32;
     match drow {
@@ -1544,7 +1600,7 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
                 in_range,
             };
             let out = RowOut::<F, _> { row, depth };
-            k.fill_with(n, dn, p, dp, back, len, out)
+            k.fill_with(n, dn, p, dp, back, len, out, tri)
         }
         None => k.fill_with(
             n,
@@ -1557,6 +1613,7 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
                 row,
                 depth: NoDepth,
             },
+            tri,
         ),
     }
 }
@@ -2025,3 +2082,6 @@ mod one;
 mod point;
 #[cfg(test)]
 mod tests;
+mod tri;
+
+pub use tri::TriQuad;

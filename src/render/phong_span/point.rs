@@ -65,6 +65,7 @@
 //! (`PhongKernel::general_px`).
 
 use super::one::{rsq_biased, Colour, RS_PACKED};
+use super::tri::TriQuad;
 use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
@@ -81,6 +82,9 @@ use crate::target::{level_q19, Rgb8};
 /// With `point_one`: 6 pixels 1 894 107 and 6 274 357, 8 pixels
 /// 1 892 522 and 6 261 194, 12 pixels 1 951 815 and 6 417 166.
 const SHORT_SPAN: u32 = 8;
+/// Spans below this many pixels of a triangle with quadratics
+/// ([`TriQuad`]) take their pixels one by one as below [`SHORT_SPAN`].
+pub(super) const TRI_SHORT_SPAN: u32 = 8;
 /// Pixels per chunk (the span driver's).
 pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
@@ -220,7 +224,7 @@ struct Chunk {
 /// same proven ranges.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Plan {
-    q: [[i64; 3]; 6],
+    pub(super) q: [[i64; 3]; 6],
 }
 
 impl Plan {
@@ -391,6 +395,89 @@ impl<R: Real> PhongKernel<'_, R> {
             |t| c.of_terms(t),
             &mut out,
         )
+    }
+
+    /// [`PhongKernel::fill`] for one point light, a local viewer and the
+    /// Phong model from the triangle's quadratics ([`TriQuad`]) at the
+    /// span's first pixel `(x, y)`: every chunk, the short ones too, from
+    /// the plan so made ([`TriQuad::plan`]), no set-up of the span's
+    /// vectors; the walked values `span` (normal flipped for back faces)
+    /// serve only the 64-bit path of a chunk whose seeds leave the table.
+    /// Not inlined, as [`PhongKernel::fill_point`].
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn fill_point_tri(
+        &self,
+        l: &KLight,
+        tri: &mut TriQuad,
+        (x, y): (i32, i32),
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+        mut out: impl Out,
+    ) -> u32 {
+        if len < TRI_SHORT_SPAN {
+            // Pixel by pixel (`point_px`) from the walked values: less
+            // than the span's plan and chunk set-up below this length.
+            let c = Colour::of(self, l);
+            let mut passed = 0;
+            for i in 0..len {
+                if out.test(i) {
+                    out.write(i, self.point_px(l, &c, span, i));
+                    passed += 1;
+                }
+            }
+            return passed;
+        }
+        let c = Colour::of(self, l);
+        let mut pl = Plan { q: [[0; 3]; 6] };
+        let mut plan = tri.plan(x, y, &mut pl).then_some(pl);
+        drive(
+            len,
+            |i, k, buf| self.tri_chunk(l, &c, span, &mut plan, i, k as usize, buf),
+            |t| c.of_terms(t),
+            &mut out,
+        )
+    }
+
+    /// [`PhongKernel::point_chunk`] of a span planned from its triangle:
+    /// every chunk from the plan, stepped on.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn tri_chunk(
+        &self,
+        l: &KLight,
+        c: &Colour,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        plan: &mut Option<Plan>,
+        i: u32,
+        k: usize,
+        buf: &mut [u32; CHUNK],
+    ) -> bool {
+        let st = match plan {
+            Some(pl) => {
+                if i > 0 {
+                    pl.step_chunk();
+                }
+                pl.chunk()
+            }
+            None => None,
+        };
+        match st {
+            Some(st) if self.spec => {
+                self.point_run::<true>(&st, k, buf);
+                true
+            }
+            Some(st) => {
+                self.point_run::<false>(&st, k, buf);
+                true
+            }
+            None => {
+                for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
+                    *o = pack(self.point_px(l, c, span, j));
+                }
+                false
+            }
+        }
     }
 
     /// The light terms (`N·L | sp << 16`, [`PhongKernel::terms`]: returns
