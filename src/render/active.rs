@@ -70,9 +70,7 @@
 //! [`Workspace::faces`]: super::Workspace::faces
 
 use super::band::PhongShader;
-use super::phong_span::{
-    KernelError, PhongKernel, PhongKernelShader, PosPlane, SpecCache, TriQuad,
-};
+use super::phong_span::{KernelError, PhongKernel, PhongKernelShader, PosPlane, SpecCache};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{
@@ -904,7 +902,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                         s.plane = PosPlane::of_tri(frame, po, t);
                     }
                     if quad {
-                        s.tri = TriQuad::of_tri(frame, po, t, k);
+                        s.tri.set_of_tri(frame, po, t);
                     }
                 };
                 self.run::<6, _, _, _>(po, t, sh, set)?;

@@ -1,6 +1,6 @@
 //! Rasterizing a prepared frame into a band (or a whole frame).
 
-use super::phong_span::{PhongFill, PhongKernel, PosPlane, TriQuad};
+use super::phong_span::{PhongFill, PhongKernel, PosPlane};
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{Frame, Layout, PreparedObject, PreparedTri, RenderError};
@@ -285,7 +285,7 @@ impl<P: Profile> Frame<'_, P> {
                                     f.plane = PosPlane::of_tri(self, po, t);
                                 }
                                 if quad {
-                                    f.tri = TriQuad::of_tri(self, po, t, k);
+                                    f.tri.set_of_tri(self, po, t);
                                 }
                             };
                             self.draw_spans::<6, _>(po, w, &mut f, &mut stats, set)?;

@@ -710,7 +710,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         }
         if let [l] = &self.lights[..] {
             if let (Some((t, x, y)), Some(l)) = (tri, self.point_loop_light()) {
-                if t.ok() {
+                if t.wants() {
                     let (n, dn) = if back {
                         (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
                     } else {
@@ -1363,7 +1363,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
     fn run<L: Lerp, const N: usize>(&mut self, s: &Span<L, N>, pp: Option<([i32; 3], [i32; 3])>) {
         // The triangle's quadratics for the position layout.
         let tri =
-            (pp.is_some() && self.tri.ok()).then_some((&mut self.tri, s.x0 as i32, s.y as i32));
+            (pp.is_some() && self.tri.wants()).then_some((&mut self.tri, s.x0 as i32, s.y as i32));
         let n = [raw(s.a[0]), raw(s.a[1]), raw(s.a[2])];
         let dn = [raw(s.da[0]), raw(s.da[1]), raw(s.da[2])];
         let (p, dp) = pp.unwrap_or(([0; 3], [0; 3]));
@@ -1470,7 +1470,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         let dn = [raw(da[0]), raw(da[1]), raw(da[2])];
         let (p, dp) = pp;
         let tri = match at {
-            Some((x, y)) if self.tri.ok() => Some((&mut self.tri, x, y)),
+            Some((x, y)) if self.tri.wants() => Some((&mut self.tri, x, y)),
             _ => None,
         };
         row_fill::<L, F, D, R>(

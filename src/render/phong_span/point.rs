@@ -84,7 +84,7 @@ use crate::target::{level_q19, Rgb8};
 const SHORT_SPAN: u32 = 8;
 /// Spans below this many pixels of a triangle with quadratics
 /// ([`TriQuad`]) take their pixels one by one as below [`SHORT_SPAN`].
-pub(super) const TRI_SHORT_SPAN: u32 = 8;
+pub(super) const TRI_SHORT_SPAN: u32 = 4;
 /// Pixels per chunk (the span driver's).
 pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
@@ -266,6 +266,35 @@ impl Plan {
             yv: seeds(c.0, c.1)?,
         })
     }
+
+    /// [`Plan::chunk`] of a plan whose triples are already in the loop's
+    /// units times `2^32` (a triangle's, [`TriQuad`]: the values biased
+    /// by `2^31`, so that their high words are rounded, the differences'
+    /// floored): the high words.
+    #[inline(never)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn chunk_hi(&self) -> Option<Chunk> {
+        let r = |c: [i64; 3]| {
+            (
+                (c[0] >> 32) as i32,
+                (c[1] >> 32) as i32,
+                (c[2] >> 32) as i32,
+            )
+        };
+        let [qa, qb, qc, qd, qe, qf] = self.q;
+        let b = r(qb);
+        let c = r(qc);
+        Some(Chunk {
+            a: r(qa),
+            b,
+            c,
+            d: r(qd),
+            e: r(qe),
+            f: r(qf),
+            yl: seeds(b.0, b.1)?,
+            yv: seeds(c.0, c.1)?,
+        })
+    }
 }
 
 /// `v` and its step `d` times `2^s`, `s` making the largest component
@@ -428,9 +457,15 @@ impl<R: Real> PhongKernel<'_, R> {
             }
             return passed;
         }
+        if !tri.ready(l) {
+            return self.fill_point(l, span, len, out);
+        }
         let c = Colour::of(self, l);
-        let mut pl = Plan { q: [[0; 3]; 6] };
-        let mut plan = tri.plan(x, y, &mut pl).then_some(pl);
+        let mut plan = if tri.plan(x, y) {
+            Some(&mut tri.span)
+        } else {
+            None
+        };
         drive(
             len,
             |i, k, buf| self.tri_chunk(l, &c, span, &mut plan, i, k as usize, buf),
@@ -448,7 +483,7 @@ impl<R: Real> PhongKernel<'_, R> {
         l: &KLight,
         c: &Colour,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        plan: &mut Option<Plan>,
+        plan: &mut Option<&mut Plan>,
         i: u32,
         k: usize,
         buf: &mut [u32; CHUNK],
@@ -458,7 +493,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 if i > 0 {
                     pl.step_chunk();
                 }
-                pl.chunk()
+                pl.chunk_hi()
             }
             None => None,
         };

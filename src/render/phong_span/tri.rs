@@ -55,7 +55,7 @@ const EXTRA: u32 = 12;
 const EXTENT: i32 = 1 << 12;
 
 /// The six quadratics of one triangle (see the module docs).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug)]
 pub struct TriQuad {
     /// The anchor pixel (vertex 0's).
     at: [i32; 2],
@@ -68,6 +68,14 @@ pub struct TriQuad {
     row: [[i64; 3]; 6],
     /// The row of `row` (`None`: not set).
     ry: Option<i32>,
+    /// The last span's plan ([`TriQuad::plan`]).
+    pub(super) span: Plan,
+    /// The vertices (screen position in subpixels, normal raw `Q30`
+    /// flipped for back faces, eye position raw `Q16`) and subpixel bits
+    /// of a set-up not yet made ([`TriQuad::ready`]).
+    verts: [([i32; 2], [i32; 3], [i32; 3]); 3],
+    sub: SubpixelBits,
+    pending: bool,
     /// Made (else the spans take the per-span path).
     ok: bool,
 }
@@ -118,6 +126,37 @@ fn quad2(u: &[[i32; 3]; 3], w: &[[i32; 3]; 3]) -> [i64; 6] {
             wmul(ux, wx),
             wmul(ux, wy).wrapping_add(wmul(uy, wx)),
             wmul(uy, wy),
+        ];
+        for (q, t) in q.iter_mut().zip(t) {
+            *q = q.wrapping_add(t);
+        }
+    }
+    q
+}
+
+/// The quadratic `q` times `2^k`, its value biased by `2^31` (wrapping:
+/// the values over the triangle stay within `i64`, below `2^63` by the
+/// ranges checked).
+#[inline(always)]
+fn loop_units(q: [i64; 6], k: u32) -> [i64; 6] {
+    let mut q = q.map(|c| c.wrapping_shl(k));
+    q[0] = q[0].wrapping_add(1 << 31);
+    q
+}
+
+/// [`quad2`] of `u` with itself (six products a component).
+#[inline(always)]
+fn square(u: &[[i32; 3]; 3]) -> [i64; 6] {
+    let mut q = [0i64; 6];
+    for k in 0..3 {
+        let (u0, ux, uy) = (u[0][k], u[1][k], u[2][k]);
+        let t = [
+            wmul(u0, u0),
+            wmul(u0, ux).wrapping_mul(2),
+            wmul(u0, uy).wrapping_mul(2),
+            wmul(ux, ux),
+            wmul(ux, uy).wrapping_mul(2),
+            wmul(uy, uy),
         ];
         for (q, t) in q.iter_mut().zip(t) {
             *q = q.wrapping_add(t);
@@ -206,11 +245,51 @@ impl TriQuad {
         q: [[0; 6]; 6],
         row: [[0; 3]; 6],
         ry: None,
+        span: Plan { q: [[0; 3]; 6] },
+        verts: [([0; 2], [0; 3], [0; 3]); 3],
+        sub: SubpixelBits::DEFAULT,
+        pending: false,
         ok: false,
     };
 
     /// Whether the set-up was made.
     pub fn ok(&self) -> bool {
+        self.ok
+    }
+
+    /// Whether the spans take the quadratics' path: a set-up made, or
+    /// pending (made at the triangle's first span long enough,
+    /// [`TriQuad::ready`]).
+    #[inline(always)]
+    pub(super) fn wants(&self) -> bool {
+        self.ok | self.pending
+    }
+
+    /// Keeps the triangle of vertices `v` (as [`TriQuad::new`]) for a
+    /// set-up at its first span that needs it ([`TriQuad::ready`]): a
+    /// triangle whose spans in a band are all short costs no set-up there.
+    #[inline(always)]
+    pub fn set(&mut self, v: [([i32; 2], [i32; 3], [i32; 3]); 3], sub: SubpixelBits, back: bool) {
+        self.verts = v;
+        if back {
+            for (_, n, _) in &mut self.verts {
+                *n = n.map(i32::wrapping_neg);
+            }
+        }
+        self.sub = sub;
+        self.pending = true;
+        self.ok = false;
+        self.ry = None;
+    }
+
+    /// Makes the pending set-up for light `l` (the kernel's point light);
+    /// whether the quadratics are made.
+    #[inline(always)]
+    pub(super) fn ready(&mut self, l: &KLight) -> bool {
+        if self.pending {
+            self.pending = false;
+            self.ok = self.make(l).is_some();
+        }
         self.ok
     }
 
@@ -227,10 +306,12 @@ impl TriQuad {
         sub: SubpixelBits,
         back: bool,
     ) -> Self {
-        match k.point_loop_light() {
-            Some(l) => Self::make(l, v, sub, back).unwrap_or(Self::NONE),
-            None => Self::NONE,
+        let mut t = Self::NONE;
+        if let Some(l) = k.point_loop_light() {
+            t.set(v, sub, back);
+            t.ready(l);
         }
+        t
     }
 
     #[allow(
@@ -238,12 +319,9 @@ impl TriQuad {
         clippy::cast_sign_loss,
         clippy::needless_range_loop
     )]
-    fn make(
-        l: &KLight,
-        v: [([i32; 2], [i32; 3], [i32; 3]); 3],
-        sub: SubpixelBits,
-        back: bool,
-    ) -> Option<Self> {
+    #[inline(never)]
+    fn make(&mut self, l: &KLight) -> Option<()> {
+        let (v, sub) = (self.verts, self.sub);
         let ([x0, y0], _, _) = v[0];
         let ([x1, y1], _, _) = v[1];
         let ([x2, y2], _, _) = v[2];
@@ -277,8 +355,7 @@ impl TriQuad {
         let mut vv = [[0i64; 3]; 3];
         for j in 0..3 {
             for c in 0..3 {
-                let nc = v[j].1[c];
-                vn[j][c] = if back { nc.wrapping_neg() } else { nc };
+                vn[j][c] = v[j].1[c];
                 let pc = i64::from(v[j].2[c]);
                 lv[j][c] = i64::from(l.at[c]) - pc;
                 vv[j][c] = -pc;
@@ -366,47 +443,45 @@ impl TriQuad {
                 return None;
             }
         }
-        Some(Self {
-            at: [xa, ya],
-            q: [
-                quad2(&n, &n),
-                quad2(&lt, &lt),
-                quad2(&vt, &vt),
-                quad2(&n, &lt),
-                quad2(&n, &vt),
-                quad2(&lt, &vt),
-            ],
-            row: [[0; 3]; 6],
-            ry: None,
-            ok: true,
-        })
+        // In the loop's units times 2^32 (A, D, E, F: 2^-30 of the
+        // products, B, C: 2^-29), the values biased by 2^31.
+        self.at = [xa, ya];
+        self.q = [
+            loop_units(square(&n), 2),
+            loop_units(square(&lt), 3),
+            loop_units(square(&vt), 3),
+            loop_units(quad2(&n, &lt), 2),
+            loop_units(quad2(&n, &vt), 2),
+            loop_units(quad2(&lt, &vt), 2),
+        ];
+        self.ry = None;
+        Some(())
     }
 
-    /// The quadratics of triangle `tri` of object `po` in `frame` (the
-    /// `PhongPosition` layout) for kernel `k`; [`TriQuad::NONE`] when its
-    /// vertices are not at hand.
+    /// Keeps triangle `tri` of object `po` in `frame` (the
+    /// `PhongPosition` layout) for its set-up ([`TriQuad::set`]); none
+    /// when its vertices are not at hand.
     #[inline(never)]
-    pub(crate) fn of_tri<P: crate::num::Profile>(
+    pub(crate) fn set_of_tri<P: crate::num::Profile>(
+        &mut self,
         frame: &super::super::Frame<'_, P>,
         po: &super::super::PreparedObject,
         tri: &super::super::PreparedTri,
-        k: &PhongKernel<'_, P::Real>,
-    ) -> Self {
-        if k.point_loop_light().is_none() {
-            return Self::NONE;
-        }
+    ) {
         let mut v = [([0i32; 2], [0i32; 3], [0i32; 3]); 3];
         for (o, &i) in v.iter_mut().zip(tri.v.iter()) {
-            let Some(xy) = frame.xy(usize::from(i)) else {
-                return Self::NONE;
-            };
-            let Some(vx) = frame.vertex::<6>(po, i, xy) else {
-                return Self::NONE;
+            let vx = frame
+                .xy(usize::from(i))
+                .and_then(|xy| Some((xy, frame.vertex::<6>(po, i, xy)?)));
+            let Some((xy, vx)) = vx else {
+                self.pending = false;
+                self.ok = false;
+                return;
             };
             let a = |j: usize| raw::<P::Lerp>(vx.attrs[j]);
             *o = (xy, [a(0), a(1), a(2)], [a(3), a(4), a(5)]);
         }
-        Self::new(k, v, P::SUBPIXEL_BITS, tri.back)
+        self.set(v, P::SUBPIXEL_BITS, tri.back);
     }
 
     /// The point loop's plan of the span from pixel `(x, y)` (inside the
@@ -415,41 +490,54 @@ impl TriQuad {
     /// the previous span's row when it is the row above (three additions
     /// a quadratic), else made from the quadratic; then two products by
     /// the offset along the row a quadratic.
-    #[inline(always)]
-    pub(super) fn plan(&mut self, x: i32, y: i32, plan: &mut Plan) -> bool {
+    #[inline(never)]
+    pub(super) fn plan(&mut self, x: i32, y: i32) -> bool {
         let (x, y) = (x.wrapping_sub(self.at[0]), y.wrapping_sub(self.at[1]));
         if x.unsigned_abs() >= 1 << 15 || y.unsigned_abs() >= 1 << 15 {
             return false;
         }
-        match self.ry {
-            Some(r) if r == y => {}
-            Some(r) if r.wrapping_add(1) == y => {
-                for (row, q) in self.row.iter_mut().zip(self.q.iter()) {
-                    row[0] = row[0].wrapping_add(row[1]);
-                    row[1] = row[1].wrapping_add(q[5].wrapping_mul(2));
-                    row[2] = row[2].wrapping_add(q[4]);
-                }
-            }
+        let next = match self.ry {
+            Some(r) if r == y => false,
+            Some(r) if r.wrapping_add(1) == y => true,
             _ => {
-                for (row, &[f, d, e, _, b, c]) in self.row.iter_mut().zip(self.q.iter()) {
-                    let cy = mul_small(c, y);
-                    row[0] = f.wrapping_add(mul_small(e.wrapping_add(cy), y));
-                    row[1] = e.wrapping_add(cy.wrapping_mul(2)).wrapping_add(c);
-                    row[2] = d.wrapping_add(mul_small(b, y));
-                }
+                self.set_row(y);
+                false
             }
-        }
+        };
         self.ry = Some(y);
-        for ((o, row), q) in plan.q.iter_mut().zip(self.row.iter()).zip(self.q.iter()) {
-            let a = q[3];
+        // One quadratic at a time: its row stepped (the row below the
+        // last span's), then its value and differences at x.
+        for ((o, row), q) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.row.iter_mut())
+            .zip(self.q.iter())
+        {
+            let (a, b, c) = (q[3], q[4], q[5]);
+            if next {
+                row[0] = row[0].wrapping_add(row[1]);
+                row[1] = row[1].wrapping_add(c.wrapping_add(c));
+                row[2] = row[2].wrapping_add(b);
+            }
             let ax = mul_small(a, x);
             let u = row[2].wrapping_add(ax);
-            *o = [
-                row[0].wrapping_add(mul_small(u, x)),
-                u.wrapping_add(ax).wrapping_add(a),
-                a.wrapping_mul(2),
-            ];
+            o[0] = row[0].wrapping_add(mul_small(u, x));
+            o[1] = u.wrapping_add(ax).wrapping_add(a);
+            o[2] = a.wrapping_add(a);
         }
         true
+    }
+
+    /// The rows' values at row `y` from the quadratics (a span's first
+    /// row in the band, or after a row without span).
+    #[inline(never)]
+    fn set_row(&mut self, y: i32) {
+        for (row, &[f, d, e, _, b, c]) in self.row.iter_mut().zip(self.q.iter()) {
+            let cy = mul_small(c, y);
+            row[0] = f.wrapping_add(mul_small(e.wrapping_add(cy), y));
+            row[1] = e.wrapping_add(cy.wrapping_mul(2)).wrapping_add(c);
+            row[2] = d.wrapping_add(mul_small(b, y));
+        }
     }
 }
