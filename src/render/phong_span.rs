@@ -1381,7 +1381,12 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             None => None,
         };
         let count = if let Some(row) = self.target.span_mut(y, x0, x1) {
-            row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back, tri)
+            match tri {
+                Some(t) => {
+                    row_fill_tri::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back, t)
+                }
+                None => row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back),
+            }
         } else {
             let t = &mut *self.target;
             let write = move |i: u32, c| t.write_pixel(x0 + i, y, enc(c));
@@ -1473,16 +1478,13 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
             Some((x, y)) if self.tri.wants() => Some((&mut self.tri, x, y)),
             _ => None,
         };
-        row_fill::<L, F, D, R>(
-            self.kernel,
-            row,
-            drow,
-            z,
-            dz,
-            (n, dn, p, dp),
-            self.back,
-            tri,
-        )
+        let span = (n, dn, p, dp);
+        match tri {
+            Some(t) => {
+                row_fill_tri::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back, t)
+            }
+            None => row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back),
+        }
     }
 }
 
@@ -1579,6 +1581,39 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
+    k: &PhongKernel<'_, R>,
+    row: &mut [F::Raw],
+    drow: Option<&mut [D::Raw]>,
+    z: L,
+    dz: L,
+    span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+    back: bool,
+) -> u32 {
+    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, None)
+}
+
+/// [`row_fill`] of a span of a triangle with quadratics (`tri`: the
+/// triangle's [`TriQuad`] and the span's first pixel), apart: the other
+/// spans' copy keeps its code.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn row_fill_tri<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
+    k: &PhongKernel<'_, R>,
+    row: &mut [F::Raw],
+    drow: Option<&mut [D::Raw]>,
+    z: L,
+    dz: L,
+    span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+    back: bool,
+    tri: (&mut TriQuad, i32, i32),
+) -> u32 {
+    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, Some(tri))
+}
+
+/// The body of [`row_fill`] and [`row_fill_tri`].
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn row_out<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     k: &PhongKernel<'_, R>,
     row: &mut [F::Raw],
     drow: Option<&mut [D::Raw]>,
@@ -2030,17 +2065,29 @@ const CHUNK: usize = 32;
 #[inline(always)]
 fn drive(
     len: u32,
+    chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
+    terms: impl Fn(u32) -> [i32; 3],
+    out: &mut impl Out,
+) -> u32 {
+    drive_in(&mut [0u32; CHUNK], len, chunk, terms, out)
+}
+
+/// [`drive`] with the buffer `buf` (kept by the caller: no zeroing a
+/// span).
+#[inline(always)]
+fn drive_in(
+    buf: &mut [u32; CHUNK],
+    len: u32,
     mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
     terms: impl Fn(u32) -> [i32; 3],
     out: &mut impl Out,
 ) -> u32 {
-    let mut buf = [0u32; CHUNK];
     // Failures counted (the rarer case in a frame), passes derived.
     let mut failed = 0;
     let mut i = 0u32;
     while i < len {
         let k = (len - i).min(CHUNK as u32);
-        let t = chunk(i, k, &mut buf);
+        let t = chunk(i, k, buf);
         let b = buf.get(..k as usize).unwrap_or_default();
         failed += if t {
             out.chunk(i, b, &terms)

@@ -66,7 +66,9 @@
 
 use super::one::{rsq_biased, Colour, RS_PACKED};
 use super::tri::TriQuad;
-use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
+use super::{
+    drive, drive_in, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK,
+};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
 use crate::target::{level_q19, Rgb8};
@@ -365,9 +367,14 @@ fn at_pixel(
 /// (Q29), then `G = 1/(|l̃| |ṽ|)` (Q28), then `L̂·V̂` (Q26); `nlnv`,
 /// `(n·L̂)(n·V̂)` (Q28). (`n·L̂`, Q30, waits in the colour's place.)
 #[derive(Clone, Copy, Debug, Default)]
-struct Px {
+pub(super) struct Px {
     g: i32,
     nlnv: i32,
+}
+
+impl Px {
+    /// Zeros.
+    pub(super) const ZERO: Self = Self { g: 0, nlnv: 0 };
 }
 
 /// `F̃·G` in the last pass of the point loop (ARMv6-M), else in a pass of
@@ -379,7 +386,7 @@ const FUSED_FG: bool = cfg!(armv6m);
 /// Pixels a group of the point loop's passes (the values between passes
 /// of a group are kept in [`Px`]s: 128 bytes of stack, zeroed once a
 /// chunk).
-const GROUP: usize = 16;
+pub(super) const GROUP: usize = 16;
 
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
@@ -461,14 +468,15 @@ impl<R: Real> PhongKernel<'_, R> {
             return self.fill_point(l, span, len, out);
         }
         let c = Colour::of(self, l);
-        let mut plan = if tri.plan(x, y) {
-            Some(&mut tri.span)
-        } else {
-            None
-        };
-        drive(
+        let planned = tri.plan(x, y);
+        let TriQuad {
+            span: pl, px, buf, ..
+        } = tri;
+        let mut plan = if planned { Some(pl) } else { None };
+        drive_in(
+            buf,
             len,
-            |i, k, buf| self.tri_chunk(l, &c, span, &mut plan, i, k as usize, buf),
+            |i, k, buf| self.tri_chunk(l, &c, span, &mut plan, px, i, k as usize, buf),
             |t| c.of_terms(t),
             &mut out,
         )
@@ -484,6 +492,7 @@ impl<R: Real> PhongKernel<'_, R> {
         c: &Colour,
         span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
         plan: &mut Option<&mut Plan>,
+        px: &mut [Px; GROUP],
         i: u32,
         k: usize,
         buf: &mut [u32; CHUNK],
@@ -499,11 +508,11 @@ impl<R: Real> PhongKernel<'_, R> {
         };
         match st {
             Some(st) if self.spec => {
-                self.point_run::<true>(&st, k, buf);
+                self.point_run_in::<true>(px, &st, k, buf);
                 true
             }
             Some(st) => {
-                self.point_run::<false>(&st, k, buf);
+                self.point_run_in::<false>(px, &st, k, buf);
                 true
             }
             None => {
@@ -759,8 +768,21 @@ impl<R: Real> PhongKernel<'_, R> {
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
     fn point_run<const SPEC: bool>(&self, st: &Chunk, k: usize, col: &mut [u32; CHUNK]) {
+        self.point_run_in::<SPEC>(&mut [Px::default(); GROUP], st, k, col);
+    }
+
+    /// [`PhongKernel::point_run`] with the values between passes in `px`
+    /// (kept by the caller: no zeroing a chunk).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+    fn point_run_in<const SPEC: bool>(
+        &self,
+        px: &mut [Px; GROUP],
+        st: &Chunk,
+        k: usize,
+        col: &mut [u32; CHUNK],
+    ) {
         let k = k.min(PCHUNK);
-        let mut px = [Px::default(); GROUP];
         let (mut xb, mut xb1, xb2) = st.b;
         let (mut d, mut d1, d2) = st.d;
         let (mut la, mut lb) = st.yl;

@@ -44,7 +44,8 @@
 //! loop's error (module `point`), unchanged. Tested against `f64` on
 //! random and extreme triangles (`tri_quad_*` in this module's tests).
 
-use super::point::Plan;
+use super::point::{Plan, Px, GROUP};
+use super::CHUNK;
 use super::{raw, KLight, PhongKernel};
 use crate::num::wide::wmul;
 use crate::num::{InvArea, Real, SubpixelBits};
@@ -70,6 +71,10 @@ pub struct TriQuad {
     ry: Option<i32>,
     /// The last span's plan ([`TriQuad::plan`]).
     pub(super) span: Plan,
+    /// The point loop's buffers (the span driver's and the values
+    /// between passes), kept here: not zeroed a span.
+    pub(super) buf: [u32; CHUNK],
+    pub(super) px: [Px; GROUP],
     /// The vertices (screen position in subpixels, normal raw `Q30`
     /// flipped for back faces, eye position raw `Q16`) and subpixel bits
     /// of a set-up not yet made ([`TriQuad::ready`]).
@@ -112,8 +117,9 @@ fn shift_round(x: i64, s: i32) -> Option<i32> {
 }
 
 /// The product of two affine vector functions `u0 + ux·x + uy·y` and
-/// `w0 + wx·x + wy·y` as `[f, d, e, a, b, c]` (wrapping `i64`).
-#[inline(always)]
+/// `w0 + wx·x + wy·y` as `[f, d, e, a, b, c]` (wrapping `i64`). Not
+/// inlined (nor [`square`]): one at a time, few values live.
+#[inline(never)]
 fn quad2(u: &[[i32; 3]; 3], w: &[[i32; 3]; 3]) -> [i64; 6] {
     let mut q = [0i64; 6];
     for k in 0..3 {
@@ -138,14 +144,15 @@ fn quad2(u: &[[i32; 3]; 3], w: &[[i32; 3]; 3]) -> [i64; 6] {
 /// the values over the triangle stay within `i64`, below `2^63` by the
 /// ranges checked).
 #[inline(always)]
-fn loop_units(q: [i64; 6], k: u32) -> [i64; 6] {
-    let mut q = q.map(|c| c.wrapping_shl(k));
-    q[0] = q[0].wrapping_add(1 << 31);
-    q
+fn loop_units(o: &mut [i64; 6], q: [i64; 6], k: u32) {
+    for (o, q) in o.iter_mut().zip(q) {
+        *o = q.wrapping_shl(k);
+    }
+    o[0] = o[0].wrapping_add(1 << 31);
 }
 
 /// [`quad2`] of `u` with itself (six products a component).
-#[inline(always)]
+#[inline(never)]
 fn square(u: &[[i32; 3]; 3]) -> [i64; 6] {
     let mut q = [0i64; 6];
     for k in 0..3 {
@@ -246,6 +253,8 @@ impl TriQuad {
         row: [[0; 3]; 6],
         ry: None,
         span: Plan { q: [[0; 3]; 6] },
+        buf: [0; CHUNK],
+        px: [Px::ZERO; GROUP],
         verts: [([0; 2], [0; 3], [0; 3]); 3],
         sub: SubpixelBits::DEFAULT,
         pending: false,
@@ -446,14 +455,13 @@ impl TriQuad {
         // In the loop's units times 2^32 (A, D, E, F: 2^-30 of the
         // products, B, C: 2^-29), the values biased by 2^31.
         self.at = [xa, ya];
-        self.q = [
-            loop_units(square(&n), 2),
-            loop_units(square(&lt), 3),
-            loop_units(square(&vt), 3),
-            loop_units(quad2(&n, &lt), 2),
-            loop_units(quad2(&n, &vt), 2),
-            loop_units(quad2(&lt, &vt), 2),
-        ];
+        let [qa, qb, qc, qd, qe, qf] = &mut self.q;
+        loop_units(qa, square(&n), 2);
+        loop_units(qb, square(&lt), 3);
+        loop_units(qc, square(&vt), 3);
+        loop_units(qd, quad2(&n, &lt), 2);
+        loop_units(qe, quad2(&n, &vt), 2);
+        loop_units(qf, quad2(&lt, &vt), 2);
         self.ry = None;
         Some(())
     }
