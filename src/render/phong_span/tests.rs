@@ -1060,3 +1060,101 @@ fn tri_quad_random_against_f64() {
     assert!(made >= 50 && quads >= 20_000, "{made} {quads}");
     assert!(worst <= 1.0, "{worst}");
 }
+
+/// Extreme triangles of the point loop: a triangle 4 000 pixels wide, a
+/// sliver, one of a pixel, vertex normals 157° apart, the light on the
+/// surface, the eye close up, positions near the coordinate range's
+/// edge. Each either has no quadratics (the per-span path) or stays
+/// within 1 level of the twin at every pixel; none panics. The wide one,
+/// 4 000 pixels across (forward differences over whole rows of the
+/// 32-bit loop re-seeded a chunk at a time), keeps its quadratics.
+#[test]
+fn tri_quad_extreme_triangles() {
+    let up = unit([0.0, 0.0, 1.0]);
+    let tilt = unit([0.3, 0.2, 1.0]);
+    let c = |n: f64, lp: [f64; 3]| point_case(n, lp);
+    // (name, light, screen vertices, normals, positions, quadratics expected)
+    let cases: [(
+        &str,
+        [f64; 3],
+        [[f64; 2]; 3],
+        [[f64; 3]; 3],
+        [[f64; 3]; 3],
+        Option<bool>,
+    ); 7] = [
+        (
+            "wide",
+            [0.0, 0.0, -2.0],
+            [[10.0, 10.0], [4010.0, 30.0], [2000.0, 60.0]],
+            [up, tilt, up],
+            [[-20.0, 1.0, -30.0], [20.0, 1.0, -30.0], [0.0, 0.7, -30.0]],
+            Some(true),
+        ),
+        (
+            "sliver",
+            [0.5, 0.5, -3.0],
+            [[10.0, 10.0], [300.0, 11.0], [150.0, 10.6]],
+            [up, tilt, up],
+            [[-1.0, 0.0, -5.0], [1.0, 0.0, -5.0], [0.0, 0.01, -5.0]],
+            None,
+        ),
+        (
+            "pixel",
+            [0.5, 0.5, -3.0],
+            [[10.2, 10.2], [11.1, 10.4], [10.5, 11.3]],
+            [up, tilt, up],
+            [[-0.01, 0.0, -5.0], [0.01, 0.0, -5.0], [0.0, 0.01, -5.0]],
+            None,
+        ),
+        (
+            "normals 157° apart",
+            [0.5, 0.5, -3.0],
+            [[10.0, 10.0], [80.0, 10.0], [10.0, 80.0]],
+            [unit([1.0, 0.0, 0.2]), unit([-1.0, 0.0, 0.2]), up],
+            [[-0.5, 0.0, -5.0], [0.5, 0.0, -5.0], [-0.5, 0.7, -5.0]],
+            Some(false),
+        ),
+        (
+            "light on the surface",
+            [0.0, 0.2, -5.0],
+            [[10.0, 10.0], [80.0, 10.0], [10.0, 80.0]],
+            [up, tilt, up],
+            [[-0.5, 0.0, -5.0], [0.5, 0.0, -5.0], [-0.5, 0.7, -5.0]],
+            Some(false),
+        ),
+        (
+            "eye close up",
+            [0.5, 0.5, 1.0],
+            [[10.0, 10.0], [200.0, 10.0], [10.0, 200.0]],
+            [up, tilt, up],
+            [[-1.0, -1.0, -0.05], [1.0, -1.0, -0.05], [-1.0, 1.0, -0.05]],
+            Some(false),
+        ),
+        (
+            "far away",
+            [0.5, 0.5, -3.0],
+            [[10.0, 10.0], [60.0, 10.0], [10.0, 60.0]],
+            [up, tilt, up],
+            [
+                [-1.0, 0.0, -16400.0],
+                [1.0, 0.0, -16400.0],
+                [0.0, 1.0, -16400.0],
+            ],
+            Some(false),
+        ),
+    ];
+    for (name, lp, s, n, p, expect) in cases {
+        for shin in [1.0, 100.0, 255.0] {
+            let r = tri_error(&c(shin, lp), s, n, p);
+            if let Some(e) = expect {
+                assert_eq!(r.is_some(), e, "{name}: quadratics {:?}", r.map(|r| r.1));
+            }
+            if let Some((worst, quads)) = r {
+                std::println!(
+                    "{name} n {shin}: {worst:.3} levels, {quads} pixels from the quadratics"
+                );
+                assert!(worst <= 1.0, "{name} n {shin}: {worst}");
+            }
+        }
+    }
+}

@@ -177,7 +177,12 @@ fn square(u: &[[i32; 3]; 3]) -> [i64; 6] {
 /// centroid) and the upper bound (the largest vertex).
 #[inline(always)]
 fn range(u: &[[i32; 3]; 3]) -> (i64, i64) {
-    let s = [0, 1, 2].map(|k| u[0][k] + u[1][k] + u[2][k]);
+    let [u0, u1, u2] = u;
+    let s = [
+        u0[0] + u1[0] + u2[0],
+        u0[1] + u1[1] + u2[1],
+        u0[2] + u1[2] + u2[2],
+    ];
     let dot = |a: [i32; 3], b: [i32; 3]| wmul(a[0], b[0]) + wmul(a[1], b[1]) + wmul(a[2], b[2]);
     let ss = dot(s, s);
     let mut lo = i64::MAX;
