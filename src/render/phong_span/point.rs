@@ -55,6 +55,12 @@
 //! per-span range check and step test, the packed `1/|n|` table and, on
 //! the M0, `F̃·G` in the last pass); frames unchanged on the firmware.
 //!
+//! In the renderers a span's plan comes from its triangle's quadratics
+//! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
+//! stepped in y), already in the loop's units times `2^32`, so that a
+//! chunk's state is the plan's high words ([`Plan::chunk_hi`]); spans
+//! below [`TRI_SHORT_SPAN`] pixels keep `point_one`. The loop is the same.
+//!
 //! Per pixel (three passes over the chunk, few live values each, all
 //! 32-bit): `1/|l̃|` and `n·L̂`; `1/|ṽ|`, `n·V̂` and `L̂·V̂`; `A`, `w·A`,
 //! then the light terms as the directional loop ([`PhongKernel::terms`]),

@@ -1061,6 +1061,17 @@ fn tri_quad_random_against_f64() {
     assert!(worst <= 1.0, "{worst}");
 }
 
+/// A named extreme triangle: light, screen vertices, normals, positions,
+/// and whether it has quadratics (`None`: either).
+type ExtremeTri = (
+    &'static str,
+    [f64; 3],
+    [[f64; 2]; 3],
+    [[f64; 3]; 3],
+    [[f64; 3]; 3],
+    Option<bool>,
+);
+
 /// Extreme triangles of the point loop: a triangle 4 000 pixels wide, a
 /// sliver, one of a pixel, vertex normals 157° apart, the light on the
 /// surface, the eye close up, positions near the coordinate range's
@@ -1074,14 +1085,7 @@ fn tri_quad_extreme_triangles() {
     let tilt = unit([0.3, 0.2, 1.0]);
     let c = |n: f64, lp: [f64; 3]| point_case(n, lp);
     // (name, light, screen vertices, normals, positions, quadratics expected)
-    let cases: [(
-        &str,
-        [f64; 3],
-        [[f64; 2]; 3],
-        [[f64; 3]; 3],
-        [[f64; 3]; 3],
-        Option<bool>,
-    ); 7] = [
+    let cases: [ExtremeTri; 7] = [
         (
             "wide",
             [0.0, 0.0, -2.0],

@@ -153,6 +153,7 @@ fn loop_units(o: &mut [i64; 6], q: [i64; 6], k: u32) {
 
 /// [`quad2`] of `u` with itself (six products a component).
 #[inline(never)]
+#[allow(clippy::needless_range_loop)]
 fn square(u: &[[i32; 3]; 3]) -> [i64; 6] {
     let mut q = [0i64; 6];
     for k in 0..3 {
@@ -280,7 +281,7 @@ impl TriQuad {
     }
 
     /// Keeps the triangle of vertices `v` (as [`TriQuad::new`]) for a
-    /// set-up at its first span that needs it ([`TriQuad::ready`]): a
+    /// set-up at its first span that needs it (`TriQuad::ready`): a
     /// triangle whose spans in a band are all short costs no set-up there.
     #[inline(always)]
     pub fn set(&mut self, v: [([i32; 2], [i32; 3], [i32; 3]); 3], sub: SubpixelBits, back: bool) {
