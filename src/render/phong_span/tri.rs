@@ -91,15 +91,47 @@ pub struct TriQuad {
 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 fn mul_small(x: i64, y: i32) -> i64 {
     if cfg!(armv6m) {
-        let (hi, lo) = ((x >> 32) as i32, x as u32);
-        // lo = 2^16 lh + ll: each product within i32 for |y| < 2^15.
-        let (lh, ll) = ((lo >> 16) as i32, (lo & 0xFFFF) as i32);
-        (i64::from(hi.wrapping_mul(y)) << 32)
-            .wrapping_add(i64::from(lh * y) << 16)
-            .wrapping_add(i64::from(ll * y))
+        mul_small_split(x, y)
     } else {
         x.wrapping_mul(i64::from(y))
     }
+}
+
+/// [`mul_small`] on ARMv6-M (compiled everywhere: tested on the host).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn mul_small_split(x: i64, y: i32) -> i64 {
+    let (hi, lo) = ((x >> 32) as i32, x as u32);
+    // lo = 2^16 lh + ll: each product within i32 for |y| < 2^15.
+    let (lh, ll) = ((lo >> 16) as i32, (lo & 0xFFFF) as i32);
+    (i64::from(hi.wrapping_mul(y)) << 32)
+        .wrapping_add(i64::from(lh * y) << 16)
+        .wrapping_add(i64::from(ll * y))
+}
+
+/// `x · y` modulo `2^64` (ARMv6-M: from 32-bit halves, no 64-bit
+/// multiply call).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn mul_wide(x: i64, y: i32) -> i64 {
+    if cfg!(armv6m) {
+        mul_wide_split(x, y)
+    } else {
+        x.wrapping_mul(i64::from(y))
+    }
+}
+
+/// [`mul_wide`] on ARMv6-M (compiled everywhere: tested on the host).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn mul_wide_split(x: i64, y: i32) -> i64 {
+    let (hi, lo) = ((x >> 32) as i32, x as u32);
+    // lo · y = lo · (y mod 2^32) - lo · 2^32 when y < 0.
+    let mut p = crate::num::wide::wmul_u32(lo, y as u32) as i64;
+    if y < 0 {
+        p = p.wrapping_sub(i64::from(lo) << 32);
+    }
+    (i64::from(hi.wrapping_mul(y)) << 32).wrapping_add(p)
 }
 
 /// `round(x / 2^s)` for `s >= 1`, `x · 2^-s` for `s <= 0`, within
@@ -189,7 +221,8 @@ fn range(u: &[[i32; 3]; 3]) -> (i64, i64) {
     let mut lo = i64::MAX;
     let mut hi = 0;
     for &uj in u {
-        lo = lo.min(6 * dot(s, uj) - ss);
+        let t = dot(s, uj);
+        lo = lo.min((t << 2) + (t << 1) - ss);
         hi = hi.max(dot(uj, uj));
     }
     (lo, hi)
@@ -236,16 +269,14 @@ fn plane(
         i64::from(a[1]) - i64::from(a[0]),
         i64::from(a[2]) - i64::from(a[0]),
     );
-    let [dx1, dy1, dx2, dy2] = d.map(i64::from);
-    let nx = d1.wrapping_mul(dy2).wrapping_sub(d2.wrapping_mul(dy1));
-    let ny = d2.wrapping_mul(dx1).wrapping_sub(d1.wrapping_mul(dx2));
+    let nx = mul_wide(d1, d[3]).wrapping_sub(mul_wide(d2, d[1]));
+    let ny = mul_wide(d2, d[0]).wrapping_sub(mul_wide(d1, d[2]));
     let (gx, gy) = (inv.quot(nx, s + EXTRA), inv.quot(ny, s + EXTRA));
     if gx.unsigned_abs() >= 1 << 40 || gy.unsigned_abs() >= 1 << 40 {
         return None;
     }
-    let t = gx
-        .wrapping_mul(ox)
-        .wrapping_add(gy.wrapping_mul(oy))
+    let t = mul_wide(gx, ox as i32)
+        .wrapping_add(mul_wide(gy, oy as i32))
         .wrapping_add(1 << (s - 1))
         >> s;
     Some([(i64::from(a[0]) << EXTRA).wrapping_add(t), gx, gy])
@@ -401,8 +432,10 @@ impl TriQuad {
         for j in 0..3 {
             let (mut ql, mut qv) = (0u64, 0u64);
             for c in 0..3 {
-                ql += (lv[j][c] * lv[j][c]) as u64;
-                qv += (vv[j][c] * vv[j][c]) as u64;
+                // Within 2^30 (checked above).
+                let (a, b) = (lv[j][c] as i32, vv[j][c] as i32);
+                ql += wmul(a, a) as u64;
+                qv += wmul(b, b) as u64;
             }
             bl = bl.max(ql);
             bv = bv.max(qv);
@@ -454,7 +487,7 @@ impl TriQuad {
             // units).
             let dx = t[1].map(|c| (c.unsigned_abs() >> 2) as i32 + 1);
             let dd = wmul(dx[0], dx[0]) + wmul(dx[1], dx[1]) + wmul(dx[2], dx[2]);
-            if 9 * (dd << 8) > lo {
+            if (dd << 11) + (dd << 8) > lo {
                 return None;
             }
         }
@@ -552,6 +585,35 @@ impl TriQuad {
             row[0] = f.wrapping_add(mul_small(e.wrapping_add(cy), y));
             row[1] = e.wrapping_add(cy.wrapping_mul(2)).wrapping_add(c);
             row[2] = d.wrapping_add(mul_small(b, y));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The ARMv6-M products equal the 64-bit ones (modulo `2^64`).
+    #[test]
+    fn split_products() {
+        let mut r = 0x9e37_79b9_7f4a_7c15u64;
+        for i in 0..100_000 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let x = r as i64;
+            let y = (r >> (i % 40)) as i32;
+            assert_eq!(mul_wide_split(x, y), x.wrapping_mul(i64::from(y)));
+            let ys = y % (1 << 15);
+            assert_eq!(mul_small_split(x, ys), x.wrapping_mul(i64::from(ys)));
+        }
+        for (x, y) in [
+            (i64::MIN, -1),
+            (i64::MAX, i32::MIN),
+            (-1, 32767),
+            (1 << 62, -32767),
+        ] {
+            assert_eq!(mul_wide_split(x, y), x.wrapping_mul(i64::from(y)));
         }
     }
 }
