@@ -732,8 +732,13 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             return self.fill_multi(start, n, dn, len, out);
         }
         if let [l] = &self.lights[..] {
+            // The triangle's quadratics (`TriQuad`) for spans of
+            // `TRI_SHORT_SPAN` pixels or more, where it has them (made at
+            // its first such span; its ranges proven over the whole
+            // triangle, so no test a span); the walked values' paths
+            // otherwise.
             if let (Some((t, x, y)), Some(l)) = (tri, self.point_loop_light()) {
-                if t.wants() {
+                if len >= point::TRI_SHORT_SPAN && t.wants() && t.ready(l) {
                     let (n, dn) = if back {
                         (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
                     } else {

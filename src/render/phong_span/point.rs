@@ -445,6 +445,9 @@ impl<R: Real> PhongKernel<'_, R> {
     /// the plan so made ([`TriQuad::plan`]), no set-up of the span's
     /// vectors; the walked values `span` (normal flipped for back faces)
     /// serve only the 64-bit path of a chunk whose seeds leave the table.
+    /// For spans of [`TRI_SHORT_SPAN`] pixels or more of a triangle whose
+    /// set-up is made (`TriQuad::ready`: its ranges proven over the whole
+    /// triangle); the shorter ones take [`PhongKernel::fill_point`].
     /// Not inlined, as [`PhongKernel::fill_point`].
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
@@ -457,22 +460,6 @@ impl<R: Real> PhongKernel<'_, R> {
         len: u32,
         mut out: impl Out,
     ) -> u32 {
-        if len < TRI_SHORT_SPAN {
-            // Pixel by pixel (`point_px`) from the walked values: less
-            // than the span's plan and chunk set-up below this length.
-            let c = Colour::of(self, l);
-            let mut passed = 0;
-            for i in 0..len {
-                if out.test(i) {
-                    out.write(i, self.point_px(l, &c, span, i));
-                    passed += 1;
-                }
-            }
-            return passed;
-        }
-        if !tri.ready(l) {
-            return self.fill_point(l, span, len, out);
-        }
         let c = Colour::of(self, l);
         let planned = tri.plan(x, y);
         let TriQuad {

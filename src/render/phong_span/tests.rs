@@ -1085,7 +1085,23 @@ fn tri_quad_extreme_triangles() {
     let tilt = unit([0.3, 0.2, 1.0]);
     let c = |n: f64, lp: [f64; 3]| point_case(n, lp);
     // (name, light, screen vertices, normals, positions, quadratics expected)
-    let cases: [ExtremeTri; 7] = [
+    let cases: [ExtremeTri; 9] = [
+        (
+            "far light",
+            [16000.0, 0.0, 16000.0],
+            [[10.0, 10.0], [60.0, 10.0], [10.0, 60.0]],
+            [up, tilt, up],
+            [[-1.0, 0.0, -5.0], [1.0, 0.0, -5.0], [0.0, 1.0, -5.0]],
+            None,
+        ),
+        (
+            "far light 2",
+            [8000.0, 0.0, 4000.0],
+            [[10.0, 10.0], [60.0, 10.0], [10.0, 60.0]],
+            [up, tilt, up],
+            [[-1.0, 0.0, -5.0], [1.0, 0.0, -5.0], [0.0, 1.0, -5.0]],
+            None,
+        ),
         (
             "wide",
             [0.0, 0.0, -2.0],

@@ -30,9 +30,11 @@
 //! most `½ + ½|x| + ½|y|` units, `x` and `y` within `2^12` pixels of the
 //! anchor: `2^-17` of `A`, `B`, `C`) and the 32-bit loop's drift within a
 //! chunk (248 units of `2^-29`). A triangle that fails them (vertex
-//! normals more than ~75° apart, a light or the eye near the triangle
+//! normals far apart (`|n|²` near 1/4: ~120°), a light or the eye near the triangle
 //! compared with its size, a triangle wider than `2^12` pixels, positions
-//! beyond `±2^30` raw) keeps the per-span path.
+//! or light offsets beyond `±2^29` raw, as the per-span loop) keeps the
+//! per-span path; every span also passes the per-span loop's range test
+//! (`PhongKernel::fill`), else the 64-bit path.
 //!
 //! # Error
 //! The quadratics are exact for the rounded planes: the normal within
@@ -405,7 +407,7 @@ impl TriQuad {
                 let pc = i64::from(v[j].2[c]);
                 lv[j][c] = i64::from(l.at[c]) - pc;
                 vv[j][c] = -pc;
-                if lv[j][c].unsigned_abs() >= 1 << 30 || pc.unsigned_abs() >= 1 << 30 {
+                if lv[j][c].unsigned_abs() >= 1 << 29 || pc.unsigned_abs() >= 1 << 29 {
                     return None;
                 }
             }
