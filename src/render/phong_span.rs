@@ -146,8 +146,8 @@
 //! range test a span. Spans below 4 pixels keep `point_one`; a set-up
 //! is made at a triangle's first longer span in the band. Measured
 //! (dodecahedron Phong raster, M4 and M0; span sweep phong-kpoint):
-//! 1 886 263 -> 1 854 788 and 6 256 609 -> 5 913 630; 176.38 -> 171.01 and
-//! 698.55 -> 663.28 a pixel. The loop itself (~93 instructions a pixel
+//! 1 886 263 -> 1 848 422 and 6 256 609 -> 5 911 473; 176.38 -> 169.48 and
+//! 698.55 -> 661.69 a pixel. The loop itself (~93 instructions a pixel
 //! on the M4, ~570 on the M0) is unchanged and now the floor: with the
 //! channels (~24), the row and band walk and the set-ups (~4 800 a
 //! triangle and band on the M4) the frame stays above its budget.
