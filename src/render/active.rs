@@ -894,10 +894,15 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 // The exact position plane per triangle
                 // (`PosPlane`).
                 let plane = k.wants_plane();
+                // The triangle's quadratics (`TriQuad`) for one point light.
+                let quad = k.wants_tri();
                 let set = |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| {
                     s.back = t.back;
                     if plane {
                         s.plane = PosPlane::of_tri(frame, po, t);
+                    }
+                    if quad {
+                        s.tri.set_of_tri(frame, po, t);
                     }
                 };
                 self.run::<6, _, _, _>(po, t, sh, set)?;

@@ -277,11 +277,15 @@ impl<P: Profile> Frame<'_, P> {
                             // The exact position plane per triangle
                             // (`PosPlane`).
                             let plane = k.wants_plane();
+                            let quad = k.wants_tri();
                             let set = |f: &mut PhongFill<'_, '_, '_, '_, '_, T, D, P::Real>,
                                        t: &PreparedTri| {
                                 f.back = t.back;
                                 if plane {
                                     f.plane = PosPlane::of_tri(self, po, t);
+                                }
+                                if quad {
+                                    f.tri.set_of_tri(self, po, t);
                                 }
                             };
                             self.draw_spans::<6, _>(po, w, &mut f, &mut stats, set)?;

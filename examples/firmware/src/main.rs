@@ -39,9 +39,9 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
-use fixshade::num::{Fast, Profile, Q16};
+use fixshade::num::{Fast, Profile, SubpixelBits, Q16};
 use fixshade::raster::{Fill, Flat, GouraudMono, Shader, Span, Spans};
-use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader};
+use fixshade::render::{Capacity, PhongFill, PhongKernel, PhongShader, TriQuad};
 use fixshade::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8};
 use fixshade_scenes::{
     check, render_frame_in, BandPool, ChipFields, FrameError, Pixel, Probe, SceneLine, BAND_PIXELS,
@@ -429,6 +429,27 @@ fn phong_kernel_spans(
             a[3..].copy_from_slice(&p);
             da[..3].copy_from_slice(&dn);
             da[3..].copy_from_slice(&dp);
+            // The point light's spans from their triangle's quadratics
+            // (`TriQuad`), as the renderers draw them: a triangle whose
+            // normal and position step along x alone, covering the
+            // region (vertices at the centres of pixels (x0, 0), (x0 +
+            // 2 SPAN_LONG, 0) and (x0, 2 SPAN_ROWS)).
+            if kernel.wants_tri() {
+                let sub = SubpixelBits::DEFAULT;
+                let c = |px: u32| ((px as i32) << sub.get()) + (1 << (sub.get() - 1));
+                let far = |v: [i32; 3], d: [i32; 3]| {
+                    [0, 1, 2].map(|k| v[k] + d[k] * 2 * SPAN_LONG as i32)
+                };
+                let v = [
+                    ([c(x0), c(0)], n, p),
+                    ([c(x0 + 2 * SPAN_LONG), c(0)], far(n, dn), far(p, dp)),
+                    ([c(x0), c(2 * SPAN_ROWS)], n, p),
+                ];
+                fill.tri = TriQuad::new(&kernel, v, sub, false);
+                if !fill.tri.ok() {
+                    return Err(bad());
+                }
+            }
             yield_marker();
             for y in 0..SPAN_ROWS {
                 let s = black_box(Span {

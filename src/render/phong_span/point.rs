@@ -55,6 +55,12 @@
 //! per-span range check and step test, the packed `1/|n|` table and, on
 //! the M0, `F̃·G` in the last pass); frames unchanged on the firmware.
 //!
+//! In the renderers a span's plan comes from its triangle's quadratics
+//! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
+//! stepped in y), already in the loop's units times `2^32`, so that a
+//! chunk's state is the plan's high words ([`Plan::chunk_hi`]); spans
+//! below [`TRI_SHORT_SPAN`] pixels keep `point_one`. The loop is the same.
+//!
 //! Per pixel (three passes over the chunk, few live values each, all
 //! 32-bit): `1/|l̃|` and `n·L̂`; `1/|ṽ|`, `n·V̂` and `L̂·V̂`; `A`, `w·A`,
 //! then the light terms as the directional loop ([`PhongKernel::terms`]),
@@ -65,7 +71,10 @@
 //! (`PhongKernel::general_px`).
 
 use super::one::{rsq_biased, Colour, RS_PACKED};
-use super::{drive, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK};
+use super::tri::TriQuad;
+use super::{
+    drive, drive_in, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK,
+};
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
 use crate::target::{level_q19, Rgb8};
@@ -81,6 +90,9 @@ use crate::target::{level_q19, Rgb8};
 /// With `point_one`: 6 pixels 1 894 107 and 6 274 357, 8 pixels
 /// 1 892 522 and 6 261 194, 12 pixels 1 951 815 and 6 417 166.
 const SHORT_SPAN: u32 = 8;
+/// Spans below this many pixels of a triangle with quadratics
+/// ([`TriQuad`]) take their pixels one by one as below [`SHORT_SPAN`].
+pub(super) const TRI_SHORT_SPAN: u32 = 4;
 /// Pixels per chunk (the span driver's).
 pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
@@ -220,7 +232,7 @@ struct Chunk {
 /// same proven ranges.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Plan {
-    q: [[i64; 3]; 6],
+    pub(super) q: [[i64; 3]; 6],
 }
 
 impl Plan {
@@ -258,6 +270,35 @@ impl Plan {
             d: r(qd, 30),
             e: r(qe, 30),
             f: r(qf, 30),
+            yl: seeds(b.0, b.1)?,
+            yv: seeds(c.0, c.1)?,
+        })
+    }
+
+    /// [`Plan::chunk`] of a plan whose triples are already in the loop's
+    /// units times `2^32` (a triangle's, [`TriQuad`]: the values biased
+    /// by `2^31`, so that their high words are rounded, the differences'
+    /// floored): the high words.
+    #[inline(never)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn chunk_hi(&self) -> Option<Chunk> {
+        let r = |c: [i64; 3]| {
+            (
+                (c[0] >> 32) as i32,
+                (c[1] >> 32) as i32,
+                (c[2] >> 32) as i32,
+            )
+        };
+        let [qa, qb, qc, qd, qe, qf] = self.q;
+        let b = r(qb);
+        let c = r(qc);
+        Some(Chunk {
+            a: r(qa),
+            b,
+            c,
+            d: r(qd),
+            e: r(qe),
+            f: r(qf),
             yl: seeds(b.0, b.1)?,
             yv: seeds(c.0, c.1)?,
         })
@@ -332,9 +373,14 @@ fn at_pixel(
 /// (Q29), then `G = 1/(|l̃| |ṽ|)` (Q28), then `L̂·V̂` (Q26); `nlnv`,
 /// `(n·L̂)(n·V̂)` (Q28). (`n·L̂`, Q30, waits in the colour's place.)
 #[derive(Clone, Copy, Debug, Default)]
-struct Px {
+pub(super) struct Px {
     g: i32,
     nlnv: i32,
+}
+
+impl Px {
+    /// Zeros.
+    pub(super) const ZERO: Self = Self { g: 0, nlnv: 0 };
 }
 
 /// `F̃·G` in the last pass of the point loop (ARMv6-M), else in a pass of
@@ -346,7 +392,7 @@ const FUSED_FG: bool = cfg!(armv6m);
 /// Pixels a group of the point loop's passes (the values between passes
 /// of a group are kept in [`Px`]s: 128 bytes of stack, zeroed once a
 /// chunk).
-const GROUP: usize = 16;
+pub(super) const GROUP: usize = 16;
 
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
@@ -391,6 +437,84 @@ impl<R: Real> PhongKernel<'_, R> {
             |t| c.of_terms(t),
             &mut out,
         )
+    }
+
+    /// [`PhongKernel::fill`] for one point light, a local viewer and the
+    /// Phong model from the triangle's quadratics ([`TriQuad`]) at the
+    /// span's first pixel `(x, y)`: every chunk, the short ones too, from
+    /// the plan so made ([`TriQuad::plan`]), no set-up of the span's
+    /// vectors; the walked values `span` (normal flipped for back faces)
+    /// serve only the 64-bit path of a chunk whose seeds leave the table.
+    /// For spans of [`TRI_SHORT_SPAN`] pixels or more of a triangle whose
+    /// set-up is made (`TriQuad::ready`: its ranges proven over the whole
+    /// triangle); the shorter ones take [`PhongKernel::fill_point`].
+    /// Not inlined, as [`PhongKernel::fill_point`].
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn fill_point_tri(
+        &self,
+        l: &KLight,
+        tri: &mut TriQuad,
+        (x, y): (i32, i32),
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        len: u32,
+        mut out: impl Out,
+    ) -> u32 {
+        let c = Colour::of(self, l);
+        let planned = tri.plan(x, y);
+        let TriQuad {
+            span: pl, px, buf, ..
+        } = tri;
+        let mut plan = if planned { Some(pl) } else { None };
+        drive_in(
+            buf,
+            len,
+            |i, k, buf| self.tri_chunk(l, &c, span, &mut plan, px, i, k as usize, buf),
+            |t| c.of_terms(t),
+            &mut out,
+        )
+    }
+
+    /// [`PhongKernel::point_chunk`] of a span planned from its triangle:
+    /// every chunk from the plan, stepped on.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn tri_chunk(
+        &self,
+        l: &KLight,
+        c: &Colour,
+        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        plan: &mut Option<&mut Plan>,
+        px: &mut [Px; GROUP],
+        i: u32,
+        k: usize,
+        buf: &mut [u32; CHUNK],
+    ) -> bool {
+        let st = match plan {
+            Some(pl) => {
+                if i > 0 {
+                    pl.step_chunk();
+                }
+                pl.chunk_hi()
+            }
+            None => None,
+        };
+        match st {
+            Some(st) if self.spec => {
+                self.point_run_in::<true>(px, &st, k, buf);
+                true
+            }
+            Some(st) => {
+                self.point_run_in::<false>(px, &st, k, buf);
+                true
+            }
+            None => {
+                for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
+                    *o = pack(self.point_px(l, c, span, j));
+                }
+                false
+            }
+        }
     }
 
     /// The light terms (`N·L | sp << 16`, [`PhongKernel::terms`]: returns
@@ -637,8 +761,21 @@ impl<R: Real> PhongKernel<'_, R> {
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
     fn point_run<const SPEC: bool>(&self, st: &Chunk, k: usize, col: &mut [u32; CHUNK]) {
+        self.point_run_in::<SPEC>(&mut [Px::default(); GROUP], st, k, col);
+    }
+
+    /// [`PhongKernel::point_run`] with the values between passes in `px`
+    /// (kept by the caller: no zeroing a chunk).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+    fn point_run_in<const SPEC: bool>(
+        &self,
+        px: &mut [Px; GROUP],
+        st: &Chunk,
+        k: usize,
+        col: &mut [u32; CHUNK],
+    ) {
         let k = k.min(PCHUNK);
-        let mut px = [Px::default(); GROUP];
         let (mut xb, mut xb1, xb2) = st.b;
         let (mut d, mut d1, d2) = st.d;
         let (mut la, mut lb) = st.yl;

@@ -899,3 +899,282 @@ fn plane_start_error() {
     std::println!("plane start: {cases} triangles, worst at the middle {worst_mid:.4} raw");
     assert!(cases > 3000 && worst_mid <= 0.5);
 }
+
+/// One triangle of the point loop from its quadratics (`TriQuad`): every
+/// row's span from the pixel centres inside the triangle (vertices `s` in
+/// pixels, normals `n`, eye positions `p`), the kernel's colours against
+/// the twin on the exactly interpolated normal and position at each
+/// centre; returns the worst channel error (levels) and how many pixels
+/// took the quadratics (spans of `TRI_SHORT_SPAN` pixels or more), or
+/// `None` when the triangle has no quadratics.
+fn tri_error(c: &Case, s: [[f64; 2]; 3], n: [[f64; 3]; 3], p: [[f64; 3]; 3]) -> Option<(f64, u32)> {
+    let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+    let k = PhongKernel::new(&shade).unwrap();
+    let twin = twin_of(c);
+    let sub = crate::num::SubpixelBits::DEFAULT;
+    let sc = f64::from(1u32 << sub.get());
+    let xy = s.map(|v| v.map(|c| (c * sc).round() as i32));
+    let sf = xy.map(|v| v.map(|c| f64::from(c) / sc));
+    let verts = [0, 1, 2].map(|j| (xy[j], q30(n[j]), q16(p[j])));
+    let mut tri = TriQuad::new(&k, verts, sub, false);
+    if !tri.ok() {
+        return None;
+    }
+    // Barycentric weights at (x, y).
+    let area = (sf[1][0] - sf[0][0]) * (sf[2][1] - sf[0][1])
+        - (sf[2][0] - sf[0][0]) * (sf[1][1] - sf[0][1]);
+    let bary = |x: f64, y: f64| {
+        let e = |a: usize, b: usize| {
+            ((sf[b][0] - sf[a][0]) * (y - sf[a][1]) - (x - sf[a][0]) * (sf[b][1] - sf[a][1])) / area
+        };
+        [e(1, 2), e(2, 0), e(0, 1)]
+    };
+    let lerp = |w: [f64; 3], a: [[f64; 3]; 3]| {
+        [0, 1, 2].map(|k| w[0] * a[0][k] + w[1] * a[1][k] + w[2] * a[2][k])
+    };
+    let (x_lo, x_hi) = (
+        sf.iter().map(|v| v[0]).fold(f64::MAX, f64::min),
+        sf.iter().map(|v| v[0]).fold(f64::MIN, f64::max),
+    );
+    let (y_lo, y_hi) = (
+        sf.iter().map(|v| v[1]).fold(f64::MAX, f64::min),
+        sf.iter().map(|v| v[1]).fold(f64::MIN, f64::max),
+    );
+    let (mut worst, mut quads) = (0f64, 0u32);
+    for y in y_lo.floor() as i32..=y_hi.ceil() as i32 {
+        let inside = |x: i32| {
+            bary(f64::from(x) + 0.5, f64::from(y) + 0.5)
+                .iter()
+                .all(|&w| w >= 0.0)
+        };
+        let xs: Vec<i32> = (x_lo.floor() as i32..=x_hi.ceil() as i32)
+            .filter(|&x| inside(x))
+            .collect();
+        let (Some(&x0), Some(&x1)) = (xs.first(), xs.last()) else {
+            continue;
+        };
+        let len = (x1 - x0 + 1) as u32;
+        let at = |x: i32| bary(f64::from(x) + 0.5, f64::from(y) + 0.5);
+        let (n0, p0) = (lerp(at(x0), n), lerp(at(x0), p));
+        let (n1, p1) = (lerp(at(x0 + 1), n), lerp(at(x0 + 1), p));
+        let dn = [0, 1, 2].map(|k| n1[k] - n0[k]);
+        let dp = [0, 1, 2].map(|k| p1[k] - p0[k]);
+        let mut got = std::vec![None; len as usize];
+        k.fill_with(
+            q30(n0),
+            q30(dn),
+            q16(p0),
+            q16(dp),
+            false,
+            len,
+            FnOut {
+                test: |_| true,
+                write: |i: u32, c| got[i as usize] = Some(c),
+            },
+            Some((&mut tri, x0, y)),
+        );
+        if len >= point::TRI_SHORT_SPAN {
+            quads += len;
+        }
+        for (i, g) in got.iter().enumerate() {
+            let w = at(x0 + i as i32);
+            let e = twin.at(
+                Vec3::new(lerp(w, n)[0], lerp(w, n)[1], lerp(w, n)[2]).normalize(),
+                {
+                    let q = lerp(w, p);
+                    Vec3::new(q[0], q[1], q[2])
+                },
+            );
+            let g = g.unwrap();
+            for (g, w) in [g.r, g.g, g.b].into_iter().zip([e.x, e.y, e.z]) {
+                worst = worst.max((f64::from(g) - w * 255.0).abs());
+            }
+        }
+    }
+    Some((worst, quads))
+}
+
+/// The `f64` twin of a case's shade.
+fn twin_of(c: &Case) -> Shade<f64> {
+    let mat64 = Material {
+        color: to64(c.mat.color),
+        ka: c.mat.ka.to_f64(),
+        kd: c.mat.kd.to_f64(),
+        ks: c.mat.ks.to_f64(),
+        shininess: c.mat.shininess.to_f64(),
+    };
+    let l64: Vec<Light<f64>> = c
+        .lights
+        .iter()
+        .map(|l| Light {
+            kind: match l.kind {
+                LightKind::Point(p) => LightKind::Point(to64(p)),
+                LightKind::Directional(d) => LightKind::Directional(to64(d)),
+            },
+            intensity: l.intensity.to_f64(),
+            color: to64(l.color),
+        })
+        .collect();
+    Shade::new(&mat64, c.ambient.to_f64(), &l64, c.specular, c.viewer).unwrap()
+}
+
+/// Random triangles of the point loop from their quadratics (`TriQuad`):
+/// 10 to 120 pixels across, vertex normals up to ~35° apart, the light
+/// 1 to 4 units from the surface, shininess 1 to 255: within 1 level of
+/// the `f64` twin at every pixel, and most pixels from the quadratics.
+#[test]
+fn tri_quad_random_against_f64() {
+    let mut seed = 0x1234_5678_9abc_def1u64;
+    let mut f = |lo: f64, hi: f64| {
+        lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut worst, mut quads, mut made) = (0f64, 0u32, 0);
+    for t in 0..60 {
+        let n = [1.0, 3.0, 20.0, 100.0, 255.0][t % 5];
+        let lp = [f(-2.0, 2.0), f(-2.0, 2.0), f(-3.0, 0.0)];
+        let c = point_case(n, lp);
+        let size = f(10.0, 120.0);
+        let (cx, cy) = (f(20.0, 200.0), f(20.0, 200.0));
+        let s = [0, 1, 2].map(|_| [cx + f(-0.5, 0.5) * size, cy + f(-0.5, 0.5) * size]);
+        // A surface 4 to 6 units in front of the eye, spanning about a
+        // unit; normals around its facing direction.
+        let depth = f(-6.0, -4.0);
+        let p = s.map(|v| {
+            [
+                (v[0] - 110.0) / 100.0,
+                (v[1] - 110.0) / 100.0,
+                depth + (v[0] - cx) / 300.0,
+            ]
+        });
+        let base = [f(-0.3, 0.3), f(-0.3, 0.3), 1.0];
+        let nv = [0, 1, 2].map(|_| unit([base[0] + f(-0.3, 0.3), base[1] + f(-0.3, 0.3), base[2]]));
+        if let Some((e, q)) = tri_error(&c, s, nv, p) {
+            made += 1;
+            quads += q;
+            worst = worst.max(e);
+        }
+    }
+    std::println!(
+        "tri quads vs f64: {worst:.3} levels, {made} triangles, {quads} pixels from the quadratics"
+    );
+    assert!(made >= 50 && quads >= 20_000, "{made} {quads}");
+    assert!(worst <= 1.0, "{worst}");
+}
+
+/// A named extreme triangle: light, screen vertices, normals, positions,
+/// and whether it has quadratics (`None`: either).
+type ExtremeTri = (
+    &'static str,
+    [f64; 3],
+    [[f64; 2]; 3],
+    [[f64; 3]; 3],
+    [[f64; 3]; 3],
+    Option<bool>,
+);
+
+/// Extreme triangles of the point loop: a triangle 4 000 pixels wide, a
+/// sliver, one of a pixel, vertex normals 157° apart, the light on the
+/// surface, the eye close up, positions near the coordinate range's
+/// edge. Each either has no quadratics (the per-span path) or stays
+/// within 1 level of the twin at every pixel; none panics. The wide one,
+/// 4 000 pixels across (forward differences over whole rows of the
+/// 32-bit loop re-seeded a chunk at a time), keeps its quadratics.
+#[test]
+fn tri_quad_extreme_triangles() {
+    let up = unit([0.0, 0.0, 1.0]);
+    let tilt = unit([0.3, 0.2, 1.0]);
+    let c = |n: f64, lp: [f64; 3]| point_case(n, lp);
+    // (name, light, screen vertices, normals, positions, quadratics expected)
+    let cases: [ExtremeTri; 9] = [
+        (
+            "far light",
+            [16000.0, 0.0, 16000.0],
+            [[10.0, 10.0], [60.0, 10.0], [10.0, 60.0]],
+            [up, tilt, up],
+            [[-1.0, 0.0, -5.0], [1.0, 0.0, -5.0], [0.0, 1.0, -5.0]],
+            None,
+        ),
+        (
+            "far light 2",
+            [8000.0, 0.0, 4000.0],
+            [[10.0, 10.0], [60.0, 10.0], [10.0, 60.0]],
+            [up, tilt, up],
+            [[-1.0, 0.0, -5.0], [1.0, 0.0, -5.0], [0.0, 1.0, -5.0]],
+            None,
+        ),
+        (
+            "wide",
+            [0.0, 0.0, -2.0],
+            [[10.0, 10.0], [4010.0, 30.0], [2000.0, 60.0]],
+            [up, tilt, up],
+            [[-20.0, 1.0, -30.0], [20.0, 1.0, -30.0], [0.0, 0.7, -30.0]],
+            Some(true),
+        ),
+        (
+            "sliver",
+            [0.5, 0.5, -3.0],
+            [[10.0, 10.0], [300.0, 11.0], [150.0, 10.6]],
+            [up, tilt, up],
+            [[-1.0, 0.0, -5.0], [1.0, 0.0, -5.0], [0.0, 0.01, -5.0]],
+            None,
+        ),
+        (
+            "pixel",
+            [0.5, 0.5, -3.0],
+            [[10.2, 10.2], [11.1, 10.4], [10.5, 11.3]],
+            [up, tilt, up],
+            [[-0.01, 0.0, -5.0], [0.01, 0.0, -5.0], [0.0, 0.01, -5.0]],
+            None,
+        ),
+        (
+            "normals 157° apart",
+            [0.5, 0.5, -3.0],
+            [[10.0, 10.0], [80.0, 10.0], [10.0, 80.0]],
+            [unit([1.0, 0.0, 0.2]), unit([-1.0, 0.0, 0.2]), up],
+            [[-0.5, 0.0, -5.0], [0.5, 0.0, -5.0], [-0.5, 0.7, -5.0]],
+            Some(false),
+        ),
+        (
+            "light on the surface",
+            [0.0, 0.2, -5.0],
+            [[10.0, 10.0], [80.0, 10.0], [10.0, 80.0]],
+            [up, tilt, up],
+            [[-0.5, 0.0, -5.0], [0.5, 0.0, -5.0], [-0.5, 0.7, -5.0]],
+            Some(false),
+        ),
+        (
+            "eye close up",
+            [0.5, 0.5, 1.0],
+            [[10.0, 10.0], [200.0, 10.0], [10.0, 200.0]],
+            [up, tilt, up],
+            [[-1.0, -1.0, -0.05], [1.0, -1.0, -0.05], [-1.0, 1.0, -0.05]],
+            Some(false),
+        ),
+        (
+            "far away",
+            [0.5, 0.5, -3.0],
+            [[10.0, 10.0], [60.0, 10.0], [10.0, 60.0]],
+            [up, tilt, up],
+            [
+                [-1.0, 0.0, -16400.0],
+                [1.0, 0.0, -16400.0],
+                [0.0, 1.0, -16400.0],
+            ],
+            Some(false),
+        ),
+    ];
+    for (name, lp, s, n, p, expect) in cases {
+        for shin in [1.0, 100.0, 255.0] {
+            let r = tri_error(&c(shin, lp), s, n, p);
+            if let Some(e) = expect {
+                assert_eq!(r.is_some(), e, "{name}: quadratics {:?}", r.map(|r| r.1));
+            }
+            if let Some((worst, quads)) = r {
+                std::println!(
+                    "{name} n {shin}: {worst:.3} levels, {quads} pixels from the quadratics"
+                );
+                assert!(worst <= 1.0, "{name} n {shin}: {worst}");
+            }
+        }
+    }
+}

@@ -1,0 +1,621 @@
+//! One point light, local viewer, Phong: the six quadratics set up once a
+//! triangle.
+//!
+//! Over a triangle the normal `n`, the light vector `l = Lp - p` and the
+//! view vector `v = -p` are linear in the pixel's `(x, y)` (planar
+//! interpolation of the vertex normals; `p` on the triangle's position
+//! plane), so the six scalars of the point loop (module `point`: `A =
+//! |n|²`, `B = |l̃|²`, `C = |ṽ|²`, `D = n·l̃`, `E = n·ṽ`, `F = l̃·ṽ`, with
+//! `l̃`, `ṽ` scaled by powers of two chosen once a triangle) are
+//! quadratics `f + d·x + e·y + a·x² + b·x·y + c·y²` of the offset `(x,
+//! y)` from the triangle's anchor pixel. [`TriQuad::new`] rounds the
+//! three planes to integer coefficients (the normal in raw `Q30` a pixel,
+//! `l̃` and `ṽ` in their scaled units) and multiplies them out exactly in
+//! 64 bits; per span [`TriQuad::plan`] evaluates each quadratic and its
+//! first two differences along the row at the span's first pixel,
+//! exactly (wrapping `i64`: the true values are within `i64`), which is
+//! the 32-bit loop's plan (`point::Plan`): no products of vectors, no
+//! scaling and no range test a span.
+//!
+//! # Ranges, proven once a triangle
+//! `A`, `B` and `C` are convex (squared lengths of affine functions), so
+//! over the triangle their largest value is at a vertex, and the tangent
+//! plane at the vertices' centroid bounds them from below: with `S` the
+//! sum of the three vertex vectors, `9 |u|² >= 6 S·u_j - |S|²` at the
+//! vertex `j` minimising it (exact for two of the vertices' vectors
+//! apart by any angle along an edge). The loop's ranges (`A` in `[1/4,
+//! 5/4)`, `B` and `C` in `(1/6, 4)`, steps along x at most `1/16` of
+//! `|l̃|` and `|ṽ|`) are checked on these bounds with a relative margin
+//! of `2^-8`, which covers the rounding of the planes' coefficients (at
+//! most `½ + ½|x| + ½|y|` units, `x` and `y` within `2^12` pixels of the
+//! anchor: `2^-17` of `A`, `B`, `C`) and the 32-bit loop's drift within a
+//! chunk (248 units of `2^-29`). A triangle that fails them (vertex
+//! normals far apart (`|n|²` near 1/4: ~120°), a light or the eye near the triangle
+//! compared with its size, a triangle wider than `2^12` pixels, positions
+//! or light offsets beyond `±2^29` raw, as the per-span loop) keeps the
+//! per-span path; every span also passes the per-span loop's range test
+//! (`PhongKernel::fill`), else the 64-bit path.
+//!
+//! # Error
+//! The quadratics are exact for the rounded planes: the normal within
+//! `½ + ½|x| + ½|y|` raw `Q30` units of the exact plane through the
+//! vertex normals, `l̃`, `ṽ` within as many of their units (below
+//! `2^-17` relative over a triangle of `2^12` pixels), against the
+//! rasterizer's walked values (their steps rounded to raw units: the same
+//! order a pixel, accumulated along the span). The rest is the point
+//! loop's error (module `point`), unchanged. Tested against `f64` on
+//! random and extreme triangles (`tri_quad_*` in this module's tests).
+
+use super::point::{Plan, Px, GROUP};
+use super::CHUNK;
+use super::{raw, KLight, PhongKernel};
+use crate::num::wide::wmul;
+use crate::num::{InvArea, Real, SubpixelBits};
+
+/// Extra fraction bits of the planes before they are rounded.
+const EXTRA: u32 = 12;
+/// Largest offset of a vertex from the anchor pixel, in pixels.
+const EXTENT: i32 = 1 << 12;
+
+/// The six quadratics of one triangle (see the module docs).
+#[derive(Clone, Copy, Debug)]
+pub struct TriQuad {
+    /// The anchor pixel (vertex 0's).
+    at: [i32; 2],
+    /// Per quadratic (`A`, `B`, `C`, `D`, `E`, `F`): `[f, d, e, a, b, c]`
+    /// of `f + d·x + e·y + a·x² + b·x·y + c·y²` (wrapping).
+    q: [[i64; 6]; 6],
+    /// Per quadratic, at row `ry`: its value at `x = 0`, the value's
+    /// first difference to the next row, and the coefficient of `x`
+    /// (`f + e·y + c·y²`, `e + c·(2y + 1)`, `d + b·y`).
+    row: [[i64; 3]; 6],
+    /// The row of `row` (`None`: not set).
+    ry: Option<i32>,
+    /// The last span's plan ([`TriQuad::plan`]).
+    pub(super) span: Plan,
+    /// The point loop's buffers (the span driver's and the values
+    /// between passes), kept here: not zeroed a span.
+    pub(super) buf: [u32; CHUNK],
+    pub(super) px: [Px; GROUP],
+    /// The vertices (screen position in subpixels, normal raw `Q30`
+    /// flipped for back faces, eye position raw `Q16`) and subpixel bits
+    /// of a set-up not yet made ([`TriQuad::ready`]).
+    verts: [([i32; 2], [i32; 3], [i32; 3]); 3],
+    sub: SubpixelBits,
+    pending: bool,
+    /// Made (else the spans take the per-span path).
+    ok: bool,
+}
+
+/// `x · y` modulo `2^64` for `|y| < 2^15` (ARMv6-M: three 32-bit
+/// products, no 64-bit multiply call).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn mul_small(x: i64, y: i32) -> i64 {
+    if cfg!(armv6m) {
+        mul_small_split(x, y)
+    } else {
+        x.wrapping_mul(i64::from(y))
+    }
+}
+
+/// [`mul_small`] on ARMv6-M (compiled everywhere: tested on the host).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn mul_small_split(x: i64, y: i32) -> i64 {
+    let (hi, lo) = ((x >> 32) as i32, x as u32);
+    // lo = 2^16 lh + ll: each product within i32 for |y| < 2^15.
+    let (lh, ll) = ((lo >> 16) as i32, (lo & 0xFFFF) as i32);
+    (i64::from(hi.wrapping_mul(y)) << 32)
+        .wrapping_add(i64::from(lh * y) << 16)
+        .wrapping_add(i64::from(ll * y))
+}
+
+/// `x · y` modulo `2^64` (ARMv6-M: from 32-bit halves, no 64-bit
+/// multiply call).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn mul_wide(x: i64, y: i32) -> i64 {
+    if cfg!(armv6m) {
+        mul_wide_split(x, y)
+    } else {
+        x.wrapping_mul(i64::from(y))
+    }
+}
+
+/// [`mul_wide`] on ARMv6-M (compiled everywhere: tested on the host).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn mul_wide_split(x: i64, y: i32) -> i64 {
+    let (hi, lo) = ((x >> 32) as i32, x as u32);
+    // lo · y = lo · (y mod 2^32) - lo · 2^32 when y < 0.
+    let mut p = crate::num::wide::wmul_u32(lo, y as u32) as i64;
+    if y < 0 {
+        p = p.wrapping_sub(i64::from(lo) << 32);
+    }
+    (i64::from(hi.wrapping_mul(y)) << 32).wrapping_add(p)
+}
+
+/// `round(x / 2^s)` for `s >= 1`, `x · 2^-s` for `s <= 0`, within
+/// `i32` (`None` beyond).
+#[inline(always)]
+fn shift_round(x: i64, s: i32) -> Option<i32> {
+    if s >= 1 {
+        i32::try_from(x.checked_shr((s - 1) as u32)?.wrapping_add(1) >> 1).ok()
+    } else {
+        let k = s.unsigned_abs();
+        let y = x.checked_shl(k)?;
+        (y >> k == x).then_some(())?;
+        i32::try_from(y).ok()
+    }
+}
+
+/// The product of two affine vector functions `u0 + ux·x + uy·y` and
+/// `w0 + wx·x + wy·y` as `[f, d, e, a, b, c]` (wrapping `i64`). Not
+/// inlined (nor [`square`]): one at a time, few values live.
+#[inline(never)]
+fn quad2(u: &[[i32; 3]; 3], w: &[[i32; 3]; 3]) -> [i64; 6] {
+    let mut q = [0i64; 6];
+    for k in 0..3 {
+        let (u0, ux, uy) = (u[0][k], u[1][k], u[2][k]);
+        let (w0, wx, wy) = (w[0][k], w[1][k], w[2][k]);
+        let t = [
+            wmul(u0, w0),
+            wmul(u0, wx).wrapping_add(wmul(ux, w0)),
+            wmul(u0, wy).wrapping_add(wmul(uy, w0)),
+            wmul(ux, wx),
+            wmul(ux, wy).wrapping_add(wmul(uy, wx)),
+            wmul(uy, wy),
+        ];
+        for (q, t) in q.iter_mut().zip(t) {
+            *q = q.wrapping_add(t);
+        }
+    }
+    q
+}
+
+/// The quadratic `q` times `2^k`, its value biased by `2^31` (wrapping:
+/// the values over the triangle stay within `i64`, below `2^63` by the
+/// ranges checked).
+#[inline(always)]
+fn loop_units(o: &mut [i64; 6], q: [i64; 6], k: u32) {
+    for (o, q) in o.iter_mut().zip(q) {
+        *o = q.wrapping_shl(k);
+    }
+    o[0] = o[0].wrapping_add(1 << 31);
+}
+
+/// [`quad2`] of `u` with itself (six products a component).
+#[inline(never)]
+#[allow(clippy::needless_range_loop)]
+fn square(u: &[[i32; 3]; 3]) -> [i64; 6] {
+    let mut q = [0i64; 6];
+    for k in 0..3 {
+        let (u0, ux, uy) = (u[0][k], u[1][k], u[2][k]);
+        let t = [
+            wmul(u0, u0),
+            wmul(u0, ux).wrapping_mul(2),
+            wmul(u0, uy).wrapping_mul(2),
+            wmul(ux, ux),
+            wmul(ux, uy).wrapping_mul(2),
+            wmul(uy, uy),
+        ];
+        for (q, t) in q.iter_mut().zip(t) {
+            *q = q.wrapping_add(t);
+        }
+    }
+    q
+}
+
+/// Bounds of `|u|²` over the triangle of the three vertex vectors `u`
+/// (components below `2^28`): `9 ·` the lower bound (tangent plane at the
+/// centroid) and the upper bound (the largest vertex).
+#[inline(always)]
+fn range(u: &[[i32; 3]; 3]) -> (i64, i64) {
+    let [u0, u1, u2] = u;
+    let s = [
+        u0[0] + u1[0] + u2[0],
+        u0[1] + u1[1] + u2[1],
+        u0[2] + u1[2] + u2[2],
+    ];
+    let dot = |a: [i32; 3], b: [i32; 3]| wmul(a[0], b[0]) + wmul(a[1], b[1]) + wmul(a[2], b[2]);
+    let ss = dot(s, s);
+    let mut lo = i64::MAX;
+    let mut hi = 0;
+    for &uj in u {
+        let t = dot(s, uj);
+        lo = lo.min((t << 2) + (t << 1) - ss);
+        hi = hi.max(dot(uj, uj));
+    }
+    (lo, hi)
+}
+
+/// The shift `s` making `|u|² · 2^2s` (`q = |u|²`, `q > 0`) lie in
+/// `[0.9 · 2^58, 3.6 · 2^58)`.
+#[inline(always)]
+fn scale_of(q: u64) -> i32 {
+    let e = 63 - q.leading_zeros() as i32;
+    let mut s = (59 - e).div_euclid(2);
+    let x = if s >= 0 { q << (2 * s) } else { q >> (-2 * s) };
+    // 0.9 · 2^60, rounded up.
+    if x >= 1_037_629_354_146_162_279 {
+        s -= 1;
+    }
+    s
+}
+
+/// `c · 2^sh` (an exact shift, or floored) in units of `2^-2` of it,
+/// within `i32`.
+#[inline(always)]
+fn at_scale(c: i64, sh: i32) -> Option<i32> {
+    let x = if sh >= 0 {
+        c << sh.min(63)
+    } else {
+        c >> (-sh).min(63)
+    };
+    i32::try_from(x >> 2).ok()
+}
+
+/// The plane through the values `a` at the three vertices: the value at
+/// the anchor pixel's centre and the gradients along x and y, in units
+/// of `2^-EXTRA` of `a`'s (`None`: gradients of `2^40` units or more).
+#[inline(always)]
+fn plane(
+    d: [i32; 4],
+    inv: &InvArea,
+    s: u32,
+    (ox, oy): (i64, i64),
+    a: [i32; 3],
+) -> Option<[i64; 3]> {
+    let (d1, d2) = (
+        i64::from(a[1]) - i64::from(a[0]),
+        i64::from(a[2]) - i64::from(a[0]),
+    );
+    let nx = mul_wide(d1, d[3]).wrapping_sub(mul_wide(d2, d[1]));
+    let ny = mul_wide(d2, d[0]).wrapping_sub(mul_wide(d1, d[2]));
+    let (gx, gy) = (inv.quot(nx, s + EXTRA), inv.quot(ny, s + EXTRA));
+    if gx.unsigned_abs() >= 1 << 40 || gy.unsigned_abs() >= 1 << 40 {
+        return None;
+    }
+    let t = mul_wide(gx, ox as i32)
+        .wrapping_add(mul_wide(gy, oy as i32))
+        .wrapping_add(1 << (s - 1))
+        >> s;
+    Some([(i64::from(a[0]) << EXTRA).wrapping_add(t), gx, gy])
+}
+
+impl TriQuad {
+    /// No set-up: the spans take the per-span path.
+    pub const NONE: Self = Self {
+        at: [0; 2],
+        q: [[0; 6]; 6],
+        row: [[0; 3]; 6],
+        ry: None,
+        span: Plan { q: [[0; 3]; 6] },
+        buf: [0; CHUNK],
+        px: [Px::ZERO; GROUP],
+        verts: [([0; 2], [0; 3], [0; 3]); 3],
+        sub: SubpixelBits::DEFAULT,
+        pending: false,
+        ok: false,
+    };
+
+    /// Whether the set-up was made.
+    pub fn ok(&self) -> bool {
+        self.ok
+    }
+
+    /// Whether the spans take the quadratics' path: a set-up made, or
+    /// pending (made at the triangle's first span long enough,
+    /// [`TriQuad::ready`]).
+    #[inline(always)]
+    pub(super) fn wants(&self) -> bool {
+        self.ok | self.pending
+    }
+
+    /// Keeps the triangle of vertices `v` (as [`TriQuad::new`]) for a
+    /// set-up at its first span that needs it (`TriQuad::ready`): a
+    /// triangle whose spans in a band are all short costs no set-up there.
+    #[inline(always)]
+    pub fn set(&mut self, v: [([i32; 2], [i32; 3], [i32; 3]); 3], sub: SubpixelBits, back: bool) {
+        self.verts = v;
+        if back {
+            for (_, n, _) in &mut self.verts {
+                *n = n.map(i32::wrapping_neg);
+            }
+        }
+        self.sub = sub;
+        self.pending = true;
+        self.ok = false;
+        self.ry = None;
+    }
+
+    /// Makes the pending set-up for light `l` (the kernel's point light);
+    /// whether the quadratics are made.
+    #[inline(always)]
+    pub(super) fn ready(&mut self, l: &KLight) -> bool {
+        if self.pending {
+            self.pending = false;
+            self.ok = self.make(l).is_some();
+        }
+        self.ok
+    }
+
+    /// The quadratics of the triangle of vertices `v` (screen position in
+    /// subpixels of `sub` bits, normal raw `Q30`, eye position raw
+    /// `Q16`), the normal flipped when `back`, for kernel `k`;
+    /// [`TriQuad::NONE`] when `k` is not one point light with a local
+    /// viewer and the Phong model of the point loop, or outside the
+    /// ranges of the module docs.
+    #[inline(never)]
+    pub fn new<R: Real>(
+        k: &PhongKernel<'_, R>,
+        v: [([i32; 2], [i32; 3], [i32; 3]); 3],
+        sub: SubpixelBits,
+        back: bool,
+    ) -> Self {
+        let mut t = Self::NONE;
+        if let Some(l) = k.point_loop_light() {
+            t.set(v, sub, back);
+            t.ready(l);
+        }
+        t
+    }
+
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        clippy::needless_range_loop
+    )]
+    #[inline(never)]
+    fn make(&mut self, l: &KLight) -> Option<()> {
+        let (v, sub) = (self.verts, self.sub);
+        let ([x0, y0], _, _) = v[0];
+        let ([x1, y1], _, _) = v[1];
+        let ([x2, y2], _, _) = v[2];
+        let d = [
+            x1.checked_sub(x0)?,
+            y1.checked_sub(y0)?,
+            x2.checked_sub(x0)?,
+            y2.checked_sub(y0)?,
+        ];
+        let area2 = wmul(d[0], d[3]).wrapping_sub(wmul(d[2], d[1]));
+        if area2 == 0 {
+            return None;
+        }
+        let inv = InvArea::new(area2);
+        let s = sub.get();
+        let sc = 1i32 << s;
+        let (xa, ya) = (x0 >> s, y0 >> s);
+        for ([x, y], _, _) in v {
+            if ((x >> s) - xa).abs() >= EXTENT || ((y >> s) - ya).abs() >= EXTENT {
+                return None;
+            }
+        }
+        let o = (
+            i64::from((xa << s) + sc / 2 - x0),
+            i64::from((ya << s) + sc / 2 - y0),
+        );
+        // Vertex normals (flipped for back faces), light and view vectors
+        // (raw Q16, within 2^30).
+        let mut vn = [[0i32; 3]; 3];
+        let mut lv = [[0i64; 3]; 3];
+        let mut vv = [[0i64; 3]; 3];
+        for j in 0..3 {
+            for c in 0..3 {
+                vn[j][c] = v[j].1[c];
+                let pc = i64::from(v[j].2[c]);
+                lv[j][c] = i64::from(l.at[c]) - pc;
+                vv[j][c] = -pc;
+                if lv[j][c].unsigned_abs() >= 1 << 29 || pc.unsigned_abs() >= 1 << 29 {
+                    return None;
+                }
+            }
+        }
+        // The planes of the normal (rounded to raw Q30 units) and of the
+        // position (2^-EXTRA raw Q16 units).
+        let mut n = [[0i32; 3]; 3];
+        let mut p = [[0i64; 3]; 3];
+        for c in 0..3 {
+            let pl = plane(d, &inv, s, o, [vn[0][c], vn[1][c], vn[2][c]])?;
+            for r in 0..3 {
+                n[r][c] = shift_round(pl[r], EXTRA as i32)?;
+            }
+            if n[1][c].unsigned_abs() >= 1 << 29 || n[2][c].unsigned_abs() >= 1 << 29 {
+                return None;
+            }
+            let pl = plane(d, &inv, s, o, [v[0].2[c], v[1].2[c], v[2].2[c]])?;
+            p[0][c] = (i64::from(l.at[c]) << EXTRA) - pl[0];
+            p[1][c] = pl[1];
+            p[2][c] = pl[2];
+        }
+        let mut bl = 0u64;
+        let mut bv = 0u64;
+        for j in 0..3 {
+            let (mut ql, mut qv) = (0u64, 0u64);
+            for c in 0..3 {
+                // Within 2^30 (checked above).
+                let (a, b) = (lv[j][c] as i32, vv[j][c] as i32);
+                ql += wmul(a, a) as u64;
+                qv += wmul(b, b) as u64;
+            }
+            bl = bl.max(ql);
+            bv = bv.max(qv);
+        }
+        if bl == 0 || bv == 0 {
+            return None;
+        }
+        let (sl, sv) = (scale_of(bl), scale_of(bv));
+        // l̃ and ṽ: the planes scaled by 2^sl and 2^sv, rounded (the
+        // gradients of l̃ the negated position's, as those of ṽ).
+        let (el, ev) = (EXTRA as i32 - sl, EXTRA as i32 - sv);
+        let mut lt = [[0i32; 3]; 3];
+        let mut vt = [[0i32; 3]; 3];
+        for c in 0..3 {
+            lt[0][c] = shift_round(p[0][c], el)?;
+            vt[0][c] = shift_round(p[0][c] - (i64::from(l.at[c]) << EXTRA), ev)?;
+            for r in 1..3 {
+                lt[r][c] = shift_round(-p[r][c], el)?;
+                vt[r][c] = shift_round(-p[r][c], ev)?;
+                if lt[r][c].unsigned_abs() >= 1 << 26 || vt[r][c].unsigned_abs() >= 1 << 26 {
+                    return None;
+                }
+            }
+        }
+        // Ranges: every vector in units of 2^27 (1.0), squares 2^54.
+        let mut na = [[0i32; 3]; 3];
+        let mut la = [[0i32; 3]; 3];
+        let mut va = [[0i32; 3]; 3];
+        for j in 0..3 {
+            for c in 0..3 {
+                na[j][c] = vn[j][c] >> 3;
+                la[j][c] = at_scale(lv[j][c], sl)?;
+                va[j][c] = at_scale(vv[j][c], sv)?;
+            }
+        }
+        const ONE: i64 = 1 << 54;
+        const M: i64 = ONE >> 8;
+        let (alo, ahi) = range(&na);
+        if alo < 9 * (ONE / 4 + M) || ahi > 5 * ONE / 4 - 2 * M {
+            return None;
+        }
+        for (u, t) in [(&la, &lt), (&va, &vt)] {
+            let (lo, hi) = range(u);
+            if lo < 9 * (ONE / 6 + M) || hi > 4 * ONE - 4 * M {
+                return None;
+            }
+            // The step along x at most 1/16 of the length: |dx|² · 2^8
+            // <= |u|² (the step's components rounded up, in the same
+            // units).
+            let dx = t[1].map(|c| (c.unsigned_abs() >> 2) as i32 + 1);
+            let dd = wmul(dx[0], dx[0]) + wmul(dx[1], dx[1]) + wmul(dx[2], dx[2]);
+            if (dd << 11) + (dd << 8) > lo {
+                return None;
+            }
+        }
+        // In the loop's units times 2^32 (A, D, E, F: 2^-30 of the
+        // products, B, C: 2^-29), the values biased by 2^31.
+        self.at = [xa, ya];
+        let [qa, qb, qc, qd, qe, qf] = &mut self.q;
+        loop_units(qa, square(&n), 2);
+        loop_units(qb, square(&lt), 3);
+        loop_units(qc, square(&vt), 3);
+        loop_units(qd, quad2(&n, &lt), 2);
+        loop_units(qe, quad2(&n, &vt), 2);
+        loop_units(qf, quad2(&lt, &vt), 2);
+        self.ry = None;
+        Some(())
+    }
+
+    /// Keeps triangle `tri` of object `po` in `frame` (the
+    /// `PhongPosition` layout) for its set-up ([`TriQuad::set`]); none
+    /// when its vertices are not at hand.
+    #[inline(never)]
+    pub(crate) fn set_of_tri<P: crate::num::Profile>(
+        &mut self,
+        frame: &super::super::Frame<'_, P>,
+        po: &super::super::PreparedObject,
+        tri: &super::super::PreparedTri,
+    ) {
+        let mut v = [([0i32; 2], [0i32; 3], [0i32; 3]); 3];
+        for (o, &i) in v.iter_mut().zip(tri.v.iter()) {
+            let vx = frame
+                .xy(usize::from(i))
+                .and_then(|xy| Some((xy, frame.vertex::<6>(po, i, xy)?)));
+            let Some((xy, vx)) = vx else {
+                self.pending = false;
+                self.ok = false;
+                return;
+            };
+            let a = |j: usize| raw::<P::Lerp>(vx.attrs[j]);
+            *o = (xy, [a(0), a(1), a(2)], [a(3), a(4), a(5)]);
+        }
+        self.set(v, P::SUBPIXEL_BITS, tri.back);
+    }
+
+    /// The point loop's plan of the span from pixel `(x, y)` (inside the
+    /// triangle): each quadratic and its first and second differences
+    /// along the row there, exactly. The row's values are stepped from
+    /// the previous span's row when it is the row above (three additions
+    /// a quadratic), else made from the quadratic; then two products by
+    /// the offset along the row a quadratic.
+    #[inline(never)]
+    pub(super) fn plan(&mut self, x: i32, y: i32) -> bool {
+        let (x, y) = (x.wrapping_sub(self.at[0]), y.wrapping_sub(self.at[1]));
+        if x.unsigned_abs() >= 1 << 15 || y.unsigned_abs() >= 1 << 15 {
+            return false;
+        }
+        let next = match self.ry {
+            Some(r) if r == y => false,
+            Some(r) if r.wrapping_add(1) == y => true,
+            _ => {
+                self.set_row(y);
+                false
+            }
+        };
+        self.ry = Some(y);
+        // One quadratic at a time: its row stepped (the row below the
+        // last span's), then its value and differences at x.
+        for ((o, row), q) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.row.iter_mut())
+            .zip(self.q.iter())
+        {
+            let (a, b, c) = (q[3], q[4], q[5]);
+            if next {
+                row[0] = row[0].wrapping_add(row[1]);
+                row[1] = row[1].wrapping_add(c.wrapping_add(c));
+                row[2] = row[2].wrapping_add(b);
+            }
+            let ax = mul_small(a, x);
+            let u = row[2].wrapping_add(ax);
+            o[0] = row[0].wrapping_add(mul_small(u, x));
+            o[1] = u.wrapping_add(ax).wrapping_add(a);
+            o[2] = a.wrapping_add(a);
+        }
+        true
+    }
+
+    /// The rows' values at row `y` from the quadratics (a span's first
+    /// row in the band, or after a row without span).
+    #[inline(never)]
+    fn set_row(&mut self, y: i32) {
+        for (row, &[f, d, e, _, b, c]) in self.row.iter_mut().zip(self.q.iter()) {
+            let cy = mul_small(c, y);
+            row[0] = f.wrapping_add(mul_small(e.wrapping_add(cy), y));
+            row[1] = e.wrapping_add(cy.wrapping_mul(2)).wrapping_add(c);
+            row[2] = d.wrapping_add(mul_small(b, y));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The ARMv6-M products equal the 64-bit ones (modulo `2^64`).
+    #[test]
+    fn split_products() {
+        let mut r = 0x9e37_79b9_7f4a_7c15u64;
+        for i in 0..100_000 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let x = r as i64;
+            let y = (r >> (i % 40)) as i32;
+            assert_eq!(mul_wide_split(x, y), x.wrapping_mul(i64::from(y)));
+            let ys = y % (1 << 15);
+            assert_eq!(mul_small_split(x, ys), x.wrapping_mul(i64::from(ys)));
+        }
+        for (x, y) in [
+            (i64::MIN, -1),
+            (i64::MAX, i32::MIN),
+            (-1, 32767),
+            (1 << 62, -32767),
+        ] {
+            assert_eq!(mul_wide_split(x, y), x.wrapping_mul(i64::from(y)));
+        }
+    }
+}
