@@ -79,7 +79,7 @@ use super::{
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::wide::NO_LONG_MUL;
-use crate::num::{Profile, Real};
+use crate::num::{Kernels, Profile, Raw16, Real};
 use crate::raster::{
     draw_small, draw_small_levels, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat,
     Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex,
@@ -295,10 +295,11 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
 /// loops.
 #[inline(never)]
 fn kernel_of<'s, R: Real>(
+    q: Raw16<R>,
     shade: &'s Shade<R>,
     cache: &mut Option<SpecCache>,
 ) -> Result<PhongKernel<'s, R>, KernelError> {
-    PhongKernel::new_cached(shade, cache)
+    PhongKernel::new_cached(q, shade, cache)
 }
 
 impl<'w, P: Profile> Frame<'w, P> {
@@ -883,7 +884,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         // The span kernel (`phong_span`) where the profile has
         // one (the affine Q16 profiles), else the per-pixel
         // shader.
-        let kernel = (!P::PERSPECTIVE).then(|| kernel_of(shade, &mut self.spec_cache));
+        let cache = &mut self.spec_cache;
+        let kernel = if P::PERSPECTIVE {
+            None
+        } else {
+            <P::Real as Real>::Kernels::pick(|q| Some(kernel_of(q, shade, cache)), || None)
+        };
         if let Some(Ok(k)) = &kernel {
             let sh = PhongKernelShader::new(k);
             if normal {

@@ -263,7 +263,10 @@ impl<P: Profile> Frame<'_, P> {
                     {
                         None
                     } else {
-                        PhongKernel::new_cached(&shade, &mut spec_cache).ok()
+                        <P::Real as Real>::Kernels::pick(
+                            |q| PhongKernel::new_cached(q, &shade, &mut spec_cache).ok(),
+                            || None,
+                        )
                     };
                     if let Some(k) = &kernel {
                         let mut f = PhongFill::new(&mut *target, d, k)?;

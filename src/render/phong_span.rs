@@ -180,7 +180,7 @@
 use crate::illum::{RawTerm, Shade, Specular, Viewer, MAX_LIGHTS};
 use crate::num::approx16;
 use crate::num::wide::{clz32, wmul};
-use crate::num::{Kernels, Real};
+use crate::num::{Raw16, Real};
 use crate::raster::{Lerp, RasterError, Span, Spans};
 use crate::target::{level_q19, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 use core::fmt;
@@ -201,10 +201,11 @@ const U_MAX: u32 = 8 << 16;
 const RS: [u32; RSQRT_N + 1] = crate::num::rsqrt_quarter_table::<{ RSQRT_N + 1 }>();
 
 /// Why a kernel could not be made (the caller keeps the generic path).
+/// The kernel exists for `Q16` shades only, by type: [`PhongKernel::new`]
+/// takes a `Shade<Q16>`, [`PhongKernel::new_cached`] the `Raw16` access
+/// that only [`Q16`](crate::num::Q16)'s kernels hand out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum KernelError {
-    /// Not a `Q16` shade.
-    Profile,
     /// A coefficient above 4, or a shininess below 1.
     Range,
 }
@@ -212,7 +213,6 @@ pub enum KernelError {
 impl fmt::Display for KernelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Profile => write!(f, "the Phong span kernel runs the Q16 profiles only"),
             Self::Range => write!(
                 f,
                 "a light coefficient above 4 or a shininess below 1 (Phong span kernel)"
@@ -369,29 +369,32 @@ fn unit30(v: [i64; 3]) -> [i32; 3] {
     })
 }
 
-impl<'s, R: Real> PhongKernel<'s, R> {
-    /// The kernel of `shade` (a `Q16` shade).
+impl<'s> PhongKernel<'s, crate::num::Q16> {
+    /// The kernel of `shade`.
     ///
     /// # Errors
-    /// [`KernelError::Profile`] for other scalars; [`KernelError::Range`]
-    /// for a coefficient above 4 or a shininess below 1 with a specular
-    /// term.
-    pub fn new(shade: &'s Shade<R>) -> Result<Self, KernelError> {
-        Self::new_cached(shade, &mut None)
+    /// [`KernelError::Range`] for a coefficient above 4 or a shininess
+    /// below 1 with a specular term.
+    pub fn new(shade: &'s Shade<crate::num::Q16>) -> Result<Self, KernelError> {
+        Self::new_cached(Raw16::Q16, shade, &mut None)
     }
+}
 
-    /// [`PhongKernel::new`] taking its specular table from `cache` when
-    /// that holds the table of the same shininess, else building it and
-    /// keeping it there (the same kernel either way).
+impl<'s, R: Real> PhongKernel<'s, R> {
+    /// [`PhongKernel::new`] for a shade of any real that has the integer
+    /// kernels (`q`, handed out by [`Kernels::pick`](crate::num::Kernels::pick)
+    /// for `Q16` only), taking its specular table from `cache` when that
+    /// holds the table of the same shininess, else building it and keeping
+    /// it there (the same kernel either way).
     ///
     /// # Errors
     /// As [`PhongKernel::new`].
     pub fn new_cached(
+        q: Raw16<R>,
         shade: &'s Shade<R>,
         cache: &mut Option<SpecCache>,
     ) -> Result<Self, KernelError> {
-        let (ambient, terms, shin, spec, model, viewer) =
-            R::Kernels::pick(|q| Ok(shade.raw_q16(q)), || Err(KernelError::Profile))?;
+        let (ambient, terms, shin, spec, model, viewer) = shade.raw_q16(q);
         let blinn = model == Specular::Blinn;
         let local = viewer == Viewer::Local;
         if spec && shin < 1 << 16 {

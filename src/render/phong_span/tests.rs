@@ -735,7 +735,7 @@ fn spec_cache_same_kernel() {
         for n in [20.0, 20.0, 800.0, 3.0, 3.0, 10_000.0] {
             let sh = shade(n, s);
             let fresh = PhongKernel::new(&sh).unwrap();
-            let cached = PhongKernel::new_cached(&sh, &mut cache).unwrap();
+            let cached = PhongKernel::new_cached(crate::num::Raw16::Q16, &sh, &mut cache).unwrap();
             assert_eq!(fresh.table, cached.table, "n = {n}");
             assert_eq!(fresh.kf, cached.kf);
             let m = if s == Specular::Blinn { n / 2.0 } else { n };
