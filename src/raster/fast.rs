@@ -23,7 +23,7 @@
 //! Values are the same modulo 2^32 as the generic walker's `row + sx·x0 +
 //! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
 
-use super::span::{clamp_test, depth_loop, in_range_test, inr_span, inr_span_inline};
+use super::span::{clamp_test, depth_loop, in_range_test, inr_span};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
@@ -936,6 +936,16 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
         fails: 0,
     };
     let (sx0, sy0) = (&sx, &sy);
+    // ARMv7-M: the x steps through memory, opaque to the optimiser, so
+    // that it keeps them in registers in the inline pixel loop (as known
+    // stack values it reloaded each from the stack at every pixel);
+    // bunny-gouraud raster thumbv7em 1 886 889 -> 1 833 714. Not on
+    // ARMv6-M (its raster took 2 838 011 -> 2 886 571).
+    let tx = if NO_LONG_MUL {
+        tx
+    } else {
+        core::hint::black_box(tx)
+    };
     let (sx, sy) = (&tx, &ty);
     let stop = j_bot.min(until);
     let mut j = j_top;
@@ -1024,9 +1034,16 @@ fn same_len<'p, 'z, R, Z>(px: &'p mut [R], z: &'z mut [Z]) -> (&'p mut [R], &'z 
 }
 
 /// The row state of [`draw_small`]: the values at column 0 of the row,
-/// the row's offset in the band and the pixels covered so far; on
-/// ARMv6-M (and in test builds) also the pixels that failed the depth
-/// test (then `drawn` counts the covered ones: [`SmallRows::drawn`]).
+/// the row's offset in the band, the pixels covered so far and those
+/// that failed the depth test (the pixels drawn the difference:
+/// [`SmallRows::drawn`]). Each span's pixel loop inline ([`small_loop`]),
+/// no call per span: on ARMv6-M (bunny-gouraud raster thumbv6m
+/// 2 866 494 -> 2 838 685, bunny-flat 2 423 668 -> 2 407 693) and, with
+/// the x steps opaque to the optimiser (see [`draw_small_in`]), on
+/// ARMv7-M (bunny-gouraud raster thumbv7em 1 833 849 -> 1 833 714,
+/// bunny-flat 1 561 380 -> 1 546 420; before, the span stage's loops,
+/// the outlined [`in_range_loop`](super::span) for spans of two pixels
+/// or more).
 struct SmallRows<const N: usize> {
     v: Vals<i32, N>,
     base: usize,
@@ -1034,14 +1051,6 @@ struct SmallRows<const N: usize> {
     drawn: u32,
     fails: u32,
 }
-
-/// [`SmallRows`] counts a triangle's covered pixels per span and its
-/// failed depth tests across its spans ([`small_loop`]), its pixels drawn
-/// the difference at the end: on ARMv6-M (bunny-gouraud raster thumbv6m
-/// 2 866 494 -> 2 838 685, bunny-flat 2 423 668 -> 2 407 693) and in test
-/// builds (which check it); elsewhere the span
-/// stage's loops, each returning its span's pixels drawn.
-const RUNNING_FAILS: bool = NO_LONG_MUL || cfg!(test);
 
 impl<const N: usize> SmallRows<N> {
     /// The pixels drawn so far.
@@ -1068,20 +1077,10 @@ impl<const N: usize> SmallRows<N> {
             let s = self.v.add_n(sx, x0);
             let span = self.base.wrapping_add(x0 as usize)..self.base.wrapping_add(x1 as usize);
             if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
-                if RUNNING_FAILS {
-                    // The span's pixels covered here, its failed tests
-                    // counted on across the triangle's spans.
-                    self.drawn = self.drawn.wrapping_add(p.len() as u32);
-                    small_loop::<N, R, D>(p, d, s.z, s.a, sx, color, &mut self.fails);
-                } else {
-                    // Depth alone (flat): the pixel loop inline (no call
-                    // per span); with a value, the span stage's loops.
-                    self.drawn += if N == 0 {
-                        inr_span_inline::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
-                    } else {
-                        inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
-                    };
-                }
+                // The span's pixels covered here, its failed tests
+                // counted on across the triangle's spans.
+                self.drawn = self.drawn.wrapping_add(p.len() as u32);
+                small_loop::<N, R, D>(p, d, s.z, s.a, sx, color, &mut self.fails);
             }
         }
         self.v = self.v.add_n(sy, 1);
@@ -1093,7 +1092,7 @@ impl<const N: usize> SmallRows<N> {
 /// clamp), one a step: each depth-tested ([`in_range_test`]) and, when
 /// it passes, shaded by `color`; `fails` counts the others (wrapping).
 /// The same pixels, in the same order, as the span stage's
-/// [`inr_span_inline`].
+/// [`inr_span_inline`](super::span::inr_span_inline).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn small_loop<const N: usize, R, D: DepthFormat>(
