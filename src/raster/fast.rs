@@ -949,23 +949,30 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     let (sx, sy) = (&tx, &ty);
     let stop = j_bot.min(until);
     // The rows counted by their offset (no row number live in the loops;
-    // bunny-gouraud raster thumbv6m 2 811 372 -> 2 794 166, thumbv7em
-    // 1 789 976 -> 1 793 899; bunny-flat 2 389 601 -> 2 362 259 and
-    // 1 546 420 -> 1 530 611):
+    // bunny-gouraud raster thumbv6m 2 811 372 -> 2 794 166; bunny-flat
+    // 2 389 601 -> 2 362 259, thumbv7em 1 546 420 -> 1 530 611), but
+    // with values on ARMv7-M (by row: bunny-gouraud raster thumbv7em
+    // 1 784 323 against 1 793 899 by offset):
     // row `k` ends where the offset reaches that of row `k`, `width`
     // (at least 1 here: a triangle with columns in `0..=width` has no
     // area when `width <= 0`) apart from row to row, and the loops start
     // below their ends (`j_top < stop`, and `j_top < j_mid` for the upper
     // half).
     let off = |j: i32| (j - y0).wrapping_mul(width) as usize;
+    let by_off = NO_LONG_MUL || N == 0;
     let mut j = j_top;
     if upper {
         let stop_upper = j_mid.min(stop);
         let end = off(stop_upper);
-        while rows.base != end {
+        while if by_off {
+            rows.base != end
+        } else {
+            j < stop_upper
+        } {
             rows.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
+            j += 1;
         }
         j = stop_upper;
         // At the lower half's first row (and not at the band's end, where
@@ -980,10 +987,11 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     }
     if j < stop {
         let end = off(stop);
-        while rows.base != end {
+        while if by_off { rows.base != end } else { j < stop } {
             rows.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
+            j += 1;
         }
         j = stop;
     }
