@@ -23,7 +23,7 @@
 //! Values are the same modulo 2^32 as the generic walker's `row + sx·x0 +
 //! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
 
-use super::span::{clamp_test, depth_loop, in_range_test, inr_span, inr_span_inline};
+use super::span::{clamp_test, depth_loop, in_range_test, inr_span};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, SubpixelBits, Vertex};
@@ -969,24 +969,56 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     };
     let anchor = [a.x >> s, a.y >> s];
     let mut rows = SmallRows {
-        v: t0.add_n(&ty, j_top),
+        v: if SmallRows::<N>::LAZY {
+            t0
+        } else {
+            t0.add_n(&ty, j_top)
+        },
         base: (j_top - y0).wrapping_mul(width) as usize,
         width: width as usize,
         drawn: 0,
         fails: 0,
     };
     let (sx0, sy0) = (&sx, &sy);
+    // ARMv7-M: the x steps through memory, opaque to the optimiser (as
+    // known stack values it reloaded them one by one at every pixel of
+    // the inline pixel loop, now as one pair); bunny-gouraud raster
+    // thumbv7em 1 886 889 -> 1 833 714. Not on ARMv6-M (its raster took
+    // 2 838 011 -> 2 886 571).
+    let tx = if NO_LONG_MUL {
+        tx
+    } else {
+        core::hint::black_box(tx)
+    };
     let (sx, sy) = (&tx, &ty);
     let stop = j_bot.min(until);
+    // The rows counted by their offset (no row number live in the loops;
+    // bunny-gouraud raster thumbv6m 2 811 372 -> 2 794 166; bunny-flat
+    // 2 389 601 -> 2 362 259, thumbv7em 1 546 420 -> 1 530 611), but
+    // with values on ARMv7-M (by row: bunny-gouraud raster thumbv7em
+    // 1 784 323 against 1 793 899 by offset):
+    // row `k` ends where the offset reaches that of row `k`, `width`
+    // (at least 1 here: a triangle with columns in `0..=width` has no
+    // area when `width <= 0`) apart from row to row, and the loops start
+    // below their ends (`j_top < stop`, and `j_top < j_mid` for the upper
+    // half).
+    let off = |j: i32| (j - y0).wrapping_mul(width) as usize;
+    let by_off = !SmallRows::<N>::LAZY;
     let mut j = j_top;
     if upper {
         let stop_upper = j_mid.min(stop);
-        while j < stop_upper {
-            rows.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
+        let end = off(stop_upper);
+        while if by_off {
+            rows.base != end
+        } else {
+            j < stop_upper
+        } {
+            rows.span::<R, D>(j, l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
             j += 1;
         }
+        j = stop_upper;
         // At the lower half's first row (and not at the band's end, where
         // the resumed walk swaps the edges itself).
         if j < stop {
@@ -997,11 +1029,15 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
             }
         }
     }
-    while j < stop {
-        rows.span::<R, D>(l.x, r.x, px, z, sx, sy, &color);
-        l.step();
-        r.step();
-        j += 1;
+    if j < stop {
+        let end = off(stop);
+        while if by_off { rows.base != end } else { j < stop } {
+            rows.span::<R, D>(j, l.x, r.x, px, z, sx, sy, &color);
+            l.step();
+            r.step();
+            j += 1;
+        }
+        j = stop;
     }
     let more = j < j_bot;
     if more {
@@ -1018,6 +1054,8 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
         // wrapping; on ARMv7-M the Gouraud bunny's raster 16 K less).
         let v00 = if LEVELS || NO_LONG_MUL {
             row
+        } else if SmallRows::<N>::LAZY {
+            rows.v
         } else {
             rows.v.add_n(sy0, j.wrapping_neg())
         };
@@ -1063,10 +1101,19 @@ fn same_len<'p, 'z, R, Z>(px: &'p mut [R], z: &'z mut [Z]) -> (&'p mut [R], &'z 
     (px, z)
 }
 
-/// The row state of [`draw_small`]: the values at column 0 of the row,
-/// the row's offset in the band and the pixels covered so far; on
-/// ARMv6-M (and in test builds) also the pixels that failed the depth
-/// test (then `drawn` counts the covered ones: [`SmallRows::drawn`]).
+/// The row state of [`draw_small`]: the values at column 0 of the row
+/// (or at pixel (0, 0): [`SmallRows::LAZY`]),
+/// the row's offset in the band, the pixels covered so far less those
+/// that failed the depth test, or those failures apart
+/// ([`SmallRows::fails_in`]; the pixels drawn the difference:
+/// [`SmallRows::drawn`]). Each span's pixel loop inline ([`small_loop`]),
+/// no call per span: on ARMv6-M (bunny-gouraud raster thumbv6m
+/// 2 866 494 -> 2 838 685, bunny-flat 2 423 668 -> 2 407 693) and, with
+/// the x steps opaque to the optimiser (see [`draw_small_in`]), on
+/// ARMv7-M (bunny-gouraud raster thumbv7em 1 833 849 -> 1 833 714,
+/// bunny-flat 1 561 380 -> 1 546 420; before, the span stage's loops,
+/// the outlined [`in_range_loop`](super::span) for spans of two pixels
+/// or more).
 struct SmallRows<const N: usize> {
     v: Vals<i32, N>,
     base: usize,
@@ -1075,19 +1122,33 @@ struct SmallRows<const N: usize> {
     fails: u32,
 }
 
-/// [`SmallRows`] counts a triangle's covered pixels per span and its
-/// failed depth tests across its spans ([`small_loop`]), its pixels drawn
-/// the difference at the end: on ARMv6-M (bunny-gouraud raster thumbv6m
-/// 2 866 494 -> 2 838 685, bunny-flat 2 423 668 -> 2 407 693) and in test
-/// builds (which check it); elsewhere the span
-/// stage's loops, each returning its span's pixels drawn.
-const RUNNING_FAILS: bool = NO_LONG_MUL || cfg!(test);
-
 impl<const N: usize> SmallRows<N> {
+    /// `v` holds the values at pixel (0, 0) and each span's start is two
+    /// multiply-adds per value away (`v + sy·j + sx·x0`), instead of `v`
+    /// at column 0 of the current row stepped by `sy` on every row (two
+    /// values kept across the rows less): on ARMv7-M with values
+    /// (bunny-gouraud raster thumbv7em 1 784 323 -> 1 766 646).
+    const LAZY: bool = !NO_LONG_MUL && N > 0;
+
     /// The pixels drawn so far.
     #[inline(always)]
     fn drawn(&self) -> u32 {
         self.drawn.wrapping_sub(self.fails)
+    }
+
+    /// Where a span's failed depth tests are counted, and by what step:
+    /// [`SmallRows::drawn`] itself, one down per failure (one counter
+    /// live in the pixel loop instead of two: bunny-gouraud raster
+    /// thumbv6m 2 838 011 -> 2 811 372, thumbv7em 1 819 402 -> 1 789 976),
+    /// but without values on ARMv7-M (bunny-flat raster thumbv7em
+    /// 1 546 420 -> 1 558 184 that way): [`SmallRows::fails`], one up.
+    #[inline(always)]
+    fn fails_in(&mut self) -> (&mut u32, u32) {
+        if NO_LONG_MUL || N > 0 {
+            (&mut self.drawn, u32::MAX)
+        } else {
+            (&mut self.fails, 1)
+        }
     }
 
     /// Draws columns `x0..x1` of the current row (nothing when `x0 >=
@@ -1096,6 +1157,7 @@ impl<const N: usize> SmallRows<N> {
     #[allow(clippy::too_many_arguments)]
     fn span<R: Copy, D: DepthFormat>(
         &mut self,
+        j: i32,
         x0: i32,
         x1: i32,
         px: &mut [R],
@@ -1105,35 +1167,45 @@ impl<const N: usize> SmallRows<N> {
         color: &impl Fn(&[i32; N]) -> R,
     ) {
         if x0 < x1 {
-            let s = self.v.add_n(sx, x0);
+            let s = if Self::LAZY {
+                self.v.add_n(sy, j).add_n(sx, x0)
+            } else {
+                self.v.add_n(sx, x0)
+            };
             let span = self.base.wrapping_add(x0 as usize)..self.base.wrapping_add(x1 as usize);
             if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
-                if RUNNING_FAILS {
-                    // The span's pixels covered here, its failed tests
-                    // counted on across the triangle's spans.
-                    self.drawn = self.drawn.wrapping_add(p.len() as u32);
-                    small_loop::<N, R, D>(p, d, s.z, s.a, sx, color, &mut self.fails);
+                // The span's pixels covered here, its failed tests
+                // counted on across the triangle's spans.
+                self.drawn = self.drawn.wrapping_add(p.len() as u32);
+                if NO_LONG_MUL {
+                    small_loop::<N, R, D>(p, d, s.z, s.a, sx, color, self.fails_in());
                 } else {
-                    // Depth alone (flat): the pixel loop inline (no call
-                    // per span); with a value, the span stage's loops.
-                    self.drawn += if N == 0 {
-                        inr_span_inline::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
-                    } else {
-                        inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
-                    };
+                    // ARMv7-M: the values carried with the levels'
+                    // rounding offset added, taken off again for the
+                    // colour (the same values, wrapping): the offset of
+                    // the level shaders' rounding then cancels instead of
+                    // being added at every pixel (bunny-gouraud raster
+                    // thumbv7em 1 833 714 -> 1 819 402).
+                    const B: i32 = 1 << (super::LEVEL_FRAC_BITS - 1);
+                    let a = s.a.map(|v| v.wrapping_add(B));
+                    let color = |a: &[i32; N]| color(&a.map(|v| v.wrapping_sub(B)));
+                    small_loop::<N, R, D>(p, d, s.z, a, sx, &color, self.fails_in());
                 }
             }
         }
-        self.v = self.v.add_n(sy, 1);
+        if !Self::LAZY {
+            self.v = self.v.add_n(sy, 1);
+        }
         self.base = self.base.wrapping_add(self.width);
     }
 }
 
 /// The pixels of a span of [`draw_small`] whose depths stay in range (no
 /// clamp), one a step: each depth-tested ([`in_range_test`]) and, when
-/// it passes, shaded by `color`; `fails` counts the others (wrapping).
+/// it passes, shaded by `color`; each other one adds `fails.1` to
+/// `fails.0` (wrapping; see [`SmallRows::fails_in`]).
 /// The same pixels, in the same order, as the span stage's
-/// [`inr_span_inline`].
+/// [`inr_span_inline`](super::span::inr_span_inline).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn small_loop<const N: usize, R, D: DepthFormat>(
@@ -1143,14 +1215,14 @@ fn small_loop<const N: usize, R, D: DepthFormat>(
     mut a: [i32; N],
     d: &Vals<i32, N>,
     color: &impl Fn(&[i32; N]) -> R,
-    fails: &mut u32,
+    fails: (&mut u32, u32),
 ) {
     let mut it = row.iter_mut().zip(drow.iter_mut());
     while let Some((p, zb)) = it.next() {
         if in_range_test::<i32, D>(z, zb) {
             *p = color(&a);
         } else {
-            *fails = fails.wrapping_add(1);
+            *fails.0 = fails.0.wrapping_add(fails.1);
             // Never taken (a slice holds fewer than usize::MAX depths),
             // but a second loop exit keeps LLVM's runtime unroller off
             // this loop (as in the span stage's loop).
