@@ -18,7 +18,7 @@
 //! 29 -> 21 per vertex on the Cortex-M4 against a select of two
 //! constants), and a visible object's rows come from its vertices' box
 //! rather than a pass over its kept triangles (14 K on the Cortex-M4;
-//! [`ROWS_FROM_BOX`]): 0.425 -> 0.390 M. Objects of fewer than
+//! `project_loop`): 0.425 -> 0.390 M. Objects of fewer than
 //! [`EARLY_CULL_MIN_VERTICES`] vertices and Phong objects skip the
 //! culling set-up (cubes-and-sphere: 0.304 -> 0.272 M on the Cortex-M4).
 //!
@@ -528,17 +528,6 @@ struct Preparer<'w, P: Profile> {
     marked: bool,
 }
 
-/// Whether the fused kernel's projection loop tracks the smallest y too,
-/// so that a visible object's rows come from its vertices' box rather than
-/// a pass over its kept triangles. Measured on the bunny: the pass costs
-/// 14 K instructions on the Cortex-M4, where the tracking costs nothing
-/// measurable (the loop's spills absorb it); on the Cortex-M0 (eight low
-/// registers) the tracking cost 22 K against the pass's 16 K when the
-/// triangles stored their rows; recomputed from the vertices' y (6-byte
-/// triangles) the pass cost more (bunny Gouraud geometry 740 383
-/// instructions on the M0): every target tracks.
-const ROWS_FROM_BOX: bool = true;
-
 /// The fewest vertices for which an object's culling in object space
 /// ([`EarlyCull`]) is set up. The set-up (once per object: the eye in
 /// object space, the threshold's bounds, 64- and 128-bit divisions) costs
@@ -834,9 +823,14 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
         *out = ScreenXy::pack(Subpx(s), origin);
         ux = ux.max(s[0] as u32);
         uy = uy.max(s[1] as u32);
-        if ROWS_FROM_BOX {
-            ly = ly.min(s[1] as u32);
-        }
+        // The smallest y too: a visible object's rows come from its
+        // vertices' box rather than a pass over its kept triangles
+        // (measured on the bunny: the pass costs 14 K instructions on the
+        // Cortex-M4, where the tracking costs nothing measurable; on the
+        // Cortex-M0 the tracking cost 22 K against the pass's 16 K when
+        // the triangles stored their rows, recomputed from the vertices'
+        // y the pass cost more: bunny Gouraud geometry 740 383).
+        ly = ly.min(s[1] as u32);
         if let Some(first) = v.first_mut() {
             depth(first, DepthQ30(d));
         }
@@ -2020,7 +2014,7 @@ impl<P: Profile> Preparer<'_, P> {
                 // the triangles (1 498 of them: 14 K instructions on the
                 // Cortex-M4).
                 // (Unused when the object keeps no triangle.)
-                if let (Some([_, y1, y0]), true) = (self.bbox, ROWS_FROM_BOX) {
+                if let Some([_, y1, y0]) = self.bbox {
                     let r = |y: u32| first_row(y as i32, sub) as u16;
                     self.rows = Some([r(y0), r(y1)]);
                 }
