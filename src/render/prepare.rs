@@ -409,24 +409,6 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         s.get_mut(..n).unwrap_or_default()
     }
     let ws = ws.map_triangle_parts(|t, c, f| (cut(t), cut(c), cut(f)));
-    let mut p = Preparer::<P> {
-        ws,
-        view,
-        nv: 0,
-        nval: 0,
-        nt: 0,
-        nc: 0,
-        nm: 0,
-        t_start: 0,
-        made_start: 0,
-        object: 0,
-        width,
-        height,
-        bbox: None,
-        rows: None,
-        marked: false,
-        face_rows: [0; FACE_ROW as usize + 1],
-    };
     // The frame is made first, in `out`, and its object list filled in
     // place: no list or frame to move into another (each move of one can
     // take a stack slot of its own in the caller's frame).
@@ -445,6 +427,24 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         width,
         height,
     });
+    let mut p = Preparer::<P> {
+        ws,
+        view,
+        nv: 0,
+        nval: 0,
+        nt: 0,
+        nc: 0,
+        nm: 0,
+        t_start: 0,
+        made_start: 0,
+        object: 0,
+        width,
+        height,
+        bbox: None,
+        rows: None,
+        marked: false,
+        face_rows: &mut frame.face_rows,
+    };
     for (oi, obj) in scene.objects.iter().enumerate() {
         p.object = oi;
         let pushed = match p.object_pass(scene, obj, &lights) {
@@ -466,7 +466,6 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         (t, c, &mut [])
     });
     frame.faces = faces;
-    frame.face_rows = p.face_rows;
     Ok(())
 }
 
@@ -501,7 +500,7 @@ impl<'a, L> Workspace<'a, L> {
     }
 }
 
-struct Preparer<'w, P: Profile> {
+struct Preparer<'w, 'f, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
     view: View<P::Real>,
     nv: usize,
@@ -529,8 +528,9 @@ struct Preparer<'w, P: Profile> {
     /// The current object's vertices were marked by [`mark_corners`]:
     /// triangles with an [`UNUSED`] corner were culled in object space.
     marked: bool,
-    /// The kept triangles so far by row code ([`Frame::face_rows`]).
-    face_rows: FaceRows,
+    /// The kept triangles so far by row code (the frame's
+    /// [`Frame::face_rows`]).
+    face_rows: &'f mut FaceRows,
 }
 
 /// Whether the fused kernel's projection loop tracks the smallest y too,
@@ -1026,7 +1026,7 @@ impl<R: Real> ObjCtx<'_, '_, R> {
     }
 }
 
-impl<P: Profile> Preparer<'_, P> {
+impl<P: Profile> Preparer<'_, '_, P> {
     fn cap(&self, part: Part) -> RenderError {
         RenderError::Capacity {
             part,
@@ -1983,7 +1983,7 @@ impl<P: Profile> Preparer<'_, P> {
                 };
                 let grey = ctx.grey;
                 let none = |_, _| true;
-                let counts = &mut self.face_rows;
+                let counts = &mut *self.face_rows;
                 let kept = match (ctx.cull, flat, one) {
                     (true, true, Some((o, normals))) => {
                         let c = |t: usize, back| {
@@ -2057,7 +2057,7 @@ impl<P: Profile> Preparer<'_, P> {
             let kept = triangles_inside(
                 ctx.tris,
                 (xy, origin),
-                (faces, &mut self.face_rows),
+                (faces, &mut *self.face_rows),
                 (self.width, self.height, q),
                 P::SUBPIXEL_BITS,
                 (ctx.cull, marked),
