@@ -3,8 +3,13 @@
 //! [`Frame::bands`] orders the prepared triangles by the band of their
 //! first row (a stable counting sort of their numbers into the caller's
 //! [`BandState`], the first rows read from the [`Workspace::faces`]
-//! bytes: about 2 instructions per triangle number and 20 per kept
-//! triangle). Each band
+//! bytes; when the band height is a multiple of the bytes' row step, the
+//! counts by row are those prepare kept ([`Frame::face_rows`]) and the
+//! sort is one placing pass: about 2 instructions per triangle number
+//! and 13 per kept triangle on the Cortex-M4, 5 and 33 on the Cortex-M0;
+//! bunny-gouraud raster 1 833 849 -> 1 816 966 and 2 814 970 ->
+//! 2 781 796, geometry 380 268 -> 387 922 and 656 917 -> 666 100, the
+//! counting there 5 to 6 a kept triangle). Each band
 //! then draws, in triangle order (so that ties of equal depth resolve as
 //! in a full frame), the merge of three ordered streams:
 //!
