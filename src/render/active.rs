@@ -533,7 +533,7 @@ fn sort_coarse(
             .min(last)
             .wrapping_sub(first);
         if b < EPOCH {
-            band[c] = b as u8;
+            band[c & 127] = b as u8;
             count[(b as usize + 1) & 127] += p;
         }
     }
