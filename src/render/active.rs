@@ -7,8 +7,8 @@
 //! counts by row are those prepare kept ([`Frame::face_rows`]) and the
 //! sort is one placing pass: about 2 instructions per triangle number
 //! and 13 per kept triangle on the Cortex-M4, 5 and 33 on the Cortex-M0;
-//! bunny-gouraud raster 1 833 849 -> 1 816 966 and 2 814 970 ->
-//! 2 781 796, geometry 380 268 -> 387 922 and 656 917 -> 666 100, the
+//! bunny-gouraud raster 1 833 849 -> 1 816 817 and 2 814 970 ->
+//! 2 781 721, geometry 380 268 -> 387 922 and 656 917 -> 666 100, the
 //! counting there 5 to 6 a kept triangle). Each band
 //! then draws, in triangle order (so that ties of equal depth resolve as
 //! in a full frame), the merge of three ordered streams:
