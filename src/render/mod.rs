@@ -110,6 +110,12 @@ pub(crate) const FACE_BACK: u8 = 1 << 7;
 /// kept).
 pub(crate) const FACE_ROW: u8 = FACE_BACK - 1;
 
+/// The kept triangles counted by [`Workspace::faces`] row code (entry
+/// `c`: the bytes with `b & FACE_ROW == c`; entry 0 unused), as
+/// [`prepare`] keeps them: the band sort's counts without a pass of its
+/// own over the bytes.
+pub(crate) type FaceRows = [u16; FACE_ROW as usize + 1];
+
 /// The shift of the rows in [`Workspace::faces`] bytes for a screen of
 /// `height` rows: the least `q` with `(height - 1) >> q` at most 126, so
 /// that every first row `r` of a kept triangle (below the height) stores
@@ -494,6 +500,8 @@ pub struct Frame<'w, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
     /// [`Workspace::faces`].
     faces: &'w [u8],
+    /// The kept triangles by row code of [`Self::faces`].
+    face_rows: FaceRows,
     /// The scene's objects, whose meshes hold the triangles.
     scene: &'w [Object<'w, P::Real>],
     objects: heapless::Vec<PreparedObject, MAX_OBJECTS>,

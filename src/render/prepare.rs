@@ -49,8 +49,8 @@
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
 use super::{
-    face_byte, face_shift, Frame, Layout, Part, PreparedObject, RenderError, ScreenXy, Subpx, Tri,
-    Workspace, FACE_BACK, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
+    face_byte, face_shift, FaceRows, Frame, Layout, Part, PreparedObject, RenderError, ScreenXy,
+    Subpx, Tri, Workspace, FACE_BACK, FACE_ROW, MAX_TRIANGLES, MAX_VERTICES,
 };
 use crate::geom::cull::EarlyCull;
 use crate::geom::fused::Fused;
@@ -409,6 +409,24 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         s.get_mut(..n).unwrap_or_default()
     }
     let ws = ws.map_triangle_parts(|t, c, f| (cut(t), cut(c), cut(f)));
+    // The frame is made first, in `out`, and its object list filled in
+    // place: no list or frame to move into another (each move of one can
+    // take a stack slot of its own in the caller's frame).
+    let frame = out.insert(Frame {
+        ws: Workspace {
+            xy: &mut [],
+            vals: &mut [],
+            tris: &mut [],
+            colors: &mut [],
+            faces: &mut [],
+        },
+        faces: &[],
+        face_rows: [0; FACE_ROW as usize + 1],
+        scene: scene.objects,
+        objects: heapless::Vec::new(),
+        width,
+        height,
+    });
     let mut p = Preparer::<P> {
         ws,
         view,
@@ -425,24 +443,8 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         bbox: None,
         rows: None,
         marked: false,
+        face_rows: &mut frame.face_rows,
     };
-    // The frame is made first, in `out`, and its object list filled in
-    // place: no list or frame to move into another (each move of one can
-    // take a stack slot of its own in the caller's frame).
-    let frame = out.insert(Frame {
-        ws: Workspace {
-            xy: &mut [],
-            vals: &mut [],
-            tris: &mut [],
-            colors: &mut [],
-            faces: &mut [],
-        },
-        faces: &[],
-        scene: scene.objects,
-        objects: heapless::Vec::new(),
-        width,
-        height,
-    });
     for (oi, obj) in scene.objects.iter().enumerate() {
         p.object = oi;
         let pushed = match p.object_pass(scene, obj, &lights) {
@@ -498,7 +500,7 @@ impl<'a, L> Workspace<'a, L> {
     }
 }
 
-struct Preparer<'w, P: Profile> {
+struct Preparer<'w, 'f, P: Profile> {
     ws: Workspace<'w, P::Lerp>,
     view: View<P::Real>,
     nv: usize,
@@ -526,6 +528,9 @@ struct Preparer<'w, P: Profile> {
     /// The current object's vertices were marked by [`mark_corners`]:
     /// triangles with an [`UNUSED`] corner were culled in object space.
     marked: bool,
+    /// The kept triangles so far by row code (the frame's
+    /// [`Frame::face_rows`]).
+    face_rows: &'f mut FaceRows,
 }
 
 /// The fewest vertices for which an object's culling in object space
@@ -685,7 +690,7 @@ fn rows_in(xy: [Subpx; 3], width: u32, height: u32, sub: SubpixelBits) -> Option
 fn triangles_inside(
     tris: &[[u16; 3]],
     (xy, origin): (&[ScreenXy], Subpx),
-    faces: &mut [u8],
+    (faces, counts): (&mut [u8], &mut FaceRows),
     (width, height, shift): (u32, u32, u32),
     sub: SubpixelBits,
     (cull, marked): (bool, bool),
@@ -719,6 +724,8 @@ fn triangles_inside(
         }
         if let Some(f) = faces.get_mut(t) {
             *f = face_byte(u32::from(rows[0]), shift, back);
+            let c = &mut counts[usize::from(*f & FACE_ROW)];
+            *c = c.wrapping_add(1);
         }
     }
     Some(())
@@ -735,7 +742,7 @@ fn triangles_inside(
 fn triangles_visible<const CULL: bool, const MARKED: bool>(
     tris: &[[u16; 3]],
     xy: &[ScreenXy],
-    faces: &mut [u8],
+    (faces, counts): (&mut [u8], &mut FaceRows),
     (sub, q): (SubpixelBits, u32),
     mut color: impl FnMut(usize, bool) -> bool,
 ) -> Option<()> {
@@ -790,6 +797,8 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         #[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
         let code = ((ea.min(eb).min(ec) >> row_shift) + 1) as u8;
         *face = code | if back { FACE_BACK } else { 0 };
+        let c = &mut counts[usize::from(code & FACE_ROW)];
+        *c = c.wrapping_add(1);
     }
     Some(())
 }
@@ -1013,7 +1022,7 @@ impl<R: Real> ObjCtx<'_, '_, R> {
     }
 }
 
-impl<P: Profile> Preparer<'_, P> {
+impl<P: Profile> Preparer<'_, '_, P> {
     fn cap(&self, part: Part) -> RenderError {
         RenderError::Capacity {
             part,
@@ -1811,6 +1820,8 @@ impl<P: Profile> Preparer<'_, P> {
             return Err(self.cap(Part::Triangles));
         };
         *face = face_byte(u32::from(row), q, back);
+        let c = &mut self.face_rows[usize::from(*face & FACE_ROW)];
+        *c = c.wrapping_add(1);
         if let Some(color) = color {
             let c = self.nc + (i - self.t_start);
             let Some(c) = self.ws.colors.get_mut(c) else {
@@ -1968,6 +1979,7 @@ impl<P: Profile> Preparer<'_, P> {
                 };
                 let grey = ctx.grey;
                 let none = |_, _| true;
+                let counts = &mut *self.face_rows;
                 let kept = match (ctx.cull, flat, one) {
                     (true, true, Some((o, normals))) => {
                         let c = |t: usize, back| {
@@ -1976,33 +1988,51 @@ impl<P: Profile> Preparer<'_, P> {
                             cs.get_mut(t).map(|s| *s = c).is_some()
                         };
                         if marked {
-                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), c)
+                            triangles_visible::<true, true>(tris, xy, (faces, counts), (sub, q), c)
                         } else {
-                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), c)
+                            triangles_visible::<true, false>(tris, xy, (faces, counts), (sub, q), c)
                         }
                     }
                     (cull, flat, _) => match (cull, flat, marked) {
                         (true, true, false) => {
                             let c = put(cs, col);
-                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), c)
+                            triangles_visible::<true, false>(tris, xy, (faces, counts), (sub, q), c)
                         }
                         (true, true, true) => {
                             let c = put(cs, col);
-                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), c)
+                            triangles_visible::<true, true>(tris, xy, (faces, counts), (sub, q), c)
                         }
-                        (true, false, false) => {
-                            triangles_visible::<true, false>(tris, xy, faces, (sub, q), none)
-                        }
-                        (true, false, true) => {
-                            triangles_visible::<true, true>(tris, xy, faces, (sub, q), none)
-                        }
+                        (true, false, false) => triangles_visible::<true, false>(
+                            tris,
+                            xy,
+                            (faces, counts),
+                            (sub, q),
+                            none,
+                        ),
+                        (true, false, true) => triangles_visible::<true, true>(
+                            tris,
+                            xy,
+                            (faces, counts),
+                            (sub, q),
+                            none,
+                        ),
                         (false, true, _) => {
                             let c = put(cs, col);
-                            triangles_visible::<false, false>(tris, xy, faces, (sub, q), c)
+                            triangles_visible::<false, false>(
+                                tris,
+                                xy,
+                                (faces, counts),
+                                (sub, q),
+                                c,
+                            )
                         }
-                        (false, false, _) => {
-                            triangles_visible::<false, false>(tris, xy, faces, (sub, q), none)
-                        }
+                        (false, false, _) => triangles_visible::<false, false>(
+                            tris,
+                            xy,
+                            (faces, counts),
+                            (sub, q),
+                            none,
+                        ),
                     },
                 };
                 if kept.is_none() {
@@ -2023,7 +2053,7 @@ impl<P: Profile> Preparer<'_, P> {
             let kept = triangles_inside(
                 ctx.tris,
                 (xy, origin),
-                faces,
+                (faces, &mut *self.face_rows),
                 (self.width, self.height, q),
                 P::SUBPIXEL_BITS,
                 (ctx.cull, marked),

@@ -108,6 +108,7 @@ fn lights<R: Real>() -> [Light<R>; 2] {
 fn full<P: Profile>(s: &Scene<'_, 'static, P::Real>, w: u32, h: u32, depth: bool) -> Vec<u8> {
     let mut mem = Mem::<P::Lerp>::new(12_000, 12_000);
     let frame = prepare::<P>(s, w, h, mem.ws()).unwrap();
+    assert_face_rows(&frame);
     let mut px = vec![0u16; (w * h) as usize];
     let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, w, h).unwrap();
     fb.clear(s.background);
@@ -132,6 +133,22 @@ fn banded<P: Profile>(s: &Scene<'_, 'static, P::Real>, w: u32, h: u32, rows: u32
     out
 }
 
+/// The kept triangles prepare counted by row code are those of the face
+/// bytes, code by code.
+fn assert_face_rows<P: Profile>(frame: &Frame<'_, P>) {
+    let mut want = [0u16; FACE_ROW as usize + 1];
+    for &b in &frame.faces[..frame.triangle_numbers()] {
+        want[usize::from(b & FACE_ROW)] += 1;
+    }
+    want[0] = 0;
+    assert_eq!(frame.face_rows, want);
+    let kept = frame.faces[..frame.triangle_numbers()]
+        .iter()
+        .filter(|&&b| b & FACE_ROW != 0)
+        .count();
+    assert_eq!(frame.triangle_count(), kept);
+}
+
 /// Renders band by band through [`Frame::render_bands`]: the bytes, the
 /// statistics and the number of prepared triangles.
 fn banded_with<P: Profile, const CAP: usize, const V: usize>(
@@ -143,6 +160,7 @@ fn banded_with<P: Profile, const CAP: usize, const V: usize>(
 ) -> (Vec<u8>, RenderStats, usize) {
     let mut mem = Mem::<P::Lerp>::new(12_000, 12_000);
     let frame = prepare::<P>(s, w, h, mem.ws()).unwrap();
+    assert_face_rows(&frame);
     let mut px = vec![0u16; (w * rows) as usize];
     let mut z = vec![0u16; (w * rows) as usize];
     let mut band = BandBuf::<Rgb565Be>::new(&mut px, depth.then_some(&mut z[..]), w, rows).unwrap();
@@ -180,6 +198,7 @@ fn projection_matches_the_f64_formula() {
         let (w, h) = (200u32, 150u32);
         let mut mem = Mem::<P::Lerp>::new(16, 16);
         let frame = prepare::<P>(&s, w, h, mem.ws()).unwrap();
+        assert_face_rows(&frame);
         assert_eq!(frame.vertex_count(), 3);
         // The f64 formula, from scratch.
         let (eye, up) = ([1.0f64, 2.0, 6.0], [0.0f64, 1.0, 0.0]);
@@ -1087,6 +1106,7 @@ fn compact_positions_hold_the_screen_and_its_guard_band() {
         let s = scene(&objs, &ls, [0.0, 0.0, 1.0]);
         let mut mem = Mem::<P::Lerp>::new(64, 64);
         let frame = prepare::<P>(&s, n, n, mem.ws())?;
+        assert_face_rows(&frame);
         let sub = P::SUBPIXEL_BITS.get();
         let g = guard_px(sub, n, n).unwrap();
         assert!(frame.triangle_count() > 1, "clipped into a fan");
@@ -1164,6 +1184,7 @@ fn banded_order<const CAP: usize>(
 ) -> Result<Vec<u8>, RenderError> {
     let mut mem = Mem::<i32>::new(12_000, 12_000);
     let frame = prepare::<Fast>(s, w, h, mem.ws()).unwrap();
+    assert_face_rows(&frame);
     let mut px = vec![0u16; (w * rows) as usize];
     let mut z = vec![0u16; (w * rows) as usize];
     let mut band = BandBuf::<Rgb565Be>::new(&mut px, Some(&mut z[..]), w, rows).unwrap();
