@@ -6,6 +6,7 @@ mod fixed_point;
 mod float;
 mod isqrt;
 mod lerp;
+mod light;
 mod profile;
 mod real;
 mod recip;
@@ -22,6 +23,7 @@ pub use self::fixed_point::{Q16, Q32};
 pub use self::isqrt::isqrt_u64;
 pub(crate) use self::isqrt::{isqrt_rem_u128, isqrt_rem_u64};
 pub use self::lerp::{Lerp, ATTR_LIMIT, DEPTH_ONE, LEVEL_FRAC_BITS};
+pub use self::light::{light_halves, scale255, unit30};
 pub use self::profile::{
     F32Pc, F64Pc, Fast, FastPc, FastSub, Precise, PrecisePc, Profile, COORD_FRAC_BITS,
     COORD_FRAC_BITS_PC, DEPTH_FRAC_BITS, F32, F64, UNIT_FRAC_BITS,

@@ -180,7 +180,7 @@
 use crate::illum::{RawTerm, Shade, Specular, Viewer, MAX_LIGHTS};
 use crate::num::approx16;
 use crate::num::wide::{clz32, wmul};
-use crate::num::{Raw16, Real};
+use crate::num::{light_halves, scale255, unit30, Raw16, Real};
 use crate::raster::{Lerp, RasterError, Span, Spans};
 use crate::target::{level_q19, DepthBuffer, DepthFormat, PixelFormat, Rgb8, Target};
 use core::fmt;
@@ -335,40 +335,6 @@ fn spec_table(m: u32) -> [u16; SPEC_SEGMENTS + 2] {
     table
 }
 
-/// `round(v · 255 · 2^k / 2^16)` for a Q16 coefficient `v >= 0`.
-fn scale255(v: i32, k: u32) -> u64 {
-    let v = u64::from(v.max(0).unsigned_abs());
-    (v * 255 * (1 << k) + (1 << 15)) >> 16
-}
-
-/// The unit vector of `v` (any scale) in Q30, by 64-bit arithmetic
-/// (per kernel): within `2^-29` per component.
-#[allow(clippy::cast_possible_truncation)]
-fn unit30(v: [i64; 3]) -> [i32; 3] {
-    let s: u128 = v.iter().map(|&c| (c as i128 * c as i128) as u128).sum();
-    if s == 0 {
-        return [0; 3];
-    }
-    // |v| to 2^-.. precision: isqrt of s scaled to ~2^124.
-    let sh = s.leading_zeros() & !1;
-    let big = s << sh; // >= 2^126
-    let top = (big >> 64) as u64; // >= 2^62
-    let root = crate::num::isqrt_u64(top); // |v| · 2^(sh/2 - 32) ~ 2^31
-    let root = root.max(1);
-    v.map(|c| {
-        // c · 2^30 / |v| = c · 2^(30 + sh/2 - 32) / root
-        let e = 30 + i64::from(sh / 2) - 32;
-        let num = if e >= 0 {
-            (c as i128) << e
-        } else {
-            (c as i128) >> -e
-        };
-        num.checked_div(root as i128)
-            .unwrap_or(0)
-            .clamp(-(1 << 30), 1 << 30) as i32
-    })
-}
-
 impl<'s> PhongKernel<'s, crate::num::Q16> {
     /// The kernel of `shade`.
     ///
@@ -402,10 +368,6 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         }
         let amb = ambient.map(|a| scale255(a, 13) as u32);
         let mut lights = heapless::Vec::new();
-        let r = core::f64::consts::FRAC_1_SQRT_2;
-        let _ = r;
-        // 2^30 / sqrt 2, rounded.
-        const INV_SQRT2_Q30: i64 = 759_250_125;
         for t in &terms {
             let RawTerm {
                 at,
@@ -427,20 +389,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 (at, [0; 3], [0; 3])
             } else {
                 let l = unit30(at.map(i64::from));
-                let l64 = l.map(i64::from);
-                let v = [0i64, 0, 1 << 30];
-                let (p1, p2) = if blinn {
-                    (
-                        unit30([l64[0] + v[0], l64[1] + v[1], l64[2] + v[2]]),
-                        [0; 3],
-                    )
-                } else {
-                    let f = |a: i64| ((a * INV_SQRT2_Q30 + (1 << 29)) >> 30) as i32;
-                    (
-                        [f(l64[0] + v[0]), f(l64[1] + v[1]), f(l64[2] + v[2])],
-                        [f(l64[0] - v[0]), f(l64[1] - v[1]), f(l64[2] - v[2])],
-                    )
-                };
+                let (p1, p2) = light_halves(l, blinn);
                 (l, p1, p2)
             };
             // scale255(c, 4) <= scale255(c, 6) / 4 + 1 < 2^14.

@@ -31,19 +31,12 @@
 
 use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
-use fixshade::num::{rsqrt_quarter_table, spec_table, Real, Q16};
+use fixshade::num::{light_halves, rsqrt_quarter_table, scale255, spec_table, unit30, Real, Q16};
 use fixshade::render::{RSQRT_N, SPEC_SEGMENTS};
 use maud::{html, Markup, PreEscaped};
 use serde::{Deserialize, Serialize};
 
 use super::plot::{line_svg, Series};
-
-/// `round(v · 255 · 2^k / 2^16)` for a Q16 coefficient `v >= 0` (the
-/// kernel's `scale255`).
-fn scale255(v: i32, k: u32) -> u64 {
-    let v = u64::from(v.max(0).unsigned_abs());
-    (v * 255 * (1 << k) + (1 << 15)) >> 16
-}
 
 fn wmul(a: i32, b: i32) -> i64 {
     i64::from(a) * i64::from(b)
@@ -78,28 +71,6 @@ fn between<T: Copy + Into<u32>>(t: &[T], i: usize, f: u32) -> Option<u32> {
 fn sq_sum(v: &[i32]) -> u64 {
     v.iter()
         .fold(0u64, |s, &c| s.wrapping_add(wmul(c, c) as u64))
-}
-
-/// The unit vector of `v` in Q30 (the kernel's `unit30`).
-fn unit30(v: [i64; 3]) -> [i32; 3] {
-    let s: u128 = v.iter().map(|&c| (c as i128 * c as i128) as u128).sum();
-    if s == 0 {
-        return [0; 3];
-    }
-    let sh = s.leading_zeros() & !1;
-    let top = ((s << sh) >> 64) as u64;
-    let root = top.isqrt().max(1);
-    v.map(|c| {
-        let e = 30 + i64::from(sh / 2) - 32;
-        let num = if e >= 0 {
-            (c as i128) << e
-        } else {
-            (c as i128) >> -e
-        };
-        num.checked_div(root as i128)
-            .unwrap_or(0)
-            .clamp(-(1 << 30), 1 << 30) as i32
-    })
 }
 
 /// Fraction bits of a specular table position (the kernel's `POS_FRAC`).
@@ -188,26 +159,12 @@ impl Model {
         let c = material.color;
         let amb_k = ambient * material.ka;
         let amb = [c.x, c.y, c.z].map(|v| scale255(raw(v * amb_k), 13) as u32);
-        const INV_SQRT2_Q30: i64 = 759_250_125;
         let lights = dirs
             .iter()
             .map(|d| {
                 let at = d.normalize();
                 let l = unit30([raw(at.x), raw(at.y), raw(at.z)].map(i64::from));
-                let l64 = l.map(i64::from);
-                let v = [0i64, 0, 1 << 30];
-                let (p1, p2) = if blinn {
-                    (
-                        unit30([l64[0] + v[0], l64[1] + v[1], l64[2] + v[2]]),
-                        [0; 3],
-                    )
-                } else {
-                    let f = |a: i64| ((a * INV_SQRT2_Q30 + (1 << 29)) >> 30) as i32;
-                    (
-                        [f(l64[0] + v[0]), f(l64[1] + v[1]), f(l64[2] + v[2])],
-                        [f(l64[0] - v[0]), f(l64[1] - v[1]), f(l64[2] - v[2])],
-                    )
-                };
+                let (p1, p2) = light_halves(l, blinn);
                 let dif = [c.x, c.y, c.z].map(|v| scale255(raw(v * material.kd), 6) as u32);
                 let s = scale255(raw(material.ks), 6) as u32;
                 MLight {
