@@ -540,7 +540,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         };
         let mut ls = [LightSpan::default(); MAX_LIGHTS];
         let (nn, nn_d1, nn_d2) = quad(&[(n, dn)]);
-        if self.duff {
+        let (v, dv, vv, vv_d1, vv_d2, slow) = if self.duff {
             for (s, l) in ls.iter_mut().zip(self.lights.iter()) {
                 s.nl = lin(n, l.at);
                 s.dnl = lin(dn, l.at);
@@ -565,6 +565,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                     }
                 }
             }
+            ([0; 3], [0; 3], 0, 0, 0, false)
         } else {
             let v0 = p.map(i32::wrapping_neg);
             let dv = dp.map(i32::wrapping_neg);
@@ -587,27 +588,8 @@ impl<'s, R: Real> PhongKernel<'s, R> {
                 }
             }
             let (vv, vv_d1, vv_d2) = quad(&[(v0, dv)]);
-            return PhongSpan {
-                k: self,
-                n0: n,
-                dn,
-                p0: p,
-                dp,
-                i: 0,
-                n,
-                nn,
-                nn_d1,
-                nn_d2,
-                v: v0,
-                dv,
-                vv,
-                vv_d1,
-                vv_d2,
-                l0: ls[0],
-                rest: [ls[1], ls[2], ls[3], ls[4], ls[5], ls[6], ls[7]],
-                slow,
-            };
-        }
+            (v0, dv, vv, vv_d1, vv_d2, slow)
+        };
         PhongSpan {
             k: self,
             n0: n,
@@ -619,14 +601,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             nn,
             nn_d1,
             nn_d2,
-            v: [0; 3],
-            dv: [0; 3],
-            vv: 0,
-            vv_d1: 0,
-            vv_d2: 0,
+            v,
+            dv,
+            vv,
+            vv_d1,
+            vv_d2,
             l0: ls[0],
             rest: [ls[1], ls[2], ls[3], ls[4], ls[5], ls[6], ls[7]],
-            slow: false,
+            slow,
         }
     }
 
