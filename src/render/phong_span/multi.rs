@@ -159,11 +159,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let mut exact = false;
         for (p, s) in plans.iter_mut().zip(st.iter_mut()) {
             if let Some(s) = s {
-                let plan = if k == CHUNK as u32 {
-                    self.one_plan(s, i, CHUNK as u32)
-                } else {
-                    self.one_plan(s, i, k)
-                };
+                let plan = self.chunk_plan(s, i, k);
                 exact |= matches!(plan, Plan::Exact);
                 *p = Some(plan);
             }

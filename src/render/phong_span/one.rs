@@ -448,13 +448,7 @@ impl<R: Real> PhongKernel<'_, R> {
         k: u32,
         buf: &mut [u32; CHUNK],
     ) -> bool {
-        // Full chunks with `k` a constant: the products by `k` (64-bit
-        // on the M0) fold into shifts and constants.
-        let plan = if k == CHUNK as u32 {
-            self.one_plan(st, i, CHUNK as u32)
-        } else {
-            self.one_plan(st, i, k)
-        };
+        let plan = self.chunk_plan(st, i, k);
         // `n·L` is linear: positive at both ends, at every pixel.
         let lit =
             |nl: i32, dnl: i32| nl > 0 && i64::from(nl) + i64::from(dnl) * i64::from(k - 1) > 0;
@@ -475,6 +469,18 @@ impl<R: Real> PhongKernel<'_, R> {
                 exact_chunk(n, dn, i, k, buf, |ni, j| self.one_exact(l, ni, n, dn, j));
                 false
             }
+        }
+    }
+
+    /// [`PhongKernel::one_plan`], with full chunks' `k` a constant: the
+    /// products by `k` (64-bit on the M0) fold into shifts and constants.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    pub(super) fn chunk_plan(&self, st: &mut OneSpan, i: u32, k: u32) -> Plan {
+        if k == CHUNK as u32 {
+            self.one_plan(st, i, CHUNK as u32)
+        } else {
+            self.one_plan(st, i, k)
         }
     }
 
