@@ -57,26 +57,7 @@ fn to64(v: Vec3<Q16>) -> Vec3<f64> {
 /// span of `len` pixels; also checks `skip` keeps the kernel in step.
 fn span_error(c: &Case, n0: [f64; 3], dn: [f64; 3], p0: [f64; 3], dp: [f64; 3], len: i32) -> f64 {
     let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
-    let mat64 = Material {
-        color: to64(c.mat.color),
-        ka: c.mat.ka.to_f64(),
-        kd: c.mat.kd.to_f64(),
-        ks: c.mat.ks.to_f64(),
-        shininess: c.mat.shininess.to_f64(),
-    };
-    let l64: Vec<Light<f64>> = c
-        .lights
-        .iter()
-        .map(|l| Light {
-            kind: match l.kind {
-                LightKind::Point(p) => LightKind::Point(to64(p)),
-                LightKind::Directional(d) => LightKind::Directional(to64(d)),
-            },
-            intensity: l.intensity.to_f64(),
-            color: to64(l.color),
-        })
-        .collect();
-    let twin = Shade::new(&mat64, c.ambient.to_f64(), &l64, c.specular, c.viewer).unwrap();
+    let twin = twin_of(c);
     let k = PhongKernel::new(&shade).unwrap();
     let (n0, dn, p0, dp) = (q30(n0), q30(dn), q16(p0), q16(dp));
     let mut sp = k.begin(n0, dn, p0, dp, false);
