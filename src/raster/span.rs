@@ -248,6 +248,19 @@ persp!(1, 2);
 persp!(3, 4);
 persp!(6, 7);
 
+/// `Ok` when `depth` is none or holds the rows and the width of `target`;
+/// [`RasterError::DepthWindowMismatch`] otherwise (the check of a span
+/// stage's constructor).
+pub(crate) fn same_window<T: Target, D: DepthFormat>(
+    target: &T,
+    depth: Option<&DepthBuffer<'_, D>>,
+) -> Result<(), RasterError> {
+    match depth {
+        Some(d) if d.window() != target.window() => Err(RasterError::DepthWindowMismatch),
+        _ => Ok(()),
+    }
+}
+
 /// The span stage: a target, an optional depth buffer and a shader.
 ///
 /// Without a depth buffer every covered pixel is drawn, in triangle order
@@ -272,11 +285,7 @@ impl<'t, 'd, 'b, T: Target, D: DepthFormat, S> Fill<'t, 'd, 'b, T, D, S> {
         depth: Option<&'d mut DepthBuffer<'b, D>>,
         shader: S,
     ) -> Result<Self, RasterError> {
-        if let Some(d) = &depth {
-            if d.window() != target.window() {
-                return Err(RasterError::DepthWindowMismatch);
-            }
-        }
+        same_window(target, depth.as_deref())?;
         Ok(Self {
             target,
             depth,
