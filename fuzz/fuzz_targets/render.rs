@@ -275,14 +275,7 @@ fn draw<F: PixelFormat, L: Lerp, const N: usize, S: Shader<L, N>>(
 // ---------------------------------------------------------------------
 // 3D scenes.
 
-const MESHES: [Mesh<'static>; 6] = [
-    shapes::CUBE,
-    shapes::DODECAHEDRON,
-    shapes::SPHERE,
-    shapes::CAN,
-    shapes::GRID,
-    shapes::BUNNY,
-];
+const MESHES: [Mesh<'static>; 6] = shapes::ALL;
 
 fn scene(b: &mut Bytes<'_>) {
     match b.u8() % 8 {

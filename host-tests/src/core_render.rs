@@ -373,18 +373,8 @@ pub fn render_core_rows(
     profile: Option<CoreProfile>,
     rows: u32,
 ) -> Result<CoreFrame, CoreError> {
-    struct Job<'d> {
-        desc: &'d SceneDesc,
-        rows: u32,
-    }
-    impl ProfileJob for Job<'_> {
-        type Output = Result<CoreFrame, CoreError>;
-        fn run<P: Profile, F: CorePixelFormat>(self) -> Self::Output {
-            render_format::<P, F>(self.desc, self.rows)
-        }
-    }
     let profile = profile.unwrap_or_else(|| desc.profile.into());
-    dispatch(profile, desc.pixel_format, Job { desc, rows })
+    dispatch_fn!(profile, desc.pixel_format, render_format(desc: &SceneDesc, rows: u32) -> Result<CoreFrame, CoreError>)
 }
 
 /// Work generic over a profile and a pixel format, both chosen at run
@@ -395,6 +385,24 @@ pub trait ProfileJob {
     /// Does the work with profile `P` and pixel format `F`.
     fn run<P: Profile, F: CorePixelFormat>(self) -> Self::Output;
 }
+
+/// `$fun::<P, F>(args..)` for the profile `$profile` and the pixel format
+/// `$format` named at run time: a [`ProfileJob`] holding the arguments
+/// (their types as written, elided lifetimes allowed), run by [`dispatch`].
+macro_rules! dispatch_fn {
+    ($profile:expr, $format:expr, $fun:ident($($arg:ident: $ty:ty),* $(,)?) -> $out:ty) => {{
+        struct Job<A>(A);
+        impl $crate::core_render::ProfileJob for Job<($($ty,)*)> {
+            type Output = $out;
+            fn run<P: fixshade::num::Profile, F: fixshade::target::PixelFormat>(self) -> $out {
+                let ($($arg,)*) = self.0;
+                $fun::<P, F>($($arg),*)
+            }
+        }
+        $crate::core_render::dispatch($profile, $format, Job(($($arg,)*)))
+    }};
+}
+pub(crate) use dispatch_fn;
 
 /// Runs `job` with the profile and the pixel format named at run time.
 pub fn dispatch<J: ProfileJob>(profile: CoreProfile, format: PixelFormat, job: J) -> J::Output {

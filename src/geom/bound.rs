@@ -1,8 +1,8 @@
 //! The bounding sphere and box of a set of Q1.14 positions.
 
-/// A sphere holding every position of a mesh, in Q1.14 (computed by
-/// [`Mesh::new`](crate::mesh::Mesh::new)): the centre of the positions' bounding box and the
-/// distance to the farthest position, rounded up.
+/// A sphere holding every position of a set of Q1.14 positions, in Q1.14:
+/// the centre of the positions' bounding box and the distance to the
+/// farthest position, rounded up.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Bound {
     /// Centre, Q1.14.

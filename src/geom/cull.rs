@@ -39,12 +39,11 @@
 //! det M)`, `β = 2η² w_max³ / (K² det M)`.
 //!
 //! A face's baked slack is at least `4 (ℓ₁ + ℓ₂ + λ)/(2A)` (`λ = 2^-8`,
-//! [`face_plane`](crate::mesh::face_plane)), so with `γ = max(α, β/λ)`
+//! [`face_plane`](super::exact::face_plane)), so with `γ = max(α, β/λ)`
 //! the condition `g > γ · slack / 4` suffices. A vertex bakes the largest
 //! slack of its faces and a spread `s` with `|n̂_f - a| <= s` for each of
 //! its faces `f` (`a` its normal, the cone's axis;
-//! [`Mesh::with_vertex_cones`](crate::mesh::Mesh::with_vertex_cones)
-//! checks both exactly). Since `g_f = n̂_f · (P - E) >= a · (P - E) - s
+//! [`cone_covers`](super::exact::cone_covers) checks both exactly). Since `g_f = n̂_f · (P - E) >= a · (P - E) - s
 //! |P - E|`, every face of the vertex is certainly back when
 //!
 //! `a · (P - E) > γ · slack / 4 + s · R_E + m_E`,
@@ -407,8 +406,8 @@ impl EarlyCull {
 
     /// Whether every face of the vertex with axis `a` (its normal) and
     /// cone `[d, slack | spread << 16]`
-    /// ([`Mesh::with_vertex_cones`](crate::mesh::Mesh::with_vertex_cones),
-    /// checked by the mesh) certainly faces away, as a sign: the threshold
+    /// ([`cone_covers`](super::exact::cone_covers), checked when the cones
+    /// are baked) certainly faces away, as a sign: the threshold
     /// `gm · slack + rk · spread + bias` less the left side `(d >> sh) - a
     /// · e`, negative exactly when every face's rounded screen area is
     /// positive (the vertex then needs no projection). One value a vertex

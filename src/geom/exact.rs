@@ -2,8 +2,8 @@
 //! of Q1.14 positions (what the mesh tables bake and the geometry stage
 //! tests against).
 //!
-//! The error analysis is in the [mesh module
-//! docs](crate::mesh#arithmetic-and-error-bounds).
+//! Each function states its bound; the tables built from them carry the
+//! error analysis of the geometry stage that reads them.
 
 use crate::num::isqrt_u64;
 
@@ -137,8 +137,8 @@ const fn edge_up(p: [i16; 3], q: [i16; 3]) -> u64 {
 }
 
 /// The culling plane of the counter-clockwise triangle `a, b, c`, as
-/// `[d, slack]`; its slack bounds the per-vertex cones baked with the
-/// built-in meshes ([`Mesh::with_vertex_cones`](crate::mesh::Mesh::with_vertex_cones)):
+/// `[d, slack]`; its slack bounds the per-vertex normal cones
+/// ([`cone_covers`]):
 ///
 /// - `d = n · a` exactly, with `n` the Q1.14 [`face_normal`] (so
 ///   `|d| <= 16386 · 2^15·√3 < 2^30`);

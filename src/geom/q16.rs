@@ -162,7 +162,7 @@ pub(crate) fn face_cross(a: [i16; 3], b: [i16; 3], c: [i16; 3]) -> [i16; 3] {
     })
 }
 
-/// [`face_normal`](crate::mesh::face_normal), bit for bit, without its
+/// [`face_normal`](super::exact::face_normal), bit for bit, without its
 /// 64-bit square root and divisions when every edge is shorter than
 /// 2^15 (every mesh within the unit cube; longer edges call it).
 ///

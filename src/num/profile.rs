@@ -17,7 +17,7 @@
 //! perspective-correctly ([`Profile::PERSPECTIVE`]).
 //!
 //! Interpolated fixed-point formats (all `i32`, within ±2^30, see
-//! [`crate::raster`]): colour levels `l · 2^16` for `l` in `0..=255`;
+//! [`Lerp`](super::Lerp)): colour levels `l · 2^16` for `l` in `0..=255`;
 //! depth `d · 2^30` for `d` in `[0, 1]`; unit-vector components `n · 2^30`;
 //! eye-space coordinates `p · 2^16` (±16384 units; `p · 2^22`, ±256 units,
 //! in the perspective-correct profiles).

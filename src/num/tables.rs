@@ -257,7 +257,7 @@ pub(crate) const SIN: [u64; 65] = [
 /// `floor(2^36 · S / (S + 4j))` (that is `(2 r)²`, `S = E - 1`), halved
 /// and rounded up: within `2^-16` of `2^16 / sqrt(f)`.
 ///
-/// The kernel ships `E = 65` ([`crate::render::RSQRT_N`] + 1); other sizes
+/// The Phong span kernel ships `E = 65` (64 segments); other sizes
 /// are for the table-size sweep of the report (`fixshade report`), whose
 /// model of the kernel's lookup is tested equal to the kernel at 65. An
 /// `E` outside the range gives a table of zeros (no panic at compile
@@ -287,7 +287,7 @@ pub const fn rsqrt_quarter_table<const E: usize>() -> [u32; E] {
 /// table ends where the term drops below `e^-8 < 2^-11`, or at `u = m`
 /// where it is 0).
 ///
-/// The kernel ships `E = 130` ([`crate::render::SPEC_SEGMENTS`] + 2),
+/// The Phong span kernel ships `E = 130` (128 segments + 2),
 /// built when it is made for a shininess; other sizes are for the
 /// report's table-size sweep (see [`rsqrt_quarter_table`]). An `E` or
 /// `m` outside the range gives a table of zeros.

@@ -179,6 +179,26 @@ pub(crate) fn det_sign_small(a: i32, b: i32, c: i32, d: i32) -> Option<i32> {
     }
 }
 
+/// The steps of [`small_floor_divmod`] written out, nested: `$step` and
+/// the quotient `$q` set to each value in turn while `$more` holds, then
+/// `None` (the caller divides).
+macro_rules! divmod_steps {
+    ($more:expr, $step:expr, $q:ident: $k:literal) => {
+        $step;
+        $q = $k;
+        if $more {
+            return None;
+        }
+    };
+    ($more:expr, $step:expr, $q:ident: $k:literal, $($rest:literal),+) => {
+        $step;
+        $q = $k;
+        if $more {
+            divmod_steps!($more, $step, $q: $($rest),+);
+        }
+    };
+}
+
 /// `(⌊n/d⌋, n mod d)` for `d > 0` by at most four subtractions or
 /// additions, when the quotient lies in `-4..=4`; `None` otherwise (the
 /// caller divides). Exact, and nothing overflows (`m + d` only for `m < 0`,
@@ -189,41 +209,9 @@ pub(crate) fn small_floor_divmod(n: i32, d: i32) -> Option<(i32, i32)> {
     let mut m = n;
     let mut q = 0;
     if m < 0 {
-        m += d;
-        q = -1;
-        if m < 0 {
-            m += d;
-            q = -2;
-            if m < 0 {
-                m += d;
-                q = -3;
-                if m < 0 {
-                    m += d;
-                    q = -4;
-                    if m < 0 {
-                        return None;
-                    }
-                }
-            }
-        }
+        divmod_steps!(m < 0, m += d, q: -1, -2, -3, -4);
     } else if m >= d {
-        m -= d;
-        q = 1;
-        if m >= d {
-            m -= d;
-            q = 2;
-            if m >= d {
-                m -= d;
-                q = 3;
-                if m >= d {
-                    m -= d;
-                    q = 4;
-                    if m >= d {
-                        return None;
-                    }
-                }
-            }
-        }
+        divmod_steps!(m >= d, m -= d, q: 1, 2, 3, 4);
     }
     Some((q, m))
 }

@@ -248,6 +248,19 @@ persp!(1, 2);
 persp!(3, 4);
 persp!(6, 7);
 
+/// `Ok` when `depth` is none or holds the rows and the width of `target`;
+/// [`RasterError::DepthWindowMismatch`] otherwise (the check of a span
+/// stage's constructor).
+pub(crate) fn same_window<T: Target, D: DepthFormat>(
+    target: &T,
+    depth: Option<&DepthBuffer<'_, D>>,
+) -> Result<(), RasterError> {
+    match depth {
+        Some(d) if d.window() != target.window() => Err(RasterError::DepthWindowMismatch),
+        _ => Ok(()),
+    }
+}
+
 /// The span stage: a target, an optional depth buffer and a shader.
 ///
 /// Without a depth buffer every covered pixel is drawn, in triangle order
@@ -272,11 +285,7 @@ impl<'t, 'd, 'b, T: Target, D: DepthFormat, S> Fill<'t, 'd, 'b, T, D, S> {
         depth: Option<&'d mut DepthBuffer<'b, D>>,
         shader: S,
     ) -> Result<Self, RasterError> {
-        if let Some(d) = &depth {
-            if d.window() != target.window() {
-                return Err(RasterError::DepthWindowMismatch);
-            }
-        }
+        same_window(target, depth.as_deref())?;
         Ok(Self {
             target,
             depth,
@@ -365,7 +374,7 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
             if let Some(row) = row {
                 let fails = if len >= SHORT_SPAN && D::span_in_range(z, dz, len) {
                     if N > 1 {
-                        pair_loop(row, drow, z, dz, a, da, color, in_range_test::<L, D>)
+                        pair_loop::<L, N, _, D>(row, drow, z, a, &Vals { z: dz, a: *da }, color)
                     } else if let Some((ia, ida)) = inr {
                         len - in_range_pairs::<L, N, _, D>(row, drow, z, dz, *ia, ida, color_inr)
                     } else if NO_LONG_MUL && N == 0 {
@@ -562,7 +571,7 @@ fn in_range_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     sx: &Vals<L, N>,
     color: &impl Fn(&[L; N]) -> R,
 ) -> u32 {
-    row.len() as u32 - pair_loop(row, drow, z, sx.z, a, &sx.a, color, in_range_test::<L, D>)
+    row.len() as u32 - pair_loop::<L, N, _, D>(row, drow, z, a, sx, color)
 }
 
 /// The depth-tested pixels of a span whose depths stay in range (no
@@ -637,19 +646,19 @@ fn failed(fails: u32) -> u32 {
 /// instructions per pixel, GouraudMono 14.2 -> 12.2 (by four, LLVM
 /// spilled the partial depth sums: 9.7 and 15.3). Taken only for the
 /// spans whose depths were checked in range (at least [`SHORT_SPAN`]
-/// pixels). The same pixels in the same order, hence the same bytes.
-#[allow(clippy::too_many_arguments)]
+/// pixels), hence [`in_range_test`]; the steps `sx` as [`inr_span`] takes
+/// them. The same pixels in the same order, hence the same bytes.
 #[inline(always)]
-pub(super) fn pair_loop<L: Lerp, const N: usize, R, Z>(
+pub(super) fn pair_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     row: &mut [R],
-    drow: &mut [Z],
+    drow: &mut [D::Raw],
     mut z: L,
-    dz: L,
     mut a: [L; N],
-    da: &[L; N],
+    sx: &Vals<L, N>,
     color: impl Fn(&[L; N]) -> R,
-    test: impl Fn(L, &mut Z) -> bool,
 ) -> u32 {
+    let (dz, da) = (sx.z, &sx.a);
+    let test = in_range_test::<L, D>;
     let mut fails = 0u32;
     let n = row.len().min(drow.len());
     let (row, drow) = (row.split_at_mut(n).0, drow.split_at_mut(n).0);

@@ -379,27 +379,20 @@ impl Encode for Rgb565Be {
 }
 
 fn every_shape<R: Real>(shading: Shading) -> Vec<Object<'static, R>> {
-    [
-        shapes::CUBE,
-        shapes::DODECAHEDRON,
-        shapes::SPHERE,
-        shapes::CAN,
-        shapes::GRID,
-        shapes::BUNNY,
-    ]
-    .iter()
-    .enumerate()
-    .map(|(i, m)| {
-        let mut o = object::<R>(*m, shading, [0.3 * i as f32, 0.5 + 0.2 * i as f32, 0.1]);
-        o.transform.t = Vec3::from_f32([
-            (i as f32 - 2.5) * 0.9,
-            (i % 2) as f32 * 0.8 - 0.4,
-            -(i as f32) * 0.3,
-        ]);
-        o.cull_backfaces = i != 4; // the grid is open: two-sided
-        o
-    })
-    .collect()
+    shapes::ALL
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let mut o = object::<R>(*m, shading, [0.3 * i as f32, 0.5 + 0.2 * i as f32, 0.1]);
+            o.transform.t = Vec3::from_f32([
+                (i as f32 - 2.5) * 0.9,
+                (i % 2) as f32 * 0.8 - 0.4,
+                -(i as f32) * 0.3,
+            ]);
+            o.cull_backfaces = i != 4; // the grid is open: two-sided
+            o
+        })
+        .collect()
 }
 
 #[test]

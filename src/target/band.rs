@@ -9,7 +9,7 @@ use super::{
 /// in format `F`, and depth in format `D` or none (drawing in triangle
 /// order, enough for one convex object with back-face culling).
 ///
-/// The band renderer ([`crate::render::Bands`]) moves it to each band in
+/// The band renderer moves it to each band in
 /// turn (the last band may hold fewer rows), clears it and renders into
 /// it; [`BandBuf::pixels`] / [`BandBuf::bytes`] then give the band's
 /// pixels to send to a display. Two band buffers make double buffering:

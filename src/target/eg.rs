@@ -6,9 +6,8 @@
 //! `BinaryColor` with [`draw_band`] ([`draw_frame_buf`] for a
 //! [`FrameBuf`]): one `fill_contiguous` call over the band's rectangle,
 //! which display drivers such as `mipidsi` turn into one address window
-//! and one burst of pixels over SPI. With
-//! [`Frame::render_bands`](crate::render::Frame::render_bands) a whole
-//! frame goes out band by band:
+//! and one burst of pixels over SPI. With the band renderer
+//! (`Frame::render_bands`) a whole frame goes out band by band:
 //!
 //! ```text
 //! frame.render_bands(&scene, &mut state, &mut band,

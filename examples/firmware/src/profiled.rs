@@ -17,20 +17,24 @@ use fixshade::render::Capacity;
 use fixshade_scenes::profiled::{check_with, render_frame_with, ProfilePool};
 use fixshade_scenes::{capacity_for, Pixel, BAND_PIXELS, BAND_ROWS, DEPTH_PIXELS, SCENES, WIDTH};
 
-#[cfg(feature = "profile-precise")]
-type P = fixshade::num::Precise;
-#[cfg(feature = "profile-f32")]
-type P = fixshade::num::F32;
-#[cfg(feature = "profile-f64")]
-type P = fixshade::num::F64;
-#[cfg(feature = "profile-fast-pc")]
-type P = fixshade::num::FastPc;
-#[cfg(feature = "profile-precise-pc")]
-type P = fixshade::num::PrecisePc;
-#[cfg(feature = "profile-f32-pc")]
-type P = fixshade::num::F32Pc;
-#[cfg(feature = "profile-f64-pc")]
-type P = fixshade::num::F64Pc;
+/// The profile of the build's `profile-*` feature.
+macro_rules! profile_of_feature {
+    ($($feature:literal => $profile:ident),* $(,)?) => {
+        $(
+            #[cfg(feature = $feature)]
+            type P = fixshade::num::$profile;
+        )*
+    };
+}
+profile_of_feature! {
+    "profile-precise" => Precise,
+    "profile-f32" => F32,
+    "profile-f64" => F64,
+    "profile-fast-pc" => FastPc,
+    "profile-precise-pc" => PrecisePc,
+    "profile-f32-pc" => F32Pc,
+    "profile-f64-pc" => F64Pc,
+}
 
 /// The interpolated values' type.
 type L = <P as Profile>::Lerp;

@@ -49,6 +49,26 @@ pub struct MeasureArgs {
     pub targets: Vec<String>,
 }
 
+/// The chip measurements' options of `fixshade report` and `fixshade
+/// pick`: flatten it into their arguments with `#[command(flatten)]`.
+#[derive(Clone, Debug, Default, Args)]
+pub struct ChipArgs {
+    /// `--measurements` and `--allow-stale`.
+    #[command(flatten)]
+    pub measurements: MeasurementsArgs,
+    /// Measure under QEMU (needs qemu-system-arm, gcc and the thumb
+    /// targets; minutes). `report`: re-measure every profile on both
+    /// chips; with scene files, generate the firmware for your scenes
+    /// (their OBJ meshes baked in), build it for both chips and measure
+    /// it. `pick --scene SCENE.toml`: the same for your scene on the
+    /// chip's target, so the pick weighs its measured cycles too.
+    #[arg(long)]
+    pub measure_firmware: bool,
+    /// `--firmware-profiles`: what --measure-firmware measures.
+    #[command(flatten)]
+    pub firmware_profiles: FirmwareProfilesArgs,
+}
+
 /// `--measurements FILE` and `--allow-stale` of `fixshade report` and
 /// `fixshade pick`: flatten it into their arguments with
 /// `#[command(flatten)]`.

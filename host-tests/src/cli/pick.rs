@@ -41,18 +41,10 @@ pub struct PickArgs {
     /// (`SCENE.toml`) is picked by RAM alone: its cycles are not measured.
     #[arg(long)]
     pub scene: Option<String>,
-    /// `--measurements` and `--allow-stale`.
+    /// `--measurements`, `--allow-stale`, `--measure-firmware` (with
+    /// `--scene SCENE.toml` only) and `--firmware-profiles`.
     #[command(flatten)]
-    pub measurements: super::measure::MeasurementsArgs,
-    /// With `--scene SCENE.toml`: generate the firmware for your scene,
-    /// build it for the chip's target and measure it under QEMU (needs
-    /// qemu-system-arm, gcc and the thumb target), so the pick weighs its
-    /// measured cycles too.
-    #[arg(long)]
-    pub measure_firmware: bool,
-    /// `--firmware-profiles`: what --measure-firmware measures.
-    #[command(flatten)]
-    pub firmware_profiles: super::measure::FirmwareProfilesArgs,
+    pub chips: super::measure::ChipArgs,
 }
 
 fn positive(name: &str, v: f64) -> Result<f64, CliError> {
@@ -80,9 +72,9 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
         fps: positive("fps", args.fps)?,
         ram_bytes: positive("ram-kb", args.ram_kb.unwrap_or(chip.ram_kb))? * 1024.0,
     };
-    let path = args.measurements.path();
+    let path = args.chips.measurements.path();
     let m = chips::load(&path)?;
-    if !args.measurements.allow_stale {
+    if !args.chips.measurements.allow_stale {
         chips::check_fresh(&m, &chips::repo_root(), &path.display().to_string())?;
     }
     if let Some(file) = args
@@ -91,13 +83,13 @@ pub fn run(args: &PickArgs) -> Result<(), CliError> {
         .filter(|s| s.ends_with(".toml") || std::path::Path::new(s).is_file())
     {
         let file = std::path::Path::new(file);
-        if args.measure_firmware {
-            let profiles = args.firmware_profiles.profiles()?;
+        if args.chips.measure_firmware {
+            let profiles = args.chips.firmware_profiles.profiles()?;
             return pick_file_measured(file, chip, &budget, &m, &profiles);
         }
         return pick_file(file, chip, &budget, &m, &path);
     }
-    if args.measure_firmware {
+    if args.chips.measure_firmware {
         return Err(CliError::input(
             "--measure-firmware measures your scene: give it with --scene SCENE.toml (the built-in scenes' figures are in the measurements file; `fixshade measure-firmware` re-measures them)".to_string(),
         ));

@@ -27,18 +27,10 @@ pub struct ReportArgs {
     /// figures are not available.
     #[arg(long, value_name = "FILE")]
     pub firmware_results: Option<PathBuf>,
-    /// `--measurements` and `--allow-stale`.
+    /// `--measurements`, `--allow-stale`, `--measure-firmware` and
+    /// `--firmware-profiles`.
     #[command(flatten)]
-    pub measurements: super::measure::MeasurementsArgs,
-    /// Re-measure every profile on both chips under QEMU (needs
-    /// qemu-system-arm, gcc and the thumb targets; minutes). With scene
-    /// files: generate the firmware for your scenes (their OBJ meshes
-    /// baked in), build it for both chips and measure it.
-    #[arg(long)]
-    pub measure_firmware: bool,
-    /// `--firmware-profiles`: what --measure-firmware measures.
-    #[command(flatten)]
-    pub firmware_profiles: super::measure::FirmwareProfilesArgs,
+    pub chips: super::measure::ChipArgs,
 }
 
 /// Runs the sweep and writes the report; prints the summary and the files.
@@ -48,10 +40,10 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         quick: args.quick,
         firmware_results: args.firmware_results.clone(),
         progress: true,
-        measurements: args.measurements.measurements.clone(),
-        allow_stale: args.measurements.allow_stale,
-        measure_firmware: args.measure_firmware,
-        firmware_profiles: args.firmware_profiles.profiles()?,
+        measurements: args.chips.measurements.measurements.clone(),
+        allow_stale: args.chips.measurements.allow_stale,
+        measure_firmware: args.chips.measure_firmware,
+        firmware_profiles: args.chips.firmware_profiles.profiles()?,
         scene_files: args.scenes.clone(),
     })?;
     let mut text = String::new();

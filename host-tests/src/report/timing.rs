@@ -18,9 +18,7 @@ use std::time::{Duration, Instant};
 use fixshade::num::Profile;
 use fixshade::target::PixelFormat as CorePixelFormat;
 
-use crate::core_render::{
-    dispatch, CoreError, CoreProfile, CoreScene, ProfileJob, Renderer, BAND_ROWS,
-};
+use crate::core_render::{dispatch_fn, CoreError, CoreProfile, CoreScene, Renderer, BAND_ROWS};
 use crate::scene_file::SceneDesc;
 
 /// How many times to render a frame.
@@ -65,17 +63,7 @@ pub fn time_frames(
     profile: CoreProfile,
     repeats: Repeats,
 ) -> Result<Timing, CoreError> {
-    struct Job<'d> {
-        desc: &'d SceneDesc,
-        repeats: Repeats,
-    }
-    impl ProfileJob for Job<'_> {
-        type Output = Result<Timing, CoreError>;
-        fn run<P: Profile, F: CorePixelFormat>(self) -> Self::Output {
-            time_format::<P, F>(self.desc, self.repeats)
-        }
-    }
-    dispatch(profile, desc.pixel_format, Job { desc, repeats })
+    dispatch_fn!(profile, desc.pixel_format, time_format(desc: &SceneDesc, repeats: Repeats) -> Result<Timing, CoreError>)
 }
 
 fn time_format<P: Profile, F: CorePixelFormat>(

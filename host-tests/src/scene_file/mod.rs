@@ -92,10 +92,7 @@ mod validate;
 
 use std::path::Path;
 
-use fixshade::mesh::{
-    generate_normals, Crease, Mesh, NormalsError, Smoothing, BUNNY, CAN, CUBE, DODECAHEDRON, GRID,
-    SPHERE,
-};
+use fixshade::mesh::{generate_normals, shapes, Crease, Mesh, NormalsError, Smoothing};
 use serde::Deserialize;
 
 use crate::ideal::{Camera, Light, Material, Shading, SpecularModel};
@@ -167,7 +164,7 @@ impl PixelFormat {
 /// Names of the built-in meshes, as written in scene files.
 pub const BUILTIN_MESHES: [&str; 6] = ["cube", "dodecahedron", "sphere", "can", "grid", "bunny"];
 
-static BUILTIN_MESH_DATA: [Mesh<'static>; 6] = [CUBE, DODECAHEDRON, SPHERE, CAN, GRID, BUNNY];
+static BUILTIN_MESH_DATA: [Mesh<'static>; 6] = shapes::ALL;
 
 /// The core's built-in mesh called `name` in scene files (see
 /// [`BUILTIN_MESHES`]).

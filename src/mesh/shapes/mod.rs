@@ -22,3 +22,9 @@ pub use cube::CUBE;
 pub use dodecahedron::DODECAHEDRON;
 pub use grid::GRID;
 pub use sphere::SPHERE;
+
+use super::Mesh;
+
+/// Every built-in mesh, in the order cube, dodecahedron, sphere, can,
+/// grid, bunny.
+pub const ALL: [Mesh<'static>; 6] = [CUBE, DODECAHEDRON, SPHERE, CAN, GRID, BUNNY];

@@ -53,33 +53,29 @@ use fixshade::num::{Fast, Profile};
 use fixshade::render::{Capacity, Pool, RenderError, Workspace};
 use fixshade::target::{BandBuf, BufferError, Rgb565Be};
 
+/// The largest `len()` of field `$field` over [`SCENES`], at compile time
+/// (a `const` loop: const evaluation takes no closure).
+macro_rules! most_of_scenes {
+    ($field:ident) => {{
+        let mut n = 0;
+        let mut i = 0;
+        while i < SCENES.len() {
+            if SCENES[i].$field.len() > n {
+                n = SCENES[i].$field.len();
+            }
+            i += 1;
+        }
+        n
+    }};
+}
+
 /// Most objects of a scene of the build ([`SCENES`]): the frame loop
 /// holds a scene's objects in its stack frame, for the whole frame.
-pub const SCENE_OBJECTS: usize = {
-    let mut n = 0;
-    let mut i = 0;
-    while i < SCENES.len() {
-        if SCENES[i].objects.len() > n {
-            n = SCENES[i].objects.len();
-        }
-        i += 1;
-    }
-    n
-};
+pub const SCENE_OBJECTS: usize = most_of_scenes!(objects);
 
 /// Most lights of a scene of the build ([`SCENES`]; at most the core's
 /// `MAX_LIGHTS`, checked by a test), held as [`SCENE_OBJECTS`].
-pub const SCENE_LIGHTS: usize = {
-    let mut n = 0;
-    let mut i = 0;
-    while i < SCENES.len() {
-        if SCENES[i].lights.len() > n {
-            n = SCENES[i].lights.len();
-        }
-        i += 1;
-    }
-    n
-};
+pub const SCENE_LIGHTS: usize = most_of_scenes!(lights);
 
 /// Rows per band: 16 ([`alone::dodeca::BAND_ROWS`] with the feature
 /// `dodeca`, [`alone::bunny::BAND_ROWS`] with `bunny`).
