@@ -35,6 +35,6 @@ impl Rgb8 {
 /// Largest screen width or height, in pixels: 4096.
 ///
 /// The rasterizer accepts vertex coordinates within
-/// ±[`crate::raster::COORD_LIMIT_PX`] = ±8192 pixels; a 4096-pixel screen
+/// ±[`crate::num::COORD_LIMIT_PX`] = ±8192 pixels; a 4096-pixel screen
 /// leaves a guard band of at least 4096 pixels on every side.
 pub const MAX_SCREEN: u32 = 4096;
