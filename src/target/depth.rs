@@ -1,7 +1,7 @@
 //! Depth buffers, 16 or 32 bits per pixel.
 //!
 //! The rasterizer interpolates a depth `d` in `[0, 1]` that is *affine in
-//! screen space* (the projected `z/w`, as the rasterizer interpolates it), as a 30-bit
+//! screen space* (the projected `z/w`), as a 30-bit
 //! fraction: `d30 = round(d × 2^30)`. A buffer keeps its top 16 or 30 bits.
 //! The test is *less than*: a fragment is drawn when its depth is strictly
 //! smaller than the stored one, so of two fragments at the same depth the
