@@ -1644,6 +1644,31 @@ trait Out {
         }
         failed
     }
+
+    /// The `k` pixels from pixel `i` in one loop over the state `s`: per
+    /// pixel the depth test, for a passing one the channel sums `col(s)`
+    /// (Q19, [`PixelFormat::encode_q19`]) encoded and written, then
+    /// `step(s)` (every pixel); returns how many failed.
+    #[inline(always)]
+    fn fused<S>(
+        &mut self,
+        i: u32,
+        k: u32,
+        s: &mut S,
+        col: impl Fn(&S) -> [i32; 3],
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        let mut failed = 0;
+        for j in i..i + k {
+            if self.test(j) {
+                self.write(j, level_q19(col(s)));
+            } else {
+                failed += 1;
+            }
+            step(s);
+        }
+        failed
+    }
 }
 
 /// [`Out`] of a test and a write closure ([`PhongKernel::fill`]).
@@ -1673,6 +1698,17 @@ trait SpanDepth {
     /// ones, `px(c)` for their entries `c` of `cols`; returns how many
     /// failed.
     fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32;
+    /// Tests the `row.len()` pixels from pixel `i` and writes the passing
+    /// ones, `px(s)`, stepping `s` after every pixel ([`Out::fused`]);
+    /// returns how many failed.
+    fn fused<P, S>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32;
 }
 
 /// No depth buffer: every pixel passes.
@@ -1688,6 +1724,22 @@ impl SpanDepth for NoDepth {
     fn chunk<P>(&mut self, row: &mut [P], _i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
         for (o, &c) in row.iter_mut().zip(cols.iter()) {
             *o = px(c);
+        }
+        0
+    }
+
+    #[inline(always)]
+    fn fused<P, S>(
+        &mut self,
+        row: &mut [P],
+        _i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        for o in row.iter_mut() {
+            *o = px(s);
+            step(s);
         }
         0
     }
@@ -1755,6 +1807,53 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
         }
         failed
     }
+
+    /// One loop over the row and depth slices: the depth test of a pixel
+    /// (without the depth clamp when the span's depths are in range),
+    /// its colour when it passes, the state stepped.
+    #[inline(always)]
+    fn fused<P, S>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        let k = row.len();
+        let Some(drow) = self.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let (mut z, dz) = (self.z, self.dz);
+        let mut failed = 0u32;
+        if self.in_range {
+            for (o, zb) in row.iter_mut().zip(drow.iter_mut()) {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    *o = px(s);
+                } else {
+                    failed += 1;
+                }
+                step(s);
+                z = z.add(dz);
+            }
+        } else {
+            for (o, zb) in row.iter_mut().zip(drow.iter_mut()) {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    *o = px(s);
+                } else {
+                    failed += 1;
+                }
+                step(s);
+                z = z.add(dz);
+            }
+        }
+        self.z = z;
+        failed
+    }
 }
 
 /// [`Out`] of a span's row slice and its depth part ([`SpanDepth`]: a
@@ -1784,6 +1883,22 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
             return k as u32;
         };
         self.depth.chunk(row, i, cols, |c| F::encode_q19(col(c)))
+    }
+
+    #[inline(always)]
+    fn fused<S>(
+        &mut self,
+        i: u32,
+        k: u32,
+        s: &mut S,
+        col: impl Fn(&S) -> [i32; 3],
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        let i = i as usize;
+        let Some(row) = self.row.get_mut(i..i + k as usize) else {
+            return k;
+        };
+        self.depth.fused(row, i, s, |s| F::encode_q19(col(s)), step)
     }
 }
 
