@@ -62,17 +62,26 @@
 //! spans alone went from 96.8 to 92.7 a pixel on the M4 and from 186.2
 //! to 180.1 on the M0). Spans shorter than 4 pixels (`one::SHORT_SPAN`)
 //! skip the span and chunk set-up: the depth test of each pixel, then the
-//! 64-bit path for the passing ones. The light terms of a chunk (`N·L`
-//! and the specular factor, packed) come from one copy of that
-//! arithmetic, the three channels from the span driver both 32-bit loops
-//! share (one per pixel and depth format): the chunk's depth test first,
-//! over the depth slice alone into a bit mask (without the depth clamp on
-//! spans of 8 pixels or more whose depths are
-//! in range), then the colours of the passing pixels (one loop without
-//! a test when all passed; on the M4 each channel two `SMLABB`/`SMLATT`
-//! of the packed terms, flipped to signed halves, by the packed
-//! coefficients, see `one::Colour`, and the sums encoded straight from
-//! Q19 by [`PixelFormat::encode_q19`]: for RGB565 one `USAT` a channel).
+//! 64-bit path for the passing ones. A span with a single plan, and
+//! each chunk of the others, runs as one loop a pixel (`Out::fused`, one
+//! per pixel and depth format): the depth test (without the depth clamp
+//! on spans of 8 pixels or more whose depths are in range), for a
+//! passing pixel its light terms (`N·L` and the specular factor, packed;
+//! on the M4 each channel two `SMLABB`/`SMLATT` of the packed terms,
+//! flipped to signed halves, by the packed coefficients, see
+//! `one::Colour`) and the sums encoded straight from Q19 by
+//! [`PixelFormat::encode_q19`] (for RGB565 one `USAT` a channel), then
+//! the state stepped: 79.51 instructions a pixel on the M4 and 147.50 on
+//! the M0 (81.38 and 148.99 with a pass for the terms into a buffer, a
+//! pass of depth tests into a bit mask and a pass of colours). The loop
+//! holds ~25 values (the 32-bit state and its steps, 8; the depth, its
+//! step and the two slices' positions, 5; the tables, 2; the colour
+//! constants, 6; temporaries) in 14 registers: ~56 instructions of
+//! arithmetic a pixel, the rest reloads. (Measured and not kept: the
+//! colour constants read from memory at each pixel, 83.41 and 86.46;
+//! the loop out of line, 90.66; the channels as `MLA`s without packing,
+//! 81.34; `1/|n|`'s packed entries in the other order, 80.52; the
+//! terms into a buffer and one loop of depth test and colour, 83.52.)
 //! Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]

@@ -12,7 +12,9 @@
 //! interpolation), `N·L` one product, the table position `Qm·(1/|n|²)` one
 //! product of 16-bit operands, the table with one interpolation, per
 //! channel two multiply-adds and a clamp: all 32-bit, products of operands
-//! below 2^16 or results below 2^32 (a single `MULS` on ARMv6-M).
+//! below 2^16 or results below 2^32 (a single `MULS` on ARMv6-M). The
+//! depth test, the terms, the channels and the store of a pixel are one
+//! loop ([`PhongKernel::run`] through `Out::fused`).
 //!
 //! A chunk whose `Qm` leaves the 32-bit range (`Q` far from the highlight
 //! at high shininess) is proven free of specular light by the convexity of
