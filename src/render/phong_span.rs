@@ -1352,12 +1352,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             None => None,
         };
         let count = if let Some(row) = self.target.span_mut(y, x0, x1) {
-            match tri {
-                Some(t) => {
-                    row_fill_tri::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back, t)
-                }
-                None => row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back),
-            }
+            row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back, tri)
         } else {
             let t = &mut *self.target;
             let write = move |i: u32, c| t.write_pixel(x0 + i, y, enc(c));
@@ -1450,12 +1445,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
             _ => None,
         };
         let span = (n, dn, p, dp);
-        match tri {
-            Some(t) => {
-                row_fill_tri::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back, t)
-            }
-            None => row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back),
-        }
+        row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back, tri)
     }
 }
 
@@ -1559,29 +1549,12 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     dz: L,
     span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
     back: bool,
+    tri: Option<(&mut TriQuad, i32, i32)>,
 ) -> u32 {
-    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, None)
+    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, tri)
 }
 
-/// [`row_fill`] of a span of a triangle with quadratics (`tri`: the
-/// triangle's [`TriQuad`] and the span's first pixel), apart: the other
-/// spans' copy keeps its code.
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn row_fill_tri<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
-    k: &PhongKernel<'_, R>,
-    row: &mut [F::Raw],
-    drow: Option<&mut [D::Raw]>,
-    z: L,
-    dz: L,
-    span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-    back: bool,
-    tri: (&mut TriQuad, i32, i32),
-) -> u32 {
-    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, Some(tri))
-}
-
-/// The body of [`row_fill`] and [`row_fill_tri`].
+/// The body of [`row_fill`].
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn row_out<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
