@@ -71,7 +71,7 @@
 //! flipped to signed halves, by the packed coefficients, see
 //! `one::Colour`) and the sums encoded straight from Q19 by
 //! [`PixelFormat::encode_q19`] (for RGB565 one `USAT` a channel), then
-//! the state stepped: 79.51 instructions a pixel on the M4 and 147.50 on
+//! the state stepped: 77.54 instructions a pixel on the M4 and 141.48 on
 //! the M0 (81.38 and 148.99 with a pass for the terms into a buffer, a
 //! pass of depth tests into a bit mask and a pass of colours). The loop
 //! holds ~25 values (the 32-bit state and its steps, 8; the depth, its
@@ -79,7 +79,7 @@
 //! constants, 6; temporaries) in 14 registers: ~56 instructions of
 //! arithmetic a pixel, the rest reloads. (Measured and not kept: the
 //! colour constants read from memory at each pixel, 83.41 and 86.46;
-//! the loop out of line, 90.66; the channels as `MLA`s without packing,
+//! the depth loop alone out of line, 90.66; the channels as `MLA`s without packing,
 //! 81.34; `1/|n|`'s packed entries in the other order, 80.52; the
 //! terms into a buffer and one loop of depth test and colour, 83.52.)
 //! Per pixel: `1/|n|` from a 65-entry
