@@ -62,17 +62,26 @@
 //! spans alone went from 96.8 to 92.7 a pixel on the M4 and from 186.2
 //! to 180.1 on the M0). Spans shorter than 4 pixels (`one::SHORT_SPAN`)
 //! skip the span and chunk set-up: the depth test of each pixel, then the
-//! 64-bit path for the passing ones. The light terms of a chunk (`N·L`
-//! and the specular factor, packed) come from one copy of that
-//! arithmetic, the three channels from the span driver both 32-bit loops
-//! share (one per pixel and depth format): the chunk's depth test first,
-//! over the depth slice alone into a bit mask (without the depth clamp on
-//! spans of 8 pixels or more whose depths are
-//! in range), then the colours of the passing pixels (one loop without
-//! a test when all passed; on the M4 each channel two `SMLABB`/`SMLATT`
-//! of the packed terms, flipped to signed halves, by the packed
-//! coefficients, see `one::Colour`, and the sums encoded straight from
-//! Q19 by [`PixelFormat::encode_q19`]: for RGB565 one `USAT` a channel).
+//! 64-bit path for the passing ones. A span with a single plan, and
+//! each chunk of the others, runs as one loop a pixel (`Out::fused`, one
+//! per pixel and depth format): the depth test (without the depth clamp
+//! on spans of 8 pixels or more whose depths are in range), for a
+//! passing pixel its light terms (`N·L` and the specular factor, packed;
+//! on the M4 each channel two `SMLABB`/`SMLATT` of the packed terms,
+//! flipped to signed halves, by the packed coefficients, see
+//! `one::Colour`) and the sums encoded straight from Q19 by
+//! [`PixelFormat::encode_q19`] (for RGB565 one `USAT` a channel), then
+//! the state stepped: 77.54 instructions a pixel on the M4 and 141.48 on
+//! the M0 (81.38 and 148.99 with a pass for the terms into a buffer, a
+//! pass of depth tests into a bit mask and a pass of colours). The loop
+//! holds ~25 values (the 32-bit state and its steps, 8; the depth, its
+//! step and the two slices' positions, 5; the tables, 2; the colour
+//! constants, 6; temporaries) in 14 registers: ~56 instructions of
+//! arithmetic a pixel, the rest reloads. (Measured and not kept: the
+//! colour constants read from memory at each pixel, 83.41 and 86.46;
+//! the depth loop alone out of line, 90.66; the channels as `MLA`s without packing,
+//! 81.34; `1/|n|`'s packed entries in the other order, 80.52; the
+//! terms into a buffer and one loop of depth test and colour, 83.52.)
 //! Per pixel: `1/|n|` from a 65-entry
 //! table over `|n|² ∈ [1/4, 5/4)` ([`RSQRT_N`]), `N·L = n·L / |n|`, the
 //! table position `m·w` and the specular table ([`SPEC_SEGMENTS`]
@@ -1343,12 +1352,7 @@ impl<'t, 'd, 'b, 'k, 's, T: Target, D: DepthFormat, R: Real>
             None => None,
         };
         let count = if let Some(row) = self.target.span_mut(y, x0, x1) {
-            match tri {
-                Some(t) => {
-                    row_fill_tri::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back, t)
-                }
-                None => row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back),
-            }
+            row_fill::<L, T::Format, D, R>(k, row, drow, s.z, s.dz, span, back, tri)
         } else {
             let t = &mut *self.target;
             let write = move |i: u32, c| t.write_pixel(x0 + i, y, enc(c));
@@ -1441,12 +1445,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
             _ => None,
         };
         let span = (n, dn, p, dp);
-        match tri {
-            Some(t) => {
-                row_fill_tri::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back, t)
-            }
-            None => row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back),
-        }
+        row_fill::<L, F, D, R>(self.kernel, row, drow, z, dz, span, self.back, tri)
     }
 }
 
@@ -1539,7 +1538,12 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
 /// from 705 760 to 446 008 B and the dodecahedron Phong frame from
 /// 6 825 515 to 6 751 339 instructions (the span sweep's one light 175.22
 /// -> 175.71 a pixel); the bounds check that kept it inlined there (the
-/// point loop's range test, indexed) is gone.
+/// point loop's range test, indexed) is gone. One row fill for the spans
+/// with and without the triangle's quadratics (`tri`): a second copy for
+/// the former cost 21.5 KB of `.text` on the M4 and 25.1 KB on the M0
+/// (firmware 359 248 -> 337 712 B and 417 292 -> 392 236 B with one), for
+/// 16 115 instructions more in the cubes-and-sphere frame on the M4 (of
+/// 3.88 M; the dodecahedron Phong frame 5 331 fewer).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
@@ -1550,29 +1554,12 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     dz: L,
     span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
     back: bool,
+    tri: Option<(&mut TriQuad, i32, i32)>,
 ) -> u32 {
-    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, None)
+    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, tri)
 }
 
-/// [`row_fill`] of a span of a triangle with quadratics (`tri`: the
-/// triangle's [`TriQuad`] and the span's first pixel), apart: the other
-/// spans' copy keeps its code.
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn row_fill_tri<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
-    k: &PhongKernel<'_, R>,
-    row: &mut [F::Raw],
-    drow: Option<&mut [D::Raw]>,
-    z: L,
-    dz: L,
-    span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-    back: bool,
-    tri: (&mut TriQuad, i32, i32),
-) -> u32 {
-    row_out::<L, F, D, R>(k, row, drow, z, dz, span, back, Some(tri))
-}
-
-/// The body of [`row_fill`] and [`row_fill_tri`].
+/// The body of [`row_fill`].
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn row_out<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
@@ -1633,7 +1620,7 @@ trait Out {
     /// [`PixelFormat::encode_q19`]) for its entry `c`; returns how many
     /// failed.
     #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3]) -> u32 {
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3] + Copy) -> u32 {
         let mut failed = 0;
         for (j, &c) in (i..).zip(cols.iter()) {
             if self.test(j) {
@@ -1641,6 +1628,31 @@ trait Out {
             } else {
                 failed += 1;
             }
+        }
+        failed
+    }
+
+    /// The `k` pixels from pixel `i` in one loop over the state `s`: per
+    /// pixel the depth test, for a passing one the channel sums `col(s)`
+    /// (Q19, [`PixelFormat::encode_q19`]) encoded and written, then
+    /// `step(s)` (every pixel); returns how many failed.
+    #[inline(always)]
+    fn fused<S>(
+        &mut self,
+        i: u32,
+        k: u32,
+        s: &mut S,
+        col: impl Fn(&S) -> [i32; 3],
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        let mut failed = 0;
+        for j in i..i + k {
+            if self.test(j) {
+                self.write(j, level_q19(col(s)));
+            } else {
+                failed += 1;
+            }
+            step(s);
         }
         failed
     }
@@ -1672,7 +1684,24 @@ trait SpanDepth {
     /// Tests the `row.len()` pixels from pixel `i` and writes the passing
     /// ones, `px(c)` for their entries `c` of `cols`; returns how many
     /// failed.
-    fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32;
+    fn chunk<P>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        cols: &[u32],
+        px: impl Fn(u32) -> P + Copy,
+    ) -> u32;
+    /// Tests the `row.len()` pixels from pixel `i` and writes the passing
+    /// ones, `px(s)`, stepping `s` after every pixel ([`Out::fused`]);
+    /// returns how many failed.
+    fn fused<P, S>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32;
 }
 
 /// No depth buffer: every pixel passes.
@@ -1685,9 +1714,29 @@ impl SpanDepth for NoDepth {
     }
 
     #[inline(always)]
-    fn chunk<P>(&mut self, row: &mut [P], _i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
-        for (o, &c) in row.iter_mut().zip(cols.iter()) {
-            *o = px(c);
+    fn chunk<P>(
+        &mut self,
+        row: &mut [P],
+        _i: usize,
+        cols: &[u32],
+        px: impl Fn(u32) -> P + Copy,
+    ) -> u32 {
+        paint(row, cols, None, px);
+        0
+    }
+
+    #[inline(always)]
+    fn fused<P, S>(
+        &mut self,
+        row: &mut [P],
+        _i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        for o in row.iter_mut() {
+            *o = px(s);
+            step(s);
         }
         0
     }
@@ -1707,7 +1756,13 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
     /// three slices kept 15 values live and reloaded the channel
     /// constants every pixel.
     #[inline(always)]
-    fn chunk<P>(&mut self, row: &mut [P], i: usize, cols: &[u32], px: impl Fn(u32) -> P) -> u32 {
+    fn chunk<P>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        cols: &[u32],
+        px: impl Fn(u32) -> P + Copy,
+    ) -> u32 {
         const { assert!(CHUNK <= 32) };
         let k = row.len().min(CHUNK);
         let Some(drow) = self.drow.get_mut(i..i + k) else {
@@ -1741,11 +1796,77 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
             }
         }
         self.z = z;
-        if failed == 0 {
+        paint(row, cols, (failed != 0).then_some(pass), px);
+        failed
+    }
+
+    /// One loop over the row and depth slices: the depth test of a pixel
+    /// (without the depth clamp when the span's depths are in range),
+    /// its colour when it passes, the state stepped.
+    #[inline(always)]
+    fn fused<P, S>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        let k = row.len();
+        let Some(drow) = self.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let (mut z, dz) = (self.z, self.dz);
+        let mut failed = 0u32;
+        if self.in_range {
+            for (o, zb) in row.iter_mut().zip(drow.iter_mut()) {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    *o = px(s);
+                } else {
+                    failed += 1;
+                }
+                step(s);
+                z = z.add(dz);
+            }
+        } else {
+            for (o, zb) in row.iter_mut().zip(drow.iter_mut()) {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    *o = px(s);
+                } else {
+                    failed += 1;
+                }
+                step(s);
+                z = z.add(dz);
+            }
+        }
+        self.z = z;
+        failed
+    }
+}
+
+/// The colours `px(c)` of the entries `c` of `cols` into `row`: every
+/// pixel, or those whose bit is set in `pass` (pixel `j`: bit `j`).
+/// Other than on ARMv6-M not inlined, `px` by value (the colour
+/// constants in its frame, loaded in pairs, not spilled one by one in
+/// the row fill's): measured on the M4, the dodecahedron Phong raster
+/// 1 844 802 -> 1 822 957 and the span sweep's phong-kpoint 169.47 ->
+/// 167.80, phong-k2 181.77 -> 179.81 a pixel; on the M0 it cost 45 108
+/// instructions more in that frame (5 917 574 -> 5 962 682), so it stays
+/// inlined there.
+#[cfg_attr(armv6m, inline(always))]
+#[cfg_attr(not(armv6m), inline(never))]
+fn paint<P>(row: &mut [P], cols: &[u32], pass: Option<u32>, px: impl Fn(u32) -> P + Copy) {
+    match pass {
+        None => {
             for (o, &c) in row.iter_mut().zip(cols.iter()) {
                 *o = px(c);
             }
-        } else {
+        }
+        Some(mut pass) => {
             for (o, &c) in row.iter_mut().zip(cols.iter()) {
                 if pass & 1 != 0 {
                     *o = px(c);
@@ -1753,7 +1874,6 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
                 pass >>= 1;
             }
         }
-        failed
     }
 }
 
@@ -1778,12 +1898,29 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
     }
 
     #[inline(always)]
-    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3]) -> u32 {
+    fn chunk(&mut self, i: u32, cols: &[u32], col: impl Fn(u32) -> [i32; 3] + Copy) -> u32 {
         let (i, k) = (i as usize, cols.len());
         let Some(row) = self.row.get_mut(i..i + k) else {
             return k as u32;
         };
-        self.depth.chunk(row, i, cols, |c| F::encode_q19(col(c)))
+        self.depth
+            .chunk(row, i, cols, move |c| F::encode_q19(col(c)))
+    }
+
+    #[inline(always)]
+    fn fused<S>(
+        &mut self,
+        i: u32,
+        k: u32,
+        s: &mut S,
+        col: impl Fn(&S) -> [i32; 3],
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        let i = i as usize;
+        let Some(row) = self.row.get_mut(i..i + k as usize) else {
+            return k;
+        };
+        self.depth.fused(row, i, s, |s| F::encode_q19(col(s)), step)
     }
 }
 
@@ -2028,7 +2165,7 @@ const CHUNK: usize = 32;
 fn drive(
     len: u32,
     chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
-    terms: impl Fn(u32) -> [i32; 3],
+    terms: impl Fn(u32) -> [i32; 3] + Copy,
     out: &mut impl Out,
 ) -> u32 {
     drive_in(&mut [0u32; CHUNK], len, chunk, terms, out)
@@ -2041,7 +2178,7 @@ fn drive_in(
     buf: &mut [u32; CHUNK],
     len: u32,
     mut chunk: impl FnMut(u32, u32, &mut [u32; CHUNK]) -> bool,
-    terms: impl Fn(u32) -> [i32; 3],
+    terms: impl Fn(u32) -> [i32; 3] + Copy,
     out: &mut impl Out,
 ) -> u32 {
     // Failures counted (the rarer case in a frame), passes derived.
@@ -2052,7 +2189,7 @@ fn drive_in(
         let t = chunk(i, k, buf);
         let b = buf.get(..k as usize).unwrap_or_default();
         failed += if t {
-            out.chunk(i, b, &terms)
+            out.chunk(i, b, terms)
         } else {
             out.chunk(i, b, unpack_q19)
         };

@@ -434,7 +434,7 @@ impl<R: Real> PhongKernel<'_, R> {
         drive(
             len,
             |i, k, buf| self.point_chunk(l, &c, span, &mut plan, i, k as usize, buf),
-            |t| c.of_terms(t),
+            move |t| c.of_terms(t),
             &mut out,
         )
     }
@@ -470,7 +470,7 @@ impl<R: Real> PhongKernel<'_, R> {
             buf,
             len,
             |i, k, buf| self.tri_chunk(l, &c, span, &mut plan, px, i, k as usize, buf),
-            |t| c.of_terms(t),
+            move |t| c.of_terms(t),
             &mut out,
         )
     }

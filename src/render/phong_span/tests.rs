@@ -1159,3 +1159,117 @@ fn tri_quad_extreme_triangles() {
         }
     }
 }
+
+/// The renderer's row fill of one directional light (the fused loop of
+/// module `one`: depth test, terms, channels and store a pixel) writes
+/// exactly the pixels that pass the depth test and, there, the colours
+/// of [`PhongKernel::fill`] (the kernel's own loop through its test and
+/// write closures): spans of a single plan and of chunks (beyond
+/// `one::WHOLE_MAX`), short ones, depths in range (no clamp) and not,
+/// a depth buffer failing every fifth or seventh pixel, and none.
+#[test]
+fn row_fill_one_light_writes_the_passing_pixels() {
+    use crate::target::{Depth16, Rgb565Be};
+    let case = Case {
+        mat: Material {
+            color: v3(0.9, 0.7, 0.5),
+            ka: q(0.1),
+            kd: q(0.7),
+            ks: q(0.5),
+            shininess: q(40.0),
+        },
+        lights: std::vec![Light::directional(v3(0.3, 0.4, 0.866), q(1.0))],
+        ambient: q(0.2),
+        specular: Specular::Phong,
+        viewer: Viewer::Infinite,
+    };
+    let shade = Shade::new(
+        &case.mat,
+        case.ambient,
+        &case.lights,
+        case.specular,
+        case.viewer,
+    )
+    .unwrap();
+    let k = PhongKernel::new(&shade).unwrap();
+    let n = q30([-0.3, 0.1, 0.95]);
+    let dn = q30([0.003, 0.0, -0.001]);
+    let mut checked = 0usize;
+    let mut failed_total = 0usize;
+    for len in [3u32, 5, 20, 32, 33, 100, 256, 257, 300] {
+        let dn = dn.map(|c| c * 300 / len as i32);
+        for (z, dz) in [(1i32 << 28, 1i32 << 16), ((1 << 30) - (1 << 20), 1 << 14)] {
+            for fail_every in [0usize, 5, 7] {
+                // The expected colours: `fill` with the same depth test.
+                let mut want = std::vec![None; len as usize];
+                let mut zb: Vec<u16> = (0..len as usize)
+                    .map(|i| {
+                        if fail_every != 0 && i % fail_every == 2 {
+                            0
+                        } else {
+                            Depth16::CLEAR
+                        }
+                    })
+                    .collect();
+                let zb0 = zb.clone();
+                let mut d = DepthTest::<i32, Depth16> {
+                    drow: &mut zb,
+                    z,
+                    dz,
+                    in_range: false,
+                };
+                let passed_want = k.fill(
+                    n,
+                    dn,
+                    [0; 3],
+                    [0; 3],
+                    false,
+                    len,
+                    |i| d.test(i),
+                    |i, c| want[i as usize] = Some(Rgb565Be::encode(c)),
+                );
+                // The row fill over a row and a depth row.
+                let mut row = std::vec![0x1234u16; len as usize];
+                let mut zr = zb0.clone();
+                let passed = row_fill::<i32, Rgb565Be, Depth16, Q16>(
+                    &k,
+                    &mut row,
+                    Some(&mut zr),
+                    z,
+                    dz,
+                    (n, dn, [0; 3], [0; 3]),
+                    false,
+                    None,
+                );
+                assert_eq!(passed, passed_want, "len {len} z {z} every {fail_every}");
+                assert_eq!(zr, zb, "depths: len {len} z {z} every {fail_every}");
+                for (i, (&got, w)) in row.iter().zip(want.iter()).enumerate() {
+                    assert_eq!(got, w.unwrap_or(0x1234), "pixel {i} of {len}, z {z}");
+                    checked += 1;
+                }
+                failed_total += (len - passed) as usize;
+                // Without a depth buffer: every pixel, the same colours
+                // where the depth test passed.
+                let mut row = std::vec![0x1234u16; len as usize];
+                let all = row_fill::<i32, Rgb565Be, Depth16, Q16>(
+                    &k,
+                    &mut row,
+                    None,
+                    z,
+                    dz,
+                    (n, dn, [0; 3], [0; 3]),
+                    false,
+                    None,
+                );
+                assert_eq!(all, len);
+                for (&got, w) in row.iter().zip(want.iter()) {
+                    if let Some(w) = w {
+                        assert_eq!(got, *w);
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 2 * 3 * 1006);
+    assert!(failed_total > 400, "{failed_total}");
+}
