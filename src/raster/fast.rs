@@ -840,6 +840,19 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     // Without a depth plane the general path, decided first.
     let z = mem.z.as_deref_mut()?;
     let [a, b, c] = v;
+    // With `packed` each vertex holds its packed grey word as its depth
+    // and its value: the fields (`f`) and values (`val`) taken from it
+    // where they are used (three live words rather than six values).
+    let zf = |v: &Vertex<i32, N>| (v.z as u32 >> 16) as i32;
+    let zval = |v: &Vertex<i32, N>| if packed { grey_z(v.z) } else { v.z };
+    let lf = |v: &Vertex<i32, N>, k: usize| v.attrs[k] & 0xffff;
+    let lval = |v: &Vertex<i32, N>, k: usize| {
+        if packed {
+            grey_l(v.attrs[k])
+        } else {
+            v.attrs[k]
+        }
+    };
     let (y0, width) = (mem.y0, mem.width);
     let (s, sc) = (sub.get(), sub.scale());
     let h = 1i32 << (s - 1);
@@ -877,7 +890,11 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     }
     // The kernel needs every depth in range (the vertex part of `z16`,
     // below): tested first, the depth differences then do not wrap.
-    let zv = Depth16::vertices_in_range([a.z, b.z, c.z]);
+    let zv = if packed {
+        words_in_range([a.z, b.z, c.z])
+    } else {
+        Depth16::vertices_in_range([a.z, b.z, c.z])
+    };
     if !(zv & D::plane_in_range(true)) {
         return None;
     }
@@ -901,11 +918,11 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     // values refuse them.
     let rescue = FIELDS_RESCUE & fields;
     let (gx, gy, z0, mut ok) = if pk {
-        g.plane_fields::<true>([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14)
+        g.plane_fields::<true>([zf(a), zf(b), zf(c)], zval(a), 14)
     } else {
-        match g.plane_small::<false>(a.z, b.z, c.z, lim) {
-            p if !p.3 & rescue => g.plane_fields_cold([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14),
-            p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(a.z, b.z, c.z),
+        match g.plane_small::<false>(zval(a), zval(b), zval(c), lim) {
+            p if !p.3 & rescue => g.plane_fields_cold([zf(a), zf(b), zf(c)], zval(a), 14),
+            p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(zval(a), zval(b), zval(c)),
             p => p,
         }
     };
@@ -916,13 +933,12 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
         let (gx, gy, o, oka) = if pk {
-            let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
-            g.plane_fields::<true>(f, a.attrs[k], 8)
+            g.plane_fields::<true>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8)
         } else {
-            match g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim) {
+            match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim) {
                 p if !p.3 & rescue => {
-                    let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
-                    g.plane_fields_cold(f, a.attrs[k], 8)
+                    let f = [lf(a, k), lf(b, k), lf(c, k)];
+                    g.plane_fields_cold(f, lval(a, k), 8)
                 }
                 p => p,
             }
@@ -936,7 +952,7 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     let (mut tx, mut ty) = (sx, sy);
     let mut t0 = row;
     if LEVELS && N == 1 {
-        let l = [a.attrs[0], b.attrs[0], c.attrs[0]];
+        let l = [lval(a, 0), lval(b, 0), lval(c, 0)];
         ok &= levels_in_range(l, sx.a[0], sy.a[0], s);
         t0.a[0] = row.a[0].wrapping_add(1 << 15) << 8;
         tx.a[0] = sx.a[0] << 8;
@@ -1062,6 +1078,50 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
         pack_fixed(vals, &v00, sx0, sy0);
     }
     Some((rows.drawn(), more))
+}
+
+/// The depth of a packed grey word ([`crate::num::Profile::PACKED_GREY`]:
+/// the 16-bit depth field `f` in the high half, the level field in the
+/// low half): `f·2^14 + 2^13`, as the renderer unpacks it.
+#[inline(always)]
+pub(crate) fn grey_z(w: i32) -> i32 {
+    (((w as u32 >> 16) << 14) | (1 << 13)) as i32
+}
+
+/// The grey level of a packed grey word (see [`grey_z`]): `f·2^8` for its
+/// low 16-bit field `f`.
+#[inline(always)]
+pub(crate) fn grey_l(w: i32) -> i32 {
+    ((w as u32 & 0xffff) << 8) as i32
+}
+
+/// The least depth field whose depth [`grey_z`] passes
+/// [`Depth16::vertices_in_range`] (depths in `[2^15, 65535·2^14 - 2^15)`),
+/// and one past the greatest (checked against it on every field).
+const WORD_FIELDS: (u32, u32) = {
+    const M: u32 = 1 << 15;
+    const DEPTH16_LIM: u32 = 65535 << 14;
+    let mut f = 0u32;
+    while !(((f << 14) | (1 << 13)).wrapping_sub(M) < DEPTH16_LIM - 2 * M) {
+        f += 1;
+    }
+    let lo = f;
+    while f < 1 << 16 && ((f << 14) | (1 << 13)).wrapping_sub(M) < DEPTH16_LIM - 2 * M {
+        f += 1;
+    }
+    (lo, f)
+};
+
+/// [`Depth16::vertices_in_range`] of the depths of three packed grey
+/// words ([`grey_z`]), on the words: a depth field `f` passes exactly when
+/// it lies in `WORD_FIELDS`' range (the passing depths are one run of
+/// fields), so that `w - lo·2^16` is below `(hi - lo)·2^16` as a `u32`
+/// (the low half below `2^16`). Tested on every field.
+#[inline(always)]
+pub(super) fn words_in_range(w: [i32; 3]) -> bool {
+    let (lo, hi) = WORD_FIELDS;
+    let ok = |w: i32| (w as u32).wrapping_sub(lo << 16) < (hi - lo) << 16;
+    ok(w[0]) & ok(w[1]) & ok(w[2])
 }
 
 /// [`draw_small`]'s walk of a triangle continuing below the band (its

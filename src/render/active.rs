@@ -79,16 +79,16 @@ use super::phong_span::{KernelError, PhongKernel, PhongKernelShader, PosPlane, S
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{
-    face_shift, unpack_grey, FaceRows, Frame, Layout, Part, PreparedObject, PreparedTri,
-    RenderError, RenderStats, FACE_ROW,
+    face_shift, FaceRows, Frame, Layout, Part, PreparedObject, PreparedTri, RenderError,
+    RenderStats, FACE_ROW,
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::wide::NO_LONG_MUL;
 use crate::num::{Kernels, Profile, Raw16, Real};
 use crate::raster::{
-    draw_small, draw_small_levels, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat,
-    Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex,
-    Walk,
+    draw_small, draw_small_levels, grey_l, grey_z, in_limits, setup, setup_fast, sort3,
+    span_pixels, BandMem, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader,
+    SubpixelBits, Vals, Vertex, Walk,
 };
 use crate::scene::{Object, Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -1431,13 +1431,24 @@ where
         return Ok(None);
     };
     let sub = P::SUBPIXEL_BITS;
-    // Packed grey vertices: depths and levels from their 16-bit fields.
-    let packed = N == 1 && po.layout().packed_in::<P>();
+    // Packed grey vertices hold their words ([`fetch_fixed`]): depths and
+    // levels from their 16-bit fields.
+    let packed = N == 1 && Layout::GouraudMono.packed_in::<P>();
     if let Some(r) =
         draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, packed, shader)
     {
         return Ok(Some(r));
     }
+    // The general path takes the values.
+    let v = if packed {
+        v.map(|p| Vertex {
+            z: grey_z(p.z),
+            attrs: p.attrs.map(grey_l),
+            ..p
+        })
+    } else {
+        v
+    };
     in_limits_fixed::<P, N>(frame, tri, &v)?;
     // Set up and walked in the scratch.
     let drawn = if setup_fixed::<N, V>(v, sub, mem.y0, mem.width, walk, vals) {
@@ -1475,17 +1486,19 @@ fn fetch_fixed<P: Profile, const N: usize>(
         // Packed grey (`N = 1`: a grey Gouraud object): one value per
         // vertex (the layout's stride, 1), read from the object's values
         // as `Frame::vertex` reads it (`None` for a vertex not of the
-        // object), unpacked here.
+        // object), left packed: the word as the depth and as the value
+        // (the small kernel takes the fields where it needs them, the
+        // general path unpacks: [`fresh_fast`]).
         let vals = frame.ws.vals.get(po.val_base()..).unwrap_or_default();
         let first = usize::from(po.verts.start);
         let grey = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
             let k = usize::from(i).wrapping_sub(first);
-            let (z, l) = unpack_grey(vals.get(k)?.fixed_raw()?);
+            let w = vals.get(k)?.fixed_raw()?;
             Some(Vertex {
                 x,
                 y,
-                z,
-                attrs: [l; N],
+                z: w,
+                attrs: [w; N],
             })
         };
         return Some([grey(i0, q0)?, grey(i1, q1)?, grey(i2, q2)?]);
