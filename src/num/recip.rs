@@ -399,14 +399,17 @@ impl InvArea {
     /// k` (below 32): the same value, `quot_high(n · 2^u, 0)`, without
     /// selecting the shifts at run time; `None` where `n · 2^u` does not
     /// fit an `i32` (as there). Tested equal to `quot_scaled`.
+    /// Returned as the quotient and a flag (`false` for `None`, the
+    /// quotient then meaning nothing), without selecting a value for
+    /// `None`: so the product stays one high-half multiply (`SMMUL` on
+    /// ARMv7-M; with `Option`'s selection the compiler took `UMULL` and two
+    /// `MLA` for the grey level's: bunny-gouraud raster thumbv7em
+    /// 1 719 996 -> 1 696 696).
     #[inline(always)]
-    pub(crate) fn quot_up(&self, n: i32, u: u32) -> Option<i32> {
+    pub(crate) fn quot_up(&self, n: i32, u: u32) -> (i32, bool) {
         let u = u & 31;
         let nu = n << u;
-        if nu >> u != n {
-            return None;
-        }
-        Some(self.quot_high(nu, 0))
+        (self.quot_high(nu, 0), nu >> u == n)
     }
 
     /// [`InvArea::quot`]`(n, s)` for `n` within an `i32` and `k` from
@@ -994,8 +997,9 @@ mod tests {
             };
             for sh in [8, 14] {
                 if k <= sh {
+                    let (q, ok) = inv.quot_up(n, sh - k);
                     assert_eq!(
-                        inv.quot_up(n, sh - k),
+                        ok.then_some(q),
                         inv.quot_scaled(n, k, sh),
                         "a={a} n={n} k={k} sh={sh}"
                     );

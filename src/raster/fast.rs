@@ -458,17 +458,21 @@ impl Grad {
         let nx = f1.wrapping_mul(dy2).wrapping_sub(f2.wrapping_mul(dy1));
         let ny = f2.wrapping_mul(dx1).wrapping_sub(f1.wrapping_mul(dx2));
         // `k <= sh` by the caller's bound: the shifts known per triangle.
-        let (gx, gy) = if UP {
+        let (gx, gy, ok) = if UP {
             let u = sh.wrapping_sub(self.k);
-            (self.inv.quot_up(nx, u), self.inv.quot_up(ny, u))
+            let ((gx, okx), (gy, oky)) = (self.inv.quot_up(nx, u), self.inv.quot_up(ny, u));
+            (gx, gy, okx & oky)
         } else {
-            (
+            let (gx, gy) = (
                 self.inv.quot_scaled(nx, self.k, sh),
                 self.inv.quot_scaled(ny, self.k, sh),
+            );
+            (
+                gx.unwrap_or(0),
+                gy.unwrap_or(0),
+                gx.is_some() & gy.is_some(),
             )
         };
-        let ok = gx.is_some() & gy.is_some();
-        let (gx, gy) = (gx.unwrap_or(0), gy.unwrap_or(0));
         let o = if SHORT_NUMERATORS {
             self.origin_short(gx, gy)
         } else {
