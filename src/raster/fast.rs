@@ -970,14 +970,14 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     // The lower short edge from its first row: swapped in at `j_mid`, or
     // carried to the next band (every triangle with a lower half needs it).
     let low = if j_mid < j_bot {
-        Edge::at_first_row(b.x, b.y, c.x, c.y, sub)
+        Edge::at_first_row_short(b.x, b.y, c.x, c.y, sub)
     } else {
         Edge::EMPTY
     };
-    let long = Edge::at_first_row(a.x, a.y, c.x, c.y, sub);
+    let long = Edge::at_first_row_short(a.x, a.y, c.x, c.y, sub);
     let upper = j_top < j_mid;
     let short = if upper {
-        Edge::at_first_row(a.x, a.y, b.x, b.y, sub)
+        Edge::at_first_row_short(a.x, a.y, b.x, b.y, sub)
     } else {
         low
     };

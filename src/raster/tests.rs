@@ -827,6 +827,7 @@ fn inv_area_small_equals_the_general_reciprocal() {
 #[test]
 fn first_row_edges_equal_the_general_walker() {
     let mut rng = Rng(0x5eed_0e06);
+    let mut short = 0;
     for sub in [1, 4, 8].map(|b| SubpixelBits::new(b).unwrap()) {
         let lim = sub.coord_limit();
         for i in 0..20_000 {
@@ -843,6 +844,15 @@ fn first_row_edges_equal_the_general_walker() {
                 Edge::new(x0, y0, x1, y1, j0, sub),
                 "({x0}, {y0}) -> ({x1}, {y1}) at its first row"
             );
+            // The kernel's short edges, within their bounds.
+            if (x1 - x0).abs() < 1 << 16 && y1 - y0 < 1 << 15 {
+                short += 1;
+                assert_eq!(
+                    Edge::at_first_row_short(x0, y0, x1, y1, sub),
+                    Edge::new(x0, y0, x1, y1, j0, sub),
+                    "({x0}, {y0}) -> ({x1}, {y1}) short, at its first row"
+                );
+            }
             // The first row, and rows after it (the general fallback).
             for j in [j0, j0 + 1, j0 + rng.range(0, 40)] {
                 assert_eq!(
@@ -852,7 +862,22 @@ fn first_row_edges_equal_the_general_walker() {
                 );
             }
         }
+        // The short edges' bounds at their ends.
+        for (x0, y0, x1, y1) in [
+            (0, 0, (1 << 16) - 1, 1),
+            (0, 0, 1 - (1 << 16), 1),
+            (5, -3, 5 - (1 << 16) + 1, (1 << 15) - 4),
+            (-7, 9, (1 << 16) - 8, 9 + (1 << 15) - 1),
+            (0, 0, 0, 1),
+        ] {
+            assert_eq!(
+                Edge::at_first_row_short(x0, y0, x1, y1, sub),
+                Edge::new(x0, y0, x1, y1, first_row(y0, sub), sub),
+                "({x0}, {y0}) -> ({x1}, {y1}) short"
+            );
+        }
     }
+    assert!(short > 50_000, "{short}");
 }
 
 /// `setup_fast` against `setup` for one sorted triangle.
