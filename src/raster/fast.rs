@@ -862,14 +862,23 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     let h = 1i32 << (s - 1);
     let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
     // `y0 <= first_row(a.y) < until` (`first_row(y) = ⌈(y - h) / S⌉`),
-    // tested on the coordinates, and `c.y` within the limits: every
-    // coordinate then lies within the module's limits, and nothing below
-    // wraps.
+    // tested on the coordinates, `c.y` within the limits, and the columns
+    // in `0..=width·S`, as `⌈xmax / S⌉ <= width` (for `xmax >= 0` the
+    // unsigned sum does not wrap; a negative `xmax` fails `xmin >= 0`):
+    // every coordinate then lies within the module's limits, and nothing
+    // below wraps. The columns' test instead of `xmax <= width·S`
+    // saturated (a select between two values kept on the stack at every
+    // triangle): exact QEMU counts, bunny-gouraud raster thumbv7em
+    // 1 658 600 -> 1 651 052, thumbv6m 2 717 413 -> 2 694 098; bunny-flat
+    // thumbv7em 1 510 721 -> 1 506 174, thumbv6m 2 281 745 -> 2 257 964.
+    // The rows' test on the first row (`y0 <= j_top < until`, `j_top`
+    // wrapping) as well cost thumbv7em bunny-gouraud 1 715 025.
+    let cols = ((xmax as u32).wrapping_add(sc as u32 - 1) >> s) as i32;
     if (a.y <= (y0 - 1) * sc + h)
         || (a.y > (until - 1) * sc + h)
         || (c.y > sub.coord_limit())
         || (xmin < 0)
-        || (xmax > width.saturating_mul(sc))
+        || (cols > width)
     {
         return None;
     }
