@@ -717,9 +717,12 @@ fn walk_edges(
 /// - on ARMv6-M (and in test builds), the gradient numerators in 32 bits:
 ///   each value's differences below `2^(30 - bxy)` for coordinate offsets
 ///   below `2^bxy` ([`Grad::plane_short`]);
-/// - with `packed` (the caller's promise that the vertices are packed grey
-///   ones, [`crate::num::Profile::PACKED_GREY`]: depths `f·2^14 + 2^13`,
-///   levels `f·2^8` for 16-bit fields `f`), for offsets below `2^14` (and,
+/// - with `packed` (`N = 1`, the caller's promise that each vertex holds
+///   its packed grey word, [`crate::num::Profile::PACKED_GREY`], as its
+///   depth and as its value: the depth field `f` in the high half, the
+///   level field in the low half, the values [`grey_z`] `f·2^14 + 2^13`
+///   and [`grey_l`] taken from them where they are used, the depths'
+///   range tested on the words), for offsets below `2^14` (and,
 ///   on ARMv7-M and in test builds, the reciprocal's shift `k <= 8`:
 ///   doubled areas below `2^15` subpixels² at 4 subpixel bits; both shifts of
 ///   [`InvArea::quot_up`] known per triangle): the
