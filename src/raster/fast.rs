@@ -484,15 +484,17 @@ impl Grad {
 }
 
 /// [`draw_small`] takes [`Grad::plane_fields`] for packed values: on
-/// ARMv7-M (bunny-gouraud raster thumbv7em 2 019 909 -> 1 954 376) and in
-/// test builds; not on ARMv6-M, where it cost more than it saved (thumbv6m
-/// 3 005 292 -> 3 118 241, although more triangles took the small
-/// kernel; see [`FIELDS_RESCUE`]), nor on the 64-bit hosts (callgrind, `examples/bunny_frame.rs`:
-/// 2 840 474 -> 2 974 717).
-const PACKED_FIELDS: bool = (cfg!(target_arch = "arm") && !NO_LONG_MUL) || cfg!(test);
+/// ARMv7-M (bunny-gouraud raster thumbv7em 2 019 909 -> 1 954 376), in
+/// test builds, and on ARMv6-M since the kernel takes the packed words
+/// (the fields without unpacking; thumbv6m 2 690 337 -> 2 665 621; with
+/// the unpacked values it cost more than it saved there, 3 005 292 ->
+/// 3 118 241); not on the 64-bit hosts (callgrind,
+/// `examples/bunny_frame.rs`: 2 840 474 -> 2 974 717).
+const PACKED_FIELDS: bool = cfg!(target_arch = "arm") || cfg!(test);
 
 /// On ARMv6-M [`draw_small`] takes [`Grad::plane_fields`] for packed
-/// values only where [`Grad::plane_short`] refuses them, out of line
+/// values, where the shifts are not known per triangle (`k > 8`), only
+/// where [`Grad::plane_short`] refuses them, out of line
 /// ([`Grad::plane_fields_cold`]): bunny-gouraud raster thumbv6m 3 005 292
 /// -> 2 980 115 (inlined there: 3 016 457).
 const FIELDS_RESCUE: bool = NO_LONG_MUL;
