@@ -763,13 +763,15 @@ fn walk_edges(
 /// call costs about 72 instructions a triangle (the vertices stored for
 /// it, the band memory, the frame), the rows' start 29, each row 6.
 ///
-/// Kept since (bunny-gouraud raster thumbv7em 1 749 614 -> 1 646 369,
-/// thumbv6m 2 734 554 -> 2 694 098, steps in the doc comments where they
+/// Kept since (bunny-gouraud raster thumbv7em 1 749 614 -> 1 642 120,
+/// thumbv6m 2 734 554 -> 2 665 621, steps in the doc comments where they
 /// are): the packed grey words instead of six unpacked values
 /// (`fetch_fixed` of `render::active`), the level's gradients as quotient and
 /// flag ([`InvArea::quot_up`]), the edges' biased unsigned division
 /// ([`Edge::at_first_row_short`]), the values by one offset, the columns'
-/// test, the reciprocal halved in 32 bits. Measured and not kept: the row
+/// test, the reciprocal halved in 32 bits, the mesh looked up once per
+/// object, the field planes on ARMv6-M too ([`PACKED_FIELDS`]). Measured
+/// and not kept: the row
 /// origins from vertex 0's pixel in 32 bits (`v0 + ⌊(gx·ox + gy·oy + h) /
 /// S⌋ - gx·i - gy·j` with `|ox|, |oy| <= S/2`, exact for gradients below
 /// `2^(30 - s)`; thumbv7em 1 749 614 -> 1 919 424: the planes' gradients
@@ -777,7 +779,8 @@ fn walk_edges(
 /// and the general gradients both and select; with the general ones out
 /// of line 1 848 801, with `packed` a constant 1 788 167; the 64-bit
 /// origin is two `SMLAL` on ARMv7-M, as cheap; thumbv6m bunny-gouraud
-/// −11 K but bunny-flat +26 K); one overflow flag for both field
+/// −11 K but bunny-flat +26 K; later on ARMv6-M alone, for the field
+/// planes, 2 665 621 -> 2 673 795); one overflow flag for both field
 /// quotients of a plane (`(nx ^ nx >> 31 | ny ^ ny >> 31) >> (31 - u)`:
 /// 1 651 052 -> 1 653 513, and 1 646 369 -> 1 648 830 later); the left
 /// and right edges' end points selected before their set-up instead of
