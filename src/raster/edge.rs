@@ -133,6 +133,36 @@ impl Edge {
         Self::at_step(x0, y0, x1, y1, (s / 2).wrapping_sub(y0) & (s - 1), sub)
     }
 
+    /// [`Edge::at_first_row`] for a short edge: `|x1 - x0| < 2^16` and `0 <
+    /// y1 - y0 < 2^15` (the small-triangle kernel's edges; other edges get
+    /// a wrong walker, never a panic). With a hardware divider the floored
+    /// quotient and remainder by one unsigned division of the numerator
+    /// biased by `2^16·dy` (in `(0, 2^31)`: `dx + 2^16·dy = (q + 2^16)·dy +
+    /// rem`, `0 <= rem < dy`), without [`Edge::new`]'s sign fix-up; on
+    /// ARMv6-M [`Edge::at_first_row`]. The same walker (tested equal).
+    #[inline(always)]
+    pub(crate) fn at_first_row_short(
+        x0: i32,
+        y0: i32,
+        x1: i32,
+        y1: i32,
+        sub: SubpixelBits,
+    ) -> Self {
+        if NO_DIVIDE {
+            return Self::at_first_row(x0, y0, x1, y1, sub);
+        }
+        let s = sub.scale();
+        let t = (s / 2).wrapping_sub(y0) & (s - 1);
+        let dx = x1 - x0;
+        let dy = (y1 - y0).max(1);
+        let d = s * dy;
+        let n = (dx.wrapping_add(dy << 16)) as u32;
+        let qb = n / dy as u32;
+        let rem = n.wrapping_sub(qb.wrapping_mul(dy as u32)) as i32;
+        let q = (qb as i32).wrapping_sub(1 << 16);
+        Self::at_quot(x0, [dy, d], q, rem, t, sub)
+    }
+
     /// The walker of [`Edge::new_first`] and [`Edge::at_first_row`]: the
     /// edge at the row whose centre lies `t` subpixels below `y0`, `0 <= t
     /// < S` (the first-row case of [`Edge::new`], in 32-bit arithmetic:
@@ -153,6 +183,14 @@ impl Edge {
             Some(qr) => qr,
             None => floor_divmod(dx, dy),
         };
+        Self::at_quot(x0, [dy, d], q, rem, t, sub)
+    }
+
+    /// [`Edge::at_step`] from the slope's floored quotient `q` and
+    /// remainder `rem` by `dy >= 1` (`d = S·dy`).
+    #[inline(always)]
+    fn at_quot(x0: i32, [dy, d]: [i32; 2], q: i32, rem: i32, t: i32, sub: SubpixelBits) -> Self {
+        let s = sub.scale();
         let r = s * rem;
         let a_full = x0 - s / 2 + t * q;
         let (a, b) = (a_full >> sub.get(), a_full & (s - 1));

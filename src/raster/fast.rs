@@ -458,17 +458,21 @@ impl Grad {
         let nx = f1.wrapping_mul(dy2).wrapping_sub(f2.wrapping_mul(dy1));
         let ny = f2.wrapping_mul(dx1).wrapping_sub(f1.wrapping_mul(dx2));
         // `k <= sh` by the caller's bound: the shifts known per triangle.
-        let (gx, gy) = if UP {
+        let (gx, gy, ok) = if UP {
             let u = sh.wrapping_sub(self.k);
-            (self.inv.quot_up(nx, u), self.inv.quot_up(ny, u))
+            let ((gx, okx), (gy, oky)) = (self.inv.quot_up(nx, u), self.inv.quot_up(ny, u));
+            (gx, gy, okx & oky)
         } else {
-            (
+            let (gx, gy) = (
                 self.inv.quot_scaled(nx, self.k, sh),
                 self.inv.quot_scaled(ny, self.k, sh),
+            );
+            (
+                gx.unwrap_or(0),
+                gy.unwrap_or(0),
+                gx.is_some() & gy.is_some(),
             )
         };
-        let ok = gx.is_some() & gy.is_some();
-        let (gx, gy) = (gx.unwrap_or(0), gy.unwrap_or(0));
         let o = if SHORT_NUMERATORS {
             self.origin_short(gx, gy)
         } else {
@@ -480,15 +484,17 @@ impl Grad {
 }
 
 /// [`draw_small`] takes [`Grad::plane_fields`] for packed values: on
-/// ARMv7-M (bunny-gouraud raster thumbv7em 2 019 909 -> 1 954 376) and in
-/// test builds; not on ARMv6-M, where it cost more than it saved (thumbv6m
-/// 3 005 292 -> 3 118 241, although more triangles took the small
-/// kernel; see [`FIELDS_RESCUE`]), nor on the 64-bit hosts (callgrind, `examples/bunny_frame.rs`:
-/// 2 840 474 -> 2 974 717).
-const PACKED_FIELDS: bool = (cfg!(target_arch = "arm") && !NO_LONG_MUL) || cfg!(test);
+/// ARMv7-M (bunny-gouraud raster thumbv7em 2 019 909 -> 1 954 376), in
+/// test builds, and on ARMv6-M since the kernel takes the packed words
+/// (the fields without unpacking; thumbv6m 2 690 337 -> 2 665 621; with
+/// the unpacked values it cost more than it saved there, 3 005 292 ->
+/// 3 118 241); not on the 64-bit hosts (callgrind,
+/// `examples/bunny_frame.rs`: 2 840 474 -> 2 974 717).
+const PACKED_FIELDS: bool = cfg!(target_arch = "arm") || cfg!(test);
 
 /// On ARMv6-M [`draw_small`] takes [`Grad::plane_fields`] for packed
-/// values only where [`Grad::plane_short`] refuses them, out of line
+/// values, where the shifts are not known per triangle (`k > 8`), only
+/// where [`Grad::plane_short`] refuses them, out of line
 /// ([`Grad::plane_fields_cold`]): bunny-gouraud raster thumbv6m 3 005 292
 /// -> 2 980 115 (inlined there: 3 016 457).
 const FIELDS_RESCUE: bool = NO_LONG_MUL;
@@ -713,9 +719,12 @@ fn walk_edges(
 /// - on ARMv6-M (and in test builds), the gradient numerators in 32 bits:
 ///   each value's differences below `2^(30 - bxy)` for coordinate offsets
 ///   below `2^bxy` ([`Grad::plane_short`]);
-/// - with `packed` (the caller's promise that the vertices are packed grey
-///   ones, [`crate::num::Profile::PACKED_GREY`]: depths `f·2^14 + 2^13`,
-///   levels `f·2^8` for 16-bit fields `f`), for offsets below `2^14` (and,
+/// - with `packed` (`N = 1`, the caller's promise that each vertex holds
+///   its packed grey word, [`crate::num::Profile::PACKED_GREY`], as its
+///   depth and as its value: the depth field `f` in the high half, the
+///   level field in the low half, the values [`grey_z`] `f·2^14 + 2^13`
+///   and [`grey_l`] taken from them where they are used, the depths'
+///   range tested on the words), for offsets below `2^14` (and,
 ///   on ARMv7-M and in test builds, the reciprocal's shift `k <= 8`:
 ///   doubled areas below `2^15` subpixels² at 4 subpixel bits; both shifts of
 ///   [`InvArea::quot_up`] known per triangle): the
@@ -753,6 +762,33 @@ fn walk_edges(
 /// [`InvArea::quot_high`] (the products back to `SMMUL`) 2 033 963: the
 /// call costs about 72 instructions a triangle (the vertices stored for
 /// it, the band memory, the frame), the rows' start 29, each row 6.
+///
+/// Kept since (bunny-gouraud raster thumbv7em 1 749 614 -> 1 642 120,
+/// thumbv6m 2 734 554 -> 2 665 621, steps in the doc comments where they
+/// are): the packed grey words instead of six unpacked values
+/// (`fetch_fixed` of `render::active`), the level's gradients as quotient and
+/// flag ([`InvArea::quot_up`]), the edges' biased unsigned division
+/// ([`Edge::at_first_row_short`]), the values by one offset, the columns'
+/// test, the reciprocal halved in 32 bits, the mesh looked up once per
+/// object, the field planes on ARMv6-M too ([`PACKED_FIELDS`]). Measured
+/// and not kept: the row
+/// origins from vertex 0's pixel in 32 bits (`v0 + ⌊(gx·ox + gy·oy + h) /
+/// S⌋ - gx·i - gy·j` with `|ox|, |oy| <= S/2`, exact for gradients below
+/// `2^(30 - s)`; thumbv7em 1 749 614 -> 1 919 424: the planes' gradients
+/// alone, without their origins, made the compiler compute the field
+/// and the general gradients both and select; with the general ones out
+/// of line 1 848 801, with `packed` a constant 1 788 167; the 64-bit
+/// origin is two `SMLAL` on ARMv7-M, as cheap; thumbv6m bunny-gouraud
+/// −11 K but bunny-flat +26 K; later on ARMv6-M alone, for the field
+/// planes, 2 665 621 -> 2 673 795); one overflow flag for both field
+/// quotients of a plane (`(nx ^ nx >> 31 | ny ^ ny >> 31) >> (31 - u)`:
+/// 1 651 052 -> 1 653 513, and 1 646 369 -> 1 648 830 later); the left
+/// and right edges' end points selected before their set-up instead of
+/// the edges (1 651 052 -> 1 683 848, thumbv6m bunny-flat +54 K); the
+/// first row tested against the band in rows instead of the first
+/// vertex in subpixels (1 658 600 -> 1 715 025); the three positions
+/// through one bounds test of the greatest index (1 646 369 ->
+/// 1 664 927, bunny-flat +25 K / +39 K on thumbv7em / thumbv6m).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
@@ -840,19 +876,41 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     // Without a depth plane the general path, decided first.
     let z = mem.z.as_deref_mut()?;
     let [a, b, c] = v;
+    // With `packed` each vertex holds its packed grey word as its depth
+    // and its value: the fields (`f`) and values (`val`) taken from it
+    // where they are used (three live words rather than six values).
+    let zf = |v: &Vertex<i32, N>| (v.z as u32 >> 16) as i32;
+    let zval = |v: &Vertex<i32, N>| if packed { grey_z(v.z) } else { v.z };
+    let lf = |v: &Vertex<i32, N>, k: usize| v.attrs[k] & 0xffff;
+    let lval = |v: &Vertex<i32, N>, k: usize| {
+        if packed {
+            grey_l(v.attrs[k])
+        } else {
+            v.attrs[k]
+        }
+    };
     let (y0, width) = (mem.y0, mem.width);
     let (s, sc) = (sub.get(), sub.scale());
     let h = 1i32 << (s - 1);
     let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
     // `y0 <= first_row(a.y) < until` (`first_row(y) = ⌈(y - h) / S⌉`),
-    // tested on the coordinates, and `c.y` within the limits: every
-    // coordinate then lies within the module's limits, and nothing below
-    // wraps.
+    // tested on the coordinates, `c.y` within the limits, and the columns
+    // in `0..=width·S`, as `⌈xmax / S⌉ <= width` (for `xmax >= 0` the
+    // unsigned sum does not wrap; a negative `xmax` fails `xmin >= 0`):
+    // every coordinate then lies within the module's limits, and nothing
+    // below wraps. The columns' test instead of `xmax <= width·S`
+    // saturated (a select between two values kept on the stack at every
+    // triangle): exact QEMU counts, bunny-gouraud raster thumbv7em
+    // 1 658 600 -> 1 651 052, thumbv6m 2 717 413 -> 2 694 098; bunny-flat
+    // thumbv7em 1 510 721 -> 1 506 174, thumbv6m 2 281 745 -> 2 257 964.
+    // The rows' test on the first row (`y0 <= j_top < until`, `j_top`
+    // wrapping) as well cost thumbv7em bunny-gouraud 1 715 025.
+    let cols = ((xmax as u32).wrapping_add(sc as u32 - 1) >> s) as i32;
     if (a.y <= (y0 - 1) * sc + h)
         || (a.y > (until - 1) * sc + h)
         || (c.y > sub.coord_limit())
         || (xmin < 0)
-        || (xmax > width.saturating_mul(sc))
+        || (cols > width)
     {
         return None;
     }
@@ -877,7 +935,11 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     }
     // The kernel needs every depth in range (the vertex part of `z16`,
     // below): tested first, the depth differences then do not wrap.
-    let zv = Depth16::vertices_in_range([a.z, b.z, c.z]);
+    let zv = if packed {
+        words_in_range([a.z, b.z, c.z])
+    } else {
+        Depth16::vertices_in_range([a.z, b.z, c.z])
+    };
     if !(zv & D::plane_in_range(true)) {
         return None;
     }
@@ -901,11 +963,11 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     // values refuse them.
     let rescue = FIELDS_RESCUE & fields;
     let (gx, gy, z0, mut ok) = if pk {
-        g.plane_fields::<true>([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14)
+        g.plane_fields::<true>([zf(a), zf(b), zf(c)], zval(a), 14)
     } else {
-        match g.plane_small::<false>(a.z, b.z, c.z, lim) {
-            p if !p.3 & rescue => g.plane_fields_cold([a.z >> 14, b.z >> 14, c.z >> 14], a.z, 14),
-            p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(a.z, b.z, c.z),
+        match g.plane_small::<false>(zval(a), zval(b), zval(c), lim) {
+            p if !p.3 & rescue => g.plane_fields_cold([zf(a), zf(b), zf(c)], zval(a), 14),
+            p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(zval(a), zval(b), zval(c)),
             p => p,
         }
     };
@@ -916,13 +978,12 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
         let (gx, gy, o, oka) = if pk {
-            let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
-            g.plane_fields::<true>(f, a.attrs[k], 8)
+            g.plane_fields::<true>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8)
         } else {
-            match g.plane_small::<true>(a.attrs[k], b.attrs[k], c.attrs[k], lim) {
+            match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim) {
                 p if !p.3 & rescue => {
-                    let f = [a.attrs[k] >> 8, b.attrs[k] >> 8, c.attrs[k] >> 8];
-                    g.plane_fields_cold(f, a.attrs[k], 8)
+                    let f = [lf(a, k), lf(b, k), lf(c, k)];
+                    g.plane_fields_cold(f, lval(a, k), 8)
                 }
                 p => p,
             }
@@ -936,7 +997,7 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     let (mut tx, mut ty) = (sx, sy);
     let mut t0 = row;
     if LEVELS && N == 1 {
-        let l = [a.attrs[0], b.attrs[0], c.attrs[0]];
+        let l = [lval(a, 0), lval(b, 0), lval(c, 0)];
         ok &= levels_in_range(l, sx.a[0], sy.a[0], s);
         t0.a[0] = row.a[0].wrapping_add(1 << 15) << 8;
         tx.a[0] = sx.a[0] << 8;
@@ -950,14 +1011,14 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
     // The lower short edge from its first row: swapped in at `j_mid`, or
     // carried to the next band (every triangle with a lower half needs it).
     let low = if j_mid < j_bot {
-        Edge::at_first_row(b.x, b.y, c.x, c.y, sub)
+        Edge::at_first_row_short(b.x, b.y, c.x, c.y, sub)
     } else {
         Edge::EMPTY
     };
-    let long = Edge::at_first_row(a.x, a.y, c.x, c.y, sub);
+    let long = Edge::at_first_row_short(a.x, a.y, c.x, c.y, sub);
     let upper = j_top < j_mid;
     let short = if upper {
-        Edge::at_first_row(a.x, a.y, b.x, b.y, sub)
+        Edge::at_first_row_short(a.x, a.y, b.x, b.y, sub)
     } else {
         low
     };
@@ -1062,6 +1123,50 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
         pack_fixed(vals, &v00, sx0, sy0);
     }
     Some((rows.drawn(), more))
+}
+
+/// The depth of a packed grey word ([`crate::num::Profile::PACKED_GREY`]:
+/// the 16-bit depth field `f` in the high half, the level field in the
+/// low half): `f·2^14 + 2^13`, as the renderer unpacks it.
+#[inline(always)]
+pub(crate) fn grey_z(w: i32) -> i32 {
+    (((w as u32 >> 16) << 14) | (1 << 13)) as i32
+}
+
+/// The grey level of a packed grey word (see [`grey_z`]): `f·2^8` for its
+/// low 16-bit field `f`.
+#[inline(always)]
+pub(crate) fn grey_l(w: i32) -> i32 {
+    ((w as u32 & 0xffff) << 8) as i32
+}
+
+/// The least depth field whose depth [`grey_z`] passes
+/// [`Depth16::vertices_in_range`] (depths in `[2^15, 65535·2^14 - 2^15)`),
+/// and one past the greatest (checked against it on every field).
+const WORD_FIELDS: (u32, u32) = {
+    const M: u32 = 1 << 15;
+    const DEPTH16_LIM: u32 = 65535 << 14;
+    let mut f = 0u32;
+    while !(((f << 14) | (1 << 13)).wrapping_sub(M) < DEPTH16_LIM - 2 * M) {
+        f += 1;
+    }
+    let lo = f;
+    while f < 1 << 16 && ((f << 14) | (1 << 13)).wrapping_sub(M) < DEPTH16_LIM - 2 * M {
+        f += 1;
+    }
+    (lo, f)
+};
+
+/// [`Depth16::vertices_in_range`] of the depths of three packed grey
+/// words ([`grey_z`]), on the words: a depth field `f` passes exactly when
+/// it lies in `WORD_FIELDS`' range (the passing depths are one run of
+/// fields), so that `w - lo·2^16` is below `(hi - lo)·2^16` as a `u32`
+/// (the low half below `2^16`). Tested on every field.
+#[inline(always)]
+pub(super) fn words_in_range(w: [i32; 3]) -> bool {
+    let (lo, hi) = WORD_FIELDS;
+    let ok = |w: i32| (w as u32).wrapping_sub(lo << 16) < (hi - lo) << 16;
+    ok(w[0]) & ok(w[1]) & ok(w[2])
 }
 
 /// [`draw_small`]'s walk of a triangle continuing below the band (its

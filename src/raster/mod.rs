@@ -68,7 +68,7 @@ mod triangle;
 mod walk;
 
 pub use edge::Edge;
-pub(crate) use fast::{draw_small, draw_small_levels, setup_fast, BandMem};
+pub(crate) use fast::{draw_small, draw_small_levels, grey_l, grey_z, setup_fast, BandMem};
 #[cfg(test)]
 use fast::{pack_fixed, unpack_fixed};
 pub(crate) use span::span_pixels;

@@ -827,6 +827,7 @@ fn inv_area_small_equals_the_general_reciprocal() {
 #[test]
 fn first_row_edges_equal_the_general_walker() {
     let mut rng = Rng(0x5eed_0e06);
+    let mut short = 0;
     for sub in [1, 4, 8].map(|b| SubpixelBits::new(b).unwrap()) {
         let lim = sub.coord_limit();
         for i in 0..20_000 {
@@ -843,6 +844,15 @@ fn first_row_edges_equal_the_general_walker() {
                 Edge::new(x0, y0, x1, y1, j0, sub),
                 "({x0}, {y0}) -> ({x1}, {y1}) at its first row"
             );
+            // The kernel's short edges, within their bounds.
+            if (x1 - x0).abs() < 1 << 16 && y1 - y0 < 1 << 15 {
+                short += 1;
+                assert_eq!(
+                    Edge::at_first_row_short(x0, y0, x1, y1, sub),
+                    Edge::new(x0, y0, x1, y1, j0, sub),
+                    "({x0}, {y0}) -> ({x1}, {y1}) short, at its first row"
+                );
+            }
             // The first row, and rows after it (the general fallback).
             for j in [j0, j0 + 1, j0 + rng.range(0, 40)] {
                 assert_eq!(
@@ -852,7 +862,22 @@ fn first_row_edges_equal_the_general_walker() {
                 );
             }
         }
+        // The short edges' bounds at their ends.
+        for (x0, y0, x1, y1) in [
+            (0, 0, (1 << 16) - 1, 1),
+            (0, 0, 1 - (1 << 16), 1),
+            (5, -3, 5 - (1 << 16) + 1, (1 << 15) - 4),
+            (-7, 9, (1 << 16) - 8, 9 + (1 << 15) - 1),
+            (0, 0, 0, 1),
+        ] {
+            assert_eq!(
+                Edge::at_first_row_short(x0, y0, x1, y1, sub),
+                Edge::new(x0, y0, x1, y1, first_row(y0, sub), sub),
+                "({x0}, {y0}) -> ({x1}, {y1}) short"
+            );
+        }
     }
+    assert!(short > 50_000, "{short}");
 }
 
 /// `setup_fast` against `setup` for one sorted triangle.
@@ -978,6 +1003,9 @@ fn check_small<const N: usize>(
         a.iter()
             .fold(0x9e37_79b9u32, |h, &x| h.rotate_left(5) ^ x as u32)
     };
+    // Packed: the kernel takes the vertices' packed grey words.
+    let words = packed.then(|| words_of(v));
+    let kv_in = words.as_ref().unwrap_or(v);
     let run_small = || {
         let (mut p, mut d) = (px.to_vec(), z.to_vec());
         let (mut pr, mut dr) = (&mut p[..], Some(&mut d[..]));
@@ -989,7 +1017,7 @@ fn check_small<const N: usize>(
         };
         let (mut carry, mut kv) = (Walk::EMPTY, [[0; 3]; 4]);
         let n = draw_small::<N, 4, u32, Depth16>(
-            v,
+            kv_in,
             SUB,
             y0 + rows,
             &mut mem,
@@ -1301,7 +1329,10 @@ fn check_small_levels(
     rows: i32,
     w: i32,
     z: &[u16],
+    packed: bool,
 ) -> Option<(u32, bool)> {
+    let words = packed.then(|| words_of(v));
+    let kv_in = words.as_ref().unwrap_or(v);
     let px = vec![[0x5au8]; z.len()];
     let (mut p, mut d) = (px.clone(), z.to_vec());
     let (mut carry, mut kv) = (Walk::EMPTY, [[0; 3]; 4]);
@@ -1314,13 +1345,13 @@ fn check_small_levels(
             width: w,
         };
         draw_small_levels::<1, 4, [u8; 1], Depth16>(
-            v,
+            kv_in,
             SUB,
             y0 + rows,
             &mut mem,
             &mut carry,
             &mut kv,
-            false,
+            packed,
             |a| GouraudMono.shade_raw_in_range::<Gray8>(a),
         )
     };
@@ -1365,6 +1396,7 @@ fn small_levels_equal_the_clamped_walk() {
     let (w, rows) = (240, 16);
     let (mut taken, mut declined, mut pixels, mut carried, mut dark, mut bright) =
         (0, 0, 0u32, 0, 0, 0);
+    let mut packed_taken = 0;
     for i in 0..20_000 {
         let y0 = [0, 16, 112, 224][i % 4];
         let (_, zb) = band_buffers(&mut rng, w * rows);
@@ -1397,7 +1429,16 @@ fn small_levels_equal_the_clamped_walk() {
             [vert(p0, &mut rng), vert(p1, &mut rng), vert(p2, &mut rng)],
             |v| v.y,
         );
-        match check_small_levels(&v, y0, rows, w, &zb) {
+        // The same triangle with packed grey values (depth fields, levels
+        // in steps of 2^8 within 0..=255·2^16), as words and as values.
+        let vp = v.map(|p| Vertex {
+            z: grey_z(((p.z >> 14) as u32 as i32) << 16),
+            attrs: [p.attrs[0].clamp(0, top) & !0xff],
+            ..p
+        });
+        packed_taken += check_small_levels(&vp, y0, rows, w, &zb, true).is_some() as u32;
+        let _ = check_small_levels(&vp, y0, rows, w, &zb, false);
+        match check_small_levels(&v, y0, rows, w, &zb, false) {
             Some((n, more)) => {
                 taken += 1;
                 pixels += n;
@@ -1413,4 +1454,42 @@ fn small_levels_equal_the_clamped_walk() {
         "{taken} {declined} {pixels} {carried}"
     );
     assert!(dark > 1_000 && bright > 1_000, "{dark} {bright}");
+    assert!(packed_taken > 8_000, "{packed_taken}");
+}
+
+/// The packed grey words ([`grey_z`], [`grey_l`]) of packed grey vertices
+/// (`N = 1`; each depth `f·2^14 + 2^13`, each level `f·2^8` for 16-bit
+/// fields `f`), as [`draw_small`] takes them with `packed`: the word as
+/// the depth and as the value.
+fn words_of<const N: usize>(v: &[Vertex<i32, N>; 3]) -> [Vertex<i32, N>; 3] {
+    assert_eq!(N, 1);
+    v.map(|p| {
+        let w = ((p.z as u32 >> 14) << 16) as i32 | (p.attrs[0] >> 8);
+        assert_eq!(
+            (grey_z(w), grey_l(w)),
+            (p.z, p.attrs[0]),
+            "not packed: {p:?}"
+        );
+        Vertex {
+            z: w,
+            attrs: [w; N],
+            ..p
+        }
+    })
+}
+
+/// [`words_in_range`](super::fast) on the words equals
+/// [`Depth16::vertices_in_range`] on their depths, for every depth field
+/// (through the kernel: a triangle is taken exactly when its unpacked
+/// twin is, checked by the packed tests above).
+#[test]
+fn packed_depth_fields_in_range() {
+    for f in 0..=0xffffu32 {
+        let w = (f << 16 | 0x1234) as i32;
+        let z = grey_z(w);
+        assert_eq!(z, ((f << 14) | (1 << 13)) as i32);
+        assert_eq!(grey_l(w), 0x1234 << 8);
+        let ok = Depth16::vertices_in_range([z; 3]);
+        assert_eq!(super::fast::words_in_range([w; 3]), ok, "{f}");
+    }
 }

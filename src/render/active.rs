@@ -79,16 +79,16 @@ use super::phong_span::{KernelError, PhongKernel, PhongKernelShader, PosPlane, S
 use super::position::PosFrame;
 use super::prepare::eye_lights;
 use super::{
-    face_shift, unpack_grey, FaceRows, Frame, Layout, Part, PreparedObject, PreparedTri,
-    RenderError, RenderStats, FACE_ROW,
+    face_shift, FaceRows, Frame, Layout, Part, PreparedObject, PreparedTri, RenderError,
+    RenderStats, FACE_ROW,
 };
 use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::wide::NO_LONG_MUL;
 use crate::num::{Kernels, Profile, Raw16, Real};
 use crate::raster::{
-    draw_small, draw_small_levels, in_limits, setup, setup_fast, sort3, span_pixels, BandMem, Flat,
-    Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits, Vals, Vertex,
-    Walk,
+    draw_small, draw_small_levels, grey_l, grey_z, in_limits, setup, setup_fast, sort3,
+    span_pixels, BandMem, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader,
+    SubpixelBits, Vals, Vertex, Walk,
 };
 use crate::scene::{Object, Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -1112,17 +1112,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             let Some((ti, src)) = self.take(band, end) else {
                 break Ok(());
             };
-            // The mesh looked up once for the shaders without values
-            // (flat), per triangle for the others, whose loop holds more
-            // values (measured on the bunny, Cortex-M4: once costs the
-            // Gouraud frame 27 K instructions, per triangle costs the flat
-            // one 20 K).
-            let tri = if N == 0 {
-                frame.tri_of(po, mesh, ti as usize)
-            } else {
-                frame.tri(po, ti as usize)
-            };
-            let Some(tri) = tri else {
+            // The mesh looked up once per object (measured on the bunny,
+            // Cortex-M4: per triangle cost the flat frame 20 K instructions;
+            // the Gouraud frame first 27 K less that way, with the kernel's
+            // set-up as it is now 4.2 K more: raster 1 646 369 against
+            // 1 642 120 once, thumbv6m 2 694 098 against 2 690 337).
+            let Some(tri) = frame.tri_of(po, mesh, ti as usize) else {
                 break Ok(());
             };
             per_tri(&mut shader, &tri);
@@ -1431,13 +1426,24 @@ where
         return Ok(None);
     };
     let sub = P::SUBPIXEL_BITS;
-    // Packed grey vertices: depths and levels from their 16-bit fields.
-    let packed = N == 1 && po.layout().packed_in::<P>();
+    // Packed grey vertices hold their words ([`fetch_fixed`]): depths and
+    // levels from their 16-bit fields.
+    let packed = N == 1 && Layout::GouraudMono.packed_in::<P>();
     if let Some(r) =
         draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, packed, shader)
     {
         return Ok(Some(r));
     }
+    // The general path takes the values.
+    let v = if packed {
+        v.map(|p| Vertex {
+            z: grey_z(p.z),
+            attrs: p.attrs.map(grey_l),
+            ..p
+        })
+    } else {
+        v
+    };
     in_limits_fixed::<P, N>(frame, tri, &v)?;
     // Set up and walked in the scratch.
     let drawn = if setup_fixed::<N, V>(v, sub, mem.y0, mem.width, walk, vals) {
@@ -1450,7 +1456,10 @@ where
 
 /// The vertices of triangle `tri` of object `po`, sorted by `y`, with
 /// their depths and first `N` values as fixed-point `i32`s (each corner
-/// and its values read once); `None` when a vertex is missing. Positions
+/// and its values read once), a packed grey vertex with its word as both
+/// (for [`draw_small`]'s `packed`; [`fresh_fast`] unpacks it for the
+/// general path: bunny-gouraud raster thumbv7em 1 749 614 -> 1 719 996,
+/// thumbv6m 2 734 554 -> 2 728 342); `None` when a vertex is missing. Positions
 /// are not checked against the rasterizer's limits ([`in_limits_fixed`]).
 /// The fast path's objects only ([`Bands::run_fast`]): flat ones for `N =
 /// 0`, grey Gouraud ones for `N = 1`, so that the layout follows from `N`
@@ -1475,17 +1484,17 @@ fn fetch_fixed<P: Profile, const N: usize>(
         // Packed grey (`N = 1`: a grey Gouraud object): one value per
         // vertex (the layout's stride, 1), read from the object's values
         // as `Frame::vertex` reads it (`None` for a vertex not of the
-        // object), unpacked here.
-        let vals = frame.ws.vals.get(po.val_base()..).unwrap_or_default();
-        let first = usize::from(po.verts.start);
+        // object), left packed: the word as the depth and as the value
+        // (the small kernel takes the fields where it needs them, the
+        // general path unpacks: [`fresh_fast`]).
+        let (vals, off) = val_index(frame, po);
         let grey = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
-            let k = usize::from(i).wrapping_sub(first);
-            let (z, l) = unpack_grey(vals.get(k)?.fixed_raw()?);
+            let w = vals.get(usize::from(i).wrapping_add(off))?.fixed_raw()?;
             Some(Vertex {
                 x,
                 y,
-                z,
-                attrs: [l; N],
+                z: w,
+                attrs: [w; N],
             })
         };
         return Some([grey(i0, q0)?, grey(i1, q1)?, grey(i2, q2)?]);
@@ -1493,14 +1502,12 @@ fn fetch_fixed<P: Profile, const N: usize>(
     if N == 0 {
         // Flat (`N = 0`): the depth alone, one value per vertex (the layout's
         // stride, 1), read as `Frame::vertex` reads it.
-        let vals = frame.ws.vals.get(po.val_base()..).unwrap_or_default();
-        let first = usize::from(po.verts.start);
+        let (vals, off) = val_index(frame, po);
         let flat = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
-            let k = usize::from(i).wrapping_sub(first);
             Some(Vertex {
                 x,
                 y,
-                z: vals.get(k)?.fixed_raw()?,
+                z: vals.get(usize::from(i).wrapping_add(off))?.fixed_raw()?,
                 attrs: [0; N],
             })
         };
@@ -1524,6 +1531,23 @@ fn fetch_fixed<P: Profile, const N: usize>(
         raw(frame.vertex::<N>(po, i1, q1))?,
         raw(frame.vertex::<N>(po, i2, q2))?,
     ])
+}
+
+/// The frame's values and the offset (wrapping) that takes a vertex of
+/// object `po` with one value per vertex to its value: `val_base + i -
+/// verts.start` for vertex `i`, one addition and one bounds test per
+/// vertex (rather than the object's values sliced per triangle: exact
+/// QEMU counts, bunny-gouraud raster thumbv7em 1 675 080 -> 1 658 600,
+/// thumbv6m 2 733 115 -> 2 717 413). A vertex index that is not the object's reads another value
+/// or none, never out of bounds (prepared triangles name their object's
+/// vertices).
+#[inline(always)]
+fn val_index<'f, P: Profile>(
+    frame: &'f Frame<'_, P>,
+    po: &PreparedObject,
+) -> (&'f [P::Lerp], usize) {
+    let off = po.val_base().wrapping_sub(usize::from(po.verts.start));
+    (&frame.ws.vals[..], off)
 }
 
 /// The error of a fetched triangle ([`fetch_fixed`]) with a vertex
