@@ -85,6 +85,54 @@ pub struct TriQuad {
     pending: bool,
     /// Made (else the spans take the per-span path).
     ok: bool,
+    /// The triangle's prepared vertex indices and face (the key of its
+    /// [`QuadSlot`]; `None`: a triangle given by its vertices).
+    key: Option<([u16; 3], bool)>,
+    /// Made here (not loaded from a [`QuadSlot`]): to be kept.
+    made: bool,
+}
+
+/// One triangle's quadratics kept from one band to the next (the band
+/// renderer's [`Pool`](crate::render::Pool) holds a few): a triangle
+/// crossing bands is set up once a frame instead of once a band.
+///
+/// Keyed by the triangle's prepared vertices, its face and the light's
+/// position: a slot found holds the very values [`TriQuad`] would make
+/// again (the same inputs), so a frame is the same with any number of
+/// slots. A triangle is kept when it continues below the band; a slot is
+/// free again once the bands are past its triangle's last row. When every
+/// slot is taken, the triangle is set up again in the next band.
+#[derive(Clone, Copy, Debug)]
+pub struct QuadSlot {
+    key: Option<([u16; 3], bool)>,
+    light: [i32; 3],
+    /// The last pixel row the triangle may cover.
+    last: i32,
+    ok: bool,
+    at: [i32; 2],
+    q: [[i64; 6]; 6],
+}
+
+impl QuadSlot {
+    /// A free slot (`const`: in a `static` pool).
+    pub const EMPTY: Self = Self {
+        key: None,
+        light: [0; 3],
+        last: 0,
+        ok: false,
+        at: [0; 2],
+        q: [[0; 6]; 6],
+    };
+
+    /// Bytes of one slot (the RAM per kept triangle).
+    pub const BYTES: usize = core::mem::size_of::<Self>();
+
+    /// Frees every slot of `slots` (a new frame).
+    pub(crate) fn clear(slots: &mut [Self]) {
+        for s in slots {
+            s.key = None;
+        }
+    }
 }
 
 /// `x · y` modulo `2^64` for `|y| < 2^15` (ARMv6-M: three 32-bit
@@ -298,6 +346,8 @@ impl TriQuad {
         sub: SubpixelBits::DEFAULT,
         pending: false,
         ok: false,
+        key: None,
+        made: false,
     };
 
     /// Whether the set-up was made.
@@ -328,6 +378,8 @@ impl TriQuad {
         self.pending = true;
         self.ok = false;
         self.ry = None;
+        self.key = None;
+        self.made = false;
     }
 
     /// Makes the pending set-up for light `l` (the kernel's point light);
@@ -337,6 +389,7 @@ impl TriQuad {
         if self.pending {
             self.pending = false;
             self.ok = self.make(l).is_some();
+            self.made = true;
         }
         self.ok
     }
@@ -525,12 +578,65 @@ impl TriQuad {
             let Some((xy, vx)) = vx else {
                 self.pending = false;
                 self.ok = false;
+                self.key = None;
+                self.made = false;
                 return;
             };
             let a = |j: usize| raw::<P::Lerp>(vx.attrs[j]);
             *o = (xy, [a(0), a(1), a(2)], [a(3), a(4), a(5)]);
         }
         self.set(v, P::SUBPIXEL_BITS, tri.back);
+        self.key = Some((tri.v, tri.back));
+    }
+
+    /// Takes the set-up pending for the triangle from `slots` when one
+    /// holds it for light position `light` (no set-up then).
+    #[inline(never)]
+    pub(super) fn load(&mut self, slots: &[QuadSlot], light: [i32; 3]) {
+        let Some(key) = self.key.filter(|_| self.pending) else {
+            return;
+        };
+        if let Some(s) = slots
+            .iter()
+            .find(|s| s.key == Some(key) && s.light == light)
+        {
+            self.at = s.at;
+            self.q = s.q;
+            self.ok = s.ok;
+            self.pending = false;
+            self.ry = None;
+        }
+    }
+
+    /// Keeps the set-up made for the triangle in a free slot of `slots`
+    /// (light position `light`) when the triangle continues below the
+    /// band of rows `y0..y1`; a slot whose triangle ends above `y0` is
+    /// free. None free: not kept (made again in the next band).
+    #[inline(never)]
+    pub(super) fn store(&mut self, slots: &mut [QuadSlot], light: [i32; 3], (y0, y1): (i32, i32)) {
+        if !core::mem::take(&mut self.made) {
+            return;
+        }
+        let Some(key) = self.key else {
+            return;
+        };
+        // A pixel row `r` is covered only when its centre is above the
+        // lowest vertex: `r <= ymax >> s`.
+        let ymax = self.verts.iter().map(|v| v.0[1]).max().unwrap_or(0);
+        let last = ymax >> self.sub.get();
+        if last < y1 {
+            return;
+        }
+        if let Some(s) = slots.iter_mut().find(|s| s.key.is_none() || s.last < y0) {
+            *s = QuadSlot {
+                key: Some(key),
+                light,
+                last,
+                ok: self.ok,
+                at: self.at,
+                q: self.q,
+            };
+        }
     }
 
     /// The point loop's plan of the span from pixel `(x, y)` (inside the

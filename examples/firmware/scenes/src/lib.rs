@@ -213,8 +213,12 @@ pub const POOL_VALUES: usize = if cfg!(feature = "dodeca") {
 } else {
     8
 };
+/// Triangles whose point-light quadratics (Phong, position layout) the
+/// pool keeps from band to band ([`fixshade::render::QuadSlot`],
+/// `QuadSlot::BYTES` each): set up once a frame instead of once a band.
+pub const QUAD_SLOTS: usize = 8;
 /// The firmware's pool of active triangles.
-pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
+pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES, QUAD_SLOTS>;
 
 /// Marks the measured work: the firmware executes marker instructions
 /// that the instruction-counting QEMU plugin toggles counting on (and
