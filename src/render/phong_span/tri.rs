@@ -628,14 +628,14 @@ impl TriQuad {
             return;
         }
         if let Some(s) = slots.iter_mut().find(|s| s.key.is_none() || s.last < y0) {
-            *s = QuadSlot {
-                key: Some(key),
-                light,
-                last,
-                ok: self.ok,
-                at: self.at,
-                q: self.q,
-            };
+            // Field by field (a whole slot built first took its size of
+            // stack).
+            s.key = Some(key);
+            s.light = light;
+            s.last = last;
+            s.ok = self.ok;
+            s.at = self.at;
+            s.q = self.q;
         }
     }
 
