@@ -1446,7 +1446,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
     ) {
         self.tri.store(self.slots, self.light, self.rows);
         self.tri.set_of_tri(frame, po, tri);
-        self.tri.load(self.slots, self.light);
+        self.tri.load(self.slots, self.light, self.rows.1);
     }
 
     /// The kernel's colour at one pixel (a span of one pixel: the very

@@ -590,14 +590,15 @@ impl TriQuad {
     }
 
     /// Takes the set-up pending for the triangle from `slots` when one
-    /// holds it for light position `light` (no set-up then).
+    /// holds it for light position `light` (no set-up then); the slot is
+    /// freed when the triangle ends in this band (rows `..y1`).
     #[inline(never)]
-    pub(super) fn load(&mut self, slots: &[QuadSlot], light: [i32; 3]) {
+    pub(super) fn load(&mut self, slots: &mut [QuadSlot], light: [i32; 3], y1: i32) {
         let Some(key) = self.key.filter(|_| self.pending) else {
             return;
         };
         if let Some(s) = slots
-            .iter()
+            .iter_mut()
             .find(|s| s.key == Some(key) && s.light == light)
         {
             self.at = s.at;
@@ -605,6 +606,9 @@ impl TriQuad {
             self.ok = s.ok;
             self.pending = false;
             self.ry = None;
+            if s.last < y1 {
+                s.key = None;
+            }
         }
     }
 
@@ -620,10 +624,10 @@ impl TriQuad {
         let Some(key) = self.key else {
             return;
         };
-        // A pixel row `r` is covered only when its centre is above the
-        // lowest vertex: `r <= ymax >> s`.
+        // A pixel row `r` is covered only when its centre is not below
+        // the lowest vertex: `(2r + 1) · 2^(s-1) <= ymax`.
         let ymax = self.verts.iter().map(|v| v.0[1]).max().unwrap_or(0);
-        let last = ymax >> self.sub.get();
+        let last = ymax.saturating_mul(2).saturating_sub(1) >> (self.sub.get() + 1);
         if last < y1 {
             return;
         }

@@ -216,7 +216,7 @@ pub const POOL_VALUES: usize = if cfg!(feature = "dodeca") {
 /// Triangles whose point-light quadratics (Phong, position layout) the
 /// pool keeps from band to band ([`fixshade::render::QuadSlot`],
 /// `QuadSlot::BYTES` each): set up once a frame instead of once a band.
-pub const QUAD_SLOTS: usize = 8;
+pub const QUAD_SLOTS: usize = 10;
 /// The firmware's pool of active triangles.
 pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES, QUAD_SLOTS>;
 
