@@ -2273,3 +2273,9 @@ mod tests;
 mod tri;
 
 pub use tri::{QuadSlot, TriQuad};
+
+/// Set-ups of the point light's quadratics made on this thread so far.
+#[cfg(test)]
+pub(crate) fn tri_makes() -> u32 {
+    tri::MAKES.with(|c| c.get())
+}

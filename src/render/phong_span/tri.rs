@@ -92,6 +92,15 @@ pub struct TriQuad {
     made: bool,
 }
 
+#[cfg(test)]
+extern crate std;
+
+#[cfg(test)]
+std::thread_local! {
+    /// Set-ups made ([`TriQuad::make`]) on this thread (tests count them).
+    pub(crate) static MAKES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
+}
+
 /// One triangle's quadratics kept from one band to the next (the band
 /// renderer's [`Pool`](crate::render::Pool) holds a few): a triangle
 /// crossing bands is set up once a frame instead of once a band.
@@ -390,6 +399,8 @@ impl TriQuad {
             self.pending = false;
             self.ok = self.make(l).is_some();
             self.made = true;
+            #[cfg(test)]
+            MAKES.with(|c| c.set(c.get() + 1));
         }
         self.ok
     }
