@@ -470,7 +470,10 @@ fn banded_quads<const Q: usize>(
 #[test]
 fn quadratics_kept_across_bands_give_the_full_frame() {
     let objs = every_shape::<crate::num::Q16>(Shading::Phong);
-    let ls = [Light::point(Vec3::from_f32([2.0, 2.0, 4.0]), crate::num::Q16::ONE)];
+    let ls = [Light::point(
+        Vec3::from_f32([2.0, 2.0, 4.0]),
+        crate::num::Q16::ONE,
+    )];
     let s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
     let (w, h) = (240, 160);
     let whole = full::<Fast>(&s, w, h, true);
@@ -488,7 +491,10 @@ fn quadratics_kept_across_bands_give_the_full_frame() {
         assert_eq!(many_makes, once, "rows {rows}");
         assert!(tiny_makes <= again && few_makes <= again, "rows {rows}");
         if rows < h {
-            assert!(again > once && tiny_makes < again, "rows {rows}: {again} {once}");
+            assert!(
+                again > once && tiny_makes < again,
+                "rows {rows}: {again} {once}"
+            );
         }
     }
 }
