@@ -1528,7 +1528,7 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 6> for PhongKernelShader<'_, '_,
 }
 
 impl<R> Drop for PhongKernelShader<'_, '_, R> {
-    /// The last triangle's quadratics kept (as [`PhongKernelShader::set_tri`]).
+    /// The last triangle's quadratics kept (as at the next triangle).
     fn drop(&mut self) {
         self.tri.store(self.slots, self.light, self.rows);
     }

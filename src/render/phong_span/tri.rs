@@ -36,6 +36,14 @@
 //! per-span path; every span also passes the per-span loop's range test
 //! (`PhongKernel::fill`), else the 64-bit path.
 //!
+//! # Kept from band to band
+//! The band renderer sets a triangle up in every band it reaches; its
+//! quadratics are the same in each. A [`QuadSlot`] of the pool keeps
+//! them (keyed by the triangle's prepared vertices, face and the light's
+//! position: the very values [`TriQuad::make`] would make again), so a
+//! triangle crossing bands is set up once a frame while slots last, else
+//! again (tested with 0, 1, 2 and 64 slots: the same bytes).
+//!
 //! # Error
 //! The quadratics are exact for the rounded planes: the normal within
 //! `½ + ½|x| + ½|y|` raw `Q30` units of the exact plane through the
