@@ -947,7 +947,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         if let Some(Ok(k)) = &kernel {
             let quads = core::mem::take(&mut self.quads);
-            let sh = PhongKernelShader::new(k).with_slots(&mut *quads, (t.y0, t.y1));
+            let mut sh = PhongKernelShader::new(k);
+            sh.keep_in(&mut *quads, (t.y0, t.y1));
             let r = if normal {
                 let set =
                     |s: &mut PhongKernelShader<'_, '_, P::Real>, t: &PreparedTri| s.back = t.back;

@@ -1424,13 +1424,12 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
 
     /// The shader keeping the triangles' quadratics in `slots` from one
     /// band to the next (this band: rows `y0..y1`).
-    pub(crate) fn with_slots(mut self, slots: &'k mut [QuadSlot], (y0, y1): (u32, u32)) -> Self {
+    pub(crate) fn keep_in(&mut self, slots: &'k mut [QuadSlot], (y0, y1): (u32, u32)) {
         if let Some(l) = self.kernel.point_loop_light() {
             self.slots = slots;
             self.light = l.at;
             self.rows = (y0 as i32, y1 as i32);
         }
-        self
     }
 
     /// Sets the next triangle's quadratics up (the `PhongPosition`
