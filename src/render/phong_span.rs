@@ -1435,7 +1435,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
     /// Sets the next triangle's quadratics up (the `PhongPosition`
     /// layout, [`TriQuad::set_of_tri`]): the last triangle's kept when
     /// made and continuing below the band, this one's taken from the
-    /// slots when there.
+    /// slots when there (its vertices then not fetched).
     #[inline(always)]
     pub(crate) fn set_tri<P: crate::num::Profile>(
         &mut self,
@@ -1444,8 +1444,10 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         tri: &super::PreparedTri,
     ) {
         self.tri.store(self.slots, self.light, self.rows);
-        self.tri.set_of_tri(frame, po, tri);
-        self.tri.load(self.slots, self.light, self.rows.1);
+        let key = (tri.v, tri.back);
+        if !self.tri.load(key, self.slots, self.light, self.rows.1) {
+            self.tri.set_of_tri(frame, po, tri);
+        }
     }
 
     /// The kernel's colour at one pixel (a span of one pixel: the very

@@ -608,27 +608,35 @@ impl TriQuad {
         self.key = Some((tri.v, tri.back));
     }
 
-    /// Takes the set-up pending for the triangle from `slots` when one
-    /// holds it for light position `light` (no set-up then); the slot is
-    /// freed when the triangle ends in this band (rows `..y1`).
+    /// Takes the set-up of the triangle of key `key` (its prepared
+    /// vertices and face) from `slots` when one holds it for light
+    /// position `light`: whether found (else nothing changed). The slot
+    /// is freed when the triangle ends in this band (rows `..y1`).
     #[inline(never)]
-    pub(super) fn load(&mut self, slots: &mut [QuadSlot], light: [i32; 3], y1: i32) {
-        let Some(key) = self.key.filter(|_| self.pending) else {
-            return;
-        };
-        if let Some(s) = slots
+    pub(super) fn load(
+        &mut self,
+        key: ([u16; 3], bool),
+        slots: &mut [QuadSlot],
+        light: [i32; 3],
+        y1: i32,
+    ) -> bool {
+        let Some(s) = slots
             .iter_mut()
             .find(|s| s.key == Some(key) && s.light == light)
-        {
-            self.at = s.at;
-            self.q = s.q;
-            self.ok = s.ok;
-            self.pending = false;
-            self.ry = None;
-            if s.last < y1 {
-                s.key = None;
-            }
+        else {
+            return false;
+        };
+        self.at = s.at;
+        self.q = s.q;
+        self.ok = s.ok;
+        self.key = Some(key);
+        self.pending = false;
+        self.made = false;
+        self.ry = None;
+        if s.last < y1 {
+            s.key = None;
         }
+        true
     }
 
     /// Keeps the set-up made for the triangle in a free slot of `slots`
