@@ -841,6 +841,13 @@ fn band_state_memory_is_as_documented() {
     // The pool adds two u16 list entries per slot.
     assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (88 + 96 + 4));
     assert_eq!(size_of::<Pool<i32, 32, 2>>(), 32 * (88 + 24 + 4));
+    // The point light's six quadratics (288), key, light, last row, flag
+    // and anchor: 328 bytes per triangle kept from band to band.
+    assert_eq!(QuadSlot::BYTES, 328);
+    assert_eq!(
+        size_of::<Pool<i32, 56, 8, 10>>(),
+        56 * (88 + 96 + 4) + 10 * 328
+    );
 }
 
 /// The bounding sphere decides once per object: wholly inside (no
