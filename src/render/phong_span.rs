@@ -1444,7 +1444,7 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
         tri: &super::PreparedTri,
     ) {
         self.tri.store(self.slots, self.light, self.rows);
-        let key = (tri.v, tri.back);
+        let key = tri::key_of(tri.v, tri.back);
         if !self.tri.load(key, self.slots, self.light, self.rows.1) {
             self.tri.set_of_tri(frame, po, tri);
         }

@@ -94,8 +94,8 @@ pub struct TriQuad {
     /// Made (else the spans take the per-span path).
     ok: bool,
     /// The triangle's prepared vertex indices and face (the key of its
-    /// [`QuadSlot`]; `None`: a triangle given by its vertices).
-    key: Option<([u16; 3], bool)>,
+    /// [`QuadSlot`], [`key_of`]; 0: a triangle given by its vertices).
+    key: u64,
     /// Made here (not loaded from a [`QuadSlot`]): to be kept.
     made: bool,
 }
@@ -121,7 +121,8 @@ std::thread_local! {
 /// slot is taken, the triangle is set up again in the next band.
 #[derive(Clone, Copy, Debug)]
 pub struct QuadSlot {
-    key: Option<([u16; 3], bool)>,
+    /// The triangle's key ([`key_of`]; 0: free).
+    key: u64,
     light: [i32; 3],
     /// The last pixel row the triangle may cover.
     last: i32,
@@ -133,7 +134,7 @@ pub struct QuadSlot {
 impl QuadSlot {
     /// A free slot (`const`: in a `static` pool).
     pub const EMPTY: Self = Self {
-        key: None,
+        key: 0,
         light: [0; 3],
         last: 0,
         ok: false,
@@ -147,9 +148,20 @@ impl QuadSlot {
     /// Frees every slot of `slots` (a new frame).
     pub(crate) fn clear(slots: &mut [Self]) {
         for s in slots {
-            s.key = None;
+            s.key = 0;
         }
     }
+}
+
+/// The key of the triangle of prepared vertices `v`, back face or not
+/// (never 0).
+#[inline(always)]
+pub(super) fn key_of(v: [u16; 3], back: bool) -> u64 {
+    (1 << 63)
+        | u64::from(back) << 48
+        | u64::from(v[2]) << 32
+        | u64::from(v[1]) << 16
+        | u64::from(v[0])
 }
 
 /// `x · y` modulo `2^64` for `|y| < 2^15` (ARMv6-M: three 32-bit
@@ -363,7 +375,7 @@ impl TriQuad {
         sub: SubpixelBits::DEFAULT,
         pending: false,
         ok: false,
-        key: None,
+        key: 0,
         made: false,
     };
 
@@ -395,7 +407,7 @@ impl TriQuad {
         self.pending = true;
         self.ok = false;
         self.ry = None;
-        self.key = None;
+        self.key = 0;
         self.made = false;
     }
 
@@ -597,7 +609,7 @@ impl TriQuad {
             let Some((xy, vx)) = vx else {
                 self.pending = false;
                 self.ok = false;
-                self.key = None;
+                self.key = 0;
                 self.made = false;
                 return;
             };
@@ -605,7 +617,7 @@ impl TriQuad {
             *o = (xy, [a(0), a(1), a(2)], [a(3), a(4), a(5)]);
         }
         self.set(v, P::SUBPIXEL_BITS, tri.back);
-        self.key = Some((tri.v, tri.back));
+        self.key = key_of(tri.v, tri.back);
     }
 
     /// Takes the set-up of the triangle of key `key` (its prepared
@@ -615,26 +627,23 @@ impl TriQuad {
     #[inline(never)]
     pub(super) fn load(
         &mut self,
-        key: ([u16; 3], bool),
+        key: u64,
         slots: &mut [QuadSlot],
         light: [i32; 3],
         y1: i32,
     ) -> bool {
-        let Some(s) = slots
-            .iter_mut()
-            .find(|s| s.key == Some(key) && s.light == light)
-        else {
+        let Some(s) = slots.iter_mut().find(|s| s.key == key && s.light == light) else {
             return false;
         };
         self.at = s.at;
         self.q = s.q;
         self.ok = s.ok;
-        self.key = Some(key);
+        self.key = key;
         self.pending = false;
         self.made = false;
         self.ry = None;
         if s.last < y1 {
-            s.key = None;
+            s.key = 0;
         }
         true
     }
@@ -648,9 +657,10 @@ impl TriQuad {
         if !core::mem::take(&mut self.made) {
             return;
         }
-        let Some(key) = self.key else {
+        let key = self.key;
+        if key == 0 {
             return;
-        };
+        }
         // A pixel row `r` is covered only when its centre is not below
         // the lowest vertex: `(2r + 1) · 2^(s-1) <= ymax`.
         let ymax = self.verts.iter().map(|v| v.0[1]).max().unwrap_or(0);
@@ -658,10 +668,10 @@ impl TriQuad {
         if last < y1 {
             return;
         }
-        if let Some(s) = slots.iter_mut().find(|s| s.key.is_none() || s.last < y0) {
+        if let Some(s) = slots.iter_mut().find(|s| s.key == 0 || s.last < y0) {
             // Field by field (a whole slot built first took its size of
             // stack).
-            s.key = Some(key);
+            s.key = key;
             s.light = light;
             s.last = last;
             s.ok = self.ok;
