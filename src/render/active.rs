@@ -77,8 +77,8 @@
 //! makes its quadratics (`phong_span::tri`) in every band it reaches
 //! unless a [`QuadSlot`] keeps them: dodeca-phong-n100 (160×160, 16-row
 //! bands) makes 46 set-ups without slots, 18 (one per triangle) with 10;
-//! raster thumbv7em 1 822 957 -> 1 706 592, thumbv6m 5 917 574 ->
-//! 5 493 463 instructions, for 3 280 bytes of pool and 64 (M4) or 80
+//! raster thumbv7em 1 822 957 -> 1 700 554, thumbv6m 5 917 574 ->
+//! 5 484 886 instructions, for 3 280 bytes of pool and 56 (M4) or 88
 //! (M0) of stack.
 //!
 //! [`Workspace::faces`]: super::Workspace::faces
