@@ -71,8 +71,8 @@ mod storage;
 pub use active::{BandState, Bands, Pool, Slot};
 pub use band::{PhongShader, RenderStats};
 pub use phong_span::{
-    KernelError, PhongFill, PhongKernel, PhongKernelShader, PhongSpan, SpecCache, TriQuad, RSQRT_N,
-    SPEC_SEGMENTS,
+    KernelError, PhongFill, PhongKernel, PhongKernelShader, PhongSpan, QuadSlot, SpecCache,
+    TriQuad, RSQRT_N, SPEC_SEGMENTS,
 };
 pub use prepare::{max_screen, XY_LIMIT};
 pub use prepare::{prepare, prepare_in};

@@ -1401,6 +1401,11 @@ pub struct PhongKernelShader<'k, 's, R> {
     /// The next triangle's quadratics (the `PhongPosition` layout, one
     /// point light: [`PhongKernel::wants_tri`]).
     pub tri: TriQuad,
+    /// The quadratics kept from band to band ([`QuadSlot`]), the point
+    /// light's position and the band's rows.
+    slots: &'k mut [QuadSlot],
+    light: [i32; 3],
+    rows: (i32, i32),
 }
 
 impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
@@ -1411,6 +1416,37 @@ impl<'k, 's, R: Real> PhongKernelShader<'k, 's, R> {
             back: false,
             plane: PosPlane::NONE,
             tri: TriQuad::NONE,
+            slots: &mut [],
+            light: [0; 3],
+            rows: (0, 0),
+        }
+    }
+
+    /// The shader keeping the triangles' quadratics in `slots` from one
+    /// band to the next (this band: rows `y0..y1`).
+    pub(crate) fn keep_in(&mut self, slots: &'k mut [QuadSlot], (y0, y1): (u32, u32)) {
+        if let Some(l) = self.kernel.point_loop_light() {
+            self.slots = slots;
+            self.light = l.at;
+            self.rows = (y0 as i32, y1 as i32);
+        }
+    }
+
+    /// Sets the next triangle's quadratics up (the `PhongPosition`
+    /// layout, [`TriQuad::set_of_tri`]): the last triangle's kept when
+    /// made and continuing below the band, this one's taken from the
+    /// slots when there (its vertices then not fetched).
+    #[inline(always)]
+    pub(crate) fn set_tri<P: crate::num::Profile>(
+        &mut self,
+        frame: &super::Frame<'_, P>,
+        po: &super::PreparedObject,
+        tri: &super::PreparedTri,
+    ) {
+        self.tri.store(self.slots, self.light, self.rows);
+        let key = tri::key_of(tri.v, tri.back);
+        if !self.tri.load(key, self.slots, self.light, self.rows.1) {
+            self.tri.set_of_tri(frame, po, tri);
         }
     }
 
@@ -1489,6 +1525,13 @@ impl<L: Lerp, R: Real> crate::raster::Shader<L, 6> for PhongKernelShader<'_, '_,
         let dp = [raw(da[3]), raw(da[4]), raw(da[5])];
         let pp = (self.plane.start(x0, y, row.len() as u32, p, dp), dp);
         Some(self.fill_row::<L, F, D>(row, drow, z, dz, a, da, pp, Some((x0, y))))
+    }
+}
+
+impl<R> Drop for PhongKernelShader<'_, '_, R> {
+    /// The last triangle's quadratics kept (as at the next triangle).
+    fn drop(&mut self) {
+        self.tri.store(self.slots, self.light, self.rows);
     }
 }
 
@@ -2230,4 +2273,10 @@ mod point;
 mod tests;
 mod tri;
 
-pub use tri::TriQuad;
+pub use tri::{QuadSlot, TriQuad};
+
+/// Set-ups of the point light's quadratics made on this thread so far.
+#[cfg(test)]
+pub(crate) fn tri_makes() -> u32 {
+    tri::MAKES.with(|c| c.get())
+}

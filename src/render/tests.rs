@@ -429,6 +429,69 @@ fn bands_equal_the_full_frame_for_every_shape_mode_and_profile() {
     run::<crate::num::F64Pc>();
 }
 
+/// The banded frame of [`Fast`] with a pool of `Q` slots of quadratics
+/// ([`QuadSlot`]) and the set-ups of quadratics it made.
+fn banded_quads<const Q: usize>(
+    s: &Scene<'_, 'static, crate::num::Q16>,
+    w: u32,
+    h: u32,
+    rows: u32,
+) -> (Vec<u8>, u32) {
+    let mut mem = Mem::<<Fast as Profile>::Lerp>::new(12_000, 12_000);
+    let frame = prepare::<Fast>(s, w, h, mem.ws()).unwrap();
+    let mut px = vec![0u16; (w * rows) as usize];
+    let mut z = vec![0u16; (w * rows) as usize];
+    let mut band = BandBuf::<Rgb565Be>::new(&mut px, Some(&mut z[..]), w, rows).unwrap();
+    let mut order = vec![0u16; 2 * frame.triangle_count()];
+    let mut pool = Box::new(Pool::<<Fast as Profile>::Lerp, 256, 8, Q>::new());
+    let mut state = BandState::new(&mut order, &mut pool);
+    let mut out = vec![];
+    let makes = super::phong_span::tri_makes();
+    frame
+        .render_bands(s, &mut state, &mut band, |b| {
+            out.extend(b.bytes());
+            Ok::<(), RenderError>(())
+        })
+        .unwrap();
+    (out, super::phong_span::tri_makes() - makes)
+}
+
+/// One point light, local viewer: the band renderer keeps the triangles'
+/// quadratics from band to band in the pool's slots. Any number of slots
+/// gives the full frame's bytes; with slots enough every triangle's are
+/// made once a frame, as in one band; with none, again in every band.
+#[test]
+fn quadratics_kept_across_bands_give_the_full_frame() {
+    let objs = every_shape::<crate::num::Q16>(Shading::Phong);
+    let ls = [Light::point(
+        Vec3::from_f32([2.0, 2.0, 4.0]),
+        crate::num::Q16::ONE,
+    )];
+    let s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
+    let (w, h) = (240, 160);
+    let whole = full::<Fast>(&s, w, h, true);
+    let (one_band, once) = banded_quads::<0>(&s, w, h, h);
+    assert_eq!(one_band, whole);
+    assert!(once > 40, "{once}");
+    for rows in [1, 7, 16, h] {
+        let (none, again) = banded_quads::<0>(&s, w, h, rows);
+        let (tiny, tiny_makes) = banded_quads::<1>(&s, w, h, rows);
+        let (few, few_makes) = banded_quads::<2>(&s, w, h, rows);
+        let (many, many_makes) = banded_quads::<64>(&s, w, h, rows);
+        for b in [&none, &tiny, &few, &many] {
+            assert!(*b == whole, "rows {rows}");
+        }
+        assert_eq!(many_makes, once, "rows {rows}");
+        assert!(tiny_makes <= again && few_makes <= again, "rows {rows}");
+        if rows < h {
+            assert!(
+                again > once && tiny_makes < again,
+                "rows {rows}: {again} {once}"
+            );
+        }
+    }
+}
+
 #[test]
 fn a_convex_object_with_culling_needs_no_depth_buffer() {
     for m in [shapes::CUBE, shapes::DODECAHEDRON, shapes::SPHERE] {
@@ -771,6 +834,13 @@ fn band_state_memory_is_as_documented() {
     // The pool adds two u16 list entries per slot.
     assert_eq!(size_of::<Pool<i32, 64, 8>>(), 64 * (88 + 96 + 4));
     assert_eq!(size_of::<Pool<i32, 32, 2>>(), 32 * (88 + 24 + 4));
+    // The point light's six quadratics (288), key, light, last row, flag
+    // and anchor: 328 bytes per triangle kept from band to band.
+    assert_eq!(QuadSlot::BYTES, 328);
+    assert_eq!(
+        size_of::<Pool<i32, 56, 8, 10>>(),
+        56 * (88 + 96 + 4) + 10 * 328
+    );
 }
 
 /// The bounding sphere decides once per object: wholly inside (no

@@ -36,6 +36,14 @@
 //! per-span path; every span also passes the per-span loop's range test
 //! (`PhongKernel::fill`), else the 64-bit path.
 //!
+//! # Kept from band to band
+//! The band renderer sets a triangle up in every band it reaches; its
+//! quadratics are the same in each. A [`QuadSlot`] of the pool keeps
+//! them (keyed by the triangle's prepared vertices, face and the light's
+//! position: the very values [`TriQuad::make`] would make again), so a
+//! triangle crossing bands is set up once a frame while slots last, else
+//! again (tested with 0, 1, 2 and 64 slots: the same bytes).
+//!
 //! # Error
 //! The quadratics are exact for the rounded planes: the normal within
 //! `½ + ½|x| + ½|y|` raw `Q30` units of the exact plane through the
@@ -85,6 +93,75 @@ pub struct TriQuad {
     pending: bool,
     /// Made (else the spans take the per-span path).
     ok: bool,
+    /// The triangle's prepared vertex indices and face (the key of its
+    /// [`QuadSlot`], [`key_of`]; 0: a triangle given by its vertices).
+    key: u64,
+    /// Made here (not loaded from a [`QuadSlot`]): to be kept.
+    made: bool,
+}
+
+#[cfg(test)]
+extern crate std;
+
+#[cfg(test)]
+std::thread_local! {
+    /// Set-ups made ([`TriQuad::make`]) on this thread (tests count them).
+    pub(crate) static MAKES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
+}
+
+/// One triangle's quadratics kept from one band to the next (the band
+/// renderer's [`Pool`](crate::render::Pool) holds a few): a triangle
+/// crossing bands is set up once a frame instead of once a band.
+///
+/// Keyed by the triangle's prepared vertices, its face and the light's
+/// position: a slot found holds the very values [`TriQuad`] would make
+/// again (the same inputs), so a frame is the same with any number of
+/// slots. A triangle is kept when it continues below the band; a slot is
+/// free again once the bands are past its triangle's last row. When every
+/// slot is taken, the triangle is set up again in the next band.
+#[derive(Clone, Copy, Debug)]
+pub struct QuadSlot {
+    /// The triangle's key ([`key_of`]; 0: free).
+    key: u64,
+    light: [i32; 3],
+    /// The last pixel row the triangle may cover.
+    last: i32,
+    ok: bool,
+    at: [i32; 2],
+    q: [[i64; 6]; 6],
+}
+
+impl QuadSlot {
+    /// A free slot (`const`: in a `static` pool).
+    pub const EMPTY: Self = Self {
+        key: 0,
+        light: [0; 3],
+        last: 0,
+        ok: false,
+        at: [0; 2],
+        q: [[0; 6]; 6],
+    };
+
+    /// Bytes of one slot (the RAM per kept triangle).
+    pub const BYTES: usize = core::mem::size_of::<Self>();
+
+    /// Frees every slot of `slots` (a new frame).
+    pub(crate) fn clear(slots: &mut [Self]) {
+        for s in slots {
+            s.key = 0;
+        }
+    }
+}
+
+/// The key of the triangle of prepared vertices `v`, back face or not
+/// (never 0).
+#[inline(always)]
+pub(super) fn key_of(v: [u16; 3], back: bool) -> u64 {
+    (1 << 63)
+        | u64::from(back) << 48
+        | u64::from(v[2]) << 32
+        | u64::from(v[1]) << 16
+        | u64::from(v[0])
 }
 
 /// `x · y` modulo `2^64` for `|y| < 2^15` (ARMv6-M: three 32-bit
@@ -298,6 +375,8 @@ impl TriQuad {
         sub: SubpixelBits::DEFAULT,
         pending: false,
         ok: false,
+        key: 0,
+        made: false,
     };
 
     /// Whether the set-up was made.
@@ -328,6 +407,8 @@ impl TriQuad {
         self.pending = true;
         self.ok = false;
         self.ry = None;
+        self.key = 0;
+        self.made = false;
     }
 
     /// Makes the pending set-up for light `l` (the kernel's point light);
@@ -337,6 +418,9 @@ impl TriQuad {
         if self.pending {
             self.pending = false;
             self.ok = self.make(l).is_some();
+            self.made = true;
+            #[cfg(test)]
+            MAKES.with(|c| c.set(c.get() + 1));
         }
         self.ok
     }
@@ -525,12 +609,75 @@ impl TriQuad {
             let Some((xy, vx)) = vx else {
                 self.pending = false;
                 self.ok = false;
+                self.key = 0;
+                self.made = false;
                 return;
             };
             let a = |j: usize| raw::<P::Lerp>(vx.attrs[j]);
             *o = (xy, [a(0), a(1), a(2)], [a(3), a(4), a(5)]);
         }
         self.set(v, P::SUBPIXEL_BITS, tri.back);
+        self.key = key_of(tri.v, tri.back);
+    }
+
+    /// Takes the set-up of the triangle of key `key` (its prepared
+    /// vertices and face) from `slots` when one holds it for light
+    /// position `light`: whether found (else nothing changed). The slot
+    /// is freed when the triangle ends in this band (rows `..y1`).
+    #[inline(never)]
+    pub(super) fn load(
+        &mut self,
+        key: u64,
+        slots: &mut [QuadSlot],
+        light: [i32; 3],
+        y1: i32,
+    ) -> bool {
+        let Some(s) = slots.iter_mut().find(|s| s.key == key && s.light == light) else {
+            return false;
+        };
+        self.at = s.at;
+        self.q = s.q;
+        self.ok = s.ok;
+        self.key = key;
+        self.pending = false;
+        self.made = false;
+        self.ry = None;
+        if s.last < y1 {
+            s.key = 0;
+        }
+        true
+    }
+
+    /// Keeps the set-up made for the triangle in a free slot of `slots`
+    /// (light position `light`) when the triangle continues below the
+    /// band of rows `y0..y1`; a slot whose triangle ends above `y0` is
+    /// free. None free: not kept (made again in the next band).
+    #[inline(never)]
+    pub(super) fn store(&mut self, slots: &mut [QuadSlot], light: [i32; 3], (y0, y1): (i32, i32)) {
+        if !core::mem::take(&mut self.made) {
+            return;
+        }
+        let key = self.key;
+        if key == 0 {
+            return;
+        }
+        // A pixel row `r` is covered only when its centre is not below
+        // the lowest vertex: `(2r + 1) · 2^(s-1) <= ymax`.
+        let ymax = self.verts.iter().map(|v| v.0[1]).max().unwrap_or(0);
+        let last = ymax.saturating_mul(2).saturating_sub(1) >> (self.sub.get() + 1);
+        if last < y1 {
+            return;
+        }
+        if let Some(s) = slots.iter_mut().find(|s| s.key == 0 || s.last < y0) {
+            // Field by field (a whole slot built first took its size of
+            // stack).
+            s.key = key;
+            s.light = light;
+            s.last = last;
+            s.ok = self.ok;
+            s.at = self.at;
+            s.q = self.q;
+        }
     }
 
     /// The point loop's plan of the span from pixel `(x, y)` (inside the

@@ -18,10 +18,10 @@ struct Use {
 }
 
 /// Renders `frame` band by band, the board's way, with its pool.
-fn bands<F: PixelFormat, const CAP: usize, const V: usize>(
+fn bands<F: PixelFormat, const CAP: usize, const V: usize, const Q: usize>(
     frame: &Frame<'_, Fast>,
     scene: &fixshade::scene::Scene<'_, '_, fixshade::num::Q16>,
-    pool: &mut fixshade::render::Pool<i32, CAP, V>,
+    pool: &mut fixshade::render::Pool<i32, CAP, V, Q>,
     order: &mut [u16],
     w: u32,
     rows: u32,
@@ -84,8 +84,9 @@ macro_rules! turn {
             let scene = Scene::new(camera, &objects, &lights, AMBIENT);
             let (ws, order) = $store.split();
             let frame = prepare::<Fast>(&scene, W, H, ws).unwrap();
-            let u =
-                bands::<$fmt, POOL_SLOTS, POOL_VALUES>(&frame, &scene, &mut $pool, order, W, ROWS);
+            let u = bands::<$fmt, POOL_SLOTS, POOL_VALUES, 0>(
+                &frame, &scene, &mut $pool, order, W, ROWS,
+            );
             println!("{} frame {i:2}: crc 0x{:08x} {u:?}", $name, u.crc);
             turn.push(u);
             most = max(most, u);
@@ -132,7 +133,12 @@ fn firmware_frame(i: u32, ws: Workspace<'_, i32>, order: &mut [u16]) -> Use {
     let scene = spec.scene(spec.camera().unwrap(), &objects);
     let frame = prepare::<Fast>(&scene, spec.width, spec.height, ws).unwrap();
     let mut pool = Box::new(fixshade_scenes::BandPool::new());
-    bands::<Rgb565Be, { fixshade_scenes::POOL_SLOTS }, { fixshade_scenes::POOL_VALUES }>(
+    bands::<
+        Rgb565Be,
+        { fixshade_scenes::POOL_SLOTS },
+        { fixshade_scenes::POOL_VALUES },
+        { fixshade_scenes::QUAD_SLOTS },
+    >(
         &frame,
         &scene,
         &mut pool,

@@ -209,8 +209,21 @@ pub const POOL_VALUES: usize = if cfg!(feature = "dodeca") {
 } else {
     8
 };
+/// Triangles whose point-light quadratics (Phong, position layout, one
+/// point light) the pool keeps from band to band
+/// ([`fixshade::render::QuadSlot`], `QuadSlot::BYTES` = 328 each, 3 280
+/// bytes): set up once a frame instead of once a band. dodeca-phong-n100
+/// in 16-row bands makes 18 set-ups with 10 slots (8: 20, 6: 24, none:
+/// 46); a slot is taken when a triangle continues below its band and
+/// freed once the bands are past the triangle's last row. None with the
+/// features `dodeca` and `bunny` (their small boards' RAM).
+pub const QUAD_SLOTS: usize = if cfg!(feature = "dodeca") || cfg!(feature = "bunny") {
+    0
+} else {
+    10
+};
 /// The firmware's pool of active triangles.
-pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES>;
+pub type BandPool = Pool<i32, POOL_SLOTS, POOL_VALUES, QUAD_SLOTS>;
 
 /// Marks the measured work: the firmware executes marker instructions
 /// that the instruction-counting QEMU plugin toggles counting on (and

@@ -14,7 +14,7 @@
 
 use crate::{
     Crc32, FrameError, FrameStats, ObjectSpec, Pixel, Probe, SceneSpec, BAND_ROWS, POOL_SLOTS,
-    POOL_VALUES, SCENE_LIGHTS, SCENE_OBJECTS,
+    POOL_VALUES, QUAD_SLOTS, SCENE_LIGHTS, SCENE_OBJECTS,
 };
 use fixshade::geom::{Affine, Vec3};
 use fixshade::illum::{Light, LightKind, Material};
@@ -131,7 +131,7 @@ pub fn render_frame_with<P: Profile, Q: Probe>(
 
 /// The active-triangle pool of the band renderer for profile `P` (the
 /// benchmark's capacities, values of `P`'s type).
-pub type ProfilePool<P> = Pool<<P as Profile>::Lerp, POOL_SLOTS, POOL_VALUES>;
+pub type ProfilePool<P> = Pool<<P as Profile>::Lerp, POOL_SLOTS, POOL_VALUES, QUAD_SLOTS>;
 
 /// A depth band given as an `Option` in the form the `_in` functions
 /// take: the slice (empty for `None`) and whether to use it.
