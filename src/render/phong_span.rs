@@ -1194,16 +1194,22 @@ impl<R: Real> PhongSpan<'_, '_, R> {
         c
     }
 
+    /// The pixel's `1/|n|` from `|n|²` ([`rsqrt_n`]) and its square in
+    /// Q14; `None` beyond the table's range (then [`PhongSpan::slow`]).
+    #[inline(always)]
+    fn inv_len(&self) -> Option<(u32, u32)> {
+        let r = rsqrt_n((self.nn >> 32) as i32)?;
+        let r14 = r >> 2;
+        Some((r, (r14 * r14) >> 14))
+    }
+
     /// Directional lights, viewer at infinity (`ONE`: exactly one light).
     #[inline(always)]
     fn duff<const ONE: bool>(&mut self) -> Rgb8 {
         let k = self.k;
-        let f = (self.nn >> 32) as i32;
-        let Some(r) = rsqrt_n(f) else {
+        let Some((r, rr14)) = self.inv_len() else {
             return self.slow();
         };
-        let r14 = r >> 2;
-        let rr14 = (r14 * r14) >> 14;
         let mut acc = k.amb;
         if let Some(l) = k.lights.first() {
             duff_light(k, &mut self.l0, l, r, rr14, &mut acc);
@@ -1223,12 +1229,9 @@ impl<R: Real> PhongSpan<'_, '_, R> {
     #[inline(never)]
     fn general<const ONE: bool>(&mut self) -> Rgb8 {
         let k = self.k;
-        let f = (self.nn >> 32) as i32;
-        let Some(r) = rsqrt_n(f) else {
+        let Some((r, rr14)) = self.inv_len() else {
             return self.slow();
         };
-        let r14 = r >> 2;
-        let rr14 = (r14 * r14) >> 14;
         let n = self.n;
         let vh = if k.local {
             unit_of(self.v, self.vv)
