@@ -307,6 +307,7 @@ fn setup_slow<const N: usize, const V: usize>(
 /// `[dx1, dy1, dx2, dy2]`, the reciprocal of the doubled area and its
 /// high-word shift `k`, the subpixel bits `s`, and the offsets `o = (h -
 /// x0, h - y0)` of the centre of pixel (0, 0) from vertex 0 (`h = S/2`).
+#[derive(Clone, Copy)]
 struct Grad {
     d: [i32; 4],
     inv: InvArea,
@@ -428,11 +429,28 @@ impl Grad {
 
     /// [`Grad::plane_fields`] out of line (on ARMv6-M, for the values
     /// [`Grad::plane_short`] refuses: inlined there, it cost the kernel's
-    /// other paths more than it saved).
+    /// other paths more than it saved). The planes' inputs by value: a
+    /// copy made on this path only, where by reference they were stored
+    /// to the stack for every triangle (bunny-gouraud raster thumbv6m
+    /// 2 605 128 -> 2 588 049; [`Grad::plane_wide_cold`] so, bunny-flat
+    /// raster 2 197 471 -> 2 211 335: kept by reference). The plane in
+    /// `out` as `[gx, gy, origin, ok]` ([`Grad::fields_rescue`]).
     #[inline(never)]
     #[cold]
-    fn plane_fields_cold(&self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
-        self.plane_fields::<false>(f, v0, sh)
+    fn plane_fields_cold(self, f: [i32; 3], v0: i32, sh: u32, out: &mut [i32; 4]) {
+        let (gx, gy, o, ok) = self.plane_fields::<false>(f, v0, sh);
+        *out = [gx, gy, o, i32::from(ok)];
+    }
+
+    /// [`Grad::plane_fields_cold`]'s plane: its result through a slot of
+    /// its own, written on this path only (returned, it shared its slot
+    /// with the inlined planes, which then stored theirs to it for every
+    /// triangle: bunny-gouraud raster thumbv6m 2 588 049 -> 2 580 761).
+    #[inline(always)]
+    fn fields_rescue(self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
+        let mut out = [0; 4];
+        self.plane_fields_cold(f, v0, sh, &mut out);
+        (out[0], out[1], out[2], out[3] != 0)
     }
 
     /// The plane of packed values ([`crate::num::Profile::PACKED_GREY`]:
@@ -966,7 +984,7 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
         g.plane_fields::<true>([zf(a), zf(b), zf(c)], zval(a), 14)
     } else {
         match g.plane_small::<false>(zval(a), zval(b), zval(c), lim) {
-            p if !p.3 & rescue => g.plane_fields_cold([zf(a), zf(b), zf(c)], zval(a), 14),
+            p if !p.3 & rescue => g.fields_rescue([zf(a), zf(b), zf(c)], zval(a), 14),
             p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(zval(a), zval(b), zval(c)),
             p => p,
         }
@@ -983,7 +1001,7 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
             match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim) {
                 p if !p.3 & rescue => {
                     let f = [lf(a, k), lf(b, k), lf(c, k)];
-                    g.plane_fields_cold(f, lval(a, k), 8)
+                    g.fields_rescue(f, lval(a, k), 8)
                 }
                 p => p,
             }
