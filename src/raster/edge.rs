@@ -45,15 +45,7 @@ impl Edge {
         // ARMv6-M (no divider) the usual slopes, |dx/dy| up to 4, take a
         // few subtractions instead of a library division (also in test
         // builds, so that the host tests check the division-free paths).
-        let small = if NO_DIVIDE || cfg!(test) {
-            small_floor_divmod(dx, dy).or_else(|| binary_floor_divmod(dx, dy))
-        } else {
-            None
-        };
-        let (q, rem) = match small {
-            Some(qr) => qr,
-            None => floor_divmod(dx, dy),
-        };
+        let (q, rem) = slope_divmod(dx, dy, NO_DIVIDE || cfg!(test));
         let r = s * rem;
         let t = j as i64 * s as i64 + (s / 2) as i64 - y0 as i64; // yc - y0
         let (x, e) = if (0..s as i64).contains(&t) {
@@ -174,15 +166,7 @@ impl Edge {
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
         let d = s * dy;
-        let small = if NO_DIVIDE {
-            small_floor_divmod(dx, dy).or_else(|| binary_floor_divmod(dx, dy))
-        } else {
-            None
-        };
-        let (q, rem) = match small {
-            Some(qr) => qr,
-            None => floor_divmod(dx, dy),
-        };
+        let (q, rem) = slope_divmod(dx, dy, NO_DIVIDE);
         Self::at_quot(x0, [dy, d], q, rem, t, sub)
     }
 
@@ -305,6 +289,24 @@ fn binary_floor_divmod(n: i32, d: i32) -> Option<(i32, i32)> {
     } else {
         (-q - 1, d - m)
     })
+}
+
+/// `(⌊dx/dy⌋, dx mod dy)` for `dy >= 1`, the edge's slope: with
+/// `no_divide` (a constant: ARMv6-M, which has no divider) the usual
+/// slopes take [`small_floor_divmod`] or [`binary_floor_divmod`]'s few
+/// subtractions instead of a library division, which remains for the
+/// rest ([`floor_divmod`]).
+#[inline(always)]
+fn slope_divmod(dx: i32, dy: i32, no_divide: bool) -> (i32, i32) {
+    let small = if no_divide {
+        small_floor_divmod(dx, dy).or_else(|| binary_floor_divmod(dx, dy))
+    } else {
+        None
+    };
+    match small {
+        Some(qr) => qr,
+        None => floor_divmod(dx, dy),
+    }
 }
 
 /// `(⌊n/d⌋, n mod d)` for `d > 0` with a single division.

@@ -26,7 +26,7 @@
 use super::span::{clamp_test, depth_loop, in_range_test, inr_span};
 use super::triangle::first_row;
 use super::walk::{setup, Vals, Walk};
-use super::{Edge, InvArea, SubpixelBits, Vertex};
+use super::{Edge, InvArea, Lerp, SubpixelBits, Vertex};
 use crate::num::wide::{clz32, mul_i32_i16_soft, NO_LONG_MUL};
 use crate::target::{Depth16, DepthFormat};
 
@@ -47,7 +47,7 @@ impl Walk {
     /// Walks rows from the next one down to `until` (excluded) or the
     /// triangle's last row, drawing each span into `mem` with `color`
     /// (values at the pixel centre); returns the pixels written. `vals`
-    /// holds the values at pixel (0, 0) and their steps ([`pack_fixed`]).
+    /// holds the values at pixel (0, 0) and their steps ([`pack_vals`]).
     #[inline(always)]
     pub(crate) fn rows_fused<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
         &mut self,
@@ -56,7 +56,7 @@ impl Walk {
         mem: &mut BandMem<'_, '_, R, D::Raw>,
         color: impl Fn(&[i32; N]) -> R,
     ) -> u32 {
-        let [row, sx, sy] = unpack_fixed::<N, V>(vals);
+        let [row, sx, sy] = unpack_vals::<N, V>(vals);
         let (row, sx, sy) = (&row, &sx, &sy);
         let (y0, width) = (mem.y0, mem.width);
         let px = &mut **mem.px;
@@ -109,18 +109,7 @@ impl Walk {
         let mut base = (self.j - y0).wrapping_mul(width) as usize;
         let mut drawn = 0u32;
         while self.j < stop {
-            if self.j == self.mid {
-                if self.long_left {
-                    self.right = self.low;
-                } else {
-                    self.left = self.low;
-                }
-            }
-            let r1 = if self.j < self.mid {
-                self.mid.min(stop)
-            } else {
-                stop
-            };
+            let r1 = self.half_end(stop);
             let (mut l, mut r) = (self.left, self.right);
             for _ in self.j..r1 {
                 let (x0, x1) = if CLIP {
@@ -183,18 +172,7 @@ impl Walk {
         let mut base = (self.j - y0).wrapping_mul(width) as usize;
         let mut drawn = 0u32;
         while self.j < stop {
-            if self.j == self.mid {
-                if self.long_left {
-                    self.right = self.low;
-                } else {
-                    self.left = self.low;
-                }
-            }
-            let r1 = if self.j < self.mid {
-                self.mid.min(stop)
-            } else {
-                stop
-            };
+            let r1 = self.half_end(stop);
             let (mut l, mut r) = (self.left, self.right);
             for _ in self.j..r1 {
                 let (x0, x1) = (l.x.max(0), r.x.min(width));
@@ -253,11 +231,11 @@ pub(crate) fn setup_fast<const N: usize, const V: usize>(
 /// entry `k + 1` attribute `k`, each `[value at pixel (0, 0), x step, y
 /// step]` (entries beyond `N + 1` untouched).
 #[inline(always)]
-pub(crate) fn pack_fixed<const N: usize, const V: usize>(
-    v: &mut [[i32; 3]; V],
-    row: &Vals<i32, N>,
-    sx: &Vals<i32, N>,
-    sy: &Vals<i32, N>,
+pub(crate) fn pack_vals<L: Lerp, const N: usize, const V: usize>(
+    v: &mut [[L; 3]; V],
+    row: &Vals<L, N>,
+    sx: &Vals<L, N>,
+    sy: &Vals<L, N>,
 ) {
     if let Some(x) = v.get_mut(0) {
         *x = [row.z, sx.z, sy.z];
@@ -269,9 +247,9 @@ pub(crate) fn pack_fixed<const N: usize, const V: usize>(
     }
 }
 
-/// A slot's values (see [`pack_fixed`]) as row values and steps.
+/// A slot's values (see [`pack_vals`]) as row values and steps.
 #[inline(always)]
-pub(crate) fn unpack_fixed<const N: usize, const V: usize>(v: &[[i32; 3]; V]) -> [Vals<i32, N>; 3] {
+pub(crate) fn unpack_vals<const N: usize, const V: usize>(v: &[[i32; 3]; V]) -> [Vals<i32, N>; 3] {
     let get = |k: usize, c: usize| v.get(k).map_or(0, |x| x[c]);
     let f = |c: usize| Vals {
         z: get(0, c),
@@ -296,7 +274,7 @@ fn setup_slow<const N: usize, const V: usize>(
     match setup::<i32, N>(a, b, c, sub, j0, width) {
         Some((w, r, sx, sy)) => {
             *walk = w;
-            pack_fixed(vals, &r, &sx, &sy);
+            pack_vals(vals, &r, &sx, &sy);
             true
         }
         None => false,
@@ -712,6 +690,34 @@ fn walk_edges(
     w.long_left = long_left;
 }
 
+/// `true` when every pixel a triangle draws from the planes of
+/// [`draw_small`] has its level attribute (fixed, `2^16` a level) rounded
+/// into `0..=255`, from the vertex values `l` and the attribute's
+/// gradients `gx`, `gy` (per pixel). A pixel centre drawn lies in the
+/// closed triangle, within `2^15` subpixels of vertex 0 on each axis
+/// (the kernel's bound on the offsets), where the exact plane lies between
+/// the least and the greatest vertex value; the kernel's value there is
+/// `v0 + (gx·dx + gy·dy + S/2) / S` floored (`dx`, `dy` the centre's
+/// subpixel offsets from vertex 0, `S = 2^s`, `s >= 1`), so it differs from
+/// the exact plane by less than `(|gx - Gx|·|dx| + |gy - Gy|·|dy|) / S +
+/// 1`;
+/// [`InvArea`]'s gradients are within `½ + |G|·2^-28` of the exact `G`,
+/// below 2 for `|g| < 2^28`: the error stays below `2·2·2^15 / S + 1 =
+/// 2^(17 - s) + 1`, below `m = 2^(18 - s)` (`s` in `1..=8`). Hence with
+/// every vertex value in `[-2^15 + m, 2^24 - 2^15 - m)` (at 4 subpixel
+/// bits `m = 2^14`, a quarter of a level: levels 0 and 255 pass) the
+/// value lies in `[-2^15, 2^24 - 2^15)`: rounded (`+ 2^15`, then `>> 16`)
+/// into `0..=255`, with no `i32` wrap on the way (the kernel's wrapping
+/// sums equal the true ones there). Conservative: `false` only sends the
+/// triangle to the clamping path.
+#[inline(always)]
+fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
+    let m = 1i32 << (18 - s);
+    let (lo_lim, hi_lim) = (m - (1 << 15), (1 << 24) - (1 << 15) - m);
+    let (lo, hi) = (l[0].min(l[1]).min(l[2]), l[0].max(l[1]).max(l[2]));
+    (lo >= lo_lim) & (hi < hi_lim) & ((gx.unsigned_abs() | gy.unsigned_abs()) < 1 << 28)
+}
+
 /// The small-triangle kernel: a triangle set up in 32 bits and walked
 /// from its first row without clipping or depth clamps; a triangle that
 /// continues below the band is handed back as the [`Walk`] and values of
@@ -774,7 +780,7 @@ fn walk_edges(
 /// line too (their prologue copies the record into their frame, 75
 /// instructions a triangle, and the swap at the lower half selects five
 /// fields through the stack, 43). The kernel as it is out of line
-/// (`draw_small_in`): 2 065 666; with the planes of one form computed in
+/// (`draw_small`): 2 065 666; with the planes of one form computed in
 /// one piece, inlined 1 857 615, out of line 1 996 973; out of line with
 /// the reciprocal's factor through `core::hint::black_box` in
 /// [`InvArea::quot_high`] (the products back to `SMMUL`) 2 033 963: the
@@ -807,23 +813,9 @@ fn walk_edges(
 /// vertex in subpixels (1 658 600 -> 1 715 025); the three positions
 /// through one bounds test of the greatest index (1 646 369 ->
 /// 1 664 927, bunny-flat +25 K / +39 K on thumbv7em / thumbv6m).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
-    v: &[Vertex<i32, N>; 3],
-    sub: SubpixelBits,
-    until: i32,
-    mem: &mut BandMem<'_, '_, R, D::Raw>,
-    carry: &mut Walk,
-    vals: &mut [[i32; 3]; V],
-    packed: bool,
-    color: impl Fn(&[i32; N]) -> R,
-) -> Option<(u32, bool)> {
-    draw_small_in::<N, V, R, D, false>(v, sub, until, mem, carry, vals, packed, color)
-}
-
-/// [`draw_small`] for one grey level (`N = 1`; other `N` as
-/// [`draw_small`]; fixed, `2^16` a level:
+///
+/// With `LEVELS`, for one grey level (`N = 1`; other `N` as
+/// without `LEVELS`; fixed, `2^16` a level:
 /// [`crate::raster::GouraudMono`]'s attribute) whose every pixel's rounded
 /// level lies in `0..=255`, decided per triangle ([`levels_in_range`]):
 /// `color` then receives the level in the form of
@@ -833,55 +825,17 @@ pub(crate) fn draw_small<const N: usize, const V: usize, R: Copy, D: DepthFormat
 /// [`Shader::shade_raw_in_range`](super::Shader::shade_raw_in_range)).
 /// `None` as well for a triangle that fails the test (the caller's
 /// general path then clamps). The same pixels, walk and values as
-/// [`draw_small`] otherwise (the walk and values left for the next band
+/// without `LEVELS` otherwise (the walk and values left for the next band
 /// in the original form). Tested against the general path.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn draw_small_levels<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
-    v: &[Vertex<i32, N>; 3],
-    sub: SubpixelBits,
-    until: i32,
-    mem: &mut BandMem<'_, '_, R, D::Raw>,
-    carry: &mut Walk,
-    vals: &mut [[i32; 3]; V],
-    packed: bool,
-    color: impl Fn(&[i32; N]) -> R,
-) -> Option<(u32, bool)> {
-    draw_small_in::<N, V, R, D, true>(v, sub, until, mem, carry, vals, packed, color)
-}
-
-/// `true` when every pixel a triangle draws from the planes of
-/// [`draw_small`] has its level attribute (fixed, `2^16` a level) rounded
-/// into `0..=255`, from the vertex values `l` and the attribute's
-/// gradients `gx`, `gy` (per pixel). A pixel centre drawn lies in the
-/// closed triangle, within `2^15` subpixels of vertex 0 on each axis
-/// (the kernel's bound on the offsets), where the exact plane lies between
-/// the least and the greatest vertex value; the kernel's value there is
-/// `v0 + (gx·dx + gy·dy + S/2) / S` floored (`dx`, `dy` the centre's
-/// subpixel offsets from vertex 0, `S = 2^s`, `s >= 1`), so it differs from
-/// the exact plane by less than `(|gx - Gx|·|dx| + |gy - Gy|·|dy|) / S +
-/// 1`;
-/// [`InvArea`]'s gradients are within `½ + |G|·2^-28` of the exact `G`,
-/// below 2 for `|g| < 2^28`: the error stays below `2·2·2^15 / S + 1 =
-/// 2^(17 - s) + 1`, below `m = 2^(18 - s)` (`s` in `1..=8`). Hence with
-/// every vertex value in `[-2^15 + m, 2^24 - 2^15 - m)` (at 4 subpixel
-/// bits `m = 2^14`, a quarter of a level: levels 0 and 255 pass) the
-/// value lies in `[-2^15, 2^24 - 2^15)`: rounded (`+ 2^15`, then `>> 16`)
-/// into `0..=255`, with no `i32` wrap on the way (the kernel's wrapping
-/// sums equal the true ones there). Conservative: `false` only sends the
-/// triangle to the clamping path.
-#[inline(always)]
-fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
-    let m = 1i32 << (18 - s);
-    let (lo_lim, hi_lim) = (m - (1 << 15), (1 << 24) - (1 << 15) - m);
-    let (lo, hi) = (l[0].min(l[1]).min(l[2]), l[0].max(l[1]).max(l[2]));
-    (lo >= lo_lim) & (hi < hi_lim) & ((gx.unsigned_abs() | gy.unsigned_abs()) < 1 << 28)
-}
-
-/// [`draw_small`], and with `LEVELS` [`draw_small_levels`].
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const LEVELS: bool>(
+pub(crate) fn draw_small<
+    const N: usize,
+    const V: usize,
+    R: Copy,
+    D: DepthFormat,
+    const LEVELS: bool,
+>(
     v: &[Vertex<i32, N>; 3],
     sub: SubpixelBits,
     until: i32,
@@ -1138,7 +1092,7 @@ fn draw_small_in<const N: usize, const V: usize, R: Copy, D: DepthFormat, const 
         } else {
             rows.v.add_n(sy0, j.wrapping_neg())
         };
-        pack_fixed(vals, &v00, sx0, sy0);
+        pack_vals(vals, &v00, sx0, sy0);
     }
     Some((rows.drawn(), more))
 }
@@ -1232,7 +1186,7 @@ fn same_len<'p, 'z, R, Z>(px: &'p mut [R], z: &'z mut [Z]) -> (&'p mut [R], &'z 
 /// [`SmallRows::drawn`]). Each span's pixel loop inline ([`small_loop`]),
 /// no call per span: on ARMv6-M (bunny-gouraud raster thumbv6m
 /// 2 866 494 -> 2 838 685, bunny-flat 2 423 668 -> 2 407 693) and, with
-/// the x steps opaque to the optimiser (see [`draw_small_in`]), on
+/// the x steps opaque to the optimiser (see [`draw_small`]), on
 /// ARMv7-M (bunny-gouraud raster thumbv7em 1 833 849 -> 1 833 714,
 /// bunny-flat 1 561 380 -> 1 546 420; before, the span stage's loops,
 /// the outlined [`in_range_loop`](super::span) for spans of two pixels

@@ -68,9 +68,9 @@ mod triangle;
 mod walk;
 
 pub use edge::Edge;
-pub(crate) use fast::{draw_small, draw_small_levels, grey_l, grey_z, setup_fast, BandMem};
 #[cfg(test)]
-use fast::{pack_fixed, unpack_fixed};
+use fast::unpack_fixed;
+pub(crate) use fast::{draw_small, grey_l, grey_z, pack_vals, setup_fast, BandMem};
 pub(crate) use span::span_pixels;
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
 pub(crate) use triangle::{draw_sorted, first_row, in_limits, sort3};

@@ -890,13 +890,13 @@ fn check_setup_fast<const N: usize>(v: [Vertex<i32, N>; 3], sub: SubpixelBits, j
         Some((want_walk, row, sx, sy)) => {
             assert!(got, "{a:?} {b:?} {c:?}");
             let mut want_vals = [[0x5a5a_5a5a; 3]; 4];
-            pack_fixed(&mut want_vals, &row, &sx, &sy);
+            pack_vals(&mut want_vals, &row, &sx, &sy);
             assert_eq!(
                 (walk, vals),
                 (want_walk, want_vals),
                 "{a:?} {b:?} {c:?} j0 {j0}"
             );
-            assert_eq!(unpack_fixed::<N, 4>(&vals), [row, sx, sy]);
+            assert_eq!(unpack_vals::<N, 4>(&vals), [row, sx, sy]);
         }
         None => assert!(!got, "{a:?} {b:?} {c:?}"),
     }
@@ -1016,7 +1016,7 @@ fn check_small<const N: usize>(
             width: w,
         };
         let (mut carry, mut kv) = (Walk::EMPTY, [[0; 3]; 4]);
-        let n = draw_small::<N, 4, u32, Depth16>(
+        let n = draw_small::<N, 4, u32, Depth16, false>(
             kv_in,
             SUB,
             y0 + rows,
@@ -1318,7 +1318,7 @@ fn small_kernel_on_packed_values_equals_the_fused_walk() {
 }
 
 /// Draws sorted grey triangle `v` into a band with
-/// [`draw_small_levels`] (the unclamped level of [`GouraudMono`]) and with
+/// [`draw_small`] with `LEVELS` (the unclamped level of [`GouraudMono`]) and with
 /// the general fused walk (the clamped one), from fresh copies of the
 /// buffers: `None` when the kernel declines (then it wrote nothing), else
 /// the pixel counts, which must agree, as must every byte of both
@@ -1344,7 +1344,7 @@ fn check_small_levels(
             y0,
             width: w,
         };
-        draw_small_levels::<1, 4, [u8; 1], Depth16>(
+        draw_small::<1, 4, [u8; 1], Depth16, true>(
             kv_in,
             SUB,
             y0 + rows,
@@ -1387,7 +1387,7 @@ fn check_small_levels(
     Some((n, more))
 }
 
-/// The unclamped grey kernel ([`draw_small_levels`]) draws the very
+/// The unclamped grey kernel ([`draw_small`] with `LEVELS`) draws the very
 /// pixels of the clamped general path, on triangles whose levels reach
 /// 0 and 255 exactly, lie near them, or beyond (then declined).
 #[test]

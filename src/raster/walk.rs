@@ -127,6 +127,25 @@ impl Walk {
         }
     }
 
+    /// The end of the rows of the current half below `stop`, at the top
+    /// of a run of rows: at the middle row the lower short edge first
+    /// replaces the upper (the lower half).
+    #[inline(always)]
+    pub(crate) fn half_end(&mut self, stop: i32) -> i32 {
+        if self.j == self.mid {
+            if self.long_left {
+                self.right = self.low;
+            } else {
+                self.left = self.low;
+            }
+        }
+        if self.j < self.mid {
+            self.mid.min(stop)
+        } else {
+            stop
+        }
+    }
+
     #[inline(always)]
     fn rows_in<L: Lerp, const N: usize, K: RowSpans<L, N>, const CLIP: bool>(
         &mut self,
@@ -139,19 +158,7 @@ impl Walk {
     ) {
         let stop = until.min(self.end);
         while self.j < stop {
-            if self.j == self.mid {
-                // The lower half: the lower short edge replaces the upper.
-                if self.long_left {
-                    self.right = self.low;
-                } else {
-                    self.left = self.low;
-                }
-            }
-            let r1 = if self.j < self.mid {
-                self.mid.min(stop)
-            } else {
-                stop
-            };
+            let r1 = self.half_end(stop);
             let (mut l, mut r) = (self.left, self.right);
             for j in self.j..r1 {
                 let (xl, xr) = (l.x, r.x);

@@ -97,9 +97,9 @@ use crate::illum::{Light, Shade, MAX_LIGHTS};
 use crate::num::wide::NO_LONG_MUL;
 use crate::num::{Kernels, Profile, Raw16, Real};
 use crate::raster::{
-    draw_small, draw_small_levels, grey_l, grey_z, in_limits, setup, setup_fast, sort3,
-    span_pixels, BandMem, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader,
-    SubpixelBits, Vals, Vertex, Walk,
+    draw_small, grey_l, grey_z, in_limits, pack_vals, setup, setup_fast, sort3, span_pixels,
+    BandMem, Flat, Gouraud, GouraudMono, Lerp, Persp, RasterError, RowSpans, Shader, SubpixelBits,
+    Vals, Vertex, Walk,
 };
 use crate::scene::{Object, Scene, SceneError};
 use crate::target::{BandBuf, DepthFormat, PixelFormat, Rgb8, Window};
@@ -1312,7 +1312,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             if let Some(slot) = self.pool.slots.get_mut(si as usize) {
                 slot.tri = ti;
                 slot.walk = walk;
-                pack::<_, N, V>(&mut slot.vals, row, sx, sy);
+                pack_vals::<_, N, V>(&mut slot.vals, row, sx, sy);
                 let tail = wrap(self.ring_head + self.ring_len, CAP);
                 if let Some(r) = self.pool.ring.get_mut(tail) {
                     *r = si;
@@ -1618,7 +1618,7 @@ fn out_of_limits<P: Profile>(frame: &Frame<'_, P>, tri: &PreparedTri) -> RenderE
     RasterError::OutOfRange(i as u8).into()
 }
 
-/// [`draw_small_shaded`] takes [`draw_small_levels`] for the grey level
+/// [`draw_small_shaded`] takes [`draw_small`] with `LEVELS` for the grey level
 /// (`N = 1`): on ARMv6-M, where the clamp costs five instructions a pixel
 /// (bunny-gouraud raster thumbv6m 2 888 025 -> 2 866 494), and off ARM
 /// (x86-64 clamps in five instructions where ARMv7-M has one `USAT`:
@@ -1651,15 +1651,15 @@ fn draw_small_shaded<
 ) -> Option<(u32, bool)> {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, move |_| raw)
+        draw_small::<N, V, F::Raw, D, false>(v, sub, until, mem, walk, vals, packed, move |_| raw)
     } else if N == 1 && LEVELS_IN_RANGE {
         // One grey level (the fast path's `N = 1` shader is
         // [`GouraudMono`]): without the clamp where the triangle allows it.
-        draw_small_levels::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, |a| {
+        draw_small::<N, V, F::Raw, D, true>(v, sub, until, mem, walk, vals, packed, |a| {
             shader.shade_raw_in_range::<F>(a)
         })
     } else {
-        draw_small::<N, V, F::Raw, D>(v, sub, until, mem, walk, vals, packed, |a| {
+        draw_small::<N, V, F::Raw, D, false>(v, sub, until, mem, walk, vals, packed, |a| {
             shader.shade_raw::<F>(a)
         })
     }
@@ -1702,22 +1702,4 @@ fn unpack<L: Lerp, const N: usize, const V: usize>(
         a: core::array::from_fn(|k| get(k + 1, c)),
     };
     (f(0), f(1), f(2))
-}
-
-/// Stores the row values and steps in a slot.
-#[inline(always)]
-fn pack<L: Lerp, const N: usize, const V: usize>(
-    v: &mut [[L; 3]; V],
-    row: &Vals<L, N>,
-    sx: &Vals<L, N>,
-    sy: &Vals<L, N>,
-) {
-    if let Some(x) = v.get_mut(0) {
-        *x = [row.z, sx.z, sy.z];
-    }
-    for k in 0..N {
-        if let Some(x) = v.get_mut(k + 1) {
-            *x = [row.a[k], sx.a[k], sy.a[k]];
-        }
-    }
 }
