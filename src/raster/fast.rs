@@ -56,7 +56,7 @@ impl Walk {
         mem: &mut BandMem<'_, '_, R, D::Raw>,
         color: impl Fn(&[i32; N]) -> R,
     ) -> u32 {
-        let [row, sx, sy] = unpack_vals::<N, V>(vals);
+        let [row, sx, sy] = unpack_fixed::<N, V>(vals);
         let (row, sx, sy) = (&row, &sx, &sy);
         let (y0, width) = (mem.y0, mem.width);
         let px = &mut **mem.px;
@@ -249,7 +249,7 @@ pub(crate) fn pack_vals<L: Lerp, const N: usize, const V: usize>(
 
 /// A slot's values (see [`pack_vals`]) as row values and steps.
 #[inline(always)]
-pub(crate) fn unpack_vals<const N: usize, const V: usize>(v: &[[i32; 3]; V]) -> [Vals<i32, N>; 3] {
+pub(crate) fn unpack_fixed<const N: usize, const V: usize>(v: &[[i32; 3]; V]) -> [Vals<i32, N>; 3] {
     let get = |k: usize, c: usize| v.get(k).map_or(0, |x| x[c]);
     let f = |c: usize| Vals {
         z: get(0, c),

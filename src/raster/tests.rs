@@ -896,7 +896,7 @@ fn check_setup_fast<const N: usize>(v: [Vertex<i32, N>; 3], sub: SubpixelBits, j
                 (want_walk, want_vals),
                 "{a:?} {b:?} {c:?} j0 {j0}"
             );
-            assert_eq!(unpack_vals::<N, 4>(&vals), [row, sx, sy]);
+            assert_eq!(unpack_fixed::<N, 4>(&vals), [row, sx, sy]);
         }
         None => assert!(!got, "{a:?} {b:?} {c:?}"),
     }
