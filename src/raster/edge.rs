@@ -45,7 +45,7 @@ impl Edge {
         // ARMv6-M (no divider) the usual slopes, |dx/dy| up to 4, take a
         // few subtractions instead of a library division (also in test
         // builds, so that the host tests check the division-free paths).
-        let (q, rem) = slope_divmod(dx, dy, NO_DIVIDE || cfg!(test));
+        let (q, rem) = slope_divmod::<{ NO_DIVIDE || cfg!(test) }>(dx, dy);
         let r = s * rem;
         let t = j as i64 * s as i64 + (s / 2) as i64 - y0 as i64; // yc - y0
         let (x, e) = if (0..s as i64).contains(&t) {
@@ -166,7 +166,7 @@ impl Edge {
         let dx = x1 - x0;
         let dy = (y1 - y0).max(1);
         let d = s * dy;
-        let (q, rem) = slope_divmod(dx, dy, NO_DIVIDE);
+        let (q, rem) = slope_divmod::<NO_DIVIDE>(dx, dy);
         Self::at_quot(x0, [dy, d], q, rem, t, sub)
     }
 
@@ -292,13 +292,13 @@ fn binary_floor_divmod(n: i32, d: i32) -> Option<(i32, i32)> {
 }
 
 /// `(⌊dx/dy⌋, dx mod dy)` for `dy >= 1`, the edge's slope: with
-/// `no_divide` (a constant: ARMv6-M, which has no divider) the usual
+/// `NO_DIV` (ARMv6-M, which has no divider) the usual
 /// slopes take [`small_floor_divmod`] or [`binary_floor_divmod`]'s few
 /// subtractions instead of a library division, which remains for the
 /// rest ([`floor_divmod`]).
 #[inline(always)]
-fn slope_divmod(dx: i32, dy: i32, no_divide: bool) -> (i32, i32) {
-    let small = if no_divide {
+fn slope_divmod<const NO_DIV: bool>(dx: i32, dy: i32) -> (i32, i32) {
+    let small = if NO_DIV {
         small_floor_divmod(dx, dy).or_else(|| binary_floor_divmod(dx, dy))
     } else {
         None
