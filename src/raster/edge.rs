@@ -295,7 +295,10 @@ fn binary_floor_divmod(n: i32, d: i32) -> Option<(i32, i32)> {
 /// `NO_DIV` (ARMv6-M, which has no divider) the usual
 /// slopes take [`small_floor_divmod`] or [`binary_floor_divmod`]'s few
 /// subtractions instead of a library division, which remains for the
-/// rest ([`floor_divmod`]).
+/// rest ([`floor_divmod`]). The choice a const parameter: as a `bool`
+/// argument thumbv6m raster took bunny-gouraud 2 580 811 -> 2 583 018,
+/// bunny-flat 2 197 727 -> 2 199 288; as a parameter the counts are
+/// unchanged.
 #[inline(always)]
 fn slope_divmod<const NO_DIV: bool>(dx: i32, dy: i32) -> (i32, i32) {
     let small = if NO_DIV {

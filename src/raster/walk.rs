@@ -129,7 +129,9 @@ impl Walk {
 
     /// The end of the rows of the current half below `stop`, at the top
     /// of a run of rows: at the middle row the lower short edge first
-    /// replaces the upper (the lower half).
+    /// replaces the upper (the lower half). Shared by [`Walk::rows`] and
+    /// the fixed-point kernel's row loops at no cost (every count of the
+    /// firmware unchanged).
     #[inline(always)]
     pub(crate) fn half_end(&mut self, stop: i32) -> i32 {
         if self.j == self.mid {
