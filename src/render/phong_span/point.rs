@@ -827,9 +827,9 @@ impl<R: Real> PhongKernel<'_, R> {
     /// pixel ([`PhongKernel::point_one`]), else (outside its ranges) the
     /// 64-bit per-pixel path.
     #[inline(never)]
-    fn point_px(&self, l: &KLight, c: &Colour, (n, dn, p, dp): Planes, j: u32) -> Rgb8 {
-        self.point_one(l, c, (n, dn, p, dp), j)
-            .unwrap_or_else(|| self.point_exact(l, (n, dn, p, dp), j))
+    fn point_px(&self, l: &KLight, c: &Colour, span: Planes, j: u32) -> Rgb8 {
+        self.point_one(l, c, span, j)
+            .unwrap_or_else(|| self.point_exact(l, span, j))
     }
 
     /// The loop's arithmetic ([`PhongKernel::point_run`]) at pixel `j`
