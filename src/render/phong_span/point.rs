@@ -827,9 +827,9 @@ impl<R: Real> PhongKernel<'_, R> {
     /// pixel ([`PhongKernel::point_one`]), else (outside its ranges) the
     /// 64-bit per-pixel path.
     #[inline(never)]
-    fn point_px(&self, l: &KLight, c: &Colour, span: Planes, j: u32) -> Rgb8 {
-        self.point_one(l, c, span, j)
-            .unwrap_or_else(|| self.point_exact(l, span, j))
+    fn point_px(&self, l: &KLight, c: &Colour, (n, dn, p, dp): Planes, j: u32) -> Rgb8 {
+        self.point_one(l, c, (n, dn, p, dp), j)
+            .unwrap_or_else(|| self.point_exact(l, n, dn, p, dp, j))
     }
 
     /// The loop's arithmetic ([`PhongKernel::point_run`]) at pixel `j`
@@ -899,7 +899,16 @@ impl<R: Real> PhongKernel<'_, R> {
     #[cold]
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
-    fn point_exact(&self, l: &KLight, (n, dn, p, dp): Planes, j: u32) -> Rgb8 {
+    #[allow(clippy::too_many_arguments)]
+    fn point_exact(
+        &self,
+        l: &KLight,
+        n: [i32; 3],
+        dn: [i32; 3],
+        p: [i32; 3],
+        dp: [i32; 3],
+        j: u32,
+    ) -> Rgb8 {
         let (nj, vj, lj) = at_pixel(l, (n, dn, p, dp), j);
         let s = LightSpan {
             l: lj,
