@@ -232,6 +232,11 @@ impl fmt::Display for KernelError {
 
 impl core::error::Error for KernelError {}
 
+/// A span's planes at its first pixel and their steps a pixel, as the
+/// kernel's loops take them: the normal `n` and its step `dn`, the
+/// position `p` and its step `dp`.
+type Planes = ([i32; 3], [i32; 3], [i32; 3], [i32; 3]);
+
 /// One light folded for the kernel.
 #[derive(Clone, Copy, Debug)]
 struct KLight {
@@ -1598,7 +1603,7 @@ fn row_fill<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     drow: Option<&mut [D::Raw]>,
     z: L,
     dz: L,
-    span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+    span: Planes,
     back: bool,
     tri: Option<(&mut TriQuad, i32, i32)>,
 ) -> u32 {
@@ -1614,7 +1619,7 @@ fn row_out<L: Lerp, F: PixelFormat, D: DepthFormat, R: Real>(
     drow: Option<&mut [D::Raw]>,
     z: L,
     dz: L,
-    (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+    (n, dn, p, dp): Planes,
     back: bool,
     tri: Option<(&mut TriQuad, i32, i32)>,
 ) -> u32 {

@@ -73,7 +73,8 @@
 use super::one::{rsq_biased, Colour, RS_PACKED};
 use super::tri::TriQuad;
 use super::{
-    drive, drive_in, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, CHUNK,
+    drive, drive_in, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, Planes,
+    CHUNK,
 };
 use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
@@ -356,11 +357,7 @@ fn seed(x: i32) -> Option<i32> {
 /// pixel `j` of a span (`v + j·d` of each, wrapping).
 #[inline(always)]
 #[allow(clippy::cast_possible_wrap)]
-fn at_pixel(
-    l: &KLight,
-    (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-    j: u32,
-) -> ([i32; 3], [i32; 3], [i32; 3]) {
+fn at_pixel(l: &KLight, (n, dn, p, dp): Planes, j: u32) -> ([i32; 3], [i32; 3], [i32; 3]) {
     let at = |v: [i32; 3], d: [i32; 3]| {
         [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(j as i32)))
     };
@@ -402,13 +399,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// `point_chunk`'s, not in the renderer's, whatever the layout drawn.
     #[inline(never)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
-    pub(super) fn fill_point(
-        &self,
-        l: &KLight,
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        len: u32,
-        mut out: impl Out,
-    ) -> u32 {
+    pub(super) fn fill_point(&self, l: &KLight, span: Planes, len: u32, mut out: impl Out) -> u32 {
         if len < SHORT_SPAN {
             // The depth test first, then the passing pixels one by one
             // (`point_px`, as `point_chunk` for chunks this short).
@@ -456,7 +447,7 @@ impl<R: Real> PhongKernel<'_, R> {
         l: &KLight,
         tri: &mut TriQuad,
         (x, y): (i32, i32),
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        span: Planes,
         len: u32,
         mut out: impl Out,
     ) -> u32 {
@@ -483,7 +474,7 @@ impl<R: Real> PhongKernel<'_, R> {
         &self,
         l: &KLight,
         c: &Colour,
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        span: Planes,
         plan: &mut Option<&mut Plan>,
         px: &mut [Px; GROUP],
         i: u32,
@@ -527,7 +518,7 @@ impl<R: Real> PhongKernel<'_, R> {
         &self,
         l: &KLight,
         c: &Colour,
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
+        span: Planes,
         plan: &mut Option<Plan>,
         i: u32,
         k: usize,
@@ -574,13 +565,7 @@ impl<R: Real> PhongKernel<'_, R> {
         clippy::cast_sign_loss,
         clippy::type_complexity
     )]
-    fn point_setup(
-        &self,
-        l: &KLight,
-        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        i: u32,
-        k: usize,
-    ) -> Option<Chunk> {
+    fn point_setup(&self, l: &KLight, (n, dn, p, dp): Planes, i: u32, k: usize) -> Option<Chunk> {
         let at = |v: [i32; 3], d: [i32; 3]| {
             [0, 1, 2].map(|a| v[a].wrapping_add(d[a].wrapping_mul(i as i32)))
         };
@@ -637,12 +622,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// Whether the chunk of `k` pixels from pixel `i` runs the 32-bit loop
     /// from its own set-up (the tests' check that it is taken).
     #[cfg(test)]
-    pub(super) fn point_loop_runs(
-        &self,
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        i: u32,
-        k: usize,
-    ) -> bool {
+    pub(super) fn point_loop_runs(&self, span: Planes, i: u32, k: usize) -> bool {
         self.lights
             .first()
             .is_some_and(|l| self.point_setup(l, span, i, k).is_some())
@@ -654,12 +634,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// its 64-bit set-up would share the loop's frame and registers.
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap, clippy::type_complexity)]
-    fn point_plan(
-        &self,
-        l: &KLight,
-        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        len: u32,
-    ) -> Option<Plan> {
+    fn point_plan(&self, l: &KLight, (n, dn, p, dp): Planes, len: u32) -> Option<Plan> {
         // Steps of the normal below 2^29 (1/2 a pixel), of l̃ and ṽ below
         // 2^26 (1/4 of their largest component): the products below stay
         // within i64 (|dn|² · 6 < 2^61).
@@ -706,11 +681,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// Whether a span of `len` pixels runs the 32-bit loop from its plan
     /// (the tests' check that it is taken).
     #[cfg(test)]
-    pub(super) fn point_plan_runs(
-        &self,
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        len: u32,
-    ) -> bool {
+    pub(super) fn point_plan_runs(&self, span: Planes, len: u32) -> bool {
         self.lights
             .first()
             .is_some_and(|l| self.point_plan(l, span, len).is_some())
@@ -722,11 +693,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// each (the tests' check that the plan changes no value). `None`: no
     /// plan.
     #[cfg(test)]
-    pub(super) fn plan_matches_setup(
-        &self,
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        len: u32,
-    ) -> Option<(u32, bool)> {
+    pub(super) fn plan_matches_setup(&self, span: Planes, len: u32) -> Option<(u32, bool)> {
         let l = self.lights.first()?;
         let mut plan = self.point_plan(l, span, len)?;
         let (mut both, mut equal) = (0, true);
@@ -860,13 +827,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// pixel ([`PhongKernel::point_one`]), else (outside its ranges) the
     /// 64-bit per-pixel path.
     #[inline(never)]
-    fn point_px(
-        &self,
-        l: &KLight,
-        c: &Colour,
-        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        j: u32,
-    ) -> Rgb8 {
+    fn point_px(&self, l: &KLight, c: &Colour, (n, dn, p, dp): Planes, j: u32) -> Rgb8 {
         self.point_one(l, c, (n, dn, p, dp), j)
             .unwrap_or_else(|| self.point_exact(l, n, dn, p, dp, j))
     }
@@ -885,13 +846,7 @@ impl<R: Real> PhongKernel<'_, R> {
         clippy::cast_possible_truncation,
         clippy::cast_sign_loss
     )]
-    fn point_one(
-        &self,
-        l: &KLight,
-        c: &Colour,
-        (n, dn, p, dp): ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        j: u32,
-    ) -> Option<Rgb8> {
+    fn point_one(&self, l: &KLight, c: &Colour, (n, dn, p, dp): Planes, j: u32) -> Option<Rgb8> {
         let (nj, vj, lj) = at_pixel(l, (n, dn, p, dp), j);
         let (lt, _) = scale(lj, [0; 3])?;
         let (vt, _) = scale(vj, [0; 3])?;
@@ -934,11 +889,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// Whether pixel `j` of the span takes [`PhongKernel::point_one`] (the
     /// tests' check that it is taken).
     #[cfg(test)]
-    pub(super) fn point_one_runs(
-        &self,
-        span: ([i32; 3], [i32; 3], [i32; 3], [i32; 3]),
-        j: u32,
-    ) -> bool {
+    pub(super) fn point_one_runs(&self, span: Planes, j: u32) -> bool {
         self.lights
             .first()
             .is_some_and(|l| self.point_one(l, &Colour::of(self, l), span, j).is_some())
@@ -948,6 +899,7 @@ impl<R: Real> PhongKernel<'_, R> {
     #[cold]
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
+    #[allow(clippy::too_many_arguments)]
     fn point_exact(
         &self,
         l: &KLight,
