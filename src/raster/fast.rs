@@ -24,7 +24,7 @@
 //! sy·j` (wrapping sums of the same whole steps), hence the same pixels.
 
 use super::span::{clamp_test, depth_loop, in_range_test, inr_span};
-use super::triangle::first_row;
+use super::triangle::{first_row, row_range};
 use super::walk::{setup, Vals, Walk};
 use super::{Edge, InvArea, Lerp, SubpixelBits, Vertex};
 use crate::num::wide::{clz32, mul_i32_i16_soft, NO_LONG_MUL};
@@ -100,13 +100,9 @@ impl Walk {
         width: i32,
         color: &impl Fn(&[i32; N]) -> R,
     ) -> u32 {
-        let stop = until.min(self.end);
-        if self.j >= stop {
+        let Some((stop, mut v, mut base)) = self.open_rows(row, sy, until, y0, width) else {
             return 0;
-        }
-        // Values at column 0 of row j, and the offset of the row.
-        let mut v = row.add_n(sy, self.j);
-        let mut base = (self.j - y0).wrapping_mul(width) as usize;
+        };
         let mut drawn = 0u32;
         while self.j < stop {
             let r1 = self.half_end(stop);
@@ -164,12 +160,9 @@ impl Walk {
         width: i32,
         color: &impl Fn(&[i32; N]) -> R,
     ) -> u32 {
-        let stop = until.min(self.end);
-        if self.j >= stop {
+        let Some((stop, mut v, mut base)) = self.open_rows(row, sy, until, y0, width) else {
             return 0;
-        }
-        let mut v = row.add_n(sy, self.j);
-        let mut base = (self.j - y0).wrapping_mul(width) as usize;
+        };
         let mut drawn = 0u32;
         while self.j < stop {
             let r1 = self.half_end(stop);
@@ -199,6 +192,27 @@ impl Walk {
             self.j = r1;
         }
         drawn
+    }
+
+    /// What both row loops start from: the row after the last they walk
+    /// (`until` or the triangle's end), the values at column 0 of the next
+    /// row and that row's offset in the band; `None` when no row is left.
+    #[inline(always)]
+    fn open_rows<const N: usize>(
+        &self,
+        row: &Vals<i32, N>,
+        sy: &Vals<i32, N>,
+        until: i32,
+        y0: i32,
+        width: i32,
+    ) -> Option<(i32, Vals<i32, N>, usize)> {
+        let stop = until.min(self.end);
+        if self.j >= stop {
+            return None;
+        }
+        let v = row.add_n(sy, self.j);
+        let base = (self.j - y0).wrapping_mul(width) as usize;
+        Some((stop, v, base))
     }
 }
 
@@ -591,15 +605,9 @@ fn setup32<const N: usize, const V: usize>(
     if area2 == 0 {
         return Ok(false);
     }
-    let (j_top, j_mid, j_bot) = (
-        first_row(a.y, sub),
-        first_row(b.y, sub),
-        first_row(c.y, sub),
-    );
-    let js = j_top.max(j0);
-    if js >= j_bot {
+    let Some([js, j_mid, j_bot]) = row_range([a.y, b.y, c.y], sub, j0) else {
         return Ok(false);
-    }
+    };
     walk_edges(
         w,
         &[[a.x, a.y], [b.x, b.y], [c.x, c.y]],

@@ -40,6 +40,17 @@ pub(crate) fn first_row(y: i32, sub: SubpixelBits) -> i32 {
     (y - s / 2 + s - 1) >> sub.get()
 }
 
+/// The rows of a triangle whose vertices lie at subpixel rows `ys`
+/// (top to bottom) from row `j0` on: `[first row, first row of the lower
+/// half, row after the last]`, the first no earlier than `j0`; `None` when
+/// no row is left.
+#[inline(always)]
+pub(crate) fn row_range(ys: [i32; 3], sub: SubpixelBits, j0: i32) -> Option<[i32; 3]> {
+    let [j_top, j_mid, j_bot] = ys.map(|y| first_row(y, sub));
+    let js = j_top.max(j0);
+    (js < j_bot).then_some([js, j_mid, j_bot])
+}
+
 /// Rasterizes one triangle into `sink`, clipped to `window`.
 ///
 /// Coverage follows the top-left rule at pixel centres; attributes are

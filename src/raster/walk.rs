@@ -20,7 +20,7 @@
 //! column range lies inside the window (decided once at setup) walks
 //! without clipping; the others clamp each span to `0..width`.
 
-use super::triangle::first_row;
+use super::triangle::row_range;
 use super::{Edge, Lerp, SubpixelBits, Vertex};
 use crate::num::wide::{fits_i16, wmul, NO_LONG_MUL};
 use crate::target::Depth16;
@@ -226,15 +226,7 @@ pub(crate) fn setup<L: Lerp, const N: usize>(
     if area2 == 0 {
         return None;
     }
-    let (j_top, j_mid, j_bot) = (
-        first_row(a.y, sub),
-        first_row(b.y, sub),
-        first_row(c.y, sub),
-    );
-    let js = j_top.max(j0);
-    if js >= j_bot {
-        return None;
-    }
+    let [js, j_mid, j_bot] = row_range([a.y, b.y, c.y], sub, j0)?;
 
     // Gradients once per triangle. Integers: the values at the centre of
     // pixel (0, 0), fixed for the whole walk; a span's start is two
