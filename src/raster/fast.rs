@@ -43,6 +43,40 @@ pub(crate) struct BandMem<'k, 'b, R, Z> {
     pub width: i32,
 }
 
+/// The row loop of [`Walk::fused`] and [`Walk::fused_nodepth`]: from the
+/// next row down to `until` (excluded) or the triangle's last row, `$body`
+/// once per row with the edges `$l`, `$r`, the values `$v` at column 0 of
+/// the row, its offset `$base` in the band and the pixel count `$drawn`
+/// in scope; between rows two edge steps, the values' y step and the
+/// offset's advance. Evaluates to the pixel count. A macro, not a function
+/// taking the body as a closure: that form cost bunny-gouraud raster
+/// thumbv7em 1 642 158 -> 1 660 698 and bunny-flat thumbv6m 2 197 727 ->
+/// 2 235 398.
+macro_rules! each_row {
+    ($w:ident, $row:expr, $sy:expr, $until:expr, $y0:expr, $width:expr,
+     |$l:ident, $r:ident, $v:ident, $base:ident, $drawn:ident| $body:block) => {{
+        let Some((stop, mut $v, mut $base)) = $w.open_rows($row, $sy, $until, $y0, $width) else {
+            return 0;
+        };
+        let mut $drawn = 0u32;
+        while $w.j < stop {
+            let r1 = $w.half_end(stop);
+            let (mut $l, mut $r) = ($w.left, $w.right);
+            for _ in $w.j..r1 {
+                $body
+                $l.step();
+                $r.step();
+                $v = $v.add_n($sy, 1);
+                $base = $base.wrapping_add($width as usize);
+            }
+            $w.left = $l;
+            $w.right = $r;
+            $w.j = r1;
+        }
+        $drawn
+    }};
+}
+
 impl Walk {
     /// Walks rows from the next one down to `until` (excluded) or the
     /// triangle's last row, drawing each span into `mem` with `color`
@@ -100,50 +134,25 @@ impl Walk {
         width: i32,
         color: &impl Fn(&[i32; N]) -> R,
     ) -> u32 {
-        let Some((stop, mut v, mut base)) = self.open_rows(row, sy, until, y0, width) else {
-            return 0;
-        };
-        let mut drawn = 0u32;
-        while self.j < stop {
-            let r1 = self.half_end(stop);
-            let (mut l, mut r) = (self.left, self.right);
-            for _ in self.j..r1 {
-                let (x0, x1) = if CLIP {
-                    (l.x.max(0), r.x.min(width))
-                } else {
-                    (l.x, r.x)
-                };
-                if x0 < x1 {
-                    let s = v.add_n(sx, x0);
-                    let span = base.wrapping_add(x0 as usize)..base.wrapping_add(x1 as usize);
-                    if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
-                        drawn += if INR {
-                            inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
-                        } else {
-                            p.len() as u32
-                                - depth_loop(
-                                    p,
-                                    d,
-                                    s.z,
-                                    sx.z,
-                                    s.a,
-                                    &sx.a,
-                                    color,
-                                    clamp_test::<i32, D>,
-                                )
-                        };
-                    }
+        each_row!(self, row, sy, until, y0, width, |l, r, v, base, drawn| {
+            let (x0, x1) = if CLIP {
+                (l.x.max(0), r.x.min(width))
+            } else {
+                (l.x, r.x)
+            };
+            if x0 < x1 {
+                let s = v.add_n(sx, x0);
+                let span = base.wrapping_add(x0 as usize)..base.wrapping_add(x1 as usize);
+                if let (Some(p), Some(d)) = (px.get_mut(span.clone()), z.get_mut(span)) {
+                    drawn += if INR {
+                        inr_span::<i32, N, R, D>(p, d, s.z, s.a, sx, color)
+                    } else {
+                        p.len() as u32
+                            - depth_loop(p, d, s.z, sx.z, s.a, &sx.a, color, clamp_test::<i32, D>)
+                    };
                 }
-                l.step();
-                r.step();
-                v = v.add_n(sy, 1);
-                base = base.wrapping_add(width as usize);
             }
-            self.left = l;
-            self.right = r;
-            self.j = r1;
-        }
-        drawn
+        })
     }
 
     /// The row loop without depth: every covered pixel written.
@@ -160,38 +169,22 @@ impl Walk {
         width: i32,
         color: &impl Fn(&[i32; N]) -> R,
     ) -> u32 {
-        let Some((stop, mut v, mut base)) = self.open_rows(row, sy, until, y0, width) else {
-            return 0;
-        };
-        let mut drawn = 0u32;
-        while self.j < stop {
-            let r1 = self.half_end(stop);
-            let (mut l, mut r) = (self.left, self.right);
-            for _ in self.j..r1 {
-                let (x0, x1) = (l.x.max(0), r.x.min(width));
-                if x0 < x1 {
-                    let mut a = v.add_n(sx, x0).a;
-                    let span = base.wrapping_add(x0 as usize)..base.wrapping_add(x1 as usize);
-                    if let Some(p) = px.get_mut(span) {
-                        drawn += p.len() as u32;
-                        for q in p.iter_mut() {
-                            *q = color(&a);
-                            for (x, d) in a.iter_mut().zip(sx.a.iter()) {
-                                *x = x.wrapping_add(*d);
-                            }
+        each_row!(self, row, sy, until, y0, width, |l, r, v, base, drawn| {
+            let (x0, x1) = (l.x.max(0), r.x.min(width));
+            if x0 < x1 {
+                let mut a = v.add_n(sx, x0).a;
+                let span = base.wrapping_add(x0 as usize)..base.wrapping_add(x1 as usize);
+                if let Some(p) = px.get_mut(span) {
+                    drawn += p.len() as u32;
+                    for q in p.iter_mut() {
+                        *q = color(&a);
+                        for (x, d) in a.iter_mut().zip(sx.a.iter()) {
+                            *x = x.wrapping_add(*d);
                         }
                     }
                 }
-                l.step();
-                r.step();
-                v = v.add_n(sy, 1);
-                base = base.wrapping_add(width as usize);
             }
-            self.left = l;
-            self.right = r;
-            self.j = r1;
-        }
-        drawn
+        })
     }
 
     /// What both row loops start from: the row after the last they walk
