@@ -739,12 +739,13 @@ fn triangles_inside(
 /// without clamps, no column test (it always passes there). The same
 /// triangles, bit for bit.
 #[inline(never)]
-fn triangles_visible<const CULL: bool, const MARKED: bool>(
+fn triangles_visible<const CULL: bool, const MARKED: bool, A>(
     tris: &[[u16; 3]],
     xy: &[ScreenXy],
     (faces, counts): (&mut [u8], &mut FaceRows),
     (sub, q): (SubpixelBits, u32),
-    mut color: impl FnMut(usize, bool) -> bool,
+    aux: impl Iterator<Item = A>,
+    mut color: impl FnMut(usize, A, bool) -> bool,
 ) -> Option<()> {
     // Not kept unless found so below (cleared at once: cheaper than a
     // store per triangle).
@@ -752,7 +753,7 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
     // The stored row: `first_row(y) >> q` = `(y + k) >> (sub + q)`.
     let row_shift = sub.get() + q;
     // (As many bytes as triangles: the caller's slices.)
-    for (t, (tri, face)) in tris.iter().zip(faces.iter_mut()).enumerate() {
+    for (t, ((tri, face), slot)) in tris.iter().zip(faces.iter_mut()).zip(aux).enumerate() {
         // Each corner loaded once, checked as it comes (a missing
         // corner: culled when MARKED, else the origin as before).
         let miss = ScreenXy([if MARKED { -1 } else { 0 }, 0]);
@@ -789,7 +790,7 @@ fn triangles_visible<const CULL: bool, const MARKED: bool>(
         if ((ea ^ eb) | (ea ^ ec)) >> sub.get() == 0 {
             continue;
         }
-        if !color(t, back) {
+        if !color(t, slot, back) {
             return None;
         }
         // The first row of the top `y` (at least 0, below the height
@@ -1963,76 +1964,111 @@ impl<P: Profile> Preparer<'_, '_, P> {
                 fn put<'a>(
                     cs: &'a mut [Rgb8],
                     mut col: impl FnMut(usize, bool) -> Rgb8 + 'a,
-                ) -> impl FnMut(usize, bool) -> bool + 'a {
-                    move |t, back| {
+                ) -> impl FnMut(usize, (), bool) -> bool + 'a {
+                    move |t, (), back| {
                         let c = col(t, back);
                         cs.get_mut(t).map(|s| *s = c).is_some()
                     }
                 }
                 let tris = ctx.tris;
                 // Baked face normals under one light: the colour inline
-                // (the same as `flat_color`).
+                // (the same as `flat_color`), the normals and colour slots
+                // zipped with the triangles (as many: checked here).
                 let one = ctx.q16().and_then(|(_, c)| c.one);
                 let one = match (flat, one, ctx.mesh.face_normals()) {
-                    (true, Some(o), Some(faces)) => Some((o, faces)),
+                    (true, Some(o), Some(normals)) if normals.len() == tris.len() => {
+                        Some((o, normals))
+                    }
                     _ => None,
                 };
                 let grey = ctx.grey;
-                let none = |_, _| true;
+                let none = |_, (), _| true;
+                let all = || core::iter::repeat(());
                 let counts = &mut *self.face_rows;
+                let fc = (faces, counts);
+                let sq = (sub, q);
                 let kept = match (ctx.cull, flat, one) {
                     (true, true, Some((o, normals))) => {
-                        let c = |t: usize, back| {
-                            let n = normals.get(t).copied().unwrap_or([0; 3]);
-                            let c = one_color(&o, grey, n, back);
-                            cs.get_mut(t).map(|s| *s = c).is_some()
-                        };
-                        if marked {
-                            triangles_visible::<true, true>(tris, xy, (faces, counts), (sub, q), c)
-                        } else {
-                            triangles_visible::<true, false>(tris, xy, (faces, counts), (sub, q), c)
+                        let aux = normals.iter().zip(cs.iter_mut());
+                        // The colour of a kept face (front: culled).
+                        fn lit<const GREY: bool>(
+                            o: OneLight,
+                        ) -> impl FnMut(usize, (&[i16; 3], &mut Rgb8), bool) -> bool
+                        {
+                            move |_, (n, slot), back| {
+                                *slot = one_color(&o, GREY, *n, back);
+                                true
+                            }
+                        }
+                        match (grey, marked) {
+                            (true, true) => triangles_visible::<true, true, _>(
+                                tris,
+                                xy,
+                                fc,
+                                sq,
+                                aux,
+                                lit::<true>(o),
+                            ),
+                            (true, false) => triangles_visible::<true, false, _>(
+                                tris,
+                                xy,
+                                fc,
+                                sq,
+                                aux,
+                                lit::<true>(o),
+                            ),
+                            (false, true) => triangles_visible::<true, true, _>(
+                                tris,
+                                xy,
+                                fc,
+                                sq,
+                                aux,
+                                lit::<false>(o),
+                            ),
+                            (false, false) => triangles_visible::<true, false, _>(
+                                tris,
+                                xy,
+                                fc,
+                                sq,
+                                aux,
+                                lit::<false>(o),
+                            ),
                         }
                     }
                     (cull, flat, _) => match (cull, flat, marked) {
-                        (true, true, false) => {
-                            let c = put(cs, col);
-                            triangles_visible::<true, false>(tris, xy, (faces, counts), (sub, q), c)
-                        }
-                        (true, true, true) => {
-                            let c = put(cs, col);
-                            triangles_visible::<true, true>(tris, xy, (faces, counts), (sub, q), c)
-                        }
-                        (true, false, false) => triangles_visible::<true, false>(
+                        (true, true, false) => triangles_visible::<true, false, _>(
                             tris,
                             xy,
-                            (faces, counts),
-                            (sub, q),
-                            none,
+                            fc,
+                            sq,
+                            all(),
+                            put(cs, col),
                         ),
-                        (true, false, true) => triangles_visible::<true, true>(
+                        (true, true, true) => triangles_visible::<true, true, _>(
                             tris,
                             xy,
-                            (faces, counts),
-                            (sub, q),
-                            none,
+                            fc,
+                            sq,
+                            all(),
+                            put(cs, col),
                         ),
-                        (false, true, _) => {
-                            let c = put(cs, col);
-                            triangles_visible::<false, false>(
-                                tris,
-                                xy,
-                                (faces, counts),
-                                (sub, q),
-                                c,
-                            )
+                        (true, false, false) => {
+                            triangles_visible::<true, false, _>(tris, xy, fc, sq, all(), none)
                         }
-                        (false, false, _) => triangles_visible::<false, false>(
+                        (true, false, true) => {
+                            triangles_visible::<true, true, _>(tris, xy, fc, sq, all(), none)
+                        }
+                        (false, true, _) => triangles_visible::<false, false, _>(
                             tris,
                             xy,
-                            (faces, counts),
-                            (sub, q),
-                            none,
+                            fc,
+                            sq,
+                            all(),
+                            put(cs, col),
                         ),
+                        (false, false, _) => {
+                            triangles_visible::<false, false, _>(tris, xy, fc, sq, all(), none)
+                        }
                     },
                 };
                 if kept.is_none() {
