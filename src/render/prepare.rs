@@ -855,10 +855,28 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
 #[inline(never)]
 #[allow(clippy::cast_possible_truncation)]
 fn mark_vertices(c: EarlyCull, normals: &[[i16; 3]], cones: &[[i32; 2]], xy: &mut [ScreenXy]) {
-    for ((a, cone), out) in normals.iter().zip(cones).zip(xy.iter_mut()) {
-        // Negative exactly for a skipped vertex (the high half keeps the
-        // sign and fits `i16`).
-        out.0[0] = (c.margin(*a, *cone) >> 16) as i16;
+    let n = normals.len().min(cones.len()).min(xy.len());
+    let (normals, cones, xy) = (
+        normals.get(..n).unwrap_or_default(),
+        cones.get(..n).unwrap_or_default(),
+        xy.get_mut(..n).unwrap_or_default(),
+    );
+    // Two vertices a step, written out (the compiler's own unrolling of
+    // the one-vertex loop spilled more: 24 -> 22 instructions per vertex
+    // on the Cortex-M4, 3.2 K less on the bunny on both targets; four a
+    // step measured 23).
+    let pairs = normals.chunks_exact(2).zip(cones.chunks_exact(2));
+    for ((a, cone), out) in pairs.zip(xy.chunks_exact_mut(2)) {
+        for k in 0..2 {
+            // Negative exactly for a skipped vertex (the high half keeps
+            // the sign and fits `i16`).
+            out[k].0[0] = (c.margin(a[k], cone[k]) >> 16) as i16;
+        }
+    }
+    if n % 2 == 1 {
+        if let (Some(a), Some(cone), Some(out)) = (normals.last(), cones.last(), xy.last_mut()) {
+            out.0[0] = (c.margin(*a, *cone) >> 16) as i16;
+        }
     }
 }
 
