@@ -420,17 +420,21 @@ impl EarlyCull {
     /// 535 (faces the bake could not bound) never passes: the threshold
     /// is then at least `2^13 · 65 535 > 2^28 + 2^27`.
     #[inline(always)]
+    #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
     pub(crate) fn margin(&self, a: [i16; 3], cone: [i32; 2]) -> i32 {
-        let slack = cone[1] & 0xFFFF;
-        let spread = (cone[1] >> 16) & 0xFFFF;
+        // `gm · slack + rk · spread` as `gm · w + (rk - 2^16 gm) · spread`
+        // of the whole word `w = slack + 2^16 spread`: equal modulo 2^32,
+        // so the wrapping sum below is the exact margin (which fits).
+        let spread = ((cone[1] as u32) >> 16) as i32;
+        let rk = self.rk.wrapping_sub(self.gm.wrapping_shl(16));
         // One sum: threshold + a·E - (d >> sh).
         self.bias
-            + i32::from(a[0]) * self.e[0]
-            + i32::from(a[1]) * self.e[1]
-            + i32::from(a[2]) * self.e[2]
-            + self.gm * slack
-            + self.rk * spread
-            - (cone[0] >> self.sh)
+            .wrapping_add(i32::from(a[0]) * self.e[0])
+            .wrapping_add(i32::from(a[1]) * self.e[1])
+            .wrapping_add(i32::from(a[2]) * self.e[2])
+            .wrapping_add(self.gm.wrapping_mul(cone[1]))
+            .wrapping_add(rk.wrapping_mul(spread))
+            .wrapping_sub(cone[0] >> self.sh)
     }
 }
 

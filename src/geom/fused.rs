@@ -347,9 +347,13 @@ impl Fused {
         let lz = clz32(w);
         // 2^16 / f within 3·2^-17 (f = w 2^lz / 2^31 in [1, 2)).
         let y16 = (recip_mant_top(w << lz) + (1 << 13)) >> 14;
-        let sh = self.sh0 - lz;
-        let dx = (mul_hi16(x, y16) + (1 << (sh - 1))) >> sh;
-        let dy = (mul_hi16(y, y16) + (1 << (sh - 1))) >> sh;
+        // Rounded (ties up) right shifts by `sh = sh0 - lz >= 1` (`new`):
+        // `(v + 2^(sh-1)) >> sh` is `((v >> (sh - 1)) + 1) >> 1` (with
+        // `v = q 2^(sh-1) + r`, `0 <= r < 2^(sh-1)`, both are `(q + 1) >> 1`),
+        // one shift amount and no rounding constant live.
+        let sh1 = self.sh0 - 1 - lz;
+        let dx = ((mul_hi16(x, y16) >> sh1) + 1) >> 1;
+        let dy = ((mul_hi16(y, y16) >> sh1) + 1) >> 1;
         let p = mul_hi16_u(self.g, y16) >> (self.gsh - lz);
         let d = if CLAMP {
             self.s30.saturating_sub(p).min(1 << 30) as i32
