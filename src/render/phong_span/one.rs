@@ -30,7 +30,7 @@ use super::{
     cross, fallback, lin, pack, quad, sq3, unpack, KLight, Out, PhongKernel, CHUNK, RS, RSQRT_N,
     SPEC_SEGMENTS,
 };
-use crate::num::wide::wmul;
+use crate::num::wide::{wmul, wmul_u32};
 use crate::num::Real;
 use crate::target::level_q19;
 
@@ -319,6 +319,146 @@ impl Whole {
     }
 }
 
+impl Whole {
+    /// `|n|²` and its first difference stepped past `k` pixels (the
+    /// pixels [`PhongKernel::run`] ran with a fit).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn skip_nn(&mut self, k: u32) {
+        let tri = (k * k.saturating_sub(1) / 2) as i32;
+        self.nn = self
+            .nn
+            .wrapping_add(self.nd1.wrapping_mul(k as i32))
+            .wrapping_add(self.nd2.wrapping_mul(tri));
+        self.nd1 = self.nd1.wrapping_add(self.nd2.wrapping_mul(k as i32));
+    }
+}
+
+/// Fraction bits of the fitted `1/|n|` ([`Fit`]): `r = 2^29 / |n|`, at
+/// most `2^30` for `|n| >= 1/2`.
+const FIT_ONE: u32 = 29;
+
+/// Half the spacing of [`fit_r`]'s nodes: pixels `0`, `FIT_H` and
+/// `2 FIT_H = CHUNK` of a piece.
+const FIT_H: i64 = CHUNK as i64 / 2;
+
+/// The largest relative error of [`fit_r`]'s stepped `1/|n|` over the
+/// pixels `0..=CHUNK` of a piece it proves (see there): `2^-13.5`.
+#[cfg_attr(not(test), allow(dead_code))]
+pub(super) const FIT_MAX_ERROR: f64 = 8.838_834_764_831_844e-5;
+
+/// `2^29 / |n|` ([`FIT_ONE`]) from `nb = |n|² - 1/4` (Q30, within `[0, 1)`):
+/// [`rsq`] (within `2^-11.4` relative) refined by one Newton step `y (3
+/// - g y²) / 2` (`1.5 ε²`: `2^-22.2`; the truncations add below
+/// `2^-28`): within [`RSQRT_FIT_MAX_ERROR`] = `2^-22` relative (tested:
+/// `rsqrt_fit_within_max_error`).
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+fn rsqrt_fit(nb: i32) -> i32 {
+    let g = (nb as u32) + (1 << 28);
+    // 2^16 / |n| (below 2^17 + 2^6), kept below 2^17 so that its square
+    // over 4 fits u32.
+    let y = rsq(g as i32).min((1 << 17) - 1);
+    let yy = (wmul_u32(y, y) >> 2) as u32; // 2^30 / |n|²
+    let e = (wmul_u32(g, yy) >> 30) as u32; // g y² in Q30, near 2^30
+    let t = (3u32 << 30).wrapping_sub(e); // near 2^31
+    (wmul_u32(y, t) >> 18) as i32
+}
+
+/// The largest relative error of [`rsqrt_fit`]: `2^-22`.
+#[cfg_attr(not(test), allow(dead_code))]
+const RSQRT_FIT_MAX_ERROR: f64 = 2.384_185_791_015_625e-7;
+
+/// `1/|n|` over a piece of up to [`CHUNK`] pixels as a quadratic in the
+/// pixel: from `|n|² - 1/4` (Q30, the [`Whole`] state's `nn`) and its
+/// forward differences `d1`, `d2 >= 0` at the piece's first pixel, the
+/// quadratic `p` through `2^29/|n|` at pixels `0`, `h = 16` and `2h =
+/// 32` ([`rsqrt_fit`]; `r0` the value at pixel 0 when known) as `(p(0),
+/// p(1) - p(0), its constant second difference, p(32))`, all `i32`; or
+/// `None` (the piece runs [`PhongKernel::run_table`]) unless
+/// `|n|²` stays within `[1/4, 5/4)` over the 33 pixels (`g = |n|²`
+/// convex: at most its ends, at least `min(ends) - d2·32²/8`) and
+/// `|g'| · 2^9 <= min g` and `g'' · 2^14 <= min g` there.
+///
+/// Error: the interpolating quadratic is within `max|r'''| · 2h³ /
+/// (3√3) / 6` of `r = g^(-1/2)` on `[0, 2h]`, and `r''' = -15/8
+/// g^(-7/2) g'³ + 9/4 g^(-5/2) g' g''`: with `α = h|g'|/g_min <= 2^-5`
+/// and `β = h²g''/g_min <= 2^-6` (the conditions) at most `(15/8 α³ +
+/// 9/4 αβ) / (9√3) = 2^-13.72` of `g_min^(-1/2)`, which is at most
+/// `(1 + 2^-4)^(1/2)` times `1/|n|` anywhere on the piece (`g` varies by
+/// at most `2αg_min` over it); the differences rounded down add at most
+/// `1 + 2^-9 (32 + 496)` units of `2^-29`, the nodes `2^-27.9`: within
+/// [`FIT_MAX_ERROR`] = `2^-13.5` of `1/|n|` (tested: `fit_within_max_error`).
+#[inline(never)]
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+pub(super) fn fit_r(nb: i32, d1: i32, d2: i32, r0: Option<i32>) -> Option<(i32, i32, i32, i32)> {
+    // Steps beyond these fail the conditions below anyway (`|g'| < 2^31
+    // / 2^7`, `g'' < 2^31 / 2^8`); within them the sums fit i32 (`nb <
+    // 2^30`, the rest below 2^30).
+    if !(0..1 << 30).contains(&nb) || !(0..1 << 23).contains(&d2) || d1.unsigned_abs() >= 1 << 24
+    {
+        return None;
+    }
+    let n1 = nb + 32 * d1 + 496 * d2;
+    let nm = nb + 16 * d1 + 120 * d2;
+    let lo = nb.min(n1) - 128 * d2;
+    if lo < 0 || nb.max(n1) >= 1 << 30 {
+        return None;
+    }
+    // g_min (Q30) below 5 · 2^28, |g'| below 2^25.
+    let gmin = (lo + (1 << 28)) as u32;
+    let gp = (d1.abs().max((d1 + 32 * d2).abs()) + d2 / 2 + 1) as u32;
+    // α <= 1/8 and β <= 1, then 66 (15 α³ + 18 α β) <= 1 for α = h gp /
+    // g_min, β = h² d2 / g_min, times g_min³ / 2^45: h gp and h² d2
+    // rounded up, g_min down (and up where it multiplies the left side).
+    if gp << 7 > gmin || (d2 as u32) << 8 > gmin {
+        return None;
+    }
+    let a = (gp >> 11) + 1; // <= 2^13
+    let b = ((d2 as u32) >> 7) + 1; // <= 2^16
+    let g = gmin >> 15; // < 5 · 2^13
+    let lhs = 15 * wmul_u32(a * a, a) + 18 * wmul_u32(a * b, g + 1);
+    if 66 * lhs > wmul_u32(g * g, g) {
+        return None;
+    }
+    let r0 = r0.unwrap_or_else(|| rsqrt_fit(nb));
+    let (rm, r1) = (rsqrt_fit(nm), rsqrt_fit(n1));
+    // |rm - r0|, |r1 - rm| below 2^26 (g within 1/4 of g_min): the sums
+    // below fit i32.
+    let s = r0 - 2 * rm + r1;
+    // p(t) = r0 + b t + c t² with c = s / (2h²), b = (rm - r0)/h - c h:
+    // p(1) - p(0) = b + c, second difference 2c.
+    let dr = ((rm - r0) * 32 - 15 * s) >> 9;
+    Some((r0, dr, s >> 8, r1))
+}
+
+/// The state of a piece run with a fitted `1/|n|` ([`fit_r`]): `2^29 /
+/// |n|` and its differences, `Qm` (Q20 segments) and `n·L` with theirs.
+pub(super) struct Fit {
+    r: i32,
+    dr: i32,
+    d2r: i32,
+    q: i32,
+    qd1: i32,
+    qd2: i32,
+    nl: i32,
+    dnl: i32,
+}
+
+impl Fit {
+    /// One pixel's step (`SPEC`: `Qm` too).
+    #[inline(always)]
+    fn step<const SPEC: bool>(&mut self) {
+        self.r = self.r.wrapping_add(self.dr);
+        self.dr = self.dr.wrapping_add(self.d2r);
+        if SPEC {
+            self.q = self.q.wrapping_add(self.qd1);
+            self.qd1 = self.qd1.wrapping_add(self.qd2);
+        }
+        self.nl = self.nl.wrapping_add(self.dnl);
+    }
+}
+
 /// How a chunk runs: the 32-bit loop with or without the specular
 /// term (`|n|²` and `Qm` as 32-bit forward differences, `n·L` and its
 /// step), or pixel by pixel in 64 bits.
@@ -404,6 +544,91 @@ impl<R: Real> PhongKernel<'_, R> {
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
+        let c = *c;
+        let c = &c;
+        let end = i + k;
+        let (mut j, mut failed) = (i, 0);
+        // `1/|n|` at the next piece's first pixel, when the piece before
+        // ended there with a fit.
+        let mut r0 = None;
+        while j < end {
+            let kk = (end - j).min(CHUNK as u32);
+            if let Some(fit) = fit_r(w.nn, w.nd1, w.nd2, r0) {
+                let mut f = Fit {
+                    r: fit.0,
+                    dr: fit.1,
+                    d2r: fit.2,
+                    q: w.q,
+                    qd1: w.qd1,
+                    qd2: w.qd2,
+                    nl: w.nl,
+                    dnl: w.dnl,
+                };
+                let f = core::hint::black_box(&mut f);
+                failed += self.run_fit(c, w.spec, w.lit, f, j, kk, out);
+                (w.q, w.qd1, w.nl) = (f.q, f.qd1, f.nl);
+                w.skip_nn(kk);
+                r0 = (kk == CHUNK as u32).then_some(fit.3);
+            } else {
+                failed += self.run_table(c, w, j, kk, out);
+                r0 = None;
+            }
+            j += kk;
+        }
+        failed
+    }
+
+    /// The `k` pixels from pixel `i` of the fitted state `f` in one loop
+    /// ([`Out::fused`]): the light terms of [`PhongKernel::terms_r`] from
+    /// `1/|n|` stepped as the quadratic of [`fit_r`].
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments, clippy::cast_sign_loss)]
+    fn run_fit(
+        &self,
+        c: &Colour,
+        spec: bool,
+        lit: bool,
+        f: &mut Fit,
+        i: u32,
+        k: u32,
+        out: &mut impl Out,
+    ) -> u32 {
+        let q7 = |f: &Fit| f.q >> (QM_FRAC - 7);
+        let r16 = |f: &Fit| (f.r as u32) >> (FIT_ONE - 16);
+        let px = |(nl15, sp): (u32, u32)| c.of_terms((nl15 & 0xFFFF) | sp << 16);
+        match (spec, lit) {
+            (true, true) => out.fused(
+                i,
+                k,
+                f,
+                |f| px(self.terms_lit::<true>(r16(f), f.nl, q7(f))),
+                Fit::step::<true>,
+            ),
+            (true, false) => out.fused(
+                i,
+                k,
+                f,
+                |f| px(self.terms_r::<true>(r16(f), f.nl, q7(f))),
+                Fit::step::<true>,
+            ),
+            _ => out.fused(
+                i,
+                k,
+                f,
+                |f| px(self.terms_r::<false>(r16(f), f.nl, 0)),
+                Fit::step::<false>,
+            ),
+        }
+    }
+
+    /// The `k` pixels from pixel `i` of the 32-bit state `w` in one loop
+    /// ([`Out::fused`]): the light terms of [`PhongKernel::terms`] (`|n|²`
+    /// stepped less `1/4`, [`rsq_biased`], the table's address held in a
+    /// register), the channels of [`Colour::of_terms`]; returns how many
+    /// failed the depth test. The pieces [`fit_r`] cannot prove.
+    #[inline(never)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn run_table(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
         let c = *c;
         let c = &c;
         let rs = core::hint::black_box(&RS_PACKED);
