@@ -2081,7 +2081,8 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
         let Some(row) = self.row.get_mut(i..i + k as usize) else {
             return k;
         };
-        self.depth.masked(row, i, s, |s| F::encode_q19(col(s)), step)
+        self.depth
+            .masked(row, i, s, |s| F::encode_q19(col(s)), step)
     }
 }
 

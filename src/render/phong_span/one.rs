@@ -409,32 +409,41 @@ impl<R: Real> PhongKernel<'_, R> {
         let rs = core::hint::black_box(&RS_PACKED);
         let q7 = |w: &Whole| w.q >> (QM_FRAC - 7);
         let px = |(nl15, sp): (u32, u32)| c.of_terms((nl15 & 0xFFFF) | sp << 16);
+        // The pixels `j..j + kk` through `out.$loop`.
+        macro_rules! pixels {
+            ($loop:ident, $j:expr, $kk:expr) => {
+                match (w.spec, w.lit) {
+                    (true, true) => out.$loop(
+                        $j,
+                        $kk,
+                        w,
+                        |w| px(self.terms_lit::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        Whole::step::<true>,
+                    ),
+                    (true, false) => out.$loop(
+                        $j,
+                        $kk,
+                        w,
+                        |w| px(self.terms_r::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        Whole::step::<true>,
+                    ),
+                    _ => out.$loop(
+                        $j,
+                        $kk,
+                        w,
+                        |w| px(self.terms_r::<false>(rsq_biased(rs, w.nn), w.nl, 0)),
+                        Whole::step::<false>,
+                    ),
+                }
+            };
+        }
+        if cfg!(armv6m) {
+            return pixels!(fused, i, k);
+        }
         let (end, mut j, mut failed) = (i + k, i, 0);
         while j < end {
             let kk = (end - j).min(CHUNK as u32);
-            failed += match (w.spec, w.lit) {
-                (true, true) => out.masked(
-                    j,
-                    kk,
-                    w,
-                    |w| px(self.terms_lit::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
-                    Whole::step::<true>,
-                ),
-                (true, false) => out.masked(
-                    j,
-                    kk,
-                    w,
-                    |w| px(self.terms_r::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
-                    Whole::step::<true>,
-                ),
-                _ => out.masked(
-                    j,
-                    kk,
-                    w,
-                    |w| px(self.terms_r::<false>(rsq_biased(rs, w.nn), w.nl, 0)),
-                    Whole::step::<false>,
-                ),
-            };
+            failed += pixels!(masked, j, kk);
             j += kk;
         }
         failed
