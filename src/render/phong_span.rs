@@ -1708,8 +1708,9 @@ trait Out {
         failed
     }
 
-    /// [`Out::fused`] for `k <= CHUNK`, the depth tests first (a mask),
-    /// then one loop of colours and steps: the same pixels and values.
+    /// [`Out::fused`] (the same pixels, values and result); for `k <=
+    /// CHUNK` a depth buffer's tests may come first (a mask), then one
+    /// loop of colours and steps ([`SpanDepth::masked`]).
     #[inline(always)]
     fn masked<S>(
         &mut self,
@@ -1767,8 +1768,9 @@ trait SpanDepth {
         px: impl Fn(&S) -> P,
         step: impl Fn(&mut S),
     ) -> u32;
-    /// [`SpanDepth::fused`] for `row.len() <= CHUNK`: the depth tests
-    /// first, then the colours ([`Out::masked`]).
+    /// [`SpanDepth::fused`] (the same pixels, values and result): for
+    /// `row.len() <= CHUNK` the depth tests first, then the colours
+    /// ([`Out::masked`]).
     fn masked<P, S>(
         &mut self,
         row: &mut [P],
@@ -1944,9 +1946,12 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
         step: impl Fn(&mut S),
     ) -> u32 {
         const { assert!(CHUNK <= 32) };
-        let k = row.len().min(CHUNK);
+        let k = row.len();
+        if k > CHUNK {
+            return self.fused(row, i, s, px, step);
+        }
         let Some(drow) = self.drow.get_mut(i..i + k) else {
-            return row.len() as u32;
+            return k as u32;
         };
         let (mut z, dz) = (self.z, self.dz);
         let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);

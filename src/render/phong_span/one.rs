@@ -391,16 +391,22 @@ impl<R: Real> PhongKernel<'_, R> {
         len - failed
     }
 
-    /// The `k` pixels from pixel `i` of the 32-bit state `w` in one loop
-    /// ([`Out::fused`]): the light terms of [`PhongKernel::terms`] (`|n|²`
-    /// stepped less `1/4`, [`rsq_biased`], the table's address held in a
-    /// register), the channels of [`Colour::of_terms`]; returns how many
-    /// failed the depth test. Not inlined (one copy per pixel and depth
-    /// format), the colour constants copied into its frame: 77.54
-    /// instructions a pixel on the M4 and 141.48 on the M0 against 79.53
-    /// and 147.50 inlined in the row fill, `.text` 5.1 KB and 6.0 KB
-    /// less (the state stays behind `w`, stepped by `LDM`/`STRD`: copied
-    /// into locals, 78.60 on the M4).
+    /// The `k` pixels from pixel `i` of the 32-bit state `w`: the light
+    /// terms of [`PhongKernel::terms`] (`|n|²` stepped less `1/4`,
+    /// [`rsq_biased`], the table's address held in a register), the
+    /// channels of [`Colour::of_terms`]; returns how many failed the
+    /// depth test. On ARMv6-M one loop ([`Out::fused`]: depth test,
+    /// terms, channels and store of a pixel together); elsewhere piece
+    /// by piece of [`CHUNK`] pixels ([`Out::masked`]: the piece's depth
+    /// tests first, then one loop of terms, channels and stores, without
+    /// a test when all passed), the state in registers through the
+    /// colour loop. Measured on the firmware's span sweep (one light),
+    /// 75.90 instructions a pixel on the M4 against 77.53 with the one
+    /// loop (of which 60 the colour loop, 10.75 the depth loop); on the
+    /// M0 the pieces cost 158.60 against 141.48, so it keeps the one
+    /// loop. Not inlined (one copy per pixel and depth format), the
+    /// colour constants copied into its frame: against 79.53 and 147.50
+    /// inlined in the row fill, `.text` 5.1 KB and 6.0 KB less.
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
