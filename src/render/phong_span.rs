@@ -1707,6 +1707,21 @@ trait Out {
         }
         failed
     }
+
+    /// [`Out::fused`] (the same pixels, values and result); for `k <=
+    /// CHUNK` a depth buffer's tests may come first (a mask), then one
+    /// loop of colours and steps ([`SpanDepth::masked`]).
+    #[inline(always)]
+    fn masked<S>(
+        &mut self,
+        i: u32,
+        k: u32,
+        s: &mut S,
+        col: impl Fn(&S) -> [i32; 3],
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        self.fused(i, k, s, col, step)
+    }
 }
 
 /// [`Out`] of a test and a write closure ([`PhongKernel::fill`]).
@@ -1753,6 +1768,17 @@ trait SpanDepth {
         px: impl Fn(&S) -> P,
         step: impl Fn(&mut S),
     ) -> u32;
+    /// [`SpanDepth::fused`] (the same pixels, values and result): for
+    /// `row.len() <= CHUNK` the depth tests first, then the colours
+    /// ([`Out::masked`]).
+    fn masked<P, S>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32;
 }
 
 /// No depth buffer: every pixel passes.
@@ -1790,6 +1816,18 @@ impl SpanDepth for NoDepth {
             step(s);
         }
         0
+    }
+
+    #[inline(always)]
+    fn masked<P, S>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        self.fused(row, i, s, px, step)
     }
 }
 
@@ -1897,6 +1935,68 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
         self.z = z;
         failed
     }
+
+    #[inline(always)]
+    fn masked<P, S>(
+        &mut self,
+        row: &mut [P],
+        i: usize,
+        s: &mut S,
+        px: impl Fn(&S) -> P,
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        const { assert!(CHUNK <= 32) };
+        let k = row.len();
+        if k > CHUNK {
+            return self.fused(row, i, s, px, step);
+        }
+        let Some(drow) = self.drow.get_mut(i..i + k) else {
+            return k as u32;
+        };
+        let (mut z, dz) = (self.z, self.dz);
+        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
+        if self.in_range {
+            for zb in drow.iter_mut() {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    pass |= bit;
+                } else {
+                    failed += 1;
+                }
+                bit <<= 1;
+                z = z.add(dz);
+            }
+        } else {
+            for zb in drow.iter_mut() {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    pass |= bit;
+                } else {
+                    failed += 1;
+                }
+                bit <<= 1;
+                z = z.add(dz);
+            }
+        }
+        self.z = z;
+        if failed == 0 {
+            for o in row[..k].iter_mut() {
+                *o = px(s);
+                step(s);
+            }
+        } else {
+            for o in row[..k].iter_mut() {
+                if pass & 1 != 0 {
+                    *o = px(s);
+                }
+                pass >>= 1;
+                step(s);
+            }
+        }
+        failed
+    }
 }
 
 /// The colours `px(c)` of the entries `c` of `cols` into `row`: every
@@ -1972,6 +2072,22 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
             return k;
         };
         self.depth.fused(row, i, s, |s| F::encode_q19(col(s)), step)
+    }
+    #[inline(always)]
+    fn masked<S>(
+        &mut self,
+        i: u32,
+        k: u32,
+        s: &mut S,
+        col: impl Fn(&S) -> [i32; 3],
+        step: impl Fn(&mut S),
+    ) -> u32 {
+        let i = i as usize;
+        let Some(row) = self.row.get_mut(i..i + k as usize) else {
+            return k;
+        };
+        self.depth
+            .masked(row, i, s, |s| F::encode_q19(col(s)), step)
     }
 }
 

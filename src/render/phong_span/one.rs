@@ -391,16 +391,22 @@ impl<R: Real> PhongKernel<'_, R> {
         len - failed
     }
 
-    /// The `k` pixels from pixel `i` of the 32-bit state `w` in one loop
-    /// ([`Out::fused`]): the light terms of [`PhongKernel::terms`] (`|n|²`
-    /// stepped less `1/4`, [`rsq_biased`], the table's address held in a
-    /// register), the channels of [`Colour::of_terms`]; returns how many
-    /// failed the depth test. Not inlined (one copy per pixel and depth
-    /// format), the colour constants copied into its frame: 77.54
-    /// instructions a pixel on the M4 and 141.48 on the M0 against 79.53
-    /// and 147.50 inlined in the row fill, `.text` 5.1 KB and 6.0 KB
-    /// less (the state stays behind `w`, stepped by `LDM`/`STRD`: copied
-    /// into locals, 78.60 on the M4).
+    /// The `k` pixels from pixel `i` of the 32-bit state `w`: the light
+    /// terms of [`PhongKernel::terms`] (`|n|²` stepped less `1/4`,
+    /// [`rsq_biased`], the table's address held in a register), the
+    /// channels of [`Colour::of_terms`]; returns how many failed the
+    /// depth test. On ARMv6-M one loop ([`Out::fused`]: depth test,
+    /// terms, channels and store of a pixel together); elsewhere piece
+    /// by piece of [`CHUNK`] pixels ([`Out::masked`]: the piece's depth
+    /// tests first, then one loop of terms, channels and stores, without
+    /// a test when all passed), the state in registers through the
+    /// colour loop. Measured on the firmware's span sweep (one light),
+    /// 75.90 instructions a pixel on the M4 against 77.53 with the one
+    /// loop (of which 60 the colour loop, 10.75 the depth loop); on the
+    /// M0 the pieces cost 158.60 against 141.48, so it keeps the one
+    /// loop. Not inlined (one copy per pixel and depth format), the
+    /// colour constants copied into its frame: against 79.53 and 147.50
+    /// inlined in the row fill, `.text` 5.1 KB and 6.0 KB less.
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
@@ -409,29 +415,44 @@ impl<R: Real> PhongKernel<'_, R> {
         let rs = core::hint::black_box(&RS_PACKED);
         let q7 = |w: &Whole| w.q >> (QM_FRAC - 7);
         let px = |(nl15, sp): (u32, u32)| c.of_terms((nl15 & 0xFFFF) | sp << 16);
-        match (w.spec, w.lit) {
-            (true, true) => out.fused(
-                i,
-                k,
-                w,
-                |w| px(self.terms_lit::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
-                Whole::step::<true>,
-            ),
-            (true, false) => out.fused(
-                i,
-                k,
-                w,
-                |w| px(self.terms_r::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
-                Whole::step::<true>,
-            ),
-            _ => out.fused(
-                i,
-                k,
-                w,
-                |w| px(self.terms_r::<false>(rsq_biased(rs, w.nn), w.nl, 0)),
-                Whole::step::<false>,
-            ),
+        // The pixels `j..j + kk` through `out.$loop`.
+        macro_rules! pixels {
+            ($loop:ident, $j:expr, $kk:expr) => {
+                match (w.spec, w.lit) {
+                    (true, true) => out.$loop(
+                        $j,
+                        $kk,
+                        w,
+                        |w| px(self.terms_lit::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        Whole::step::<true>,
+                    ),
+                    (true, false) => out.$loop(
+                        $j,
+                        $kk,
+                        w,
+                        |w| px(self.terms_r::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        Whole::step::<true>,
+                    ),
+                    _ => out.$loop(
+                        $j,
+                        $kk,
+                        w,
+                        |w| px(self.terms_r::<false>(rsq_biased(rs, w.nn), w.nl, 0)),
+                        Whole::step::<false>,
+                    ),
+                }
+            };
         }
+        if cfg!(armv6m) {
+            return pixels!(fused, i, k);
+        }
+        let (end, mut j, mut failed) = (i + k, i, 0);
+        while j < end {
+            let kk = (end - j).min(CHUNK as u32);
+            failed += pixels!(masked, j, kk);
+            j += kk;
+        }
+        failed
     }
 
     /// The span's single plan ([`Whole`]) when the span is longer than a
