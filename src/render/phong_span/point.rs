@@ -15,14 +15,12 @@
 //! directional loop takes `Q/|n|²`: `1/A` from the table
 //! [`RS`](super::RS) only scales `w` (a relative error), but `1/|l|` and
 //! `1/|v|` enter `w` absolutely (an error `ε` of either moves `w` by
-//! `ε·R·V`), so they come from one Newton step `s (1 + e/2)` per pixel
-//! ([`newton1`], three products) seeded by the quadratic extrapolation
-//! of the three previous pixels' values (`3 (y₋₁ - y₋₂) + y₋₃`): with
-//! steps of at most `|l|/32` the seed is within `6·2^-15·1.1` plus seven
-//! times the previous values' error (the third difference of `1/|l|`
-//! is below `6 (|dl|/|l|)³` of it: `|d³/du³ (1 + u²)^(-1/2)|` is below
-//! `6 (1 + u²)^(-2)`), `e = 1 - b s²` within `2^-11.2`, the step within
-//! `3e²/8 (1 + |e|)`, plus truncations of `2^-23`: `2^-22.5`.
+//! `ε·R·V`), so they come from one step of the series of `(1 -
+//! e)^(-1/2)` per pixel ([`newton`]) seeded by the linear extrapolation of
+//! the two previous pixels' values: with steps of at most `|l|/16` the
+//! seed is within `3·2^-8` (the second difference of `1/|l|` is below
+//! `3 (|dl|/|l|)²` of it), `e = 1 - b s²` within `2^-5.4`, the step within
+//! `0.28 e⁴ = 2^-23.4`, plus truncations of `2^-23`.
 //!
 //! The span is cut into chunks of [`PCHUNK`] pixels; at each chunk's first
 //! pixel the six quadratics are computed exactly in 64 bits from the
@@ -30,12 +28,11 @@
 //! `|l̃|²` and `|ṽ|²` start in `[1/2, 2)`), rounded to 32-bit forward
 //! differences (after 31 steps within `0.5 + 15.5 + 232` units of `2^-29`:
 //! `2^-21` relative), and the first two seeds come from the table
-//! [`RS`](super::RS) (`2^-11.4`), each refined by a Newton step at the
-//! set-up ([`newton1`]: `2^-21.4`). The error of `w` is then within
-//! `2^-18.9` (forward differences of `D`, `E`, `F` `3·2^-21`, `1/|l|` and
-//! `1/|v|` `2^-21.4`, products `2^-24` each), which times the shininess
-//! `m < 256` moves the table position by less than `2^-10.9` of the
-//! specular range: the loop runs for `m < 256` (the
+//! [`RS`](super::RS) (`2^-11.4`; the step takes them to `2^-30`). The
+//! error of `w` is then within `2^-19` (forward differences of `D`, `E`,
+//! `F` `3·2^-21`, `1/|l|` and `1/|v|` `2^-22`, products `2^-24` each),
+//! which times the shininess `m < 256` moves the table position by less
+//! than `2^-11` of the specular range: the loop runs for `m < 256` (the
 //! table's scale `K·2^19` below `2^31`), higher shininesses take the
 //! 64-bit per-pixel path. Measured against `f64` in this module's tests
 //! (`random_spans_against_f64`, `highlight_peak_set`, `point_loop_runs`).
@@ -69,7 +66,7 @@
 //! then the light terms as the directional loop ([`PhongKernel::terms`]),
 //! whose channels the span driver computes per passing pixel.
 //! Chunks outside the proven ranges (`A` in `[1/4, 5/4)`, `|l̃|²` and
-//! `|ṽ|²` in `(1/4, 4)`, steps of at most 1/32 of `|l|` and `|v|`, every
+//! `|ṽ|²` in `(1/4, 4)`, steps of at most 1/16 of `|l|` and `|v|`, every
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
 
@@ -192,29 +189,6 @@ fn span_bounds(c: [i64; 3], s: i32, t: i32) -> Option<(i32, i64, i64)> {
     Some((x2, lo, hi))
 }
 
-/// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s`: one Newton step
-/// `s (1 + e/2)` with `e = 1 - b s²`, within `3e²/8 (1 + |e|)` (relative;
-/// `(1 + e/2) sqrt(1 - e) = 1 - 3e²/8 - e³/16 - ...`) plus the
-/// truncations' `2^-23` (`e` in steps of `2^-23`): with `|e| <= 2^-11.2`
-/// (the loop's seeds, module docs) within `2^-22.5`, with the chunks'
-/// table seeds (`|e| <= 2^-10.3`) within `2^-21.4` (both checked by
-/// `newton_step_error`). Three products of operands of unknown sign (one
-/// `SMMUL` each on the M4, against five of [`newton`]).
-#[inline(always)]
-fn newton1(s: i32, b: i32) -> i32 {
-    let sb = mulhi(s, b); // Q26 of s·b (<= 2^28.5)
-    let e31 = ((1 << 23) - mulhi(sb, s)) << 8; // e · 2^31 (|e| < 1)
-    s.wrapping_add(mulhi(s, e31))
-}
-
-/// The loop's seed of `1/sqrt` from the three previous pixels' values
-/// `y₋₃`, `y₋₂`, `y₋₁`: their quadratic extrapolation `3 (y₋₁ - y₋₂) +
-/// y₋₃` (module docs).
-#[inline(always)]
-fn extrapolate(y3: i32, y2: i32, y1: i32) -> i32 {
-    y1.wrapping_sub(y2).wrapping_mul(3).wrapping_add(y3)
-}
-
 /// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s` within `2^-6`
 /// (relative): `s (1 + e/2 + 3e²/8 + 5e³/16)` with `e = 1 - b s²` (the
 /// series of `(1 - e)^(-1/2)` to its fourth term: within `0.28 e⁴`, plus
@@ -239,10 +213,9 @@ struct Chunk {
     d: (i32, i32, i32),
     e: (i32, i32, i32),
     f: (i32, i32, i32),
-    /// Newton states `(y(-3), y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|`
-    /// (Q29).
-    yl: (i32, i32, i32),
-    yv: (i32, i32, i32),
+    /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29).
+    yl: (i32, i32),
+    yv: (i32, i32),
 }
 
 /// A span's plan: the six quadratics' exact difference triples ([`prod`]
@@ -298,8 +271,8 @@ impl Plan {
             d: r(qd, 30),
             e: r(qe, 30),
             f: r(qf, 30),
-            yl: seeds(b)?,
-            yv: seeds(c)?,
+            yl: seeds(b.0, b.1)?,
+            yv: seeds(c.0, c.1)?,
         })
     }
 
@@ -327,8 +300,8 @@ impl Plan {
             d: r(qd),
             e: r(qe),
             f: r(qf),
-            yl: seeds(b)?,
-            yv: seeds(c)?,
+            yl: seeds(b.0, b.1)?,
+            yv: seeds(c.0, c.1)?,
         })
     }
 }
@@ -352,26 +325,16 @@ fn scale(v: [i32; 3], d: [i32; 3]) -> Option<([i32; 3], [i32; 3])> {
     Some((v.map(|x| x << s), d.map(|x| x << s)))
 }
 
-/// Newton states `(y₋₃, y₋₂, y₋₁)` of `1/sqrt` at a chunk's start from
-/// the quadratic `x` (Q29 in `(1/6, 4)`: value, first and second
-/// difference): estimates `y0`, `y1`, `y2` at its first three pixels,
-/// the table's ([`seed`], `2^-11.4`) refined by one Newton step each
-/// ([`newton1`]: `2^-21.4`), and the quadratic through them extended
-/// back (zero third difference), so that the loop's first three seeds
-/// are `y0` and about `y1`, `y2` (within `7 · 2^-21.4`). A third pixel
-/// out of the table (a chunk of two pixels at the triangle's edge) takes
-/// `2 y1 - y0` (no seed of the chunk uses it).
+/// Newton states `(y0 - 2δ, y0 - δ)` from table estimates `y0`, `y1` of
+/// `1/sqrt` at a chunk's first two pixels (`x`: Q29 in `(1/6, 4)` and the
+/// next value's difference), `δ = y1 - y0`: the loop's first two seeds are
+/// `y0` and about `y1` (within `3 · 2^-11.4`).
 #[inline(always)]
-fn seeds((x0, x1, x2): (i32, i32, i32)) -> Option<(i32, i32, i32)> {
-    let b1 = x0.wrapping_add(x1);
-    let b2 = b1.wrapping_add(x1).wrapping_add(x2);
-    let y0 = newton1(seed(x0)?, x0);
-    let y1 = newton1(seed(b1)?, b1);
-    let y2 = seed(b2).map_or(y1.wrapping_mul(2).wrapping_sub(y0), |s| newton1(s, b2));
-    let back = |a: i32, b: i32, c: i32| a.wrapping_sub(b).wrapping_mul(3).wrapping_add(c);
-    let m1 = back(y0, y1, y2);
-    let m2 = back(m1, y0, y1);
-    Some((back(m2, m1, y0), m2, m1))
+fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
+    let y0 = seed(x0)?;
+    let y1 = seed(x0.wrapping_add(x1))?;
+    let dl = y1.wrapping_sub(y0);
+    Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
 }
 
 /// `1/sqrt(x)` (Q29) within `2^-11.4` relative for `x` (Q29) in `(1/6,
@@ -626,12 +589,12 @@ impl<R: Real> PhongKernel<'_, R> {
             return None;
         }
         // |l̃|², |ṽ|² (Q29, from [1/4, 3) at the first pixel) within (1/6,
-        // 4), and steps of at most 1/32 of the length: |dl̃|² · 2^10 <= |l̃|²
+        // 4), and steps of at most 1/16 of the length: |dl̃|² · 2^8 <= |l̃|²
         // (x.2 = 2 |dl̃|²).
         let (b32, blo, bhi) = fwd32(prod(lt, dlt, lt, dlt), 29, k)?;
         let (c32, clo, chi) = fwd32(prod(vt, dvt, vt, dvt), 29, k)?;
         for (x, lo, hi) in [(b32, blo, bhi), (c32, clo, chi)] {
-            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x.2) << 9 > lo - 256
+            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x.2) << 7 > lo - 256
             {
                 return None;
             }
@@ -651,8 +614,8 @@ impl<R: Real> PhongKernel<'_, R> {
             d: x32(prod(nj, dn, lt, dlt)),
             e: x32(prod(nj, dn, vt, dvt)),
             f: x32(prod(lt, dlt, vt, dvt)),
-            yl: seeds(b32)?,
-            yv: seeds(c32)?,
+            yl: seeds(b32.0, b32.1)?,
+            yv: seeds(c32.0, c32.1)?,
         })
     }
 
@@ -700,11 +663,11 @@ impl<R: Real> PhongKernel<'_, R> {
             return None;
         }
         // |l̃|², |ṽ|² (Q29, from [1/4, 3) at the first pixel) within (1/6,
-        // 4), and steps of at most 1/32 of the length: |dl̃|² · 2^10 <= |l̃|²
+        // 4), and steps of at most 1/16 of the length: |dl̃|² · 2^8 <= |l̃|²
         // (x2 = 2 |dl̃|²).
         for c in [q[1], q[2]] {
             let (x2, lo, hi) = span_bounds(c, 29, t)?;
-            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x2) << 9 > lo - 256 {
+            if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x2) << 7 > lo - 256 {
                 return None;
             }
         }
@@ -782,10 +745,10 @@ impl<R: Real> PhongKernel<'_, R> {
         let k = k.min(PCHUNK);
         let (mut xb, mut xb1, xb2) = st.b;
         let (mut d, mut d1, d2) = st.d;
-        let (mut l3, mut l2, mut l1) = st.yl;
+        let (mut la, mut lb) = st.yl;
         let (mut xc, mut xc1, xc2) = st.c;
         let (mut e, mut e1, e2) = st.e;
-        let (mut v3, mut v2, mut v1) = st.yv;
+        let (mut va, mut vb) = st.yv;
         let (mut f, mut f1, f2) = st.f;
         let (mut a, mut a1, a2) = st.a;
         let kc = (self.kf << 11) as i32;
@@ -795,10 +758,10 @@ impl<R: Real> PhongKernel<'_, R> {
         for cg in col.get_mut(..k).unwrap_or_default().chunks_mut(GROUP) {
             // 1/|l̃| and n·L̂.
             for (o, nl) in px.iter_mut().zip(cg.iter_mut()) {
-                let y = newton1(extrapolate(l3, l2, l1), xb);
+                let y = newton(lb.wrapping_mul(2).wrapping_sub(la), xb);
                 o.g = y;
                 *nl = (mulhi(d, y) << 4) as u32;
-                (l3, l2, l1) = (l2, l1, y);
+                (la, lb) = (lb, y);
                 xb = xb.wrapping_add(xb1);
                 xb1 = xb1.wrapping_add(xb2);
                 d = d.wrapping_add(d1);
@@ -807,12 +770,12 @@ impl<R: Real> PhongKernel<'_, R> {
             // 1/|ṽ|, n·V̂ and L̂·V̂.
             if SPEC {
                 for (o, &nl) in px.iter_mut().zip(cg.iter()) {
-                    let y = newton1(extrapolate(v3, v2, v1), xc);
+                    let y = newton(vb.wrapping_mul(2).wrapping_sub(va), xc);
                     // (n·L̂)(n·V̂): Q30 · Q30 -> Q28.
                     o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
                     // G = 1/(|l̃| |ṽ|) < 6 (Q28) in place of 1/|l̃|.
                     o.g = mulhi(o.g, y) << 2;
-                    (v3, v2, v1) = (v2, v1, y);
+                    (va, vb) = (vb, y);
                     xc = xc.wrapping_add(xc1);
                     xc1 = xc1.wrapping_add(xc2);
                     e = e.wrapping_add(e1);

@@ -24,7 +24,7 @@
 //! sum of the three vertex vectors, `9 |u|² >= 6 S·u_j - |S|²` at the
 //! vertex `j` minimising it (exact for two of the vertices' vectors
 //! apart by any angle along an edge). The loop's ranges (`A` in `[1/4,
-//! 5/4)`, `B` and `C` in `(1/6, 4)`, steps along x at most `1/32` of
+//! 5/4)`, `B` and `C` in `(1/6, 4)`, steps along x at most `1/16` of
 //! `|l̃|` and `|ṽ|`) are checked on these bounds with a relative margin
 //! of `2^-8`, which covers the rounding of the planes' coefficients (at
 //! most `½ + ½|x| + ½|y|` units, `x` and `y` within `2^12` pixels of the
@@ -568,12 +568,12 @@ impl TriQuad {
             if lo < 9 * (ONE / 6 + M) || hi > 4 * ONE - 4 * M {
                 return None;
             }
-            // The step along x at most 1/32 of the length: |dx|² · 2^10
+            // The step along x at most 1/16 of the length: |dx|² · 2^8
             // <= |u|² (the step's components rounded up, in the same
-            // units; dd < 3 · 2^48: no overflow).
+            // units).
             let dx = t[1].map(|c| (c.unsigned_abs() >> 2) as i32 + 1);
             let dd = wmul(dx[0], dx[0]) + wmul(dx[1], dx[1]) + wmul(dx[2], dx[2]);
-            if (dd << 13) + (dd << 10) > lo {
+            if (dd << 11) + (dd << 8) > lo {
                 return None;
             }
         }
