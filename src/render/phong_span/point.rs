@@ -389,7 +389,7 @@ const FUSED_FG: bool = cfg!(armv6m);
 /// Pixels a group of the point loop's passes (the values between passes
 /// of a group are kept in [`Px`]s: 128 bytes of stack, zeroed once a
 /// chunk).
-pub(super) const GROUP: usize = 16;
+pub(super) const GROUP: usize = 32;
 
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
