@@ -192,16 +192,24 @@ fn span_bounds(c: [i64; 3], s: i32, t: i32) -> Option<(i32, i64, i64)> {
 /// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s` within `2^-6`
 /// (relative): `s (1 + e/2 + 3e²/8 + 5e³/16)` with `e = 1 - b s²` (the
 /// series of `(1 - e)^(-1/2)` to its fourth term: within `0.28 e⁴`, plus
-/// the truncations' `2^-23`). Products of operands of unknown sign (one
-/// `SMMUL` each on the M4).
+/// the truncations' `2^-22.5`). `e` (`|e| < 2^-4.9`) and `b s²` take
+/// products of operands of unknown sign (one `SMMUL` each on the M4); the
+/// term `e² (3/8 + 5e/16)` only `2^-23` absolute, so it comes from `e` in
+/// `Q20` (below `2^15.1`) by two 32-bit products (one `MULS` each on the
+/// M0, instead of two split high halves): `e` floored to `2^-20` (`e²` by
+/// `2^-24.4`), `e²` to `2^-24`, `3/8 + 5e/16` to `2^-14` (checked by
+/// `newton_error`).
 #[inline(always)]
 fn newton(s: i32, b: i32) -> i32 {
     let sb = mulhi(s, b); // Q26 of s·b (<= 2^28.5)
     let e31 = ((1 << 23) - mulhi(sb, s)) << 8; // e · 2^31 (|e| < 1)
-                                               // 3/8 + 5e/16 (Q32), e (3/8 + 5e/16) (Q31), e² (...) (Q30).
-    let inner = 0x6000_0000i32.wrapping_add(e31 >> 1).wrapping_add(e31 >> 3);
-    let e2 = mulhi(e31, mulhi(e31, inner));
-    s.wrapping_add(mulhi(s, e31.wrapping_add(e2 << 2)))
+    let e20 = e31 >> 11;
+    // e² (Q24, below 2^14.2) times 3/8 + 5e/16 (Q15): Q39, as Q32.
+    let inner = 12_288i32
+        .wrapping_add(e20 >> 7)
+        .wrapping_add(e20 >> 9);
+    let e2 = (e20.wrapping_mul(e20) >> 16).wrapping_mul(inner) >> 7;
+    s.wrapping_add(mulhi(s, e31.wrapping_add(e2)))
 }
 
 /// A chunk's 32-bit state.
