@@ -54,6 +54,11 @@
 //! 6 261 194 (the plan, `point_one` and its threshold, a cheaper
 //! per-span range check and step test, the packed `1/|n|` table and, on
 //! the M0, `F̃·G` in the last pass); frames unchanged on the firmware.
+//! Then [`newton`]'s `e²` term from two 32-bit products (`MULS` on the
+//! M0) and one group of passes a chunk ([`GROUP`]): M4 167.75 -> 163.52
+//! and 1 700 554 -> 1 678 691, M0 661.65 -> 559.69 and 5 470 644 ->
+//! 4 792 322; frames unchanged on the firmware and in the reference
+//! images.
 //!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
@@ -395,15 +400,20 @@ impl Px {
 const FUSED_FG: bool = cfg!(armv6m);
 
 /// Pixels a group of the point loop's passes (the values between passes
-/// of a group are kept in [`Px`]s: 128 bytes of stack, zeroed once a
-/// chunk).
+/// of a group are kept in [`Px`]s: 256 bytes, on the stack zeroed once a
+/// chunk, or kept in the triangle's [`TriQuad`]): a whole chunk, each
+/// pass once a chunk. Measured against 16 (span sweep a pixel;
+/// dodecahedron Phong raster): M4 167.75 -> 164.40 and 1 700 554 ->
+/// 1 679 852, M0 561.17 -> 559.69 and 4 798 753 -> 4 792 322 (after
+/// [`newton`]'s `e²` term in 32-bit products); 128 bytes more stack in
+/// the Phong scenes (the [`TriQuad`] of the span filler).
 pub(super) const GROUP: usize = 32;
 
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
     /// Phong model with `kf < KF_MAX` (module docs); `n`, `dn` already
     /// flipped for back faces. Not inlined: its buffers (the driver's
-    /// colours and [`Px`]s, 256 bytes) live in its own frame and
+    /// colours and [`Px`]s, 384 bytes) live in its own frame and
     /// `point_chunk`'s, not in the renderer's, whatever the layout drawn.
     #[inline(never)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
