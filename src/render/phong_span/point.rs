@@ -210,9 +210,7 @@ fn newton(s: i32, b: i32) -> i32 {
     let e31 = ((1 << 23) - mulhi(sb, s)) << 8; // e · 2^31 (|e| < 1)
     let e20 = e31 >> 11;
     // e² (Q24, below 2^14.2) times 3/8 + 5e/16 (Q15): Q39, as Q32.
-    let inner = 12_288i32
-        .wrapping_add(e20 >> 7)
-        .wrapping_add(e20 >> 9);
+    let inner = 12_288i32.wrapping_add(e20 >> 7).wrapping_add(e20 >> 9);
     let e2 = (e20.wrapping_mul(e20) >> 16).wrapping_mul(inner) >> 7;
     s.wrapping_add(mulhi(s, e31.wrapping_add(e2)))
 }
