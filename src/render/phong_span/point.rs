@@ -54,6 +54,11 @@
 //! 6 261 194 (the plan, `point_one` and its threshold, a cheaper
 //! per-span range check and step test, the packed `1/|n|` table and, on
 //! the M0, `F̃·G` in the last pass); frames unchanged on the firmware.
+//! Then [`newton`]'s `e²` term from two 32-bit products (`MULS` on the
+//! M0) and one group of passes a chunk ([`GROUP`]): M4 167.75 -> 163.52
+//! and 1 700 554 -> 1 678 691, M0 661.65 -> 559.69 and 5 470 644 ->
+//! 4 792 322; frames unchanged on the firmware and in the reference
+//! images.
 //!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
@@ -192,16 +197,22 @@ fn span_bounds(c: [i64; 3], s: i32, t: i32) -> Option<(i32, i64, i64)> {
 /// `1/sqrt(b)` (`b` Q29, result Q29) from the seed `s` within `2^-6`
 /// (relative): `s (1 + e/2 + 3e²/8 + 5e³/16)` with `e = 1 - b s²` (the
 /// series of `(1 - e)^(-1/2)` to its fourth term: within `0.28 e⁴`, plus
-/// the truncations' `2^-23`). Products of operands of unknown sign (one
-/// `SMMUL` each on the M4).
+/// the truncations' `2^-22.5`). `e` (`|e| < 2^-4.9`) and `b s²` take
+/// products of operands of unknown sign (one `SMMUL` each on the M4); the
+/// term `e² (3/8 + 5e/16)` only `2^-23` absolute, so it comes from `e` in
+/// `Q20` (below `2^15.1`) by two 32-bit products (one `MULS` each on the
+/// M0, instead of two split high halves): `e` floored to `2^-20` (`e²` by
+/// `2^-24.4`), `e²` to `2^-24`, `3/8 + 5e/16` to `2^-14` (checked by
+/// `newton_error`).
 #[inline(always)]
 fn newton(s: i32, b: i32) -> i32 {
     let sb = mulhi(s, b); // Q26 of s·b (<= 2^28.5)
     let e31 = ((1 << 23) - mulhi(sb, s)) << 8; // e · 2^31 (|e| < 1)
-                                               // 3/8 + 5e/16 (Q32), e (3/8 + 5e/16) (Q31), e² (...) (Q30).
-    let inner = 0x6000_0000i32.wrapping_add(e31 >> 1).wrapping_add(e31 >> 3);
-    let e2 = mulhi(e31, mulhi(e31, inner));
-    s.wrapping_add(mulhi(s, e31.wrapping_add(e2 << 2)))
+    let e20 = e31 >> 11;
+    // e² (Q24, below 2^14.2) times 3/8 + 5e/16 (Q15): Q39, as Q32.
+    let inner = 12_288i32.wrapping_add(e20 >> 7).wrapping_add(e20 >> 9);
+    let e2 = (e20.wrapping_mul(e20) >> 16).wrapping_mul(inner) >> 7;
+    s.wrapping_add(mulhi(s, e31.wrapping_add(e2)))
 }
 
 /// A chunk's 32-bit state.
@@ -387,15 +398,20 @@ impl Px {
 const FUSED_FG: bool = cfg!(armv6m);
 
 /// Pixels a group of the point loop's passes (the values between passes
-/// of a group are kept in [`Px`]s: 128 bytes of stack, zeroed once a
-/// chunk).
-pub(super) const GROUP: usize = 16;
+/// of a group are kept in [`Px`]s: 256 bytes, on the stack zeroed once a
+/// chunk, or kept in the triangle's [`TriQuad`]): a whole chunk, each
+/// pass once a chunk. Measured against 16 (span sweep a pixel;
+/// dodecahedron Phong raster): M4 167.75 -> 164.40 and 1 700 554 ->
+/// 1 679 852, M0 561.17 -> 559.69 and 4 798 753 -> 4 792 322 (after
+/// [`newton`]'s `e²` term in 32-bit products); 128 bytes more stack in
+/// the Phong scenes (the [`TriQuad`] of the span filler).
+pub(super) const GROUP: usize = 32;
 
 impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::fill`] for one point light, a local viewer and the
     /// Phong model with `kf < KF_MAX` (module docs); `n`, `dn` already
     /// flipped for back faces. Not inlined: its buffers (the driver's
-    /// colours and [`Px`]s, 256 bytes) live in its own frame and
+    /// colours and [`Px`]s, 384 bytes) live in its own frame and
     /// `point_chunk`'s, not in the renderer's, whatever the layout drawn.
     #[inline(never)]
     #[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
@@ -917,5 +933,54 @@ impl<R: Real> PhongKernel<'_, R> {
         };
         self.general_px(&s, l, nj, vj, sq3(vj), sq3(nj))
             .unwrap_or_else(|| fallback(self.shade, n, dn, p, dp, j))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    /// [`newton`] against `f64`: from seeds within `2^-6` (relative) of
+    /// `1/sqrt(b)`, `b` (Q29) across `(1/6, 4)`, within `0.28 e⁴ +
+    /// 2^-22.5`; from seeds within `3·2^-8` (the loop's, module docs)
+    /// within `2^-22`.
+    #[test]
+    fn newton_error() {
+        let q29 = f64::from(1u32 << 29);
+        let mut r = 0x9e37_79b9_7f4a_7c15u64;
+        let mut worst = [0f64; 2];
+        for i in 0..400_000 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let u = (r >> 11) as f64 / (1u64 << 53) as f64;
+            let b = ((1.0 / 6.0 + (4.0 - 1.0 / 6.0) * u) * q29) as i32;
+            let bx = f64::from(b) / q29;
+            let exact = 1.0 / bx.sqrt();
+            let (k, lim) = if i % 2 == 0 {
+                (0, 1.0 / 64.0)
+            } else {
+                (1, 3.0 / 256.0)
+            };
+            // The seed's relative error: the extremes, then uniform.
+            let d = match i % 8 {
+                0 | 1 => lim,
+                2 | 3 => -lim,
+                _ => lim * (2.0 * ((r & 0xFFFF) as f64 / 65535.0) - 1.0),
+            };
+            let s = (exact * (1.0 + d) * q29).round() as i32;
+            let sf = f64::from(s) / q29;
+            let e = 1.0 - bx * sf * sf;
+            let y = f64::from(newton(s, b)) / q29;
+            let err = (y / exact - 1.0).abs();
+            assert!(
+                err <= 0.28 * e.powi(4) + 2f64.powf(-22.5),
+                "b {bx} seed {d} e {e}: {err:e}"
+            );
+            worst[k] = worst[k].max(err);
+        }
+        std::println!("newton: {:.2} {:.2}", worst[0].log2(), worst[1].log2());
+        assert!(worst[1] <= 2f64.powi(-22), "{}", worst[1].log2());
     }
 }
