@@ -1574,6 +1574,44 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
             None => false,
         }
     }
+
+    /// The depth tests of the `k <= 32` pixels from `i` (over the depth
+    /// slice alone, without the depth clamp when the span's depths are in
+    /// range): the passing ones as a bit mask (pixel `j`: bit `j`) and how
+    /// many failed; `None` when the pixels lie outside the depth slice.
+    #[inline(always)]
+    fn mask(&mut self, i: usize, k: usize) -> Option<(u32, u32)> {
+        let drow = self.drow.get_mut(i..i + k)?;
+        let (mut z, dz) = (self.z, self.dz);
+        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
+        if self.in_range {
+            for zb in drow.iter_mut() {
+                let key = D::from_lerp_in_range(z);
+                if key < D::to_key(*zb) {
+                    *zb = D::from_key(key);
+                    pass |= bit;
+                } else {
+                    failed += 1;
+                }
+                bit <<= 1;
+                z = z.add(dz);
+            }
+        } else {
+            for zb in drow.iter_mut() {
+                let zd = D::from_lerp(z);
+                if zd < *zb {
+                    *zb = zd;
+                    pass |= bit;
+                } else {
+                    failed += 1;
+                }
+                bit <<= 1;
+                z = z.add(dz);
+            }
+        }
+        self.z = z;
+        Some((pass, failed))
+    }
 }
 
 /// Runs the kernel's `fill` over a span's row slice `row` and its depth
@@ -1854,37 +1892,9 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
     ) -> u32 {
         const { assert!(CHUNK <= 32) };
         let k = row.len().min(CHUNK);
-        let Some(drow) = self.drow.get_mut(i..i + k) else {
+        let Some((pass, failed)) = self.mask(i, k) else {
             return k as u32;
         };
-        let (mut z, dz) = (self.z, self.dz);
-        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
-        if self.in_range {
-            for zb in drow.iter_mut() {
-                let key = D::from_lerp_in_range(z);
-                if key < D::to_key(*zb) {
-                    *zb = D::from_key(key);
-                    pass |= bit;
-                } else {
-                    failed += 1;
-                }
-                bit <<= 1;
-                z = z.add(dz);
-            }
-        } else {
-            for zb in drow.iter_mut() {
-                let zd = D::from_lerp(z);
-                if zd < *zb {
-                    *zb = zd;
-                    pass |= bit;
-                } else {
-                    failed += 1;
-                }
-                bit <<= 1;
-                z = z.add(dz);
-            }
-        }
-        self.z = z;
         paint(row, cols, (failed != 0).then_some(pass), px);
         failed
     }
@@ -1950,37 +1960,9 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
         if k > CHUNK {
             return self.fused(row, i, s, px, step);
         }
-        let Some(drow) = self.drow.get_mut(i..i + k) else {
+        let Some((mut pass, failed)) = self.mask(i, k) else {
             return k as u32;
         };
-        let (mut z, dz) = (self.z, self.dz);
-        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
-        if self.in_range {
-            for zb in drow.iter_mut() {
-                let key = D::from_lerp_in_range(z);
-                if key < D::to_key(*zb) {
-                    *zb = D::from_key(key);
-                    pass |= bit;
-                } else {
-                    failed += 1;
-                }
-                bit <<= 1;
-                z = z.add(dz);
-            }
-        } else {
-            for zb in drow.iter_mut() {
-                let zd = D::from_lerp(z);
-                if zd < *zb {
-                    *zb = zd;
-                    pass |= bit;
-                } else {
-                    failed += 1;
-                }
-                bit <<= 1;
-                z = z.add(dz);
-            }
-        }
-        self.z = z;
         if failed == 0 {
             for o in row[..k].iter_mut() {
                 *o = px(s);

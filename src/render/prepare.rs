@@ -2017,6 +2017,13 @@ impl<P: Profile> Preparer<'_, '_, P> {
                 let counts = &mut *self.face_rows;
                 let fc = (faces, counts);
                 let sq = (sub, q);
+                // One call of the pass per (cull, marked) pair and per
+                // colour hook (their types differ).
+                macro_rules! visible {
+                    ($cull:literal, $marked:literal, $aux:expr, $hook:expr) => {
+                        triangles_visible::<$cull, $marked, _>(tris, xy, fc, sq, $aux, $hook)
+                    };
+                }
                 let kept = match (ctx.cull, flat, one) {
                     (true, true, Some((o, normals))) => {
                         let aux = normals.iter().zip(cs.iter_mut());
@@ -2031,73 +2038,24 @@ impl<P: Profile> Preparer<'_, '_, P> {
                             }
                         }
                         match (grey, marked) {
-                            (true, true) => triangles_visible::<true, true, _>(
-                                tris,
-                                xy,
-                                fc,
-                                sq,
-                                aux,
-                                lit::<true>(o),
-                            ),
-                            (true, false) => triangles_visible::<true, false, _>(
-                                tris,
-                                xy,
-                                fc,
-                                sq,
-                                aux,
-                                lit::<true>(o),
-                            ),
-                            (false, true) => triangles_visible::<true, true, _>(
-                                tris,
-                                xy,
-                                fc,
-                                sq,
-                                aux,
-                                lit::<false>(o),
-                            ),
-                            (false, false) => triangles_visible::<true, false, _>(
-                                tris,
-                                xy,
-                                fc,
-                                sq,
-                                aux,
-                                lit::<false>(o),
-                            ),
+                            (true, true) => visible!(true, true, aux, lit::<true>(o)),
+                            (true, false) => visible!(true, false, aux, lit::<true>(o)),
+                            (false, true) => visible!(true, true, aux, lit::<false>(o)),
+                            (false, false) => visible!(true, false, aux, lit::<false>(o)),
                         }
                     }
                     (cull, flat, _) => match (cull, flat, marked) {
-                        (true, true, false) => triangles_visible::<true, false, _>(
-                            tris,
-                            xy,
-                            fc,
-                            sq,
-                            all(),
-                            put(cs, col),
-                        ),
-                        (true, true, true) => triangles_visible::<true, true, _>(
-                            tris,
-                            xy,
-                            fc,
-                            sq,
-                            all(),
-                            put(cs, col),
-                        ),
+                        (true, true, false) => visible!(true, false, all(), put(cs, col)),
+                        (true, true, true) => visible!(true, true, all(), put(cs, col)),
                         (true, false, false) => {
-                            triangles_visible::<true, false, _>(tris, xy, fc, sq, all(), none)
+                            visible!(true, false, all(), none)
                         }
                         (true, false, true) => {
-                            triangles_visible::<true, true, _>(tris, xy, fc, sq, all(), none)
+                            visible!(true, true, all(), none)
                         }
-                        (false, true, _) => triangles_visible::<false, false, _>(
-                            tris,
-                            xy,
-                            fc,
-                            sq,
-                            all(),
-                            put(cs, col),
-                        ),
+                        (false, true, _) => visible!(false, false, all(), put(cs, col)),
                         (false, false, _) => {
-                            triangles_visible::<false, false, _>(tris, xy, fc, sq, all(), none)
+                            visible!(false, false, all(), none)
                         }
                     },
                 };
