@@ -2049,8 +2049,7 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
         col: impl Fn(&S) -> [i32; 3],
         step: impl Fn(&mut S),
     ) -> u32 {
-        let i = i as usize;
-        let Some(row) = self.row.get_mut(i..i + k as usize) else {
+        let Some((row, i)) = pixels(self.row, i, k) else {
             return k;
         };
         self.depth.fused(row, i, s, |s| F::encode_q19(col(s)), step)
@@ -2064,13 +2063,19 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
         col: impl Fn(&S) -> [i32; 3],
         step: impl Fn(&mut S),
     ) -> u32 {
-        let i = i as usize;
-        let Some(row) = self.row.get_mut(i..i + k as usize) else {
+        let Some((row, i)) = pixels(self.row, i, k) else {
             return k;
         };
         self.depth
             .masked(row, i, s, |s| F::encode_q19(col(s)), step)
     }
+}
+
+/// The `k` pixels of `row` from `i` and that index, if they lie in it.
+#[inline(always)]
+fn pixels<P>(row: &mut [P], i: u32, k: u32) -> Option<(&mut [P], usize)> {
+    let i = i as usize;
+    Some((row.get_mut(i..i + k as usize)?, i))
 }
 
 /// Raw bits of a fixed-point interpolated value (`i32` profiles; the
