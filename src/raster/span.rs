@@ -373,7 +373,14 @@ fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
             };
             if let Some(row) = row {
                 let fails = if len >= SHORT_SPAN && D::span_in_range(z, dz, len) {
-                    if N > 1 {
+                    if !NO_LONG_MUL && N <= 1 && len >= LONG_SPAN {
+                        len - match inr {
+                            Some((ia, ida)) => {
+                                long_loop::<L, N, _, D>(row, drow, z, dz, *ia, ida, color_inr)
+                            }
+                            None => long_loop::<L, N, _, D>(row, drow, z, dz, a, da, color),
+                        }
+                    } else if N > 1 {
                         pair_loop::<L, N, _, D>(row, drow, z, a, &Vals { z: dz, a: *da }, color)
                     } else if let Some((ia, ida)) = inr {
                         len - in_range_pairs::<L, N, _, D>(row, drow, z, dz, *ia, ida, color_inr)
@@ -573,6 +580,88 @@ fn in_range_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
 ) -> u32 {
     row.len() as u32 - pair_loop::<L, N, _, D>(row, drow, z, a, sx, color)
 }
+
+/// The in-range pixels of a long span ([`LONG_SPAN`] pixels or more, at
+/// most one attribute; ARMv7-M and the hosts): [`unrolled_loop`] for
+/// fixed values, [`pair_loop`] otherwise. Returns the pixels written. In
+/// a function of its own, as [`in_range_loop`].
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn long_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
+    row: &mut [R],
+    drow: &mut [D::Raw],
+    z: L,
+    dz: L,
+    a: [L; N],
+    da: &[L; N],
+    color: &impl Fn(&[L; N]) -> R,
+) -> u32 {
+    if let (Some(zr), Some(dzr)) = (z.fixed_raw(), dz.fixed_raw()) {
+        let ar = a.map(|v| v.fixed_raw().unwrap_or(0));
+        let dar = da.map(|v| v.fixed_raw().unwrap_or(0));
+        unrolled_loop::<L, N, R, D>(row, drow, zr, dzr, ar, dar, color)
+    } else {
+        row.len() as u32 - pair_loop::<L, N, _, D>(row, drow, z, a, &Vals { z: dz, a: *da }, color)
+    }
+}
+
+/// experiment
+#[inline(always)]
+fn unrolled_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
+    row: &mut [R],
+    drow: &mut [D::Raw],
+    z: i32,
+    dz: i32,
+    mut a: [i32; N],
+    da: [i32; N],
+    color: &impl Fn(&[L; N]) -> R,
+) -> u32 {
+    let k = if N == 0 { 8 } else { UNROLL_N1 };
+    let n = row.len().min(drow.len());
+    let (row, drow) = (row.split_at_mut(n).0, drow.split_at_mut(n).0);
+    let (row_m, row_t) = row.split_at_mut(n - n % k);
+    let (drow_m, drow_t) = drow.split_at_mut(n - n % k);
+    let mut z = z;
+    let mut fails = 0u32;
+    let ndz = core::hint::black_box(dz.wrapping_neg());
+    let nda = core::hint::black_box(da.map(i32::wrapping_neg));
+    for (pc, zc) in row_m.chunks_exact_mut(k).zip(drow_m.chunks_exact_mut(k)) {
+        for (p, zb) in pc.iter_mut().zip(zc.iter_mut()) {
+            let key = D::from_lerp_in_range(L::from_fixed_raw(z));
+            if key < D::to_key(*zb) {
+                *zb = D::from_key(key);
+                *p = color(&a.map(L::from_fixed_raw));
+                z = z.wrapping_add(dz);
+                for (v, d) in a.iter_mut().zip(da) {
+                    *v = v.wrapping_add(d);
+                }
+            } else {
+                fails = failed(fails);
+                z = z.wrapping_sub(ndz);
+                for (v, d) in a.iter_mut().zip(nda) {
+                    *v = v.wrapping_sub(d);
+                }
+            }
+        }
+    }
+    for (p, zb) in row_t.iter_mut().zip(drow_t.iter_mut()) {
+        let key = D::from_lerp_in_range(L::from_fixed_raw(z));
+        if key < D::to_key(*zb) {
+            *zb = D::from_key(key);
+            *p = color(&a.map(L::from_fixed_raw));
+        } else {
+            fails += 1;
+        }
+        z = z.wrapping_add(dz);
+        for (v, d) in a.iter_mut().zip(da) {
+            *v = v.wrapping_add(d);
+        }
+    }
+    n as u32 - fails
+}
+
+const UNROLL_N1: usize = 8;
+const LONG_SPAN: u32 = 16;
 
 /// The depth-tested pixels of a span whose depths stay in range (no
 /// clamp), two a step after one alone when the count is odd, walking both
@@ -807,9 +896,8 @@ where
             // ARMv6-M only: on ARMv7-M the clamp is one `USAT`, and the
             // unclamped level took one more instruction (span loops
             // Gouraud 12.21 -> 12.38 instructions a pixel).
-            let inr = (NO_LONG_MUL
-                && N == 1
-                && len >= SHORT_SPAN
+            let inr = (N == 1
+                && len >= if NO_LONG_MUL { SHORT_SPAN } else { LONG_SPAN }
                 && shader.span_in_range(&s.a, &s.da, len))
             .then(|| shader.in_range_values(&s.a, &s.da));
             // Safe split borrow: the closures only read the shader.
