@@ -1493,3 +1493,90 @@ fn packed_depth_fields_in_range() {
         assert_eq!(super::fast::words_in_range([w; 3]), ok, "{f}");
     }
 }
+
+/// [`Fill`]'s span loops against a one-pixel-a-step reference (depth
+/// with the clamping conversion, less-than, colour from the attributes
+/// stepped one pixel at a time): spans of 1 to 90 pixels, so that the
+/// long spans take the unrolled loop (with every remainder of 8), over
+/// stored depths that let some pixels fail, tie (equal key: fails) or
+/// pass by one; flat and Gouraud, depths and levels in and out of range.
+#[test]
+fn span_loops_match_the_one_pixel_reference() {
+    use crate::target::{DepthFormat, Rgb565Be};
+    const W: usize = 96;
+    fn check<const N: usize, S: Shader<i32, N> + Copy>(
+        shader: S,
+        rng: &mut Rng,
+        z: i32,
+        dz: i32,
+        a: [i32; N],
+        da: [i32; N],
+        len: u32,
+    ) -> u32 {
+        let mut stored = [0u16; W];
+        for (k, s) in stored.iter_mut().enumerate() {
+            let key = Depth16::from_lerp(z.wrapping_add(dz.wrapping_mul(k as i32)));
+            *s = match rng.next() % 5 {
+                0 => key,
+                1 => key.saturating_add(1),
+                2 => key.saturating_sub(1),
+                3 => rng.next() as u16,
+                _ => u16::MAX,
+            };
+        }
+        let x0 = (rng.next() % (W as u64 - len as u64 + 1)) as u32;
+        let (mut want_px, mut want_z) = ([0u16; W], stored);
+        let mut want_drawn = 0;
+        for k in 0..len {
+            let i = (x0 + k) as usize;
+            let zk = z.wrapping_add(dz.wrapping_mul(k as i32));
+            let mut ak = a;
+            for (v, d) in ak.iter_mut().zip(da) {
+                *v = v.wrapping_add(d.wrapping_mul(k as i32));
+            }
+            let key = Depth16::from_lerp(zk);
+            if key < want_z[i] {
+                want_z[i] = key;
+                want_px[i] = Rgb565Be::encode(shader.shade(&ak));
+                want_drawn += 1;
+            }
+        }
+        let mut px = [0u16; W];
+        let mut zs = [0u16; W];
+        let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, W as u32, 1).unwrap();
+        let mut db = DepthBuffer::<Depth16>::new(&mut zs, W as u32, 0, 1).unwrap();
+        db.values_mut().copy_from_slice(&stored);
+        let mut f = Fill::new(&mut fb, Some(&mut db), shader).unwrap();
+        f.span(&Span {
+            y: 0,
+            x0,
+            x1: x0 + len,
+            z,
+            dz,
+            a,
+            da,
+        });
+        assert_eq!(f.drawn(), want_drawn, "{z} {dz} {a:?} {da:?} {len}");
+        assert_eq!(zs, want_z, "{z} {dz} {a:?} {da:?} {len}");
+        assert_eq!(px, want_px, "{z} {dz} {a:?} {da:?} {len}");
+        want_drawn
+    }
+    let mut rng = Rng(0x0dd5_9a11_7e57_cafe);
+    let lim = 65535 << 14;
+    let mut drawn = 0;
+    for i in 0..6000u32 {
+        let len = 1 + i % 90;
+        // Depths mostly in range, sometimes past either end.
+        let z = match i % 7 {
+            0 => rng.range(-(1 << 20), 1 << 20),
+            1 => rng.range(lim - (1 << 20), lim + (1 << 20)),
+            _ => rng.range(0, lim),
+        };
+        let dz = rng.range(-(1 << 22), 1 << 22) >> (rng.next() % 20);
+        let lv = rng.range(-(8 << 16), 263 << 16);
+        let dl = rng.range(-(1 << 20), 1 << 20) >> (rng.next() % 16);
+        drawn += check(Flat(Rgb8::new(200, 100, 50)), &mut rng, z, dz, [], [], len);
+        drawn += check(GouraudMono, &mut rng, z, dz, [lv], [dl], len);
+    }
+    assert!(drawn > 100_000, "{drawn}");
+}
