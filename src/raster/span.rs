@@ -334,7 +334,9 @@ impl<T: Target, D: DepthFormat, S> Fill<'_, '_, '_, T, D, S> {
 /// found in range ([`Shader::span_in_range`]), taken with the depths in
 /// range, from the attributes and steps `inr` in the form of
 /// [`Shader::in_range_values`] (ARMv6-M, one attribute: [`in_range_pairs`],
-/// as for the in-range spans without attributes there).
+/// as for the in-range spans without attributes there; elsewhere from
+/// [`LONG_SPAN`] pixels, as every in-range span of at most one attribute
+/// that long: [`long_loop`]).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn fill_span<L: Lerp, const N: usize, T: Target, D: DepthFormat>(
@@ -581,10 +583,13 @@ fn in_range_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     row.len() as u32 - pair_loop::<L, N, _, D>(row, drow, z, a, sx, color)
 }
 
-/// The in-range pixels of a long span ([`LONG_SPAN`] pixels or more, at
-/// most one attribute; ARMv7-M and the hosts): [`unrolled_loop`] for
-/// fixed values, [`pair_loop`] otherwise. Returns the pixels written. In
-/// a function of its own, as [`in_range_loop`].
+/// The depth-tested pixels of a long span ([`LONG_SPAN`] pixels or more)
+/// whose depths stay in range, of at most one attribute, on ARMv7-M and
+/// the hosts: [`unrolled_loop`] for fixed values, [`pair_loop`]
+/// otherwise. Returns the pixels written. [`Fill`]'s loop for those
+/// spans (flat, and [`GouraudMono`] with its levels in range in the form
+/// of [`Shader::in_range_values`]); in a function of its own, as
+/// [`in_range_loop`], so that the short spans keep their registers.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn long_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
@@ -605,7 +610,28 @@ fn long_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     }
 }
 
-/// experiment
+/// [`pair_loop`] eight pixels a step, for fixed values (their raw
+/// `i32`s, stepped by wrapping additions as [`Lerp::add`] steps them),
+/// then the remainder one a step: the loop's pointer steps, compare and
+/// branch are paid once per eight pixels. Per passing pixel on ARMv7-M:
+/// load the stored depth, compare it with the depth shifted, branch,
+/// shift, store depth and colour, step the depth (7 instructions; plus
+/// the level's shift, table load and step with one attribute in the
+/// form of [`GouraudMono`]'s [`Shader::in_range_values`]), and 5 a step:
+/// span loops on thumbv7em flat 9.23 -> 7.88, Gouraud 12.22 -> 11.09
+/// instructions a pixel (by four: Gouraud 11.72).
+///
+/// A failed test steps the depth and the attributes by subtracting their
+/// negated steps, read through [`core::hint::black_box`] (the same
+/// values, wrapping): the sequences are then no induction variables to
+/// LLVM, whose loop strength reduction otherwise rewrote the pixels'
+/// depths as `z + k·dz` with the multiples of `dz` spilled to the stack
+/// (flat 9.5, Gouraud 15.8 instructions a pixel by four). On the failing
+/// path only, and the failed count is kept out of the registers
+/// ([`failed`]). The same pixels tested against the same stored values
+/// with the same conversions ([`DepthFormat::from_lerp_in_range`],
+/// less-than), in the same order, hence the same bytes.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn unrolled_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     row: &mut [R],
@@ -616,16 +642,16 @@ fn unrolled_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     da: [i32; N],
     color: &impl Fn(&[L; N]) -> R,
 ) -> u32 {
-    let k = if N == 0 { 8 } else { UNROLL_N1 };
+    const K: usize = 8;
     let n = row.len().min(drow.len());
     let (row, drow) = (row.split_at_mut(n).0, drow.split_at_mut(n).0);
-    let (row_m, row_t) = row.split_at_mut(n - n % k);
-    let (drow_m, drow_t) = drow.split_at_mut(n - n % k);
+    let (row_m, row_t) = row.split_at_mut(n - n % K);
+    let (drow_m, drow_t) = drow.split_at_mut(n - n % K);
     let mut z = z;
     let mut fails = 0u32;
     let ndz = core::hint::black_box(dz.wrapping_neg());
     let nda = core::hint::black_box(da.map(i32::wrapping_neg));
-    for (pc, zc) in row_m.chunks_exact_mut(k).zip(drow_m.chunks_exact_mut(k)) {
+    for (pc, zc) in row_m.chunks_exact_mut(K).zip(drow_m.chunks_exact_mut(K)) {
         for (p, zb) in pc.iter_mut().zip(zc.iter_mut()) {
             let key = D::from_lerp_in_range(L::from_fixed_raw(z));
             if key < D::to_key(*zb) {
@@ -660,7 +686,10 @@ fn unrolled_loop<L: Lerp, const N: usize, R, D: DepthFormat>(
     n as u32 - fails
 }
 
-const UNROLL_N1: usize = 8;
+/// Spans of at least this many pixels whose depths are in range take
+/// [`long_loop`] on ARMv7-M and the hosts (its call and set-up cost more
+/// than they save on shorter ones; the scenes' spans average a few
+/// pixels).
 const LONG_SPAN: u32 = 16;
 
 /// The depth-tested pixels of a span whose depths stay in range (no
@@ -893,9 +922,13 @@ where
             let len = s.x1.saturating_sub(s.x0);
             self.shader.begin_span(&s.a, &s.da, len);
             let shader = &self.shader;
-            // ARMv6-M only: on ARMv7-M the clamp is one `USAT`, and the
-            // unclamped level took one more instruction (span loops
-            // Gouraud 12.21 -> 12.38 instructions a pixel).
+            // From SHORT_SPAN pixels on ARMv6-M; elsewhere only for the
+            // long spans of `long_loop`, whose attribute is no induction
+            // variable to LLVM (its level's rounding offset is then added
+            // per pixel: span loops Gouraud on thumbv7em 12.79 with the
+            // clamped level, 11.09 with the shifted one). On the shorter
+            // spans of ARMv7-M the clamp is one `USAT`, and the unclamped
+            // level took one more instruction (12.21 -> 12.38).
             let inr = (N == 1
                 && len >= if NO_LONG_MUL { SHORT_SPAN } else { LONG_SPAN }
                 && shader.span_in_range(&s.a, &s.da, len))
