@@ -8,11 +8,11 @@
 //!
 //! | stage | Cortex-M4 | Cortex-M0 |
 //! |---|---:|---:|
-//! | culling in object space ([`EarlyCull`], 1 839 vertices, 669 skipped) | 22 / vertex | 33 / vertex |
+//! | culling in object space ([`EarlyCull`], 1 839 vertices, 669 skipped) | 20 / vertex | 33 / vertex |
 //! | vertex loops ([`Fused`] projection and depth, then [`OneLight`]) over the 1 170 others | 179 K | 315 K |
 //! | triangle loop (`triangles_visible`, faces with a skipped corner dropped first) | 35 / triangle | 54 / triangle |
 //! | per object (sphere, matrices, fused rows, culling constants) | 27 K | 61 K |
-//! | whole geometry | 0.376 M | 0.637 M |
+//! | whole geometry | 0.372 M | 0.637 M |
 //!
 //! The culling loop takes two vertices a step (the compiler's unrolling
 //! of the one-vertex loop spilled: 24 -> 22 per vertex on the
@@ -40,7 +40,16 @@
 //! than per face was measured cheaper: per face (3 674 tests, 851
 //! vertices skipped) the tests and the marking of the kept faces' corners
 //! cost more than the 182 further vertices saved (0.476 M on the
-//! Cortex-M4).
+//! Cortex-M4). Measured again with per-face cones computed at compile
+//! time (the baked face normal as axis, the spread folded into the
+//! slack), the 1 662 faces left flagged in their bytes and only they
+//! screen-tested: the vertex loops 179 K -> 158 K (988 vertices), the
+//! triangle loop 129 K -> 110 K, but the face pass costs 128 K (24 a
+//! face, 22 more a face left) against the vertex marks' 41 K: 0.420 M
+//! on the Cortex-M4 (0.376 M before), 0.736 M on the Cortex-M0, and
+//! 2.266 M against 2.246 M for the host frame (callgrind). Its floor,
+//! about 20 a face (five loads, five multiply-adds, the byte) and 12 a
+//! face left, is 93 K against the 82 K it saves.
 //!
 //! The depth clamp of the projection loop is left out when
 //! [`Fused::new`] proves it idle over the bounding sphere (the bunny: 127
@@ -845,6 +854,11 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
         *out = ScreenXy::pack(Subpx(s), origin);
         ux = ux.max(s[0] as u32);
         uy = uy.max(s[1] as u32);
+        // (The box keeps three values live here: without it the loop is
+        // 88 instructions a vertex on the Cortex-M4 against 107, but the
+        // box in a loop of its own over the marks costs more, bunny
+        // Gouraud 0.383 M against 0.376 M; in the lighting loop after
+        // the projection, whose light constants then spill, 0.392 M.)
         // The smallest y too: a visible object's rows come from its
         // vertices' box rather than a pass over its kept triangles
         // (measured on the bunny: the pass costs 14 K instructions on the
