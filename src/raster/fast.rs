@@ -815,6 +815,28 @@ fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
 /// through one bounds test of the greatest index (1 646 369 ->
 /// 1 664 927, bunny-flat +25 K / +39 K on thumbv7em / thumbv6m).
 ///
+/// Measured from 1 642 170 (bunny-flat 1 473 507; thumbv6m 2 580 811,
+/// 2 197 727) and not kept, the rows in two phases (the edges walked
+/// first, each row's `[x0, x1)` stored in a 16-row array the band owns,
+/// then the rows drawn from it; a triangle with more rows in the band
+/// declined): inline, 1 794 046 (per 16-row chunk), 1 804 368 (one
+/// chunk; the span start `v + sy·j + sx·x0` instead of stepped rows
+/// 1 798 786, thumbv6m 2 676 292): the edge walks spilled and unrolled
+/// by four. The edges packed in three words (`x·2^20 + e`, `q·2^20 -
+/// r`, `2^20 + d`: a step is an add, a test of bit 19 and a conditional
+/// add, exact for `d <= 2^19` and columns below `2^11`) and one loop per
+/// side of the long edge: the first phase at 15 a row, 1 749 257
+/// (thumbv6m 2 702 250); with the second phase out of line and its
+/// counters in memory the compiler cannot follow, the pixel loop at 14
+/// (5 + 9 a passing pixel, from 17), the rows 10 and the spans 30, but
+/// 1 774 000: the call 51 a triangle, the set-up about 70 more. The
+/// packed edges in the one-phase loops: rows 23 instead of 30, the set-up
+/// +61 a triangle, 1 693 692 (bunny-flat 1 518 614, thumbv6m 2 612 953,
+/// 2 232 799); their quotients through memory 1 687 204 (bunny-flat
+/// 1 536 155). The whole rows out of line (both phases): 1 940 101.
+/// Here, [`small_loop`]'s steps copied to values before its loop:
+/// 1 689 840 (bunny-flat 1 507 128; thumbv6m unchanged).
+///
 /// With `LEVELS`, for one grey level (`N = 1`; other `N` as
 /// without `LEVELS`; fixed, `2^16` a level:
 /// [`crate::raster::GouraudMono`]'s attribute) whose every pixel's rounded
