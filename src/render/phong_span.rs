@@ -1583,15 +1583,13 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
     fn mask(&mut self, i: usize, k: usize) -> Option<(u32, u32)> {
         let drow = self.drow.get_mut(i..i + k)?;
         let (mut z, dz) = (self.z, self.dz);
-        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
+        let (mut pass, mut bit) = (0u32, 1u32);
         if self.in_range {
             for zb in drow.iter_mut() {
                 let key = D::from_lerp_in_range(z);
                 if key < D::to_key(*zb) {
                     *zb = D::from_key(key);
                     pass |= bit;
-                } else {
-                    failed += 1;
                 }
                 bit <<= 1;
                 z = z.add(dz);
@@ -1602,14 +1600,25 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
                 if zd < *zb {
                     *zb = zd;
                     pass |= bit;
-                } else {
-                    failed += 1;
                 }
                 bit <<= 1;
                 z = z.add(dz);
             }
         }
         self.z = z;
+        // The failures from the mask, counted only when some failed (no
+        // count in the loop: a passing pixel's store and bit without a
+        // branch).
+        // `k <= 32`: the shift masked to `0..32` (`k = 0`: no pixels, the
+        // empty mask counted as 0 failed either way).
+        #[allow(clippy::cast_possible_truncation)]
+        let all = u32::MAX.wrapping_shr(32u32.wrapping_sub(k as u32));
+        #[allow(clippy::cast_possible_truncation)]
+        let failed = if pass == all {
+            0
+        } else {
+            k as u32 - pass.count_ones()
+        };
         Some((pass, failed))
     }
 }
@@ -1750,7 +1759,7 @@ trait Out {
     /// CHUNK` a depth buffer's tests may come first (a mask), then one
     /// loop of colours and steps ([`SpanDepth::masked`]).
     #[inline(always)]
-    fn masked<S>(
+    fn masked<S: Copy>(
         &mut self,
         i: u32,
         k: u32,
@@ -1809,7 +1818,7 @@ trait SpanDepth {
     /// [`SpanDepth::fused`] (the same pixels, values and result): for
     /// `row.len() <= CHUNK` the depth tests first, then the colours
     /// ([`Out::masked`]).
-    fn masked<P, S>(
+    fn masked<P, S: Copy>(
         &mut self,
         row: &mut [P],
         i: usize,
@@ -1857,7 +1866,7 @@ impl SpanDepth for NoDepth {
     }
 
     #[inline(always)]
-    fn masked<P, S>(
+    fn masked<P, S: Copy>(
         &mut self,
         row: &mut [P],
         i: usize,
@@ -1947,7 +1956,7 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
     }
 
     #[inline(always)]
-    fn masked<P, S>(
+    fn masked<P, S: Copy>(
         &mut self,
         row: &mut [P],
         i: usize,
@@ -1964,10 +1973,19 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
             return k as u32;
         };
         if failed == 0 {
-            for o in row[..k].iter_mut() {
-                *o = px(s);
-                step(s);
+            let mut st = *s;
+            let mut pairs = row[..k].chunks_exact_mut(2);
+            for o in &mut pairs {
+                o[0] = px(&st);
+                step(&mut st);
+                o[1] = px(&st);
+                step(&mut st);
             }
+            for o in pairs.into_remainder() {
+                *o = px(&st);
+                step(&mut st);
+            }
+            *s = st;
         } else {
             for o in row[..k].iter_mut() {
                 if pass & 1 != 0 {
@@ -2055,7 +2073,7 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
         self.depth.fused(row, i, s, |s| F::encode_q19(col(s)), step)
     }
     #[inline(always)]
-    fn masked<S>(
+    fn masked<S: Copy>(
         &mut self,
         i: u32,
         k: u32,

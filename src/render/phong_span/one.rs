@@ -267,6 +267,7 @@ pub(super) const WHOLE_MAX: u32 = 256;
 /// The 32-bit state of a span run with a single plan: `|n|² - 1/4` (Q30),
 /// `Qm` (Q20 segments) and `n·L` with their differences, and whether the
 /// span has a specular term and `n·L > 0` at every pixel.
+#[derive(Clone, Copy)]
 pub(super) struct Whole {
     pub(super) nn: i32,
     pub(super) nd1: i32,
