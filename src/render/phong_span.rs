@@ -1579,6 +1579,11 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
     /// slice alone, without the depth clamp when the span's depths are in
     /// range): the passing ones as a bit mask (pixel `j`: bit `j`) and how
     /// many failed; `None` when the pixels lie outside the depth slice.
+    /// The failures come from the mask, counted only when not all passed:
+    /// a passing pixel's store and bit predicated, without a branch
+    /// (measured on the M4's span sweep, one light: 74.70 -> 73.48
+    /// instructions a pixel; counted every piece 76.70 with one colour a
+    /// loop iteration against 75.90).
     #[inline(always)]
     fn mask(&mut self, i: usize, k: usize) -> Option<(u32, u32)> {
         let drow = self.drow.get_mut(i..i + k)?;
@@ -1955,6 +1960,12 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
         failed
     }
 
+    /// The mask ([`DepthTest::mask`]), then the colours: when all passed,
+    /// two pixels an iteration over a local copy of the state. Measured
+    /// on the M4's span sweep (one light, the mask counting failures in
+    /// its loop): 74.70 instructions a pixel against 75.90 one pixel an
+    /// iteration through `s`, 75.03 two through `s`, 78.47 one over the
+    /// local copy.
     #[inline(always)]
     fn masked<P, S: Copy>(
         &mut self,

@@ -400,10 +400,13 @@ impl<R: Real> PhongKernel<'_, R> {
     /// terms, channels and store of a pixel together); elsewhere piece
     /// by piece of [`CHUNK`] pixels ([`Out::masked`]: the piece's depth
     /// tests first, then one loop of terms, channels and stores, without
-    /// a test when all passed), the state in registers through the
-    /// colour loop. Measured on the firmware's span sweep (one light),
-    /// 75.90 instructions a pixel on the M4 against 77.53 with the one
-    /// loop (of which 60 the colour loop, 10.75 the depth loop); on the
+    /// a test when all passed, two pixels an iteration over a local copy
+    /// of the state), the state in registers through the colour loop.
+    /// Measured on the firmware's span sweep (one light), 73.48
+    /// instructions a pixel on the M4 (the colour loop 57.5, the depth
+    /// loop 10, a piece's set-up 3.5, the span's 4) against 77.53 with
+    /// the one loop; pieces of 64 pixels (two masks, one colour loop)
+    /// 73.82, the mode matched once a span instead of a piece 76.46; on the
     /// M0 the pieces cost 158.60 against 141.48, so it keeps the one
     /// loop. Not inlined (one copy per pixel and depth format), the
     /// colour constants copied into its frame: against 79.53 and 147.50
