@@ -1590,15 +1590,7 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
         let (mut z, dz) = (self.z, self.dz);
         let (mut pass, mut bit) = (0u32, 1u32);
         if self.in_range {
-            for zb in drow.iter_mut() {
-                let key = D::from_lerp_in_range(z);
-                if key < D::to_key(*zb) {
-                    *zb = D::from_key(key);
-                    pass |= bit;
-                }
-                bit <<= 1;
-                z = z.add(dz);
-            }
+            (pass, z) = mask_in_range::<L, D>(drow, z, dz);
         } else {
             for zb in drow.iter_mut() {
                 let zd = D::from_lerp(z);
@@ -1626,6 +1618,29 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
         };
         Some((pass, failed))
     }
+}
+
+/// [`DepthTest::mask`] of a span whose depths are in range: the mask
+/// of the passing pixels of `drow` (depths `z + j·dz`, `drow.len() <=
+/// 32`) and the depth after them. Not inlined other than on ARMv6-M:
+/// its loop keeps the depth and its step in registers, seven
+/// instructions a pixel on the M4 (measured on the span sweep: one
+/// light 73.48 -> 73.11 instructions a pixel, two 179.71 -> 178.92,
+/// four 287.45 -> 286.65, the point light 162.97 -> 162.26).
+#[cfg_attr(armv6m, inline(always))]
+#[cfg_attr(not(armv6m), inline(never))]
+fn mask_in_range<L: Lerp, D: DepthFormat>(drow: &mut [D::Raw], mut z: L, dz: L) -> (u32, L) {
+    let (mut pass, mut bit) = (0u32, 1u32);
+    for zb in drow.iter_mut() {
+        let key = D::from_lerp_in_range(z);
+        if key < D::to_key(*zb) {
+            *zb = D::from_key(key);
+            pass |= bit;
+        }
+        bit <<= 1;
+        z = z.add(dz);
+    }
+    (pass, z)
 }
 
 /// Runs the kernel's `fill` over a span's row slice `row` and its depth
