@@ -471,15 +471,9 @@ impl<R: Real> PhongKernel<'_, R> {
         if len <= CHUNK as u32 || len > WHOLE_MAX {
             return None;
         }
-        let (nn_b, _) = advance(st.nn, st.nn_d1, st.nn_d2, len);
-        let nn_lo = st
-            .nn
-            .min(nn_b)
-            .saturating_sub(st.nn_d2.saturating_mul(u64::from(len * len)) / 8);
-        if nn_lo < (1 << 58) + (1 << 45) {
-            return None;
-        }
-        match self.one_plan(&mut st.clone(), 0, len) {
+        // The plan's own bound on `|n|²` with the margin (one bound,
+        // not a second one here).
+        match self.plan_above(&mut st.clone(), 0, len, (1 << 58) + (1 << 45)) {
             Plan::Exact => None,
             plan => Some(Whole::of(plan, len)),
         }
@@ -541,6 +535,14 @@ impl<R: Real> PhongKernel<'_, R> {
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
     pub(super) fn one_plan(&self, st: &mut OneSpan, i: u32, k: u32) -> Plan {
+        self.plan_above(st, i, k, 1 << 58)
+    }
+
+    /// [`PhongKernel::one_plan`] with `|n|²` (Q60) proven at least
+    /// `nn_min` (at least `1/4`) over the chunk, else [`Plan::Exact`].
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn plan_above(&self, st: &mut OneSpan, i: u32, k: u32, nn_min: u64) -> Plan {
         let OneSpan {
             nn,
             nn_d1,
@@ -565,7 +567,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let nn_lo = nn
             .min(nn_b)
             .saturating_sub(nn_d2.saturating_mul(u64::from(k * k)) / 8);
-        let nn_ok = nn.max(nn_b) < 5 << 58 && nn_lo >= 1 << 58;
+        let nn_ok = nn.max(nn_b) < 5 << 58 && nn_lo >= nn_min;
         let nn32 = ((nn >> 30) as i32, fit((nn_d1 as i64) >> 30), nd2);
         let mode = if !self.spec {
             Mode::NoSpec
