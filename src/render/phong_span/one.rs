@@ -404,10 +404,11 @@ impl<R: Real> PhongKernel<'_, R> {
     /// tests first, then one loop of terms, channels and stores, without
     /// a test when all passed, two pixels an iteration over a local copy
     /// of the state), the state in registers through the colour loop.
-    /// Measured on the firmware's span sweep (one light), 73.48
-    /// instructions a pixel on the M4 (the colour loop 57.5, the depth
-    /// loop 10, a piece's set-up 3.5, the span's 4) against 77.53 with
-    /// the one loop; pieces of 64 pixels (two masks, one colour loop)
+    /// Measured on the firmware's span sweep (one light), 72.20
+    /// instructions a pixel on the M4 (the colour loop 58, the depth
+    /// mask 8.6 with its call, a piece's set-up 3.2, the span's 2.3;
+    /// 73.48 with the mask inlined and the table's address opaque)
+    /// against 77.53 with the one loop; pieces of 64 pixels (two masks, one colour loop)
     /// 73.82, the mode matched once a span instead of a piece 76.46; on the
     /// M0 the pieces cost 158.60 against 141.48, so it keeps the one
     /// loop. Not inlined (one copy per pixel and depth format), the
