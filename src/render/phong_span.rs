@@ -1579,39 +1579,68 @@ impl<L: Lerp, D: DepthFormat> DepthTest<'_, L, D> {
     /// slice alone, without the depth clamp when the span's depths are in
     /// range): the passing ones as a bit mask (pixel `j`: bit `j`) and how
     /// many failed; `None` when the pixels lie outside the depth slice.
+    /// The failures come from the mask, counted only when not all passed:
+    /// a passing pixel's store and bit predicated, without a branch
+    /// (measured on the M4's span sweep, one light: 74.70 -> 73.48
+    /// instructions a pixel; counted every piece 76.70 with one colour a
+    /// loop iteration against 75.90).
     #[inline(always)]
     fn mask(&mut self, i: usize, k: usize) -> Option<(u32, u32)> {
         let drow = self.drow.get_mut(i..i + k)?;
         let (mut z, dz) = (self.z, self.dz);
-        let (mut pass, mut bit, mut failed) = (0u32, 1u32, 0u32);
+        let (mut pass, mut bit) = (0u32, 1u32);
         if self.in_range {
-            for zb in drow.iter_mut() {
-                let key = D::from_lerp_in_range(z);
-                if key < D::to_key(*zb) {
-                    *zb = D::from_key(key);
-                    pass |= bit;
-                } else {
-                    failed += 1;
-                }
-                bit <<= 1;
-                z = z.add(dz);
-            }
+            (pass, z) = mask_in_range::<L, D>(drow, z, dz);
         } else {
             for zb in drow.iter_mut() {
                 let zd = D::from_lerp(z);
                 if zd < *zb {
                     *zb = zd;
                     pass |= bit;
-                } else {
-                    failed += 1;
                 }
                 bit <<= 1;
                 z = z.add(dz);
             }
         }
         self.z = z;
+        // The failures from the mask, counted only when some failed (no
+        // count in the loop: a passing pixel's store and bit without a
+        // branch).
+        // `k <= 32`: the shift masked to `0..32` (`k = 0`: no pixels, the
+        // empty mask counted as 0 failed either way).
+        #[allow(clippy::cast_possible_truncation)]
+        let all = u32::MAX.wrapping_shr(32u32.wrapping_sub(k as u32));
+        #[allow(clippy::cast_possible_truncation)]
+        let failed = if pass == all {
+            0
+        } else {
+            k as u32 - pass.count_ones()
+        };
         Some((pass, failed))
     }
+}
+
+/// [`DepthTest::mask`] of a span whose depths are in range: the mask
+/// of the passing pixels of `drow` (depths `z + j·dz`, `drow.len() <=
+/// 32`) and the depth after them. Not inlined other than on ARMv6-M:
+/// its loop keeps the depth and its step in registers, seven
+/// instructions a pixel on the M4 (measured on the span sweep: one
+/// light 73.48 -> 73.11 instructions a pixel, two 179.71 -> 178.92,
+/// four 287.45 -> 286.65, the point light 162.97 -> 162.26).
+#[cfg_attr(armv6m, inline(always))]
+#[cfg_attr(not(armv6m), inline(never))]
+fn mask_in_range<L: Lerp, D: DepthFormat>(drow: &mut [D::Raw], mut z: L, dz: L) -> (u32, L) {
+    let (mut pass, mut bit) = (0u32, 1u32);
+    for zb in drow.iter_mut() {
+        let key = D::from_lerp_in_range(z);
+        if key < D::to_key(*zb) {
+            *zb = D::from_key(key);
+            pass |= bit;
+        }
+        bit <<= 1;
+        z = z.add(dz);
+    }
+    (pass, z)
 }
 
 /// Runs the kernel's `fill` over a span's row slice `row` and its depth
@@ -1750,7 +1779,7 @@ trait Out {
     /// CHUNK` a depth buffer's tests may come first (a mask), then one
     /// loop of colours and steps ([`SpanDepth::masked`]).
     #[inline(always)]
-    fn masked<S>(
+    fn masked<S: Copy>(
         &mut self,
         i: u32,
         k: u32,
@@ -1809,7 +1838,7 @@ trait SpanDepth {
     /// [`SpanDepth::fused`] (the same pixels, values and result): for
     /// `row.len() <= CHUNK` the depth tests first, then the colours
     /// ([`Out::masked`]).
-    fn masked<P, S>(
+    fn masked<P, S: Copy>(
         &mut self,
         row: &mut [P],
         i: usize,
@@ -1857,7 +1886,7 @@ impl SpanDepth for NoDepth {
     }
 
     #[inline(always)]
-    fn masked<P, S>(
+    fn masked<P, S: Copy>(
         &mut self,
         row: &mut [P],
         i: usize,
@@ -1946,8 +1975,14 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
         failed
     }
 
+    /// The mask ([`DepthTest::mask`]), then the colours: when all passed,
+    /// two pixels an iteration over a local copy of the state. Measured
+    /// on the M4's span sweep (one light, the mask counting failures in
+    /// its loop): 74.70 instructions a pixel against 75.90 one pixel an
+    /// iteration through `s`, 75.03 two through `s`, 78.47 one over the
+    /// local copy.
     #[inline(always)]
-    fn masked<P, S>(
+    fn masked<P, S: Copy>(
         &mut self,
         row: &mut [P],
         i: usize,
@@ -1964,10 +1999,19 @@ impl<L: Lerp, D: DepthFormat> SpanDepth for DepthTest<'_, L, D> {
             return k as u32;
         };
         if failed == 0 {
-            for o in row[..k].iter_mut() {
-                *o = px(s);
-                step(s);
+            let mut st = *s;
+            let mut pairs = row[..k].chunks_exact_mut(2);
+            for o in &mut pairs {
+                o[0] = px(&st);
+                step(&mut st);
+                o[1] = px(&st);
+                step(&mut st);
             }
+            for o in pairs.into_remainder() {
+                *o = px(&st);
+                step(&mut st);
+            }
+            *s = st;
         } else {
             for o in row[..k].iter_mut() {
                 if pass & 1 != 0 {
@@ -2055,7 +2099,7 @@ impl<F: PixelFormat, Z: SpanDepth> Out for RowOut<'_, F, Z> {
         self.depth.fused(row, i, s, |s| F::encode_q19(col(s)), step)
     }
     #[inline(always)]
-    fn masked<S>(
+    fn masked<S: Copy>(
         &mut self,
         i: u32,
         k: u32,

@@ -267,6 +267,7 @@ pub(super) const WHOLE_MAX: u32 = 256;
 /// The 32-bit state of a span run with a single plan: `|n|² - 1/4` (Q30),
 /// `Qm` (Q20 segments) and `n·L` with their differences, and whether the
 /// span has a specular term and `n·L > 0` at every pixel.
+#[derive(Clone, Copy)]
 pub(super) struct Whole {
     pub(super) nn: i32,
     pub(super) nd1: i32,
@@ -393,16 +394,22 @@ impl<R: Real> PhongKernel<'_, R> {
 
     /// The `k` pixels from pixel `i` of the 32-bit state `w`: the light
     /// terms of [`PhongKernel::terms`] (`|n|²` stepped less `1/4`,
-    /// [`rsq_biased`], the table's address held in a register), the
+    /// [`rsq_biased`], the table's address a constant: measured on the
+    /// M4's span sweep 72.29 instructions a pixel against 73.11 with it
+    /// held opaque, `black_box`, in a register), the
     /// channels of [`Colour::of_terms`]; returns how many failed the
     /// depth test. On ARMv6-M one loop ([`Out::fused`]: depth test,
     /// terms, channels and store of a pixel together); elsewhere piece
     /// by piece of [`CHUNK`] pixels ([`Out::masked`]: the piece's depth
     /// tests first, then one loop of terms, channels and stores, without
-    /// a test when all passed), the state in registers through the
-    /// colour loop. Measured on the firmware's span sweep (one light),
-    /// 75.90 instructions a pixel on the M4 against 77.53 with the one
-    /// loop (of which 60 the colour loop, 10.75 the depth loop); on the
+    /// a test when all passed, two pixels an iteration over a local copy
+    /// of the state), the state in registers through the colour loop.
+    /// Measured on the firmware's span sweep (one light), 72.20
+    /// instructions a pixel on the M4 (the colour loop 58, the depth
+    /// mask 8.6 with its call, a piece's set-up 3.2, the span's 2.3;
+    /// 73.48 with the mask inlined and the table's address opaque)
+    /// against 77.53 with the one loop; pieces of 64 pixels (two masks, one colour loop)
+    /// 73.82, the mode matched once a span instead of a piece 76.46; on the
     /// M0 the pieces cost 158.60 against 141.48, so it keeps the one
     /// loop. Not inlined (one copy per pixel and depth format), the
     /// colour constants copied into its frame: against 79.53 and 147.50
@@ -412,7 +419,7 @@ impl<R: Real> PhongKernel<'_, R> {
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
         let c = *c;
         let c = &c;
-        let rs = core::hint::black_box(&RS_PACKED);
+        let rs = &RS_PACKED;
         let q7 = |w: &Whole| w.q >> (QM_FRAC - 7);
         let px = |(nl15, sp): (u32, u32)| c.of_terms((nl15 & 0xFFFF) | sp << 16);
         // The pixels `j..j + kk` through `out.$loop`.
@@ -465,15 +472,9 @@ impl<R: Real> PhongKernel<'_, R> {
         if len <= CHUNK as u32 || len > WHOLE_MAX {
             return None;
         }
-        let (nn_b, _) = advance(st.nn, st.nn_d1, st.nn_d2, len);
-        let nn_lo = st
-            .nn
-            .min(nn_b)
-            .saturating_sub(st.nn_d2.saturating_mul(u64::from(len * len)) / 8);
-        if nn_lo < (1 << 58) + (1 << 45) {
-            return None;
-        }
-        match self.one_plan(&mut st.clone(), 0, len) {
+        // The plan's own bound on `|n|²` with the margin (one bound,
+        // not a second one here).
+        match self.plan_above(&mut st.clone(), 0, len, (1 << 58) + (1 << 45)) {
             Plan::Exact => None,
             plan => Some(Whole::of(plan, len)),
         }
@@ -535,6 +536,14 @@ impl<R: Real> PhongKernel<'_, R> {
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
     pub(super) fn one_plan(&self, st: &mut OneSpan, i: u32, k: u32) -> Plan {
+        self.plan_above(st, i, k, 1 << 58)
+    }
+
+    /// [`PhongKernel::one_plan`] with `|n|²` (Q60) proven at least
+    /// `nn_min` (at least `1/4`) over the chunk, else [`Plan::Exact`].
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
+    fn plan_above(&self, st: &mut OneSpan, i: u32, k: u32, nn_min: u64) -> Plan {
         let OneSpan {
             nn,
             nn_d1,
@@ -559,7 +568,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let nn_lo = nn
             .min(nn_b)
             .saturating_sub(nn_d2.saturating_mul(u64::from(k * k)) / 8);
-        let nn_ok = nn.max(nn_b) < 5 << 58 && nn_lo >= 1 << 58;
+        let nn_ok = nn.max(nn_b) < 5 << 58 && nn_lo >= nn_min;
         let nn32 = ((nn >> 30) as i32, fit((nn_d1 as i64) >> 30), nd2);
         let mode = if !self.spec {
             Mode::NoSpec
