@@ -397,6 +397,60 @@ impl Px {
 /// a pixel; M4 the frame unchanged (+47), the sweep 177.81 -> 179.82.
 const FUSED_FG: bool = cfg!(armv6m);
 
+/// The specular table's scale `K·2^19` (`kf << 11`, below `2^31`) kept to
+/// its top 16 bits: `kh · 2^t` (`kh < 2^16`, `t <= 15`), within `2^-15`
+/// of it (relative), so that the table position `K·w·A` (Q7 segments,
+/// below `2^15` within the table) moves by less than one unit of it
+/// (`kscale_products`).
+#[derive(Clone, Copy)]
+struct KScale {
+    kt: i32,
+    kh: u32,
+    t: u32,
+}
+
+impl KScale {
+    /// The scale of `kf` (`< KF_MAX`).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn of(kf: u32) -> Self {
+        let kc = (kf << 11) & 0x7FFF_FFFF;
+        let t = (32 - clz32(kc)).saturating_sub(16);
+        let kh = kc >> t;
+        Self {
+            // Its sign hidden: one signed high-half product and the
+            // position's saturation in one `USAT` on the M4.
+            kt: core::hint::black_box((kh << t) as i32),
+            kh,
+            t,
+        }
+    }
+
+    /// `floor(w · kh · 2^t / 2^32)` for `0 <= w < 2^30`: `mulhi(w, kh·2^t)`;
+    /// on the M0 from two 16-bit products ([`KScale::mul_split`]).
+    #[inline(always)]
+    fn mul(self, w: i32) -> i32 {
+        if cfg!(armv6m) {
+            self.mul_split(w)
+        } else {
+            mulhi(w, self.kt)
+        }
+    }
+
+    /// [`KScale::mul`] from `w = 2^16 wh + wl`: `(wh·kh + (wl·kh >> 16))
+    /// >> (16 - t)` (nested floors), every product below `2^32`
+    /// (compiled everywhere: tested on the host).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
+    #[cfg_attr(not(armv6m), allow(dead_code))]
+    fn mul_split(self, w: i32) -> i32 {
+        let w = w as u32;
+        let hi = (w >> 16) * self.kh;
+        let lo = ((w & 0xFFFF) * self.kh) >> 16;
+        (hi.wrapping_add(lo) >> (16 - self.t)) as i32
+    }
+}
+
 /// Pixels a group of the point loop's passes (the values between passes
 /// of a group are kept in [`Px`]s: 256 bytes, on the stack zeroed once a
 /// chunk, or kept in the triangle's [`TriQuad`]): a whole chunk, each
@@ -767,7 +821,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut va, mut vb) = st.yv;
         let (mut f, mut f1, f2) = st.f;
         let (mut a, mut a1, a2) = st.a;
-        let kc = (self.kf << 11) as i32;
+        let kc = KScale::of(self.kf);
         // `1/|n|` from the packed table, its address in a register
         // (`one::rsq_biased`: the same values as `terms`).
         let rs = core::hint::black_box(&RS_PACKED);
@@ -826,7 +880,7 @@ impl<R: Real> PhongKernel<'_, R> {
                     // Within [0, 4) (Q24), as Q28: the position K·w·A in
                     // Q15 segments (saturated by `colour` beyond the
                     // table).
-                    mulhi(wa.clamp(0, (1 << 26) - 1) << 4, kc)
+                    kc.mul(wa.clamp(0, (1 << 26) - 1) << 4)
                 } else {
                     0
                 };
@@ -894,7 +948,7 @@ impl<R: Real> PhongKernel<'_, R> {
             let g = mulhi(yl, yv) << 2;
             let fg = mulhi(dot(lt, vt, 30) as i32, g) << 2;
             let wa = (a >> 6).wrapping_add(mulhi(a, fg)).wrapping_sub(nlnv >> 3);
-            let q = mulhi(wa.clamp(0, (1 << 26) - 1) << 4, (self.kf << 11) as i32);
+            let q = KScale::of(self.kf).mul(wa.clamp(0, (1 << 26) - 1) << 4);
             self.terms::<true>(a, nl, q >> 8)
         } else {
             self.terms::<false>(a, nl, 0)
