@@ -1037,4 +1037,50 @@ mod tests {
         std::println!("newton: {:.2} {:.2}", worst[0].log2(), worst[1].log2());
         assert!(worst[1] <= 2f64.powi(-22), "{}", worst[1].log2());
     }
+
+    /// [`KScale`]: its two forms agree ([`KScale::mul_split`] is the
+    /// M0's), its scale is within `2^-15` of `K·2^19` (relative), and the
+    /// table position it gives (Q7 segments) within one unit of the
+    /// position from the whole scale wherever it lies in the table.
+    #[test]
+    fn kscale_products() {
+        let mut r = 0x2545_f491_4f6c_dd1du64;
+        let mut worst = 0f64;
+        let mut kfs = std::vec![0u32, 1, 31, 32, 33, 1 << 5, (1 << 5) + 1, KF_MAX - 1];
+        for i in 0..20 {
+            kfs.push((1 << i) + 1);
+            kfs.push((1 << (i + 1)) - 1);
+        }
+        for i in 0..200_000u32 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let kf = if (i as usize) < kfs.len() {
+                kfs[i as usize]
+            } else {
+                (r >> 40) as u32 % KF_MAX
+            };
+            let k = KScale::of(kf);
+            let kc = kf << 11;
+            assert!(k.kh < 1 << 16 && k.t <= 15 && (k.kt as u32) <= kc, "{kf}");
+            if kc > 0 {
+                let rel = f64::from(kc - k.kt as u32) / f64::from(kc);
+                assert!(rel <= 2f64.powi(-15), "{kf}: {rel:e}");
+                worst = worst.max(rel);
+            }
+            for w in [0, 1, (1 << 30) - 1, (r as u32 & ((1 << 30) - 1)) as i32] {
+                let w = w as i32;
+                let m = k.mul_split(w);
+                assert_eq!(m, mulhi(w, k.kt), "{kf} {w}");
+                assert_eq!(m, k.mul(w));
+                // The position (Q7) within one unit of the whole scale's
+                // where it is inside the table (below 2^15).
+                let whole = mulhi(w, kc as i32) >> 8;
+                if whole < 1 << 15 {
+                    assert!(whole - (m >> 8) <= 1, "{kf} {w}: {whole} {}", m >> 8);
+                }
+            }
+        }
+        std::println!("kscale: worst relative {:.2}", worst.log2());
+    }
 }
