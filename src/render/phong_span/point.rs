@@ -58,6 +58,13 @@
 //! M0) and one group of passes a chunk ([`GROUP`]): M4 167.75 -> 163.52
 //! and 1 700 554 -> 1 678 691, M0 661.65 -> 559.69 and 5 470 644 ->
 //! 4 792 322; frames unchanged on the firmware and in the reference
+//! images. Then the specular table's scale kept to its top 16 bits
+//! ([`KScale`]: the position within one unit of its Q7 segments of the
+//! whole scale's; two `MULS` on the M0) and, on the M0, the loop's
+//! high-half products from [`mulhi_carry`] (the same values, three
+//! instructions fewer each): M4 163.52 -> 163.09 and 1 678 691 ->
+//! 1 688 572, M0 559.69 -> 547.04 -> 502.41 and 4 792 322 -> 4 774 038
+//! -> 4 476 543; frames unchanged on the firmware and in the reference
 //! images.
 //!
 //! In the renderers a span's plan comes from its triangle's quadratics
