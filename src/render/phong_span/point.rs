@@ -477,9 +477,9 @@ impl KScale {
         }
     }
 
-    /// [`KScale::mul`] from `w = 2^16 wh + wl`: `(wh·kh + (wl·kh >> 16))
-    /// >> (16 - t)` (nested floors), every product below `2^32`
-    /// (compiled everywhere: tested on the host).
+    /// [`KScale::mul`] from `w = 2^16 wh + wl`, nested floors: `(wh·kh +
+    /// (wl·kh >> 16)) >> (16 - t)`, every product below `2^32` (compiled
+    /// everywhere: tested on the host).
     #[inline(always)]
     #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
     #[cfg_attr(not(armv6m), allow(dead_code))]
@@ -1109,7 +1109,6 @@ mod tests {
                 worst = worst.max(rel);
             }
             for w in [0, 1, (1 << 30) - 1, (r as u32 & ((1 << 30) - 1)) as i32] {
-                let w = w as i32;
                 let m = k.mul_split(w);
                 assert_eq!(m, mulhi(w, k.kt), "{kf} {w}");
                 assert_eq!(m, k.mul(w));
