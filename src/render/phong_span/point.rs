@@ -62,10 +62,11 @@
 //! ([`KScale`]: the position within one unit of its Q7 segments of the
 //! whole scale's; two `MULS` on the M0) and, on the M0, the loop's
 //! high-half products from [`mulhi_carry`] (the same values, three
-//! instructions fewer each): M4 163.52 -> 163.09 and 1 678 691 ->
-//! 1 688 572, M0 559.69 -> 547.04 -> 502.41 and 4 792 322 -> 4 774 038
-//! -> 4 476 543; frames unchanged on the firmware and in the reference
-//! images.
+//! instructions fewer each): M4 163.52 -> 163.18 and 1 678 691 ->
+//! 1 684 470 (`point_one`'s scale without a stack slot: 163.09 and
+//! 1 688 572 with it), M0 559.69 -> 547.04 -> 502.41 and 4 792 322 ->
+//! 4 774 038 -> 4 476 543; frames unchanged on the firmware and in the
+//! reference images.
 //!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
@@ -464,6 +465,17 @@ impl KScale {
             kh,
             t,
         }
+    }
+
+    /// `kh·2^t` of the scale of `kf` as `kc & (0xFFFF_0000 >> clz(kc))`
+    /// (`kc = kf·2^11`), the same value ([`PhongKernel::point_one`] other
+    /// than on the M0).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    #[cfg_attr(armv6m, allow(dead_code))]
+    fn kt_of(kf: u32) -> i32 {
+        let kc = kf << 11;
+        (kc & (0xFFFF_0000 >> clz32(kc | 1))) as i32
     }
 
     /// `floor(w · kh · 2^t / 2^32)` for `0 <= w < 2^30`: `mulhi(w, kh·2^t)`;
@@ -988,7 +1000,11 @@ impl<R: Real> PhongKernel<'_, R> {
             let g = mulhi(yl, yv) << 2;
             let fg = mulhi(dot(lt, vt, 30) as i32, g) << 2;
             let wa = (a >> 6).wrapping_add(mulhi(a, fg)).wrapping_sub(nlnv >> 3);
+            #[cfg(armv6m)]
             let q = KScale::of(self.kf).mul(wa.clamp(0, (1 << 26) - 1) << 4);
+            // The same value, the scale in four instructions.
+            #[cfg(not(armv6m))]
+            let q = mulhi(wa.clamp(0, (1 << 26) - 1) << 4, KScale::kt_of(self.kf));
             self.terms::<true>(a, nl, q >> 8)
         } else {
             self.terms::<false>(a, nl, 0)
@@ -1102,6 +1118,7 @@ mod tests {
             };
             let k = KScale::of(kf);
             let kc = kf << 11;
+            assert_eq!(KScale::kt_of(kf), k.kt, "{kf}");
             assert!(k.kh < 1 << 16 && k.t <= 15 && (k.kt as u32) <= kc, "{kf}");
             if kc > 0 {
                 let rel = f64::from(kc - k.kt as u32) / f64::from(kc);
