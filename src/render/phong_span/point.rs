@@ -58,7 +58,15 @@
 //! M0) and one group of passes a chunk ([`GROUP`]): M4 167.75 -> 163.52
 //! and 1 700 554 -> 1 678 691, M0 661.65 -> 559.69 and 5 470 644 ->
 //! 4 792 322; frames unchanged on the firmware and in the reference
-//! images.
+//! images. Then the specular table's scale kept to its top 16 bits
+//! ([`KScale`]: the position within one unit of its Q7 segments of the
+//! whole scale's; two `MULS` on the M0) and, on the M0, the loop's
+//! high-half products from [`mulhi_carry`] (the same values, three
+//! instructions fewer each): M4 163.52 -> 163.18 and 1 678 691 ->
+//! 1 684 470 (`point_one`'s scale without a stack slot: 163.09 and
+//! 1 688 572 with it), M0 559.69 -> 547.04 -> 502.41 and 4 792 322 ->
+//! 4 774 038 -> 4 476 543; frames unchanged on the firmware and in the
+//! reference images.
 //!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
@@ -81,9 +89,42 @@ use super::{
     drive, drive_in, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, Planes,
     CHUNK,
 };
-use crate::num::wide::{clz32, mulhi, wmul};
+use crate::num::wide::{clz32, wmul};
 use crate::num::Real;
 use crate::target::{level_q19, Rgb8};
+
+/// `floor(a·b / 2^32)`, exactly: the crate's `wide::mulhi`, on ARMv6-M
+/// from 16-bit halves by [`mulhi_carry`] (the same values, three
+/// instructions fewer than `wide::mulhi_split`).
+#[inline(always)]
+fn mulhi(a: i32, b: i32) -> i32 {
+    if cfg!(armv6m) {
+        mulhi_carry(a, b)
+    } else {
+        crate::num::wide::mulhi(a, b)
+    }
+}
+
+/// `floor(a·b / 2^32)` from 16-bit halves (`a = 2^16 ah + al`, `b = 2^16
+/// bh + bl`, `al`, `bl` in `[0, 2^16)`): `ah bh + (t1 >> 16) + (t2 >>
+/// 16)` with `t1 = ah bl + (al bl >> 16)` and `t2 = al bh + (t1 &
+/// 0xFFFF)` (nested floors of `(ah bl + al bh + al bl / 2^16) / 2^16`).
+/// No sum leaves `i32` for any operands: `|ah bl|, |al bh| <= 2^15 (2^16
+/// - 1)`, and each adds below `2^16` (tested against the 64-bit product
+/// in `mulhi_carry_exact`). Compiled everywhere.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+#[cfg_attr(not(armv6m), allow(dead_code))]
+fn mulhi_carry(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let lo = ((al as u32 * bl as u32) >> 16) as i32;
+    let t1 = ah.wrapping_mul(bl).wrapping_add(lo);
+    let t2 = al.wrapping_mul(bh).wrapping_add(t1 & 0xFFFF);
+    ah.wrapping_mul(bh)
+        .wrapping_add(t1 >> 16)
+        .wrapping_add(t2 >> 16)
+}
 
 /// Spans and chunks below this many pixels take their pixels one by one
 /// (after the depth test; [`PhongKernel::point_one`], else the 64-bit
@@ -396,6 +437,71 @@ impl Px {
 /// Phong raster M0 6 605 652 -> 6 552 519, span sweep 695.81 -> 691.94
 /// a pixel; M4 the frame unchanged (+47), the sweep 177.81 -> 179.82.
 const FUSED_FG: bool = cfg!(armv6m);
+
+/// The specular table's scale `K·2^19` (`kf << 11`, below `2^31`) kept to
+/// its top 16 bits: `kh · 2^t` (`kh < 2^16`, `t <= 15`), within `2^-15`
+/// of it (relative), so that the table position `K·w·A` (Q7 segments,
+/// below `2^15` within the table) moves by less than one unit of it
+/// (`kscale_products`).
+#[derive(Clone, Copy)]
+struct KScale {
+    kt: i32,
+    kh: u32,
+    t: u32,
+}
+
+impl KScale {
+    /// The scale of `kf` (`< KF_MAX`).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    fn of(kf: u32) -> Self {
+        let kc = (kf << 11) & 0x7FFF_FFFF;
+        let t = (32 - clz32(kc)).saturating_sub(16);
+        let kh = kc >> t;
+        Self {
+            // Its sign hidden: one signed high-half product and the
+            // position's saturation in one `USAT` on the M4.
+            kt: core::hint::black_box((kh << t) as i32),
+            kh,
+            t,
+        }
+    }
+
+    /// `kh·2^t` of the scale of `kf` as `kc & (0xFFFF_0000 >> clz(kc))`
+    /// (`kc = kf·2^11`), the same value ([`PhongKernel::point_one`] other
+    /// than on the M0).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap)]
+    #[cfg_attr(armv6m, allow(dead_code))]
+    fn kt_of(kf: u32) -> i32 {
+        let kc = kf << 11;
+        (kc & (0xFFFF_0000 >> clz32(kc | 1))) as i32
+    }
+
+    /// `floor(w · kh · 2^t / 2^32)` for `0 <= w < 2^30`: `mulhi(w, kh·2^t)`;
+    /// on the M0 from two 16-bit products ([`KScale::mul_split`]).
+    #[inline(always)]
+    fn mul(self, w: i32) -> i32 {
+        if cfg!(armv6m) {
+            self.mul_split(w)
+        } else {
+            mulhi(w, self.kt)
+        }
+    }
+
+    /// [`KScale::mul`] from `w = 2^16 wh + wl`, nested floors: `(wh·kh +
+    /// (wl·kh >> 16)) >> (16 - t)`, every product below `2^32` (compiled
+    /// everywhere: tested on the host).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_wrap, clippy::cast_sign_loss)]
+    #[cfg_attr(not(armv6m), allow(dead_code))]
+    fn mul_split(self, w: i32) -> i32 {
+        let w = w as u32;
+        let hi = (w >> 16) * self.kh;
+        let lo = ((w & 0xFFFF) * self.kh) >> 16;
+        (hi.wrapping_add(lo) >> (16 - self.t)) as i32
+    }
+}
 
 /// Pixels a group of the point loop's passes (the values between passes
 /// of a group are kept in [`Px`]s: 256 bytes, on the stack zeroed once a
@@ -767,7 +873,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut va, mut vb) = st.yv;
         let (mut f, mut f1, f2) = st.f;
         let (mut a, mut a1, a2) = st.a;
-        let kc = (self.kf << 11) as i32;
+        let kc = KScale::of(self.kf);
         // `1/|n|` from the packed table, its address in a register
         // (`one::rsq_biased`: the same values as `terms`).
         let rs = core::hint::black_box(&RS_PACKED);
@@ -826,7 +932,7 @@ impl<R: Real> PhongKernel<'_, R> {
                     // Within [0, 4) (Q24), as Q28: the position K·w·A in
                     // Q15 segments (saturated by `colour` beyond the
                     // table).
-                    mulhi(wa.clamp(0, (1 << 26) - 1) << 4, kc)
+                    kc.mul(wa.clamp(0, (1 << 26) - 1) << 4)
                 } else {
                     0
                 };
@@ -894,7 +1000,11 @@ impl<R: Real> PhongKernel<'_, R> {
             let g = mulhi(yl, yv) << 2;
             let fg = mulhi(dot(lt, vt, 30) as i32, g) << 2;
             let wa = (a >> 6).wrapping_add(mulhi(a, fg)).wrapping_sub(nlnv >> 3);
-            let q = mulhi(wa.clamp(0, (1 << 26) - 1) << 4, (self.kf << 11) as i32);
+            #[cfg(armv6m)]
+            let q = KScale::of(self.kf).mul(wa.clamp(0, (1 << 26) - 1) << 4);
+            // The same value, the scale in four instructions.
+            #[cfg(not(armv6m))]
+            let q = mulhi(wa.clamp(0, (1 << 26) - 1) << 4, KScale::kt_of(self.kf));
             self.terms::<true>(a, nl, q >> 8)
         } else {
             self.terms::<false>(a, nl, 0)
@@ -982,5 +1092,84 @@ mod tests {
         }
         std::println!("newton: {:.2} {:.2}", worst[0].log2(), worst[1].log2());
         assert!(worst[1] <= 2f64.powi(-22), "{}", worst[1].log2());
+    }
+
+    /// [`KScale`]: its two forms agree ([`KScale::mul_split`] is the
+    /// M0's), its scale is within `2^-15` of `K·2^19` (relative), and the
+    /// table position it gives (Q7 segments) within one unit of the
+    /// position from the whole scale wherever it lies in the table.
+    #[test]
+    fn kscale_products() {
+        let mut r = 0x2545_f491_4f6c_dd1du64;
+        let mut worst = 0f64;
+        let mut kfs = std::vec![0u32, 1, 31, 32, 33, 1 << 5, (1 << 5) + 1, KF_MAX - 1];
+        for i in 0..20 {
+            kfs.push((1 << i) + 1);
+            kfs.push((1 << (i + 1)) - 1);
+        }
+        for i in 0..200_000u32 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let kf = if (i as usize) < kfs.len() {
+                kfs[i as usize]
+            } else {
+                (r >> 40) as u32 % KF_MAX
+            };
+            let k = KScale::of(kf);
+            let kc = kf << 11;
+            assert_eq!(KScale::kt_of(kf), k.kt, "{kf}");
+            assert!(k.kh < 1 << 16 && k.t <= 15 && (k.kt as u32) <= kc, "{kf}");
+            if kc > 0 {
+                let rel = f64::from(kc - k.kt as u32) / f64::from(kc);
+                assert!(rel <= 2f64.powi(-15), "{kf}: {rel:e}");
+                worst = worst.max(rel);
+            }
+            for w in [0, 1, (1 << 30) - 1, (r as u32 & ((1 << 30) - 1)) as i32] {
+                let m = k.mul_split(w);
+                assert_eq!(m, mulhi(w, k.kt), "{kf} {w}");
+                assert_eq!(m, k.mul(w));
+                // The position (Q7) within one unit of the whole scale's
+                // where it is inside the table (below 2^15).
+                let whole = mulhi(w, kc as i32) >> 8;
+                if whole < 1 << 15 {
+                    assert!(whole - (m >> 8) <= 1, "{kf} {w}: {whole} {}", m >> 8);
+                }
+            }
+        }
+        std::println!("kscale: worst relative {:.2}", worst.log2());
+    }
+
+    /// [`mulhi_carry`] is the 64-bit product's high half, for random and
+    /// extreme operands.
+    #[test]
+    fn mulhi_carry_exact() {
+        let mut r = 0x9e37_79b9_7f4a_7c15u64;
+        let ext = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65_537,
+            -65_536,
+            -65_535,
+            -1,
+            0,
+            1,
+            65_535,
+            65_536,
+            i32::MAX,
+        ];
+        for &a in &ext {
+            for &b in &ext {
+                assert_eq!(mulhi_carry(a, b), (wmul(a, b) >> 32) as i32, "{a} {b}");
+            }
+        }
+        for i in 0..1_000_000u32 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let a = (r >> (i % 16)) as i32;
+            let b = (r >> 32) as i32 >> (i % 7);
+            assert_eq!(mulhi_carry(a, b), (wmul(a, b) >> 32) as i32, "{a} {b}");
+        }
     }
 }
