@@ -108,9 +108,14 @@ pub(crate) fn mulhi(a: i32, b: i32) -> i32 {
 /// `floor(a·b / 2^32)` from 16-bit halves in 32-bit arithmetic (the
 /// ARMv6-M path of [`mulhi`], four `MULS`, beside [`wmul_split`];
 /// compiled everywhere so that the host tests check it): with `a = 2^16
-/// ah + al`, `b = 2^16 bh + bl`, `m1 = ah bl`, `m2 = al bh` (each within
-/// `i32`), the result is `ah bh + (m1 >> 16) + (m2 >> 16) + ((m1 &
-/// 0xFFFF) + (m2 & 0xFFFF) + (al bl >> 16)) >> 16` (nested floors).
+/// ah + al`, `b = 2^16 bh + bl` (`al`, `bl` in `[0, 2^16)`), `ah bh + (t1
+/// >> 16) + (t2 >> 16)` with `t1 = ah bl + (al bl >> 16)` and `t2 = al bh
+/// + (t1 & 0xFFFF)` (nested floors of `(ah bl + al bh + al bl / 2^16) /
+/// 2^16`). No sum leaves `i32` for any operands: `|ah bl|, |al bh| <=
+/// 2^15 (2^16 - 1)`, and each adds below `2^16`. Three instructions fewer
+/// than the four partial products summed with a separate carry word (the
+/// point-light Phong span on the M0, exact QEMU counts: 547.04 -> 502.41
+/// instructions a pixel).
 #[inline(always)]
 #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
 #[cfg_attr(not(armv6m), allow(dead_code))]
@@ -118,9 +123,11 @@ pub(crate) fn mulhi_split(a: i32, b: i32) -> i32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let lo = ((al as u32 * bl as u32) >> 16) as i32;
-    let (m1, m2) = (ah * bl, al * bh);
-    let t = (m1 & 0xFFFF) + (m2 & 0xFFFF) + lo;
-    ah * bh + (m1 >> 16) + (m2 >> 16) + (t >> 16)
+    let t1 = ah.wrapping_mul(bl).wrapping_add(lo);
+    let t2 = al.wrapping_mul(bh).wrapping_add(t1 & 0xFFFF);
+    ah.wrapping_mul(bh)
+        .wrapping_add(t1 >> 16)
+        .wrapping_add(t2 >> 16)
 }
 
 /// Largest operand magnitude of [`mul16_small`]'s second factor: 2.
@@ -487,7 +494,27 @@ mod tests {
             s ^= s << 17;
             s
         };
-        let mut vals = std::vec![0, 1, -1, i32::MAX, i32::MIN, 0xFFFF, -0x10000, 0x7FFF_0001];
+        let ext = [
+            0,
+            1,
+            -1,
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
+            0xFFFF,
+            0x1_0000,
+            -0xFFFF,
+            -0x1_0000,
+            -0x1_0001,
+            0x7FFF_0001,
+        ];
+        for &a in &ext {
+            for &b in &ext {
+                let want = ((i64::from(a) * i64::from(b)) >> 32) as i32;
+                assert_eq!(mulhi_split(a, b), want, "{a} {b}");
+            }
+        }
+        let mut vals = ext.to_vec();
         for _ in 0..20_000 {
             vals.push(next() as i32);
             let (a, b) = (next(), next());

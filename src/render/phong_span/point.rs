@@ -61,7 +61,7 @@
 //! images. Then the specular table's scale kept to its top 16 bits
 //! ([`KScale`]: the position within one unit of its Q7 segments of the
 //! whole scale's; two `MULS` on the M0) and, on the M0, the loop's
-//! high-half products from [`mulhi_carry`] (the same values, three
+//! high-half products in the carry form now `wide::mulhi_split`'s (the same values, three
 //! instructions fewer each): M4 163.52 -> 163.18 and 1 678 691 ->
 //! 1 684 470 (`point_one`'s scale without a stack slot: 163.09 and
 //! 1 688 572 with it), M0 559.69 -> 547.04 -> 502.41 and 4 792 322 ->
@@ -89,42 +89,9 @@ use super::{
     drive, drive_in, fallback, pack, rsqrt_n, sq3, KLight, LightSpan, Out, PhongKernel, Planes,
     CHUNK,
 };
-use crate::num::wide::{clz32, wmul};
+use crate::num::wide::{clz32, mulhi, wmul};
 use crate::num::Real;
 use crate::target::{level_q19, Rgb8};
-
-/// `floor(a·b / 2^32)`, exactly: the crate's `wide::mulhi`, on ARMv6-M
-/// from 16-bit halves by [`mulhi_carry`] (the same values, three
-/// instructions fewer than `wide::mulhi_split`).
-#[inline(always)]
-fn mulhi(a: i32, b: i32) -> i32 {
-    if cfg!(armv6m) {
-        mulhi_carry(a, b)
-    } else {
-        crate::num::wide::mulhi(a, b)
-    }
-}
-
-/// `floor(a·b / 2^32)` from 16-bit halves (`a = 2^16 ah + al`, `b = 2^16
-/// bh + bl`, `al`, `bl` in `[0, 2^16)`): `ah bh + (t1 >> 16) + (t2 >>
-/// 16)` with `t1 = ah bl + (al bl >> 16)` and `t2 = al bh + (t1 &
-/// 0xFFFF)` (nested floors of `(ah bl + al bh + al bl / 2^16) / 2^16`).
-/// No sum leaves `i32` for any operands: `|ah bl|, |al bh| <= 2^15 (2^16
-/// - 1)`, and each adds below `2^16` (tested against the 64-bit product
-/// in `mulhi_carry_exact`). Compiled everywhere.
-#[inline(always)]
-#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-#[cfg_attr(not(armv6m), allow(dead_code))]
-fn mulhi_carry(a: i32, b: i32) -> i32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    let lo = ((al as u32 * bl as u32) >> 16) as i32;
-    let t1 = ah.wrapping_mul(bl).wrapping_add(lo);
-    let t2 = al.wrapping_mul(bh).wrapping_add(t1 & 0xFFFF);
-    ah.wrapping_mul(bh)
-        .wrapping_add(t1 >> 16)
-        .wrapping_add(t2 >> 16)
-}
 
 /// Spans and chunks below this many pixels take their pixels one by one
 /// (after the depth test; [`PhongKernel::point_one`], else the 64-bit
@@ -1138,38 +1105,5 @@ mod tests {
             }
         }
         std::println!("kscale: worst relative {:.2}", worst.log2());
-    }
-
-    /// [`mulhi_carry`] is the 64-bit product's high half, for random and
-    /// extreme operands.
-    #[test]
-    fn mulhi_carry_exact() {
-        let mut r = 0x9e37_79b9_7f4a_7c15u64;
-        let ext = [
-            i32::MIN,
-            i32::MIN + 1,
-            -65_537,
-            -65_536,
-            -65_535,
-            -1,
-            0,
-            1,
-            65_535,
-            65_536,
-            i32::MAX,
-        ];
-        for &a in &ext {
-            for &b in &ext {
-                assert_eq!(mulhi_carry(a, b), (wmul(a, b) >> 32) as i32, "{a} {b}");
-            }
-        }
-        for i in 0..1_000_000u32 {
-            r ^= r << 13;
-            r ^= r >> 7;
-            r ^= r << 17;
-            let a = (r >> (i % 16)) as i32;
-            let b = (r >> 32) as i32 >> (i % 7);
-            assert_eq!(mulhi_carry(a, b), (wmul(a, b) >> 32) as i32, "{a} {b}");
-        }
     }
 }
