@@ -413,6 +413,25 @@ impl InvArea {
         (self.quot_high(nu, 0), nu >> u == n)
     }
 
+    /// [`InvArea::quot_up`]`(n, u)` for `n` in `-2^15..2^15` (an `i16`)
+    /// and `u <= 16` (then
+    /// `n · 2^u` fits an `i32` and the flag of `quot_up` holds): the very
+    /// quotient from two 32-bit products instead of [`mulhi`]'s four
+    /// (ARMv6-M). With `m = 2^16·mh + ml` (`|mh| <= 2^15`, `ml` in
+    /// `0..2^16`), `A = n·mh` (`|A| <= 2^30`) and `B = n·ml` (`|B| <=
+    /// 2^15·(2^16 - 1) < 2^31`): `⌊n·2^u·m / 2^32⌋ = ⌊(A + ⌊B / 2^16⌋) / 2^(16-u)⌋` (nested
+    /// floors), and the rounding `(h + 1) >> 1` of [`InvArea::quot_high`]
+    /// folds in: `⌊(A + ⌊B / 2^16⌋ + 2^p) / 2^(p+1)⌋` for `p = 16 - u`.
+    /// Exact, no error of its own; tested equal to `quot_up`. Outside its
+    /// bounds the value means nothing (no panic).
+    #[inline(always)]
+    pub(crate) fn quot_up_short(&self, n: i32, u: u32) -> i32 {
+        let (mh, ml) = (self.m >> 16, self.m & 0xffff);
+        let x = n.wrapping_mul(mh).wrapping_add(n.wrapping_mul(ml) >> 16);
+        let p = 16u32.wrapping_sub(u) & 31;
+        x.wrapping_add(1i32.wrapping_shl(p)).wrapping_shr(p + 1)
+    }
+
     /// [`InvArea::quot`]`(n, s)` for `n` within an `i32` and `k` from
     /// [`InvArea::high_shift`]`(s)`: the very value, with one product and
     /// no normalisation (`t = 0`; `|h| < 2^30` and `k <= 30`, so nothing
@@ -961,6 +980,67 @@ mod tests {
         assert_eq!(Recip::new(3).mul_shift(9, 0), 3);
         assert_eq!(Recip::new(1).mul_shift(-(1 << 40), 8), -(1 << 48));
         assert_eq!(Recip::new(0).mul_shift(5, 0), 5);
+    }
+
+    /// [`InvArea::quot_up_short`] is [`InvArea::quot_up`] for every
+    /// numerator in `-2^15..2^15` and every shift `u <= 16`, on
+    /// random and extreme reciprocals.
+    #[test]
+    fn quot_up_short_equals_quot_up() {
+        let mut g = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g as u32
+        };
+        let areas = [
+            1,
+            -1,
+            2,
+            3,
+            0xffff,
+            -0xffff,
+            0x8000,
+            -0x8000,
+            0x7fff,
+            i32::MAX,
+            -i32::MAX,
+        ];
+        let nums = [
+            0,
+            1,
+            -1,
+            (1 << 15) - 1,
+            -(1 << 15) + 1,
+            -(1 << 15),
+            12345,
+            -12345,
+        ];
+        for i in 0..200_000u32 {
+            let a = if i < 2_000 {
+                areas[(i as usize) % areas.len()]
+            } else {
+                let a = ((next() as i32) >> (next() % 32)).max(1);
+                if i & 1 == 0 {
+                    a
+                } else {
+                    -a
+                }
+            };
+            let inv = InvArea::new_fast(a);
+            let r = next();
+            let n = if i % 4 == 0 {
+                nums[(r % nums.len() as u32) as usize]
+            } else {
+                (r as i32) >> (16 + r % 16)
+            };
+            for u in 0..=16 {
+                let (q, ok) = inv.quot_up(n, u);
+                assert!(ok, "a={a} n={n} u={u}");
+                assert_eq!(inv.quot_up_short(n, u), q, "a={a} n={n} u={u}");
+            }
+        }
     }
 
     /// [`InvArea::quot_up`] is [`InvArea::quot_scaled`] wherever `k <= sh`.
