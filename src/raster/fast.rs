@@ -939,7 +939,9 @@ pub(crate) fn draw_small<
     // elsewhere through the column extent and the height (`0 <= dy1 <=
     // dy2`, columns within `xmin..=xmax`), slightly stricter, cheaper.
     let mxy = if SHORT_NUMERATORS {
-        dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs()
+        // `0 <= dy1 <= dy2` for sorted vertices: as `u32`s their own
+        // magnitudes (a negative one, unsorted, fails the bound below).
+        dx1.unsigned_abs() | dy1 as u32 | dx2.unsigned_abs() | dy2 as u32
     } else {
         (xmax - xmin) as u32 | dy2 as u32
     };
