@@ -369,19 +369,23 @@ impl Grad {
     /// `s` bits of `B1` and `B2`. Exact, the very bits.
     #[inline(always)]
     fn origin_short(&self, gx: i32, gy: i32) -> i32 {
-        let s = self.s;
+        origin_short_at(self.s, self.o, gx, gy)
+    }
+
+    /// [`Grad::origin_short`]'s low `32 - s` bits (the others mean
+    /// nothing) from the sum modulo 2^32: `⌊t / 2^s⌋ mod 2^(32-s)` is bits
+    /// `s..32` of `t`, which the wrapping sum holds. Two `MULS` and no
+    /// carries, for a value of which only those bits are used (the grey
+    /// level of [`draw_small`] with `LEVELS`, shifted left by 8). Exact in
+    /// those bits; tested.
+    #[inline(always)]
+    fn origin_low(&self, gx: i32, gy: i32) -> i32 {
         let [ox, oy] = self.o;
-        let a = (gx >> 16)
+        let t = gx
             .wrapping_mul(ox)
-            .wrapping_add((gy >> 16).wrapping_mul(oy));
-        let b1 = (gx & 0xffff).wrapping_mul(ox);
-        let b2 = (gy & 0xffff).wrapping_mul(oy).wrapping_add(1 << (s - 1));
-        let m = (1 << s) - 1;
-        let carry = ((b1 & m) + (b2 & m)) >> s;
-        (a << (16 - s))
-            .wrapping_add(b1 >> s)
-            .wrapping_add(b2 >> s)
-            .wrapping_add(carry)
+            .wrapping_add(gy.wrapping_mul(oy))
+            .wrapping_add(1 << (self.s - 1));
+        ((t as u32) >> self.s) as i32
     }
 
     /// [`Grad::plane`] on ARMv6-M (and in test builds, which check it)
@@ -423,7 +427,7 @@ impl Grad {
     #[inline(never)]
     #[cold]
     fn plane_fields_cold(self, f: [i32; 3], v0: i32, sh: u32, out: &mut [i32; 4]) {
-        let (gx, gy, o, ok) = self.plane_fields::<false, false>(f, v0, sh);
+        let (gx, gy, o, ok) = self.plane_fields::<false, false>(f, v0, sh, true);
         *out = [gx, gy, o, i32::from(ok)];
     }
 
@@ -460,6 +464,7 @@ impl Grad {
         f: [i32; 3],
         v0: i32,
         sh: u32,
+        origin: bool,
     ) -> (i32, i32, i32, bool) {
         let [dx1, dy1, dx2, dy2] = self.d;
         let (f1, f2) = (f[1].wrapping_sub(f[0]), f[2].wrapping_sub(f[0]));
@@ -489,7 +494,9 @@ impl Grad {
                 gx.is_some() & gy.is_some(),
             )
         };
-        let o = if SHORT_NUMERATORS {
+        let o = if !origin {
+            0
+        } else if SHORT_NUMERATORS {
             self.origin_short(gx, gy)
         } else {
             let h = 1i64 << (self.s - 1);
@@ -497,6 +504,23 @@ impl Grad {
         };
         (gx, gy, v0.wrapping_add(o), ok)
     }
+}
+
+/// [`Grad::origin_short`] for `s` subpixel bits and the offsets `o`.
+#[inline(always)]
+fn origin_short_at(s: u32, o: [i32; 2], gx: i32, gy: i32) -> i32 {
+    let [ox, oy] = o;
+    let a = (gx >> 16)
+        .wrapping_mul(ox)
+        .wrapping_add((gy >> 16).wrapping_mul(oy));
+    let b1 = (gx & 0xffff).wrapping_mul(ox);
+    let b2 = (gy & 0xffff).wrapping_mul(oy).wrapping_add(1 << (s - 1));
+    let m = (1 << s) - 1;
+    let carry = ((b1 & m) + (b2 & m)) >> s;
+    (a << (16 - s))
+        .wrapping_add(b1 >> s)
+        .wrapping_add(b2 >> s)
+        .wrapping_add(carry)
 }
 
 /// [`draw_small`] takes [`Grad::plane_fields`] for packed values: on
@@ -983,7 +1007,7 @@ pub(crate) fn draw_small<
     // values refuse them.
     let rescue = FIELDS_RESCUE & fields;
     let (gx, gy, z0, mut ok) = if pk {
-        g.plane_fields::<true, true>([zf(a), zf(b), zf(c)], zval(a), 14)
+        g.plane_fields::<true, true>([zf(a), zf(b), zf(c)], zval(a), 14, true)
     } else {
         match g.plane_small::<false>(zval(a), zval(b), zval(c), lim) {
             p if !p.3 & rescue => g.fields_rescue([zf(a), zf(b), zf(c)], zval(a), 14),
@@ -993,12 +1017,16 @@ pub(crate) fn draw_small<
     };
     let z16 = Depth16::gradients_in_range(gx, gy);
     ok &= D::plane_in_range(z16);
+    // With `LEVELS` on ARMv6-M (and in test builds) the level plane's
+    // full origin only for a triangle that continues below the band
+    // ([`Grad::origin_low`] for the rows).
+    let lazy = LEVELS && N == 1 && SHORT_NUMERATORS && pk;
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
         let (gx, gy, o, oka) = if pk {
-            g.plane_fields::<true, false>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8)
+            g.plane_fields::<true, false>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8, !lazy)
         } else {
             match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim) {
                 p if !p.3 & rescue => {
@@ -1019,7 +1047,15 @@ pub(crate) fn draw_small<
     if LEVELS && N == 1 {
         let l = [lval(a, 0), lval(b, 0), lval(c, 0)];
         ok &= levels_in_range(l, sx.a[0], sy.a[0], s);
-        t0.a[0] = row.a[0].wrapping_add(1 << 15) << 8;
+        // Only the level's low 24 bits are kept: on ARMv6-M (and in test
+        // builds) from [`Grad::origin_low`] (`s <= 8`), the full origin
+        // then used only by a triangle that continues below the band.
+        let o = if SHORT_NUMERATORS {
+            lval(a, 0).wrapping_add(g.origin_low(sx.a[0], sy.a[0]))
+        } else {
+            row.a[0]
+        };
+        t0.a[0] = o.wrapping_add(1 << 15) << 8;
         tx.a[0] = sx.a[0] << 8;
         ty.a[0] = sy.a[0] << 8;
     }
@@ -1144,6 +1180,10 @@ pub(crate) fn draw_small<
         // instructions less), or `rows.v` stepped back (the same values,
         // wrapping; on ARMv7-M the Gouraud bunny's raster 16 K less).
         let v00 = if LEVELS || NO_LONG_MUL {
+            if lazy {
+                let o = origin_short_at(s, [h - a.x, h - a.y], sx0.a[0], sy0.a[0]);
+                row.a[0] = lval(a, 0).wrapping_add(o);
+            }
             row
         } else if SmallRows::<'_, N>::LAZY {
             rows.v
@@ -1411,6 +1451,12 @@ mod tests {
             assert_eq!(
                 grad.origin_short(gx, gy),
                 (t >> s) as i32,
+                "{gx} {gy} {ox} {oy} {s}"
+            );
+            let low = (1u32 << (32 - s)) - 1;
+            assert_eq!(
+                grad.origin_low(gx, gy) as u32 & low,
+                (t >> s) as u32 & low,
                 "{gx} {gy} {ox} {oy} {s}"
             );
         }
