@@ -422,23 +422,26 @@ impl InvArea {
         ((mulhi_quot(nu, self.m) + 1) >> 1, nu >> u == n)
     }
 
-    /// [`InvArea::quot_up`]`(n, u)` for `n` in `-2^15..2^15` (an `i16`)
-    /// and `u <= 16` (then
-    /// `n · 2^u` fits an `i32` and the flag of `quot_up` holds): the very
-    /// quotient from two 32-bit products instead of the four of `mulhi`
-    /// (ARMv6-M). With `m = 2^16·mh + ml` (`|mh| <= 2^15`, `ml` in
-    /// `0..2^16`), `A = n·mh` (`|A| <= 2^30`) and `B = n·ml` (`|B| <=
-    /// 2^15·(2^16 - 1) < 2^31`): `⌊n·2^u·m / 2^32⌋ = ⌊(A + ⌊B / 2^16⌋) / 2^(16-u)⌋` (nested
-    /// floors), and the rounding `(h + 1) >> 1` of [`InvArea::quot_high`]
-    /// folds in: `⌊(A + ⌊B / 2^16⌋ + 2^p) / 2^(p+1)⌋` for `p = 16 - u`.
-    /// Exact, no error of its own; tested equal to `quot_up`. Outside its
-    /// bounds the value means nothing (no panic).
+    /// [`InvArea::quot_up`]`(n, u)` for `n` in `-2^16..2^16` and `u <=
+    /// 15` (then `n · 2^u` fits an `i32` and the flag of `quot_up`
+    /// holds): the very quotient from two 32-bit products instead of the
+    /// four of `mulhi` (ARMv6-M). With `n = 2^16·nh + nl` (`nh` in `{-1,
+    /// 0}`, `nl` in `0..2^16`) and `m = 2^16·mh + ml` (`|mh| <= 2^15`, `ml`
+    /// in `0..2^16`): `X = ⌊n·m / 2^16⌋ = nh·m + nl·mh + ⌊nl·ml / 2^16⌋`
+    /// (`nh·m` is `-m` or 0, no product; `|nl·mh| < 2^31`; `|X| < 2^31`,
+    /// the sum formed wrapping), and `quot_high(n·2^u, 0) = ⌊(⌊n·m /
+    /// 2^(32-u)⌋ + 1) / 2⌋ = ((X >> p) + 1) >> 1` for `p = 16 - u` (nested
+    /// floors). Exact, no error of its own; tested equal to `quot_up`.
+    /// Outside its bounds the value means nothing (no panic).
     #[inline(always)]
     pub(crate) fn quot_up_short(&self, n: i32, u: u32) -> i32 {
-        let (mh, ml) = (self.m >> 16, self.m & 0xffff);
-        let x = n.wrapping_mul(mh).wrapping_add(n.wrapping_mul(ml) >> 16);
+        let (mh, ml) = (self.m >> 16, (self.m & 0xffff) as u32);
+        let (nh, nl) = (n >> 16, n & 0xffff);
+        let x = (self.m.wrapping_neg() & nh)
+            .wrapping_add(nl.wrapping_mul(mh))
+            .wrapping_add(((nl as u32).wrapping_mul(ml) >> 16) as i32);
         let p = 16u32.wrapping_sub(u) & 31;
-        x.wrapping_add(1i32.wrapping_shl(p)).wrapping_shr(p + 1)
+        (x.wrapping_shr(p) + 1) >> 1
     }
 
     /// [`InvArea::quot`]`(n, s)` for `n` within an `i32` and `k` from
@@ -992,7 +995,7 @@ mod tests {
     }
 
     /// [`InvArea::quot_up_short`] is [`InvArea::quot_up`] for every
-    /// numerator in `-2^15..2^15` and every shift `u <= 16`, on
+    /// numerator in `-2^16..2^16` and every shift `u <= 15`, on
     /// random and extreme reciprocals.
     #[test]
     fn quot_up_short_equals_quot_up() {
@@ -1042,9 +1045,9 @@ mod tests {
             let n = if i % 4 == 0 {
                 nums[(r % nums.len() as u32) as usize]
             } else {
-                (r as i32) >> (16 + r % 16)
+                (r as i32) >> (15 + r % 17)
             };
-            for u in 0..=16 {
+            for u in 0..=15 {
                 let (q, ok) = inv.quot_up(n, u);
                 assert!(ok, "a={a} n={n} u={u}");
                 assert_eq!(inv.quot_up_short(n, u), q, "a={a} n={n} u={u}");

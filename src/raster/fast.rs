@@ -473,9 +473,10 @@ impl Grad {
         // `k <= sh` by the caller's bound: the shifts known per triangle.
         let (gx, gy, ok) = if UP {
             let u = sh.wrapping_sub(self.k);
-            // Both numerators `i16`s (and `u <= 14`): two products each.
+            // Both numerators in `-2^16..2^16` (and `u <= 14`): two
+            // products each.
             let short =
-                SHORT && SHORT_QUOTIENTS && ((nx ^ (nx >> 31)) | (ny ^ (ny >> 31))) < 1 << 15;
+                SHORT && SHORT_QUOTIENTS && ((nx ^ (nx >> 31)) | (ny ^ (ny >> 31))) < 1 << 16;
             if short {
                 let q = (self.inv.quot_up_short(nx, u), self.inv.quot_up_short(ny, u));
                 (q.0, q.1, true)
@@ -554,14 +555,16 @@ const WIDE_RESCUE: bool = NO_LONG_MUL || cfg!(test);
 const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
 
 /// [`Grad::plane_fields`] takes [`InvArea::quot_up_short`] (two `MULS` a
-/// gradient instead of four) where both numerators of a plane are `i16`s
-/// (with `SHORT`: the depth plane of [`draw_small`], where they are for 81%
-/// of the bunny's triangles): on ARMv6-M, and in test builds, which check
-/// it (on ARMv7-M a gradient is one `SMMUL`). Exact QEMU counts,
-/// bunny-gouraud raster thumbv6m 2 580 811 -> 2 556 014; for the level
-/// plane as well 2 618 573 (its numerators mostly wider, the compiler
-/// computed both forms and selected), with the level's long form out of
-/// line 2 583 084 (called for nearly every triangle). Also measured and
+/// gradient instead of four) where both numerators of a plane lie in
+/// `-2^16..2^16` (with `SHORT`: the depth plane of [`draw_small`]): on
+/// ARMv6-M, and in test builds, which check it (on ARMv7-M a gradient is
+/// one `SMMUL`). Exact QEMU counts, bunny-gouraud raster thumbv6m
+/// 2 580 811 -> 2 556 014 for `i16` numerators (81% of the bunny's depth
+/// planes), later 2 520 390 -> 2 509 937 for the wider range; for the
+/// level plane as well 2 618 573 (`i16`; its numerators mostly wider, the
+/// compiler computed both forms and selected), 2 594 161 (the wider
+/// range), with the level's long form out of line 2 583 084 (called for
+/// nearly every triangle). Also measured and
 /// not kept on ARMv6-M: both overflow flags of [`InvArea::quot_up`] in one
 /// test, `(|nx ^ nx >> 31| | |ny ^ ny >> 31|) >> (31 - u) == 0`
 /// (2 520 390 -> 2 525 721).
