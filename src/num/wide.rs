@@ -138,9 +138,9 @@ pub(crate) fn mulhi_quot(a: i32, b: i32) -> i32 {
 /// the partial products (Hacker's Delight's `mulhs`), the same four
 /// `MULS` as [`mulhi_split`] with fewer masks and shifts: with `a = 2^16
 /// ah + al`, `b = 2^16 bh + bl` (`al`, `bl` in `0..2^16`), `t = ah·bl +
-/// ⌊al·bl / 2^16⌋` (within `-2^31 + 2^15 ..= 2^31 - 2^15 - 1`), `w = al·bh
-/// + (t mod 2^16)` (within `±(2^31 - 2^15)`), the result is `ah·bh + ⌊t /
-/// 2^16⌋ + ⌊w / 2^16⌋`. Exact; tested with [`mulhi_split`].
+/// ⌊al·bl / 2^16⌋` (within `-2^31 + 2^15 ..= 2^31 - 2^15 - 1`), `w =
+/// al·bh + (t mod 2^16)` (within `±(2^31 - 2^15)`), the result is
+/// `ah·bh + ⌊t / 2^16⌋ + ⌊w / 2^16⌋`. Exact; tested with [`mulhi_split`].
 #[inline(always)]
 #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
 #[cfg_attr(not(armv6m), allow(dead_code))]
