@@ -369,19 +369,23 @@ impl Grad {
     /// `s` bits of `B1` and `B2`. Exact, the very bits.
     #[inline(always)]
     fn origin_short(&self, gx: i32, gy: i32) -> i32 {
-        let s = self.s;
+        origin_short_at(self.s, self.o, gx, gy)
+    }
+
+    /// [`Grad::origin_short`]'s low `32 - s` bits (the others mean
+    /// nothing) from the sum modulo 2^32: `⌊t / 2^s⌋ mod 2^(32-s)` is bits
+    /// `s..32` of `t`, which the wrapping sum holds. Two `MULS` and no
+    /// carries, for a value of which only those bits are used (the grey
+    /// level of [`draw_small`] with `LEVELS`, shifted left by 8). Exact in
+    /// those bits; tested.
+    #[inline(always)]
+    fn origin_low(&self, gx: i32, gy: i32) -> i32 {
         let [ox, oy] = self.o;
-        let a = (gx >> 16)
+        let t = gx
             .wrapping_mul(ox)
-            .wrapping_add((gy >> 16).wrapping_mul(oy));
-        let b1 = (gx & 0xffff).wrapping_mul(ox);
-        let b2 = (gy & 0xffff).wrapping_mul(oy).wrapping_add(1 << (s - 1));
-        let m = (1 << s) - 1;
-        let carry = ((b1 & m) + (b2 & m)) >> s;
-        (a << (16 - s))
-            .wrapping_add(b1 >> s)
-            .wrapping_add(b2 >> s)
-            .wrapping_add(carry)
+            .wrapping_add(gy.wrapping_mul(oy))
+            .wrapping_add(1 << (self.s - 1));
+        ((t as u32) >> self.s) as i32
     }
 
     /// [`Grad::plane`] on ARMv6-M (and in test builds, which check it)
@@ -423,7 +427,7 @@ impl Grad {
     #[inline(never)]
     #[cold]
     fn plane_fields_cold(self, f: [i32; 3], v0: i32, sh: u32, out: &mut [i32; 4]) {
-        let (gx, gy, o, ok) = self.plane_fields::<false>(f, v0, sh);
+        let (gx, gy, o, ok) = self.plane_fields::<false, false>(f, v0, sh, true);
         *out = [gx, gy, o, i32::from(ok)];
     }
 
@@ -455,7 +459,13 @@ impl Grad {
     /// With `UP` the caller promises `k <= sh`: the gradients by
     /// [`InvArea::quot_up`] (the same values, the shifts not selected).
     #[inline(always)]
-    fn plane_fields<const UP: bool>(&self, f: [i32; 3], v0: i32, sh: u32) -> (i32, i32, i32, bool) {
+    fn plane_fields<const UP: bool, const SHORT: bool>(
+        &self,
+        f: [i32; 3],
+        v0: i32,
+        sh: u32,
+        origin: bool,
+    ) -> (i32, i32, i32, bool) {
         let [dx1, dy1, dx2, dy2] = self.d;
         let (f1, f2) = (f[1].wrapping_sub(f[0]), f[2].wrapping_sub(f[0]));
         let nx = f1.wrapping_mul(dy2).wrapping_sub(f2.wrapping_mul(dy1));
@@ -463,8 +473,17 @@ impl Grad {
         // `k <= sh` by the caller's bound: the shifts known per triangle.
         let (gx, gy, ok) = if UP {
             let u = sh.wrapping_sub(self.k);
-            let ((gx, okx), (gy, oky)) = (self.inv.quot_up(nx, u), self.inv.quot_up(ny, u));
-            (gx, gy, okx & oky)
+            // Both numerators in `-2^16..2^16` (and `u <= 14`): two
+            // products each.
+            let short =
+                SHORT && SHORT_QUOTIENTS && ((nx ^ (nx >> 31)) | (ny ^ (ny >> 31))) < 1 << 16;
+            if short {
+                let q = (self.inv.quot_up_short(nx, u), self.inv.quot_up_short(ny, u));
+                (q.0, q.1, true)
+            } else {
+                let ((gx, okx), (gy, oky)) = (self.inv.quot_up(nx, u), self.inv.quot_up(ny, u));
+                (gx, gy, okx & oky)
+            }
         } else {
             let (gx, gy) = (
                 self.inv.quot_scaled(nx, self.k, sh),
@@ -476,7 +495,9 @@ impl Grad {
                 gx.is_some() & gy.is_some(),
             )
         };
-        let o = if SHORT_NUMERATORS {
+        let o = if !origin {
+            0
+        } else if SHORT_NUMERATORS {
             self.origin_short(gx, gy)
         } else {
             let h = 1i64 << (self.s - 1);
@@ -484,6 +505,23 @@ impl Grad {
         };
         (gx, gy, v0.wrapping_add(o), ok)
     }
+}
+
+/// [`Grad::origin_short`] for `s` subpixel bits and the offsets `o`.
+#[inline(always)]
+fn origin_short_at(s: u32, o: [i32; 2], gx: i32, gy: i32) -> i32 {
+    let [ox, oy] = o;
+    let a = (gx >> 16)
+        .wrapping_mul(ox)
+        .wrapping_add((gy >> 16).wrapping_mul(oy));
+    let b1 = (gx & 0xffff).wrapping_mul(ox);
+    let b2 = (gy & 0xffff).wrapping_mul(oy).wrapping_add(1 << (s - 1));
+    let m = (1 << s) - 1;
+    let carry = ((b1 & m) + (b2 & m)) >> s;
+    (a << (16 - s))
+        .wrapping_add(b1 >> s)
+        .wrapping_add(b2 >> s)
+        .wrapping_add(carry)
 }
 
 /// [`draw_small`] takes [`Grad::plane_fields`] for packed values: on
@@ -515,6 +553,22 @@ const WIDE_RESCUE: bool = NO_LONG_MUL || cfg!(test);
 /// builds (on ARMv7-M the 64-bit numerators cost less than the bound's
 /// test).
 const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
+
+/// [`Grad::plane_fields`] takes [`InvArea::quot_up_short`] (two `MULS` a
+/// gradient instead of four) where both numerators of a plane lie in
+/// `-2^16..2^16` (with `SHORT`: the depth plane of [`draw_small`]): on
+/// ARMv6-M, and in test builds, which check it (on ARMv7-M a gradient is
+/// one `SMMUL`). Exact QEMU counts, bunny-gouraud raster thumbv6m
+/// 2 580 811 -> 2 556 014 for `i16` numerators (81% of the bunny's depth
+/// planes), later 2 520 390 -> 2 509 937 for the wider range; for the
+/// level plane as well 2 618 573 (`i16`; its numerators mostly wider, the
+/// compiler computed both forms and selected), 2 594 161 (the wider
+/// range), with the level's long form out of line 2 583 084 (called for
+/// nearly every triangle). Also measured and
+/// not kept on ARMv6-M: both overflow flags of [`InvArea::quot_up`] in one
+/// test, `(|nx ^ nx >> 31| | |ny ^ ny >> 31|) >> (31 - u) == 0`
+/// (2 520 390 -> 2 525 721).
+const SHORT_QUOTIENTS: bool = NO_LONG_MUL || cfg!(test);
 
 /// `a - b` and whether it wraps; without `WRAPS` (a difference known not
 /// to wrap) the wrapping difference and `false`.
@@ -916,10 +970,15 @@ pub(crate) fn draw_small<
     // elsewhere through the column extent and the height (`0 <= dy1 <=
     // dy2`, columns within `xmin..=xmax`), slightly stricter, cheaper.
     let mxy = if SHORT_NUMERATORS {
-        dx1.unsigned_abs() | dy1.unsigned_abs() | dx2.unsigned_abs() | dy2.unsigned_abs()
+        // `0 <= dy1 <= dy2` for sorted vertices: as `u32`s their own
+        // magnitudes (a negative one, unsorted, fails the bound below).
+        dx1.unsigned_abs() | dy1 as u32 | dx2.unsigned_abs() | dy2 as u32
     } else {
         (xmax - xmin) as u32 | dy2 as u32
     };
+    // (Tested as `a.x < 2^15 + h` from `a.x >= 0` and `a.y - h + 2^15 - 1`
+    // in `0..2^16 - 1`: bunny-gouraud raster thumbv6m 2 535 961 ->
+    // 2 541 021, bunny-flat 2 180 230 -> 2 195 547; not kept.)
     let far = SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15;
     if (mxy >= 1 << 15) | far {
         return None;
@@ -958,7 +1017,7 @@ pub(crate) fn draw_small<
     // values refuse them.
     let rescue = FIELDS_RESCUE & fields;
     let (gx, gy, z0, mut ok) = if pk {
-        g.plane_fields::<true>([zf(a), zf(b), zf(c)], zval(a), 14)
+        g.plane_fields::<true, true>([zf(a), zf(b), zf(c)], zval(a), 14, true)
     } else {
         match g.plane_small::<false>(zval(a), zval(b), zval(c), lim) {
             p if !p.3 & rescue => g.fields_rescue([zf(a), zf(b), zf(c)], zval(a), 14),
@@ -968,12 +1027,16 @@ pub(crate) fn draw_small<
     };
     let z16 = Depth16::gradients_in_range(gx, gy);
     ok &= D::plane_in_range(z16);
+    // With `LEVELS` on ARMv6-M (and in test builds) the level plane's
+    // full origin only for a triangle that continues below the band
+    // ([`Grad::origin_low`] for the rows).
+    let lazy = LEVELS && N == 1 && SHORT_NUMERATORS && pk;
     let mut row = Vals { z: z0, a: [0; N] };
     let mut sx = Vals { z: gx, a: [0; N] };
     let mut sy = Vals { z: gy, a: [0; N] };
     for k in 0..N {
         let (gx, gy, o, oka) = if pk {
-            g.plane_fields::<true>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8)
+            g.plane_fields::<true, false>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8, !lazy)
         } else {
             match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim) {
                 p if !p.3 & rescue => {
@@ -994,7 +1057,15 @@ pub(crate) fn draw_small<
     if LEVELS && N == 1 {
         let l = [lval(a, 0), lval(b, 0), lval(c, 0)];
         ok &= levels_in_range(l, sx.a[0], sy.a[0], s);
-        t0.a[0] = row.a[0].wrapping_add(1 << 15) << 8;
+        // Only the level's low 24 bits are kept: on ARMv6-M (and in test
+        // builds) from [`Grad::origin_low`] (`s <= 8`), the full origin
+        // then used only by a triangle that continues below the band.
+        let o = if SHORT_NUMERATORS {
+            lval(a, 0).wrapping_add(g.origin_low(sx.a[0], sy.a[0]))
+        } else {
+            row.a[0]
+        };
+        t0.a[0] = o.wrapping_add(1 << 15) << 8;
         tx.a[0] = sx.a[0] << 8;
         ty.a[0] = sy.a[0] << 8;
     }
@@ -1119,6 +1190,10 @@ pub(crate) fn draw_small<
         // instructions less), or `rows.v` stepped back (the same values,
         // wrapping; on ARMv7-M the Gouraud bunny's raster 16 K less).
         let v00 = if LEVELS || NO_LONG_MUL {
+            if lazy {
+                let o = origin_short_at(s, [h - a.x, h - a.y], sx0.a[0], sy0.a[0]);
+                row.a[0] = lval(a, 0).wrapping_add(o);
+            }
             row
         } else if SmallRows::<'_, N>::LAZY {
             rows.v
@@ -1386,6 +1461,12 @@ mod tests {
             assert_eq!(
                 grad.origin_short(gx, gy),
                 (t >> s) as i32,
+                "{gx} {gy} {ox} {oy} {s}"
+            );
+            let low = (1u32 << (32 - s)) - 1;
+            assert_eq!(
+                grad.origin_low(gx, gy) as u32 & low,
+                (t >> s) as u32 & low,
                 "{gx} {gy} {ox} {oy} {s}"
             );
         }
