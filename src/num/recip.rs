@@ -4,9 +4,7 @@
 //! ([`recip63`]: a table-seeded Newton iteration on ARMv6-M, two hardware
 //! divisions elsewhere).
 
-use super::wide::{
-    clz32, clz64, mulhi, mulhi_quot, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL,
-};
+use super::wide::{clz32, clz64, mulhi, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL};
 
 /// The reciprocal of a doubled triangle area in fixed point:
 /// `1/|a| ≈ m · 2^-k`, `m` rounded to 32 significant bits.
@@ -416,10 +414,8 @@ impl InvArea {
     pub(crate) fn quot_up(&self, n: i32, u: u32) -> (i32, bool) {
         let u = u & 31;
         let nu = n << u;
-        // `quot_high(nu, 0)`; on ARMv6-M by `mulhi_carry` (there the field
-        // planes' bunny-gouraud raster 2 535 961 -> 2 525 303, but with
-        // `quot_high` too bunny-flat 2 180 230 -> 2 190 189).
-        ((mulhi_quot(nu, self.m) + 1) >> 1, nu >> u == n)
+        // `quot_high(nu, 0)`.
+        ((mulhi(nu, self.m) + 1) >> 1, nu >> u == n)
     }
 
     /// [`InvArea::quot_up`]`(n, u)` for `n` in `-2^16..2^16` and `u <=

@@ -130,39 +130,6 @@ pub(crate) fn mulhi_split(a: i32, b: i32) -> i32 {
         .wrapping_add(t2 >> 16)
 }
 
-/// [`mulhi`] for the reciprocal's quotients ([`crate::num::InvArea`]):
-/// on ARMv6-M [`mulhi_carry`], elsewhere [`mulhi`].
-#[inline(always)]
-pub(crate) fn mulhi_quot(a: i32, b: i32) -> i32 {
-    if NO_LONG_MUL {
-        mulhi_carry(a, b)
-    } else {
-        mulhi(a, b)
-    }
-}
-
-/// `floor(a·b / 2^32)` from 16-bit halves with the carries folded into
-/// the partial products (Hacker's Delight's `mulhs`), the same four
-/// `MULS` as [`mulhi_split`] with fewer masks and shifts: with `a = 2^16
-/// ah + al`, `b = 2^16 bh + bl` (`al`, `bl` in `0..2^16`), `t = ah·bl +
-/// ⌊al·bl / 2^16⌋` (within `-2^31 + 2^15 ..= 2^31 - 2^15 - 1`), `w =
-/// al·bh + (t mod 2^16)` (within `±(2^31 - 2^15)`), the result is
-/// `ah·bh + ⌊t / 2^16⌋ + ⌊w / 2^16⌋`. Exact; tested with [`mulhi_split`].
-#[inline(always)]
-#[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-#[cfg_attr(not(armv6m), allow(dead_code))]
-pub(crate) fn mulhi_carry(a: i32, b: i32) -> i32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    let t = ah
-        .wrapping_mul(bl)
-        .wrapping_add(((al as u32).wrapping_mul(bl as u32) >> 16) as i32);
-    let w = al.wrapping_mul(bh).wrapping_add(t & 0xFFFF);
-    ah.wrapping_mul(bh)
-        .wrapping_add(t >> 16)
-        .wrapping_add(w >> 16)
-}
-
 /// Largest operand magnitude of [`mul16_small`]'s second factor: 2.
 pub(crate) const SMALL: u32 = 1 << 17;
 
@@ -557,7 +524,6 @@ mod tests {
             let (a, b) = (w[0], w[1]);
             let want = ((i64::from(a) * i64::from(b)) >> 32) as i32;
             assert_eq!(mulhi_split(a, b), want, "{a} {b}");
-            assert_eq!(mulhi_carry(a, b), want, "{a} {b}");
             assert_eq!(mulhi(a, b), want, "{a} {b}");
         }
     }
