@@ -107,15 +107,15 @@ pub(crate) fn mulhi(a: i32, b: i32) -> i32 {
 
 /// `floor(a·b / 2^32)` from 16-bit halves in 32-bit arithmetic (the
 /// ARMv6-M path of [`mulhi`], four `MULS`, beside [`wmul_split`];
-/// compiled everywhere so that the host tests check it): with `a = 2^16
-/// ah + al`, `b = 2^16 bh + bl` (`al`, `bl` in `[0, 2^16)`), `ah bh + (t1
-/// >> 16) + (t2 >> 16)` with `t1 = ah bl + (al bl >> 16)` and `t2 = al bh
-/// + (t1 & 0xFFFF)` (nested floors of `(ah bl + al bh + al bl / 2^16) /
-/// 2^16`). No sum leaves `i32` for any operands: `|ah bl|, |al bh| <=
-/// 2^15 (2^16 - 1)`, and each adds below `2^16`. Three instructions fewer
-/// than the four partial products summed with a separate carry word (the
-/// point-light Phong span on the M0, exact QEMU counts: 547.04 -> 502.41
-/// instructions a pixel).
+/// compiled everywhere so that the host tests check it). With `a = 2^16
+/// ah + al` and `b = 2^16 bh + bl` (`al`, `bl` in `[0, 2^16)`), let `t1 =
+/// ah bl + (al bl >> 16)` and `t2 = al bh + (t1 & 0xFFFF)`; the result is
+/// `ah bh + (t1 >> 16) + (t2 >> 16)` (nested floors of `(ah bl + al bh +
+/// al bl / 2^16) / 2^16`). No sum leaves `i32` for any operands: `|ah
+/// bl|` and `|al bh|` are at most `2^15 (2^16 - 1)`, and each adds below
+/// `2^16`. Three instructions fewer than the four partial products summed
+/// with a separate carry word (the point-light Phong span on the M0,
+/// exact QEMU counts: 547.04 -> 502.41 instructions a pixel).
 #[inline(always)]
 #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
 #[cfg_attr(not(armv6m), allow(dead_code))]
