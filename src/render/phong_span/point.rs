@@ -1067,7 +1067,7 @@ mod tests {
     /// position from the whole scale wherever it lies in the table.
     #[test]
     fn kscale_products() {
-        let mut r = 0x2545_f491_4f6c_dd1du64;
+        let mut rng = crate::geom::testkit::xorshift(0x2545_f491_4f6c_dd1d);
         let mut worst = 0f64;
         let mut kfs = std::vec![0u32, 1, 31, 32, 33, 1 << 5, (1 << 5) + 1, KF_MAX - 1];
         for i in 0..20 {
@@ -1075,9 +1075,7 @@ mod tests {
             kfs.push((1 << (i + 1)) - 1);
         }
         for i in 0..200_000u32 {
-            r ^= r << 13;
-            r ^= r >> 7;
-            r ^= r << 17;
+            let r = rng();
             let kf = if (i as usize) < kfs.len() {
                 kfs[i as usize]
             } else {
