@@ -247,59 +247,62 @@ impl InvArea {
 
 impl InvArea {
     /// [`InvArea::new`] for a magnitude `mag` in `1..2^16` (and the sign
-    /// `negative`) without a division or a 64-bit product: about 50
+    /// `negative`) without a division or a 64-bit product: about 45
     /// instructions on ARMv6-M, where [`recip63`] takes about 250.
     ///
     /// Why the same value: with `k` the leading zeros of `mag` in 32 bits
     /// (`16..=31`), `new` takes `round(2^63 / x)` (half up) for `x =
-    /// mag·2^k`, whose low 16 bits are zero: with the 16-bit `d = x / 2^16`
-    /// in `[2^15, 2^16)` it is `⌊(2^47 + d/2) / d⌋ = q + [2r >= d]` for
-    /// `2^47 = q·d + r`, `0 <= r < d`. `q` is found in two base-2^16
-    /// digits: `A = ⌊2^31 / d⌋` (in `(2^15, 2^16]`) from [`RECIP_SEED`]
-    /// and one Newton step (within 3 of it, then corrected by its exact
-    /// remainder `B = 2^31 - A·d` in `0..d`, all in 32 bits), and `q_lo =
-    /// ⌊B·2^16 / d⌋` from `B·A / 2^15` (`B·A < 2^32`; at most 2 below
-    /// it, corrected by the remainder `B·2^16 - q_lo·d`, below `3·d`);
-    /// `q = A·2^16 + q_lo`, `m = ⌊(q + [2r >= d]) / 2⌋` capped at
-    /// `i32::MAX` as in `new`. Tested equal to `new`'s general path for
-    /// every magnitude below `2^16`, both signs. The correcting loops
-    /// (which the compiler unrolls) replaced by the steps they take at
-    /// most (one for `A`, two for `q_lo`, checked for every `d`) cost more
-    /// (bunny-gouraud raster thumbv6m 2 556 014 -> 2 564 235, branch-free
-    /// 2 565 440; later 2 520 390 -> 2 542 829): not kept.
+    /// mag·2^k`, whose low 16 bits are zero, and halves it: with the
+    /// 16-bit `d = x / 2^16` in `[2^15, 2^16)` that is `m = ⌊(2^48 + d) /
+    /// (4d)⌋ = ⌊2^46/d + ¼⌋` (nested floors), capped at `i32::MAX` (only
+    /// `d = 2^15` reaches `2^31`). Found in two base-2^15 digits from
+    /// any `A`, `B` with `A·d + B = 2^31`: `m = A·2^15 + ⌊(B·2^15 + ⌊d/4⌋)
+    /// / d⌋` (an integer plus a floor; `⌊d/4⌋` for `d/4` since `B·2^15`
+    /// is an integer). `A` ≈ `2^31/d` from [`RECIP_SEED256`] (the top
+    /// eight bits after the leading one, midpoints; relative error below
+    /// `2^-9`: `e = 2^31 - s0·d` within `±2^22`, `s0·(e >> 8)` below `2^30`)
+    /// and one rounded Newton step, within `0.76` of `2^31/d` (checked
+    /// for every `d`), so its remainder `B = 2^31 - A·d` (32-bit
+    /// arithmetic, wrapping) lies in `(-d, d)`; the low digit `L = ⌊(B·A
+    /// + 2^14) / 2^16⌋` is `⌊B·2^15/d + ¼⌋` or one below it (`2^31/d = A +
+    /// B/d`, so `B·2^15/d = (B·A + B²/d) / 2^16` and `0 <= B²/d < 2^16`;
+    /// `|B·A| < 2^31 - 2^14`), corrected by the sign of the exact
+    /// remainder `B·2^15 + ⌊d/4⌋ - L·d` in `[0, 2d)` (formed modulo 2^32).
+    /// Tested equal to `new`'s general path for every magnitude below
+    /// `2^16`, both signs (which checks each bound for every `d`).
+    ///
+    /// It replaced a 128-entry seed, the exact first digit `⌊2^31/d⌋`
+    /// by correcting loops (within 3 after the Newton step) and the low
+    /// digit `⌊B·2^16/d⌋` by another loop (up to 2 steps) and a rounding
+    /// test: exact QEMU counts, bunny-gouraud raster thumbv6m about 167
+    /// instructions a triangle for the reciprocal (the compiler unrolled
+    /// the loops by four, their multiples precomputed), 2 508 220 -> NEW.
+    /// Measured before on that form and not kept: its loops replaced by
+    /// the steps they take at most (2 556 014 -> 2 564 235, branch-free
+    /// 2 565 440; later 2 520 390 -> 2 542 829).
     #[inline(always)]
     fn new_short(mag: u32, negative: bool) -> Self {
         let k = clz32(mag);
-        // In [2^15, 2^16).
-        let d = (mag << (k - 16)).clamp(1 << 15, (1 << 16) - 1);
-        // ≈ 2^31 / d within a relative 2^-8 (d's top eight bits, midpoint).
-        let s0 = u32::from(RECIP_SEED[((d >> 8) & 127) as usize]);
-        // One Newton step: e = 2^31 - s0·d, |e| < 2^23 (s0·d < 2^32).
-        let e = (1u32 << 31).wrapping_sub(s0.wrapping_mul(d)) as i32;
-        // |s0·(e >> 8)| < 2^16·2^15.
-        let mut a = (s0 as i32).wrapping_add((s0 as i32).wrapping_mul(e >> 8) >> 23) as u32;
-        // The remainder 2^31 - a·d, small and signed (|a - 2^31/d| <= 3).
-        let mut b = (1u32 << 31).wrapping_sub(a.wrapping_mul(d)) as i32;
-        while b < 0 {
-            a = a.wrapping_sub(1);
-            b = b.wrapping_add(d as i32);
-        }
-        while b >= d as i32 {
-            a = a.wrapping_add(1);
-            b = b.wrapping_sub(d as i32);
-        }
-        let b = b as u32;
-        // b < d < 2^16 and a <= 2^16 (b == 0 when a == 2^16).
-        let mut lo = b.wrapping_mul(a) >> 15;
-        let mut r = (b << 16).wrapping_sub(lo.wrapping_mul(d));
-        while r >= d {
-            lo = lo.wrapping_add(1);
-            r = r.wrapping_sub(d);
-        }
-        let lo = lo.wrapping_add((r << 1 >= d) as u32);
-        let m = (a << 15).wrapping_add(lo >> 1).min(i32::MAX as u32) as i32;
+        // In [2^15, 2^16) for `mag` in 1..2^16.
+        let d = mag.wrapping_shl(k.wrapping_sub(16));
+        let s0 = i32::from(RECIP_SEED256[((d >> 7) & 255) as usize]);
+        // |e| <= 2^22: |s0·(e >> 8)| + 2^22 < 2^16·2^14 + 2^22.
+        let e = (1u32 << 31).wrapping_sub((s0 as u32).wrapping_mul(d)) as i32;
+        let a = s0.wrapping_add(s0.wrapping_mul(e >> 8).wrapping_add(1 << 22) >> 23);
+        // In (-d, d).
+        let b = (1u32 << 31).wrapping_sub((a as u32).wrapping_mul(d)) as i32;
+        let lo = b.wrapping_mul(a).wrapping_add(1 << 14) >> 16;
+        // The remainder, in [0, 2d).
+        let r = ((b << 15) as u32)
+            .wrapping_add(d >> 2)
+            .wrapping_sub((lo as u32).wrapping_mul(d));
+        let m = ((a as u32) << 15)
+            .wrapping_add(lo as u32)
+            .wrapping_add(u32::from(r >= d));
+        // 2^31 (d = 2^15) capped at i32::MAX.
+        let m = m.wrapping_sub(m >> 31) as i32;
         Self {
-            m: if negative { -m } else { m },
+            m: if negative { m.wrapping_neg() } else { m },
             e: 62 - k,
         }
     }
@@ -460,6 +463,21 @@ static RECIP_SEED: [u16; 128] = {
     while i < 128 {
         let d = 2 * (128 + i as u32) + 1;
         t[i] = (2 * (1u32 << 24) / d).div_ceil(2) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// Seeds of [`InvArea::new_short`]: `round(2^31 / (2^15 + 128·i + 64))`
+/// for the top eight bits `i` after the leading one of a divisor `d` in
+/// `[2^15, 2^16)` (the interval's midpoint; relative error below `2^-9`,
+/// `|2^31 - s0·d| <= 2^22`). 512 bytes of flash.
+static RECIP_SEED256: [u16; 256] = {
+    let mut t = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        let mid = (1u32 << 15) + 128 * i as u32 + 64;
+        t[i] = (u32::MAX / mid).div_ceil(2) as u16;
         i += 1;
     }
     t
