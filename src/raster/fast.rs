@@ -1006,8 +1006,10 @@ pub(crate) fn draw_small<
         s,
         o: [h - a.x, h - a.y],
     };
-    // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15).
-    let lim = (1u32 << 30) >> (32 - clz32(mxy));
+    // 2^(30 - bxy) for coordinate offsets below 2^bxy (bxy <= 15): only
+    // where the planes take [`Grad::plane_short`] (a value hoisted above
+    // the field planes cost every triangle its leading zeros on ARMv6-M).
+    let lim = || (1u32 << 30) >> (32 - clz32(mxy));
     // Packed values by their 16-bit fields where the offsets allow it.
     let fields = packed & (mxy < 1 << 14);
     // With `k <= 8` (doubled areas below 2^15 subpixels² at 4 subpixel
@@ -1019,7 +1021,7 @@ pub(crate) fn draw_small<
     let (gx, gy, z0, mut ok) = if pk {
         g.plane_fields::<true, true>([zf(a), zf(b), zf(c)], zval(a), 14, true)
     } else {
-        match g.plane_small::<false>(zval(a), zval(b), zval(c), lim) {
+        match g.plane_small::<false>(zval(a), zval(b), zval(c), lim()) {
             p if !p.3 & rescue => g.fields_rescue([zf(a), zf(b), zf(c)], zval(a), 14),
             p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(zval(a), zval(b), zval(c)),
             p => p,
@@ -1038,7 +1040,7 @@ pub(crate) fn draw_small<
         let (gx, gy, o, oka) = if pk {
             g.plane_fields::<true, false>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8, !lazy)
         } else {
-            match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim) {
+            match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim()) {
                 p if !p.3 & rescue => {
                     let f = [lf(a, k), lf(b, k), lf(c, k)];
                     g.fields_rescue(f, lval(a, k), 8)
