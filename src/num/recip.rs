@@ -4,7 +4,7 @@
 //! ([`recip63`]: a table-seeded Newton iteration on ARMv6-M, two hardware
 //! divisions elsewhere).
 
-use super::wide::{clz32, clz64, mulhi, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL};
+use super::wide::{clz32, clz64, CLZ8, mulhi, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL};
 
 /// The reciprocal of a doubled triangle area in fixed point:
 /// `1/|a| ≈ m · 2^-k`, `m` rounded to 32 significant bits.
@@ -282,13 +282,22 @@ impl InvArea {
     /// 2 565 440; later 2 520 390 -> 2 542 829).
     #[inline(always)]
     fn new_short(mag: u32, negative: bool) -> Self {
-        let k = clz32(mag);
-        // In [2^15, 2^16) for `mag` in 1..2^16.
-        let d = mag.wrapping_shl(k.wrapping_sub(16));
+        // `t = mag·2^8` below 2^8, its top byte `i` (in 1..2^8 for `mag`
+        // in 1..2^16) with `c` leading zeros: `k = 16 + c (+ 8)` and `d =
+        // t·2^c` in [2^15, 2^16) (a product: no masked shift).
+        let (t, k0) = if mag >= 1 << 8 {
+            (mag, 16)
+        } else {
+            (mag << 8, 24)
+        };
+        let i = (t >> 8) as u8 as usize;
+        let c = u32::from(CLZ8[i]);
+        let k = k0 + c;
+        let d = t.wrapping_mul(u32::from(NORM8[i]));
         let s0 = i32::from(RECIP_SEED256[((d >> 7) & 255) as usize]);
-        // |e| <= 2^22: |s0·(e >> 8)| + 2^22 < 2^16·2^14 + 2^22.
+        // |e| <= 2^22: |s0·(e >> 7)| < 2^16·2^15.
         let e = (1u32 << 31).wrapping_sub((s0 as u32).wrapping_mul(d)) as i32;
-        let a = s0.wrapping_add(s0.wrapping_mul(e >> 8).wrapping_add(1 << 22) >> 23);
+        let a = s0.wrapping_add(1).wrapping_add(s0.wrapping_mul(e >> 7) >> 24);
         // In (-d, d).
         let b = (1u32 << 31).wrapping_sub((a as u32).wrapping_mul(d)) as i32;
         let lo = b.wrapping_mul(a).wrapping_add(1 << 14) >> 16;
@@ -463,6 +472,19 @@ static RECIP_SEED: [u16; 128] = {
     while i < 128 {
         let d = 2 * (128 + i as u32) + 1;
         t[i] = (2 * (1u32 << 24) / d).div_ceil(2) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// `2^c` for the leading zeros `c` of a byte `i` in `1..2^8` (0 for 0):
+/// `i·2^c` has its top bit at 7 ([`InvArea::new_short`]'s
+/// normalisation, a product instead of a masked shift). 256 bytes.
+static NORM8: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut i = 1;
+    while i < 256 {
+        t[i] = 1 << (i as u8).leading_zeros();
         i += 1;
     }
     t

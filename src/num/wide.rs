@@ -346,7 +346,7 @@ pub(crate) fn clz32(x: u32) -> u32 {
 }
 
 /// Leading zeros of a byte (8 for 0): 256 bytes of flash.
-static CLZ8: [u8; 256] = {
+pub(crate) static CLZ8: [u8; 256] = {
     let mut t = [0u8; 256];
     let mut i = 0;
     while i < 256 {
