@@ -4,7 +4,9 @@
 //! ([`recip63`]: a table-seeded Newton iteration on ARMv6-M, two hardware
 //! divisions elsewhere).
 
-use super::wide::{clz32, clz64, CLZ8, mulhi, shl64, shr64, wmul, wmul_u32, NO_DIVIDE, NO_LONG_MUL};
+use super::wide::{
+    clz32, clz64, mulhi, shl64, shr64, wmul, wmul_u32, CLZ8, NO_DIVIDE, NO_LONG_MUL,
+};
 
 /// The reciprocal of a doubled triangle area in fixed point:
 /// `1/|a| ≈ m · 2^-k`, `m` rounded to 32 significant bits.
@@ -247,7 +249,7 @@ impl InvArea {
 
 impl InvArea {
     /// [`InvArea::new`] for a magnitude `mag` in `1..2^16` (and the sign
-    /// `negative`) without a division or a 64-bit product: about 45
+    /// `negative`) without a division or a 64-bit product: about 55
     /// instructions on ARMv6-M, where [`recip63`] takes about 250.
     ///
     /// Why the same value: with `k` the leading zeros of `mag` in 32 bits
@@ -259,27 +261,34 @@ impl InvArea {
     /// any `A`, `B` with `A·d + B = 2^31`: `m = A·2^15 + ⌊(B·2^15 + ⌊d/4⌋)
     /// / d⌋` (an integer plus a floor; `⌊d/4⌋` for `d/4` since `B·2^15`
     /// is an integer). `A` ≈ `2^31/d` from [`RECIP_SEED256`] (the top
-    /// eight bits after the leading one, midpoints; relative error below
-    /// `2^-9`: `e = 2^31 - s0·d` within `±2^22`, `s0·(e >> 8)` below `2^30`)
-    /// and one rounded Newton step, within `0.76` of `2^31/d` (checked
-    /// for every `d`), so its remainder `B = 2^31 - A·d` (32-bit
-    /// arithmetic, wrapping) lies in `(-d, d)`; the low digit `L = ⌊(B·A
-    /// + 2^14) / 2^16⌋` is `⌊B·2^15/d + ¼⌋` or one below it (`2^31/d = A +
-    /// B/d`, so `B·2^15/d = (B·A + B²/d) / 2^16` and `0 <= B²/d < 2^16`;
-    /// `|B·A| < 2^31 - 2^14`), corrected by the sign of the exact
-    /// remainder `B·2^15 + ⌊d/4⌋ - L·d` in `[0, 2d)` (formed modulo 2^32).
-    /// Tested equal to `new`'s general path for every magnitude below
-    /// `2^16`, both signs (which checks each bound for every `d`).
+    /// eight bits after the leading one, midpoints; `e = 2^31 - s0·d`
+    /// within `±2^22`, so `s0·(e >> 7)` is an `i32`) and one Newton step
+    /// biased by one, `s0 + 1 + ⌊s0·(e >> 7) / 2^24⌋`, within `-0.21` and
+    /// `+0.999` of `2^31/d` (the step's own error below `¼`, its floor
+    /// below 1; checked for every `d`), so its remainder `B = 2^31 - A·d`
+    /// (32-bit arithmetic, wrapping) lies in `(-d, d)`; the low digit `L
+    /// = ⌊(B·A + 2^14) / 2^16⌋` is `⌊B·2^15/d + ¼⌋` or one below it
+    /// (`2^31/d = A + B/d`, so `B·2^15/d = (B·A + B²/d) / 2^16` and `0 <=
+    /// B²/d < 2^16`; `|B·A| <= 2 145 124 080 < 2^31 - 2^14`, checked),
+    /// corrected by the exact remainder `B·2^15 + ⌊d/4⌋ - L·d` in `[0,
+    /// 2d)` (formed modulo 2^32) against `d`. The divisor normalised by a
+    /// product (`NORM8`, no masked shift). Tested equal to `new`'s
+    /// general path for every magnitude below `2^16`, both signs (which
+    /// checks each bound above for every `d`).
     ///
-    /// It replaced a 128-entry seed, the exact first digit `⌊2^31/d⌋`
-    /// by correcting loops (within 3 after the Newton step) and the low
-    /// digit `⌊B·2^16/d⌋` by another loop (up to 2 steps) and a rounding
-    /// test: exact QEMU counts, bunny-gouraud raster thumbv6m about 167
-    /// instructions a triangle for the reciprocal (the compiler unrolled
-    /// the loops by four, their multiples precomputed), 2 508 220 -> NEW.
-    /// Measured before on that form and not kept: its loops replaced by
-    /// the steps they take at most (2 556 014 -> 2 564 235, branch-free
-    /// 2 565 440; later 2 520 390 -> 2 542 829).
+    /// It replaced a 128-entry seed, the exact first digit `⌊2^31/d⌋` by
+    /// correcting loops (within 3 after the Newton step), the low digit
+    /// `⌊B·2^16/d⌋` by another loop (up to 2 steps) and a rounding test
+    /// (about 93 instructions a triangle in the bunny's set-up, the
+    /// compiler unrolling the loops by four with their multiples
+    /// precomputed, now about 60): exact QEMU counts, bunny-gouraud raster
+    /// thumbv6m 2 508 220 -> 2 478 334 (bunny-flat 2 190 189 ->
+    /// 2 138 526) with a rounded Newton step (`+ 2^22` before `>> 23`)
+    /// and the leading zeros' masked shift; the step biased by one and
+    /// the product normalisation 2 473 748 -> 2 470 899 (bunny-flat
+    /// 2 138 526 -> 2 130 680). Measured before on the loop form and not
+    /// kept: its loops replaced by the steps they take at most (2 556 014
+    /// -> 2 564 235, branch-free 2 565 440; later 2 520 390 -> 2 542 829).
     #[inline(always)]
     fn new_short(mag: u32, negative: bool) -> Self {
         // `t = mag·2^8` below 2^8, its top byte `i` (in 1..2^8 for `mag`
@@ -297,7 +306,9 @@ impl InvArea {
         let s0 = i32::from(RECIP_SEED256[((d >> 7) & 255) as usize]);
         // |e| <= 2^22: |s0·(e >> 7)| < 2^16·2^15.
         let e = (1u32 << 31).wrapping_sub((s0 as u32).wrapping_mul(d)) as i32;
-        let a = s0.wrapping_add(1).wrapping_add(s0.wrapping_mul(e >> 7) >> 24);
+        let a = s0
+            .wrapping_add(1)
+            .wrapping_add(s0.wrapping_mul(e >> 7) >> 24);
         // In (-d, d).
         let b = (1u32 << 31).wrapping_sub((a as u32).wrapping_mul(d)) as i32;
         let lo = b.wrapping_mul(a).wrapping_add(1 << 14) >> 16;
