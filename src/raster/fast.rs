@@ -1018,10 +1018,13 @@ pub(crate) fn draw_small<
     // ARMv6-M: the fields, out of line, where the 32-bit numerators of the
     // values refuse them.
     let rescue = FIELDS_RESCUE & fields;
+    // The bound computed on the depth's path and kept for the values'.
+    let mut lim_v = 0;
     let (gx, gy, z0, mut ok) = if pk {
         g.plane_fields::<true, true>([zf(a), zf(b), zf(c)], zval(a), 14, true)
     } else {
-        match g.plane_small::<false>(zval(a), zval(b), zval(c), lim()) {
+        lim_v = lim();
+        match g.plane_small::<false>(zval(a), zval(b), zval(c), lim_v) {
             p if !p.3 & rescue => g.fields_rescue([zf(a), zf(b), zf(c)], zval(a), 14),
             p if !p.3 & (WIDE_RESCUE && N == 0) => g.plane_wide_cold(zval(a), zval(b), zval(c)),
             p => p,
@@ -1040,7 +1043,7 @@ pub(crate) fn draw_small<
         let (gx, gy, o, oka) = if pk {
             g.plane_fields::<true, false>([lf(a, k), lf(b, k), lf(c, k)], lval(a, k), 8, !lazy)
         } else {
-            match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim()) {
+            match g.plane_small::<true>(lval(a, k), lval(b, k), lval(c, k), lim_v) {
                 p if !p.3 & rescue => {
                     let f = [lf(a, k), lf(b, k), lf(c, k)];
                     g.fields_rescue(f, lval(a, k), 8)
