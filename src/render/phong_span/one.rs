@@ -97,6 +97,27 @@ pub(super) fn rsq_biased(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
     (e >> 14) - (((e & 0x3FFF) * t) >> 16)
 }
 
+/// [`rsq_biased`] for the one-light loop ([`PhongKernel::run`]): the
+/// same value; other than on ARMv6-M the interpolation's `floor(d·t /
+/// 2^16)` as the high word of `(d · 2^18) · t` (one `UMULL` of the
+/// packed word shifted left: no mask of `d`, whose `BFC` needed a copy)
+/// shifted right by 2, four instructions after the load instead of
+/// five. Measured on the M4's span sweep, phong-k1 72.20 -> 71.84
+/// instructions a pixel.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+pub(super) fn rsq_hi(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
+    if cfg!(armv6m) {
+        // No `UMULL` on ARMv6-M.
+        return rsq_biased(rs, nb);
+    }
+    let e = rs[((nb as u32) >> 24) as usize & (RSQRT_N - 1)];
+    let t = ((nb as u32) >> 8) & 0xFFFF;
+    // floor(floor(d·t / 2^14) / 4) = floor(d·t / 2^16).
+    let p = ((u64::from(e << 18) * u64::from(t)) >> 32) as u32;
+    (e >> 14) - (p >> 2)
+}
+
 /// The normal `n + i·dn` of pixel `i` (wrapping, as the loops step it).
 #[inline(always)]
 #[allow(clippy::cast_possible_wrap)]
@@ -430,21 +451,21 @@ impl<R: Real> PhongKernel<'_, R> {
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_lit::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        |w| px(self.terms_lit::<true>(rsq_hi(rs, w.nn), w.nl, q7(w))),
                         Whole::step::<true>,
                     ),
                     (true, false) => out.$loop(
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_r::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        |w| px(self.terms_r::<true>(rsq_hi(rs, w.nn), w.nl, q7(w))),
                         Whole::step::<true>,
                     ),
                     _ => out.$loop(
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_r::<false>(rsq_biased(rs, w.nn), w.nl, 0)),
+                        |w| px(self.terms_r::<false>(rsq_hi(rs, w.nn), w.nl, 0)),
                         Whole::step::<false>,
                     ),
                 }
@@ -768,9 +789,9 @@ mod tests {
         assert_eq!(checked, 12_000);
     }
 
-    /// The packed table from `|n|² - 1/4` gives [`rsq`]'s value at every
-    /// `|n|²` of `[1/4, 5/4)` on a grid of `2^6` (Q30) and at each
-    /// segment's ends.
+    /// The packed table from `|n|² - 1/4` ([`rsq_biased`], [`rsq_hi`])
+    /// gives [`rsq`]'s value at every `|n|²` of `[1/4, 5/4)` on a grid
+    /// of `2^6` (Q30) and at each segment's ends.
     #[test]
     fn packed_rsq_is_rsq() {
         let mut checked = 0u32;
@@ -778,7 +799,9 @@ mod tests {
         while nn < 5 << 28 {
             for v in [nn, nn + 63, nn | 0xFF_FFFF] {
                 if v < 5 << 28 {
-                    assert_eq!(rsq_biased(&RS_PACKED, v - (1 << 28)), rsq(v), "{v}");
+                    let want = rsq(v);
+                    assert_eq!(rsq_biased(&RS_PACKED, v - (1 << 28)), want, "{v}");
+                    assert_eq!(rsq_hi(&RS_PACKED, v - (1 << 28)), want, "{v}");
                     checked += 1;
                 }
             }
@@ -788,6 +811,8 @@ mod tests {
         // 2^16 / |n| at |n|² = 1/4 and 1 (RS's ends of the range).
         assert_eq!(rsq_biased(&RS_PACKED, 0), 1 << 17);
         assert_eq!(rsq_biased(&RS_PACKED, 3 << 28), 1 << 16);
+        assert_eq!(rsq_hi(&RS_PACKED, 0), 1 << 17);
+        assert_eq!(rsq_hi(&RS_PACKED, 3 << 28), 1 << 16);
     }
 
     /// `advance` by `k` steps is `k` single steps, wrapping (the set-up
