@@ -415,9 +415,11 @@ impl<R: Real> PhongKernel<'_, R> {
 
     /// The `k` pixels from pixel `i` of the 32-bit state `w`: the light
     /// terms of [`PhongKernel::terms`] (`|n|²` stepped less `1/4`,
-    /// [`rsq_biased`], the table's address a constant: measured on the
-    /// M4's span sweep 72.29 instructions a pixel against 73.11 with it
-    /// held opaque, `black_box`, in a register), the
+    /// [`rsq_hi`]; the table's address a constant on ARMv6-M, opaque,
+    /// `black_box`, elsewhere: on the M4's span sweep, with
+    /// [`rsq_biased`], 72.29 instructions a pixel as a constant against
+    /// 73.11 opaque, with [`rsq_hi`] 71.84 as a constant, rebuilt by
+    /// `MOVW`/`MOVT` at each use, against 71.30 opaque), the
     /// channels of [`Colour::of_terms`]; returns how many failed the
     /// depth test. On ARMv6-M one loop ([`Out::fused`]: depth test,
     /// terms, channels and store of a pixel together); elsewhere piece
@@ -440,7 +442,13 @@ impl<R: Real> PhongKernel<'_, R> {
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
         let c = *c;
         let c = &c;
-        let rs = &RS_PACKED;
+        // Other than on ARMv6-M the table's address opaque, in a register
+        // (or a spill slot) rather than rebuilt (`MOVW`/`MOVT`) at each use.
+        let rs = if cfg!(armv6m) {
+            &RS_PACKED
+        } else {
+            core::hint::black_box(&RS_PACKED)
+        };
         let q7 = |w: &Whole| w.q >> (QM_FRAC - 7);
         let px = |(nl15, sp): (u32, u32)| c.of_terms((nl15 & 0xFFFF) | sp << 16);
         // The pixels `j..j + kk` through `out.$loop`.
