@@ -427,8 +427,11 @@ impl<R: Real> PhongKernel<'_, R> {
     /// tests first, then one loop of terms, channels and stores, without
     /// a test when all passed, two pixels an iteration over a local copy
     /// of the state), the state in registers through the colour loop.
-    /// Measured on the firmware's span sweep (one light), 72.20
-    /// instructions a pixel on the M4 (the colour loop 58, the depth
+    /// Measured on the firmware's span sweep (one light), 71.30
+    /// instructions a pixel on the M4 (the colour loop 57: 49 of
+    /// arithmetic, loads and store, 8 of spills, reloads and copies;
+    /// 72.20 before [`rsq_hi`] and the opaque table address, with the
+    /// colour loop 58, the depth
     /// mask 8.6 with its call, a piece's set-up 3.2, the span's 2.3;
     /// 73.48 with the mask inlined and the table's address opaque)
     /// against 77.53 with the one loop; pieces of 64 pixels (two masks, one colour loop)
@@ -436,7 +439,16 @@ impl<R: Real> PhongKernel<'_, R> {
     /// M0 the pieces cost 158.60 against 141.48, so it keeps the one
     /// loop. Not inlined (one copy per pixel and depth format), the
     /// colour constants copied into its frame: against 79.53 and 147.50
-    /// inlined in the row fill, `.text` 5.1 KB and 6.0 KB less.
+    /// inlined in the row fill, `.text` 5.1 KB and 6.0 KB less. Tried
+    /// and measured worse on the M4: a piece's terms into a buffer, then
+    /// `Out::chunk`'s mask and paint (span sweep 77.99 against 72.20,
+    /// before [`rsq_hi`]); with [`rsq_hi`], in the long spans' region
+    /// alone (73.70 instructions a pixel kept then): both terms of a
+    /// pair before both colours 78.78, the colour constants in the
+    /// loop's copied state 82.01, the channels from unpacked terms by
+    /// `MLA` 76.34; with the opaque address (73.17 kept), the colour
+    /// constants and the specular table copied into one block of the
+    /// frame 73.28 (two instructions fewer a pair, a `memcpy` a span).
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
