@@ -97,6 +97,27 @@ pub(super) fn rsq_biased(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
     (e >> 14) - (((e & 0x3FFF) * t) >> 16)
 }
 
+/// [`rsq_biased`] for the one-light loop ([`PhongKernel::run`]): the
+/// same value; other than on ARMv6-M the interpolation's `floor(d·t /
+/// 2^16)` as the high word of `(d · 2^18) · t` (one `UMULL` of the
+/// packed word shifted left: no mask of `d`, whose `BFC` needed a copy)
+/// shifted right by 2, four instructions after the load instead of
+/// five. Measured on the M4's span sweep, phong-k1 72.20 -> 71.84
+/// instructions a pixel.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, clippy::cast_possible_truncation)]
+pub(super) fn rsq_hi(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
+    if cfg!(armv6m) {
+        // No `UMULL` on ARMv6-M.
+        return rsq_biased(rs, nb);
+    }
+    let e = rs[((nb as u32) >> 24) as usize & (RSQRT_N - 1)];
+    let t = ((nb as u32) >> 8) & 0xFFFF;
+    // floor(floor(d·t / 2^14) / 4) = floor(d·t / 2^16).
+    let p = ((u64::from(e << 18) * u64::from(t)) >> 32) as u32;
+    (e >> 14) - (p >> 2)
+}
+
 /// The normal `n + i·dn` of pixel `i` (wrapping, as the loops step it).
 #[inline(always)]
 #[allow(clippy::cast_possible_wrap)]
@@ -394,9 +415,11 @@ impl<R: Real> PhongKernel<'_, R> {
 
     /// The `k` pixels from pixel `i` of the 32-bit state `w`: the light
     /// terms of [`PhongKernel::terms`] (`|n|²` stepped less `1/4`,
-    /// [`rsq_biased`], the table's address a constant: measured on the
-    /// M4's span sweep 72.29 instructions a pixel against 73.11 with it
-    /// held opaque, `black_box`, in a register), the
+    /// [`rsq_hi`]; the table's address a constant on ARMv6-M, opaque,
+    /// `black_box`, elsewhere: on the M4's span sweep, with
+    /// [`rsq_biased`], 72.29 instructions a pixel as a constant against
+    /// 73.11 opaque, with [`rsq_hi`] 71.84 as a constant, rebuilt by
+    /// `MOVW`/`MOVT` at each use, against 71.30 opaque), the
     /// channels of [`Colour::of_terms`]; returns how many failed the
     /// depth test. On ARMv6-M one loop ([`Out::fused`]: depth test,
     /// terms, channels and store of a pixel together); elsewhere piece
@@ -404,8 +427,11 @@ impl<R: Real> PhongKernel<'_, R> {
     /// tests first, then one loop of terms, channels and stores, without
     /// a test when all passed, two pixels an iteration over a local copy
     /// of the state), the state in registers through the colour loop.
-    /// Measured on the firmware's span sweep (one light), 72.20
-    /// instructions a pixel on the M4 (the colour loop 58, the depth
+    /// Measured on the firmware's span sweep (one light), 71.30
+    /// instructions a pixel on the M4 (the colour loop 57: 49 of
+    /// arithmetic, loads and store, 8 of spills, reloads and copies;
+    /// 72.20 before [`rsq_hi`] and the opaque table address, with the
+    /// colour loop 58, the depth
     /// mask 8.6 with its call, a piece's set-up 3.2, the span's 2.3;
     /// 73.48 with the mask inlined and the table's address opaque)
     /// against 77.53 with the one loop; pieces of 64 pixels (two masks, one colour loop)
@@ -413,13 +439,28 @@ impl<R: Real> PhongKernel<'_, R> {
     /// M0 the pieces cost 158.60 against 141.48, so it keeps the one
     /// loop. Not inlined (one copy per pixel and depth format), the
     /// colour constants copied into its frame: against 79.53 and 147.50
-    /// inlined in the row fill, `.text` 5.1 KB and 6.0 KB less.
+    /// inlined in the row fill, `.text` 5.1 KB and 6.0 KB less. Tried
+    /// and measured worse on the M4: a piece's terms into a buffer, then
+    /// `Out::chunk`'s mask and paint (span sweep 77.99 against 72.20,
+    /// before [`rsq_hi`]); with [`rsq_hi`], in the long spans' region
+    /// alone (73.70 instructions a pixel kept then): both terms of a
+    /// pair before both colours 78.78, the colour constants in the
+    /// loop's copied state 82.01, the channels from unpacked terms by
+    /// `MLA` 76.34; with the opaque address (73.17 kept), the colour
+    /// constants and the specular table copied into one block of the
+    /// frame 73.28 (two instructions fewer a pair, a `memcpy` a span).
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
         let c = *c;
         let c = &c;
-        let rs = &RS_PACKED;
+        // Other than on ARMv6-M the table's address opaque, in a register
+        // (or a spill slot) rather than rebuilt (`MOVW`/`MOVT`) at each use.
+        let rs = if cfg!(armv6m) {
+            &RS_PACKED
+        } else {
+            core::hint::black_box(&RS_PACKED)
+        };
         let q7 = |w: &Whole| w.q >> (QM_FRAC - 7);
         let px = |(nl15, sp): (u32, u32)| c.of_terms((nl15 & 0xFFFF) | sp << 16);
         // The pixels `j..j + kk` through `out.$loop`.
@@ -430,21 +471,21 @@ impl<R: Real> PhongKernel<'_, R> {
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_lit::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        |w| px(self.terms_lit::<true>(rsq_hi(rs, w.nn), w.nl, q7(w))),
                         Whole::step::<true>,
                     ),
                     (true, false) => out.$loop(
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_r::<true>(rsq_biased(rs, w.nn), w.nl, q7(w))),
+                        |w| px(self.terms_r::<true>(rsq_hi(rs, w.nn), w.nl, q7(w))),
                         Whole::step::<true>,
                     ),
                     _ => out.$loop(
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_r::<false>(rsq_biased(rs, w.nn), w.nl, 0)),
+                        |w| px(self.terms_r::<false>(rsq_hi(rs, w.nn), w.nl, 0)),
                         Whole::step::<false>,
                     ),
                 }
@@ -768,9 +809,9 @@ mod tests {
         assert_eq!(checked, 12_000);
     }
 
-    /// The packed table from `|n|² - 1/4` gives [`rsq`]'s value at every
-    /// `|n|²` of `[1/4, 5/4)` on a grid of `2^6` (Q30) and at each
-    /// segment's ends.
+    /// The packed table from `|n|² - 1/4` ([`rsq_biased`], [`rsq_hi`])
+    /// gives [`rsq`]'s value at every `|n|²` of `[1/4, 5/4)` on a grid
+    /// of `2^6` (Q30) and at each segment's ends.
     #[test]
     fn packed_rsq_is_rsq() {
         let mut checked = 0u32;
@@ -778,7 +819,9 @@ mod tests {
         while nn < 5 << 28 {
             for v in [nn, nn + 63, nn | 0xFF_FFFF] {
                 if v < 5 << 28 {
-                    assert_eq!(rsq_biased(&RS_PACKED, v - (1 << 28)), rsq(v), "{v}");
+                    let want = rsq(v);
+                    assert_eq!(rsq_biased(&RS_PACKED, v - (1 << 28)), want, "{v}");
+                    assert_eq!(rsq_hi(&RS_PACKED, v - (1 << 28)), want, "{v}");
                     checked += 1;
                 }
             }
@@ -788,6 +831,8 @@ mod tests {
         // 2^16 / |n| at |n|² = 1/4 and 1 (RS's ends of the range).
         assert_eq!(rsq_biased(&RS_PACKED, 0), 1 << 17);
         assert_eq!(rsq_biased(&RS_PACKED, 3 << 28), 1 << 16);
+        assert_eq!(rsq_hi(&RS_PACKED, 0), 1 << 17);
+        assert_eq!(rsq_hi(&RS_PACKED, 3 << 28), 1 << 16);
     }
 
     /// `advance` by `k` steps is `k` single steps, wrapping (the set-up
