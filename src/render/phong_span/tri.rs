@@ -771,7 +771,7 @@ mod tests {
             r
         };
         let mut t = TriQuad::NONE;
-        let (mut x, mut y) = (0i32, 0i32);
+        let mut y = 0i32;
         for i in 0..20_000u32 {
             if i % 97 == 0 {
                 // A new set-up (`make`, `load`): new quadratics, no row.
@@ -789,7 +789,7 @@ mod tests {
                 1 | 2 => y + 1,
                 _ => t.at[1] + (u >> 8) as i32 % 3000 - 1500,
             };
-            x = t.at[0] + (u >> 24) as i32 % 3000 - 1500;
+            let x = t.at[0] + (u >> 24) as i32 % 3000 - 1500;
             assert!(t.plan(x, y));
             let (dx, dy) = (i64::from(x - t.at[0]), i64::from(y - t.at[1]));
             let f = |q: &[i64; 6], x: i64| {
