@@ -106,7 +106,11 @@ use crate::target::{level_q19, Rgb8};
 const SHORT_SPAN: u32 = 8;
 /// Spans below this many pixels of a triangle with quadratics
 /// ([`TriQuad`]) take their pixels one by one as below [`SHORT_SPAN`].
-pub(super) const TRI_SHORT_SPAN: u32 = 4;
+/// Measured on the dodecahedron Phong raster after the plan's second
+/// differences moved to `TriQuad::set_row`: M4 with 3 pixels 1 667 249
+/// -> 1 671 187 (4 kept); M0 with 3, 2 and 1 pixels 4 419 572 ->
+/// 4 395 340, 4 388 305 and 4 407 939 (2 kept); frames unchanged.
+pub(super) const TRI_SHORT_SPAN: u32 = if cfg!(armv6m) { 2 } else { 4 };
 /// Pixels per chunk (the span driver's).
 pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
