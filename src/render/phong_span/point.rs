@@ -66,7 +66,19 @@
 //! 1 684 470 (`point_one`'s scale without a stack slot: 163.09 and
 //! 1 688 572 with it), M0 559.69 -> 547.04 -> 502.41 and 4 792 322 ->
 //! 4 774 038 -> 4 476 543; frames unchanged on the firmware and in the
-//! reference images.
+//! reference images. Then [`Plan::chunk_hi`] inlined on the M0, the
+//! plan's constant second differences set once a row set-up
+//! (`TriQuad::set_row`) and [`TRI_SHORT_SPAN`] 2 on the M0: M4 1 684 470
+//! -> 1 667 249 and 161.91 -> 161.72, M0 4 476 543 -> 4 388 305 and
+//! 501.48 -> 497.06; frames unchanged. Measured and not kept: the
+//! colours written by the loop's last pass itself (the depth mask
+//! first, then each passing pixel's channels and encoding in that pass,
+//! no buffer of terms and no separate colour loop): M4 161.91 -> 171.44
+//! and 1 684 470 -> 1 699 895, M0 501.48 -> 503.71 and 4 476 543 ->
+//! 4 524 192 (the colour constants and the row spilled in the last
+//! pass, which already holds the state of `|n|²`, the tables and the
+//! scale); `F̃·G` in the pass of `1/|ṽ|` on the M4 (no pass of its own):
+//! 161.91 -> 164.98 and 1 684 470 -> 1 697 859.
 //!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
