@@ -66,7 +66,19 @@
 //! 1 684 470 (`point_one`'s scale without a stack slot: 163.09 and
 //! 1 688 572 with it), M0 559.69 -> 547.04 -> 502.41 and 4 792 322 ->
 //! 4 774 038 -> 4 476 543; frames unchanged on the firmware and in the
-//! reference images.
+//! reference images. Then [`Plan::chunk_hi`] inlined on the M0, the
+//! plan's constant second differences set once a row set-up
+//! (`TriQuad::set_row`) and [`TRI_SHORT_SPAN`] 2 on the M0: M4 1 684 470
+//! -> 1 667 249 and 161.91 -> 161.72, M0 4 476 543 -> 4 388 305 and
+//! 501.48 -> 497.06; frames unchanged. Measured and not kept: the
+//! colours written by the loop's last pass itself (the depth mask
+//! first, then each passing pixel's channels and encoding in that pass,
+//! no buffer of terms and no separate colour loop): M4 161.91 -> 171.44
+//! and 1 684 470 -> 1 699 895, M0 501.48 -> 503.71 and 4 476 543 ->
+//! 4 524 192 (the colour constants and the row spilled in the last
+//! pass, which already holds the state of `|n|²`, the tables and the
+//! scale); `F̃·G` in the pass of `1/|ṽ|` on the M4 (no pass of its own):
+//! 161.91 -> 164.98 and 1 684 470 -> 1 697 859.
 //!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
@@ -106,7 +118,11 @@ use crate::target::{level_q19, Rgb8};
 const SHORT_SPAN: u32 = 8;
 /// Spans below this many pixels of a triangle with quadratics
 /// ([`TriQuad`]) take their pixels one by one as below [`SHORT_SPAN`].
-pub(super) const TRI_SHORT_SPAN: u32 = 4;
+/// Measured on the dodecahedron Phong raster after the plan's second
+/// differences moved to `TriQuad::set_row`: M4 with 3 pixels 1 667 249
+/// -> 1 671 187 (4 kept); M0 with 3, 2 and 1 pixels 4 419 572 ->
+/// 4 395 340, 4 388 305 and 4 407 939 (2 kept); frames unchanged.
+pub(super) const TRI_SHORT_SPAN: u32 = if cfg!(armv6m) { 2 } else { 4 };
 /// Pixels per chunk (the span driver's).
 pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
@@ -298,8 +314,13 @@ impl Plan {
     /// [`Plan::chunk`] of a plan whose triples are already in the loop's
     /// units times `2^32` (a triangle's, [`TriQuad`]: the values biased
     /// by `2^31`, so that their high words are rounded, the differences'
-    /// floored): the high words.
-    #[inline(never)]
+    /// floored): the high words. Inlined on ARMv6-M (the state straight
+    /// into the loop's frame: dodecahedron Phong raster 4 476 543 ->
+    /// 4 427 143, span sweep 501.48 -> 497.13 a pixel); not inlined
+    /// elsewhere (inlined, the M4 measured 1 684 470 -> 1 695 544 and
+    /// 161.91 -> 166.83).
+    #[cfg_attr(armv6m, inline(always))]
+    #[cfg_attr(not(armv6m), inline(never))]
     #[allow(clippy::cast_possible_truncation)]
     fn chunk_hi(&self) -> Option<Chunk> {
         let r = |c: [i64; 3]| {
