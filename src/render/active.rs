@@ -868,6 +868,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 .map_or(self.n, |&e| usize::from(e)))
         .max(self.cursor);
         self.heads = [self.ring_head_tri(), self.queue_head(), self.bucket_head()];
+        // No triangle to resume or start: the band draws nothing.
+        let untouched = self.peek(band_index) == NONE;
         let frame = self.frame;
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
@@ -901,6 +903,11 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 // only while a Phong object is drawn.
                 Layout::PhongNormal | Layout::PhongPosition => self.phong(po, obj, &mut t)?,
             }
+        }
+        if untouched {
+            // Nothing drawn: the buffer still holds the clear, which the
+            // next band then skips ([`BandBuf::start`]).
+            band.untouched();
         }
         self.y = y1;
         if self.lost {
