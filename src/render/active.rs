@@ -538,6 +538,11 @@ impl BandOf {
 /// placed by a table lookup in one pass over the bytes (a word of four
 /// bytes none of which is kept skipped at once). The same order; the run
 /// at `at` (or 0).
+///
+/// Measured and not kept: every byte of a word with a kept one placed
+/// without a test (row code 0 and bands outside the run to a bucket past
+/// every valid entry, `u32` counts): bunny-gouraud raster thumbv7em
+/// 1 634 450 -> 1 642 031, thumbv6m 2 491 561 -> 2 495 229.
 #[inline(never)]
 #[allow(clippy::cast_possible_truncation)]
 fn sort_coarse(
