@@ -1758,3 +1758,131 @@ fn unpack<L: Lerp, const N: usize, const V: usize>(
     };
     (f(0), f(1), f(2))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{prepare, Workspace};
+    use super::*;
+    use crate::geom::{Affine, Vec3};
+    use crate::illum::{Material, Specular, Viewer};
+    use crate::mesh::shapes;
+    use crate::num::{Fast, Q16};
+    use crate::scene::{Camera, Shading};
+    use crate::target::{Depth16, DepthBuffer, FrameBuf, Rgb565Be};
+    extern crate std;
+    use crate::num::Real;
+    use crate::target::Target;
+    use std::{format, vec, vec::Vec};
+
+    /// Flat and grey Gouraud shapes in bands of 1, 7, 16 and all rows,
+    /// with pools of 1, 2 and 64 slots (the triangles that find the pool
+    /// full queued: the fast path's order taken past the merge
+    /// interleaved with the queue's and the ring's), equal the full frame
+    /// of the general path ([`Frame::render`]).
+    #[test]
+    fn fast_streams_with_any_pool_equal_the_full_frame() {
+        let q = |v: f32| Q16::from_f32(v);
+        let (w, h) = (96u32, 64u32);
+        for shading in [Shading::Flat, Shading::Gouraud] {
+            let objs: Vec<Object<'static, Q16>> = shapes::ALL
+                .iter()
+                .enumerate()
+                .map(|(i, m)| Object {
+                    mesh: *m,
+                    transform: Affine::from_parts(
+                        Q16::ONE,
+                        Vec3::from_f32([0.4 * i as f32, 0.3 + 0.2 * i as f32, 0.1]),
+                        Vec3::from_f32([
+                            (i as f32 - 2.5) * 0.9,
+                            (i % 2) as f32 * 0.8 - 0.4,
+                            -(i as f32) * 0.3,
+                        ]),
+                    ),
+                    material: Material {
+                        color: Vec3::from_f32([0.9, 0.9, 0.9]),
+                        ka: q(0.2),
+                        kd: q(0.7),
+                        ks: q(0.0),
+                        shininess: q(1.0),
+                    },
+                    shading,
+                    cull_backfaces: i != 4,
+                })
+                .collect();
+            let lights = [Light::directional(Vec3::from_f32([-1.0, 0.5, 1.0]), q(1.0))];
+            let camera = Camera::look_at(
+                Vec3::from_f32([0.5, 1.0, 7.0]),
+                Vec3::ZERO,
+                Vec3::from_f32([0.0, 1.0, 0.0]),
+                crate::geom::radians(q(40.0)),
+                q(0.5),
+                None,
+            )
+            .unwrap();
+            let scene = Scene {
+                camera,
+                objects: &objs,
+                lights: &lights,
+                ambient: q(1.0),
+                specular: Specular::Phong,
+                viewer: Viewer::Local,
+                background: Rgb8::new(10, 20, 30),
+            };
+            let (mut xy, mut vals) = (
+                vec![super::super::ScreenXy::ZERO; 12_000],
+                vec![0i32; 12_000 * 8],
+            );
+            let (mut tris, mut colors, mut faces) = (
+                vec![super::super::Tri::default(); 12_000],
+                vec![Rgb8::BLACK; 12_000],
+                vec![0u8; 12_000],
+            );
+            let ws = Workspace {
+                xy: &mut xy,
+                vals: &mut vals,
+                tris: &mut tris,
+                colors: &mut colors,
+                faces: &mut faces,
+            };
+            let frame = prepare::<Fast>(&scene, w, h, ws).unwrap();
+            assert!(frame.triangle_count() > 500);
+            let mut px = vec![0u16; (w * h) as usize];
+            let mut fb = FrameBuf::<Rgb565Be>::new(&mut px, w, h).unwrap();
+            fb.clear(scene.background);
+            let mut z = vec![0u16; (w * h) as usize];
+            let mut db = DepthBuffer::<Depth16>::new(&mut z, w, 0, h).unwrap();
+            frame.render(&scene, &mut fb, Some(&mut db)).unwrap();
+            let whole: Vec<u8> = fb.bytes().collect();
+            fn banded<const CAP: usize>(
+                frame: &Frame<'_, Fast>,
+                scene: &Scene<'_, '_, Q16>,
+                (w, rows): (u32, u32),
+            ) -> (Vec<u8>, RenderStats) {
+                let mut px = vec![0u16; (w * rows) as usize];
+                let mut z = vec![0u16; (w * rows) as usize];
+                let mut band = BandBuf::<Rgb565Be>::new(&mut px, Some(&mut z), w, rows).unwrap();
+                let mut order = vec![0u16; frame.triangle_numbers()];
+                let mut pool = Pool::<i32, CAP, 4>::new();
+                let mut state = BandState::new(&mut order, &mut pool);
+                let mut out = vec![];
+                let stats = frame
+                    .render_bands(scene, &mut state, &mut band, |b| {
+                        out.extend(b.bytes());
+                        Ok::<(), RenderError>(())
+                    })
+                    .unwrap();
+                (out, stats)
+            }
+            for rows in [1, 7, 16, h] {
+                let m = format!("{shading:?} rows {rows}");
+                assert_eq!(banded::<1>(&frame, &scene, (w, rows)).0, whole, "{m}");
+                assert_eq!(banded::<2>(&frame, &scene, (w, rows)).0, whole, "{m}");
+                // A pool large enough: each triangle set up once (none
+                // taken twice).
+                let (out, stats) = banded::<256>(&frame, &scene, (w, rows));
+                assert_eq!(out, whole, "{m}");
+                assert_eq!(stats.triangles as usize, frame.triangle_count(), "{m}");
+            }
+        }
+    }
+}
