@@ -1152,20 +1152,23 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let mut scratch = (Walk::EMPTY, [[0i32; 3]; V]);
         // Setups and pixels counted here, added to the stats at the end.
         let (mut setups, mut pixels) = (0u32, 0u32);
-        // Flat (`N = 0`): below `lim` (the ring's and the queue's heads,
-        // the object's end) the next triangle is the order's next one when
-        // it starts in the band, taken without the three-way merge
-        // ([`Bands::take_fresh`]). Exact QEMU counts, raster: bunny-flat
+        // Flat (`N = 0`), and grey Gouraud (`N = 1`) off ARMv6-M: below
+        // `lim` (the ring's and the queue's heads, the object's end) the
+        // next triangle is the order's next one when it starts in the
+        // band, taken without the three-way merge
+        // ([`Bands::take_fresh`]; the merge's 34 instructions a triangle
+        // 21 on the Cortex-M4). Exact QEMU counts, raster: bunny-flat
         // thumbv7em 1 465 797 -> 1 457 317, thumbv6m 2 173 530 ->
-        // 2 138 468 (dodeca-flat 86 466 -> 86 744, 122 735 -> 122 397).
-        // For grey Gouraud too, measured and not kept: bunny-gouraud
-        // thumbv7em 1 634 450 -> 1 631 975 but thumbv6m 2 491 561 ->
-        // 2 512 036 (the kernel's registers: the merge itself 13 a
-        // triangle less on the Cortex-M4); its merge out of line 1 635 699
-        // and 2 499 231.
+        // 2 138 468 (dodeca-flat 86 466 -> 86 744, 122 735 -> 122 397);
+        // bunny-gouraud thumbv7em 1 634 450 -> 1 631 975. On ARMv6-M grey
+        // Gouraud measured 2 491 561 -> 2 512 036 (the kernel's registers)
+        // and is not taken there; the merge out of line instead cost
+        // 1 635 699 and 2 499 231. (The condition written as a constant
+        // table lookup rather than on `N` itself left thumbv6m
+        // bunny-gouraud 5.5 K above the same code: 2 497 116.)
         let mut lim = self.heads[0].min(self.heads[1]).min(end);
         let done = loop {
-            let (ti, src) = if N == 0 {
+            let (ti, src) = if N == 0 || (N == 1 && !cfg!(armv6m)) {
                 match self.take_fresh(lim) {
                     Some(ti) => (ti, Src::Fresh),
                     None => {
