@@ -1150,7 +1150,7 @@ pub(crate) fn draw_small<
         } else {
             j < stop_upper
         } {
-            rows.span::<R, D>(j, l.x, r.x, px, z, sx, sy, &color);
+            rows.span::<R, D, LEVELS>(j, l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
             j += 1;
@@ -1169,7 +1169,7 @@ pub(crate) fn draw_small<
     if j < stop {
         let end = off(stop);
         while if by_off { rows.base != end } else { j < stop } {
-            rows.span::<R, D>(j, l.x, r.x, px, z, sx, sy, &color);
+            rows.span::<R, D, LEVELS>(j, l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
             j += 1;
@@ -1337,10 +1337,10 @@ impl<const N: usize> SmallRows<'_, N> {
     }
 
     /// Draws columns `x0..x1` of the current row (nothing when `x0 >=
-    /// x1`) and moves to the next row.
+    /// x1`) and moves to the next row; `LEVELS` as in [`draw_small`].
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn span<R: Copy, D: DepthFormat>(
+    fn span<R: Copy, D: DepthFormat, const LEVELS: bool>(
         &mut self,
         j: i32,
         x0: i32,
@@ -1362,7 +1362,11 @@ impl<const N: usize> SmallRows<'_, N> {
                 // The span's pixels covered here, its failed tests
                 // counted on across the triangle's spans.
                 self.drawn = self.drawn.wrapping_add(p.len() as u32);
-                if NO_LONG_MUL {
+                if NO_LONG_MUL || LEVELS {
+                    // With `LEVELS` the rounding offset is in the values
+                    // already ([`draw_small`]): the offset below would be
+                    // taken off again at every pixel (an `LEA` a pixel on
+                    // x86-64; host bunny frame, callgrind, EXP).
                     small_loop::<N, R, D>(p, d, s.z, s.a, sx, color, self.fails_in());
                 } else {
                     // ARMv7-M: the values carried with the levels'
