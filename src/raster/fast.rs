@@ -1122,7 +1122,7 @@ pub(crate) fn draw_small<
     // the inline pixel loop, now as one pair); bunny-gouraud raster
     // thumbv7em 1 886 889 -> 1 833 714. Not on ARMv6-M (its raster took
     // 2 838 011 -> 2 886 571).
-    let tx = if NO_LONG_MUL {
+    let tx = if NO_LONG_MUL || !cfg!(target_arch = "arm") {
         tx
     } else {
         core::hint::black_box(tx)
