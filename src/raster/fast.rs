@@ -1313,7 +1313,7 @@ impl<const N: usize> SmallRows<'_, N> {
     /// at column 0 of the current row stepped by `sy` on every row (two
     /// values kept across the rows less): on ARMv7-M with values
     /// (bunny-gouraud raster thumbv7em 1 784 323 -> 1 766 646).
-    const LAZY: bool = !NO_LONG_MUL && N > 0;
+    const LAZY: bool = !NO_LONG_MUL && N > 0 && cfg!(any(target_arch = "arm", test));
 
     /// The pixels drawn so far.
     #[inline(always)]
