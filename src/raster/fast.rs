@@ -892,7 +892,16 @@ fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
 /// 2 232 799); their quotients through memory 1 687 204 (bunny-flat
 /// 1 536 155). The whole rows out of line (both phases): 1 940 101.
 /// Here, [`small_loop`]'s steps copied to values before its loop:
-/// 1 689 840 (bunny-flat 1 507 128; thumbv6m unchanged).
+/// 1 689 840 (bunny-flat 1 507 128; thumbv6m unchanged). Also from
+/// 1 642 170, each alone: [`small_loop`] on ARMv7-M by one index into
+/// both buffers, 1 741 791 (still two pointers, the pixel count then in
+/// memory); the failed tests counted apart with values, 1 660 718; the
+/// edges stepped before the span instead of after it, 1 691 872; the
+/// short edges' division checked (`checked_div`) instead of `dy.max(1)`,
+/// 1 664 741; their first column and error term without branches (`k =
+/// [np > 0] + [np > d]`), 1 655 745. The kernel's registers are taken
+/// across its rows (both edges, the row, the offset, the count), so each
+/// of these moved the spills more than it saved.
 ///
 /// With `LEVELS`, for one grey level (`N = 1`; other `N` as
 /// without `LEVELS`; fixed, `2^16` a level:
@@ -1132,8 +1141,12 @@ pub(crate) fn draw_small<
     // known stack values it reloaded them one by one at every pixel of
     // the inline pixel loop, now as one pair); bunny-gouraud raster
     // thumbv7em 1 886 889 -> 1 833 714. Not on ARMv6-M (its raster took
-    // 2 838 011 -> 2 886 571).
-    let tx = if NO_LONG_MUL {
+    // 2 838 011 -> 2 886 571), nor on the 64-bit hosts (callgrind,
+    // `examples/bunny_frame.rs`: the steps then stay in registers, 2 233 321
+    // -> 2 220 418; with the rows stepped, [`SmallRows::LAZY`], 2 259 273
+    // -> 2 188 216). Measured on ARMv7-M again at 1 642 170 (bunny-gouraud
+    // raster thumbv7em) without it: 1 733 664.
+    let tx = if NO_LONG_MUL || !cfg!(target_arch = "arm") {
         tx
     } else {
         core::hint::black_box(tx)
@@ -1161,7 +1174,7 @@ pub(crate) fn draw_small<
         } else {
             j < stop_upper
         } {
-            rows.span::<R, D>(j, l.x, r.x, px, z, sx, sy, &color);
+            rows.span::<R, D, LEVELS>(j, l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
             j += 1;
@@ -1180,7 +1193,7 @@ pub(crate) fn draw_small<
     if j < stop {
         let end = off(stop);
         while if by_off { rows.base != end } else { j < stop } {
-            rows.span::<R, D>(j, l.x, r.x, px, z, sx, sy, &color);
+            rows.span::<R, D, LEVELS>(j, l.x, r.x, px, z, sx, sy, &color);
             l.step();
             r.step();
             j += 1;
@@ -1323,8 +1336,14 @@ impl<const N: usize> SmallRows<'_, N> {
     /// multiply-adds per value away (`v + sy·j + sx·x0`), instead of `v`
     /// at column 0 of the current row stepped by `sy` on every row (two
     /// values kept across the rows less): on ARMv7-M with values
-    /// (bunny-gouraud raster thumbv7em 1 784 323 -> 1 766 646).
-    const LAZY: bool = !NO_LONG_MUL && N > 0;
+    /// (bunny-gouraud raster thumbv7em 1 784 323 -> 1 766 646; again
+    /// without it at 1 642 170: 1 685 618), and in test builds, which
+    /// check it. Not on the 64-bit hosts, where the rows' values stepped
+    /// cost less (the host's bunny frame, callgrind,
+    /// `examples/bunny_frame.rs`, 2 220 418 -> 2 188 216; the rows then
+    /// counted by row rather than by offset 2 205 047, the failed tests
+    /// counted apart as on ARMv7-M without values 2 214 142).
+    const LAZY: bool = !NO_LONG_MUL && N > 0 && cfg!(any(target_arch = "arm", test));
 
     /// The pixels drawn so far.
     #[inline(always)]
@@ -1348,10 +1367,10 @@ impl<const N: usize> SmallRows<'_, N> {
     }
 
     /// Draws columns `x0..x1` of the current row (nothing when `x0 >=
-    /// x1`) and moves to the next row.
+    /// x1`) and moves to the next row; `LEVELS` as in [`draw_small`].
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn span<R: Copy, D: DepthFormat>(
+    fn span<R: Copy, D: DepthFormat, const LEVELS: bool>(
         &mut self,
         j: i32,
         x0: i32,
@@ -1373,7 +1392,14 @@ impl<const N: usize> SmallRows<'_, N> {
                 // The span's pixels covered here, its failed tests
                 // counted on across the triangle's spans.
                 self.drawn = self.drawn.wrapping_add(p.len() as u32);
-                if NO_LONG_MUL {
+                if NO_LONG_MUL || LEVELS {
+                    // With `LEVELS` the rounding offset is in the values
+                    // already ([`draw_small`]): the offset below would be
+                    // taken off again at every pixel (an `LEA` a pixel on
+                    // x86-64; the host's bunny frame, callgrind,
+                    // `examples/bunny_frame.rs`, 2 246 494 -> 2 233 321;
+                    // the ARM targets take `LEVELS` on ARMv6-M only, on
+                    // the branch above anyway).
                     small_loop::<N, R, D>(p, d, s.z, s.a, sx, color, self.fails_in());
                 } else {
                     // ARMv7-M: the values carried with the levels'
