@@ -8,7 +8,7 @@ use super::*;
 use crate::geom::{Affine, Vec3};
 use crate::illum::{Light, Material, Specular, Viewer};
 use crate::mesh::{shapes, CornerNormals, Mesh};
-use crate::num::{Fast, Precise, Profile, Real, F32, F64};
+use crate::num::{Fast, Precise, Profile, Real, F32, F64, Q16};
 use crate::scene::{Camera, Object, Scene, Shading};
 use crate::target::{BandBuf, Depth16, DepthBuffer, FrameBuf, Rgb565Be, Rgb8, Target};
 use std::boxed::Box;
@@ -427,6 +427,52 @@ fn bands_equal_the_full_frame_for_every_shape_mode_and_profile() {
     run::<crate::num::FastPc>();
     run::<crate::num::PrecisePc>();
     run::<crate::num::F64Pc>();
+}
+
+/// Flat and grey Gouraud shapes (grey, no specular term, one white
+/// directional light: the fast path's streams) in bands of 1, 7, 16 and
+/// all rows, with pools of 1, 2 and 256 slots (the triangles that find the
+/// pool full queued: the order taken past the merge interleaved with the
+/// queue's and the ring's), equal the full frame; with 256 slots each
+/// triangle is set up once.
+#[test]
+fn fast_streams_with_any_pool_equal_the_full_frame() {
+    for shading in [Shading::Flat, Shading::Gouraud] {
+        let mut objs = every_shape::<Q16>(shading);
+        for o in &mut objs {
+            o.material.color = Vec3::from_f32([0.9, 0.9, 0.9]);
+            o.material.ks = Q16::ZERO;
+        }
+        let ls = [Light::directional(
+            Vec3::from_f32([-1.0, 0.5, 1.0]),
+            Q16::ONE,
+        )];
+        let mut s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
+        s.ambient = Q16::ONE;
+        let (w, h) = (96, 64);
+        let whole = full::<Fast>(&s, w, h, true);
+        let bg = Rgb565Be::encode_bytes(s.background);
+        assert!(
+            whole.chunks(2).filter(|c| *c != bg).count() > 1500,
+            "{shading:?}"
+        );
+        for rows in [1, 7, 16, h] {
+            let m = std::format!("{shading:?} rows {rows}");
+            assert_eq!(
+                banded_with::<Fast, 1, 4>(&s, w, h, rows, true).0,
+                whole,
+                "{m}"
+            );
+            assert_eq!(
+                banded_with::<Fast, 2, 4>(&s, w, h, rows, true).0,
+                whole,
+                "{m}"
+            );
+            let (out, stats, n) = banded_with::<Fast, 256, 4>(&s, w, h, rows, true);
+            assert_eq!(out, whole, "{m}");
+            assert_eq!(stats.triangles as usize, n, "{m}");
+        }
+    }
 }
 
 /// The banded frame of [`Fast`] with a pool of `Q` slots of quadratics
