@@ -763,13 +763,7 @@ mod tests {
     /// differences, set by `set_row` only, included.
     #[test]
     fn plan_equals_direct() {
-        let mut r = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            r ^= r << 13;
-            r ^= r >> 7;
-            r ^= r << 17;
-            r
-        };
+        let mut next = crate::geom::testkit::xorshift(0x2545_f491_4f6c_dd1d);
         let mut t = TriQuad::NONE;
         let mut y = 0i32;
         for i in 0..20_000u32 {
