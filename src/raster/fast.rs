@@ -513,6 +513,23 @@ impl Grad {
     }
 }
 
+/// `true` when every triangle [`draw_small`] admits in a band of rows
+/// `y0..until` of a window `width` columns wide (at `s` subpixel bits,
+/// `S = 2^s`, `h = S/2`) has its offsets `h - x0`, `h - y0'` of pixel (0,
+/// 0)'s centre from vertex 0 (`x0`, `y0'`) below `2^15` in magnitude, the
+/// factors [`wide`] asks: decided per band, not per triangle. With `y0`,
+/// `until`, `width` in `0..W` for `W = 2^(15 - s)`: the kernel's tests
+/// leave `0 <= x0 <= width·S` and `(y0 - 1)·S + h < y0' <= (until -
+/// 1)·S + h` (no `i32` wraps there for such bands), so `h - x0` lies in
+/// `[h - (W - 1)·S, h]` and `h - y0'` in `[-(W - 2)·S, S)`, both within
+/// `(-2^15, 2^15)`. A band outside these (wider than 2047 columns, or
+/// rows past 2047, at 4 subpixel bits) sends its triangles to the general
+/// path (the same pixels).
+#[inline(always)]
+fn offsets_near(s: u32, y0: i32, until: i32, width: i32) -> bool {
+    ((y0 | until | width) as u32) < (1u32 << 15) >> s
+}
+
 /// [`Grad::origin_short`] for `s` subpixel bits and the offsets `o`.
 #[inline(always)]
 fn origin_short_at(s: u32, o: [i32; 2], gx: i32, gy: i32) -> i32 {
@@ -793,14 +810,15 @@ fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
 ///   module's limits (`c.y <= coord_limit`);
 /// - its columns lie within `0..=width` ([`Walk::inside`]): no clipping;
 /// - [`setup32`]'s bounds (coordinate offsets below `2^15`, the
-///   reciprocal's high-word case, no wrapping numerator); on ARMv7-M the
-///   offsets' bound is taken as the column extent and the height below
-///   `2^15` (which implies it);
+///   reciprocal's high-word case, no wrapping numerator); the offsets'
+///   bound is taken as the column extent and the height below `2^15`
+///   (which implies it), and on ARMv6-M (and in test builds) vertex 0's
+///   offsets from pixel (0, 0) from the band's bounds ([`offsets_near`]);
 /// - every depth converts to 16 bits without a clamp
 ///   ([`DepthFormat::plane_in_range`]);
 /// - on ARMv6-M (and in test builds), the gradient numerators in 32 bits:
-///   each value's differences below `2^(30 - bxy)` for coordinate offsets
-///   below `2^bxy` ([`Grad::plane_short`]);
+///   each value's differences below `2^(30 - bxy)` for a column extent
+///   and height below `2^bxy` ([`Grad::plane_short`]);
 /// - with `packed` (`N = 1`, the caller's promise that each vertex holds
 ///   its packed grey word, [`crate::num::Profile::PACKED_GREY`], as its
 ///   depth and as its value: the depth field `f` in the high half, the
@@ -977,21 +995,22 @@ pub(crate) fn draw_small<
     }
     let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
     let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
-    // Every offset below 2^15 in magnitude: on ARMv6-M (and in test
-    // builds) tested one by one (their bit length sets `lim` below);
-    // elsewhere through the column extent and the height (`0 <= dy1 <=
-    // dy2`, columns within `xmin..=xmax`), slightly stricter, cheaper.
-    let mxy = if SHORT_NUMERATORS {
-        // `0 <= dy1 <= dy2` for sorted vertices: as `u32`s their own
-        // magnitudes (a negative one, unsorted, fails the bound below).
-        dx1.unsigned_abs() | dy1 as u32 | dx2.unsigned_abs() | dy2 as u32
-    } else {
-        (xmax - xmin) as u32 | dy2 as u32
-    };
-    // (Tested as `a.x < 2^15 + h` from `a.x >= 0` and `a.y - h + 2^15 - 1`
-    // in `0..2^16 - 1`: bunny-gouraud raster thumbv6m 2 535 961 ->
-    // 2 541 021, bunny-flat 2 180 230 -> 2 195 547; not kept.)
-    let far = SHORT_PRODUCTS && ((h - a.x).unsigned_abs() | (h - a.y).unsigned_abs()) >= 1 << 15;
+    // Every offset below 2^15 in magnitude, through the column extent and
+    // the height (`0 <= dy1 <= dy2`, columns within `xmin..=xmax`): slightly
+    // stricter than the offsets one by one, cheaper. Its bit length sets
+    // `lim` below. On ARMv6-M the offsets one by one before (their
+    // magnitudes, a tighter `lim`): with the extent, exact QEMU counts,
+    // bunny-gouraud raster thumbv6m 2 415 422 -> 2 397 232, bunny-flat
+    // 2 085 892 -> 2 063 406 (after [`offsets_near`]).
+    let mxy = (xmax - xmin) as u32 | dy2 as u32;
+    // ARMv6-M: vertex 0's offsets from pixel (0, 0) bounded per band
+    // ([`offsets_near`]) instead of per triangle (their magnitudes):
+    // bunny-gouraud raster thumbv6m 2 434 737 -> 2 415 422, bunny-flat
+    // 2 087 542 -> 2 085 892. (Tested as `a.x < 2^15 + h` from `a.x >= 0`
+    // and `a.y - h + 2^15 - 1` in `0..2^16 - 1`: bunny-gouraud raster
+    // thumbv6m 2 535 961 -> 2 541 021, bunny-flat 2 180 230 -> 2 195 547;
+    // not kept.)
+    let far = SHORT_PRODUCTS && !offsets_near(s, y0, until, width);
     if (mxy >= 1 << 15) | far {
         return None;
     }
@@ -1506,6 +1525,53 @@ mod tests {
                 (t >> s) as u32 & low,
                 "{gx} {gy} {ox} {oy} {s}"
             );
+        }
+    }
+
+    /// [`offsets_near`]: for every band it passes, the extreme first
+    /// vertices [`draw_small`] admits (columns `0` and `width·S`, rows
+    /// just below the band's first and at its last) have both offsets
+    /// below `2^15` in magnitude; bands with a bound at `2^(15 - s)` or
+    /// negative fail.
+    #[test]
+    fn offsets_near_bounds_the_offsets() {
+        let mut g = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 7;
+            g ^= g << 17;
+            g as u32
+        };
+        for s in 1..=8u32 {
+            let (sc, h, w) = (1i32 << s, 1i32 << (s - 1), (1i32 << 15) >> s);
+            let edge = [0, 1, 2, w - 2, w - 1];
+            for i in 0..20_000u32 {
+                let pick = |r: u32| {
+                    if i % 2 == 0 {
+                        edge[(r % 5) as usize]
+                    } else {
+                        (r % w as u32) as i32
+                    }
+                };
+                let (y0, until, width) = (pick(next()), pick(next()), pick(next()));
+                assert!(offsets_near(s, y0, until, width));
+                let ys = [(y0 - 1) * sc + h + 1, (until - 1) * sc + h];
+                for ax in [0, width * sc] {
+                    for ay in ys {
+                        if ys[0] > ys[1] {
+                            continue;
+                        }
+                        let (ox, oy) = (h - ax, h - ay);
+                        assert!(ox.unsigned_abs() < 1 << 15, "{s} {ax}");
+                        assert!(oy.unsigned_abs() < 1 << 15, "{s} {ay}");
+                    }
+                }
+            }
+            for bad in [w, w + 1, i32::MAX, -1, i32::MIN] {
+                assert!(!offsets_near(s, bad, 1, 1));
+                assert!(!offsets_near(s, 0, bad, 1));
+                assert!(!offsets_near(s, 0, 1, bad));
+            }
         }
     }
 
