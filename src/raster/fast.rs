@@ -777,20 +777,24 @@ fn walk_edges(
 /// the exact plane by less than `(|gx - Gx|·|dx| + |gy - Gy|·|dy|) / S +
 /// 1`;
 /// [`InvArea`]'s gradients are within `½ + |G|·2^-28` of the exact `G`,
-/// below 2 for `|g| < 2^28`: the error stays below `2·2·2^15 / S + 1 =
-/// 2^(17 - s) + 1`, below `m = 2^(18 - s)` (`s` in `1..=8`). Hence with
+/// below 2 for `g` in `[-2^28, 2^28)` (`|g - G| <= 1.5 / (1 - 2^-28)`):
+/// the error stays below `2·2·2^15 / S + 1 = 2^(17 - s) + 1`, below `m =
+/// 2^(18 - s)` (`s` in `1..=8`). Hence with
 /// every vertex value in `[-2^15 + m, 2^24 - 2^15 - m)` (at 4 subpixel
 /// bits `m = 2^14`, a quarter of a level: levels 0 and 255 pass) the
 /// value lies in `[-2^15, 2^24 - 2^15)`: rounded (`+ 2^15`, then `>> 16`)
 /// into `0..=255`, with no `i32` wrap on the way (the kernel's wrapping
 /// sums equal the true ones there). Conservative: `false` only sends the
-/// triangle to the clamping path.
+/// triangle to the clamping path. The gradients' range tested on `g ^ (g
+/// >> 31)` (`g` or `-g - 1`) rather than on magnitudes: two instructions
+/// a triangle less, bunny-gouraud raster thumbv6m 2 397 232 -> 2 394 260
+/// (thumbv7em unchanged).
 #[inline(always)]
 fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
     let m = 1i32 << (18 - s);
     let (lo_lim, hi_lim) = (m - (1 << 15), (1 << 24) - (1 << 15) - m);
     let (lo, hi) = (l[0].min(l[1]).min(l[2]), l[0].max(l[1]).max(l[2]));
-    (lo >= lo_lim) & (hi < hi_lim) & ((gx.unsigned_abs() | gy.unsigned_abs()) < 1 << 28)
+    (lo >= lo_lim) & (hi < hi_lim) & (((gx ^ (gx >> 31)) | (gy ^ (gy >> 31))) >> 28 == 0)
 }
 
 /// The small-triangle kernel: a triangle set up in 32 bits and walked
@@ -1576,7 +1580,7 @@ mod tests {
     }
 
     /// [`levels_in_range`]'s margins: `2^(18 - s)` at each end (at 4
-    /// subpixel bits a quarter of a level), gradients below `2^28`.
+    /// subpixel bits a quarter of a level), gradients in `[-2^28, 2^28)`.
     #[test]
     fn levels_in_range_bounds() {
         let top = 255 << 16;
@@ -1593,6 +1597,9 @@ mod tests {
             4
         ));
         assert!(!levels_in_range([0, 1, 2], 1 << 28, 0, 4));
+        assert!(levels_in_range([0, 1, 2], -(1 << 28), -(1 << 28), 4));
+        assert!(!levels_in_range([0, 1, 2], 0, -(1 << 28) - 1, 4));
+        assert!(!levels_in_range([0, 1, 2], i32::MAX, 0, 4));
         assert!(!levels_in_range([0, 1, 2], 0, i32::MIN, 4));
         // One subpixel bit: margins of 2^17 (two levels).
         assert!(!levels_in_range([0, 1, 2], 0, 0, 1));
