@@ -785,10 +785,10 @@ fn walk_edges(
 /// value lies in `[-2^15, 2^24 - 2^15)`: rounded (`+ 2^15`, then `>> 16`)
 /// into `0..=255`, with no `i32` wrap on the way (the kernel's wrapping
 /// sums equal the true ones there). Conservative: `false` only sends the
-/// triangle to the clamping path. The gradients' range tested on `g ^ (g
-/// >> 31)` (`g` or `-g - 1`) rather than on magnitudes: two instructions
-/// a triangle less, bunny-gouraud raster thumbv6m 2 397 232 -> 2 394 260
-/// (thumbv7em unchanged).
+/// triangle to the clamping path. The gradients' range tested on
+/// `g ^ (g >> 31)` (`g` or `-g - 1`) rather than on magnitudes: two
+/// instructions a triangle less, bunny-gouraud raster thumbv6m 2 397 232
+/// to 2 394 260 (thumbv7em unchanged).
 #[inline(always)]
 fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
     let m = 1i32 << (18 - s);
