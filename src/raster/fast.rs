@@ -372,7 +372,8 @@ impl Grad {
     /// bunny-gouraud raster thumbv6m 2 455 763 -> 2 451 396, bunny-flat
     /// 2 130 680 -> 2 126 401. Measured and not kept: the signed low half
     /// (`SXTH`, `gh = (g >> 16) - (gl >> 31)`), 2 455 763 -> 2 462 806
-    /// (bunny-flat 2 130 835).
+    /// (bunny-flat 2 130 835); later the low half as `g - (gh << 15)`
+    /// instead of the mask, 2 391 960 -> 2 400 876.
     #[inline(always)]
     fn origin_short(&self, gx: i32, gy: i32) -> i32 {
         origin_short_at(self.s, self.o, gx, gy)
@@ -587,7 +588,10 @@ const SHORT_NUMERATORS: bool = NO_LONG_MUL || cfg!(test);
 /// nearly every triangle). Also measured and
 /// not kept on ARMv6-M: both overflow flags of [`InvArea::quot_up`] in one
 /// test, `(|nx ^ nx >> 31| | |ny ^ ny >> 31|) >> (31 - u) == 0`
-/// (2 520 390 -> 2 525 721).
+/// (2 520 390 -> 2 525 721; again later, 2 394 260 -> 2 397 232; with
+/// the bound `>> (29 - u)`, which keeps the level's gradients within
+/// `2^27`, and [`levels_in_range`]'s gradient test then left out for
+/// those planes, 2 391 960 -> 2 391 896: not kept).
 const SHORT_QUOTIENTS: bool = NO_LONG_MUL || cfg!(test);
 
 /// `a - b` and whether it wraps; without `WRAPS` (a difference known not
