@@ -179,13 +179,7 @@ impl Edge {
         let a_full = x0 - s / 2 + t * q;
         let (a, b) = (a_full >> sub.get(), a_full & (s - 1));
         let np = b * dy + t * rem;
-        let (x, e) = if np == 0 {
-            (a, 0)
-        } else if np <= d {
-            (a + 1, d - np)
-        } else {
-            (a + 2, 2 * d - np)
-        };
+        let (x, e) = first_column::<BRANCHLESS_FIRST>(a, np, d);
         Self { x, e, q, r, d }
     }
 
@@ -281,6 +275,30 @@ fn later_row_small(
 /// 2 178 374), not on ARM, where it cost the row loops registers
 /// (bunny-gouraud raster thumbv7em 1 631 831 -> 1 698 055).
 const CARRY_STEP: bool = !cfg!(target_arch = "arm");
+
+/// The column and error term `(a + k, k·d - np)` of [`Edge::at_quot`]
+/// for `np` in `[0, 2d)`, `k = ⌈np / d⌉` (0, 1 or 2): with `BRANCHLESS`
+/// from two comparisons, `k = [np > 0] + [np > d]`, otherwise by
+/// branches. The same values (tested).
+#[inline(always)]
+fn first_column<const BRANCHLESS: bool>(a: i32, np: i32, d: i32) -> (i32, i32) {
+    if BRANCHLESS {
+        let k = (np > 0) as i32 + (np > d) as i32;
+        (a + k, k * d - np)
+    } else if np == 0 {
+        (a, 0)
+    } else if np <= d {
+        (a + 1, d - np)
+    } else {
+        (a + 2, 2 * d - np)
+    }
+}
+
+/// [`first_column`] without branches: on the hosts (callgrind,
+/// `examples/bunny_frame.rs`, 2 178 374 -> 2 170 967); not on ARM (on
+/// ARMv7-M measured before, bunny-gouraud raster thumbv7em 1 642 170 ->
+/// 1 655 745).
+const BRANCHLESS_FIRST: bool = !cfg!(target_arch = "arm");
 
 /// Quotient bits of [`binary_floor_divmod`].
 const DIV_BITS: u32 = 5;
@@ -413,6 +431,26 @@ mod tests {
             for _ in 0..(y1 - y0) / 16 + 1 {
                 assert_eq!(a.step_carry(), b.step_sign());
                 assert_eq!(a, b);
+            }
+        }
+    }
+
+    /// Both forms of [`first_column`] agree on every `np` in `[0, 2d)`
+    /// for small `d` and at the ends for large ones (`2d` an `i32`).
+    #[test]
+    fn first_column_forms_agree() {
+        for d in (1..200).chain([1 << 20, (1 << 29) + 3, (1 << 30) - 1]) {
+            let nps: &mut dyn Iterator<Item = i32> = if d < 200 {
+                &mut (0..2 * d)
+            } else {
+                &mut [0, 1, d - 1, d, d + 1, 2 * d - 1].into_iter()
+            };
+            for np in nps {
+                for a in [-4096, 0, 77] {
+                    let want = first_column::<false>(a, np, d);
+                    assert_eq!(first_column::<true>(a, np, d), want, "{a} {np} {d}");
+                    assert!((0..d).contains(&want.1));
+                }
             }
         }
     }
