@@ -179,7 +179,16 @@ impl Edge {
         let a_full = x0 - s / 2 + t * q;
         let (a, b) = (a_full >> sub.get(), a_full & (s - 1));
         let np = b * dy + t * rem;
-        let (x, e) = first_column::<BRANCHLESS_FIRST>(a, np, d);
+        #[cfg(not(target_arch = "arm"))]
+        let (x, e) = first_column::<true>(a, np, d);
+        #[cfg(target_arch = "arm")]
+        let (x, e) = if np == 0 {
+            (a, 0)
+        } else if np <= d {
+            (a + 1, d - np)
+        } else {
+            (a + 2, 2 * d - np)
+        };
         Self { x, e, q, r, d }
     }
 
@@ -191,20 +200,11 @@ impl Edge {
     }
 
     /// Advances one row; returns `true` when the column moved one further
-    /// than the quotient (the error term wrapped).
+    /// than the quotient (the error term wrapped). On ARM by the error
+    /// term's sign (a conditional add, the sign bit added to the column).
+    #[cfg(target_arch = "arm")]
     #[inline(always)]
     pub fn step(&mut self) -> bool {
-        if CARRY_STEP {
-            self.step_carry()
-        } else {
-            self.step_sign()
-        }
-    }
-
-    /// [`Edge::step`] by the error term's sign: `e - r < 0` (ARM: a
-    /// conditional add and the sign bit added to the column).
-    #[inline(always)]
-    fn step_sign(&mut self) -> bool {
         self.e -= self.r;
         self.x += self.q;
         if self.e < 0 {
@@ -216,12 +216,21 @@ impl Edge {
         }
     }
 
-    /// [`Edge::step`] by the borrow of the unsigned `e - r` (`0 <= e, r <
-    /// d`: it borrows exactly when `e - r < 0`): on x86-64 one `SUB`, its
-    /// carry added to the column by `ADC`, the error term's fix-up a
-    /// `CMOV`. The same walker (tested equal to [`Edge::step_sign`]).
+    /// Advances one row; returns `true` when the column moved one further
+    /// than the quotient (the error term wrapped). On the hosts by the
+    /// borrow of the unsigned `e - r` (`0 <= e, r < d`: it borrows exactly
+    /// when `e - r < 0`): one `SUB`, its carry added to the column by
+    /// `ADC`, the error term's fix-up a `CMOV` (callgrind,
+    /// `examples/bunny_frame.rs`, the bunny's Gouraud frame 2 199 488 ->
+    /// 2 178 374; on ARM it cost the row loops registers, bunny-gouraud
+    /// raster thumbv7em 1 631 831 -> 1 698 055). The same walker (tested
+    /// equal to the ARM form). Chosen by `cfg` attributes, so that the
+    /// ARM builds compile the very code they did (chosen by an `if` on a
+    /// constant, the unused form still moved their inlining: thumbv6m
+    /// cubes-and-sphere raster +1 108).
+    #[cfg(not(target_arch = "arm"))]
     #[inline(always)]
-    fn step_carry(&mut self) -> bool {
+    pub fn step(&mut self) -> bool {
         let (e, wrap) = (self.e as u32).overflowing_sub(self.r as u32);
         self.x = self.x.wrapping_add(self.q).wrapping_add(wrap as i32);
         self.e = if wrap {
@@ -270,16 +279,15 @@ fn later_row_small(
     })
 }
 
-/// [`Edge::step`] takes [`Edge::step_carry`]: on the hosts (callgrind,
-/// `examples/bunny_frame.rs`, the bunny's Gouraud frame 2 199 488 ->
-/// 2 178 374), not on ARM, where it cost the row loops registers
-/// (bunny-gouraud raster thumbv7em 1 631 831 -> 1 698 055).
-const CARRY_STEP: bool = !cfg!(target_arch = "arm");
-
 /// The column and error term `(a + k, k·d - np)` of [`Edge::at_quot`]
 /// for `np` in `[0, 2d)`, `k = ⌈np / d⌉` (0, 1 or 2): with `BRANCHLESS`
 /// from two comparisons, `k = [np > 0] + [np > d]`, otherwise by
-/// branches. The same values (tested).
+/// branches (the form [`Edge::at_quot`] keeps on ARM, inline; on ARMv7-M
+/// the branchless one measured bunny-gouraud raster thumbv7em
+/// 1 642 170 -> 1 655 745). The same values (tested). The hosts take it
+/// branchless (callgrind, `examples/bunny_frame.rs`, 2 178 374 ->
+/// 2 170 967).
+#[cfg(any(test, not(target_arch = "arm")))]
 #[inline(always)]
 fn first_column<const BRANCHLESS: bool>(a: i32, np: i32, d: i32) -> (i32, i32) {
     if BRANCHLESS {
@@ -293,12 +301,6 @@ fn first_column<const BRANCHLESS: bool>(a: i32, np: i32, d: i32) -> (i32, i32) {
         (a + 2, 2 * d - np)
     }
 }
-
-/// [`first_column`] without branches: on the hosts (callgrind,
-/// `examples/bunny_frame.rs`, 2 178 374 -> 2 170 967); not on ARM (on
-/// ARMv7-M measured before, bunny-gouraud raster thumbv7em 1 642 170 ->
-/// 1 655 745).
-const BRANCHLESS_FIRST: bool = !cfg!(target_arch = "arm");
 
 /// Quotient bits of [`binary_floor_divmod`].
 const DIV_BITS: u32 = 5;
@@ -380,9 +382,22 @@ fn floor_divmod(n: i32, d: i32) -> (i32, i32) {
 mod tests {
     use super::*;
 
-    /// [`Edge::step_carry`] and [`Edge::step_sign`] walk the very columns
-    /// and error terms, on random and extreme walkers (`0 <= e, r < d <=
-    /// 2^30`, any quotient), and on real edges from [`Edge::new`].
+    /// The ARM form of [`Edge::step`] (by the error term's sign).
+    fn step_sign(g: &mut Edge) -> bool {
+        g.e -= g.r;
+        g.x += g.q;
+        if g.e < 0 {
+            g.e += g.d;
+            g.x += 1;
+            true
+        } else {
+            false
+        }
+    }
+
+    /// [`Edge::step`] and its ARM form ([`step_sign`]) walk the very
+    /// columns and error terms, on random and extreme walkers (`0 <= e, r
+    /// < d <= 2^30`, any quotient), and on real edges from [`Edge::new`].
     #[test]
     fn step_forms_agree() {
         let mut g = 0x9e37_79b9_7f4a_7c15u64;
@@ -413,7 +428,7 @@ mod tests {
             let x = (next() % 8192) as i32 - 4096;
             let (mut a, mut b) = (Edge { x, e, q, r, d }, Edge { x, e, q, r, d });
             for _ in 0..40 {
-                assert_eq!(a.step_carry(), b.step_sign(), "{a:?}");
+                assert_eq!(a.step(), step_sign(&mut b), "{a:?}");
                 assert_eq!(a, b);
                 assert!((0..d).contains(&a.e));
             }
@@ -429,7 +444,7 @@ mod tests {
                 Edge::new(x0, y0, x1, y1, j, sub),
             );
             for _ in 0..(y1 - y0) / 16 + 1 {
-                assert_eq!(a.step_carry(), b.step_sign());
+                assert_eq!(a.step(), step_sign(&mut b));
                 assert_eq!(a, b);
             }
         }

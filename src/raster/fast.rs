@@ -1387,17 +1387,14 @@ impl<const N: usize> SmallRows<'_, N> {
             } else {
                 self.v.add_n(sx, x0)
             };
-            let start = self.base.wrapping_add(x0 as usize);
-            let (p, d) = if SPAN_BY_COUNT {
-                let n = x1.wrapping_sub(x0) as u32 as usize;
-                (
-                    px.get_mut(start..).and_then(|p| p.get_mut(..n)),
-                    z.get_mut(start..).and_then(|d| d.get_mut(..n)),
-                )
-            } else {
-                let span = start..self.base.wrapping_add(x1 as usize);
-                (px.get_mut(span.clone()), z.get_mut(span))
-            };
+            // The slices from the span's start and pixel count `x1 - x0`
+            // on the hosts (see [`span_by_count`]).
+            #[cfg(not(target_arch = "arm"))]
+            let (p, d) = span_by_count(px, z, self.base, x0, x1);
+            #[cfg(target_arch = "arm")]
+            let span = self.base.wrapping_add(x0 as usize)..self.base.wrapping_add(x1 as usize);
+            #[cfg(target_arch = "arm")]
+            let (p, d) = (px.get_mut(span.clone()), z.get_mut(span));
             if let (Some(p), Some(d)) = (p, d) {
                 // The span's pixels covered here, its failed tests
                 // counted on across the triangle's spans.
@@ -1432,13 +1429,31 @@ impl<const N: usize> SmallRows<'_, N> {
     }
 }
 
-/// [`SmallRows::span`] cuts a span's slices from its start and its pixel
-/// count `x1 - x0` (positive there) rather than from its start and end
-/// (the same slices, or `None` alike: `start + n` is the end): on the
+/// The colour and depth slices of columns `x0..x1` (`x0 < x1`) of the
+/// row at offset `base`, cut from the span's start and its pixel count
+/// `x1 - x0` rather than from its start and end (the same slices, or
+/// `None` alike: `start + n` is the end): [`SmallRows::span`]'s on the
 /// hosts, where the count then serves the slices and the pixel loop
-/// (callgrind, `examples/bunny_frame.rs`, 2 170 967 -> 2 150 035); not on
-/// ARM (bunny-gouraud raster thumbv7em 1 631 831 -> 1 661 529).
-const SPAN_BY_COUNT: bool = !cfg!(target_arch = "arm");
+/// (callgrind, `examples/bunny_frame.rs`, 2 170 967 -> 2 150 035; in
+/// [`Walk::fused`] as well 2 159 493); not on ARM (bunny-gouraud raster
+/// thumbv7em 1 631 831 -> 1 661 529), whose builds compile the code they
+/// did (`cfg` attributes).
+#[cfg(not(target_arch = "arm"))]
+#[inline(always)]
+fn span_by_count<'p, 'z, R, Z>(
+    px: &'p mut [R],
+    z: &'z mut [Z],
+    base: usize,
+    x0: i32,
+    x1: i32,
+) -> (Option<&'p mut [R]>, Option<&'z mut [Z]>) {
+    let start = base.wrapping_add(x0 as usize);
+    let n = x1.wrapping_sub(x0) as u32 as usize;
+    (
+        px.get_mut(start..).and_then(|p| p.get_mut(..n)),
+        z.get_mut(start..).and_then(|d| d.get_mut(..n)),
+    )
+}
 
 /// The pixels of a span of [`draw_small`] whose depths stay in range (no
 /// clamp), one a step: each depth-tested ([`in_range_test`]) and, when
