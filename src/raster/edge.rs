@@ -224,10 +224,8 @@ impl Edge {
     /// `examples/bunny_frame.rs`, the bunny's Gouraud frame 2 199 488 ->
     /// 2 178 374; on ARM it cost the row loops registers, bunny-gouraud
     /// raster thumbv7em 1 631 831 -> 1 698 055). The same walker (tested
-    /// equal to the ARM form). Chosen by `cfg` attributes, so that the
-    /// ARM builds compile the very code they did (chosen by an `if` on a
-    /// constant, the unused form still moved their inlining: thumbv6m
-    /// cubes-and-sphere raster +1 108).
+    /// equal to the ARM form). Chosen by `cfg` attributes: the ARM builds
+    /// compile the very code they did.
     #[cfg(not(target_arch = "arm"))]
     #[inline(always)]
     pub fn step(&mut self) -> bool {

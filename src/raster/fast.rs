@@ -1125,12 +1125,14 @@ pub(crate) fn draw_small<
     } else {
         core::hint::black_box(&mut fail_count)
     };
+    let v_first = if SmallRows::<'_, N>::LAZY {
+        t0
+    } else {
+        t0.add_n(&ty, j_top)
+    };
     let mut rows = SmallRows {
-        v: if SmallRows::<'_, N>::LAZY {
-            t0
-        } else {
-            t0.add_n(&ty, j_top)
-        },
+        vz: v_first.z,
+        va: v_first.a,
         base: (j_top - y0).wrapping_mul(width) as usize,
         width: width as usize,
         drawn: 0,
@@ -1219,10 +1221,16 @@ pub(crate) fn draw_small<
                 row.a[0] = lval(a, 0).wrapping_add(o);
             }
             row
-        } else if SmallRows::<'_, N>::LAZY {
-            rows.v
         } else {
-            rows.v.add_n(sy0, j.wrapping_neg())
+            let v = Vals {
+                z: rows.vz,
+                a: rows.va,
+            };
+            if SmallRows::<'_, N>::LAZY {
+                v
+            } else {
+                v.add_n(sy0, j.wrapping_neg())
+            }
         };
         pack_vals(vals, &v00, sx0, sy0);
     }
@@ -1324,7 +1332,13 @@ fn same_len<'p, 'z, R, Z>(px: &'p mut [R], z: &'z mut [Z]) -> (&'p mut [R], &'z 
 /// the outlined [`in_range_loop`](super::span) for spans of two pixels
 /// or more).
 struct SmallRows<'f, const N: usize> {
-    v: Vals<i32, N>,
+    /// The values' depth and attributes as two fields rather than one
+    /// [`Vals`]: the host kept that pair packed in one 64-bit register,
+    /// unpacked and repacked at every row (callgrind,
+    /// `examples/bunny_frame.rs`, 2 208 123 -> 2 199 488, later
+    /// 2 155 854 -> 2 150 035; the ARM counts unchanged).
+    vz: i32,
+    va: [i32; N],
     base: usize,
     width: usize,
     drawn: u32,
@@ -1382,10 +1396,14 @@ impl<const N: usize> SmallRows<'_, N> {
         color: &impl Fn(&[i32; N]) -> R,
     ) {
         if x0 < x1 {
+            let v = Vals {
+                z: self.vz,
+                a: self.va,
+            };
             let s = if Self::LAZY {
-                self.v.add_n(sy, j).add_n(sx, x0)
+                v.add_n(sy, j).add_n(sx, x0)
             } else {
-                self.v.add_n(sx, x0)
+                v.add_n(sx, x0)
             };
             // The slices from the span's start and pixel count `x1 - x0`
             // on the hosts (see [`span_by_count`]).
@@ -1423,7 +1441,10 @@ impl<const N: usize> SmallRows<'_, N> {
             }
         }
         if !Self::LAZY {
-            self.v = self.v.add_n(sy, 1);
+            self.vz = self.vz.wrapping_add(sy.z);
+            for (v, d) in self.va.iter_mut().zip(sy.a.iter()) {
+                *v = v.wrapping_add(*d);
+            }
         }
         self.base = self.base.wrapping_add(self.width);
     }
