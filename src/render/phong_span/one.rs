@@ -118,6 +118,23 @@ pub(super) fn rsq_hi(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
     (e >> 14) - (p >> 2)
 }
 
+/// Entries of [`RN`].
+pub(super) const RN_N: usize = 1024;
+
+/// The one-light loop's `1/|n|` and `1/|n|²` over `|n|² ∈ [1/4, 5/4)`,
+/// read without interpolation ([`crate::num::rsqrt_pair_table`] at
+/// [`RN_N`] entries, 4 KB of flash): entry `j` holds `2^14/|n|` in its low
+/// half and `2^13/|n|²` in its high half at the middle of its segment.
+pub(super) const RN: [u32; RN_N] = crate::num::rsqrt_pair_table::<RN_N>();
+
+/// The entry of [`RN`] for `nb = |n|² - 1/4` (Q30, within `[0, 1)`),
+/// the table passed in (its address in a register through the loop).
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+pub(super) fn rn_entry(rn: &[u32; RN_N], nb: i32) -> u32 {
+    rn[((nb as u32) >> 20) as usize & (RN_N - 1)]
+}
+
 /// The normal `n + i·dn` of pixel `i` (wrapping, as the loops step it).
 #[inline(always)]
 #[allow(clippy::cast_possible_wrap)]
@@ -457,11 +474,10 @@ impl<R: Real> PhongKernel<'_, R> {
         // Other than on ARMv6-M the table's address opaque, in a register
         // (or a spill slot) rather than rebuilt (`MOVW`/`MOVT`) at each use.
         let rs = if cfg!(armv6m) {
-            &RS_PACKED
+            &RN
         } else {
-            core::hint::black_box(&RS_PACKED)
+            core::hint::black_box(&RN)
         };
-        let q7 = |w: &Whole| w.q >> (QM_FRAC - 7);
         let px = |(nl15, sp): (u32, u32)| c.of_terms((nl15 & 0xFFFF) | sp << 16);
         // The pixels `j..j + kk` through `out.$loop`.
         macro_rules! pixels {
@@ -471,21 +487,21 @@ impl<R: Real> PhongKernel<'_, R> {
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_lit::<true>(rsq_hi(rs, w.nn), w.nl, q7(w))),
+                        |w| px(self.terms_rn::<true, true>(rn_entry(rs, w.nn), w.nl, w.q)),
                         Whole::step::<true>,
                     ),
                     (true, false) => out.$loop(
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_r::<true>(rsq_hi(rs, w.nn), w.nl, q7(w))),
+                        |w| px(self.terms_rn::<true, false>(rn_entry(rs, w.nn), w.nl, w.q)),
                         Whole::step::<true>,
                     ),
                     _ => out.$loop(
                         $j,
                         $kk,
                         w,
-                        |w| px(self.terms_r::<false>(rsq_hi(rs, w.nn), w.nl, 0)),
+                        |w| px(self.terms_rn::<false, false>(rn_entry(rs, w.nn), w.nl, 0)),
                         Whole::step::<false>,
                     ),
                 }
@@ -703,6 +719,50 @@ impl<R: Real> PhongKernel<'_, R> {
         a - (((a - b) * f) >> 16)
     }
 
+    /// The light terms of the one-light loop from `e`, the entry of
+    /// [`RN`] for the pixel's `|n|²` ([`rn_entry`]), `n·L` (Q30) and `Qm`
+    /// (Q20 segments): `N·L` in Q15, `floor((n·L / 2^13) · (2^14/|n|) /
+    /// 2^16)` (below `2^15 (1 + 2^-10)`: `n·L <= |n|`), and the specular
+    /// factor in Q15, the table [`PhongKernel`]'s `table` interpolated at
+    /// `min(Qm/2^13 · 2^13/|n|², 2^27 - 1)` (Q20 segments: `Qm/2^13`
+    /// saturated to `0..2^15`, the product below `2^30`); 0 for `n·L <=
+    /// 0` (`LIT`: `n·L > 0` known, not tested). Other than on ARMv6-M
+    /// `N·L` as a signed 32 × 16-bit product's high word and the position
+    /// as a signed 16 × 16-bit product of the entry's high half (the
+    /// halves are below `2^15`, the operands non-negative): the same
+    /// values.
+    #[inline(always)]
+    #[allow(
+        clippy::cast_sign_loss,
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap
+    )]
+    pub(super) fn terms_rn<const SPEC: bool, const LIT: bool>(
+        &self,
+        e: u32,
+        nl: i32,
+        qm: i32,
+    ) -> (u32, u32) {
+        let nlp = if LIT { nl } else { nl.max(0) };
+        let nl15 = (((nlp as u32) >> 13).wrapping_mul(e >> 16)) >> 16;
+        let sp = if SPEC && (LIT || nl > 0) {
+            let q7 = (qm >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1);
+            let pos = if cfg!(armv6m) {
+                (q7 as u32).wrapping_mul(e & 0xFFFF) as i32
+            } else {
+                i32::from(q7 as i16) * i32::from(e as i16)
+            };
+            let pos = pos.clamp(0, (1 << 27) - 1) as u32;
+            let j = (pos >> 20) as usize & (SPEC_SEGMENTS - 1);
+            let f = (pos >> 4) & 0xFFFF;
+            let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
+            a - (((a - b) * f) >> 16)
+        } else {
+            0
+        };
+        (nl15, sp)
+    }
+
     /// The colour (`r | g << 8 | b << 16`) of the light terms of
     /// [`PhongKernel::terms`]: per channel ambient plus diffuse times
     /// `N·L` plus specular times the factor, clamped to `0..=255`.
@@ -738,15 +798,18 @@ impl<R: Real> PhongKernel<'_, R> {
         let nn = sq3(n);
         let nl = lin(n, l.at);
         let cl = Colour::of(self, l);
+        let e = rn_entry(&RN, ((nn >> 30) as i32).wrapping_sub(1 << 28));
         if !(1 << 58..5 << 58).contains(&nn) {
             pack(fallback(self.shade, n0, dn, [0; 3], [0; 3], i))
         } else if self.spec && (!self.blinn || lin(n, l.p1) > 0) {
             let k = lin(n, l.p2);
             let q = sq3(cross(n, l.p1)).wrapping_add(wmul(k, k) as u64);
             let qm = mul_shr48(q as i64, self.kf).clamp(0, QM_MAX) as i32;
-            self.colour::<true>(&cl, (nn >> 30) as i32, nl, qm >> (QM_FRAC - 7))
+            let (nl15, sp) = self.terms_rn::<true, false>(e, nl, qm);
+            Self::channels(&cl, nl15 as i32, sp as i32)
         } else {
-            self.colour::<false>(&cl, (nn >> 30) as i32, nl, 0)
+            let (nl15, sp) = self.terms_rn::<false, false>(e, nl, 0);
+            Self::channels(&cl, nl15 as i32, sp as i32)
         }
     }
 }
