@@ -119,7 +119,7 @@ pub(super) fn rsq_hi(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
 }
 
 /// Entries of [`RN`].
-pub(super) const RN_N: usize = 1024;
+pub(super) const RN_N: usize = 2048;
 
 /// The one-light loop's `1/|n|` and `1/|n|²` over `|n|² ∈ [1/4, 5/4)`,
 /// read without interpolation ([`crate::num::rsqrt_pair_table`] at
@@ -132,7 +132,7 @@ pub(super) const RN: [u32; RN_N] = crate::num::rsqrt_pair_table::<RN_N>();
 #[inline(always)]
 #[allow(clippy::cast_sign_loss)]
 pub(super) fn rn_entry(rn: &[u32; RN_N], nb: i32) -> u32 {
-    rn[((nb as u32) >> 20) as usize & (RN_N - 1)]
+    rn[((nb as u32) >> 19) as usize & (RN_N - 1)]
 }
 
 /// The normal `n + i·dn` of pixel `i` (wrapping, as the loops step it).
