@@ -200,14 +200,16 @@ fn advance(v: u64, d1: u64, d2: u64, k: u32) -> (u64, u64) {
 
 /// The colour constants of one light (copied into the loop's locals).
 #[derive(Clone, Copy)]
+#[repr(C)]
 pub(super) struct Colour {
+    /// The constants of [`Colour::of_terms`] (other than ARMv6-M): per
+    /// channel `d | s << 16` and `amb + 2^15 (d + s)` (wrapping); first,
+    /// at the copy's address (`run` loads them with no offset).
+    ds: [i32; 3],
+    ambo: [i32; 3],
     pub(super) amb: [i32; 3],
     pub(super) d: [i32; 3],
     pub(super) s: [i32; 3],
-    /// The constants of [`Colour::of_terms`] (other than ARMv6-M): per
-    /// channel `d | s << 16` and `amb + 2^15 (d + s)` (wrapping).
-    ds: [i32; 3],
-    ambo: [i32; 3],
 }
 
 /// The offset of both halves of the packed light terms `nl15 | sp <<
