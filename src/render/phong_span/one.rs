@@ -420,7 +420,8 @@ impl<R: Real> PhongKernel<'_, R> {
     /// against 73.11 opaque, with its `UMULL` form 71.84 as a constant,
     /// rebuilt by `MOVW`/`MOVT` at each use, against 71.30 opaque), the
     /// channels of [`Colour::of_terms`] (their constants first in
-    /// [`Colour`], loaded from the copy's address: 65.74 -> 64.74); returns how many failed the
+    /// [`Colour`], loaded from the copy's address: 65.74 -> 64.74; [`RN`]'s
+    /// address a constant instead of opaque 65.64); returns how many failed the
     /// depth test. On ARMv6-M one loop ([`Out::fused`]: depth test,
     /// terms, channels and store of a pixel together); elsewhere piece
     /// by piece of [`CHUNK`] pixels ([`Out::masked`]: the piece's depth
