@@ -103,7 +103,7 @@ pub(super) const RN_N: usize = 2048;
 
 /// The one-light loop's `1/|n|` and `1/|n|²` over `|n|² ∈ [1/4, 5/4)`,
 /// read without interpolation ([`crate::num::rsqrt_pair_table`] at
-/// [`RN_N`] entries, 4 KB of flash): entry `j` holds `2^14/|n|` in its low
+/// [`RN_N`] entries, 8 KB of flash): entry `j` holds `2^14/|n|` in its low
 /// half and `2^13/|n|²` in its high half at the middle of its segment.
 pub(super) const RN: [u32; RN_N] = crate::num::rsqrt_pair_table::<RN_N>();
 
