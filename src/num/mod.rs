@@ -31,4 +31,4 @@ pub use self::profile::{
 pub use self::real::{GenericKernels, Kernels, Only, Q16Kernels, Raw16, Real};
 pub use self::recip::{InvArea, Recip};
 pub use self::subpixel::{BadSubpixelBits, SubpixelBits, COORD_LIMIT_PX};
-pub use self::tables::{rsqrt_quarter_table, spec_table};
+pub use self::tables::{rsqrt_pair_table, rsqrt_quarter_table, spec_table};

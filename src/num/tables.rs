@@ -250,6 +250,37 @@ pub(crate) const SIN: [u64; 65] = [
     0x8000000000000000,
 ];
 
+/// The one-light Phong span loop's `1/|n|` table read without
+/// interpolation, `E` entries (a power of two from 4 to 2^12) over
+/// `|n|² ∈ [1/4, 5/4)`: entry `j` covers `[1/4 + j/E, 1/4 + (j + 1)/E)`
+/// and holds, at its middle `f = 1/4 + (j + 1/2)/E`, `2^13 / f`
+/// rounded in its low half and `2^14 / sqrt(f)` rounded in its high half (both
+/// below `2^15`). The one-light Phong span loop ships `E = 2048` (8 KB of
+/// flash), where over each segment `2^14/|n|` is within `2^-10.97` of
+/// the entry relative (at `|n|² = 1/4`; `2^-12.38` for `|n|² >= 3/4`) and
+/// `2^13/|n|²` within `2^-9.98` (`2^-11.40`): tested in the kernel's
+/// module (`rn_table_within_bound`). An `E`
+/// outside the range gives a table of zeros.
+pub const fn rsqrt_pair_table<const E: usize>() -> [u32; E] {
+    let mut t = [0u32; E];
+    if E < 4 || E > 1 << 12 || !E.is_power_of_two() {
+        return t;
+    }
+    let e = E as u64;
+    let mut j = 0;
+    while j < E {
+        // f = (E + 4j + 2) / (4E).
+        let d = e + 4 * j as u64 + 2;
+        // 2^14 / sqrt(f) = sqrt(2^30 E / d); rounded from twice it.
+        let r = super::isqrt_u64((1u64 << 32) * e / d).div_ceil(2);
+        // 2^13 / f = 2^15 E / d, rounded.
+        let rr = ((1u64 << 16) * e / d).div_ceil(2);
+        t[j] = (rr | r << 16) as u32;
+        j += 1;
+    }
+    t
+}
+
 /// The Phong span kernel's `1/|n|` table with `E` entries (`E - 1`
 /// segments, a power of two from 4 to 2^12): `1/sqrt(f)` in Q16 at `f =
 /// 1/4 + j/(E - 1)`, `j` in `0..E` (the kernel interpolates it over

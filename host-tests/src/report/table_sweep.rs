@@ -28,6 +28,13 @@
 //! on the same normal (`Shade::at` of the `f64` twin, which is the ideal
 //! renderer's formula at one point: at one pixel the two references
 //! agree).
+//!
+//! The loop of one directional light reads `1/|n|` from its own table
+//! instead ([`fixshade::num::rsqrt_pair_table`], 2 048 entries without
+//! interpolation); the sweep has no row for it: [`Model`] is the general
+//! kernel's arithmetic, and that table's row needs a model of the
+//! one-light loop's arithmetic tested equal to the loop (docs/accuracy.md
+//! gives its measured figures at 1 024, 2 048 and 4 096 entries).
 
 use fixshade::geom::Vec3;
 use fixshade::illum::{Light, Material, Shade, Specular, Viewer};
