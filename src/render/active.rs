@@ -584,71 +584,62 @@ fn sort_coarse(
     // -> 54 070 on the Cortex-M0 (the bytes' union per word of four, each
     // byte of a word with a kept one then placed, before; forwards one by
     // one 55 560, two bytes at a time 57 942, `u32` counts 55 040). On the
-    // Cortex-M4 a word load ([`place_words`]): 31 973, the bytes' union of
-    // four loaded one by one 38 710.
-    let ends = if cfg!(armv6m) {
-        place_backwards(faces, &band, &mut count, dst)
-    } else {
-        place_words(faces, &band, &mut count, dst)
-    };
-    (ends, run_at, n)
-}
-
-/// The placing pass of [`sort_coarse`] by words: each kept triangle
-/// number `i` (byte `b` of `faces` with a row) placed at its band's next
-/// entry of `dst` (`band[b & FACE_ROW]`: its band within the run,
-/// [`EPOCH`] outside it, placed nowhere; `count[k]` the first entry of
-/// band `k`, the prefix sums), a word of four bytes none of which is kept
-/// skipped at once. Returns the end of each band's entries.
-#[inline(always)]
-#[allow(clippy::cast_possible_truncation)]
-fn place_words(
-    faces: &[u8],
-    band: &[u8; FACE_ROW as usize + 1],
-    count: &mut [u16; FACE_ROW as usize + 1],
-    dst: &mut [u16],
-) -> [u16; 1 << RADIX_BITS] {
-    let mut place = |i: usize, b: u8| {
-        let k = usize::from(band[usize::from(b & FACE_ROW)]);
-        if k < EPOCH as usize {
-            let c = &mut count[k & 127];
-            if let Some(d) = dst.get_mut(usize::from(*c)) {
-                // Numbers below `MAX_TRIANGLES`.
-                *d = i as u16;
+    // Cortex-M4 a word load, a word of four bytes none of which is kept
+    // skipped at once (below): 31 824, the bytes' union of four loaded one
+    // by one 38 710.
+    #[cfg(armv6m)]
+    return (place_backwards(faces, &band, &mut count, dst), run_at, n);
+    #[cfg(not(armv6m))]
+    {
+        let mut place = |i: usize, b: u8| {
+            // (`EPOCH`: outside the run, placed nowhere.)
+            let k = usize::from(band[usize::from(b & FACE_ROW)]);
+            if k < EPOCH as usize {
+                let c = &mut count[k & 127];
+                if let Some(d) = dst.get_mut(usize::from(*c)) {
+                    // Numbers below `MAX_TRIANGLES`.
+                    *d = i as u16;
+                }
+                *c += 1;
             }
-            *c += 1;
-        }
-    };
-    let mut quads = faces.chunks_exact(4);
-    let mut i = 0;
-    for q in quads.by_ref() {
-        let w = u32::from_le_bytes([q[0], q[1], q[2], q[3]]);
-        if w & u32::from_le_bytes([FACE_ROW; 4]) != 0 {
-            for (j, &b) in q.iter().enumerate() {
-                if b & FACE_ROW != 0 {
-                    place(i + j, b);
+        };
+        let mut quads = faces.chunks_exact(4);
+        let mut i = 0;
+        for q in quads.by_ref() {
+            let w = u32::from_le_bytes([q[0], q[1], q[2], q[3]]);
+            if w & u32::from_le_bytes([FACE_ROW; 4]) != 0 {
+                for (j, &b) in q.iter().enumerate() {
+                    if b & FACE_ROW != 0 {
+                        place(i + j, b);
+                    }
                 }
             }
+            i += 4;
         }
-        i += 4;
-    }
-    for (j, &b) in quads.remainder().iter().enumerate() {
-        if b & FACE_ROW != 0 {
-            place(i + j, b);
+        for (j, &b) in quads.remainder().iter().enumerate() {
+            if b & FACE_ROW != 0 {
+                place(i + j, b);
+            }
         }
+        let mut ends = [0u16; 1 << RADIX_BITS];
+        for (e, c) in ends.iter_mut().zip(count.iter()) {
+            *e = *c;
+        }
+        (ends, run_at, n)
     }
-    let mut ends = [0u16; 1 << RADIX_BITS];
-    for (e, c) in ends.iter_mut().zip(count.iter()) {
-        *e = *c;
-    }
-    ends
 }
 
-/// [`place_words`] from the last byte to the first, one at a time: each
-/// band filled from its end down (the bands' ends are the prefix sums
-/// past each band, `count[k + 1]`), so the order is the same (stable),
-/// and the loop holds no end index (on the Cortex-M0: 8 instructions a
-/// byte, 14 more a kept triangle).
+/// The placing pass of [`sort_coarse`] on ARMv6-M: each kept triangle
+/// number `i` (byte `b` of `faces` with a row) placed in its band's
+/// entries of `dst` (`band[b & FACE_ROW]`: its band within the run,
+/// [`EPOCH`] outside it, placed nowhere; `count[k]` the first entry of
+/// band `k`, the prefix sums), from the last byte to the first, one at a
+/// time: each band filled from its end down (the bands' ends are the
+/// prefix sums past each band, `count[k + 1]`), so the order is that of
+/// the forward pass (stable: ascending numbers within a band), and the
+/// loop holds no end index (on the Cortex-M0: 8 instructions a byte, 14
+/// more a kept triangle). Returns the end of each band's entries.
+#[cfg(any(armv6m, test))]
 #[inline(always)]
 #[allow(clippy::cast_possible_truncation)]
 fn place_backwards(
@@ -1813,11 +1804,12 @@ fn unpack<L: Lerp, const N: usize, const V: usize>(
 
 #[cfg(test)]
 mod place_tests {
-    use super::{place_backwards, place_words, EPOCH, FACE_ROW, RADIX_BITS};
+    use super::{place_backwards, EPOCH, FACE_ROW, RADIX_BITS};
     use crate::geom::testkit::xorshift;
 
-    /// The backwards placing pass (ARMv6-M's) gives the order and band
-    /// ends of the forward one, on random bytes (kept or not, back faces,
+    /// The backwards placing pass (ARMv6-M's) gives the stable order by
+    /// band (ascending numbers within a band) and the bands' ends, on
+    /// random bytes (kept or not, back faces,
     /// bands within and outside the run) and on the extremes (no kept
     /// byte, every byte kept in one band, lengths 0 to 9).
     #[test]
@@ -1865,21 +1857,23 @@ mod place_tests {
                 *c = sum;
             }
             let n = usize::from(sum);
-            let (mut a, mut b) = ([u16::MAX; 600], [u16::MAX; 600]);
-            let (mut ca, mut cb) = (count, count);
-            let ea = place_words(faces, &band, &mut ca, &mut a[..n]);
-            let eb = place_backwards(faces, &band, &mut cb, &mut b[..n]);
-            assert_eq!(ea, eb, "case {case}");
-            assert_eq!(a, b, "case {case}");
-            // Every kept number of the run placed once, ascending within
-            // its band.
-            let mut start = 0;
-            for &e in ea.iter().take(1 << RADIX_BITS) {
-                let e = usize::from(e);
-                assert!(a[start..e].windows(2).all(|w| w[0] < w[1]), "case {case}");
-                start = start.max(e);
+            // The reference: band by band, the kept numbers in order.
+            let (mut want, mut want_ends, mut m) = ([u16::MAX; 600], [0u16; 1 << RADIX_BITS], 0);
+            for (k, e) in want_ends.iter_mut().enumerate() {
+                for (i, &b) in faces.iter().enumerate() {
+                    if b & FACE_ROW != 0 && usize::from(band[usize::from(b & FACE_ROW)]) == k {
+                        want[m] = i as u16;
+                        m += 1;
+                    }
+                }
+                *e = m as u16;
             }
-            assert_eq!(start, n, "case {case}");
+            assert_eq!(m, n, "case {case}");
+            let mut got = [u16::MAX; 600];
+            let mut c = count;
+            let ends = place_backwards(faces, &band, &mut c, &mut got[..n]);
+            assert_eq!(ends, want_ends, "case {case}");
+            assert_eq!(got, want, "case {case}");
         }
     }
 }
