@@ -1231,7 +1231,18 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             // the Gouraud frame first 27 K less that way, with the kernel's
             // set-up as it is now 4.2 K more: raster 1 646 369 against
             // 1 642 120 once, thumbv6m 2 694 098 against 2 690 337).
-            let Some(tri) = frame.tri_of(po, mesh, ti as usize) else {
+            // ARMv6-M's grey Gouraud objects read without their layout
+            // (not flat: no colour): bunny-gouraud raster thumbv6m
+            // 2 416 972 -> 2 409 306, every other count the same. Without
+            // it everywhere (flat from `N`) cost bunny-flat thumbv6m
+            // 2 079 435 -> 2 112 692 and bunny-gouraud thumbv7em
+            // 1 631 488 -> 1 661 002.
+            let tri = if N == 1 && cfg!(armv6m) {
+                frame.tri_in(po, mesh, ti as usize, false)
+            } else {
+                frame.tri_of(po, mesh, ti as usize)
+            };
+            let Some(tri) = tri else {
                 break Ok(());
             };
             per_tri(&mut shader, &tri);

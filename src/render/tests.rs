@@ -1411,3 +1411,34 @@ fn prepare_in_makes_the_frame_prepare_returns() {
     );
     assert!(out.is_none());
 }
+
+/// [`Frame::tri_in`] with the layout given equals [`Frame::tri_of`] for
+/// every triangle number of every object (kept or not, mesh and made
+/// triangles: two-sided, clipped), and without the colour for every
+/// object that is not flat (the band loop's grey Gouraud path on ARMv6-M).
+#[test]
+fn triangles_with_the_layout_given_equal_those_read_with_it() {
+    for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+        let objs = every_shape::<<Fast as Profile>::Real>(shading);
+        let ls = lights();
+        let s = scene(&objs, &ls, [0.5, 1.0, 2.5]);
+        let mut mem = Mem::<<Fast as Profile>::Lerp>::new(4096, 4096);
+        let frame = prepare::<Fast>(&s, 96, 64, mem.ws()).unwrap();
+        let mut seen = 0;
+        for po in frame.objects() {
+            let mesh = frame.mesh_tris(po);
+            let flat = po.layout() == Layout::Flat;
+            for i in usize::from(po.tris.start)..usize::from(po.tris.end) {
+                let t = frame.tri_of(po, mesh, i);
+                assert!(t.is_some(), "{shading:?} {i}");
+                assert_eq!(frame.tri_in(po, mesh, i, flat), t);
+                if !flat {
+                    assert_eq!(frame.tri_in(po, mesh, i, false), t);
+                    assert_eq!(t.map(|t| t.color), Some(Rgb8::BLACK));
+                }
+                seen += 1;
+            }
+        }
+        assert!(seen > 100, "{shading:?} {seen}");
+    }
+}
