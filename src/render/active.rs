@@ -1727,7 +1727,8 @@ pub(super) fn fetch_fixed<P: Profile, const N: usize>(
 /// thumbv6m 2 409 306 -> 2 404 762 (written in `fetch_fixed` itself
 /// 2 403 792, kept apart to be tested on the host; the value read with
 /// each position rather than after all three 2 406 320). On the Cortex-M4
-/// it cost 1 631 488 -> 1 666 991. Sorting a raw position with the index packed in one word
+/// it cost 1 631 488 -> 1 666 991; for flat triangles (`N = 0`) on
+/// ARMv6-M bunny-flat 2 079 435 -> 2 099 777. Sorting a raw position with the index packed in one word
 /// (two registers a corner) measured 2 432 985 and bunny-flat 2 127 385 on
 /// thumbv6m (from 2 426 630 and 2 079 435); the raw positions sorted
 /// before adding the origin 2 551 249.
