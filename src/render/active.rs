@@ -579,35 +579,33 @@ fn sort_coarse(
     }
     let run_at = at.map_or(0, |a| a.0);
     let dst = order.get_mut(run_at..).unwrap_or_default();
-    let mut place = |i: usize, b: u8| {
-        // (`EPOCH`: outside the run, placed nowhere.)
-        let k = usize::from(band[usize::from(b & FACE_ROW)]);
-        if k < EPOCH as usize {
-            let c = &mut count[k & 127];
-            if let Some(d) = dst.get_mut(usize::from(*c)) {
-                // Numbers below `MAX_TRIANGLES`.
-                *d = i as u16;
+    // ARMv6-M loads a word byte by byte: there the bytes one by one, from
+    // the last ([`place_backwards`]): bunny-gouraud, this function, 60 300
+    // -> 54 070 on the Cortex-M0 (the bytes' union per word of four, each
+    // byte of a word with a kept one then placed, before; forwards one by
+    // one 55 560, two bytes at a time 57 942, `u32` counts 55 040). On the
+    // Cortex-M4 a word load, a word of four bytes none of which is kept
+    // skipped at once (below): 31 824, the bytes' union of four loaded one
+    // by one 38 710.
+    #[cfg(armv6m)]
+    return (place_backwards(faces, &band, &mut count, dst), run_at, n);
+    #[cfg(not(armv6m))]
+    {
+        let mut place = |i: usize, b: u8| {
+            // (`EPOCH`: outside the run, placed nowhere.)
+            let k = usize::from(band[usize::from(b & FACE_ROW)]);
+            if k < EPOCH as usize {
+                let c = &mut count[k & 127];
+                if let Some(d) = dst.get_mut(usize::from(*c)) {
+                    // Numbers below `MAX_TRIANGLES`.
+                    *d = i as u16;
+                }
+                *c += 1;
             }
-            *c += 1;
-        }
-    };
-    let mut quads = faces.chunks_exact(4);
-    let mut i = 0;
-    for q in quads.by_ref() {
-        if cfg!(armv6m) {
-            // ARMv6-M loads the word byte by byte: the bytes' union
-            // instead, each byte then placed (row code 0, not kept:
-            // outside the run). Bunny-gouraud, this function: 63 622 ->
-            // 60 300 on the Cortex-M0; on the Cortex-M4 (a word load)
-            // measured 31 973 -> 38 710.
-            let (b0, b1, b2, b3) = (q[0], q[1], q[2], q[3]);
-            if (b0 | b1 | b2 | b3) & FACE_ROW != 0 {
-                place(i, b0);
-                place(i + 1, b1);
-                place(i + 2, b2);
-                place(i + 3, b3);
-            }
-        } else {
+        };
+        let mut quads = faces.chunks_exact(4);
+        let mut i = 0;
+        for q in quads.by_ref() {
             let w = u32::from_le_bytes([q[0], q[1], q[2], q[3]]);
             if w & u32::from_le_bytes([FACE_ROW; 4]) != 0 {
                 for (j, &b) in q.iter().enumerate() {
@@ -616,19 +614,61 @@ fn sort_coarse(
                     }
                 }
             }
+            i += 4;
         }
-        i += 4;
-    }
-    for (j, &b) in quads.remainder().iter().enumerate() {
-        if b & FACE_ROW != 0 {
-            place(i + j, b);
+        for (j, &b) in quads.remainder().iter().enumerate() {
+            if b & FACE_ROW != 0 {
+                place(i + j, b);
+            }
         }
+        let mut ends = [0u16; 1 << RADIX_BITS];
+        for (e, c) in ends.iter_mut().zip(count.iter()) {
+            *e = *c;
+        }
+        (ends, run_at, n)
     }
+}
+
+/// The placing pass of [`sort_coarse`] on ARMv6-M: each kept triangle
+/// number `i` (byte `b` of `faces` with a row) placed in its band's
+/// entries of `dst` (`band[b & FACE_ROW]`: its band within the run,
+/// [`EPOCH`] outside it, placed nowhere; `count[k]` the first entry of
+/// band `k`, the prefix sums), from the last byte to the first, one at a
+/// time: each band filled from its end down (the bands' ends are the
+/// prefix sums past each band, `count[k + 1]`), so the order is that of
+/// the forward pass (stable: ascending numbers within a band), and the
+/// loop holds no end index (on the Cortex-M0: 8 instructions a byte, 14
+/// more a kept triangle). Returns the end of each band's entries.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation)]
+fn place_backwards(
+    faces: &[u8],
+    band: &[u8; FACE_ROW as usize + 1],
+    count: &mut [u16; FACE_ROW as usize + 1],
+    dst: &mut [u16],
+) -> [u16; 1 << RADIX_BITS] {
     let mut ends = [0u16; 1 << RADIX_BITS];
-    for (e, c) in ends.iter_mut().zip(count.iter()) {
+    for (e, c) in ends.iter_mut().zip(count.iter().skip(1)) {
         *e = *c;
     }
-    (ends, run_at, n)
+    let mut i = faces.len();
+    while i > 0 {
+        i -= 1;
+        let b = faces.get(i).copied().unwrap_or(0);
+        if b & FACE_ROW != 0 {
+            let k = usize::from(band[usize::from(b & FACE_ROW)]);
+            if k < EPOCH as usize {
+                let c = &mut count[(k + 1) & 127];
+                *c = c.wrapping_sub(1);
+                if let Some(d) = dst.get_mut(usize::from(*c)) {
+                    // Numbers below `MAX_TRIANGLES`.
+                    *d = i as u16;
+                }
+            }
+        }
+    }
+    ends
 }
 
 /// The placing pass of [`sort_coarse`] and [`sort_by_band`]: each kept
@@ -1071,7 +1111,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let (y1, width) = (t.y1 as i32, t.width as i32);
         let mesh = self.frame.mesh_tris(po);
         loop {
-            let Some((ti, src)) = self.take(band, end) else {
+            let Some((ti, src)) = self.take(band, end, cfg!(armv6m)) else {
                 return Ok(());
             };
             let Some(tri) = self.frame.tri_of(po, mesh, ti as usize) else {
@@ -1173,7 +1213,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     Some(ti) => (ti, Src::Fresh),
                     None => {
                         self.heads[2] = self.bucket_head();
-                        let Some(t) = self.take(band, end) else {
+                        let Some(t) = self.take(band, end, false) else {
                             break Ok(());
                         };
                         lim = self.heads[0].min(self.heads[1]).min(end);
@@ -1181,7 +1221,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     }
                 }
             } else {
-                let Some(t) = self.take(band, end) else {
+                let Some(t) = self.take(band, end, true) else {
                     break Ok(());
                 };
                 t
@@ -1191,7 +1231,18 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             // the Gouraud frame first 27 K less that way, with the kernel's
             // set-up as it is now 4.2 K more: raster 1 646 369 against
             // 1 642 120 once, thumbv6m 2 694 098 against 2 690 337).
-            let Some(tri) = frame.tri_of(po, mesh, ti as usize) else {
+            // ARMv6-M's grey Gouraud objects read without their layout
+            // (not flat: no colour): bunny-gouraud raster thumbv6m
+            // 2 416 972 -> 2 409 306, every other count the same. Without
+            // it everywhere (flat from `N`) cost bunny-flat thumbv6m
+            // 2 079 435 -> 2 112 692 and bunny-gouraud thumbv7em
+            // 1 631 488 -> 1 661 002.
+            let tri = if N == 1 && cfg!(armv6m) {
+                frame.tri_in(po, mesh, ti as usize, false)
+            } else {
+                frame.tri_of(po, mesh, ti as usize)
+            };
+            let Some(tri) = tri else {
                 break Ok(());
             };
             per_tri(&mut shader, &tri);
@@ -1243,33 +1294,75 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// Takes the band's next triangle below index `end`, in triangle
     /// order, from the three streams: the pool's ring (resumed), the queue
     /// of those that found the pool full, and the order (those starting in
-    /// the band); `None` when none is left.
+    /// the band); `None` when none is left. With `bucket_first` the order's
+    /// stream is tested first (the most taken where no [`Bands::take_fresh`]
+    /// comes before: ARMv6-M's grey Gouraud and general paths); without it
+    /// the ring first (after `take_fresh` missed, the order's head is seldom
+    /// the least). Exact QEMU counts, raster thumbv6m: bunny-gouraud
+    /// 2 426 630 -> 2 416 972, cubes-and-sphere 9 043 490 -> 9 038 282,
+    /// dodeca-gouraud 440 317 -> 441 449 (more resumed than set up there),
+    /// the flat scenes unchanged; thumbv7em bunny-gouraud 1 631 831 ->
+    /// 1 631 488, every other scene the same or less. The order's stream
+    /// first everywhere cost bunny-flat thumbv6m 2 079 435 -> 2 099 004 and
+    /// cubes-and-sphere thumbv7em 3 873 651 -> 3 876 569; the present
+    /// three-way test kept under `bucket_first` (the queue tested again
+    /// rather than taken last) left bunny-gouraud at 2 424 326.
     #[inline(always)]
-    fn take(&mut self, _band: u32, end: u32) -> Option<(u32, Src)> {
+    fn take(&mut self, _band: u32, end: u32, bucket_first: bool) -> Option<(u32, Src)> {
         let [ta, tb, tc] = self.heads;
         let ti = ta.min(tb).min(tc);
         if ti >= end {
             return None;
         }
-        if ti == ta {
-            let si = self.pool.ring.get(self.ring_head).copied().unwrap_or(0) as usize;
-            self.ring_head = wrap(self.ring_head + 1, CAP);
-            self.ring_cur -= 1;
-            self.ring_len -= 1;
-            self.heads[0] = self.ring_head_tri();
-            Some((ti, Src::Slot(si)))
+        if bucket_first {
+            // The streams hold distinct triangles: below `end`, equal heads
+            // are the same stream's.
+            if ti == tc {
+                self.next_in_bucket();
+                Some((ti, Src::Fresh))
+            } else if ti == ta {
+                Some((ti, Src::Slot(self.next_in_ring())))
+            } else {
+                self.next_in_queue();
+                Some((ti, Src::Fresh))
+            }
+        } else if ti == ta {
+            Some((ti, Src::Slot(self.next_in_ring())))
         } else {
             if ti == tb {
-                self.def_head = wrap(self.def_head + 1, self.q_len);
-                self.def_cur -= 1;
-                self.def_len -= 1;
-                self.heads[1] = self.queue_head();
+                self.next_in_queue();
             } else {
-                self.cursor += 1;
-                self.heads[2] = self.bucket_head();
+                self.next_in_bucket();
             }
             Some((ti, Src::Fresh))
         }
+    }
+
+    /// Takes the ring's head: its slot, the ring's next head made.
+    #[inline(always)]
+    fn next_in_ring(&mut self) -> usize {
+        let si = self.pool.ring.get(self.ring_head).copied().unwrap_or(0) as usize;
+        self.ring_head = wrap(self.ring_head + 1, CAP);
+        self.ring_cur -= 1;
+        self.ring_len -= 1;
+        self.heads[0] = self.ring_head_tri();
+        si
+    }
+
+    /// Takes the queue's head, its next head made.
+    #[inline(always)]
+    fn next_in_queue(&mut self) {
+        self.def_head = wrap(self.def_head + 1, self.q_len);
+        self.def_cur -= 1;
+        self.def_len -= 1;
+        self.heads[1] = self.queue_head();
+    }
+
+    /// Takes the order's head in the band, its next head made.
+    #[inline(always)]
+    fn next_in_bucket(&mut self) {
+        self.cursor += 1;
+        self.heads[2] = self.bucket_head();
     }
 
     /// The order's next triangle when it starts in the band and lies below
@@ -1561,11 +1654,14 @@ where
 /// 1 589 795 -> 1 584 846 -> 1 571 349, thumbv6m 2 454 888 -> 2 443 138
 /// -> 2 430 264 (the second step: the layout from `N`).
 #[inline(always)]
-fn fetch_fixed<P: Profile, const N: usize>(
+pub(super) fn fetch_fixed<P: Profile, const N: usize>(
     frame: &Frame<'_, P>,
     po: &PreparedObject,
     tri: &PreparedTri,
 ) -> Option<[Vertex<i32, N>; 3]> {
+    if N == 1 && cfg!(armv6m) && Layout::GouraudMono.packed_in::<P>() {
+        return fetch_grey_then_sort(frame, po, tri);
+    }
     let xy = |i: u16| frame.xy(usize::from(i));
     let (p0, p1, p2) = (xy(tri.v[0])?, xy(tri.v[1])?, xy(tri.v[2])?);
     let [(i0, q0), (i1, q1), (i2, q2)] =
@@ -1621,6 +1717,45 @@ fn fetch_fixed<P: Profile, const N: usize>(
         raw(frame.vertex::<N>(po, i1, q1))?,
         raw(frame.vertex::<N>(po, i2, q2))?,
     ])
+}
+
+/// [`fetch_fixed`] of a packed grey triangle (`N = 1`) with each corner's
+/// value read before the sort, the sort moving whole vertices rather than
+/// vertex indices (the same order: the same compares on the same `y`s;
+/// `None` for the same triangles; tested equal). Taken on ARMv6-M, where
+/// the index no longer lives through the sort: bunny-gouraud raster
+/// thumbv6m 2 409 306 -> 2 404 762 (written in `fetch_fixed` itself
+/// 2 403 792, kept apart to be tested on the host; the value read with
+/// each position rather than after all three 2 406 320). On the Cortex-M4
+/// it cost 1 631 488 -> 1 666 991; for flat triangles (`N = 0`) on
+/// ARMv6-M bunny-flat 2 079 435 -> 2 099 777. Sorting a raw position with the index packed in one word
+/// (two registers a corner) measured 2 432 985 and bunny-flat 2 127 385 on
+/// thumbv6m (from 2 426 630 and 2 079 435); the raw positions sorted
+/// before adding the origin 2 551 249.
+#[inline(always)]
+pub(super) fn fetch_grey_then_sort<P: Profile, const N: usize>(
+    frame: &Frame<'_, P>,
+    po: &PreparedObject,
+    tri: &PreparedTri,
+) -> Option<[Vertex<i32, N>; 3]> {
+    let xy = |i: u16| frame.xy(usize::from(i));
+    let (p0, p1, p2) = (xy(tri.v[0])?, xy(tri.v[1])?, xy(tri.v[2])?);
+    let (vals, off) = val_index(frame, po);
+    let grey = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
+        let w = vals.get(usize::from(i).wrapping_add(off))?.fixed_raw()?;
+        Some(Vertex {
+            x,
+            y,
+            z: w,
+            attrs: [w; N],
+        })
+    };
+    let v = [
+        grey(tri.v[0], p0)?,
+        grey(tri.v[1], p1)?,
+        grey(tri.v[2], p2)?,
+    ];
+    Some(sort3(v, |v| v.y))
 }
 
 /// The frame's values and the offset (wrapping) that takes a vertex of
@@ -1760,4 +1895,80 @@ fn unpack<L: Lerp, const N: usize, const V: usize>(
         a: core::array::from_fn(|k| get(k + 1, c)),
     };
     (f(0), f(1), f(2))
+}
+
+#[cfg(test)]
+mod place_tests {
+    use super::{place_backwards, EPOCH, FACE_ROW, RADIX_BITS};
+    use crate::geom::testkit::xorshift;
+
+    /// The backwards placing pass (ARMv6-M's) gives the stable order by
+    /// band (ascending numbers within a band) and the bands' ends, on
+    /// random bytes (kept or not, back faces,
+    /// bands within and outside the run) and on the extremes (no kept
+    /// byte, every byte kept in one band, lengths 0 to 9).
+    #[test]
+    fn backwards_equals_words() {
+        let mut rnd = xorshift(0x5eed_0014);
+        const ROWS: usize = FACE_ROW as usize + 1;
+        for case in 0..400 {
+            let len = match case {
+                0..=9 => case,
+                _ => (rnd() % 600) as usize,
+            };
+            // A band per row code: within the run (below `EPOCH`) or not.
+            let mut band = [EPOCH as u8; ROWS];
+            for (c, b) in band.iter_mut().enumerate().skip(1) {
+                *b = match case % 3 {
+                    0 => ((c - 1) / 8) as u8,
+                    1 => (rnd() % 80).min(u64::from(EPOCH)) as u8,
+                    _ => 5,
+                };
+            }
+            let faces: [u8; 600] = core::array::from_fn(|_| match case % 4 {
+                0 => 0,
+                1 => (rnd() % 256) as u8,
+                // Mostly not kept, some back faces.
+                _ => {
+                    (if rnd().is_multiple_of(3) {
+                        rnd() % 256
+                    } else {
+                        rnd() % 2 * 128
+                    }) as u8
+                }
+            });
+            let faces = &faces[..len];
+            // The prefix sums of the bands' counts.
+            let mut count = [0u16; ROWS];
+            for &b in faces {
+                let k = usize::from(band[usize::from(b & FACE_ROW)]);
+                if b & FACE_ROW != 0 && k < EPOCH as usize {
+                    count[k + 1] += 1;
+                }
+            }
+            let mut sum = 0;
+            for c in count.iter_mut().take(EPOCH as usize + 1) {
+                sum += *c;
+                *c = sum;
+            }
+            let n = usize::from(sum);
+            // The reference: band by band, the kept numbers in order.
+            let (mut want, mut want_ends, mut m) = ([u16::MAX; 600], [0u16; 1 << RADIX_BITS], 0);
+            for (k, e) in want_ends.iter_mut().enumerate() {
+                for (i, &b) in faces.iter().enumerate() {
+                    if b & FACE_ROW != 0 && usize::from(band[usize::from(b & FACE_ROW)]) == k {
+                        want[m] = i as u16;
+                        m += 1;
+                    }
+                }
+                *e = m as u16;
+            }
+            assert_eq!(m, n, "case {case}");
+            let mut got = [u16::MAX; 600];
+            let mut c = count;
+            let ends = place_backwards(faces, &band, &mut c, &mut got[..n]);
+            assert_eq!(ends, want_ends, "case {case}");
+            assert_eq!(got, want, "case {case}");
+        }
+    }
 }

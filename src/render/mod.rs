@@ -621,6 +621,19 @@ impl<P: Profile> Frame<'_, P> {
         mesh: &[[u16; 3]],
         i: usize,
     ) -> Option<PreparedTri> {
+        self.tri_in(po, mesh, i, po.layout() == Layout::Flat)
+    }
+
+    /// [`Self::tri_of`] for an object whose layout the caller knows: `flat`
+    /// when it is [`Layout::Flat`] (the colour read), else not (black).
+    #[inline(always)]
+    pub(crate) fn tri_in(
+        &self,
+        po: &PreparedObject,
+        mesh: &[[u16; 3]],
+        i: usize,
+        flat: bool,
+    ) -> Option<PreparedTri> {
         let k = i.checked_sub(usize::from(po.tris.start))?;
         // An object that keeps a triangle numbers its mesh's triangles
         // from `tris.start` on, its made ones from `made` =
@@ -640,7 +653,7 @@ impl<P: Profile> Frame<'_, P> {
                 (p.v(), p.back())
             }
         };
-        let color = if po.layout() == Layout::Flat {
+        let color = if flat {
             self.ws
                 .colors
                 .get(usize::from(po.color_base) + k)

@@ -1411,3 +1411,104 @@ fn prepare_in_makes_the_frame_prepare_returns() {
     );
     assert!(out.is_none());
 }
+
+/// [`Frame::tri_in`] with the layout given equals [`Frame::tri_of`] for
+/// every triangle number of every object (kept or not, mesh and made
+/// triangles: two-sided, clipped), and without the colour for every
+/// object that is not flat (the band loop's grey Gouraud path on ARMv6-M).
+#[test]
+fn triangles_with_the_layout_given_equal_those_read_with_it() {
+    for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+        let objs = every_shape::<<Fast as Profile>::Real>(shading);
+        let ls = lights();
+        let s = scene(&objs, &ls, [0.5, 1.0, 2.5]);
+        let mut mem = Mem::<<Fast as Profile>::Lerp>::new(4096, 4096);
+        let frame = prepare::<Fast>(&s, 96, 64, mem.ws()).unwrap();
+        let mut seen = 0;
+        for po in frame.objects() {
+            let mesh = frame.mesh_tris(po);
+            let flat = po.layout() == Layout::Flat;
+            for i in usize::from(po.tris.start)..usize::from(po.tris.end) {
+                let t = frame.tri_of(po, mesh, i);
+                assert!(t.is_some(), "{shading:?} {i}");
+                assert_eq!(frame.tri_in(po, mesh, i, flat), t);
+                if !flat {
+                    assert_eq!(frame.tri_in(po, mesh, i, false), t);
+                    assert_eq!(t.map(|t| t.color), Some(Rgb8::BLACK));
+                }
+                seen += 1;
+            }
+        }
+        assert!(seen > 100, "{shading:?} {seen}");
+    }
+}
+
+/// ARMv6-M's fetch of packed grey triangles ([`active::fetch_grey_then_sort`])
+/// equals [`active::fetch_fixed`]'s general form for every triangle of
+/// grey Gouraud shapes and for random vertex indices (in range, past the
+/// object's vertices and past the positions: `None` alike), with equal `y`s
+/// among them (the sort's order for ties).
+#[test]
+fn grey_fetch_sorting_vertices_equals_sorting_indices() {
+    let mut objs = every_shape::<Q16>(Shading::Gouraud);
+    for o in &mut objs {
+        o.material.color = Vec3::from_f32([0.9, 0.9, 0.9]);
+        o.material.ks = Q16::ZERO;
+    }
+    let ls = [Light::directional(
+        Vec3::from_f32([-1.0, 0.5, 1.0]),
+        Q16::ONE,
+    )];
+    let mut s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
+    s.ambient = Q16::ONE;
+    let mut mem = Mem::<<Fast as Profile>::Lerp>::new(4096, 4096);
+    let frame = prepare::<Fast>(&s, 96, 64, mem.ws()).unwrap();
+    let mut rng = crate::geom::testkit::xorshift(0x5eed_f00d);
+    let (mut some, mut none) = (0, 0);
+    for po in frame.objects() {
+        assert!(po.layout().packed_in::<Fast>());
+        let mesh = frame.mesh_tris(po);
+        let n = frame.ws.xy.len() as u64;
+        let mut check = |tri: &PreparedTri| {
+            let a = active::fetch_grey_then_sort::<Fast, 1>(&frame, po, tri);
+            assert_eq!(
+                a,
+                active::fetch_fixed::<Fast, 1>(&frame, po, tri),
+                "{tri:?}"
+            );
+            if a.is_some() {
+                some += 1;
+            } else {
+                none += 1;
+            }
+        };
+        for i in usize::from(po.tris.start)..usize::from(po.tris.end) {
+            let t = frame.tri_of(po, mesh, i).unwrap();
+            check(&t);
+            // The same corners with two of them swapped, and one repeated
+            // (equal `y`s).
+            check(&PreparedTri {
+                v: [t.v[1], t.v[0], t.v[2]],
+                ..t
+            });
+            check(&PreparedTri {
+                v: [t.v[2], t.v[0], t.v[2]],
+                ..t
+            });
+        }
+        for _ in 0..300 {
+            let mut r = || (rng() % (n + 40)) as u16;
+            let v = [r(), r(), r()];
+            check(&PreparedTri {
+                v,
+                ..PreparedTri::default()
+            });
+            let w = [u16::MAX, v[1], v[2]];
+            check(&PreparedTri {
+                v: w,
+                ..PreparedTri::default()
+            });
+        }
+    }
+    assert!(some > 1000 && none > 100, "{some} {none}");
+}
