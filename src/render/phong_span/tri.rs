@@ -34,7 +34,10 @@
 //! compared with its size, a triangle wider than `2^12` pixels, positions
 //! or light offsets beyond `±2^29` raw, as the per-span loop) keeps the
 //! per-span path; every span also passes the per-span loop's range test
-//! (`PhongKernel::fill`), else the 64-bit path.
+//! (`PhongKernel::fill`), else the 64-bit path. A triangle whose steps
+//! along x are at most `1/64` of `|l̃|` and `|ṽ|` on the same bounds
+//! (`|dx|² · 2^12 <= |u|²`) is fine: its chunks take the point loop's
+//! first-order step a pixel (module `point`).
 //!
 //! # Kept from band to band
 //! The band renderer sets a triangle up in every band it reaches; its
@@ -98,6 +101,10 @@ pub struct TriQuad {
     key: u64,
     /// Made here (not loaded from a [`QuadSlot`]): to be kept.
     made: bool,
+    /// Steps along x of `l̃` and `ṽ` of at most `1/64` of their length
+    /// over the triangle: its chunks take the point loop's fine steps
+    /// (module `point`).
+    fine: bool,
 }
 
 #[cfg(test)]
@@ -107,6 +114,8 @@ extern crate std;
 std::thread_local! {
     /// Set-ups made ([`TriQuad::make`]) on this thread (tests count them).
     pub(crate) static MAKES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
+    /// Set-ups made fine on this thread (tests count them).
+    pub(crate) static FINES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
 }
 
 /// One triangle's quadratics kept from one band to the next (the band
@@ -129,6 +138,7 @@ pub struct QuadSlot {
     ok: bool,
     at: [i32; 2],
     q: [[i64; 6]; 6],
+    fine: bool,
 }
 
 impl QuadSlot {
@@ -140,6 +150,7 @@ impl QuadSlot {
         ok: false,
         at: [0; 2],
         q: [[0; 6]; 6],
+        fine: false,
     };
 
     /// Bytes of one slot (the RAM per kept triangle).
@@ -377,7 +388,14 @@ impl TriQuad {
         ok: false,
         key: 0,
         made: false,
+        fine: false,
     };
+
+    /// Whether the triangle's chunks are fine (see the field).
+    #[inline(always)]
+    pub(super) fn fine(&self) -> bool {
+        self.fine
+    }
 
     /// Whether the set-up was made.
     pub fn ok(&self) -> bool {
@@ -563,6 +581,9 @@ impl TriQuad {
         if alo < 9 * (ONE / 4 + M) || ahi > 5 * ONE / 4 - 2 * M {
             return None;
         }
+        // Fine (module `point`): steps along x of at most 1/64 of the
+        // length, |dx|² · 2^12 <= |u|², for both.
+        let mut fine = true;
         for (u, t) in [(&la, &lt), (&va, &vt)] {
             let (lo, hi) = range(u);
             if lo < 9 * (ONE / 6 + M) || hi > 4 * ONE - 4 * M {
@@ -576,7 +597,11 @@ impl TriQuad {
             if (dd << 11) + (dd << 8) > lo {
                 return None;
             }
+            fine &= (dd << 15) + (dd << 12) <= lo;
         }
+        self.fine = fine;
+        #[cfg(test)]
+        FINES.with(|c| c.set(c.get() + u32::from(fine)));
         // In the loop's units times 2^32 (A, D, E, F: 2^-30 of the
         // products, B, C: 2^-29), the values biased by 2^31.
         self.at = [xa, ya];
@@ -637,6 +662,7 @@ impl TriQuad {
         };
         self.at = s.at;
         self.q = s.q;
+        self.fine = s.fine;
         self.ok = s.ok;
         self.key = key;
         self.pending = false;
@@ -677,6 +703,7 @@ impl TriQuad {
             s.ok = self.ok;
             s.at = self.at;
             s.q = self.q;
+            s.fine = self.fine;
         }
     }
 
