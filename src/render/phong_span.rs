@@ -297,6 +297,15 @@ pub struct PhongKernel<'s, R> {
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
     c16: u32,
     cb: u32,
+    /// The colour constants of the first light (`one::Colour::of`),
+    /// made once a kernel for the point loop's triangle spans
+    /// (`PhongKernel::fill_point_tri`) instead of once a span: dodecahedron
+    /// Phong raster M4 1 660 949 -> 1 651 911. Not on ARMv6-M: the 64
+    /// bytes more in the kernel cost it elsewhere (cubes-and-sphere raster
+    /// 9 045 264 -> 9 062 195, span sweep phong-kpoint 490.37 -> 494.81 a
+    /// pixel) more than the 1 003 they saved in the dodecahedron's.
+    #[cfg(not(armv6m))]
+    colour: Option<one::Colour>,
 }
 
 /// A specular table kept from one kernel to the next of the same
@@ -493,7 +502,8 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         if spec && !found {
             return Err(KernelError::Range);
         }
-        Ok(Self {
+        #[cfg_attr(armv6m, allow(unused_mut))]
+        let mut k = Self {
             shade,
             lights,
             amb,
@@ -509,7 +519,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             sq,
             c16,
             cb,
-        })
+            #[cfg(not(armv6m))]
+            colour: None,
+        };
+        #[cfg(not(armv6m))]
+        {
+            k.colour = k.lights.first().map(|l| one::Colour::of(&k, l));
+        }
+        Ok(k)
     }
 
     /// The light of the point loop (module `point`): one point light, a

@@ -182,7 +182,7 @@ fn advance(v: u64, d1: u64, d2: u64, k: u32) -> (u64, u64) {
 }
 
 /// The colour constants of one light (copied into the loop's locals).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 pub(super) struct Colour {
     pub(super) amb: [i32; 3],
     pub(super) d: [i32; 3],

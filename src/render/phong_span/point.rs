@@ -640,7 +640,19 @@ impl<R: Real> PhongKernel<'_, R> {
         len: u32,
         mut out: impl Out,
     ) -> u32 {
-        let c = Colour::of(self, l);
+        // The kernel's colour (of its only light, `l`): made once a kernel
+        // (not on ARMv6-M: the kernel's `colour`).
+        let own;
+        #[cfg(not(armv6m))]
+        let kept = self.colour.as_ref();
+        #[cfg(armv6m)]
+        let kept = None;
+        let c = if let Some(c) = kept {
+            c
+        } else {
+            own = Colour::of(self, l);
+            &own
+        };
         let planned = tri.plan(x, y);
         let fine = tri.fine();
         let TriQuad {
@@ -653,7 +665,7 @@ impl<R: Real> PhongKernel<'_, R> {
             drive_in(
                 buf,
                 len,
-                |i, k, buf| self.tri_chunk::<true>(l, &c, span, &mut plan, px, i, k as usize, buf),
+                |i, k, buf| self.tri_chunk::<true>(l, c, span, &mut plan, px, i, k as usize, buf),
                 move |t| c.of_terms(t),
                 &mut out,
             )
@@ -661,7 +673,7 @@ impl<R: Real> PhongKernel<'_, R> {
             drive_in(
                 buf,
                 len,
-                |i, k, buf| self.tri_chunk::<false>(l, &c, span, &mut plan, px, i, k as usize, buf),
+                |i, k, buf| self.tri_chunk::<false>(l, c, span, &mut plan, px, i, k as usize, buf),
                 move |t| c.of_terms(t),
                 &mut out,
             )
