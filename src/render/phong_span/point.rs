@@ -112,7 +112,8 @@
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
 //! stepped in y), already in the loop's units times `2^32`, so that a
-//! chunk's state is the plan's high words ([`Plan::chunk_hi`]); spans
+//! chunk's state is the plan's high words ([`Plan::hi`], read by the
+//! loop where they lie; on ARMv6-M built first, [`Plan::chunk_hi`]); spans
 //! below [`TRI_SHORT_SPAN`] pixels keep `point_one`. The loop is the same.
 //!
 //! Per pixel (three passes over the chunk, few live values each, all
@@ -367,38 +368,61 @@ impl Plan {
     /// [`Plan::chunk`] of a plan whose triples are already in the loop's
     /// units times `2^32` (a triangle's, [`TriQuad`]: the values biased
     /// by `2^31`, so that their high words are rounded, the differences'
-    /// floored): the high words. Inlined on ARMv6-M (the state straight
-    /// into the loop's frame: dodecahedron Phong raster 4 476 543 ->
-    /// 4 427 143, span sweep 501.48 -> 497.13 a pixel); not inlined
-    /// elsewhere (inlined, the M4 measured 1 684 470 -> 1 695 544 and
-    /// 161.91 -> 166.83).
-    #[cfg_attr(armv6m, inline(always))]
-    #[cfg_attr(not(armv6m), inline(never))]
-    #[allow(clippy::cast_possible_truncation)]
+    /// floored): the high words. The ARMv6-M's (inlined: the state
+    /// straight into the loop's frame: dodecahedron Phong raster 4 476 543
+    /// -> 4 427 143, span sweep 501.48 -> 497.13 a pixel; the loop reading
+    /// the plan's words itself, [`Plan::hi`], measured 4 378 217 ->
+    /// 4 404 551 and 490.37 -> 495.65; this form, built from
+    /// [`Plan::hi`] with the other targets' [`Plan::seeds_hi`] beside it,
+    /// 4 378 217 -> 4 361 338 and 490.37 -> 488.40).
+    #[inline(always)]
     fn chunk_hi(&self, fine: bool) -> Option<Chunk> {
-        let r = |c: [i64; 3]| {
-            (
-                (c[0] >> 32) as i32,
-                (c[1] >> 32) as i32,
-                (c[2] >> 32) as i32,
-            )
-        };
-        let [qa, qb, qc, qd, qe, qf] = self.q;
-        let b = r(qb);
-        let c = r(qc);
+        let [a, b, c, d, e, f] = self.hi();
         Some(Chunk {
-            a: r(qa),
+            a,
             b,
             c,
-            d: r(qd),
-            e: r(qe),
-            f: r(qf),
+            d,
+            e,
+            f,
             yl: seeds_of(b.0, b.1, fine)?,
             yv: seeds_of(c.0, c.1, fine)?,
             fine,
         })
     }
+
+    /// The chunk's triples of [`Plan::chunk_hi`], read by the loop
+    /// straight from the plan other than on ARMv6-M: no [`Chunk`] built
+    /// and copied into the loop's frame (`chunk_hi` not inlined there:
+    /// inlined, the M4 had measured 1 684 470 -> 1 695 544). Dodecahedron
+    /// Phong raster M4 1 651 911 -> 1 620 399, span sweep phong-kpoint
+    /// 153.92 -> 151.54 a pixel.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn hi(&self) -> [(i32, i32, i32); 6] {
+        self.q.map(|c| {
+            (
+                (c[0] >> 32) as i32,
+                (c[1] >> 32) as i32,
+                (c[2] >> 32) as i32,
+            )
+        })
+    }
+
+    /// The Newton seeds of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`])
+    /// of the chunk of [`Plan::hi`] (`None`: a seed out of the table).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn seeds_hi(&self, fine: bool) -> Option<Seeds> {
+        let hi = |c: [i64; 3]| ((c[0] >> 32) as i32, (c[1] >> 32) as i32);
+        let (b0, b1) = hi(self.q[1]);
+        let (c0, c1) = hi(self.q[2]);
+        Some((seeds_of(b0, b1, fine)?, seeds_of(c0, c1, fine)?))
+    }
 }
+
+/// Newton states of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`]).
+type Seeds = ((i32, i32), (i32, i32));
 
 /// `v` and its step `d` times `2^s`, `s` making the largest component
 /// of `v` lie in `[2^28, 2^29)`, each component of the scaled step below
@@ -695,22 +719,54 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         buf: &mut [u32; CHUNK],
     ) -> bool {
+        if cfg!(armv6m) {
+            // ARMv6-M: the chunk's state built (`Plan::chunk_hi`), the loop
+            // reading it from there.
+            let st = match plan {
+                Some(pl) => {
+                    if i > 0 {
+                        pl.step_chunk();
+                    }
+                    pl.chunk_hi(FINE)
+                }
+                None => None,
+            };
+            return match st {
+                Some(st) if self.spec => {
+                    self.point_run_in::<true, FINE>(px, &st, k, buf);
+                    true
+                }
+                Some(st) => {
+                    self.point_run_in::<false, FINE>(px, &st, k, buf);
+                    true
+                }
+                None => {
+                    for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
+                        *o = pack(self.point_px(l, c, span, j));
+                    }
+                    false
+                }
+            };
+        }
+        // Elsewhere the loop reads the plan's high words where they lie
+        // (`Plan::hi`), only the seeds made first.
         let st = match plan {
             Some(pl) => {
                 if i > 0 {
                     pl.step_chunk();
                 }
-                pl.chunk_hi(FINE)
+                let pl: &Plan = pl;
+                pl.seeds_hi(FINE).map(|s| (pl, s))
             }
             None => None,
         };
         match st {
-            Some(st) if self.spec => {
-                self.point_run_in::<true, FINE>(px, &st, k, buf);
+            Some((pl, s)) if self.spec => {
+                self.point_run_vals::<true, FINE>(px, pl.hi(), s, k, buf);
                 true
             }
-            Some(st) => {
-                self.point_run_in::<false, FINE>(px, &st, k, buf);
+            Some((pl, s)) => {
+                self.point_run_vals::<false, FINE>(px, pl.hi(), s, k, buf);
                 true
             }
             None => {
@@ -1014,15 +1070,37 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
+        self.point_run_vals::<SPEC, FINE>(
+            px,
+            [st.a, st.b, st.c, st.d, st.e, st.f],
+            (st.yl, st.yv),
+            k,
+            col,
+        );
+    }
+
+    /// [`PhongKernel::point_run_in`] from the chunk's triples (`A`..`F`)
+    /// and seeds given one by one (read where they lie: no [`Chunk`]
+    /// built).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+    fn point_run_vals<const SPEC: bool, const FINE: bool>(
+        &self,
+        px: &mut [Px; GROUP],
+        [sa, sb, sc, sd, se, sf]: [(i32, i32, i32); 6],
+        (yl, yv): Seeds,
+        k: usize,
+        col: &mut [u32; CHUNK],
+    ) {
         let k = k.min(PCHUNK);
-        let (mut xb, mut xb1, xb2) = st.b;
-        let (mut d, mut d1, d2) = st.d;
-        let (mut la, mut lb) = st.yl;
-        let (mut xc, mut xc1, xc2) = st.c;
-        let (mut e, mut e1, e2) = st.e;
-        let (mut va, mut vb) = st.yv;
-        let (mut f, mut f1, f2) = st.f;
-        let (mut a, mut a1, a2) = st.a;
+        let (mut xb, mut xb1, xb2) = sb;
+        let (mut d, mut d1, d2) = sd;
+        let (mut la, mut lb) = yl;
+        let (mut xc, mut xc1, xc2) = sc;
+        let (mut e, mut e1, e2) = se;
+        let (mut va, mut vb) = yv;
+        let (mut f, mut f1, f2) = sf;
+        let (mut a, mut a1, a2) = sa;
         let kc = KScale::of(self.kf);
         // `1/|n|` from the packed table, its address in a register
         // (`one::rsq_biased`: the same values as `terms`).
@@ -1215,6 +1293,34 @@ mod tests {
     /// `1/sqrt(b)`, `b` (Q29) across `(1/6, 4)`, within `0.28 e⁴ +
     /// 2^-22.5`; from seeds within `3·2^-8` (the loop's, module docs)
     /// within `2^-22`.
+    /// The ARMv6-M's chunk state ([`Plan::chunk_hi`]) holds the very
+    /// words and seeds the other targets' loop reads ([`Plan::hi`],
+    /// [`Plan::seeds_hi`]), for random plans, fine or not.
+    #[test]
+    fn chunk_hi_equals_hi_and_seeds() {
+        let mut next = crate::geom::testkit::xorshift(0x9e37_79b9_7f4a_7c15);
+        let mut some = 0;
+        for i in 0..20_000u32 {
+            let mut pl = Plan { q: [[0; 3]; 6] };
+            for t in &mut pl.q {
+                // B and C from the seeds' table range mostly (Q29 in (1/6,
+                // 4) as high words), the others anything.
+                *t = [next() as i64, next() as i64 >> 8, next() as i64 >> 16];
+            }
+            for t in &mut pl.q[1..3] {
+                t[0] = ((next() % (3 << 29)) as i64 + (1 << 28)) << 32;
+            }
+            let fine = i % 2 == 0;
+            let want = pl.seeds_hi(fine).map(|(yl, yv)| (pl.hi(), yl, yv));
+            let got = pl
+                .chunk_hi(fine)
+                .map(|c| ([c.a, c.b, c.c, c.d, c.e, c.f], c.yl, c.yv));
+            assert_eq!(got, want, "{i}");
+            some += usize::from(got.is_some());
+        }
+        assert!(some > 10_000, "{some}");
+    }
+
     #[test]
     fn newton_error() {
         let q29 = f64::from(1u32 << 29);
