@@ -79,7 +79,7 @@ pub struct TriQuad {
     /// Per quadratic, at row `ry`: its value at `x = 0`, the value's
     /// first difference to the next row, and the coefficient of `x`
     /// (`f + e·y + c·y²`, `e + c·(2y + 1)`, `d + b·y`).
-    row: [[i64; 3]; 6],
+    row: [[i64; 4]; 6],
     /// The row of `row` (`None`: not set).
     ry: Option<i32>,
     /// The last span's plan ([`TriQuad::plan`]).
@@ -377,7 +377,7 @@ impl TriQuad {
     pub const NONE: Self = Self {
         at: [0; 2],
         q: [[0; 6]; 6],
-        row: [[0; 3]; 6],
+        row: [[0; 4]; 6],
         ry: None,
         span: Plan { q: [[0; 3]; 6] },
         buf: [0; CHUNK],
@@ -744,7 +744,7 @@ impl TriQuad {
             let (a, b, c) = (q[3], q[4], q[5]);
             if next {
                 row[0] = row[0].wrapping_add(row[1]);
-                row[1] = row[1].wrapping_add(c.wrapping_add(c));
+                row[1] = row[1].wrapping_add(row[3]);
                 row[2] = row[2].wrapping_add(b);
             }
             let ax = mul_small(a, x);
@@ -774,6 +774,7 @@ impl TriQuad {
             row[0] = f.wrapping_add(mul_small(e.wrapping_add(cy), y));
             row[1] = e.wrapping_add(cy.wrapping_mul(2)).wrapping_add(c);
             row[2] = d.wrapping_add(mul_small(b, y));
+            row[3] = c.wrapping_add(c);
             o[2] = a.wrapping_add(a);
         }
     }
