@@ -167,7 +167,11 @@
 //! is made at a triangle's first longer span in the band. Measured
 //! (dodecahedron Phong raster, M4 and M0; span sweep phong-kpoint):
 //! 1 886 263 -> 1 848 422 and 6 256 609 -> 5 911 473; 176.38 -> 169.48 and
-//! 698.55 -> 661.69 a pixel. The loop itself (~93 instructions a pixel
+//! 698.55 -> 661.69 a pixel. Where the steps of `l̃` and `ṽ` are at
+//! most 1/64 of their lengths (a triangle's or span's chunks "fine",
+//! module `point`) each pixel takes a first-order step instead of the
+//! series: 161.72 -> 154.02 a pixel on the M4, 497.06 -> 490.37 on the
+//! M0, frames unchanged. The loop itself (~93 instructions a pixel
 //! on the M4, ~570 on the M0) is unchanged and now the floor: with the
 //! channels (~24), the row and band walk and the set-ups (~4 800 a
 //! triangle and band on the M4) the frame stays above its budget.
@@ -308,6 +312,15 @@ pub struct PhongKernel<'s, R> {
     /// Table position per `Q · 1/|n|²`: `(rr14 · c16) >> cb`.
     c16: u32,
     cb: u32,
+    /// The colour constants of the first light (`one::Colour::of`),
+    /// made once a kernel for the point loop's triangle spans
+    /// (`PhongKernel::fill_point_tri`) instead of once a span: dodecahedron
+    /// Phong raster M4 1 660 949 -> 1 651 911. Not on ARMv6-M: the 64
+    /// bytes more in the kernel cost it elsewhere (cubes-and-sphere raster
+    /// 9 045 264 -> 9 062 195, span sweep phong-kpoint 490.37 -> 494.81 a
+    /// pixel) more than the 1 003 they saved in the dodecahedron's.
+    #[cfg(not(armv6m))]
+    colour: Option<one::Colour>,
 }
 
 /// A specular table kept from one kernel to the next of the same
@@ -504,7 +517,8 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         if spec && !found {
             return Err(KernelError::Range);
         }
-        Ok(Self {
+        #[cfg_attr(armv6m, allow(unused_mut))]
+        let mut k = Self {
             shade,
             lights,
             amb,
@@ -520,7 +534,14 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             sq,
             c16,
             cb,
-        })
+            #[cfg(not(armv6m))]
+            colour: None,
+        };
+        #[cfg(not(armv6m))]
+        {
+            k.colour = k.lights.first().map(|l| one::Colour::of(&k, l));
+        }
+        Ok(k)
     }
 
     /// The light of the point loop (module `point`): one point light, a
@@ -2444,6 +2465,13 @@ mod tests;
 mod tri;
 
 pub use tri::{QuadSlot, TriQuad};
+
+/// Set-ups of the point light's quadratics made fine (module `point`) on
+/// this thread so far.
+#[cfg(test)]
+pub(crate) fn tri_fines() -> u32 {
+    tri::FINES.with(|c| c.get())
+}
 
 /// Set-ups of the point light's quadratics made on this thread so far.
 #[cfg(test)]

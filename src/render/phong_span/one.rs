@@ -179,7 +179,7 @@ fn advance(v: u64, d1: u64, d2: u64, k: u32) -> (u64, u64) {
 }
 
 /// The colour constants of one light (copied into the loop's locals).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub(super) struct Colour {
     /// The constants of [`Colour::of_terms`] (other than ARMv6-M): per

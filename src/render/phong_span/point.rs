@@ -80,10 +80,40 @@
 //! scale); `F̃·G` in the pass of `1/|ṽ|` on the M4 (no pass of its own):
 //! 161.91 -> 164.98 and 1 684 470 -> 1 697 859.
 //!
+//! # Fine chunks
+//! Where the steps of `l̃` and `ṽ` are at most `1/64` of their lengths
+//! over the whole chunk (a span's plan or set-up, or a triangle's
+//! quadratics, prove it with the ranges: [`Chunk::fine`]; the light and
+//! the eye at least ~64 pixels' steps from the surface), the linear
+//! extrapolation of the two previous values is within `2 r² (1 + 4r)`
+//! of `1/|l|` (`r` the step's ratio, the second derivative of `1/|l +
+//! t·d|` lying in `[-r², 2r²]` of it): `2^-10.8`, and one first-order
+//! step ([`newton_lin`], `s (1 + e/2)`: three high halves and three
+//! instructions, no `e²` term) takes it within `0.38 e² + 2^-23 <
+//! 2^-20.8`, so the error of `w` stays within `2^-18.7` (`m < 256`: the
+//! table position within `2^-10.7` of the specular range). The chunk's
+//! first value is one such step from the table ([`seeds_fine`]: within
+//! `2^-22`), its second seed the table's. The chunk functions are made
+//! per kind (fine or not: each its seeds and two loops). Frames
+//! unchanged on the firmware (every CRC) and in the reference images.
+//! Measured (span sweep phong-kpoint, a pixel; dodecahedron Phong
+//! raster, whose triangles are mostly not fine, its light being close:
+//! 6 set-ups of 36): M4 161.72 -> 154.02 and 1 665 656 -> 1 660 949, M0
+//! 497.06 -> 490.37 and 4 385 013 -> 4 378 217. Measured and not kept
+//! (the same order: M4 sweep and frame, M0 sweep and frame): the fine
+//! flag in the plan (`Plan`, inside [`TriQuad`]: its buffers' offsets
+//! moved, M0 `TriQuad::plan` +27 000) with one chunk function for both
+//! kinds (four loops) and `y1` a full series step from `y0`, 152.48,
+//! 1 659 900, 496.66, 4 461 682; so with two first-order steps, 151.56,
+//! 1 655 406, 493.10, 4 469 164; the flag beside the plan, one chunk
+//! function, 152.97, 1 668 216, 493.44, 4 436 700; a chunk function per
+//! kind, two first-order steps, 152.89, 1 657 873, 496.33, 4 401 329.
+//!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
 //! stepped in y), already in the loop's units times `2^32`, so that a
-//! chunk's state is the plan's high words ([`Plan::chunk_hi`]); spans
+//! chunk's state is the plan's high words ([`Plan::hi`], read by the
+//! loop where they lie; on ARMv6-M built first, [`Plan::chunk_hi`]); spans
 //! below [`TRI_SHORT_SPAN`] pixels keep `point_one`. The loop is the same.
 //!
 //! Per pixel (three passes over the chunk, few live values each, all
@@ -239,6 +269,20 @@ fn newton(s: i32, b: i32) -> i32 {
     s.wrapping_add(mulhi(s, e31.wrapping_add(e2)))
 }
 
+/// `1/sqrt(b)` (`b` Q29, result Q29) from a seed `s` within `2^-10.8`
+/// (relative) by the series' first two terms: `s (1 + e/2)`, `e = 1 - b
+/// s²` (`|e| < 2^-9.7`): within `0.38 e² < 2^-20.8` of it, plus the
+/// truncations' `2^-23` (`e` floored to `2^-23`, three high halves):
+/// the loop's step where its seeds are that close ([`Chunk::fine`]), three
+/// high-half products and three instructions (the `e²` term of
+/// [`newton`] costs ~8 more). Checked by `newton_lin_error`.
+#[inline(always)]
+fn newton_lin(s: i32, b: i32) -> i32 {
+    let sb = mulhi(s, b); // Q26 of s·b (<= 2^28.5)
+    let e31 = ((1 << 23) - mulhi(sb, s)) << 8; // e · 2^31 (|e| < 1)
+    s.wrapping_add(mulhi(s, e31))
+}
+
 /// A chunk's 32-bit state.
 #[cfg_attr(test, derive(Debug, PartialEq, Eq))]
 struct Chunk {
@@ -251,6 +295,10 @@ struct Chunk {
     /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29).
     yl: (i32, i32),
     yv: (i32, i32),
+    /// Steps of `l̃` and `ṽ` of at most `1/64` of their length over the
+    /// chunk: the seeds from [`seeds_fine`], each pixel by
+    /// [`newton_lin`] (the linear extrapolation within `2^-10.8`).
+    fine: bool,
 }
 
 /// A span's plan: the six quadratics' exact difference triples ([`prod`]
@@ -293,8 +341,13 @@ impl Plan {
     /// 30), within `i32` by the plan's ranges, and the Newton seeds from
     /// the table (`None`: a seed out of the table). Not inlined (as
     /// `point_setup`).
+    /// `fine`: steps of `l̃` and `ṽ` of at most `1/64` of their length
+    /// over the whole span (or triangle), the chunk [`Chunk::fine`] (kept
+    /// beside the plan, not in it: a field more in the triangle's
+    /// [`TriQuad`] moved its buffers' offsets past the M0's immediate
+    /// loads, 27 000 instructions more in `TriQuad::plan`).
     #[inline(never)]
-    fn chunk(&self) -> Option<Chunk> {
+    fn chunk(&self, fine: bool) -> Option<Chunk> {
         let r = |c: [i64; 3], s: i32| (shr_wrap(c[0], s), shr_wrap(c[1], s), shr_wrap(c[2], s));
         let [qa, qb, qc, qd, qe, qf] = self.q;
         let b = r(qb, 29);
@@ -306,45 +359,70 @@ impl Plan {
             d: r(qd, 30),
             e: r(qe, 30),
             f: r(qf, 30),
-            yl: seeds(b.0, b.1)?,
-            yv: seeds(c.0, c.1)?,
+            yl: seeds_of(b.0, b.1, fine)?,
+            yv: seeds_of(c.0, c.1, fine)?,
+            fine,
         })
     }
 
     /// [`Plan::chunk`] of a plan whose triples are already in the loop's
     /// units times `2^32` (a triangle's, [`TriQuad`]: the values biased
     /// by `2^31`, so that their high words are rounded, the differences'
-    /// floored): the high words. Inlined on ARMv6-M (the state straight
-    /// into the loop's frame: dodecahedron Phong raster 4 476 543 ->
-    /// 4 427 143, span sweep 501.48 -> 497.13 a pixel); not inlined
-    /// elsewhere (inlined, the M4 measured 1 684 470 -> 1 695 544 and
-    /// 161.91 -> 166.83).
-    #[cfg_attr(armv6m, inline(always))]
-    #[cfg_attr(not(armv6m), inline(never))]
+    /// floored): the high words. The ARMv6-M's (inlined: the state
+    /// straight into the loop's frame: dodecahedron Phong raster 4 476 543
+    /// -> 4 427 143, span sweep 501.48 -> 497.13 a pixel; the loop reading
+    /// the plan's words itself, [`Plan::hi`], measured 4 378 217 ->
+    /// 4 404 551 and 490.37 -> 495.65; this form, built from
+    /// [`Plan::hi`] with the other targets' [`Plan::seeds_hi`] beside it,
+    /// 4 378 217 -> 4 361 338 and 490.37 -> 488.40).
+    #[inline(always)]
+    fn chunk_hi(&self, fine: bool) -> Option<Chunk> {
+        let [a, b, c, d, e, f] = self.hi();
+        Some(Chunk {
+            a,
+            b,
+            c,
+            d,
+            e,
+            f,
+            yl: seeds_of(b.0, b.1, fine)?,
+            yv: seeds_of(c.0, c.1, fine)?,
+            fine,
+        })
+    }
+
+    /// The chunk's triples of [`Plan::chunk_hi`], read by the loop
+    /// straight from the plan other than on ARMv6-M: no [`Chunk`] built
+    /// and copied into the loop's frame (`chunk_hi` not inlined there:
+    /// inlined, the M4 had measured 1 684 470 -> 1 695 544). Dodecahedron
+    /// Phong raster M4 1 651 911 -> 1 620 399, span sweep phong-kpoint
+    /// 153.92 -> 151.54 a pixel.
+    #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
-    fn chunk_hi(&self) -> Option<Chunk> {
-        let r = |c: [i64; 3]| {
+    fn hi(&self) -> [(i32, i32, i32); 6] {
+        self.q.map(|c| {
             (
                 (c[0] >> 32) as i32,
                 (c[1] >> 32) as i32,
                 (c[2] >> 32) as i32,
             )
-        };
-        let [qa, qb, qc, qd, qe, qf] = self.q;
-        let b = r(qb);
-        let c = r(qc);
-        Some(Chunk {
-            a: r(qa),
-            b,
-            c,
-            d: r(qd),
-            e: r(qe),
-            f: r(qf),
-            yl: seeds(b.0, b.1)?,
-            yv: seeds(c.0, c.1)?,
         })
     }
+
+    /// The Newton seeds of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`])
+    /// of the chunk of [`Plan::hi`] (`None`: a seed out of the table).
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn seeds_hi(&self, fine: bool) -> Option<Seeds> {
+        let hi = |c: [i64; 3]| ((c[0] >> 32) as i32, (c[1] >> 32) as i32);
+        let (b0, b1) = hi(self.q[1]);
+        let (c0, c1) = hi(self.q[2]);
+        Some((seeds_of(b0, b1, fine)?, seeds_of(c0, c1, fine)?))
+    }
 }
+
+/// Newton states of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`]).
+type Seeds = ((i32, i32), (i32, i32));
 
 /// `v` and its step `d` times `2^s`, `s` making the largest component
 /// of `v` lie in `[2^28, 2^29)`, each component of the scaled step below
@@ -375,6 +453,31 @@ fn seeds(x0: i32, x1: i32) -> Option<(i32, i32)> {
     let y1 = seed(x0.wrapping_add(x1))?;
     let dl = y1.wrapping_sub(y0);
     Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
+}
+
+/// Newton states `(y0 - 2δ, y0 - δ)` as [`seeds`], `y0` the first-order
+/// step ([`newton_lin`]) from the table at the chunk's first pixel
+/// (`|e| < 2^-10.4`: within `2^-22`) and `y1` the table's at the next
+/// (`2^-11.4`): the loop's first seed within `2^-22` of its value, the
+/// second within `2^-11.3`, as close as [`newton_lin`] needs (the table
+/// seeds of [`seeds`], `y0` not stepped, put the second within
+/// `3·2^-11.4` and the step's error at `2^-19`).
+#[inline(always)]
+fn seeds_fine(x0: i32, x1: i32) -> Option<(i32, i32)> {
+    let y0 = newton_lin(seed(x0)?, x0);
+    let y1 = seed(x0.wrapping_add(x1))?;
+    let dl = y1.wrapping_sub(y0);
+    Some((y0.wrapping_sub(dl.wrapping_mul(2)), y0.wrapping_sub(dl)))
+}
+
+/// [`seeds_fine`] for a fine chunk ([`Chunk::fine`]), else [`seeds`].
+#[inline(always)]
+fn seeds_of(x0: i32, x1: i32, fine: bool) -> Option<(i32, i32)> {
+    if fine {
+        seeds_fine(x0, x1)
+    } else {
+        seeds(x0, x1)
+    }
 }
 
 /// `1/sqrt(x)` (Q29) within `2^-11.4` relative for `x` (Q29) in `(1/6,
@@ -561,26 +664,51 @@ impl<R: Real> PhongKernel<'_, R> {
         len: u32,
         mut out: impl Out,
     ) -> u32 {
-        let c = Colour::of(self, l);
+        // The kernel's colour (of its only light, `l`): made once a kernel
+        // (not on ARMv6-M: the kernel's `colour`).
+        let own;
+        #[cfg(not(armv6m))]
+        let kept = self.colour.as_ref();
+        #[cfg(armv6m)]
+        let kept = None;
+        let c = if let Some(c) = kept {
+            c
+        } else {
+            own = Colour::of(self, l);
+            &own
+        };
         let planned = tri.plan(x, y);
+        let fine = tri.fine();
         let TriQuad {
             span: pl, px, buf, ..
         } = tri;
         let mut plan = if planned { Some(pl) } else { None };
-        drive_in(
-            buf,
-            len,
-            |i, k, buf| self.tri_chunk(l, &c, span, &mut plan, px, i, k as usize, buf),
-            move |t| c.of_terms(t),
-            &mut out,
-        )
+        // One chunk function for fine triangles, one for the others (each
+        // with the two loops of its seeds and steps).
+        if fine {
+            drive_in(
+                buf,
+                len,
+                |i, k, buf| self.tri_chunk::<true>(l, c, span, &mut plan, px, i, k as usize, buf),
+                move |t| c.of_terms(t),
+                &mut out,
+            )
+        } else {
+            drive_in(
+                buf,
+                len,
+                |i, k, buf| self.tri_chunk::<false>(l, c, span, &mut plan, px, i, k as usize, buf),
+                move |t| c.of_terms(t),
+                &mut out,
+            )
+        }
     }
 
     /// [`PhongKernel::point_chunk`] of a span planned from its triangle:
     /// every chunk from the plan, stepped on.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    fn tri_chunk(
+    fn tri_chunk<const FINE: bool>(
         &self,
         l: &KLight,
         c: &Colour,
@@ -591,22 +719,54 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         buf: &mut [u32; CHUNK],
     ) -> bool {
+        if cfg!(armv6m) {
+            // ARMv6-M: the chunk's state built (`Plan::chunk_hi`), the loop
+            // reading it from there.
+            let st = match plan {
+                Some(pl) => {
+                    if i > 0 {
+                        pl.step_chunk();
+                    }
+                    pl.chunk_hi(FINE)
+                }
+                None => None,
+            };
+            return match st {
+                Some(st) if self.spec => {
+                    self.point_run_in::<true, FINE>(px, &st, k, buf);
+                    true
+                }
+                Some(st) => {
+                    self.point_run_in::<false, FINE>(px, &st, k, buf);
+                    true
+                }
+                None => {
+                    for (j, o) in (i..i + k as u32).zip(buf.iter_mut()) {
+                        *o = pack(self.point_px(l, c, span, j));
+                    }
+                    false
+                }
+            };
+        }
+        // Elsewhere the loop reads the plan's high words where they lie
+        // (`Plan::hi`), only the seeds made first.
         let st = match plan {
             Some(pl) => {
                 if i > 0 {
                     pl.step_chunk();
                 }
-                pl.chunk_hi()
+                let pl: &Plan = pl;
+                pl.seeds_hi(FINE).map(|s| (pl, s))
             }
             None => None,
         };
         match st {
-            Some(st) if self.spec => {
-                self.point_run_in::<true>(px, &st, k, buf);
+            Some((pl, s)) if self.spec => {
+                self.point_run_vals::<true, FINE>(px, pl.hi(), s, k, buf);
                 true
             }
-            Some(st) => {
-                self.point_run_in::<false>(px, &st, k, buf);
+            Some((pl, s)) => {
+                self.point_run_vals::<false, FINE>(px, pl.hi(), s, k, buf);
                 true
             }
             None => {
@@ -629,7 +789,7 @@ impl<R: Real> PhongKernel<'_, R> {
         l: &KLight,
         c: &Colour,
         span: Planes,
-        plan: &mut Option<Plan>,
+        plan: &mut Option<(Plan, bool)>,
         i: u32,
         k: usize,
         buf: &mut [u32; CHUNK],
@@ -638,23 +798,31 @@ impl<R: Real> PhongKernel<'_, R> {
         // less than the set-up.
         let st = match plan {
             _ if k < SHORT_SPAN as usize => None,
-            Some(pl) => {
+            Some((pl, fine)) => {
                 // The driver's chunks follow one another, PCHUNK pixels
                 // apart.
                 if i > 0 {
                     pl.step_chunk();
                 }
-                pl.chunk()
+                pl.chunk(*fine)
             }
             None => self.point_setup(l, span, i, k),
         };
         match st {
+            Some(st) if self.spec && st.fine => {
+                self.point_run::<true, true>(&st, k, buf);
+                true
+            }
             Some(st) if self.spec => {
-                self.point_run::<true>(&st, k, buf);
+                self.point_run::<true, false>(&st, k, buf);
+                true
+            }
+            Some(st) if st.fine => {
+                self.point_run::<false, true>(&st, k, buf);
                 true
             }
             Some(st) => {
-                self.point_run::<false>(&st, k, buf);
+                self.point_run::<false, false>(&st, k, buf);
                 true
             }
             None => {
@@ -703,11 +871,15 @@ impl<R: Real> PhongKernel<'_, R> {
         // (x.2 = 2 |dl̃|²).
         let (b32, blo, bhi) = fwd32(prod(lt, dlt, lt, dlt), 29, k)?;
         let (c32, clo, chi) = fwd32(prod(vt, dvt, vt, dvt), 29, k)?;
+        // Fine (steps of at most 1/64: |dl̃|² · 2^12 <= |l̃|², the rounded
+        // x.2 taken one unit up) when both are.
+        let mut fine = true;
         for (x, lo, hi) in [(b32, blo, bhi), (c32, clo, chi)] {
             if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x.2) << 7 > lo - 256
             {
                 return None;
             }
+            fine &= (i64::from(x.2) + 1) << 11 <= lo - 256;
         }
         // |D̃| <= |n| |l̃| < 1.12 · 2 and |Ẽ| < 1.12 · 2 (Q29), |F̃| < 2 · 2
         // (Q28): within i32 over the chunk (the drift 248 units aside) by
@@ -724,8 +896,9 @@ impl<R: Real> PhongKernel<'_, R> {
             d: x32(prod(nj, dn, lt, dlt)),
             e: x32(prod(nj, dn, vt, dvt)),
             f: x32(prod(lt, dlt, vt, dvt)),
-            yl: seeds(b32.0, b32.1)?,
-            yv: seeds(c32.0, c32.1)?,
+            yl: seeds_of(b32.0, b32.1, fine)?,
+            yv: seeds_of(c32.0, c32.1, fine)?,
+            fine,
         })
     }
 
@@ -744,7 +917,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// its 64-bit set-up would share the loop's frame and registers.
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap, clippy::type_complexity)]
-    fn point_plan(&self, l: &KLight, (n, dn, p, dp): Planes, len: u32) -> Option<Plan> {
+    fn point_plan(&self, l: &KLight, (n, dn, p, dp): Planes, len: u32) -> Option<(Plan, bool)> {
         // Steps of the normal below 2^29 (1/2 a pixel), of l̃ and ṽ below
         // 2^26 (1/4 of their largest component): the products below stay
         // within i64 (|dn|² · 6 < 2^61).
@@ -775,17 +948,20 @@ impl<R: Real> PhongKernel<'_, R> {
         // |l̃|², |ṽ|² (Q29, from [1/4, 3) at the first pixel) within (1/6,
         // 4), and steps of at most 1/16 of the length: |dl̃|² · 2^8 <= |l̃|²
         // (x2 = 2 |dl̃|²).
+        // Fine (steps of at most 1/64, as `point_setup`) when both are.
+        let mut fine = true;
         for c in [q[1], q[2]] {
             let (x2, lo, hi) = span_bounds(c, 29, t)?;
             if lo <= (1 << 29) / 6 + 256 || hi >= (1 << 31) - 256 || i64::from(x2) << 7 > lo - 256 {
                 return None;
             }
+            fine &= (i64::from(x2) + 1) << 11 <= lo - 256;
         }
         // |D̃| <= |n| |l̃| < 1.12 · 2 and |Ẽ| < 1.12 · 2 (Q29), |F̃| < 2 · 2
         // (Q28): within i32 over the span (a chunk's drift aside) by the
         // checks above; the first and second differences wrap harmlessly
         // (the values are exact modulo 2^32).
-        Some(Plan { q })
+        Some((Plan { q }, fine))
     }
 
     /// Whether a span of `len` pixels runs the 32-bit loop from its plan
@@ -805,7 +981,7 @@ impl<R: Real> PhongKernel<'_, R> {
     #[cfg(test)]
     pub(super) fn plan_matches_setup(&self, span: Planes, len: u32) -> Option<(u32, bool)> {
         let l = self.lights.first()?;
-        let mut plan = self.point_plan(l, span, len)?;
+        let (mut plan, fine) = self.point_plan(l, span, len)?;
         let (mut both, mut equal) = (0, true);
         let mut i = 0;
         while i < len {
@@ -821,14 +997,51 @@ impl<R: Real> PhongKernel<'_, R> {
                 (clz32(or(lv)), clz32(or(p)))
             };
             let same = sh(i) == sh(0);
-            if let (true, Some(a), Some(b)) = (same, plan.chunk(), self.point_setup(l, span, i, k))
+            if let (true, Some(a), Some(b)) =
+                (same, plan.chunk(fine), self.point_setup(l, span, i, k))
             {
-                both += 1;
-                equal &= a == b;
+                // The same seeds where both are fine or both not (the
+                // plan's fine over the whole span, the set-up's over the
+                // chunk).
+                if a.fine == b.fine {
+                    both += 1;
+                    equal &= a == b;
+                }
             }
             i += PCHUNK as u32;
         }
         Some((both, equal))
+    }
+
+    /// The span of `len` pixels by its plan's chunks run both ways, fine
+    /// ([`seeds_fine`] and [`newton_lin`]) and not: whether the plan is
+    /// fine, and the largest differences of the two loops' packed terms
+    /// (`N·L` and the specular factor, Q15 each; the tests' check that
+    /// the fine loop keeps the other's values within its bound). `None`:
+    /// no plan.
+    #[cfg(test)]
+    pub(super) fn fine_against_coarse(&self, span: Planes, len: u32) -> Option<(bool, i32, i32)> {
+        let l = self.lights.first()?;
+        let (mut plan, fine) = self.point_plan(l, span, len)?;
+        let (mut dnl, mut dsp) = (0, 0);
+        let mut i = 0;
+        while i < len {
+            let k = (len - i).min(PCHUNK as u32) as usize;
+            if i > 0 {
+                plan.step_chunk();
+            }
+            let (a, b) = (plan.chunk(true)?, plan.chunk(false)?);
+            let (mut ca, mut cb) = ([0u32; CHUNK], [0u32; CHUNK]);
+            self.point_run::<true, true>(&a, k, &mut ca);
+            self.point_run::<true, false>(&b, k, &mut cb);
+            for (x, y) in ca[..k].iter().zip(&cb[..k]) {
+                let d = |s: u32| (((x >> s) & 0xFFFF) as i32 - ((y >> s) & 0xFFFF) as i32).abs();
+                dnl = dnl.max(d(0));
+                dsp = dsp.max(d(16));
+            }
+            i += PCHUNK as u32;
+        }
+        Some((fine, dnl, dsp))
     }
 
     /// The chunk's colours (`r | g << 8 | b << 16`) from its state, in
@@ -837,30 +1050,57 @@ impl<R: Real> PhongKernel<'_, R> {
     /// chunk, `n·L̂` in the colour's place).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run<const SPEC: bool>(&self, st: &Chunk, k: usize, col: &mut [u32; CHUNK]) {
-        self.point_run_in::<SPEC>(&mut [Px::default(); GROUP], st, k, col);
+    fn point_run<const SPEC: bool, const FINE: bool>(
+        &self,
+        st: &Chunk,
+        k: usize,
+        col: &mut [u32; CHUNK],
+    ) {
+        self.point_run_in::<SPEC, FINE>(&mut [Px::default(); GROUP], st, k, col);
     }
 
     /// [`PhongKernel::point_run`] with the values between passes in `px`
     /// (kept by the caller: no zeroing a chunk).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_in<const SPEC: bool>(
+    fn point_run_in<const SPEC: bool, const FINE: bool>(
         &self,
         px: &mut [Px; GROUP],
         st: &Chunk,
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
+        self.point_run_vals::<SPEC, FINE>(
+            px,
+            [st.a, st.b, st.c, st.d, st.e, st.f],
+            (st.yl, st.yv),
+            k,
+            col,
+        );
+    }
+
+    /// [`PhongKernel::point_run_in`] from the chunk's triples (`A`..`F`)
+    /// and seeds given one by one (read where they lie: no [`Chunk`]
+    /// built).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+    fn point_run_vals<const SPEC: bool, const FINE: bool>(
+        &self,
+        px: &mut [Px; GROUP],
+        [sa, sb, sc, sd, se, sf]: [(i32, i32, i32); 6],
+        (yl, yv): Seeds,
+        k: usize,
+        col: &mut [u32; CHUNK],
+    ) {
         let k = k.min(PCHUNK);
-        let (mut xb, mut xb1, xb2) = st.b;
-        let (mut d, mut d1, d2) = st.d;
-        let (mut la, mut lb) = st.yl;
-        let (mut xc, mut xc1, xc2) = st.c;
-        let (mut e, mut e1, e2) = st.e;
-        let (mut va, mut vb) = st.yv;
-        let (mut f, mut f1, f2) = st.f;
-        let (mut a, mut a1, a2) = st.a;
+        let (mut xb, mut xb1, xb2) = sb;
+        let (mut d, mut d1, d2) = sd;
+        let (mut la, mut lb) = yl;
+        let (mut xc, mut xc1, xc2) = sc;
+        let (mut e, mut e1, e2) = se;
+        let (mut va, mut vb) = yv;
+        let (mut f, mut f1, f2) = sf;
+        let (mut a, mut a1, a2) = sa;
         let kc = KScale::of(self.kf);
         // `1/|n|` from the packed table, its address in a register
         // (`one::rsq_biased`: the same values as `terms`).
@@ -868,7 +1108,12 @@ impl<R: Real> PhongKernel<'_, R> {
         for cg in col.get_mut(..k).unwrap_or_default().chunks_mut(GROUP) {
             // 1/|l̃| and n·L̂.
             for (o, nl) in px.iter_mut().zip(cg.iter_mut()) {
-                let y = newton(lb.wrapping_mul(2).wrapping_sub(la), xb);
+                let s = lb.wrapping_mul(2).wrapping_sub(la);
+                let y = if FINE {
+                    newton_lin(s, xb)
+                } else {
+                    newton(s, xb)
+                };
                 o.g = y;
                 *nl = (mulhi(d, y) << 4) as u32;
                 (la, lb) = (lb, y);
@@ -880,7 +1125,12 @@ impl<R: Real> PhongKernel<'_, R> {
             // 1/|ṽ|, n·V̂ and L̂·V̂.
             if SPEC {
                 for (o, &nl) in px.iter_mut().zip(cg.iter()) {
-                    let y = newton(vb.wrapping_mul(2).wrapping_sub(va), xc);
+                    let s = vb.wrapping_mul(2).wrapping_sub(va);
+                    let y = if FINE {
+                        newton_lin(s, xc)
+                    } else {
+                        newton(s, xc)
+                    };
                     // (n·L̂)(n·V̂): Q30 · Q30 -> Q28.
                     o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
                     // G = 1/(|l̃| |ṽ|) < 6 (Q28) in place of 1/|l̃|.
@@ -1043,6 +1293,34 @@ mod tests {
     /// `1/sqrt(b)`, `b` (Q29) across `(1/6, 4)`, within `0.28 e⁴ +
     /// 2^-22.5`; from seeds within `3·2^-8` (the loop's, module docs)
     /// within `2^-22`.
+    /// The ARMv6-M's chunk state ([`Plan::chunk_hi`]) holds the very
+    /// words and seeds the other targets' loop reads ([`Plan::hi`],
+    /// [`Plan::seeds_hi`]), for random plans, fine or not.
+    #[test]
+    fn chunk_hi_equals_hi_and_seeds() {
+        let mut next = crate::geom::testkit::xorshift(0x9e37_79b9_7f4a_7c15);
+        let mut some = 0;
+        for i in 0..20_000u32 {
+            let mut pl = Plan { q: [[0; 3]; 6] };
+            for t in &mut pl.q {
+                // B and C from the seeds' table range mostly (Q29 in (1/6,
+                // 4) as high words), the others anything.
+                *t = [next() as i64, next() as i64 >> 8, next() as i64 >> 16];
+            }
+            for t in &mut pl.q[1..3] {
+                t[0] = ((next() % (3 << 29)) as i64 + (1 << 28)) << 32;
+            }
+            let fine = i % 2 == 0;
+            let want = pl.seeds_hi(fine).map(|(yl, yv)| (pl.hi(), yl, yv));
+            let got = pl
+                .chunk_hi(fine)
+                .map(|c| ([c.a, c.b, c.c, c.d, c.e, c.f], c.yl, c.yv));
+            assert_eq!(got, want, "{i}");
+            some += usize::from(got.is_some());
+        }
+        assert!(some > 10_000, "{some}");
+    }
+
     #[test]
     fn newton_error() {
         let q29 = f64::from(1u32 << 29);
@@ -1080,6 +1358,64 @@ mod tests {
         }
         std::println!("newton: {:.2} {:.2}", worst[0].log2(), worst[1].log2());
         assert!(worst[1] <= 2f64.powi(-22), "{}", worst[1].log2());
+    }
+
+    /// [`newton_lin`] against `f64`: from seeds within `2^-10.8`
+    /// (relative) of `1/sqrt(b)`, `b` (Q29) across `(1/6, 4)`, within
+    /// `0.38 e² + 2^-23` and below `2^-20.8`; [`seeds_fine`]'s first
+    /// state within `2^-22`, the second's extrapolation within `2^-11.3`,
+    /// for steps of up to `1/64` of the length.
+    #[test]
+    fn newton_lin_error() {
+        let q29 = f64::from(1u32 << 29);
+        let mut rng = crate::geom::testkit::xorshift(0x9e37_79b9_7f4a_7c15);
+        let mut u = move || (rng() >> 11) as f64 / (1u64 << 53) as f64;
+        let lim = 2f64.powf(-10.8);
+        let mut worst = 0f64;
+        for i in 0..400_000 {
+            let b = ((1.0 / 6.0 + (4.0 - 1.0 / 6.0) * u()) * q29) as i32;
+            let bx = f64::from(b) / q29;
+            let exact = 1.0 / bx.sqrt();
+            let d = match i % 8 {
+                0 => lim,
+                1 => -lim,
+                _ => lim * (2.0 * u() - 1.0),
+            };
+            let s = (exact * (1.0 + d) * q29).round() as i32;
+            let sf = f64::from(s) / q29;
+            let e = 1.0 - bx * sf * sf;
+            let y = f64::from(newton_lin(s, b)) / q29;
+            let err = (y / exact - 1.0).abs();
+            assert!(
+                err <= 0.38 * e * e + 2f64.powi(-23),
+                "b {bx} seed {d} e {e}: {err:e}"
+            );
+            worst = worst.max(err);
+        }
+        std::println!("newton_lin: {:.2}", worst.log2());
+        assert!(worst <= 2f64.powf(-20.8), "{}", worst.log2());
+        // The fine seeds: |l̃|² at the first two pixels of a chunk whose
+        // step is up to 1/64 of the length (x1 = 2 l·dl + |dl|²).
+        let mut worst = [0f64; 2];
+        for _ in 0..200_000 {
+            let x0 = (1.0 / 6.0 + (4.0 - 1.0 / 6.0) * u()) * 0.95;
+            let r = u() / 64.0;
+            let c = 2.0 * u() - 1.0;
+            let x1 = x0 * (2.0 * r * c + r * r);
+            let (b0, b1) = ((x0 * q29) as i32, (x1 * q29).round() as i32);
+            let Some((ym2, ym1)) = seeds_fine(b0, b1) else {
+                panic!("{x0} {x1}");
+            };
+            let (ym2, ym1) = (i64::from(ym2), i64::from(ym1));
+            let y0 = (2 * ym1 - ym2) as f64 / q29;
+            let e0 = 1.0 / (f64::from(b0) / q29).sqrt();
+            let y1 = (2 * (2 * ym1 - ym2) - ym1) as f64 / q29;
+            let e1 = 1.0 / (f64::from(b0 + b1) / q29).sqrt();
+            worst[0] = worst[0].max((y0 / e0 - 1.0).abs());
+            worst[1] = worst[1].max((y1 / e1 - 1.0).abs());
+        }
+        std::println!("seeds_fine: {:.2} {:.2}", worst[0].log2(), worst[1].log2());
+        assert!(worst[0] <= 2f64.powi(-22) && worst[1] <= 2f64.powf(-11.3));
     }
 
     /// [`KScale`]: its two forms agree ([`KScale::mul_split`] is the

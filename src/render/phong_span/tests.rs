@@ -603,6 +603,63 @@ fn point_loop_runs() {
     assert!(worst <= 1.0, "{worst}");
 }
 
+/// The point loop's fine chunks (module `point`: steps of `l̃` and `ṽ`
+/// at most 1/64 of their length, one first-order step a pixel): spans
+/// with the light and the eye far enough take them, within 1 level of
+/// `f64`, and their terms stay within the bound of the loop's error
+/// (`2^-18.7` of `w` each: the specular factor within `m·2^-2.7 + 2`
+/// units of Q15, `N·L` within 1) of the same chunks run without them;
+/// a light close to the surface (steps of 1/20 of `|l|`) is not fine.
+#[test]
+fn point_fine_chunks() {
+    let spans: [([f64; 3], [f64; 3], [f64; 3]); 4] = [
+        ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+        ([0.0, 2.0, 0.0], [-0.8, 0.1, -3.4], [0.005, 0.0, 0.001]),
+        ([-3.0, 1.0, -2.0], [0.5, 0.5, -2.8], [-0.004, 0.002, -0.002]),
+        ([10.0, 20.0, 5.0], [-2.0, 1.0, -9.0], [0.02, 0.01, 0.0]),
+    ];
+    let (mut worst, mut wnl, mut wsp) = (0f64, 0, 0f64);
+    for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
+        for &(lp, p0, dp) in &spans {
+            let c = point_case(n, lp);
+            let n0 = unit([-0.4, 0.1, 1.0]);
+            let dn = [0.006, 0.0, -0.002];
+            let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            for len in [40u32, 64, 100] {
+                let span = (q30(n0), q30(dn), q16(p0), q16(dp));
+                let Some((fine, dnl, dsp)) = k.fine_against_coarse(span, len) else {
+                    panic!("no plan: n {n} light {lp:?} len {len}");
+                };
+                assert!(fine, "n {n} light {lp:?} len {len}");
+                let bound = n * 2f64.powf(-2.7) + 2.0;
+                assert!(
+                    dnl <= 1 && f64::from(dsp) <= bound,
+                    "n {n} {lp:?}: {dnl} {dsp}"
+                );
+                wnl = wnl.max(dnl);
+                wsp = wsp.max(f64::from(dsp) / bound);
+                worst = worst.max(span_error(&c, n0, dn, p0, dp, len as i32));
+            }
+        }
+        let (lp, p0, dp) = POINT_SPANS[1];
+        let c = point_case(n, lp);
+        let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+        let k = PhongKernel::new(&shade).unwrap();
+        let span = (
+            q30(unit([-0.4, 0.1, 1.0])),
+            q30([0.006, 0.0, -0.002]),
+            q16(p0),
+            q16(dp),
+        );
+        assert_eq!(k.fine_against_coarse(span, 100).map(|f| f.0), Some(false));
+    }
+    std::println!(
+        "point fine chunks vs f64: {worst:.3} levels; against the other loop: N·L {wnl}, specular {wsp:.3} of the bound"
+    );
+    assert!(worst <= 1.0, "{worst}");
+}
+
 /// Short spans of the point loop (below `point::SHORT_SPAN` pixels: the
 /// loop's arithmetic a pixel alone, `point_one`) across the highlight:
 /// every pixel takes `point_one`, within 1 level of `f64`.
@@ -1002,9 +1059,12 @@ fn twin_of(c: &Case) -> Shade<f64> {
 /// Random triangles of the point loop from their quadratics (`TriQuad`):
 /// 10 to 120 pixels across, vertex normals up to ~35° apart, the light
 /// 1 to 4 units from the surface, shininess 1 to 255: within 1 level of
-/// the `f64` twin at every pixel, and most pixels from the quadratics.
+/// the `f64` twin at every pixel, and most pixels from the quadratics;
+/// most triangles fine (module `point`: the first-order step a pixel;
+/// the extreme triangles have the others).
 #[test]
 fn tri_quad_random_against_f64() {
+    let (makes0, fines0) = (super::tri_makes(), super::tri_fines());
     let mut seed = 0x1234_5678_9abc_def1u64;
     let mut f = |lo: f64, hi: f64| {
         lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
@@ -1038,7 +1098,10 @@ fn tri_quad_random_against_f64() {
     std::println!(
         "tri quads vs f64: {worst:.3} levels, {made} triangles, {quads} pixels from the quadratics"
     );
+    let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
+    std::println!("tri quads: {fines} of {makes} set-ups fine");
     assert!(made >= 50 && quads >= 20_000, "{made} {quads}");
+    assert!(fines >= 40, "{fines} of {makes}");
     assert!(worst <= 1.0, "{worst}");
 }
 
@@ -1144,6 +1207,7 @@ fn tri_quad_extreme_triangles() {
             Some(false),
         ),
     ];
+    let (makes0, fines0) = (super::tri_makes(), super::tri_fines());
     for (name, lp, s, n, p, expect) in cases {
         for shin in [1.0, 100.0, 255.0] {
             let r = tri_error(&c(shin, lp), s, n, p);
@@ -1158,6 +1222,10 @@ fn tri_quad_extreme_triangles() {
             }
         }
     }
+    // Fine triangles and others (a light close to a wide triangle).
+    let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
+    std::println!("extreme triangles: {fines} of {makes} set-ups fine");
+    assert!(fines >= 3 && makes - fines >= 3, "{fines} of {makes}");
 }
 
 /// The renderer's row fill of one directional light (the fused loop of
