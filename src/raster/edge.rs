@@ -398,13 +398,7 @@ mod tests {
     /// < d <= 2^30`, any quotient), and on real edges from [`Edge::new`].
     #[test]
     fn step_forms_agree() {
-        let mut g = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            g ^= g << 13;
-            g ^= g >> 7;
-            g ^= g << 17;
-            g
-        };
+        let mut next = super::super::tests::xorshift(0x9e37_79b9_7f4a_7c15);
         let ds = [1, 2, 3, 16, 255, (1 << 30) - 1, 1 << 30];
         for i in 0..20_000u32 {
             let d = if i % 4 == 0 {

@@ -1549,13 +1549,8 @@ mod tests {
     /// [`Grad::origin_short`] against the 64-bit sum of [`Grad::plane`].
     #[test]
     fn short_origin_equals_the_wide_sum() {
-        let mut g = 0x0123_4567_89ab_cdefu64;
-        let mut next = || {
-            g ^= g << 13;
-            g ^= g >> 7;
-            g ^= g << 17;
-            g as u32
-        };
+        let mut rng = super::super::tests::xorshift(0x0123_4567_89ab_cdef);
+        let mut next = || rng() as u32;
         let lim = (1 << 15) - 1;
         let ends = [0, 1, -1, lim, -lim, i32::MAX, i32::MIN, 0xffff, -0x10000];
         for i in 0..400_000u32 {
@@ -1599,13 +1594,8 @@ mod tests {
     /// negative fail.
     #[test]
     fn offsets_near_bounds_the_offsets() {
-        let mut g = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            g ^= g << 13;
-            g ^= g >> 7;
-            g ^= g << 17;
-            g as u32
-        };
+        let mut rng = super::super::tests::xorshift(0x9e37_79b9_7f4a_7c15);
+        let mut next = || rng() as u32;
         for s in 1..=8u32 {
             let (sc, h, w) = (1i32 << s, 1i32 << (s - 1), (1i32 << 15) >> s);
             let edge = [0, 1, 2, w - 2, w - 1];

@@ -1026,13 +1026,7 @@ mod tests {
         assert!(!check(0, 1 << 15, 1 << 16));
         assert!(!check(0, 0, 0));
         // Random spans, near and far from the bounds.
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = super::super::tests::xorshift(0x2545_f491_4f6c_dd1d);
         let mut taken = 0;
         for i in 0..20_000 {
             let r = next();

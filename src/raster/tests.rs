@@ -92,6 +92,17 @@ fn covers(tri: &[(i64, i64); 3], px: i64, py: i64, s: i64) -> bool {
     })
 }
 
+/// A xorshift64 sequence from `seed` (not 0): the raw 64-bit values the
+/// kernels' own tests (`edge`, `fast`, `span`) draw from.
+pub(super) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    }
+}
+
 /// Deterministic pseudo-random numbers (xorshift64*).
 struct Rng(u64);
 impl Rng {

@@ -1674,15 +1674,7 @@ pub(super) fn fetch_fixed<P: Profile, const N: usize>(
         // (the small kernel takes the fields where it needs them, the
         // general path unpacks: [`fresh_fast`]).
         let (vals, off) = val_index(frame, po);
-        let grey = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
-            let w = vals.get(usize::from(i).wrapping_add(off))?.fixed_raw()?;
-            Some(Vertex {
-                x,
-                y,
-                z: w,
-                attrs: [w; N],
-            })
-        };
+        let grey = |i, p| grey_vertex::<P, N>(vals, off, i, p);
         return Some([grey(i0, q0)?, grey(i1, q1)?, grey(i2, q2)?]);
     }
     if N == 0 {
@@ -1741,21 +1733,33 @@ pub(super) fn fetch_grey_then_sort<P: Profile, const N: usize>(
     let xy = |i: u16| frame.xy(usize::from(i));
     let (p0, p1, p2) = (xy(tri.v[0])?, xy(tri.v[1])?, xy(tri.v[2])?);
     let (vals, off) = val_index(frame, po);
-    let grey = |i: u16, [x, y]: [i32; 2]| -> Option<Vertex<i32, N>> {
-        let w = vals.get(usize::from(i).wrapping_add(off))?.fixed_raw()?;
-        Some(Vertex {
-            x,
-            y,
-            z: w,
-            attrs: [w; N],
-        })
-    };
+    let grey = |i, p| grey_vertex::<P, N>(vals, off, i, p);
     let v = [
         grey(tri.v[0], p0)?,
         grey(tri.v[1], p1)?,
         grey(tri.v[2], p2)?,
     ];
     Some(sort3(v, |v| v.y))
+}
+
+/// Vertex `i` of a packed grey object at position `[x, y]`: its value
+/// (at `off` from `i` in `vals`, as [`val_index`] gives them) read as
+/// `Frame::vertex` reads it and left packed, the word as the depth and as
+/// the value; `None` for a vertex not of the object.
+#[inline(always)]
+fn grey_vertex<P: Profile, const N: usize>(
+    vals: &[P::Lerp],
+    off: usize,
+    i: u16,
+    [x, y]: [i32; 2],
+) -> Option<Vertex<i32, N>> {
+    let w = vals.get(usize::from(i).wrapping_add(off))?.fixed_raw()?;
+    Some(Vertex {
+        x,
+        y,
+        z: w,
+        attrs: [w; N],
+    })
 }
 
 /// The frame's values and the offset (wrapping) that takes a vertex of

@@ -429,6 +429,21 @@ fn bands_equal_the_full_frame_for_every_shape_mode_and_profile() {
     run::<crate::num::F64Pc>();
 }
 
+/// Every shape grey with no specular term, and one white directional
+/// light: the objects and light of the fast path's streams.
+fn grey_shapes(shading: Shading) -> (Vec<Object<'static, Q16>>, [Light<Q16>; 1]) {
+    let mut objs = every_shape::<Q16>(shading);
+    for o in &mut objs {
+        o.material.color = Vec3::from_f32([0.9, 0.9, 0.9]);
+        o.material.ks = Q16::ZERO;
+    }
+    let ls = [Light::directional(
+        Vec3::from_f32([-1.0, 0.5, 1.0]),
+        Q16::ONE,
+    )];
+    (objs, ls)
+}
+
 /// Flat and grey Gouraud shapes (grey, no specular term, one white
 /// directional light: the fast path's streams) in bands of 1, 7, 16 and
 /// all rows, with pools of 1, 2 and 256 slots (the triangles that find the
@@ -438,15 +453,7 @@ fn bands_equal_the_full_frame_for_every_shape_mode_and_profile() {
 #[test]
 fn fast_streams_with_any_pool_equal_the_full_frame() {
     for shading in [Shading::Flat, Shading::Gouraud] {
-        let mut objs = every_shape::<Q16>(shading);
-        for o in &mut objs {
-            o.material.color = Vec3::from_f32([0.9, 0.9, 0.9]);
-            o.material.ks = Q16::ZERO;
-        }
-        let ls = [Light::directional(
-            Vec3::from_f32([-1.0, 0.5, 1.0]),
-            Q16::ONE,
-        )];
+        let (objs, ls) = grey_shapes(shading);
         let mut s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
         s.ambient = Q16::ONE;
         let (w, h) = (96, 64);
@@ -1450,15 +1457,7 @@ fn triangles_with_the_layout_given_equal_those_read_with_it() {
 /// among them (the sort's order for ties).
 #[test]
 fn grey_fetch_sorting_vertices_equals_sorting_indices() {
-    let mut objs = every_shape::<Q16>(Shading::Gouraud);
-    for o in &mut objs {
-        o.material.color = Vec3::from_f32([0.9, 0.9, 0.9]);
-        o.material.ks = Q16::ZERO;
-    }
-    let ls = [Light::directional(
-        Vec3::from_f32([-1.0, 0.5, 1.0]),
-        Q16::ONE,
-    )];
+    let (objs, ls) = grey_shapes(Shading::Gouraud);
     let mut s = scene(&objs, &ls, [0.5, 1.0, 7.0]);
     s.ambient = Q16::ONE;
     let mut mem = Mem::<<Fast as Profile>::Lerp>::new(4096, 4096);

@@ -804,19 +804,35 @@ impl<R: Real> PhongKernel<'_, R> {
 mod tests {
     use super::*;
 
+    /// The shade of the one-light tests: one directional light, shininess
+    /// 40, Phong, viewer at infinity.
+    fn test_shade() -> crate::illum::Shade<crate::num::Q16> {
+        use crate::geom::Vec3;
+        use crate::illum::{Light, Material, Shade, Specular, Viewer};
+        use crate::num::Q16;
+        let q = Q16::from_f64;
+        let mat = Material {
+            color: Vec3::new(q(1.0), q(0.8), q(0.6)),
+            ka: q(0.1),
+            kd: q(0.7),
+            ks: q(0.5),
+            shininess: q(40.0),
+        };
+        let lights = [Light::directional(
+            Vec3::new(q(0.3), q(0.4), q(0.866)),
+            q(1.0),
+        )];
+        Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap()
+    }
+
     /// Both packings of the light terms give the colour of
     /// [`PhongKernel::channels`] over the terms' whole range (`N·L` to
     /// `2^15 (1 + 2^-11)`, the specular factor to `2^15`), coefficients
     /// to `2^14 - 1` and ambient levels up to the clamp and beyond.
     #[test]
     fn packed_terms_give_the_channels() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = |m: u32| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 16) as u32 % m
-        };
+        let mut rng = crate::geom::testkit::xorshift(0x9E37_79B9_7F4A_7C15);
+        let mut next = |m: u32| (rng() >> 16) as u32 % m;
         let nl_max = (1u32 << 15) + (1 << 4);
         let mut checked = 0;
         for case in 0..2000 {
@@ -904,33 +920,12 @@ mod tests {
         clippy::cast_sign_loss
     )]
     fn terms_rn_against_f64() {
-        use crate::geom::Vec3;
-        use crate::illum::{Light, Material, Shade, Specular, Viewer};
-        use crate::num::Q16;
-        let q = Q16::from_f64;
-        let mat = Material {
-            color: Vec3::new(q(1.0), q(0.8), q(0.6)),
-            ka: q(0.1),
-            kd: q(0.7),
-            ks: q(0.5),
-            shininess: q(40.0),
-        };
-        let lights = [Light::directional(
-            Vec3::new(q(0.3), q(0.4), q(0.866)),
-            q(1.0),
-        )];
-        let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+        let shade = test_shade();
         let k = PhongKernel::new(&shade).unwrap();
         let step = (0..SPEC_SEGMENTS)
             .map(|j| f64::from(k.table[j]) - f64::from(k.table[j + 1]))
             .fold(0f64, f64::max);
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::geom::testkit::uniform(0x9E37_79B9_7F4A_7C15);
         let (mut worst_nl, mut worst_sp, mut checked) = (0f64, 0f64, 0);
         for _ in 0..200_000 {
             let v = [next() - 0.5, next() - 0.5, next() - 0.5];
@@ -1014,22 +1009,7 @@ mod tests {
     #[test]
     #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)]
     fn whole_span_stepping_within_bound() {
-        use crate::geom::Vec3;
-        use crate::illum::{Light, Material, Shade, Specular, Viewer};
-        use crate::num::Q16;
-        let q = Q16::from_f64;
-        let mat = Material {
-            color: Vec3::new(q(1.0), q(0.8), q(0.6)),
-            ka: q(0.1),
-            kd: q(0.7),
-            ks: q(0.5),
-            shininess: q(40.0),
-        };
-        let lights = [Light::directional(
-            Vec3::new(q(0.3), q(0.4), q(0.866)),
-            q(1.0),
-        )];
-        let shade = Shade::new(&mat, q(0.2), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+        let shade = test_shade();
         let k = PhongKernel::new(&shade).unwrap();
         let l = &k.lights[0];
         let mut runs = 0;
