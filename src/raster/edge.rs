@@ -179,16 +179,7 @@ impl Edge {
         let a_full = x0 - s / 2 + t * q;
         let (a, b) = (a_full >> sub.get(), a_full & (s - 1));
         let np = b * dy + t * rem;
-        #[cfg(not(target_arch = "arm"))]
-        let (x, e) = first_column::<true>(a, np, d);
-        #[cfg(target_arch = "arm")]
-        let (x, e) = if np == 0 {
-            (a, 0)
-        } else if np <= d {
-            (a + 1, d - np)
-        } else {
-            (a + 2, 2 * d - np)
-        };
+        let (x, e) = first_column::<{ !cfg!(target_arch = "arm") }>(a, np, d);
         Self { x, e, q, r, d }
     }
 
@@ -205,6 +196,14 @@ impl Edge {
     #[cfg(target_arch = "arm")]
     #[inline(always)]
     pub fn step(&mut self) -> bool {
+        self.step_by_sign()
+    }
+
+    /// [`Edge::step`]'s ARM form, by the error term's sign (on the hosts
+    /// compiled for its test against the other form only).
+    #[cfg(any(test, target_arch = "arm"))]
+    #[inline(always)]
+    fn step_by_sign(&mut self) -> bool {
         self.e -= self.r;
         self.x += self.q;
         if self.e < 0 {
@@ -285,7 +284,6 @@ fn later_row_small(
 /// 1 642 170 -> 1 655 745). The same values (tested). The hosts take it
 /// branchless (callgrind, `examples/bunny_frame.rs`, 2 178 374 ->
 /// 2 170 967).
-#[cfg(any(test, not(target_arch = "arm")))]
 #[inline(always)]
 fn first_column<const BRANCHLESS: bool>(a: i32, np: i32, d: i32) -> (i32, i32) {
     if BRANCHLESS {
@@ -380,20 +378,7 @@ fn floor_divmod(n: i32, d: i32) -> (i32, i32) {
 mod tests {
     use super::*;
 
-    /// The ARM form of [`Edge::step`] (by the error term's sign).
-    fn step_sign(g: &mut Edge) -> bool {
-        g.e -= g.r;
-        g.x += g.q;
-        if g.e < 0 {
-            g.e += g.d;
-            g.x += 1;
-            true
-        } else {
-            false
-        }
-    }
-
-    /// [`Edge::step`] and its ARM form ([`step_sign`]) walk the very
+    /// [`Edge::step`] and its ARM form ([`Edge::step_by_sign`]) walk the very
     /// columns and error terms, on random and extreme walkers (`0 <= e, r
     /// < d <= 2^30`, any quotient), and on real edges from [`Edge::new`].
     #[test]
@@ -420,7 +405,7 @@ mod tests {
             let x = (next() % 8192) as i32 - 4096;
             let (mut a, mut b) = (Edge { x, e, q, r, d }, Edge { x, e, q, r, d });
             for _ in 0..40 {
-                assert_eq!(a.step(), step_sign(&mut b), "{a:?}");
+                assert_eq!(a.step(), b.step_by_sign(), "{a:?}");
                 assert_eq!(a, b);
                 assert!((0..d).contains(&a.e));
             }
@@ -436,7 +421,7 @@ mod tests {
                 Edge::new(x0, y0, x1, y1, j, sub),
             );
             for _ in 0..(y1 - y0) / 16 + 1 {
-                assert_eq!(a.step(), step_sign(&mut b));
+                assert_eq!(a.step(), b.step_by_sign());
                 assert_eq!(a, b);
             }
         }
