@@ -209,6 +209,128 @@ impl Walk {
     }
 }
 
+impl Walk {
+    /// [`Walk::rows_fused`] for a resumed triangle (a pool slot's walk
+    /// and values, walked in place): with a depth plane, the triangle
+    /// inside the window and every depth in range (every triangle
+    /// [`draw_small`] hands on, most of the others), the rows down to
+    /// `until` through the resume kernel [`resume_rows`]; the others
+    /// through [`Walk::rows_fused`]. The same pixels, walk and values.
+    #[inline(always)]
+    pub(crate) fn rows_resumed<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
+        &mut self,
+        vals: &[[i32; 3]; V],
+        until: i32,
+        mem: &mut BandMem<'_, '_, R, D::Raw>,
+        color: impl Fn(&[i32; N]) -> R,
+    ) -> u32 {
+        if RESUME_KERNEL && self.inside && D::plane_in_range(self.z16) {
+            if let Some(z) = mem.z.as_deref_mut() {
+                let stop = until.min(self.end);
+                if self.j >= stop {
+                    return 0;
+                }
+                let (px, z) = same_len(mem.px, z);
+                let band = [stop, mem.y0, mem.width];
+                return resume_rows::<N, V, R, D>(self, vals, band, px, z, &color);
+            }
+        }
+        self.rows_fused::<N, V, R, D>(vals, until, mem, color)
+    }
+}
+
+/// Resumed triangles through [`resume_rows`] (else [`Walk::rows_fused`]).
+const RESUME_KERNEL: bool = true;
+
+/// The resume kernel: walks the record `w` (a pool slot's walk, its
+/// values `vals` at pixel (0, 0) with their steps, [`pack_vals`]) in place
+/// from its next row down to `band[0]` (excluded, below the triangle's
+/// end and the walk's next row; `band[1]` the band's first row,
+/// `band[2]` its width), the lower short edge swapped in at the middle
+/// row as [`Walk::half_end`] does, and leaves its edges and next row for
+/// the next band. The triangle lies inside the window, its every depth
+/// in range (the caller's test): the rows and spans of [`draw_small`]
+/// ([`SmallRows`], no clamp, no call per span). Returns the pixels
+/// written. Out of line: every register free for the rows.
+#[inline(never)]
+fn resume_rows<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
+    w: &mut Walk,
+    vals: &[[i32; 3]; V],
+    band: [i32; 3],
+    px: &mut [R],
+    z: &mut [D::Raw],
+    color: &impl Fn(&[i32; N]) -> R,
+) -> u32 {
+    let [stop, y0, width] = band;
+    let [row, sx, sy] = unpack_fixed::<N, V>(vals);
+    let mut fail_count = 0u32;
+    let fails = if NO_LONG_MUL || N > 0 {
+        &mut fail_count
+    } else {
+        core::hint::black_box(&mut fail_count)
+    };
+    let mut j = w.j;
+    let mid = w.mid;
+    let v_first = if SmallRows::<'_, N>::LAZY {
+        row
+    } else {
+        row.add_n(&sy, j)
+    };
+    let mut rows = SmallRows {
+        vz: v_first.z,
+        va: v_first.a,
+        base: (j - y0).wrapping_mul(width) as usize,
+        width: width as usize,
+        drawn: 0,
+        fails,
+    };
+    let sx = if NO_LONG_MUL || !cfg!(target_arch = "arm") {
+        sx
+    } else {
+        core::hint::black_box(sx)
+    };
+    let (sx, sy) = (&sx, &sy);
+    let off = |j: i32| (j - y0).wrapping_mul(width) as usize;
+    let by_off = !SmallRows::<'_, N>::LAZY;
+    let (mut l, mut r) = (w.left, w.right);
+    if j < mid {
+        let stop_upper = mid.min(stop);
+        let end = off(stop_upper);
+        while if by_off {
+            rows.base != end
+        } else {
+            j < stop_upper
+        } {
+            rows.span::<R, D, false>(j, l.x, r.x, px, z, sx, sy, color);
+            l.step();
+            r.step();
+            j += 1;
+        }
+        j = stop_upper;
+    }
+    if j == mid && j < stop {
+        if w.long_left {
+            r = w.low;
+        } else {
+            l = w.low;
+        }
+    }
+    if j < stop {
+        let end = off(stop);
+        while if by_off { rows.base != end } else { j < stop } {
+            rows.span::<R, D, false>(j, l.x, r.x, px, z, sx, sy, color);
+            l.step();
+            r.step();
+            j += 1;
+        }
+        j = stop;
+    }
+    w.left = l;
+    w.right = r;
+    w.j = j;
+    rows.drawn()
+}
+
 /// [`setup`] for `i32` values: the same walk and values, bit for bit.
 ///
 /// The usual triangle takes a straight 32-bit path ([`setup32`], on

@@ -1261,7 +1261,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     let Some(vals) = P::Lerp::fixed_slots(&mut slot.vals) else {
                         break Ok(());
                     };
-                    let drawn = draw_fused::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader);
+                    let drawn = draw_resumed::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader);
                     let done = walk.done();
                     self.put_back(si, done);
                     drawn
@@ -1568,6 +1568,31 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
         walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, move |_| raw)
     } else {
         walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
+    }
+}
+
+/// Walks a resumed fixed triangle (a pool slot's walk and values, in
+/// place) with the resume kernel ([`Walk::rows_resumed`]): the shader's
+/// constant colour encoded once, or its colour per pixel.
+#[inline(always)]
+fn draw_resumed<
+    const N: usize,
+    const V: usize,
+    S: Shader<i32, N>,
+    F: PixelFormat,
+    D: DepthFormat,
+>(
+    walk: &mut Walk,
+    vals: &[[i32; 3]; V],
+    until: i32,
+    mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
+    shader: &S,
+) -> u32 {
+    if let Some(c) = shader.constant() {
+        let raw = F::encode(c);
+        walk.rows_resumed::<N, V, F::Raw, D>(vals, until, mem, move |_| raw)
+    } else {
+        walk.rows_resumed::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
     }
 }
 
