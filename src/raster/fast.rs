@@ -224,7 +224,7 @@ impl Walk {
         mem: &mut BandMem<'_, '_, R, D::Raw>,
         color: impl Fn(&[i32; N]) -> R,
     ) -> u32 {
-        if RESUME_KERNEL && self.inside && D::plane_in_range(self.z16) {
+        if RESUME_KERNEL && N > 0 && !cfg!(armv6m) && self.inside && D::plane_in_range(self.z16) {
             if let Some(z) = mem.z.as_deref_mut() {
                 let stop = until.min(self.end);
                 if self.j >= stop {

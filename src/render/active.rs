@@ -1190,6 +1190,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let (y0, y1, width) = (t.y0 as i32, t.y1 as i32, t.width as i32);
         // A triangle that finds no free slot is set up here.
         let mut scratch = (Walk::EMPTY, [[0i32; 3]; V]);
+        let fetch = |ti: u32| {
+            if N == 1 && cfg!(armv6m) {
+                frame.tri_in(po, mesh, ti as usize, false)
+            } else {
+                frame.tri_of(po, mesh, ti as usize)
+            }
+        };
         // Setups and pixels counted here, added to the stats at the end.
         let (mut setups, mut pixels) = (0u32, 0u32);
         // Flat (`N = 0`), and grey Gouraud (`N = 1`) off ARMv6-M: below
@@ -1237,15 +1244,18 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             // it everywhere (flat from `N`) cost bunny-flat thumbv6m
             // 2 079 435 -> 2 112 692 and bunny-gouraud thumbv7em
             // 1 631 488 -> 1 661 002.
-            let tri = if N == 1 && cfg!(armv6m) {
-                frame.tri_in(po, mesh, ti as usize, false)
+            // A resumed triangle of values (`N > 0`, no colour of its own:
+            // `per_tri` does nothing) is walked without its triangle read
+            // (off ARMv6-M: [`SKIP_FETCH`]).
+            let tri = if SKIP_FETCH && N > 0 && matches!(src, Src::Slot(_)) {
+                PreparedTri::default()
             } else {
-                frame.tri_of(po, mesh, ti as usize)
+                let Some(tri) = fetch(ti) else {
+                    break Ok(());
+                };
+                per_tri(&mut shader, &tri);
+                tri
             };
-            let Some(tri) = tri else {
-                break Ok(());
-            };
-            per_tri(&mut shader, &tri);
             let mut mem = BandMem::<F::Raw, D::Raw> {
                 px: &mut t.px,
                 z: &mut t.z,
@@ -1267,7 +1277,18 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     drawn
                 }
                 Src::Fresh => {
-                    let (walk, vals) = (&mut scratch.0, &mut scratch.1);
+                    // The continuation written straight into the free slot
+                    // a kept triangle would take ([`Bands::take_slot`]),
+                    // else into the scratch and queued.
+                    let free = self.free_slot::<N>();
+                    let target = free.and_then(|si| self.pool.slots.get_mut(si as usize));
+                    let (walk, vals) = match target {
+                        Some(slot) if IN_PLACE => match P::Lerp::fixed_slots(&mut slot.vals) {
+                            Some(v) => (&mut slot.walk, v),
+                            None => (&mut scratch.0, &mut scratch.1),
+                        },
+                        _ => (&mut scratch.0, &mut scratch.1),
+                    };
                     match fresh_fast::<P, N, V, S, F, D>(
                         frame, po, &tri, y1, &mut mem, walk, vals, &shader,
                     ) {
@@ -1276,7 +1297,10 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                             setups += 1;
                             // Kept in a slot when it continues below the band.
                             if more {
-                                self.keep_fixed::<N>(ti as u16, walk, vals);
+                                match free {
+                                    Some(si) if IN_PLACE => self.take_slot::<N>(ti as u16, si),
+                                    _ => self.keep_fixed::<N>(ti as u16, &scratch.0, &scratch.1),
+                                }
                             }
                             drawn
                         }
@@ -1510,6 +1534,34 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         self.peak = self.peak.max(CAP - self.free_len + self.def_len);
     }
 
+    /// The slot a fast triangle continuing below the band takes: the free
+    /// stack's top (`None` when the pool is full or the values do not fit,
+    /// `N >= V`). Not taken yet ([`Bands::take_slot`]).
+    #[inline(always)]
+    fn free_slot<const N: usize>(&self) -> Option<u16> {
+        if N < V && self.free_len > 0 {
+            self.pool.free.get(self.free_len - 1).copied()
+        } else {
+            None
+        }
+    }
+
+    /// Takes slot `si` ([`Bands::free_slot`], its walk and values written
+    /// in place) for triangle `ti`: off the free stack, onto the ring.
+    #[inline(always)]
+    fn take_slot<const N: usize>(&mut self, ti: u16, si: u16) {
+        self.free_len -= 1;
+        if let Some(slot) = self.pool.slots.get_mut(si as usize) {
+            slot.tri = ti;
+        }
+        let tail = wrap(self.ring_head + self.ring_len, CAP);
+        if let Some(r) = self.pool.ring.get_mut(tail) {
+            *r = si;
+            self.ring_len += 1;
+        }
+        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+    }
+
     /// Queues a triangle that continues below the band but has no slot:
     /// set up afresh in the next band.
     #[inline(always)]
@@ -1542,6 +1594,15 @@ fn wrap(x: usize, m: usize) -> usize {
         x
     }
 }
+
+/// Resumed triangles of values walked without their triangle read
+/// ([`Bands::run_fast`]).
+const SKIP_FETCH: bool = !cfg!(armv6m);
+
+/// A fast triangle that continues below its band writes its walk and
+/// values straight into the slot it takes ([`Bands::free_slot`]), not
+/// into a scratch copied into the slot afterwards ([`Bands::keep_fixed`]).
+const IN_PLACE: bool = false;
 
 /// Where a band's next triangle comes from.
 #[derive(Clone, Copy, Debug)]
