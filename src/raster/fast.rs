@@ -284,11 +284,6 @@ fn resume_rows<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
         drawn: 0,
         fails,
     };
-    let sx = if NO_LONG_MUL || !cfg!(target_arch = "arm") {
-        sx
-    } else {
-        core::hint::black_box(sx)
-    };
     let (sx, sy) = (&sx, &sy);
     let off = |j: i32| (j - y0).wrapping_mul(width) as usize;
     let by_off = !SmallRows::<'_, N>::LAZY;
