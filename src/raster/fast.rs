@@ -239,7 +239,31 @@ impl Walk {
     }
 }
 
-/// Resumed triangles through [`resume_rows`] (else [`Walk::rows_fused`]).
+/// Resumed triangles through [`resume_rows`] (else [`Walk::rows_fused`]):
+/// those with values (`N > 0`) off ARMv6-M. Exact QEMU counts,
+/// bunny-gouraud raster thumbv7em (every CRC unchanged): without it
+/// 1 628 965, with it 1 622 563 (first 1 657 797 before the resumed
+/// triangles skipped their fetch in `render::active`; `resume_rows`
+/// 136 420 against [`Walk::fused`] and the span stage's `in_range_loop`
+/// 126 630 at the slot arm, whose call costs 16 K more), with the x
+/// steps in registers (not through `core::hint::black_box` as in
+/// [`draw_small`]) 1 615 109; the host's bunny frame (callgrind,
+/// `examples/bunny_frame.rs`) 2 168 864 -> 2 149 425. Not for flat
+/// triangles (`N = 0`: bunny-flat raster thumbv7em 1 456 821 ->
+/// 1 483 489) nor on ARMv6-M (bunny-gouraud raster thumbv6m 2 370 412 ->
+/// 2 376 517; there [`Walk::fused`] is inlined already).
+///
+/// Measured and not kept (thumbv7em bunny-gouraud raster, from
+/// 1 615 109): the edges packed in one word each (`x·2^20 + e`, stepped
+/// by `p += q·2^20 - r` and `p += 2^20 + d` when bit 19 is set, exact for
+/// `d <= 2^19` and columns below `2^11`), the values at column 0 of the
+/// row stepped by their y steps with the levels' rounding offset in, the
+/// rows counted by offset: 22 instructions a row instead of 36, but 19 a
+/// passing pixel instead of 18 and 27 a span start instead of 22, the
+/// edges packed at each call and stored back: 1 621 783 (the failed
+/// tests counted in memory; in a register 1 622 696, the spans through
+/// the span stage's [`inr_span`] 1 625 602, the rows in a closure that
+/// the compiler called out of line 1 646 422).
 const RESUME_KERNEL: bool = true;
 
 /// The resume kernel: walks the record `w` (a pool slot's walk, its
@@ -251,7 +275,9 @@ const RESUME_KERNEL: bool = true;
 /// the next band. The triangle lies inside the window, its every depth
 /// in range (the caller's test): the rows and spans of [`draw_small`]
 /// ([`SmallRows`], no clamp, no call per span). Returns the pixels
-/// written. Out of line: every register free for the rows.
+/// written. Out of line: every register free for the rows (see
+/// [`RESUME_KERNEL`] for what it measured). Tested against
+/// [`Walk::rows_fused`] band by band.
 #[inline(never)]
 fn resume_rows<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
     w: &mut Walk,
@@ -1662,6 +1688,80 @@ fn small_loop<const N: usize, R, D: DepthFormat>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The resume kernel ([`Walk::rows_resumed`], [`resume_rows`]) against
+    /// [`Walk::rows_fused`]: random triangles (inside the window, depths
+    /// in range, and not: then both take the fused walk) set up at their
+    /// first band ([`setup_fast`]) and walked band by band (band heights
+    /// 1 to 16, random depth buffers so that tests fail too), each band
+    /// from a copy of the same walk: the same pixels, depths, pixel counts
+    /// and walk after every band.
+    #[test]
+    fn resumed_rows_equal_the_fused_walk() {
+        let sub = SubpixelBits::DEFAULT;
+        let mut rng = super::super::tests::xorshift(0x0005_eed0_f2e5_u64);
+        let mut next = move |m: u32| (rng() % u64::from(m)) as i32;
+        let width = 48;
+        let color = |a: &[i32; 1]| a[0] as u32 ^ 0x5a5a_0000;
+        let mut resumed = 0;
+        for it in 0..6000 {
+            let big = it % 3 == 0;
+            let span = if big { 48 * 16 } else { 12 * 16 };
+            let x0 = next(48 * 16 - span + 1);
+            let y_top = next(40 * 16);
+            let far = it % 7 == 0;
+            let mut v: [Vertex<i32, 1>; 3] = core::array::from_fn(|_| Vertex {
+                x: x0 + next(span + 1) - if far { 20 } else { 0 },
+                y: y_top + next(span + 1),
+                z: (1 << 16) + next(1 << 28),
+                attrs: [next(1 << 24) - if it % 5 == 0 { 1 << 22 } else { 0 }],
+            });
+            v.sort_by_key(|p| p.y);
+            let rows = 1 + next(16);
+            let j0 = first_row(v[0].y, sub);
+            let y_first = j0 - j0.rem_euclid(rows);
+            let (mut walk, mut vals) = (Walk::EMPTY, [[0; 3]; 2]);
+            if !setup_fast::<1, 2>(
+                &v[0], &v[1], &v[2], sub, y_first, width, &mut walk, &mut vals,
+            ) {
+                continue;
+            }
+            let mut y0 = y_first;
+            while !walk.done() {
+                let n = (width * rows) as usize;
+                let (mut px, mut z) = ([0u32; 48 * 16], [0u16; 48 * 16]);
+                for (p, d) in px.iter_mut().zip(z.iter_mut()).take(n) {
+                    *p = next(1 << 30) as u32;
+                    *d = next(1 << 16) as u16;
+                }
+                let run = |resume: bool| {
+                    let (mut p, mut d, mut w) = (px, z, walk);
+                    let (mut pr, mut dr) = (&mut p[..n], Some(&mut d[..n]));
+                    let mut mem = BandMem::<u32, u16> {
+                        px: &mut pr,
+                        z: &mut dr,
+                        y0,
+                        width,
+                    };
+                    let k = if resume {
+                        w.rows_resumed::<1, 2, u32, Depth16>(&vals, y0 + rows, &mut mem, color)
+                    } else {
+                        w.rows_fused::<1, 2, u32, Depth16>(&vals, y0 + rows, &mut mem, color)
+                    };
+                    (k, p, d, w)
+                };
+                let (a, b) = (run(false), run(true));
+                assert_eq!(a.0, b.0, "{v:?} band {y0}");
+                assert!(a.1 == b.1 && a.2 == b.2, "{v:?} band {y0}");
+                assert_eq!(a.3, b.3, "{v:?} band {y0}");
+                resumed += u32::from(y0 > y_first && walk.inside && walk.z16);
+                walk = a.3;
+                y0 += rows;
+            }
+        }
+        // The kernel's case is met often.
+        assert!(resumed > 2000, "{resumed}");
+    }
 
     /// [`Grad::origin_short`] against the 64-bit sum of [`Grad::plane`].
     #[test]

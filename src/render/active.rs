@@ -1596,12 +1596,30 @@ fn wrap(x: usize, m: usize) -> usize {
 }
 
 /// Resumed triangles of values walked without their triangle read
-/// ([`Bands::run_fast`]).
+/// ([`Bands::run_fast`]; `per_tri` does nothing for them): exact QEMU
+/// counts, bunny-gouraud raster thumbv7em 1 657 797 -> 1 622 563 (with
+/// the resume kernel), bunny-flat unchanged. Not on ARMv6-M, where the
+/// first form of it (the fetch moved into both arms) cost bunny-gouraud
+/// raster thumbv6m 2 369 374 -> 2 383 904 (and bunny-flat thumbv7em
+/// 1 456 821 -> 1 469 333; the present form leaves every flat count as
+/// it was).
 const SKIP_FETCH: bool = !cfg!(armv6m);
 
 /// A fast triangle that continues below its band writes its walk and
-/// values straight into the slot it takes ([`Bands::free_slot`]), not
-/// into a scratch copied into the slot afterwards ([`Bands::keep_fixed`]).
+/// values straight into the slot it takes ([`Bands::free_slot`], taken
+/// before the set-up), not into a scratch copied into the slot afterwards
+/// ([`Bands::keep_fixed`]). Off: exact QEMU counts, bunny-gouraud raster
+/// thumbv7em 1 624 644 -> 1 674 453, thumbv6m 2 379 156 -> 2 424 753
+/// (the slot's address, a run-time value, live across the whole inlined
+/// kernel instead of the scratch's fixed stack place). Taken after the
+/// set-up instead (measured, not kept: [`draw_small`] handed a `Carry`
+/// that takes the slot only when the triangle continues, the walk and
+/// values then written in place): the slot's bookkeeping in a closure
+/// inlined into the kernel, 1 697 479; out of line (42 instructions a
+/// kept triangle) with the slot returned to the kernel's tail,
+/// 1 652 332 against 1 615 109 (bunny-flat 1 456 821 -> 1 490 265;
+/// thumbv6m bunny-gouraud 2 369 374 -> 2 363 070, bunny-flat 2 055 671 ->
+/// 2 082 781). [`Bands::keep_fixed`] out of line: 1 615 109 -> 1 637 080.
 const IN_PLACE: bool = false;
 
 /// Where a band's next triangle comes from.
