@@ -199,11 +199,7 @@ pub struct PreparedTri {
 /// [`Frame::xy`] adds back. [`prepare`] narrows the guard band so that
 /// every stored position fits (see [`max_screen`]); `i16::MIN` and
 /// `i16::MIN + 1` mark vertices that are never drawn.
-///
-/// Aligned as a word (`repr(C, align(4))`): the triangle loops read a
-/// position as one 32-bit load ([`ScreenXy::word`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[repr(C, align(4))]
 pub struct ScreenXy(pub [i16; 2]);
 
 /// A screen position in subpixels (`1/2^s` of a pixel, `s` the profile's
@@ -220,7 +216,8 @@ impl ScreenXy {
     pub const ZERO: Self = Self([0; 2]);
 
     /// The position as one word `y·2^16 | x` (the two 16-bit halves'
-    /// bits, `x` low): one load of the aligned pair.
+    /// bits, `x` low): one load where the target loads unaligned words
+    /// (ARMv7-M, x86).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
     pub(crate) fn word(self) -> i32 {
