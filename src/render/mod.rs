@@ -199,7 +199,11 @@ pub struct PreparedTri {
 /// [`Frame::xy`] adds back. [`prepare`] narrows the guard band so that
 /// every stored position fits (see [`max_screen`]); `i16::MIN` and
 /// `i16::MIN + 1` mark vertices that are never drawn.
+///
+/// Aligned as a word (`repr(C, align(4))`): the triangle loops read a
+/// position as one 32-bit load ([`ScreenXy::word`]) on every ARM target.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(C, align(4))]
 pub struct ScreenXy(pub [i16; 2]);
 
 /// A screen position in subpixels (`1/2^s` of a pixel, `s` the profile's

@@ -844,12 +844,14 @@ fn triangles_visible<const CULL: bool, const MARKED: bool, A>(
     Some(())
 }
 
-/// The triangle loop reads corners as words ([`area_words`]): ARMv7-M
-/// (one unaligned-capable load a corner). ARMv6-M would load the halves
-/// apart (no unaligned loads; the pair aligned as a word measured bunny
-/// Gouraud geometry 622 439 -> 623 515), and x86 loads each half with its
-/// sign extension (words: the host frame 2 161 582 -> 2 164 297).
-const WORDS: bool = cfg!(all(target_arch = "arm", not(armv6m)));
+/// The triangle loop reads corners as words ([`area_words`]) on ARM
+/// (one load a corner; [`ScreenXy`] is aligned as a word for ARMv6-M,
+/// which has no unaligned loads): bunny Gouraud geometry 372 421 ->
+/// 359 838 on the Cortex-M4; on the Cortex-M0 bunny flat 657 226 -> 635
+/// 821, cubes-and-sphere 536 205 -> 530 773, bunny Gouraud 622 439 -> 623
+/// 515. x86 loads each half with its sign extension: the words cost the
+/// host frame 2 157 988 -> 2 164 297 (callgrind), so it keeps the halves.
+const WORDS: bool = cfg!(target_arch = "arm");
 
 /// Twice the signed area `(b - a) × (c - a)` of three corners with `0 <=
 /// x < 2^15` and edges shorter than `2^15` subpixels (each product below
