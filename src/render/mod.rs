@@ -201,7 +201,7 @@ pub struct PreparedTri {
 /// `i16::MIN + 1` mark vertices that are never drawn.
 ///
 /// Aligned as a word (`repr(C, align(4))`): the triangle loops read a
-/// position as one 32-bit load ([`ScreenXy::word`]) on every ARM target.
+/// position as one 32-bit load on every ARM target.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[repr(C, align(4))]
 pub struct ScreenXy(pub [i16; 2]);
@@ -422,8 +422,8 @@ pub struct PreparedObject {
     /// `color_base + t - tris.start`.
     pub color_base: u16,
     /// Rows `rows[0]..rows[1]` that hold every row its triangles can cover
-    /// (possibly a few more: for an object wholly on screen, the range of
-    /// its projected vertices; empty when it has no triangle): a band
+    /// (possibly more: for an object wholly on screen, every row of the
+    /// screen; empty when it has no triangle): a band
     /// outside them skips the object.
     pub rows: [u16; 2],
     /// [`Self::val_base`] (bits 0 to 17), [`Self::stride`] (bits 18 to

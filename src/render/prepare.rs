@@ -10,9 +10,27 @@
 //! |---|---:|---:|
 //! | culling in object space ([`EarlyCull`], 1 839 vertices, 669 skipped) | 20 / vertex | 33 / vertex |
 //! | vertex loops ([`Fused`] projection and depth, then [`OneLight`]) over the 1 170 others | 179 K | 315 K |
-//! | triangle loop (`triangles_visible`, faces with a skipped corner dropped first) | 35 / triangle | 54 / triangle |
+//! | triangle loop (`triangles_visible`, faces with a skipped corner dropped first) | 33 / triangle | 54 / triangle |
 //! | per object (sphere, matrices, fused rows, culling constants) | 27 K | 61 K |
-//! | whole geometry | 0.372 M | 0.637 M |
+//! | whole geometry | 0.360 M | 0.624 M |
+//!
+//! The vertex loop's screen test is one word a vertex (the OR of `W = y
+//! · 2^16 | x` and `lim - W`, [`on_screen`]: one register, three
+//! instructions) rather than the box of the projected vertices (three
+//! registers, nine instructions), and a visible object's rows are the
+//! screen's: bunny Gouraud 0.372 -> 0.370 M on the Cortex-M4, 0.637 ->
+//! 0.622 M on the Cortex-M0. The triangle loop reads each corner as one
+//! word and takes the area from the words ([`area_words`]): 129 488 ->
+//! 119 597 on the Cortex-M4, 0.360 M in all; on the host (callgrind,
+//! `bunny_frame`) the frame is 2 161 582 -> 2 157 988. Tried: the
+//! transform's constants read through an opaque pointer in the loop
+//! (`black_box`, hoping for `ldm`/`ldrd` of adjacent fields instead of
+//! spill reloads): the compiler loaded them one by one and spilled them
+//! again, `kernel_fused` 176 260 -> 181 991. Passes (transform into a
+//! scratch array, then project, then light) were costed line by line
+//! and not built: each pass adds its own loop, mark test and loads of
+//! the position (about 10 a vertex a pass), as many as the spill reloads
+//! it saves (about 30 a vertex in the one-pass loop).
 //!
 //! The culling loop takes two vertices a step (the compiler's unrolling
 //! of the one-vertex loop spilled: 24 -> 22 per vertex on the
@@ -62,8 +80,10 @@
 //! vertex and 103 / 142 per triangle, 0.842 M / 1.532 M in all. The
 //! vertex loops still spill about 20 constants per vertex on the M4
 //! (three 3-term rows, the reciprocal table, the depth constants and the
-//! bounding box do not fit 13 registers); the triangle loop's floor with
-//! this data layout is its loads: 3 + 6 + 3 bounds checks.
+//! screen test do not fit 13 registers: 33 of the projection loop's 105
+//! instructions a vertex are stack loads and stores); the triangle
+//! loop's floor with this data layout is its loads: 3 + 3 + 3 bounds
+//! checks.
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
@@ -752,7 +772,7 @@ fn triangles_inside(
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
 /// the screen with edges shorter than `2^15` subpixels (the vertex kernel's
-/// bounding box shows it; `CULL`: back faces dropped; `MARKED`: triangles
+/// [`on_screen`] test shows it; `CULL`: back faces dropped; `MARKED`: triangles
 /// with an [`UNUSED`] corner dropped): the sign in one
 /// 32-bit expression, the rows
 /// without clamps, no column test (it always passes there). The same
@@ -1576,8 +1596,8 @@ impl<P: Profile> Preparer<'_, '_, P> {
     /// integer kernel ([`Fused`]) for a layout of `S` values per vertex
     /// (1 flat or packed grey, 2 grey, 4 RGB), lit by `levels` (colour
     /// levels of a normal); `PACK`: depth and grey level packed in one
-    /// value ([`Layout::packed_in`]). Records the screen bounding box of
-    /// the vertices.
+    /// value ([`Layout::packed_in`]). Records whether every vertex lies
+    /// on the screen ([`on_screen`]).
     #[inline(never)]
     fn kernel_fused<const S: usize, const PACK: bool>(
         &mut self,
@@ -1648,8 +1668,8 @@ impl<P: Profile> Preparer<'_, '_, P> {
                 }
             }
         }
-        // The triangle loop over the box reads positions stored from the
-        // screen's corner.
+        // The triangle loop over the screen's box reads positions stored
+        // from the screen's corner.
         self.on_screen = lim.is_some() && on_screen(acc) && o == Subpx([0, 0]);
         self.marked = marked;
         self.nv = end;
