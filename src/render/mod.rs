@@ -199,7 +199,11 @@ pub struct PreparedTri {
 /// [`Frame::xy`] adds back. [`prepare`] narrows the guard band so that
 /// every stored position fits (see [`max_screen`]); `i16::MIN` and
 /// `i16::MIN + 1` mark vertices that are never drawn.
+///
+/// Aligned as a word (`repr(C, align(4))`): the triangle loops read a
+/// position as one 32-bit load on every ARM target.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(C, align(4))]
 pub struct ScreenXy(pub [i16; 2]);
 
 /// A screen position in subpixels (`1/2^s` of a pixel, `s` the profile's
@@ -214,6 +218,15 @@ pub(crate) struct Subpx(pub(crate) [i32; 2]);
 impl ScreenXy {
     /// The origin.
     pub const ZERO: Self = Self([0; 2]);
+
+    /// The position as one word `y·2^16 | x` (the two 16-bit halves'
+    /// bits, `x` low): one load where the target loads unaligned words
+    /// (ARMv7-M, x86).
+    #[inline(always)]
+    #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
+    pub(crate) fn word(self) -> i32 {
+        (u32::from(self.0[0] as u16) | (u32::from(self.0[1] as u16) << 16)) as i32
+    }
 
     /// The subpixel position `p` (from the screen's top-left corner)
     /// stored from `origin`, known to lie within ±[`XY_LIMIT`] of it
@@ -409,8 +422,8 @@ pub struct PreparedObject {
     /// `color_base + t - tris.start`.
     pub color_base: u16,
     /// Rows `rows[0]..rows[1]` that hold every row its triangles can cover
-    /// (possibly a few more: for an object wholly on screen, the range of
-    /// its projected vertices; empty when it has no triangle): a band
+    /// (possibly more: for an object wholly on screen, every row of the
+    /// screen; empty when it has no triangle): a band
     /// outside them skips the object.
     pub rows: [u16; 2],
     /// [`Self::val_base`] (bits 0 to 17), [`Self::stride`] (bits 18 to

@@ -10,9 +10,27 @@
 //! |---|---:|---:|
 //! | culling in object space ([`EarlyCull`], 1 839 vertices, 669 skipped) | 20 / vertex | 33 / vertex |
 //! | vertex loops ([`Fused`] projection and depth, then [`OneLight`]) over the 1 170 others | 179 K | 315 K |
-//! | triangle loop (`triangles_visible`, faces with a skipped corner dropped first) | 35 / triangle | 54 / triangle |
+//! | triangle loop (`triangles_visible`, faces with a skipped corner dropped first) | 33 / triangle | 54 / triangle |
 //! | per object (sphere, matrices, fused rows, culling constants) | 27 K | 61 K |
-//! | whole geometry | 0.372 M | 0.637 M |
+//! | whole geometry | 0.360 M | 0.624 M |
+//!
+//! The vertex loop's screen test is one word a vertex (the OR of `W = y
+//! · 2^16 | x` and `lim - W`, [`on_screen`]: one register, three
+//! instructions) rather than the box of the projected vertices (three
+//! registers, nine instructions), and a visible object's rows are the
+//! screen's: bunny Gouraud 0.372 -> 0.370 M on the Cortex-M4, 0.637 ->
+//! 0.622 M on the Cortex-M0. The triangle loop reads each corner as one
+//! word and takes the area from the words ([`area_words`]): 129 488 ->
+//! 119 597 on the Cortex-M4, 0.360 M in all; on the host (callgrind,
+//! `bunny_frame`) the frame is 2 161 582 -> 2 157 988. Tried: the
+//! transform's constants read through an opaque pointer in the loop
+//! (`black_box`, hoping for `ldm`/`ldrd` of adjacent fields instead of
+//! spill reloads): the compiler loaded them one by one and spilled them
+//! again, `kernel_fused` 176 260 -> 181 991. Passes (transform into a
+//! scratch array, then project, then light) were costed line by line
+//! and not built: each pass adds its own loop, mark test and loads of
+//! the position (about 10 a vertex a pass), as many as the spill reloads
+//! it saves (about 30 a vertex in the one-pass loop).
 //!
 //! The culling loop takes two vertices a step (the compiler's unrolling
 //! of the one-vertex loop spilled: 24 -> 22 per vertex on the
@@ -62,8 +80,10 @@
 //! vertex and 103 / 142 per triangle, 0.842 M / 1.532 M in all. The
 //! vertex loops still spill about 20 constants per vertex on the M4
 //! (three 3-term rows, the reciprocal table, the depth constants and the
-//! bounding box do not fit 13 registers); the triangle loop's floor with
-//! this data layout is its loads: 3 + 6 + 3 bounds checks.
+//! screen test do not fit 13 registers: 33 of the projection loop's 105
+//! instructions a vertex are stack loads and stores); the triangle
+//! loop's floor with this data layout is its loads: 3 + 3 + 3 bounds
+//! checks.
 
 use super::clip::{ClipVert, Outcode, Planes, CLIP_ATTRS, GUARD_PX, MAX_POLY};
 use super::position::PosFrame;
@@ -459,7 +479,7 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         object: 0,
         width,
         height,
-        bbox: None,
+        on_screen: false,
         rows: None,
         marked: false,
         face_rows: &mut frame.face_rows,
@@ -537,10 +557,10 @@ struct Preparer<'w, 'f, P: Profile> {
     object: usize,
     width: u32,
     height: u32,
-    /// The largest x and y and the smallest y (subpixels, as `u32`:
-    /// negative coordinates count as huge) of the current object's
-    /// prepared vertices, when the vertex kernel tracked them.
-    bbox: Option<[u32; 3]>,
+    /// The vertex kernel proved every prepared vertex of the current
+    /// object within the screen's box ([`on_screen`]), stored from the
+    /// screen's corner.
+    on_screen: bool,
     /// The rows of the current object when the triangle pass bounded them
     /// (else they are gathered from its triangles).
     rows: Option<[u16; 2]>,
@@ -752,7 +772,7 @@ fn triangles_inside(
 
 /// [`triangles_inside`] for an object whose prepared vertices all lie on
 /// the screen with edges shorter than `2^15` subpixels (the vertex kernel's
-/// bounding box shows it; `CULL`: back faces dropped; `MARKED`: triangles
+/// [`on_screen`] test shows it; `CULL`: back faces dropped; `MARKED`: triangles
 /// with an [`UNUSED`] corner dropped): the sign in one
 /// 32-bit expression, the rows
 /// without clamps, no column test (it always passes there). The same
@@ -773,26 +793,46 @@ fn triangles_visible<const CULL: bool, const MARKED: bool, A>(
     faces.fill(0);
     // The stored row: `first_row(y) >> q` = `(y + k) >> (sub + q)`.
     let row_shift = sub.get() + q;
+    // A marked corner: its `x` negative (every other `x` here is
+    // `0..2^15`); with [`WORDS`] the sign bit 15 of its word, the one load
+    // of the corner. (Written out: a function taking the corner by value
+    // made the host loop load it whole and cost 12.6 K instructions
+    // more on the bunny.)
+    macro_rules! marked {
+        ($p:expr) => {
+            if WORDS {
+                $p.word() << 16 < 0
+            } else {
+                $p.0[0] < 0
+            }
+        };
+    }
     // (As many bytes as triangles: the caller's slices.)
     for (t, ((tri, face), slot)) in tris.iter().zip(faces.iter_mut()).zip(aux).enumerate() {
         // Each corner loaded once, checked as it comes (a missing
         // corner: culled when MARKED, else the origin as before).
         let miss = ScreenXy([if MARKED { -1 } else { 0 }, 0]);
         let pa = xy.get(usize::from(tri[0])).copied().unwrap_or(miss);
-        if MARKED && pa.0[0] < 0 {
+        if MARKED && marked!(pa) {
             continue;
         }
         let pb = xy.get(usize::from(tri[1])).copied().unwrap_or(miss);
-        if MARKED && pb.0[0] < 0 {
+        if MARKED && marked!(pb) {
             continue;
         }
         let pc = xy.get(usize::from(tri[2])).copied().unwrap_or(miss);
-        if MARKED && pc.0[0] < 0 {
+        if MARKED && marked!(pc) {
             continue;
         }
-        let [a, b, c] = [pa, pb, pc].map(|p| [i32::from(p.0[0]), i32::from(p.0[1])]);
-        // |edges| < 2^15: each product below 2^30.
-        let d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        // Twice the signed area, and the three `y` (the rows' too).
+        let (d, [ya, yb, yc]) = if WORDS {
+            area_words([pa, pb, pc])
+        } else {
+            let [a, b, c] = [pa, pb, pc].map(|p| [i32::from(p.0[0]), i32::from(p.0[1])]);
+            // |edges| < 2^15: each product below 2^30.
+            let d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+            (d, [a[1], b[1], c[1]])
+        };
         if d == 0 {
             continue;
         }
@@ -806,8 +846,7 @@ fn triangles_visible<const CULL: bool, const MARKED: bool, A>(
         // shift of `y + k`, and two values floor to the same multiple of
         // `2^sub` exactly when they agree above bit `sub`.
         let k = sub.scale() - 1 - sub.scale() / 2;
-        let e = |p: [i32; 2]| p[1] + k;
-        let (ea, eb, ec) = (e(a), e(b), e(c));
+        let (ea, eb, ec) = (ya + k, yb + k, yc + k);
         if ((ea ^ eb) | (ea ^ ec)) >> sub.get() == 0 {
             continue;
         }
@@ -825,22 +864,53 @@ fn triangles_visible<const CULL: bool, const MARKED: bool, A>(
     Some(())
 }
 
+/// The triangle loop reads corners as words ([`area_words`]) on ARM
+/// (one load a corner; [`ScreenXy`] is aligned as a word for ARMv6-M,
+/// which has no unaligned loads): bunny Gouraud geometry 372 421 ->
+/// 359 838 on the Cortex-M4; on the Cortex-M0 bunny flat 657 226 -> 635
+/// 821, cubes-and-sphere 536 205 -> 530 773, bunny Gouraud 622 439 -> 623
+/// 515. x86 loads each half with its sign extension: the words cost the
+/// host frame 2 157 988 -> 2 164 297 (callgrind), so it keeps the halves.
+const WORDS: bool = cfg!(target_arch = "arm");
+
+/// Twice the signed area `(b - a) × (c - a)` of three corners with `0 <=
+/// x < 2^15` and edges shorter than `2^15` subpixels (each product below
+/// `2^30`), and their `y`, from the words `W = y·2^16 | x`
+/// ([`ScreenXy::word`], one load a corner with [`WORDS`]):
+/// with `0 <= x < 2^15`, `W = y·2^16 + x` exactly; the word differences
+/// `E = W_b - W_a = Δy·2^16 + Δx`, and `E_1·Δy_2 - E_2·Δy_1 = Δx_1·Δy_2 -
+/// Δx_2·Δy_1` (the `2^16·Δy_1·Δy_2` terms cancel), modulo 2^32, which
+/// holds it. Measured on the Cortex-M4 (bunny Gouraud): the triangle
+/// loop 129 488 -> 119 597 instructions (one load a corner instead of
+/// two and their address).
+#[inline(always)]
+fn area_words(p: [ScreenXy; 3]) -> (i32, [i32; 3]) {
+    let [wa, wb, wc] = p.map(ScreenXy::word);
+    let (ya, yb, yc) = (wa >> 16, wb >> 16, wc >> 16);
+    let d = (wb.wrapping_sub(wa))
+        .wrapping_mul(yc - ya)
+        .wrapping_sub((wc.wrapping_sub(wa)).wrapping_mul(yb - ya));
+    (d, [ya, yb, yc])
+}
+
 /// The projection loop of the fused kernel: screen positions into `xy`,
-/// depths into the first of every `S` values; returns the largest x and y
-/// and the smallest y as `u32` (a negative coordinate counts as beyond
-/// every screen). `CLAMP = false` only when [`Fused::depth_in_range`].
-/// `MARKED`: only the vertices not marked (negative) by [`cull_light`];
-/// the marked ones get [`UNUSED`] and stay out of the box.
+/// depths into the first of every `S` values; returns the OR of every
+/// projected vertex's screen word `W = y·2^16 | x` (16-bit halves) and
+/// of `lim - W` ([`screen_word_limit`]: bits 15 and 31 clear exactly when
+/// every vertex lies within the limit's box, see [`on_screen`]).
+/// `CLAMP = false` only when [`Fused::depth_in_range`]. `MARKED`: only
+/// the vertices not marked (negative) by [`cull_light`]; the marked ones
+/// get [`UNUSED`] and stay out of the test.
 #[inline(always)]
 #[allow(clippy::cast_sign_loss)]
 fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
     f: &Fused,
     positions: &[[i16; 3]],
-    (xy, origin): (&mut [ScreenXy], Subpx),
+    (xy, origin, lim): (&mut [ScreenXy], Subpx, u32),
     vals: &mut [L],
     depth: impl Fn(&mut L, DepthQ30),
-) -> [u32; 3] {
-    let (mut ux, mut uy, mut ly) = (0u32, 0u32, u32::MAX);
+) -> u32 {
+    let mut acc = 0u32;
     let verts = positions.iter().zip(xy.iter_mut());
     for ((p, out), v) in verts.zip(vals.chunks_exact_mut(S)) {
         // A negative mark is a skipped vertex ([`mark_vertices`]): it
@@ -852,26 +922,43 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
         let (s, d) = f.project::<CLAMP>(*p);
         // Inside the guard band: within `±XY_LIMIT` of the origin.
         *out = ScreenXy::pack(Subpx(s), origin);
-        ux = ux.max(s[0] as u32);
-        uy = uy.max(s[1] as u32);
-        // (The box keeps three values live here: without it the loop is
-        // 88 instructions a vertex on the Cortex-M4 against 107, but the
-        // box in a loop of its own over the marks costs more, bunny
-        // Gouraud 0.383 M against 0.376 M; in the lighting loop after
-        // the projection, whose light constants then spill, 0.392 M.)
-        // The smallest y too: a visible object's rows come from its
-        // vertices' box rather than a pass over its kept triangles
-        // (measured on the bunny: the pass costs 14 K instructions on the
-        // Cortex-M4, where the tracking costs nothing measurable; on the
-        // Cortex-M0 the tracking cost 22 K against the pass's 16 K when
-        // the triangles stored their rows, recomputed from the vertices'
-        // y the pass cost more: bunny Gouraud geometry 740 383).
-        ly = ly.min(s[1] as u32);
+        // The screen test in one word and one register: the OR of `W`
+        // and `lim - W` (see `on_screen`). It replaced the exact box
+        // (the largest x and y and the smallest y: three values live,
+        // nine instructions a vertex).
+        let w = ((s[1] as u32) << 16) | (s[0] as u32 & 0xFFFF);
+        acc |= w | lim.wrapping_sub(w);
         if let Some(first) = v.first_mut() {
             depth(first, DepthQ30(d));
         }
     }
-    [ux, uy, ly]
+    acc
+}
+
+/// The screen word limit `yl·2^16 | xl` of a `width × height` screen
+/// with `sub` subpixel bits: `xl = width·2^sub - 2^sub/2` (the last
+/// column's centre plus less than half a pixel), `yl = height·2^sub`;
+/// `None` unless both are within `0..2^15` (the test of [`on_screen`]
+/// needs them there, and the triangle loop's 32-bit sign too).
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+fn screen_word_limit(width: u32, height: u32, sub: SubpixelBits) -> Option<u32> {
+    let s = i64::from(sub.scale());
+    let (xl, yl) = (i64::from(width) * s - s / 2, i64::from(height) * s);
+    let fits = |v: i64| (0..1 << 15).contains(&v);
+    (fits(xl) && fits(yl)).then_some(((yl as u32) << 16) | xl as u32)
+}
+
+/// Whether every vertex word `W = y·2^16 | x` (the 16-bit halves of
+/// positions `x, y` within ±[`XY_LIMIT`]) ORed into `acc` together with
+/// `lim - W` (`lim = yl·2^16 | xl`, [`screen_word_limit`]) lies in `0 <= x
+/// <= xl`, `0 <= y <= yl`: exactly when bits 15 and 31 of `acc` are
+/// clear. A negative `x` or `y` sets bit 15 or 31 of `W`; otherwise `W =
+/// y·2^16 + x` and `lim - W = (yl - y)·2^16 + (xl - x)`, whose low half
+/// has bit 15 set exactly when `x > xl` (`xl - x >= -2^15`) and, when not,
+/// whose high half is negative exactly when `y > yl`.
+#[inline(always)]
+fn on_screen(acc: u32) -> bool {
+    acc & 0x8000_8000 == 0
 }
 
 /// The marks of [`cull_light`] into `xy[0]`: [`EarlyCull::margin`],
@@ -1158,7 +1245,7 @@ impl<P: Profile> Preparer<'_, '_, P> {
         self.made_start = t_start + mesh.triangle_count();
         let made_base = self.nm;
         let color_base = self.nc;
-        self.bbox = None;
+        self.on_screen = false;
         self.rows = None;
         self.marked = false;
         let (place, reach, radius) = placement(&self.view.planes, &mesh, &ctx.mv);
@@ -1509,8 +1596,8 @@ impl<P: Profile> Preparer<'_, '_, P> {
     /// integer kernel ([`Fused`]) for a layout of `S` values per vertex
     /// (1 flat or packed grey, 2 grey, 4 RGB), lit by `levels` (colour
     /// levels of a normal); `PACK`: depth and grey level packed in one
-    /// value ([`Layout::packed_in`]). Records the screen bounding box of
-    /// the vertices.
+    /// value ([`Layout::packed_in`]). Records whether every vertex lies
+    /// on the screen ([`on_screen`]).
     #[inline(never)]
     fn kernel_fused<const S: usize, const PACK: bool>(
         &mut self,
@@ -1559,8 +1646,9 @@ impl<P: Profile> Preparer<'_, '_, P> {
             };
         };
         let o = xy_origin::<P>(self.width, self.height);
-        let xy = (xy, o);
-        let bbox = match (f.depth_in_range, marked) {
+        let lim = screen_word_limit(self.width, self.height, P::SUBPIXEL_BITS);
+        let xy = (xy, o, lim.unwrap_or(0));
+        let acc = match (f.depth_in_range, marked) {
             (true, false) => project_loop::<false, false, S, _>(f, pos, xy, vals, depth),
             (false, false) => project_loop::<false, true, S, _>(f, pos, xy, vals, depth),
             (true, true) => project_loop::<true, false, S, _>(f, pos, xy, vals, depth),
@@ -1580,9 +1668,9 @@ impl<P: Profile> Preparer<'_, '_, P> {
                 }
             }
         }
-        // The triangle loop over the box reads positions stored from the
-        // screen's corner.
-        self.bbox = Some(bbox).filter(|_| o == Subpx([0, 0]));
+        // The triangle loop over the screen's box reads positions stored
+        // from the screen's corner.
+        self.on_screen = lim.is_some() && on_screen(acc) && o == Subpx([0, 0]);
         self.marked = marked;
         self.nv = end;
         self.nval = ctx.val_base + n * S;
@@ -1975,18 +2063,13 @@ impl<P: Profile> Preparer<'_, '_, P> {
             let flat = ctx.layout == Layout::Flat;
             let xy = self.ws.xy.get(base..self.nv).unwrap_or(&[]);
             let sub = P::SUBPIXEL_BITS;
-            let s = sub.scale();
             // Every vertex within the screen (x up to the last column's
             // centre plus less than half a pixel), and every edge shorter
             // than 2^15 subpixels: the row range needs no clamp, the
             // column test always passes, and the sign fits 32 bits.
-            let (xl, yl) = (
-                i64::from(self.width) * i64::from(s) - i64::from(s / 2),
-                i64::from(self.height) * i64::from(s),
-            );
-            let visible = self.bbox.is_some_and(|[x1, y1, _]| {
-                i64::from(x1) <= xl && i64::from(y1) <= yl && xl < 1 << 15 && yl < 1 << 15
-            });
+            // (The vertex kernel's test, [`on_screen`] within
+            // [`screen_word_limit`].)
+            let visible = self.on_screen;
             // (Marked vertices only on culled objects.)
             let (origin, marked) = (self.origin(), self.marked && ctx.cull);
             let q = face_shift(self.height);
@@ -2076,16 +2159,11 @@ impl<P: Profile> Preparer<'_, '_, P> {
                 if kept.is_none() {
                     return Err(self.cap(Part::Colors));
                 }
-                // The rows of every projected vertex: they hold the rows
-                // of every kept triangle (`first_row` is monotonic; every
-                // y within `0..=height << sub` here), without a pass over
-                // the triangles (1 498 of them: 14 K instructions on the
-                // Cortex-M4).
-                // (Unused when the object keeps no triangle.)
-                if let Some([_, y1, y0]) = self.bbox {
-                    let r = |y: u32| first_row(y as i32, sub) as u16;
-                    self.rows = Some([r(y0), r(y1)]);
-                }
+                // The whole screen's rows: they hold the rows of every
+                // kept triangle (every vertex is on the screen), without a
+                // pass over the triangles or a box in the vertex loop.
+                let rows = self.height.min(u32::from(u16::MAX)) as u16;
+                self.rows = Some([0, rows]);
                 return Ok(());
             }
             let kept = triangles_inside(
@@ -2219,5 +2297,189 @@ impl<P: Profile> Preparer<'_, '_, P> {
             prev = cur;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::geom::testkit::xorshift;
+    use crate::render::{face_shift, FACE_ROW};
+    use std::vec::Vec;
+
+    /// [`on_screen`] of the OR of `W | (lim - W)` is exactly "every
+    /// position within `0..=xl`, `0..=yl`", on random screens and random
+    /// positions within ±[`XY_LIMIT`], most near the box's edges.
+    #[test]
+    fn screen_word_test_is_exact() {
+        let mut next = xorshift(0x5eed_0f5c_7ee2);
+        let mut hits = [0u32; 2];
+        for _ in 0..20_000 {
+            let sub = SubpixelBits::new(1 + (next() % 8) as u32).unwrap();
+            let (w, h) = (1 + (next() % 2100) as u32, 1 + (next() % 2100) as u32);
+            let Some(lim) = screen_word_limit(w, h, sub) else {
+                let s = i64::from(sub.scale());
+                assert!(i64::from(w) * s - s / 2 >= 1 << 15 || i64::from(h) * s >= 1 << 15);
+                continue;
+            };
+            let (xl, yl) = ((lim & 0xFFFF) as i32, (lim >> 16) as i32);
+            let s = sub.scale();
+            assert_eq!((xl, yl), (w as i32 * s - s / 2, h as i32 * s));
+            let coord = |next: &mut dyn FnMut() -> u64, l: i32| -> i32 {
+                let r = next();
+                match r % 4 {
+                    0 => (r >> 8) as i32 % (XY_LIMIT + 1) * if r & 16 == 0 { 1 } else { -1 },
+                    1 => l + ((r >> 8) % 5) as i32 - 2,
+                    2 => ((r >> 8) % 5) as i32 - 2,
+                    _ => ((r >> 8) as i32 & 0x7FFF) % (l + 1),
+                }
+                .clamp(-XY_LIMIT, XY_LIMIT)
+            };
+            let n = 1 + next() % 4;
+            let (mut acc, mut exact) = (0u32, true);
+            for _ in 0..n {
+                let (x, y) = (coord(&mut next, xl), coord(&mut next, yl));
+                let word = ScreenXy::pack(Subpx([x, y]), Subpx([0, 0])).word() as u32;
+                assert_eq!(word, ((y as u32) << 16) | (x as u32 & 0xFFFF));
+                acc |= word | lim.wrapping_sub(word);
+                exact &= (0..=xl).contains(&x) && (0..=yl).contains(&y);
+            }
+            assert_eq!(on_screen(acc), exact);
+            hits[usize::from(exact)] += 1;
+        }
+        assert!(hits[0] > 1000 && hits[1] > 1000, "{hits:?}");
+    }
+
+    /// [`area_words`] equals the area from the coordinates (and the word's
+    /// bit 15 the sign of `x`) on random and extreme corners with `0 <= x, y < 2^15` and
+    /// edges shorter than `2^15`.
+    #[test]
+    fn area_from_words_equals_area_from_coordinates() {
+        let mut next = xorshift(0x0a4e_a5f0_4d5e);
+        let lim = (1 << 15) - 1;
+        for _ in 0..200_000 {
+            let r = next();
+            let v = |r: u64| -> i16 {
+                match r % 4 {
+                    0 => 0,
+                    1 => lim as i16,
+                    2 => (lim - (r >> 8) % 3) as i16,
+                    _ => ((r >> 8) % (lim + 1)) as i16,
+                }
+            };
+            let p = [0, 1, 2].map(|k| ScreenXy([v(r >> (k * 10)), v(next())]));
+            let [a, b, c] = p.map(|p| [i32::from(p.0[0]), i32::from(p.0[1])]);
+            let d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+            assert_eq!(area_words(p), (d, [a[1], b[1], c[1]]), "{p:?}");
+            assert!(p[0].word() << 16 >= 0);
+            assert!(ScreenXy([UNUSED, p[0].0[1]]).word() << 16 < 0);
+        }
+    }
+
+    /// [`triangles_visible`] keeps exactly the triangles (face bytes and
+    /// row counts) of the general [`triangles_inside`] on objects whose
+    /// vertices all lie on the screen (random, on the edges, marked
+    /// [`UNUSED`]), for every culling and marking.
+    #[test]
+    fn visible_loop_equals_the_general_loop() {
+        let mut next = xorshift(0x07a1_e50f_ace5);
+        let mut kept_faces = [0usize; 2];
+        for round in 0..400 {
+            let sub = SubpixelBits::new(1 + (next() % 5) as u32).unwrap();
+            let s = sub.scale();
+            let (w, h) = (1 + (next() % 400) as u32, 1 + (next() % 400) as u32);
+            let Some(lim) = screen_word_limit(w, h, sub) else {
+                continue;
+            };
+            let (xl, yl) = ((lim & 0xFFFF) as i32, (lim >> 16) as i32);
+            let nv = 3 + (next() % 60) as usize;
+            let marked = round % 2 == 1;
+            let coord = |r: u64, l: i32| match r % 5 {
+                0 => 0,
+                1 => l,
+                2 => (l - ((r >> 8) % (2 * s as u64)) as i32).max(0),
+                _ => ((r >> 8) % (l as u64 + 1)) as i32,
+            };
+            let mut xy: Vec<ScreenXy> = (0..nv)
+                .map(|_| {
+                    let (x, y) = (coord(next(), xl), coord(next(), yl));
+                    ScreenXy([x as i16, y as i16])
+                })
+                .collect();
+            if marked {
+                for v in xy.iter_mut() {
+                    if next().is_multiple_of(4) {
+                        v.0[0] = UNUSED;
+                    }
+                }
+            }
+            let nt = 1 + (next() % 120) as usize;
+            let tris: Vec<[u16; 3]> = (0..nt)
+                .map(|_| {
+                    let mut t = [0u16; 3];
+                    for c in &mut t {
+                        *c = (next() % nv as u64) as u16;
+                    }
+                    t
+                })
+                .collect();
+            let q = face_shift(h);
+            for cull in [false, true] {
+                if marked && !cull {
+                    continue;
+                }
+                let (mut fa, mut fb) = (std::vec![0xAAu8; nt], std::vec![0x55u8; nt]);
+                let (mut ca, mut cb) =
+                    ([0u16; FACE_ROW as usize + 1], [0u16; FACE_ROW as usize + 1]);
+                let all = || core::iter::repeat(());
+                let kept = match (cull, marked) {
+                    (true, true) => triangles_visible::<true, true, _>(
+                        &tris,
+                        &xy,
+                        (&mut fa, &mut ca),
+                        (sub, q),
+                        all(),
+                        |_, (), _| true,
+                    ),
+                    (true, false) => triangles_visible::<true, false, _>(
+                        &tris,
+                        &xy,
+                        (&mut fa, &mut ca),
+                        (sub, q),
+                        all(),
+                        |_, (), _| true,
+                    ),
+                    _ => triangles_visible::<false, false, _>(
+                        &tris,
+                        &xy,
+                        (&mut fa, &mut ca),
+                        (sub, q),
+                        all(),
+                        |_, (), _| true,
+                    ),
+                };
+                assert!(kept.is_some());
+                let general = triangles_inside(
+                    &tris,
+                    (&xy, Subpx([0, 0])),
+                    (&mut fb, &mut cb),
+                    (w, h, q),
+                    sub,
+                    (cull, marked),
+                    |_, _| true,
+                );
+                assert!(general.is_some());
+                assert_eq!(fa, fb, "round {round} cull {cull}");
+                assert_eq!(ca, cb, "round {round} cull {cull}");
+                for f in fa {
+                    kept_faces[usize::from(f == 0)] += 1;
+                }
+            }
+        }
+        assert!(
+            kept_faces[0] > 2000 && kept_faces[1] > 2000,
+            "{kept_faces:?}"
+        );
     }
 }
