@@ -39,6 +39,10 @@ use crate::target::level_q19;
 /// pixel (after its depth test) instead of the chunk set-up.
 pub(super) const SHORT_SPAN: u32 = 4;
 
+/// Other than on ARMv6-M, [`PhongKernel::run`] in two passes a piece
+/// (light terms into a buffer, then depth mask and colours).
+const TWO_PASS: bool = true;
+
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 pub(super) const QM_FRAC: u32 = 20;
 /// `Qm` at or above this many segments (Q20) gives no specular term:
@@ -509,6 +513,9 @@ impl<R: Real> PhongKernel<'_, R> {
         if cfg!(armv6m) {
             return pixels!(fused, i, k);
         }
+        if TWO_PASS {
+            return self.run_two_pass(c, w, rs, i, k, out);
+        }
         let (end, mut j, mut failed) = (i + k, i, 0);
         while j < end {
             let kk = (end - j).min(CHUNK as u32);
@@ -516,6 +523,57 @@ impl<R: Real> PhongKernel<'_, R> {
             j += kk;
         }
         failed
+    }
+
+    /// [`PhongKernel::run`] other than on ARMv6-M in two passes a piece
+    /// of [`CHUNK`] pixels ([`TWO_PASS`]): the light terms of the
+    /// piece's pixels into a buffer (a loop whose state, the stepped
+    /// quantities and both tables' addresses, fits the registers), then
+    /// the depth mask and the colours of the passing pixels from the
+    /// buffer ([`Out::chunk`]: the colour constants in registers).
+    #[inline(always)]
+    fn run_two_pass(
+        &self,
+        c: &Colour,
+        w: &mut Whole,
+        rs: &[u32; RN_N],
+        i: u32,
+        k: u32,
+        out: &mut impl Out,
+    ) -> u32 {
+        let (end, mut j, mut failed) = (i + k, i, 0);
+        let mut buf = [0u32; CHUNK];
+        let cc = *c;
+        while j < end {
+            let kk = (end - j).min(CHUNK as u32);
+            let b = &mut buf[..kk as usize];
+            match (w.spec, w.lit) {
+                (true, true) => self.terms_into::<true, true>(w, rs, b),
+                (true, false) => self.terms_into::<true, false>(w, rs, b),
+                _ => self.terms_into::<false, false>(w, rs, b),
+            }
+            failed += out.chunk(j, b, move |t| cc.of_terms(t));
+            j += kk;
+        }
+        failed
+    }
+
+    /// The packed light terms `nl15 | sp << 16` of [`PhongKernel::terms_rn`]
+    /// of the pixels of `buf`, the state `w` stepped past them.
+    #[inline(always)]
+    fn terms_into<const SPEC: bool, const LIT: bool>(
+        &self,
+        w: &mut Whole,
+        rs: &[u32; RN_N],
+        buf: &mut [u32],
+    ) {
+        let mut s = *w;
+        for o in buf.iter_mut() {
+            let (nl15, sp) = self.terms_rn::<SPEC, LIT>(rn_entry(rs, s.nn), s.nl, s.q);
+            *o = (nl15 & 0xFFFF) | sp << 16;
+            s.step::<SPEC>();
+        }
+        *w = s;
     }
 
     /// The span's single plan ([`Whole`]) when the span is longer than a
