@@ -40,7 +40,14 @@ use crate::target::level_q19;
 pub(super) const SHORT_SPAN: u32 = 4;
 
 /// Other than on ARMv6-M, [`PhongKernel::run`] in two passes a piece
-/// (light terms into a buffer, then depth mask and colours).
+/// ([`PhongKernel::run_two_pass`]: light terms into a buffer, then depth
+/// mask and colours). Off: the round's redesign of the loop whose live
+/// state fits the registers, measured worse on the M4's span sweep (one
+/// light, the same frames): 70.38 instructions a pixel against 64.74
+/// with the one loop (the terms loop 35.5 a pixel, the colour loop of
+/// [`Out::chunk`] 23.75: both still spill, the terms loop unrolled by
+/// two, the colour constants split into nine registers), 72.51 against
+/// 62.87 with the packed specular table ([`pack_table`]).
 const TWO_PASS: bool = false;
 
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
@@ -106,6 +113,7 @@ pub(super) fn rsq_biased(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
 /// `t[j] | (t[j] - t[j + 1]) << 16` (the table is non-increasing,
 /// `spec_table_is_non_increasing`: the difference is below `2^16`, and
 /// `a - ((d·f) >> 16)` from the entry is the pair form's value).
+#[cfg(not(armv6m))]
 pub(super) fn pack_table(t: &[u16; SPEC_SEGMENTS + 2]) -> [u32; SPEC_SEGMENTS + 1] {
     let mut p = [0u32; SPEC_SEGMENTS + 1];
     for (j, e) in p.iter_mut().enumerate() {
@@ -470,6 +478,17 @@ impl<R: Real> PhongKernel<'_, R> {
     /// `MLA` 76.34; with the opaque address (73.17 kept), the colour
     /// constants and the specular table copied into one block of the
     /// frame 73.28 (two instructions fewer a pair, a `memcpy` a span).
+    /// With the packed specular table (62.87 kept), tried and measured
+    /// worse: the depth tests of the whole span first (bit masks of 32
+    /// pixels, then one colour loop over the span when all passed; the
+    /// run's 96 instructions a piece down to 42, the pair loop up from 97
+    /// to 100 with the colour constants loaded through an opaque copy's
+    /// address, 108 without) 62.94, with the masks of the span from one
+    /// call 64.59 (its loop spilled); the state copied into a local for
+    /// the span 64.16; the two terms as one word `(nl15 ^ 2^15) << 16 |
+    /// (sp ^ 2^15)` joined by `PKHTB` (no `EOR`) 67.97 (the compiler
+    /// split the word's halves and the colour constants into nine
+    /// registers again).
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
