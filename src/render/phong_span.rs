@@ -321,6 +321,12 @@ pub struct PhongKernel<'s, R> {
     /// pixel) more than the 1 003 they saved in the dodecahedron's.
     #[cfg(not(armv6m))]
     colour: Option<one::Colour>,
+    /// The specular table for the one-light loop other than on ARMv6-M
+    /// ([`one::pack_table`]; all zero for other kernels): entry `j` is
+    /// `table[j] | (table[j] - table[j + 1]) << 16`, one load a pixel for
+    /// both values.
+    #[cfg(not(armv6m))]
+    packed: [u32; SPEC_SEGMENTS + 1],
 }
 
 /// A specular table kept from one kernel to the next of the same
@@ -517,6 +523,8 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         if spec && !found {
             return Err(KernelError::Range);
         }
+        #[cfg(not(armv6m))]
+        let one_light = duff && spec && lights.len() == 1;
         #[cfg_attr(armv6m, allow(unused_mut))]
         let mut k = Self {
             shade,
@@ -536,6 +544,12 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             cb,
             #[cfg(not(armv6m))]
             colour: None,
+            #[cfg(not(armv6m))]
+            packed: if one_light {
+                one::pack_table(&table)
+            } else {
+                [0; SPEC_SEGMENTS + 1]
+            },
         };
         #[cfg(not(armv6m))]
         {

@@ -39,6 +39,17 @@ use crate::target::level_q19;
 /// pixel (after its depth test) instead of the chunk set-up.
 pub(super) const SHORT_SPAN: u32 = 4;
 
+/// Other than on ARMv6-M, [`PhongKernel::run`] in two passes a piece
+/// ([`PhongKernel::run_two_pass`]: light terms into a buffer, then depth
+/// mask and colours). Off: the round's redesign of the loop whose live
+/// state fits the registers, measured worse on the M4's span sweep (one
+/// light, the same frames): 70.38 instructions a pixel against 64.74
+/// with the one loop (the terms loop 35.5 a pixel, the colour loop of
+/// [`Out::chunk`] 23.75: both still spill, the terms loop unrolled by
+/// two, the colour constants split into nine registers), 72.51 against
+/// 62.87 with the packed specular table ([`pack_table`]).
+const TWO_PASS: bool = false;
+
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 pub(super) const QM_FRAC: u32 = 20;
 /// `Qm` at or above this many segments (Q20) gives no specular term:
@@ -96,6 +107,20 @@ pub(super) fn rsq_biased(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
     let e = rs[((nb as u32) >> 24) as usize & (RSQRT_N - 1)];
     let t = ((nb as u32) >> 8) & 0xFFFF;
     (e >> 14) - (((e & 0x3FFF) * t) >> 16)
+}
+
+/// The specular table `t` packed for the one-light loop: entry `j` is
+/// `t[j] | (t[j] - t[j + 1]) << 16` (the table is non-increasing,
+/// `spec_table_is_non_increasing`: the difference is below `2^16`, and
+/// `a - ((d·f) >> 16)` from the entry is the pair form's value).
+#[cfg(not(armv6m))]
+pub(super) fn pack_table(t: &[u16; SPEC_SEGMENTS + 2]) -> [u32; SPEC_SEGMENTS + 1] {
+    let mut p = [0u32; SPEC_SEGMENTS + 1];
+    for (j, e) in p.iter_mut().enumerate() {
+        let (a, b) = (u32::from(t[j]), u32::from(t[j + 1]));
+        *e = a | (a.wrapping_sub(b) & 0xFFFF) << 16;
+    }
+    p
 }
 
 /// Entries of [`RN`].
@@ -453,6 +478,17 @@ impl<R: Real> PhongKernel<'_, R> {
     /// `MLA` 76.34; with the opaque address (73.17 kept), the colour
     /// constants and the specular table copied into one block of the
     /// frame 73.28 (two instructions fewer a pair, a `memcpy` a span).
+    /// With the packed specular table (62.87 kept), tried and measured
+    /// worse: the depth tests of the whole span first (bit masks of 32
+    /// pixels, then one colour loop over the span when all passed; the
+    /// run's 96 instructions a piece down to 42, the pair loop up from 97
+    /// to 100 with the colour constants loaded through an opaque copy's
+    /// address, 108 without) 62.94, with the masks of the span from one
+    /// call 64.59 (its loop spilled); the state copied into a local for
+    /// the span 64.16; the two terms as one word `(nl15 ^ 2^15) << 16 |
+    /// (sp ^ 2^15)` joined by `PKHTB` (no `EOR`) 67.97 (the compiler
+    /// split the word's halves and the colour constants into nine
+    /// registers again).
     #[inline(never)]
     #[allow(clippy::cast_possible_wrap)]
     fn run(&self, c: &Colour, w: &mut Whole, i: u32, k: u32, out: &mut impl Out) -> u32 {
@@ -509,6 +545,9 @@ impl<R: Real> PhongKernel<'_, R> {
         if cfg!(armv6m) {
             return pixels!(fused, i, k);
         }
+        if TWO_PASS {
+            return self.run_two_pass(c, w, rs, i, k, out);
+        }
         let (end, mut j, mut failed) = (i + k, i, 0);
         while j < end {
             let kk = (end - j).min(CHUNK as u32);
@@ -516,6 +555,57 @@ impl<R: Real> PhongKernel<'_, R> {
             j += kk;
         }
         failed
+    }
+
+    /// [`PhongKernel::run`] other than on ARMv6-M in two passes a piece
+    /// of [`CHUNK`] pixels ([`TWO_PASS`]): the light terms of the
+    /// piece's pixels into a buffer (a loop whose state, the stepped
+    /// quantities and both tables' addresses, fits the registers), then
+    /// the depth mask and the colours of the passing pixels from the
+    /// buffer ([`Out::chunk`]: the colour constants in registers).
+    #[inline(always)]
+    fn run_two_pass(
+        &self,
+        c: &Colour,
+        w: &mut Whole,
+        rs: &[u32; RN_N],
+        i: u32,
+        k: u32,
+        out: &mut impl Out,
+    ) -> u32 {
+        let (end, mut j, mut failed) = (i + k, i, 0);
+        let mut buf = [0u32; CHUNK];
+        let cc = *c;
+        while j < end {
+            let kk = (end - j).min(CHUNK as u32);
+            let b = &mut buf[..kk as usize];
+            match (w.spec, w.lit) {
+                (true, true) => self.terms_into::<true, true>(w, rs, b),
+                (true, false) => self.terms_into::<true, false>(w, rs, b),
+                _ => self.terms_into::<false, false>(w, rs, b),
+            }
+            failed += out.chunk(j, b, move |t| cc.of_terms(t));
+            j += kk;
+        }
+        failed
+    }
+
+    /// The packed light terms `nl15 | sp << 16` of [`PhongKernel::terms_rn`]
+    /// of the pixels of `buf`, the state `w` stepped past them.
+    #[inline(always)]
+    fn terms_into<const SPEC: bool, const LIT: bool>(
+        &self,
+        w: &mut Whole,
+        rs: &[u32; RN_N],
+        buf: &mut [u32],
+    ) {
+        let mut s = *w;
+        for o in buf.iter_mut() {
+            let (nl15, sp) = self.terms_rn::<SPEC, LIT>(rn_entry(rs, s.nn), s.nl, s.q);
+            *o = (nl15 & 0xFFFF) | sp << 16;
+            s.step::<SPEC>();
+        }
+        *w = s;
     }
 
     /// The span's single plan ([`Whole`]) when the span is longer than a
@@ -714,7 +804,13 @@ impl<R: Real> PhongKernel<'_, R> {
     /// Against [`PhongKernel::terms`] (the interpolated table of the
     /// other loops): `N·L` within `2^-10.97` relative instead of
     /// `2^-11.4`, the position within `2^-9.98` instead of `2^-10.4`
-    /// ([`RN`]'s bounds, `rn_table_within_bound`).
+    /// ([`RN`]'s bounds, `rn_table_within_bound`). Other than on ARMv6-M
+    /// the specular table's two entries from one load of the kernel's
+    /// packed table ([`pack_table`]: the same value), measured on the M4's
+    /// span sweep 64.74 -> 62.87 instructions a pixel (the pair loop 103
+    /// -> 99 instructions; the kernel 516 bytes larger, built only for one
+    /// directional light with a specular term: the dodecahedron Phong
+    /// raster 1 611 934 -> 1 617 508).
     #[inline(always)]
     #[allow(
         clippy::cast_sign_loss,
@@ -741,8 +837,16 @@ impl<R: Real> PhongKernel<'_, R> {
             let pos = pos.clamp(0, (1 << 27) - 1) as u32;
             let j = (pos >> 20) as usize & (SPEC_SEGMENTS - 1);
             let f = (pos >> 4) & 0xFFFF;
-            let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
-            a - (((a - b) * f) >> 16)
+            #[cfg(not(armv6m))]
+            {
+                let e = self.packed[j];
+                (e & 0xFFFF).wrapping_sub(((e >> 16) * f) >> 16)
+            }
+            #[cfg(armv6m)]
+            {
+                let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
+                a - (((a - b) * f) >> 16)
+            }
         } else {
             0
         };
