@@ -324,7 +324,7 @@ impl Plan {
     /// `f'(t + 32) = f' + 32 f''`. Not inlined: inlined, its shifts of
     /// the plan were hoisted to every span's start, planned or not.
     #[inline(never)]
-    fn step_chunk(&mut self) {
+    pub(super) fn step_chunk(&mut self) {
         const { assert!(PCHUNK == 32) };
         for c in &mut self.q {
             let d2 = c[2];
@@ -685,7 +685,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let mut plan = if planned { Some(pl) } else { None };
         // One chunk function for fine triangles, one for the others (each
         // with the two loops of its seeds and steps).
-        if fine {
+        let passed = if fine {
             drive_in(
                 buf,
                 len,
@@ -701,7 +701,11 @@ impl<R: Real> PhongKernel<'_, R> {
                 move |t| c.of_terms(t),
                 &mut out,
             )
+        };
+        if planned {
+            tri.after_span(len);
         }
+        passed
     }
 
     /// [`PhongKernel::point_chunk`] of a span planned from its triangle:

@@ -67,6 +67,12 @@ use crate::num::{InvArea, Real, SubpixelBits};
 const EXTRA: u32 = 12;
 /// Largest offset of a vertex from the anchor pixel, in pixels.
 const EXTENT: i32 = 1 << 12;
+/// A span's plan stepped from the last span's ([`TriQuad::plan`]), else
+/// made from the row's values.
+const STEPPED: bool = true;
+/// Largest offset along the row from the last span's start that the
+/// stepped plan takes by additions.
+const DX_STEP: u32 = 2;
 
 /// The six quadratics of one triangle (see the module docs).
 #[derive(Clone, Copy, Debug)]
@@ -83,8 +89,13 @@ pub struct TriQuad {
     /// Phong raster M4 1 620 399 -> 1 612 194, M0 4 361 338 -> 4 359 840,
     /// cubes-and-sphere 156 more on both, 48 bytes more stack).
     row: [[i64; 4]; 6],
-    /// The row of `row` (`None`: not set).
+    /// The row of `row`, or of the last span's plan with [`STEPPED`]
+    /// (`None`: not set).
     ry: Option<i32>,
+    /// With [`STEPPED`]: the column of the last span's plan (`span`) and
+    /// each quadratic's first difference in y there.
+    cx: i32,
+    g: [i64; 6],
     /// The last span's plan ([`TriQuad::plan`]).
     pub(super) span: Plan,
     /// The point loop's buffers (the span driver's and the values
@@ -382,6 +393,8 @@ impl TriQuad {
         q: [[0; 6]; 6],
         row: [[0; 4]; 6],
         ry: None,
+        cx: 0,
+        g: [0; 6],
         span: Plan { q: [[0; 3]; 6] },
         buf: [0; CHUNK],
         px: [Px::ZERO; GROUP],
@@ -712,20 +725,137 @@ impl TriQuad {
 
     /// The point loop's plan of the span from pixel `(x, y)` (inside the
     /// triangle): each quadratic and its first and second differences
-    /// along the row there, exactly. The row's values are stepped from
-    /// the previous span's row when it is the row above (three additions
-    /// a quadratic), else made from the quadratic; then two products by
-    /// the offset along the row a quadratic. The second differences
-    /// (`2a`, the same for every span) are `set_row`'s: measured
-    /// (dodecahedron Phong raster, M4 and M0) 1 684 470 -> 1 667 249 and
-    /// 4 427 143 -> 4 419 572, the span sweep 161.91 -> 161.72 and 497.13
-    /// -> 497.06 a pixel (`plan_equals_direct` checks the plans).
+    /// along the row there, exactly. With [`STEPPED`], the last span's
+    /// plan stepped (`TriQuad::plan_stepped`), else the row's values
+    /// stepped (`TriQuad::plan_rows`).
     #[inline(never)]
     pub(super) fn plan(&mut self, x: i32, y: i32) -> bool {
         let (x, y) = (x.wrapping_sub(self.at[0]), y.wrapping_sub(self.at[1]));
         if x.unsigned_abs() >= 1 << 15 || y.unsigned_abs() >= 1 << 15 {
             return false;
         }
+        if STEPPED {
+            self.plan_stepped(x, y);
+        } else {
+            self.plan_rows(x, y);
+        }
+        true
+    }
+
+    /// [`TriQuad::plan`] from the last span's plan (at `(cx, ry)`, with
+    /// each quadratic's first difference in y there, `g`): on the next
+    /// row with a start at most [`DX_STEP`] pixels away, three additions
+    /// a quadratic for the row (`f(x, y + 1) = f + g`, `f'` by `b`, `g` by
+    /// `2c`) and three more a pixel of the offset (`f(x ± 1)`, `f'` by
+    /// `2a`, `g` by `b`), no product; else made from the quadratics
+    /// (`TriQuad::plan_direct`).
+    #[inline(always)]
+    fn plan_stepped(&mut self, x: i32, y: i32) {
+        let dx = x.wrapping_sub(self.cx);
+        match self.ry {
+            Some(r) if r.wrapping_add(1) == y && dx.unsigned_abs() <= DX_STEP => match dx {
+                0 => self.step_row::<0>(),
+                1 => self.step_row::<1>(),
+                -1 => self.step_row::<-1>(),
+                2 => self.step_row::<2>(),
+                _ => self.step_row::<-2>(),
+            },
+            Some(r) if r == y && dx == 0 => {}
+            _ => self.plan_direct(x, y),
+        }
+        self.ry = Some(y);
+        self.cx = x;
+    }
+
+    /// The plan one row down and `DX` pixels along it (`|DX| <=`
+    /// [`DX_STEP`]), by additions.
+    #[inline(always)]
+    fn step_row<const DX: i32>(&mut self) {
+        for ((o, g), q) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.g.iter_mut())
+            .zip(self.q.iter())
+        {
+            let (b, c) = (q[4], q[5]);
+            let mut v = o[0].wrapping_add(*g);
+            let mut d1 = o[1].wrapping_add(b);
+            let mut gy = g.wrapping_add(c.wrapping_add(c));
+            let a2 = o[2];
+            for _ in 0..DX.unsigned_abs() {
+                if DX > 0 {
+                    v = v.wrapping_add(d1);
+                    d1 = d1.wrapping_add(a2);
+                    gy = gy.wrapping_add(b);
+                } else {
+                    d1 = d1.wrapping_sub(a2);
+                    v = v.wrapping_sub(d1);
+                    gy = gy.wrapping_sub(b);
+                }
+            }
+            o[0] = v;
+            o[1] = d1;
+            *g = gy;
+        }
+    }
+
+    /// The plan at `(x, y)` (offsets from the anchor, below `2^15`) and
+    /// each quadratic's first difference in y there, from the
+    /// quadratics: `f + x (d + a x + b y) + y (e + c y)`, `d + a (2x + 1)
+    /// + b y` and `e + b x + c (2y + 1)` (six products a quadratic).
+    #[inline(never)]
+    fn plan_direct(&mut self, x: i32, y: i32) {
+        for ((o, g), &[f, d, e, a, b, c]) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.g.iter_mut())
+            .zip(self.q.iter())
+        {
+            let ax = mul_small(a, x);
+            let cy = mul_small(c, y);
+            let u = d.wrapping_add(ax).wrapping_add(mul_small(b, y));
+            let ey = e.wrapping_add(cy);
+            o[0] = f
+                .wrapping_add(mul_small(u, x))
+                .wrapping_add(mul_small(ey, y));
+            o[1] = u.wrapping_add(ax).wrapping_add(a);
+            o[2] = a.wrapping_add(a);
+            *g = ey
+                .wrapping_add(cy)
+                .wrapping_add(c)
+                .wrapping_add(mul_small(b, x));
+        }
+    }
+
+    /// After a planned span of `len` pixels: the point loop stepped the
+    /// plan `(len - 1) / 32` chunks along the row
+    /// ([`Plan::step_chunk`](super::point::Plan)); the first differences
+    /// in y ([`STEPPED`]) follow it there.
+    #[inline(always)]
+    pub(super) fn after_span(&mut self, len: u32) {
+        if STEPPED && len > CHUNK as u32 {
+            #[allow(clippy::cast_possible_wrap)]
+            let t = (((len - 1) / CHUNK as u32) * CHUNK as u32) as i32;
+            self.cx = self.cx.wrapping_add(t);
+            for (g, q) in self.g.iter_mut().zip(self.q.iter()) {
+                *g = g.wrapping_add(mul_small(q[4], t));
+            }
+        }
+    }
+
+    /// [`TriQuad::plan`] from the rows' values ([`STEPPED`] off). The
+    /// row's values are stepped from the previous span's row when it is
+    /// the row above (three additions a quadratic), else made from the
+    /// quadratic; then two products by the offset along the row a
+    /// quadratic. The second differences (`2a`, the same for every span)
+    /// are `set_row`'s: measured (dodecahedron Phong raster, M4 and M0)
+    /// 1 684 470 -> 1 667 249 and 4 427 143 -> 4 419 572, the span sweep
+    /// 161.91 -> 161.72 and 497.13 -> 497.06 a pixel (`plan_equals_direct`
+    /// checks the plans).
+    #[inline(always)]
+    fn plan_rows(&mut self, x: i32, y: i32) {
         let next = match self.ry {
             Some(r) if r == y => false,
             Some(r) if r.wrapping_add(1) == y => true,
@@ -756,7 +886,6 @@ impl TriQuad {
             o[1] = u.wrapping_add(ax).wrapping_add(a);
             // o[2] = 2a: set by `set_row`.
         }
-        true
     }
 
     /// The rows' values at row `y` from the quadratics (a span's first
@@ -796,7 +925,7 @@ mod tests {
     fn plan_equals_direct() {
         let mut next = crate::geom::testkit::xorshift(0x2545_f491_4f6c_dd1d);
         let mut t = TriQuad::NONE;
-        let mut y = 0i32;
+        let (mut x, mut y) = (0i32, 0i32);
         for i in 0..20_000u32 {
             if i % 97 == 0 {
                 // A new set-up (`make`, `load`): new quadratics, no row.
@@ -814,7 +943,12 @@ mod tests {
                 1 | 2 => y + 1,
                 _ => t.at[1] + (u >> 8) as i32 % 3000 - 1500,
             };
-            let x = t.at[0] + (u >> 24) as i32 % 3000 - 1500;
+            // Starts near the last one's (stepped), or anywhere.
+            x = if (u >> 40) % 4 != 0 {
+                x + ((u >> 44) % 7) as i32 - 3
+            } else {
+                t.at[0] + (u >> 24) as i32 % 3000 - 1500
+            };
             assert!(t.plan(x, y));
             let (dx, dy) = (i64::from(x - t.at[0]), i64::from(y - t.at[1]));
             let f = |q: &[i64; 6], x: i64| {
@@ -830,6 +964,18 @@ mod tests {
                 let d1 = v1.wrapping_sub(v0);
                 let want = [v0, d1, v2.wrapping_sub(v1).wrapping_sub(d1)];
                 assert_eq!(*o, want, "{i}: ({x}, {y})");
+            }
+            // Sometimes a long span: the plan stepped by the point loop's
+            // chunks, then `after_span` (the next plan starts from there).
+            if (u >> 50) % 8 == 0 {
+                let len = 33 + ((u >> 53) % 100) as u32;
+                for _ in 0..(len - 1) / CHUNK as u32 {
+                    t.span.step_chunk();
+                }
+                t.after_span(len);
+                if (u >> 60) % 2 == 0 {
+                    x += ((len - 1) / CHUNK as u32 * CHUNK as u32) as i32;
+                }
             }
         }
     }
