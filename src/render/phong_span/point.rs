@@ -678,6 +678,7 @@ impl<R: Real> PhongKernel<'_, R> {
             &own
         };
         let planned = tri.plan(x, y);
+        let long = planned && tri.keep(len);
         let fine = tri.fine();
         let TriQuad {
             span: pl, px, buf, ..
@@ -702,8 +703,8 @@ impl<R: Real> PhongKernel<'_, R> {
                 &mut out,
             )
         };
-        if planned {
-            tri.after_span(len);
+        if long {
+            tri.restore();
         }
         passed
     }

@@ -73,6 +73,9 @@ const STEPPED: bool = true;
 /// Largest offset along the row from the last span's start that the
 /// stepped plan takes by additions.
 const DX_STEP: u32 = 2;
+/// The next row's plan from the last span's by products
+/// ([`TriQuad::step_far`]) when its start is farther than [`DX_STEP`].
+const FAR: bool = true;
 
 /// The six quadratics of one triangle (see the module docs).
 #[derive(Clone, Copy, Debug)]
@@ -96,6 +99,9 @@ pub struct TriQuad {
     /// each quadratic's first difference in y there.
     cx: i32,
     g: [i64; 6],
+    /// The plan at the start of a span of more than one chunk
+    /// ([`TriQuad::keep`]).
+    start: [[i64; 2]; 6],
     /// The last span's plan ([`TriQuad::plan`]).
     pub(super) span: Plan,
     /// The point loop's buffers (the span driver's and the values
@@ -395,6 +401,7 @@ impl TriQuad {
         ry: None,
         cx: 0,
         g: [0; 6],
+        start: [[0; 2]; 6],
         span: Plan { q: [[0; 3]; 6] },
         buf: [0; CHUNK],
         px: [Px::ZERO; GROUP],
@@ -760,6 +767,9 @@ impl TriQuad {
                 2 => self.step_row::<2>(),
                 _ => self.step_row::<-2>(),
             },
+            Some(r) if FAR && r.wrapping_add(1) == y && dx.unsigned_abs() < 1 << 7 => {
+                self.step_far(dx);
+            }
             Some(r) if r == y && dx == 0 => {}
             _ => self.plan_direct(x, y),
         }
@@ -800,6 +810,33 @@ impl TriQuad {
         }
     }
 
+    /// The plan one row down and `dx` pixels along it (`|dx| < 2^7`): the
+    /// row by additions (as [`TriQuad::step_row`]), the offset by four
+    /// products a quadratic (`f(x + t) = f + t f' + a t (t - 1)`, `f'` by
+    /// `2a t`, `g` by `b t`), not six ([`TriQuad::plan_direct`]).
+    #[inline(never)]
+    fn step_far(&mut self, dx: i32) {
+        for ((o, g), q) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.g.iter_mut())
+            .zip(self.q.iter())
+        {
+            let (a, b, c) = (q[3], q[4], q[5]);
+            let d1 = o[1].wrapping_add(b);
+            let at = mul_small(a, dx);
+            o[0] = o[0]
+                .wrapping_add(*g)
+                .wrapping_add(mul_small(d1, dx))
+                .wrapping_add(mul_small(at, dx.wrapping_sub(1)));
+            o[1] = d1.wrapping_add(at.wrapping_add(at));
+            *g = g
+                .wrapping_add(c.wrapping_add(c))
+                .wrapping_add(mul_small(b, dx));
+        }
+    }
+
     /// The plan at `(x, y)` (offsets from the anchor, below `2^15`) and
     /// each quadratic's first difference in y there, from the
     /// quadratics: `f + x (d + a x + b y) + y (e + c y)`, `d + a (2x + 1)
@@ -829,19 +866,30 @@ impl TriQuad {
         }
     }
 
-    /// After a planned span of `len` pixels: the point loop stepped the
-    /// plan `(len - 1) / 32` chunks along the row
-    /// ([`Plan::step_chunk`](super::point::Plan)); the first differences
-    /// in y ([`STEPPED`]) follow it there.
+    /// Before a planned span of `len` pixels: a span of more than one
+    /// chunk steps the plan along the row ([`Plan`]'s chunk steps), so
+    /// with [`STEPPED`] its start is kept ([`TriQuad::restore`] puts it
+    /// back after the span). Kept rather than followed (the differences
+    /// in y stepped with the chunks, the next span's plan made from the
+    /// quadratics when its start is not within [`DX_STEP`] of the chunk's):
+    /// span phong-kpoint M4 153.12 -> NEW, M0 491.26 -> NEW.
     #[inline(always)]
-    pub(super) fn after_span(&mut self, len: u32) {
-        if STEPPED && len > CHUNK as u32 {
-            #[allow(clippy::cast_possible_wrap)]
-            let t = (((len - 1) / CHUNK as u32) * CHUNK as u32) as i32;
-            self.cx = self.cx.wrapping_add(t);
-            for (g, q) in self.g.iter_mut().zip(self.q.iter()) {
-                *g = g.wrapping_add(mul_small(q[4], t));
+    pub(super) fn keep(&mut self, len: u32) -> bool {
+        let long = STEPPED && len > CHUNK as u32;
+        if long {
+            for (k, o) in self.start.iter_mut().zip(self.span.q.iter()) {
+                *k = [o[0], o[1]];
             }
+        }
+        long
+    }
+
+    /// The plan's start kept by [`TriQuad::keep`] put back.
+    #[inline(never)]
+    pub(super) fn restore(&mut self) {
+        for (k, o) in self.start.iter().zip(self.span.q.iter_mut()) {
+            o[0] = k[0];
+            o[1] = k[1];
         }
     }
 
@@ -965,16 +1013,20 @@ mod tests {
                 let want = [v0, d1, v2.wrapping_sub(v1).wrapping_sub(d1)];
                 assert_eq!(*o, want, "{i}: ({x}, {y})");
             }
-            // Sometimes a long span: the plan stepped by the point loop's
-            // chunks, then `after_span` (the next plan starts from there).
+            // Sometimes a long span: the plan kept, stepped by the point
+            // loop's chunks, then put back (the next plan starts from
+            // the span's start).
             if (u >> 50) % 8 == 0 {
                 let len = 33 + ((u >> 53) % 100) as u32;
+                let long = t.keep(len);
                 for _ in 0..(len - 1) / CHUNK as u32 {
                     t.span.step_chunk();
                 }
-                t.after_span(len);
+                if long {
+                    t.restore();
+                }
                 if (u >> 60) % 2 == 0 {
-                    x += ((len - 1) / CHUNK as u32 * CHUNK as u32) as i32;
+                    x += 1;
                 }
             }
         }
