@@ -677,8 +677,7 @@ impl<R: Real> PhongKernel<'_, R> {
             own = Colour::of(self, l);
             &own
         };
-        let planned = tri.plan(x, y);
-        let long = planned && tri.keep(len);
+        let planned = tri.plan(x, y, len);
         let fine = tri.fine();
         let TriQuad {
             span: pl, px, buf, ..
@@ -686,7 +685,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let mut plan = if planned { Some(pl) } else { None };
         // One chunk function for fine triangles, one for the others (each
         // with the two loops of its seeds and steps).
-        let passed = if fine {
+        if fine {
             drive_in(
                 buf,
                 len,
@@ -702,11 +701,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 move |t| c.of_terms(t),
                 &mut out,
             )
-        };
-        if long {
-            tri.restore();
         }
-        passed
     }
 
     /// [`PhongKernel::point_chunk`] of a span planned from its triangle:

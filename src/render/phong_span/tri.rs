@@ -99,9 +99,10 @@ pub struct TriQuad {
     /// each quadratic's first difference in y there.
     cx: i32,
     g: [i64; 6],
-    /// The plan at the start of a span of more than one chunk
-    /// ([`TriQuad::keep`]).
+    /// The plan at the start of a span of more than one chunk, kept
+    /// ([`TriQuad::plan`]).
     start: [[i64; 2]; 6],
+    kept: bool,
     /// The last span's plan ([`TriQuad::plan`]).
     pub(super) span: Plan,
     /// The point loop's buffers (the span driver's and the values
@@ -402,6 +403,7 @@ impl TriQuad {
         cx: 0,
         g: [0; 6],
         start: [[0; 2]; 6],
+        kept: false,
         span: Plan { q: [[0; 3]; 6] },
         buf: [0; CHUNK],
         px: [Px::ZERO; GROUP],
@@ -735,14 +737,31 @@ impl TriQuad {
     /// along the row there, exactly. With [`STEPPED`], the last span's
     /// plan stepped (`TriQuad::plan_stepped`), else the row's values
     /// stepped (`TriQuad::plan_rows`).
+    ///
+    /// A span of `len` pixels, more than one chunk, steps the plan along
+    /// the row ([`Plan`]'s chunk steps): with [`STEPPED`] its start is
+    /// kept here and put back at the next span ([`TriQuad::restore`]),
+    /// not followed (the differences in y stepped with the chunks, the
+    /// next plan made from the quadratics when its start is not within
+    /// [`DX_STEP`] of the last chunk's: span phong-kpoint M4 153.12 ->
+    /// 151.76, M0 491.26 -> 483.59 a pixel).
     #[inline(never)]
-    pub(super) fn plan(&mut self, x: i32, y: i32) -> bool {
+    pub(super) fn plan(&mut self, x: i32, y: i32, len: u32) -> bool {
         let (x, y) = (x.wrapping_sub(self.at[0]), y.wrapping_sub(self.at[1]));
         if x.unsigned_abs() >= 1 << 15 || y.unsigned_abs() >= 1 << 15 {
             return false;
         }
         if STEPPED {
+            if self.kept {
+                self.restore();
+            }
             self.plan_stepped(x, y);
+            if len > CHUNK as u32 {
+                self.kept = true;
+                for (k, o) in self.start.iter_mut().zip(self.span.q.iter()) {
+                    *k = [o[0], o[1]];
+                }
+            }
         } else {
             self.plan_rows(x, y);
         }
@@ -866,27 +885,11 @@ impl TriQuad {
         }
     }
 
-    /// Before a planned span of `len` pixels: a span of more than one
-    /// chunk steps the plan along the row ([`Plan`]'s chunk steps), so
-    /// with [`STEPPED`] its start is kept ([`TriQuad::restore`] puts it
-    /// back after the span). Kept rather than followed (the differences
-    /// in y stepped with the chunks, the next span's plan made from the
-    /// quadratics when its start is not within [`DX_STEP`] of the chunk's):
-    /// span phong-kpoint M4 153.12 -> NEW, M0 491.26 -> NEW.
-    #[inline(always)]
-    pub(super) fn keep(&mut self, len: u32) -> bool {
-        let long = STEPPED && len > CHUNK as u32;
-        if long {
-            for (k, o) in self.start.iter_mut().zip(self.span.q.iter()) {
-                *k = [o[0], o[1]];
-            }
-        }
-        long
-    }
-
-    /// The plan's start kept by [`TriQuad::keep`] put back.
+    /// The plan's start kept by [`TriQuad::plan`] for a span of more than
+    /// one chunk put back (the point loop stepped it along the row).
     #[inline(never)]
-    pub(super) fn restore(&mut self) {
+    fn restore(&mut self) {
+        self.kept = false;
         for (k, o) in self.start.iter().zip(self.span.q.iter_mut()) {
             o[0] = k[0];
             o[1] = k[1];
@@ -997,7 +1000,12 @@ mod tests {
             } else {
                 t.at[0] + (u >> 24) as i32 % 3000 - 1500
             };
-            assert!(t.plan(x, y));
+            let len = if (u >> 50) % 8 == 0 {
+                33 + ((u >> 53) % 100) as u32
+            } else {
+                1 + ((u >> 53) % 32) as u32
+            };
+            assert!(t.plan(x, y, len));
             let (dx, dy) = (i64::from(x - t.at[0]), i64::from(y - t.at[1]));
             let f = |q: &[i64; 6], x: i64| {
                 let [f, d, e, a, b, c] = *q;
@@ -1013,17 +1021,12 @@ mod tests {
                 let want = [v0, d1, v2.wrapping_sub(v1).wrapping_sub(d1)];
                 assert_eq!(*o, want, "{i}: ({x}, {y})");
             }
-            // Sometimes a long span: the plan kept, stepped by the point
-            // loop's chunks, then put back (the next plan starts from
-            // the span's start).
-            if (u >> 50) % 8 == 0 {
-                let len = 33 + ((u >> 53) % 100) as u32;
-                let long = t.keep(len);
+            // Sometimes a long span: the plan stepped by the point
+            // loop's chunks (the next plan starts from the span's start,
+            // kept).
+            if len > CHUNK as u32 {
                 for _ in 0..(len - 1) / CHUNK as u32 {
                     t.span.step_chunk();
-                }
-                if long {
-                    t.restore();
                 }
                 if (u >> 60) % 2 == 0 {
                     x += 1;
