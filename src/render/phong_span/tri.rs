@@ -85,7 +85,8 @@ const EXTENT: i32 = 1 << 12;
 /// made from the row's values.
 const STEPPED: bool = true;
 /// Largest offset along the row from the last span's start that the
-/// stepped plan takes by additions.
+/// stepped plan takes by additions. Measured with 3 (dodecahedron Phong
+/// raster): M4 1 593 035 -> 1 593 322, M0 4 243 027 -> 4 257 613.
 const DX_STEP: u32 = 2;
 /// The next row's plan from the last span's by products
 /// ([`TriQuad::step_far`]) when its start is farther than [`DX_STEP`].
