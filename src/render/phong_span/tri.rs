@@ -84,6 +84,9 @@ const EXTENT: i32 = 1 << 12;
 /// A span's plan stepped from the last span's ([`TriQuad::plan`]), else
 /// made from the row's values.
 const STEPPED: bool = true;
+/// Quadratics of the rows' values kept (`TriQuad::plan_rows`): none with
+/// [`STEPPED`] (the triangle's state 192 bytes smaller).
+const ROWS: usize = if STEPPED { 0 } else { 6 };
 /// Largest offset along the row from the last span's start that the
 /// stepped plan takes by additions. Measured with 3 (dodecahedron Phong
 /// raster): M4 1 593 035 -> 1 593 322, M0 4 243 027 -> 4 257 613.
@@ -106,7 +109,7 @@ pub struct TriQuad {
     /// b·y`, `2c`: set by `set_row`, not doubled a span: dodecahedron
     /// Phong raster M4 1 620 399 -> 1 612 194, M0 4 361 338 -> 4 359 840,
     /// cubes-and-sphere 156 more on both, 48 bytes more stack).
-    row: [[i64; 4]; 6],
+    row: [[i64; 4]; ROWS],
     /// The row of `row`, or of the last span's plan with [`STEPPED`]
     /// (`None`: not set).
     ry: Option<i32>,
@@ -421,7 +424,7 @@ impl TriQuad {
     pub const NONE: Self = Self {
         at: [0; 2],
         q: [[0; 6]; 6],
-        row: [[0; 4]; 6],
+        row: [[0; 4]; ROWS],
         ry: None,
         cx: 0,
         g: [0; 6],
