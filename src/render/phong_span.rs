@@ -2487,6 +2487,13 @@ pub(crate) fn tri_fines() -> u32 {
     tri::FINES.with(|c| c.get())
 }
 
+/// Set-ups of the point light's quadratics made with the viewer alone
+/// fine (module `point`) on this thread so far.
+#[cfg(test)]
+pub(crate) fn tri_fines_v() -> u32 {
+    tri::FINES_V.with(|c| c.get())
+}
+
 /// Set-ups of the point light's quadratics made on this thread so far.
 #[cfg(test)]
 pub(crate) fn tri_makes() -> u32 {

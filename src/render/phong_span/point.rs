@@ -109,6 +109,18 @@
 //! function, 152.97, 1 668 216, 493.44, 4 436 700; a chunk function per
 //! kind, two first-order steps, 152.89, 1 657 873, 496.33, 4 401 329.
 //!
+//! A triangle whose viewer alone is fine (the eye far, the light close:
+//! most of the dodecahedron Phong frame's set-ups) takes the fine seeds
+//! and step for `1/|ṽ|` only ([`SPLIT_FINE`]; `1/|l̃|` keeps the series
+//! step): a chunk function of its own. Frames unchanged (every CRC, the
+//! reference images); tested against `f64` (`tri_quad_close_light_against_f64`:
+//! 54 such triangles within 0.654 levels). Measured (dodecahedron Phong
+//! raster; span sweep phong-kpoint, a pixel): M4 1 617 338 -> 1 593 035
+//! and 151.74 -> 151.78, M0 4 229 401 -> 4 243 027 and 486.11 -> 483.14
+//! (the M0 with one span driver choosing the chunk function a chunk; with
+//! a driver per function as the M4, 4 251 961; the M0's per-pixel step
+//! gains ~9 instructions where its chunk's fine seed costs ~55).
+//!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
 //! stepped in y), already in the loop's units times `2^32`, so that a
@@ -324,7 +336,7 @@ impl Plan {
     /// `f'(t + 32) = f' + 32 f''`. Not inlined: inlined, its shifts of
     /// the plan were hoisted to every span's start, planned or not.
     #[inline(never)]
-    fn step_chunk(&mut self) {
+    pub(super) fn step_chunk(&mut self) {
         const { assert!(PCHUNK == 32) };
         for c in &mut self.q {
             let d2 = c[2];
@@ -375,8 +387,10 @@ impl Plan {
     /// 4 404 551 and 490.37 -> 495.65; this form, built from
     /// [`Plan::hi`] with the other targets' [`Plan::seeds_hi`] beside it,
     /// 4 378 217 -> 4 361 338 and 490.37 -> 488.40).
+    /// `fv`: the seeds of `1/|ṽ|` fine ([`TriQuad`]'s fineness of the
+    /// viewer, apart from the light's `fine`).
     #[inline(always)]
-    fn chunk_hi(&self, fine: bool) -> Option<Chunk> {
+    fn chunk_hi(&self, fine: bool, fv: bool) -> Option<Chunk> {
         let [a, b, c, d, e, f] = self.hi();
         Some(Chunk {
             a,
@@ -386,8 +400,8 @@ impl Plan {
             e,
             f,
             yl: seeds_of(b.0, b.1, fine)?,
-            yv: seeds_of(c.0, c.1, fine)?,
-            fine,
+            yv: seeds_of(c.0, c.1, fv)?,
+            fine: fine && fv,
         })
     }
 
@@ -410,14 +424,15 @@ impl Plan {
     }
 
     /// The Newton seeds of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`])
-    /// of the chunk of [`Plan::hi`] (`None`: a seed out of the table).
+    /// of the chunk of [`Plan::hi`] (`None`: a seed out of the table),
+    /// each fine or not (`fine`, `fv`).
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
-    fn seeds_hi(&self, fine: bool) -> Option<Seeds> {
+    fn seeds_hi(&self, fine: bool, fv: bool) -> Option<Seeds> {
         let hi = |c: [i64; 3]| ((c[0] >> 32) as i32, (c[1] >> 32) as i32);
         let (b0, b1) = hi(self.q[1]);
         let (c0, c1) = hi(self.q[2]);
-        Some((seeds_of(b0, b1, fine)?, seeds_of(c0, c1, fine)?))
+        Some((seeds_of(b0, b1, fine)?, seeds_of(c0, c1, fv)?))
     }
 }
 
@@ -528,6 +543,11 @@ impl Px {
 /// Phong raster M0 6 605 652 -> 6 552 519, span sweep 695.81 -> 691.94
 /// a pixel; M4 the frame unchanged (+47), the sweep 177.81 -> 179.82.
 const FUSED_FG: bool = cfg!(armv6m);
+
+/// A triangle whose viewer only is fine ([`TriQuad`]: the steps of `ṽ`
+/// at most `1/64` of its length, not those of `l̃`) takes the fine
+/// seeds and step for `1/|ṽ|` alone (its own chunk function).
+const SPLIT_FINE: bool = true;
 
 /// The specular table's scale `K·2^19` (`kf << 11`, below `2^31`) kept to
 /// its top 16 bits: `kh · 2^t` (`kh < 2^16`, `t <= 15`), within `2^-15`
@@ -677,30 +697,69 @@ impl<R: Real> PhongKernel<'_, R> {
             own = Colour::of(self, l);
             &own
         };
-        let planned = tri.plan(x, y);
-        let fine = tri.fine();
+        let planned = tri.plan(x, y, len);
+        let (fine, fv) = (tri.fine(), tri.fine_v());
         let TriQuad {
             span: pl, px, buf, ..
         } = tri;
         let mut plan = if planned { Some(pl) } else { None };
-        // One chunk function for fine triangles, one for the others (each
-        // with the two loops of its seeds and steps).
-        if fine {
-            drive_in(
-                buf,
-                len,
-                |i, k, buf| self.tri_chunk::<true>(l, c, span, &mut plan, px, i, k as usize, buf),
-                move |t| c.of_terms(t),
-                &mut out,
-            )
+        // One chunk function for fine triangles, one for those whose
+        // viewer only is fine ([`SPLIT_FINE`]), one for the others (each
+        // with the two loops of its seeds and steps): a driver each, but
+        // on ARMv6-M one driver choosing a chunk (the same values).
+        let kind = if fine {
+            0
+        } else if fv && SPLIT_FINE {
+            1
         } else {
-            drive_in(
+            2
+        };
+        if cfg!(armv6m) {
+            return drive_in(
                 buf,
                 len,
-                |i, k, buf| self.tri_chunk::<false>(l, c, span, &mut plan, px, i, k as usize, buf),
+                |i, k, buf| match kind {
+                    0 => {
+                        self.tri_chunk::<true, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    }
+                    1 => {
+                        self.tri_chunk::<false, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    }
+                    _ => self
+                        .tri_chunk::<false, false>(l, c, span, &mut plan, px, i, k as usize, buf),
+                },
                 move |t| c.of_terms(t),
                 &mut out,
-            )
+            );
+        }
+        match kind {
+            0 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<true, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            1 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<false, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            _ => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<false, false>(l, c, span, &mut plan, px, i, k as usize, buf)
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
         }
     }
 
@@ -708,7 +767,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// every chunk from the plan, stepped on.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    fn tri_chunk<const FINE: bool>(
+    fn tri_chunk<const FINE: bool, const FV: bool>(
         &self,
         l: &KLight,
         c: &Colour,
@@ -727,17 +786,17 @@ impl<R: Real> PhongKernel<'_, R> {
                     if i > 0 {
                         pl.step_chunk();
                     }
-                    pl.chunk_hi(FINE)
+                    pl.chunk_hi(FINE, FV)
                 }
                 None => None,
             };
             return match st {
                 Some(st) if self.spec => {
-                    self.point_run_in::<true, FINE>(px, &st, k, buf);
+                    self.point_run_in::<true, FINE, FV>(px, &st, k, buf);
                     true
                 }
                 Some(st) => {
-                    self.point_run_in::<false, FINE>(px, &st, k, buf);
+                    self.point_run_in::<false, FINE, FV>(px, &st, k, buf);
                     true
                 }
                 None => {
@@ -756,17 +815,17 @@ impl<R: Real> PhongKernel<'_, R> {
                     pl.step_chunk();
                 }
                 let pl: &Plan = pl;
-                pl.seeds_hi(FINE).map(|s| (pl, s))
+                pl.seeds_hi(FINE, FV).map(|s| (pl, s))
             }
             None => None,
         };
         match st {
             Some((pl, s)) if self.spec => {
-                self.point_run_vals::<true, FINE>(px, pl.hi(), s, k, buf);
+                self.point_run_vals::<true, FINE, FV>(px, pl.hi(), s, k, buf);
                 true
             }
             Some((pl, s)) => {
-                self.point_run_vals::<false, FINE>(px, pl.hi(), s, k, buf);
+                self.point_run_vals::<false, FINE, FV>(px, pl.hi(), s, k, buf);
                 true
             }
             None => {
@@ -1056,21 +1115,21 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
-        self.point_run_in::<SPEC, FINE>(&mut [Px::default(); GROUP], st, k, col);
+        self.point_run_in::<SPEC, FINE, FINE>(&mut [Px::default(); GROUP], st, k, col);
     }
 
     /// [`PhongKernel::point_run`] with the values between passes in `px`
     /// (kept by the caller: no zeroing a chunk).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_in<const SPEC: bool, const FINE: bool>(
+    fn point_run_in<const SPEC: bool, const FINE: bool, const FV: bool>(
         &self,
         px: &mut [Px; GROUP],
         st: &Chunk,
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
-        self.point_run_vals::<SPEC, FINE>(
+        self.point_run_vals::<SPEC, FINE, FV>(
             px,
             [st.a, st.b, st.c, st.d, st.e, st.f],
             (st.yl, st.yv),
@@ -1084,7 +1143,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// built).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_vals<const SPEC: bool, const FINE: bool>(
+    fn point_run_vals<const SPEC: bool, const FINE: bool, const FV: bool>(
         &self,
         px: &mut [Px; GROUP],
         [sa, sb, sc, sd, se, sf]: [(i32, i32, i32); 6],
@@ -1126,11 +1185,7 @@ impl<R: Real> PhongKernel<'_, R> {
             if SPEC {
                 for (o, &nl) in px.iter_mut().zip(cg.iter()) {
                     let s = vb.wrapping_mul(2).wrapping_sub(va);
-                    let y = if FINE {
-                        newton_lin(s, xc)
-                    } else {
-                        newton(s, xc)
-                    };
+                    let y = if FV { newton_lin(s, xc) } else { newton(s, xc) };
                     // (n·L̂)(n·V̂): Q30 · Q30 -> Q28.
                     o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
                     // G = 1/(|l̃| |ṽ|) < 6 (Q28) in place of 1/|l̃|.
@@ -1311,9 +1366,10 @@ mod tests {
                 t[0] = ((next() % (3 << 29)) as i64 + (1 << 28)) << 32;
             }
             let fine = i % 2 == 0;
-            let want = pl.seeds_hi(fine).map(|(yl, yv)| (pl.hi(), yl, yv));
+            let fv = fine || i % 3 == 0;
+            let want = pl.seeds_hi(fine, fv).map(|(yl, yv)| (pl.hi(), yl, yv));
             let got = pl
-                .chunk_hi(fine)
+                .chunk_hi(fine, fv)
                 .map(|c| ([c.a, c.b, c.c, c.d, c.e, c.f], c.yl, c.yv));
             assert_eq!(got, want, "{i}");
             some += usize::from(got.is_some());

@@ -1064,7 +1064,7 @@ fn twin_of(c: &Case) -> Shade<f64> {
 /// the extreme triangles have the others).
 #[test]
 fn tri_quad_random_against_f64() {
-    let (makes0, fines0) = (super::tri_makes(), super::tri_fines());
+    let (makes0, fines0, fv0) = (super::tri_makes(), super::tri_fines(), super::tri_fines_v());
     let mut seed = 0x1234_5678_9abc_def1u64;
     let mut f = |lo: f64, hi: f64| {
         lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
@@ -1099,9 +1099,62 @@ fn tri_quad_random_against_f64() {
         "tri quads vs f64: {worst:.3} levels, {made} triangles, {quads} pixels from the quadratics"
     );
     let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
-    std::println!("tri quads: {fines} of {makes} set-ups fine");
+    let fv = super::tri_fines_v() - fv0;
+    std::println!("tri quads: {fines} of {makes} set-ups fine, {fv} the viewer alone");
     assert!(made >= 50 && quads >= 20_000, "{made} {quads}");
     assert!(fines >= 40, "{fines} of {makes}");
+    assert!(worst <= 1.0, "{worst}");
+}
+
+/// Random triangles of the point loop from their quadratics with the
+/// light close to the surface (0.25 to 0.6 units above it, steps of
+/// `l̃` above `1/64` of its length) and the eye 4 to 6 units away: the
+/// viewer alone fine (module `point`: the first-order step a pixel for
+/// `1/|ṽ|`, the series step for `1/|l̃|`); within 1 level of the `f64`
+/// twin at every pixel.
+#[test]
+fn tri_quad_close_light_against_f64() {
+    let (makes0, fines0, fv0) = (super::tri_makes(), super::tri_fines(), super::tri_fines_v());
+    let mut seed = 0x0bad_cafe_1234_5679u64;
+    let mut f = |lo: f64, hi: f64| {
+        lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut worst, mut quads, mut made) = (0f64, 0u32, 0);
+    for t in 0..60 {
+        let n = [1.0, 3.0, 20.0, 100.0, 255.0][t % 5];
+        let size = f(10.0, 60.0);
+        let (cx, cy) = (f(60.0, 160.0), f(60.0, 160.0));
+        let s = [0, 1, 2].map(|_| [cx + f(-0.5, 0.5) * size, cy + f(-0.5, 0.5) * size]);
+        let depth = f(-6.0, -4.0);
+        let p = s.map(|v| {
+            [
+                (v[0] - 110.0) / 100.0,
+                (v[1] - 110.0) / 100.0,
+                depth + (v[0] - cx) / 300.0,
+            ]
+        });
+        // Above the triangle's middle, towards the eye.
+        let lp = [
+            (cx - 110.0) / 100.0 + f(-0.2, 0.2),
+            (cy - 110.0) / 100.0 + f(-0.2, 0.2),
+            depth + f(0.25, 0.6),
+        ];
+        let c = point_case(n, lp);
+        let base = [f(-0.2, 0.2), f(-0.2, 0.2), 1.0];
+        let nv = [0, 1, 2].map(|_| unit([base[0] + f(-0.2, 0.2), base[1] + f(-0.2, 0.2), base[2]]));
+        if let Some((e, q)) = tri_error(&c, s, nv, p) {
+            made += 1;
+            quads += q;
+            worst = worst.max(e);
+        }
+    }
+    let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
+    let fv = super::tri_fines_v() - fv0;
+    std::println!(
+        "tri quads, close light, vs f64: {worst:.3} levels, {made} triangles, {quads} pixels from the quadratics; {fines} of {makes} set-ups fine, {fv} the viewer alone"
+    );
+    assert!(made >= 30 && quads >= 5_000, "{made} {quads}");
+    assert!(fv >= 20, "{fv} of {makes}");
     assert!(worst <= 1.0, "{worst}");
 }
 
@@ -1207,7 +1260,7 @@ fn tri_quad_extreme_triangles() {
             Some(false),
         ),
     ];
-    let (makes0, fines0) = (super::tri_makes(), super::tri_fines());
+    let (makes0, fines0, fv0) = (super::tri_makes(), super::tri_fines(), super::tri_fines_v());
     for (name, lp, s, n, p, expect) in cases {
         for shin in [1.0, 100.0, 255.0] {
             let r = tri_error(&c(shin, lp), s, n, p);
@@ -1224,7 +1277,8 @@ fn tri_quad_extreme_triangles() {
     }
     // Fine triangles and others (a light close to a wide triangle).
     let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
-    std::println!("extreme triangles: {fines} of {makes} set-ups fine");
+    let fv = super::tri_fines_v() - fv0;
+    std::println!("extreme triangles: {fines} of {makes} set-ups fine, {fv} the viewer alone");
     assert!(fines >= 3 && makes - fines >= 3, "{fines} of {makes}");
 }
 

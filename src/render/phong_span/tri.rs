@@ -17,6 +17,20 @@
 //! the 32-bit loop's plan (`point::Plan`): no products of vectors, no
 //! scaling and no range test a span.
 //!
+//! The span's plan is stepped from the last span's of the triangle
+//! (`TriQuad::plan`, [`STEPPED`]): with each quadratic's first
+//! difference in y at the last span's start kept beside the plan, the
+//! next row's plan starting within [`DX_STEP`] pixels takes additions
+//! only (three a quadratic for the row, three a pixel of the offset), one
+//! farther four products a quadratic, other spans (a triangle's first in
+//! a band, a row skipped) six from the quadratics. Measured against the
+//! row's values stepped and two products a span (dodecahedron Phong
+//! raster; span sweep phong-kpoint, a pixel): M4 1 611 934 -> 1 617 338
+//! and 151.45 -> 151.74, M0 4 359 846 -> 4 229 401 and 486.57 -> 486.11
+//! (frames unchanged): the M4's 64-bit products cost about what the
+//! state's loads and stores cost (the plan ~100 a stepped span, ~180
+//! before), the M0's products (three 32-bit ones each) much more.
+//!
 //! # Ranges, proven once a triangle
 //! `A`, `B` and `C` are convex (squared lengths of affine functions), so
 //! over the triangle their largest value is at a vertex, and the tangent
@@ -67,6 +81,19 @@ use crate::num::{InvArea, Real, SubpixelBits};
 const EXTRA: u32 = 12;
 /// Largest offset of a vertex from the anchor pixel, in pixels.
 const EXTENT: i32 = 1 << 12;
+/// A span's plan stepped from the last span's ([`TriQuad::plan`]), else
+/// made from the row's values.
+const STEPPED: bool = true;
+/// Quadratics of the rows' values kept (`TriQuad::plan_rows`): none with
+/// [`STEPPED`] (the triangle's state 192 bytes smaller).
+const ROWS: usize = if STEPPED { 0 } else { 6 };
+/// Largest offset along the row from the last span's start that the
+/// stepped plan takes by additions. Measured with 3 (dodecahedron Phong
+/// raster): M4 1 593 035 -> 1 593 322, M0 4 243 027 -> 4 257 613.
+const DX_STEP: u32 = 2;
+/// The next row's plan from the last span's by products
+/// ([`TriQuad::step_far`]) when its start is farther than [`DX_STEP`].
+const FAR: bool = true;
 
 /// The six quadratics of one triangle (see the module docs).
 #[derive(Clone, Copy, Debug)]
@@ -82,9 +109,18 @@ pub struct TriQuad {
     /// b·y`, `2c`: set by `set_row`, not doubled a span: dodecahedron
     /// Phong raster M4 1 620 399 -> 1 612 194, M0 4 361 338 -> 4 359 840,
     /// cubes-and-sphere 156 more on both, 48 bytes more stack).
-    row: [[i64; 4]; 6],
-    /// The row of `row` (`None`: not set).
+    row: [[i64; 4]; ROWS],
+    /// The row of `row`, or of the last span's plan with [`STEPPED`]
+    /// (`None`: not set).
     ry: Option<i32>,
+    /// With [`STEPPED`]: the column of the last span's plan (`span`) and
+    /// each quadratic's first difference in y there.
+    cx: i32,
+    g: [i64; 6],
+    /// The plan at the start of a span of more than one chunk, kept
+    /// ([`TriQuad::plan`]).
+    start: [[i64; 2]; 6],
+    kept: bool,
     /// The last span's plan ([`TriQuad::plan`]).
     pub(super) span: Plan,
     /// The point loop's buffers (the span driver's and the values
@@ -108,6 +144,9 @@ pub struct TriQuad {
     /// over the triangle: its chunks take the point loop's fine steps
     /// (module `point`).
     fine: bool,
+    /// Steps along x of `ṽ` of at most `1/64` of its length over the
+    /// triangle (its `1/|ṽ|` takes the fine steps, `fine` or not).
+    fine_v: bool,
 }
 
 #[cfg(test)]
@@ -119,6 +158,9 @@ std::thread_local! {
     pub(crate) static MAKES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
     /// Set-ups made fine on this thread (tests count them).
     pub(crate) static FINES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
+    /// Set-ups made with the viewer alone fine on this thread (tests
+    /// count them).
+    pub(crate) static FINES_V: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
 }
 
 /// One triangle's quadratics kept from one band to the next (the band
@@ -142,6 +184,7 @@ pub struct QuadSlot {
     at: [i32; 2],
     q: [[i64; 6]; 6],
     fine: bool,
+    fine_v: bool,
 }
 
 impl QuadSlot {
@@ -154,6 +197,7 @@ impl QuadSlot {
         at: [0; 2],
         q: [[0; 6]; 6],
         fine: false,
+        fine_v: false,
     };
 
     /// Bytes of one slot (the RAM per kept triangle).
@@ -380,8 +424,12 @@ impl TriQuad {
     pub const NONE: Self = Self {
         at: [0; 2],
         q: [[0; 6]; 6],
-        row: [[0; 4]; 6],
+        row: [[0; 4]; ROWS],
         ry: None,
+        cx: 0,
+        g: [0; 6],
+        start: [[0; 2]; 6],
+        kept: false,
         span: Plan { q: [[0; 3]; 6] },
         buf: [0; CHUNK],
         px: [Px::ZERO; GROUP],
@@ -392,12 +440,19 @@ impl TriQuad {
         key: 0,
         made: false,
         fine: false,
+        fine_v: false,
     };
 
     /// Whether the triangle's chunks are fine (see the field).
     #[inline(always)]
     pub(super) fn fine(&self) -> bool {
         self.fine
+    }
+
+    /// Whether the triangle's view vector alone is fine (see the field).
+    #[inline(always)]
+    pub(super) fn fine_v(&self) -> bool {
+        self.fine_v
     }
 
     /// Whether the set-up was made.
@@ -600,11 +655,15 @@ impl TriQuad {
             if (dd << 11) + (dd << 8) > lo {
                 return None;
             }
-            fine &= (dd << 15) + (dd << 12) <= lo;
+            let f = (dd << 15) + (dd << 12) <= lo;
+            fine &= f;
+            self.fine_v = f;
         }
         self.fine = fine;
         #[cfg(test)]
         FINES.with(|c| c.set(c.get() + u32::from(fine)));
+        #[cfg(test)]
+        FINES_V.with(|c| c.set(c.get() + u32::from(!fine && self.fine_v)));
         // In the loop's units times 2^32 (A, D, E, F: 2^-30 of the
         // products, B, C: 2^-29), the values biased by 2^31.
         self.at = [xa, ya];
@@ -666,6 +725,7 @@ impl TriQuad {
         self.at = s.at;
         self.q = s.q;
         self.fine = s.fine;
+        self.fine_v = s.fine_v;
         self.ok = s.ok;
         self.key = key;
         self.pending = false;
@@ -707,25 +767,185 @@ impl TriQuad {
             s.at = self.at;
             s.q = self.q;
             s.fine = self.fine;
+            s.fine_v = self.fine_v;
         }
     }
 
     /// The point loop's plan of the span from pixel `(x, y)` (inside the
     /// triangle): each quadratic and its first and second differences
-    /// along the row there, exactly. The row's values are stepped from
-    /// the previous span's row when it is the row above (three additions
-    /// a quadratic), else made from the quadratic; then two products by
-    /// the offset along the row a quadratic. The second differences
-    /// (`2a`, the same for every span) are `set_row`'s: measured
-    /// (dodecahedron Phong raster, M4 and M0) 1 684 470 -> 1 667 249 and
-    /// 4 427 143 -> 4 419 572, the span sweep 161.91 -> 161.72 and 497.13
-    /// -> 497.06 a pixel (`plan_equals_direct` checks the plans).
+    /// along the row there, exactly. With [`STEPPED`], the last span's
+    /// plan stepped (`TriQuad::plan_stepped`), else the row's values
+    /// stepped (`TriQuad::plan_rows`).
+    ///
+    /// A span of `len` pixels, more than one chunk, steps the plan along
+    /// the row ([`Plan`]'s chunk steps): with [`STEPPED`] its start is
+    /// kept here and put back at the next span ([`TriQuad::restore`]),
+    /// not followed (the differences in y stepped with the chunks, the
+    /// next plan made from the quadratics when its start is not within
+    /// [`DX_STEP`] of the last chunk's: span phong-kpoint M4 153.12 ->
+    /// 151.76, M0 491.26 -> 483.59 a pixel).
     #[inline(never)]
-    pub(super) fn plan(&mut self, x: i32, y: i32) -> bool {
+    pub(super) fn plan(&mut self, x: i32, y: i32, len: u32) -> bool {
         let (x, y) = (x.wrapping_sub(self.at[0]), y.wrapping_sub(self.at[1]));
         if x.unsigned_abs() >= 1 << 15 || y.unsigned_abs() >= 1 << 15 {
             return false;
         }
+        if STEPPED {
+            if self.kept {
+                self.restore();
+            }
+            self.plan_stepped(x, y);
+            if len > CHUNK as u32 {
+                self.kept = true;
+                for (k, o) in self.start.iter_mut().zip(self.span.q.iter()) {
+                    *k = [o[0], o[1]];
+                }
+            }
+        } else {
+            self.plan_rows(x, y);
+        }
+        true
+    }
+
+    /// [`TriQuad::plan`] from the last span's plan (at `(cx, ry)`, with
+    /// each quadratic's first difference in y there, `g`): on the next
+    /// row with a start at most [`DX_STEP`] pixels away, three additions
+    /// a quadratic for the row (`f(x, y + 1) = f + g`, `f'` by `b`, `g` by
+    /// `2c`) and three more a pixel of the offset (`f(x ± 1)`, `f'` by
+    /// `2a`, `g` by `b`), no product; else made from the quadratics
+    /// (`TriQuad::plan_direct`).
+    #[inline(always)]
+    fn plan_stepped(&mut self, x: i32, y: i32) {
+        let dx = x.wrapping_sub(self.cx);
+        match self.ry {
+            Some(r) if r.wrapping_add(1) == y && dx.unsigned_abs() <= DX_STEP => match dx {
+                0 => self.step_row::<0>(),
+                1 => self.step_row::<1>(),
+                -1 => self.step_row::<-1>(),
+                2 => self.step_row::<2>(),
+                _ => self.step_row::<-2>(),
+            },
+            Some(r) if FAR && r.wrapping_add(1) == y && dx.unsigned_abs() < 1 << 7 => {
+                self.step_far(dx);
+            }
+            Some(r) if r == y && dx == 0 => {}
+            _ => self.plan_direct(x, y),
+        }
+        self.ry = Some(y);
+        self.cx = x;
+    }
+
+    /// The plan one row down and `DX` pixels along it (`|DX| <=`
+    /// [`DX_STEP`]), by additions.
+    #[inline(always)]
+    fn step_row<const DX: i32>(&mut self) {
+        for ((o, g), q) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.g.iter_mut())
+            .zip(self.q.iter())
+        {
+            let (b, c) = (q[4], q[5]);
+            let mut v = o[0].wrapping_add(*g);
+            let mut d1 = o[1].wrapping_add(b);
+            let mut gy = g.wrapping_add(c.wrapping_add(c));
+            let a2 = o[2];
+            for _ in 0..DX.unsigned_abs() {
+                if DX > 0 {
+                    v = v.wrapping_add(d1);
+                    d1 = d1.wrapping_add(a2);
+                    gy = gy.wrapping_add(b);
+                } else {
+                    d1 = d1.wrapping_sub(a2);
+                    v = v.wrapping_sub(d1);
+                    gy = gy.wrapping_sub(b);
+                }
+            }
+            o[0] = v;
+            o[1] = d1;
+            *g = gy;
+        }
+    }
+
+    /// The plan one row down and `dx` pixels along it (`|dx| < 2^7`): the
+    /// row by additions (as [`TriQuad::step_row`]), the offset by four
+    /// products a quadratic (`f(x + t) = f + t f' + a t (t - 1)`, `f'` by
+    /// `2a t`, `g` by `b t`), not six ([`TriQuad::plan_direct`]).
+    #[inline(never)]
+    fn step_far(&mut self, dx: i32) {
+        for ((o, g), q) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.g.iter_mut())
+            .zip(self.q.iter())
+        {
+            let (a, b, c) = (q[3], q[4], q[5]);
+            let d1 = o[1].wrapping_add(b);
+            let at = mul_small(a, dx);
+            o[0] = o[0]
+                .wrapping_add(*g)
+                .wrapping_add(mul_small(d1, dx))
+                .wrapping_add(mul_small(at, dx.wrapping_sub(1)));
+            o[1] = d1.wrapping_add(at.wrapping_add(at));
+            *g = g
+                .wrapping_add(c.wrapping_add(c))
+                .wrapping_add(mul_small(b, dx));
+        }
+    }
+
+    /// The plan at `(x, y)` (offsets from the anchor, below `2^15`) and
+    /// each quadratic's first difference in y there, from the
+    /// quadratics: `f + x (d + a x + b y) + y (e + c y)`, `d + a (2x + 1)
+    /// + b y` and `e + b x + c (2y + 1)` (six products a quadratic).
+    #[inline(never)]
+    fn plan_direct(&mut self, x: i32, y: i32) {
+        for ((o, g), &[f, d, e, a, b, c]) in self
+            .span
+            .q
+            .iter_mut()
+            .zip(self.g.iter_mut())
+            .zip(self.q.iter())
+        {
+            let ax = mul_small(a, x);
+            let cy = mul_small(c, y);
+            let u = d.wrapping_add(ax).wrapping_add(mul_small(b, y));
+            let ey = e.wrapping_add(cy);
+            o[0] = f
+                .wrapping_add(mul_small(u, x))
+                .wrapping_add(mul_small(ey, y));
+            o[1] = u.wrapping_add(ax).wrapping_add(a);
+            o[2] = a.wrapping_add(a);
+            *g = ey
+                .wrapping_add(cy)
+                .wrapping_add(c)
+                .wrapping_add(mul_small(b, x));
+        }
+    }
+
+    /// The plan's start kept by [`TriQuad::plan`] for a span of more than
+    /// one chunk put back (the point loop stepped it along the row).
+    #[inline(never)]
+    fn restore(&mut self) {
+        self.kept = false;
+        for (k, o) in self.start.iter().zip(self.span.q.iter_mut()) {
+            o[0] = k[0];
+            o[1] = k[1];
+        }
+    }
+
+    /// [`TriQuad::plan`] from the rows' values ([`STEPPED`] off). The
+    /// row's values are stepped from the previous span's row when it is
+    /// the row above (three additions a quadratic), else made from the
+    /// quadratic; then two products by the offset along the row a
+    /// quadratic. The second differences (`2a`, the same for every span)
+    /// are `set_row`'s: measured (dodecahedron Phong raster, M4 and M0)
+    /// 1 684 470 -> 1 667 249 and 4 427 143 -> 4 419 572, the span sweep
+    /// 161.91 -> 161.72 and 497.13 -> 497.06 a pixel (`plan_equals_direct`
+    /// checks the plans).
+    #[inline(always)]
+    fn plan_rows(&mut self, x: i32, y: i32) {
         let next = match self.ry {
             Some(r) if r == y => false,
             Some(r) if r.wrapping_add(1) == y => true,
@@ -756,7 +976,6 @@ impl TriQuad {
             o[1] = u.wrapping_add(ax).wrapping_add(a);
             // o[2] = 2a: set by `set_row`.
         }
-        true
     }
 
     /// The rows' values at row `y` from the quadratics (a span's first
@@ -796,7 +1015,7 @@ mod tests {
     fn plan_equals_direct() {
         let mut next = crate::geom::testkit::xorshift(0x2545_f491_4f6c_dd1d);
         let mut t = TriQuad::NONE;
-        let mut y = 0i32;
+        let (mut x, mut y) = (0i32, 0i32);
         for i in 0..20_000u32 {
             if i % 97 == 0 {
                 // A new set-up (`make`, `load`): new quadratics, no row.
@@ -814,8 +1033,18 @@ mod tests {
                 1 | 2 => y + 1,
                 _ => t.at[1] + (u >> 8) as i32 % 3000 - 1500,
             };
-            let x = t.at[0] + (u >> 24) as i32 % 3000 - 1500;
-            assert!(t.plan(x, y));
+            // Starts near the last one's (stepped), or anywhere.
+            x = if !(u >> 40).is_multiple_of(4) {
+                x + ((u >> 44) % 7) as i32 - 3
+            } else {
+                t.at[0] + (u >> 24) as i32 % 3000 - 1500
+            };
+            let len = if (u >> 50).is_multiple_of(8) {
+                33 + ((u >> 53) % 100) as u32
+            } else {
+                1 + ((u >> 53) % 32) as u32
+            };
+            assert!(t.plan(x, y, len));
             let (dx, dy) = (i64::from(x - t.at[0]), i64::from(y - t.at[1]));
             let f = |q: &[i64; 6], x: i64| {
                 let [f, d, e, a, b, c] = *q;
@@ -830,6 +1059,17 @@ mod tests {
                 let d1 = v1.wrapping_sub(v0);
                 let want = [v0, d1, v2.wrapping_sub(v1).wrapping_sub(d1)];
                 assert_eq!(*o, want, "{i}: ({x}, {y})");
+            }
+            // Sometimes a long span: the plan stepped by the point
+            // loop's chunks (the next plan starts from the span's start,
+            // kept).
+            if len > CHUNK as u32 {
+                for _ in 0..(len - 1) / CHUNK as u32 {
+                    t.span.step_chunk();
+                }
+                if (u >> 60).is_multiple_of(2) {
+                    x += 1;
+                }
             }
         }
     }
