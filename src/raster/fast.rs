@@ -1074,6 +1074,18 @@ fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
 /// across its rows (both edges, the row, the offset, the count), so each
 /// of these moved the spills more than it saved.
 ///
+/// Measured again from 1 631 491 (thumbv6m 2 370 412, host frame
+/// 2 161 582 by callgrind) and not kept: the set-up filling a state of
+/// 21 words (edges, lower edge, values at the first row, row offsets,
+/// the side that swaps) for an `#[inline(never)]` row kernel walking both
+/// halves, 1 819 659 (thumbv6m 2 549 134, host 2 383 688); its edges
+/// packed in three words, 1 816 217; the same kernel inlined, 1 709 304;
+/// the packed edges in the present inline rows, 1 673 193 (thumbv6m
+/// 2 425 488). Out of line the state crosses memory twice (about 70 to
+/// 120 instructions a triangle: four arguments travel in registers) and
+/// the rows still hold about 18 values against 12 free registers (25 a
+/// row, 13 a passing pixel, from 30 and 14 inline).
+///
 /// With `LEVELS`, for one grey level (`N = 1`; other `N` as
 /// without `LEVELS`; fixed, `2^16` a level:
 /// [`crate::raster::GouraudMono`]'s attribute) whose every pixel's rounded

@@ -184,7 +184,8 @@ pub type SceneStorage = fixshade::storage!(i32, CAPACITY);
 /// triangle of the storage when fewer; with the feature `dodeca`,
 /// [`alone::dodeca::POOL_SLOTS`], with `bunny`
 /// [`alone::bunny::POOL_SLOTS`]. A slot is `Pool::<i32, _, V>::SLOT_BYTES`
-/// = 64 + 12·V bytes (edge walks packed in 16 bits). The bunny at 240×240
+/// = 88 + 12·V bytes (the walk and the triangle index, see
+/// `fixshade::render::Pool`'s docs). The bunny at 240×240
 /// in 16-row bands keeps up to 55 triangles at once (`active_peak`), so 56
 /// slots set every built-in scene's triangles up once (the scene tests
 /// check it); with fewer, the triangles that find the pool full at a band
