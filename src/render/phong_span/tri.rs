@@ -529,7 +529,8 @@ impl TriQuad {
     )]
     #[inline(never)]
     fn make(&mut self, l: &KLight) -> Option<()> {
-        let (v, sub) = (self.verts, self.sub);
+        // The vertices by reference (a copy was a `memcpy` a set-up).
+        let (v, sub) = (&self.verts, self.sub);
         let ([x0, y0], _, _) = v[0];
         let ([x1, y1], _, _) = v[1];
         let ([x2, y2], _, _) = v[2];
