@@ -96,7 +96,20 @@ const DX_STEP: u32 = 2;
 const FAR: bool = true;
 
 /// The six quadratics of one triangle (see the module docs).
+///
+/// `repr(C)` on ARMv6-M (the fields in this order; dodecahedron Phong
+/// raster M0 4 241 007 -> 4 239 939, cubes-and-sphere 9 041 842 ->
+/// 9 040 747). Measured and not kept: the plan's state first and `q`
+/// after it (`repr(C)` on both targets: M0 4 236 524, M4 1 595 984 ->
+/// 1 606 060; the M4's own layout of that order 1 607 001), with `start`
+/// or `fine` moved on ARMv6-M only (4 240 725, 4 242 580); a
+/// [`QuadSlot`]'s quadratics read in place by the plan instead of copied
+/// by `TriQuad::load` (32 copies of 288 bytes a frame; the slice or the
+/// slot's pointer passed down `row_fill`): M4 1 592 731 / 1 599 167 and
+/// cubes-and-sphere 3 876 649 -> 3 888 373 / 3 879 173 (the span
+/// filler's argument more), M0 4 244 665 / 4 250 804.
 #[derive(Clone, Copy, Debug)]
+#[cfg_attr(armv6m, repr(C))]
 pub struct TriQuad {
     /// The anchor pixel (vertex 0's).
     at: [i32; 2],
@@ -529,7 +542,8 @@ impl TriQuad {
     )]
     #[inline(never)]
     fn make(&mut self, l: &KLight) -> Option<()> {
-        let (v, sub) = (self.verts, self.sub);
+        // The vertices by reference (a copy was a `memcpy` a set-up).
+        let (v, sub) = (&self.verts, self.sub);
         let ([x0, y0], _, _) = v[0];
         let ([x1, y1], _, _) = v[1];
         let ([x2, y2], _, _) = v[2];
