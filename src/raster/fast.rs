@@ -314,20 +314,21 @@ fn resume_rows<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
     };
     let (sx, sy) = (&sx, &sy);
     let off = |j: i32| (j - y0).wrapping_mul(width) as usize;
+    let by_off = !SmallRows::<'_, N>::LAZY;
     let (mut l, mut r) = (w.left, w.right);
     if j < mid {
         let stop_upper = mid.min(stop);
-        (l, r) = rows.rows_to::<R, D, false>(
-            j,
-            stop_upper,
-            off(stop_upper),
-            [l, r],
-            px,
-            z,
-            sx,
-            sy,
-            color,
-        );
+        let end = off(stop_upper);
+        while if by_off {
+            rows.base != end
+        } else {
+            j < stop_upper
+        } {
+            rows.span::<R, D, false>(j, l.x, r.x, px, z, sx, sy, color);
+            l.step();
+            r.step();
+            j += 1;
+        }
         j = stop_upper;
     }
     if j == mid && j < stop {
@@ -338,7 +339,13 @@ fn resume_rows<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
         }
     }
     if j < stop {
-        (l, r) = rows.rows_to::<R, D, false>(j, stop, off(stop), [l, r], px, z, sx, sy, color);
+        let end = off(stop);
+        while if by_off { rows.base != end } else { j < stop } {
+            rows.span::<R, D, false>(j, l.x, r.x, px, z, sx, sy, color);
+            l.step();
+            r.step();
+            j += 1;
+        }
         j = stop;
     }
     w.left = l;
@@ -1345,20 +1352,21 @@ pub(crate) fn draw_small<
     // below their ends (`j_top < stop`, and `j_top < j_mid` for the upper
     // half).
     let off = |j: i32| (j - y0).wrapping_mul(width) as usize;
+    let by_off = !SmallRows::<'_, N>::LAZY;
     let mut j = j_top;
     if upper {
         let stop_upper = j_mid.min(stop);
-        (l, r) = rows.rows_to::<R, D, LEVELS>(
-            j,
-            stop_upper,
-            off(stop_upper),
-            [l, r],
-            px,
-            z,
-            sx,
-            sy,
-            &color,
-        );
+        let end = off(stop_upper);
+        while if by_off {
+            rows.base != end
+        } else {
+            j < stop_upper
+        } {
+            rows.span::<R, D, LEVELS>(j, l.x, r.x, px, z, sx, sy, &color);
+            l.step();
+            r.step();
+            j += 1;
+        }
         j = stop_upper;
         // At the lower half's first row (and not at the band's end, where
         // the resumed walk swaps the edges itself).
@@ -1371,7 +1379,13 @@ pub(crate) fn draw_small<
         }
     }
     if j < stop {
-        (l, r) = rows.rows_to::<R, D, LEVELS>(j, stop, off(stop), [l, r], px, z, sx, sy, &color);
+        let end = off(stop);
+        while if by_off { rows.base != end } else { j < stop } {
+            rows.span::<R, D, LEVELS>(j, l.x, r.x, px, z, sx, sy, &color);
+            l.step();
+            r.step();
+            j += 1;
+        }
         j = stop;
     }
     let more = j < j_bot;
@@ -1550,39 +1564,6 @@ impl<const N: usize> SmallRows<'_, N> {
         } else {
             (&mut *self.fails, 1)
         }
-    }
-
-    /// Walks rows `j..stop` (the offset reaching `end`, that of row
-    /// `stop`, when the rows are counted by offset; `j <= stop`): a span a
-    /// row between the edges `lr`, both stepped after it. Returns the
-    /// edges at row `stop`. The fresh triangle's rows ([`draw_small`]) and
-    /// the resumed one's ([`resume_rows`]).
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn rows_to<R: Copy, D: DepthFormat, const LEVELS: bool>(
-        &mut self,
-        mut j: i32,
-        stop: i32,
-        end: usize,
-        lr: [Edge; 2],
-        px: &mut [R],
-        z: &mut [D::Raw],
-        sx: &Vals<i32, N>,
-        sy: &Vals<i32, N>,
-        color: &impl Fn(&[i32; N]) -> R,
-    ) -> (Edge, Edge) {
-        let [mut l, mut r] = lr;
-        while if Self::LAZY {
-            j < stop
-        } else {
-            self.base != end
-        } {
-            self.span::<R, D, LEVELS>(j, l.x, r.x, px, z, sx, sy, color);
-            l.step();
-            r.step();
-            j += 1;
-        }
-        (l, r)
     }
 
     /// Draws columns `x0..x1` of the current row (nothing when `x0 >=
