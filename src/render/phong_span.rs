@@ -291,7 +291,7 @@ pub struct PhongKernel<'s, R> {
     local: bool,
     /// Specular table, Q15; the two entries past the last segment are 0
     /// (positions beyond the table give no specular term).
-    table: SpecTable,
+    table: [u16; SPEC_SEGMENTS + 2],
     /// Table position per `Q` (Q8): `K = m · SPEC_SEGMENTS / min(m, 8)`
     /// times 2^8, below 2^26 (`m <= 10 000`).
     kf: u32,
@@ -321,11 +321,12 @@ pub struct PhongKernel<'s, R> {
     /// pixel) more than the 1 003 they saved in the dodecahedron's.
     #[cfg(not(armv6m))]
     colour: Option<one::Colour>,
-    /// The specular table packed for the one-light loop other than on
-    /// ARMv6-M ([`one::PACKED_SPEC`], [`one::pack_table`]; all zero for
-    /// other kernels, no words when off).
+    /// The specular table for the one-light loop other than on ARMv6-M
+    /// ([`one::pack_table`]; all zero for other kernels): entry `j` is
+    /// `table[j] | (table[j] - table[j + 1]) << 16`, one load a pixel for
+    /// both values.
     #[cfg(not(armv6m))]
-    packed: [u32; one::PACKED_N],
+    packed: [u32; SPEC_SEGMENTS + 1],
 }
 
 /// A specular table kept from one kernel to the next of the same
@@ -339,7 +340,7 @@ pub struct SpecCache {
     /// state keeps its other fields where they were (a 4-byte field
     /// moved them on the M0, beyond its short load offsets).
     m: [u16; 2],
-    table: SpecTable,
+    table: [u16; SPEC_SEGMENTS + 2],
 }
 
 impl SpecCache {
@@ -380,87 +381,6 @@ fn spec_table(m: u32) -> [u16; SPEC_SEGMENTS + 2] {
         };
     }
     table
-}
-
-/// The specular table as kernels and [`SpecCache`] keep it (see
-/// [`PhongKernel`]'s `table`): the `u16` entries on ARMv6-M, elsewhere
-/// their little-endian bytes, so that the one-light loop reads entries `j`
-/// and `j + 1` with one (unaligned) word load ([`SpecTable::pair`])
-/// when the second table packed for it is off ([`one::PACKED_SPEC`]:
-/// that table, 516 bytes in every kernel, costs the kernels that never
-/// read it, 520 bytes of the dodecahedron Phong frame's stack on the M4;
-/// the word saves them but costs the loop one `UXTH` a pixel, 62.31 ->
-/// 63.68 instructions a pixel on the M4's span sweep).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct SpecTable {
-    #[cfg(armv6m)]
-    e: [u16; SPEC_SEGMENTS + 2],
-    #[cfg(not(armv6m))]
-    b: [u8; 2 * (SPEC_SEGMENTS + 2)],
-}
-
-impl SpecTable {
-    /// The table of no specular term (every entry 0).
-    const ZERO: Self = Self {
-        #[cfg(armv6m)]
-        e: [0; SPEC_SEGMENTS + 2],
-        #[cfg(not(armv6m))]
-        b: [0; 2 * (SPEC_SEGMENTS + 2)],
-    };
-
-    /// The table of entries `t`.
-    fn of(t: &[u16; SPEC_SEGMENTS + 2]) -> Self {
-        #[cfg(armv6m)]
-        {
-            Self { e: *t }
-        }
-        #[cfg(not(armv6m))]
-        {
-            let mut b = [0u8; 2 * (SPEC_SEGMENTS + 2)];
-            for (o, e) in b.chunks_exact_mut(2).zip(t.iter()) {
-                o.copy_from_slice(&e.to_le_bytes());
-            }
-            Self { b }
-        }
-    }
-
-    /// Entry `j` (`j <= SPEC_SEGMENTS + 1`; the callers mask it).
-    #[inline(always)]
-    fn at(&self, j: usize) -> u32 {
-        #[cfg(armv6m)]
-        {
-            u32::from(self.e[j])
-        }
-        #[cfg(not(armv6m))]
-        {
-            self.b[2 * j..2 * j + 2]
-                .try_into()
-                .map_or(0, |h| u32::from(u16::from_le_bytes(h)))
-        }
-    }
-
-    /// Entry `j`, `None` past the table's end.
-    #[inline(always)]
-    fn get(&self, j: usize) -> Option<u32> {
-        (j < SPEC_SEGMENTS + 2).then(|| self.at(j))
-    }
-
-    /// Entries `j` and `j + 1` as `t[j] | t[j + 1] << 16` (`j <=
-    /// SPEC_SEGMENTS`; the callers mask it): one unaligned word load other
-    /// than on ARMv6-M, two halfword loads there.
-    #[inline(always)]
-    fn pair(&self, j: usize) -> u32 {
-        #[cfg(armv6m)]
-        {
-            u32::from(self.e[j]) | u32::from(self.e[j + 1]) << 16
-        }
-        #[cfg(not(armv6m))]
-        {
-            self.b[2 * j..2 * j + 4]
-                .try_into()
-                .map_or(0, u32::from_le_bytes)
-        }
-    }
 }
 
 impl<'s> PhongKernel<'s, crate::num::Q16> {
@@ -544,12 +464,12 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         .max(1);
         let t_eff = m.min(U_MAX);
         let table = match cache {
-            _ if !spec => SpecTable::ZERO,
+            _ if !spec => [0u16; SPEC_SEGMENTS + 2],
             Some(c) if c.m == SpecCache::key(m) => c.table,
             _ => {
                 let c = cache.insert(SpecCache {
                     m: SpecCache::key(m),
-                    table: SpecTable::of(&spec_table(m)),
+                    table: spec_table(m),
                 });
                 c.table
             }
@@ -604,7 +524,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             return Err(KernelError::Range);
         }
         #[cfg(not(armv6m))]
-        let one_light = one::PACKED_SPEC && duff && spec && lights.len() == 1;
+        let one_light = duff && spec && lights.len() == 1;
         #[cfg_attr(armv6m, allow(unused_mut))]
         let mut k = Self {
             shade,
@@ -628,7 +548,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             packed: if one_light {
                 one::pack_table(&table)
             } else {
-                [0; one::PACKED_N]
+                [0; SPEC_SEGMENTS + 1]
             },
         };
         #[cfg(not(armv6m))]
@@ -985,8 +905,9 @@ impl<'s, R: Real> PhongKernel<'s, R> {
         let pos = qs.wrapping_mul(g);
         let idx = (pos >> POS_FRAC) as usize;
         match (self.table.get(idx), self.table.get(idx + 1)) {
-            (Some(a), Some(b)) => {
+            (Some(&a), Some(&b)) => {
                 let f = (pos >> (POS_FRAC - 16)) & 0xFFFF;
+                let (a, b) = (u32::from(a), u32::from(b));
                 a - ((a.saturating_sub(b) * f) >> 16)
             }
             _ => 0,

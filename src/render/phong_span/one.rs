@@ -28,8 +28,8 @@
 //! ([`Whole`]).
 
 use super::{
-    cross, fallback, lin, pack, quad, sq3, unpack, KLight, Out, PhongKernel, SpecTable, CHUNK, RS,
-    RSQRT_N, SPEC_SEGMENTS,
+    cross, fallback, lin, pack, quad, sq3, unpack, KLight, Out, PhongKernel, CHUNK, RS, RSQRT_N,
+    SPEC_SEGMENTS,
 };
 use crate::num::wide::wmul;
 use crate::num::Real;
@@ -49,45 +49,6 @@ pub(super) const SHORT_SPAN: u32 = 4;
 /// two, the colour constants split into nine registers), 72.51 against
 /// 62.87 with the packed specular table ([`pack_table`]).
 const TWO_PASS: bool = false;
-
-/// Other than on ARMv6-M, the specular table's address opaque in [`PhongKernel::run`].
-const OPAQUE_TABLE: bool = true;
-
-/// Other than on ARMv6-M, the one-light loop reads the specular table's
-/// two entries from one load of a packed table ([`pack_table`], entry `j`
-/// `t[j] | (t[j] - t[j + 1]) << 16`) that every kernel carries
-/// ([`PACKED_N`] words; built only for one directional light with a
-/// specular term): on (kept), the M4's span sweep 62.31 instructions a
-/// pixel (62.87 before the kernel's table became [`SpecTable`] and its
-/// address opaque in [`PhongKernel::run`]), the dodecahedron Phong raster
-/// 1 596 771 and its stack 10 440 bytes, cubes-and-sphere 3 882 913 and
-/// 9 832. Off, the two entries from one
-/// unaligned word load of the kernel's table ([`SpecTable::pair`], no
-/// second table): 63.68 (one `UXTH` more a pixel: the packed entry's
-/// difference is ready, the word's is `a - b`), 1 591 179 and 9 928,
-/// 3 879 173 and 9 128 (the span's figure 63.86 with the table's address
-/// not opaque).
-#[cfg_attr(armv6m, allow(dead_code))]
-pub(super) const PACKED_SPEC: bool = true;
-
-/// Words of the kernel's packed specular table ([`PACKED_SPEC`]).
-#[cfg_attr(armv6m, allow(dead_code))]
-pub(super) const PACKED_N: usize = if PACKED_SPEC { SPEC_SEGMENTS + 1 } else { 0 };
-
-/// The specular table `t` packed for the one-light loop ([`PACKED_SPEC`]):
-/// entry `j` is `t[j] | (t[j] - t[j + 1]) << 16` (the table is
-/// non-increasing, `spec_table_is_non_increasing`: the difference is
-/// below `2^16`, and `a - ((d·f) >> 16)` from the entry is the pair
-/// form's value).
-#[cfg(not(armv6m))]
-pub(super) fn pack_table(t: &SpecTable) -> [u32; PACKED_N] {
-    let mut p = [0u32; PACKED_N];
-    for (j, e) in p.iter_mut().enumerate() {
-        let (a, b) = (t.at(j), t.at(j + 1));
-        *e = a | (a.wrapping_sub(b) & 0xFFFF) << 16;
-    }
-    p
-}
 
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 pub(super) const QM_FRAC: u32 = 20;
@@ -146,6 +107,20 @@ pub(super) fn rsq_biased(rs: &[u32; RSQRT_N], nb: i32) -> u32 {
     let e = rs[((nb as u32) >> 24) as usize & (RSQRT_N - 1)];
     let t = ((nb as u32) >> 8) & 0xFFFF;
     (e >> 14) - (((e & 0x3FFF) * t) >> 16)
+}
+
+/// The specular table `t` packed for the one-light loop: entry `j` is
+/// `t[j] | (t[j] - t[j + 1]) << 16` (the table is non-increasing,
+/// `spec_table_is_non_increasing`: the difference is below `2^16`, and
+/// `a - ((d·f) >> 16)` from the entry is the pair form's value).
+#[cfg(not(armv6m))]
+pub(super) fn pack_table(t: &[u16; SPEC_SEGMENTS + 2]) -> [u32; SPEC_SEGMENTS + 1] {
+    let mut p = [0u32; SPEC_SEGMENTS + 1];
+    for (j, e) in p.iter_mut().enumerate() {
+        let (a, b) = (u32::from(t[j]), u32::from(t[j + 1]));
+        *e = a | (a.wrapping_sub(b) & 0xFFFF) << 16;
+    }
+    p
 }
 
 /// Entries of [`RN`].
@@ -526,11 +501,6 @@ impl<R: Real> PhongKernel<'_, R> {
         } else {
             core::hint::black_box(&RN)
         };
-        let tb = if cfg!(armv6m) || !OPAQUE_TABLE {
-            &self.table
-        } else {
-            core::hint::black_box(&self.table)
-        };
         // On ARMv6-M the channels of the terms as they are, not packed
         // and unpacked again (the same values: both below 2^16): the M0's
         // span sweep 129.38 -> 127.38 a pixel. Other than on ARMv6-M the
@@ -552,26 +522,14 @@ impl<R: Real> PhongKernel<'_, R> {
                         $j,
                         $kk,
                         w,
-                        |w| {
-                            px(if cfg!(armv6m) {
-                                self.terms_rn::<true, true>(rn_entry(rs, w.nn), w.nl, w.q)
-                            } else {
-                                self.terms_rn_t::<true, true>(tb, rn_entry(rs, w.nn), w.nl, w.q)
-                            })
-                        },
+                        |w| px(self.terms_rn::<true, true>(rn_entry(rs, w.nn), w.nl, w.q)),
                         Whole::step::<true>,
                     ),
                     (true, false) => out.$loop(
                         $j,
                         $kk,
                         w,
-                        |w| {
-                            px(if cfg!(armv6m) {
-                                self.terms_rn::<true, false>(rn_entry(rs, w.nn), w.nl, w.q)
-                            } else {
-                                self.terms_rn_t::<true, false>(tb, rn_entry(rs, w.nn), w.nl, w.q)
-                            })
-                        },
+                        |w| px(self.terms_rn::<true, false>(rn_entry(rs, w.nn), w.nl, w.q)),
                         Whole::step::<true>,
                     ),
                     _ => out.$loop(
@@ -826,7 +784,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let pos = ((qs * rr14) as i32).clamp(0, (1 << 28) - 1) as u32;
         let j = (pos >> 21) as usize & (SPEC_SEGMENTS - 1);
         let f = (pos >> 5) & 0xFFFF;
-        let (a, b) = (self.table.at(j), self.table.at(j + 1));
+        let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
         a - (((a - b) * f) >> 16)
     }
 
@@ -865,24 +823,6 @@ impl<R: Real> PhongKernel<'_, R> {
         nl: i32,
         qm: i32,
     ) -> (u32, u32) {
-        self.terms_rn_t::<SPEC, LIT>(&self.table, e, nl, qm)
-    }
-
-    /// [`PhongKernel::terms_rn`] with the specular table `tb` (the
-    /// kernel's, its address opaque in [`PhongKernel::run`]).
-    #[inline(always)]
-    #[allow(
-        clippy::cast_sign_loss,
-        clippy::cast_possible_truncation,
-        clippy::cast_possible_wrap
-    )]
-    fn terms_rn_t<const SPEC: bool, const LIT: bool>(
-        &self,
-        tb: &SpecTable,
-        e: u32,
-        nl: i32,
-        qm: i32,
-    ) -> (u32, u32) {
         let nlp = if LIT { nl } else { nl.max(0) };
         let nl15 = (((nlp as u32) >> 13).wrapping_mul(e >> 16)) >> 16;
         let sp = if SPEC && (LIT || nl > 0) {
@@ -898,13 +838,15 @@ impl<R: Real> PhongKernel<'_, R> {
             let j = (pos >> 20) as usize & (SPEC_SEGMENTS - 1);
             let f = (pos >> 4) & 0xFFFF;
             #[cfg(not(armv6m))]
-            if PACKED_SPEC {
-                let e = self.packed.get(j).copied().unwrap_or(0);
-                return (nl15, (e & 0xFFFF).wrapping_sub(((e >> 16) * f) >> 16));
+            {
+                let e = self.packed[j];
+                (e & 0xFFFF).wrapping_sub(((e >> 16) * f) >> 16)
             }
-            let e = tb.pair(j);
-            let a = e & 0xFFFF;
-            a.wrapping_sub((a.wrapping_sub(e >> 16) * f) >> 16)
+            #[cfg(armv6m)]
+            {
+                let (a, b) = (u32::from(self.table[j]), u32::from(self.table[j + 1]));
+                a - (((a - b) * f) >> 16)
+            }
         } else {
             0
         };
@@ -1085,7 +1027,7 @@ mod tests {
         let shade = test_shade();
         let k = PhongKernel::new(&shade).unwrap();
         let step = (0..SPEC_SEGMENTS)
-            .map(|j| f64::from(k.table.at(j)) - f64::from(k.table.at(j + 1)))
+            .map(|j| f64::from(k.table[j]) - f64::from(k.table[j + 1]))
             .fold(0f64, f64::max);
         let mut next = crate::geom::testkit::uniform(0x9E37_79B9_7F4A_7C15);
         let (mut worst_nl, mut worst_sp, mut checked) = (0f64, 0f64, 0);
@@ -1125,7 +1067,7 @@ mod tests {
             let at = |p: f64| {
                 let p = p.clamp(0.0, SPEC_SEGMENTS as f64 - 1e-9);
                 let j = p as usize;
-                let (a, b) = (f64::from(k.table.at(j)), f64::from(k.table.at(j + 1)));
+                let (a, b) = (f64::from(k.table[j]), f64::from(k.table[j + 1]));
                 a - (a - b) * (p - j as f64)
             };
             let dpos = pos * 2f64.powf(-9.98) + 1.0 / 32.0;
