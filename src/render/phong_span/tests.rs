@@ -1056,6 +1056,52 @@ fn twin_of(c: &Case) -> Shade<f64> {
     Shade::new(&mat64, c.ambient.to_f64(), &l64, c.specular, c.viewer).unwrap()
 }
 
+/// One random triangle of [`tri_quad_sweep`]: its case, screen vertices,
+/// normals and eye positions.
+type RandomTri = (Case, [[f64; 2]; 3], [[f64; 3]; 3], [[f64; 3]; 3]);
+
+/// The eye positions of screen vertices `s` on a surface at `depth`,
+/// about a unit across and tilted along x about column `cx`.
+fn surface(s: [[f64; 2]; 3], depth: f64, cx: f64) -> [[f64; 3]; 3] {
+    s.map(|v| {
+        [
+            (v[0] - 110.0) / 100.0,
+            (v[1] - 110.0) / 100.0,
+            depth + (v[0] - cx) / 300.0,
+        ]
+    })
+}
+
+/// Sixty random triangles of the point loop from their quadratics, each
+/// drawn by `draw` (given the draw `t`, its shininess and a uniform
+/// source `f(lo, hi)` seeded by `seed`) and measured against the `f64`
+/// twin ([`tri_error`]). Returns the worst error in levels, the
+/// triangles made, their pixels from the quadratics, and the set-ups,
+/// fine ones and viewer-alone fine ones counted meanwhile.
+fn tri_quad_sweep(
+    seed: u64,
+    mut draw: impl FnMut(usize, f64, &mut dyn FnMut(f64, f64) -> f64) -> RandomTri,
+) -> (f64, u32, u32, u32, u32, u32) {
+    let (makes0, fines0, fv0) = (super::tri_makes(), super::tri_fines(), super::tri_fines_v());
+    let mut seed = seed;
+    let mut f = |lo: f64, hi: f64| {
+        lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut worst, mut quads, mut made) = (0f64, 0u32, 0u32);
+    for t in 0..60 {
+        let n = [1.0, 3.0, 20.0, 100.0, 255.0][t % 5];
+        let (c, s, nv, p) = draw(t, n, &mut f);
+        if let Some((e, q)) = tri_error(&c, s, nv, p) {
+            made += 1;
+            quads += q;
+            worst = worst.max(e);
+        }
+    }
+    let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
+    let fv = super::tri_fines_v() - fv0;
+    (worst, made, quads, makes, fines, fv)
+}
+
 /// Random triangles of the point loop from their quadratics (`TriQuad`):
 /// 10 to 120 pixels across, vertex normals up to ~35° apart, the light
 /// 1 to 4 units from the surface, shininess 1 to 255: within 1 level of
@@ -1064,42 +1110,24 @@ fn twin_of(c: &Case) -> Shade<f64> {
 /// the extreme triangles have the others).
 #[test]
 fn tri_quad_random_against_f64() {
-    let (makes0, fines0, fv0) = (super::tri_makes(), super::tri_fines(), super::tri_fines_v());
-    let mut seed = 0x1234_5678_9abc_def1u64;
-    let mut f = |lo: f64, hi: f64| {
-        lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let (mut worst, mut quads, mut made) = (0f64, 0u32, 0);
-    for t in 0..60 {
-        let n = [1.0, 3.0, 20.0, 100.0, 255.0][t % 5];
-        let lp = [f(-2.0, 2.0), f(-2.0, 2.0), f(-3.0, 0.0)];
-        let c = point_case(n, lp);
-        let size = f(10.0, 120.0);
-        let (cx, cy) = (f(20.0, 200.0), f(20.0, 200.0));
-        let s = [0, 1, 2].map(|_| [cx + f(-0.5, 0.5) * size, cy + f(-0.5, 0.5) * size]);
-        // A surface 4 to 6 units in front of the eye, spanning about a
-        // unit; normals around its facing direction.
-        let depth = f(-6.0, -4.0);
-        let p = s.map(|v| {
-            [
-                (v[0] - 110.0) / 100.0,
-                (v[1] - 110.0) / 100.0,
-                depth + (v[0] - cx) / 300.0,
-            ]
+    let (worst, made, quads, makes, fines, fv) =
+        tri_quad_sweep(0x1234_5678_9abc_def1, |_, n, f| {
+            let lp = [f(-2.0, 2.0), f(-2.0, 2.0), f(-3.0, 0.0)];
+            let c = point_case(n, lp);
+            let size = f(10.0, 120.0);
+            let (cx, cy) = (f(20.0, 200.0), f(20.0, 200.0));
+            let s = [0, 1, 2].map(|_| [cx + f(-0.5, 0.5) * size, cy + f(-0.5, 0.5) * size]);
+            // A surface 4 to 6 units in front of the eye, spanning about a
+            // unit; normals around its facing direction.
+            let p = surface(s, f(-6.0, -4.0), cx);
+            let base = [f(-0.3, 0.3), f(-0.3, 0.3), 1.0];
+            let nv =
+                [0, 1, 2].map(|_| unit([base[0] + f(-0.3, 0.3), base[1] + f(-0.3, 0.3), base[2]]));
+            (c, s, nv, p)
         });
-        let base = [f(-0.3, 0.3), f(-0.3, 0.3), 1.0];
-        let nv = [0, 1, 2].map(|_| unit([base[0] + f(-0.3, 0.3), base[1] + f(-0.3, 0.3), base[2]]));
-        if let Some((e, q)) = tri_error(&c, s, nv, p) {
-            made += 1;
-            quads += q;
-            worst = worst.max(e);
-        }
-    }
     std::println!(
         "tri quads vs f64: {worst:.3} levels, {made} triangles, {quads} pixels from the quadratics"
     );
-    let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
-    let fv = super::tri_fines_v() - fv0;
     std::println!("tri quads: {fines} of {makes} set-ups fine, {fv} the viewer alone");
     assert!(made >= 50 && quads >= 20_000, "{made} {quads}");
     assert!(fines >= 40, "{fines} of {makes}");
@@ -1114,42 +1142,25 @@ fn tri_quad_random_against_f64() {
 /// twin at every pixel.
 #[test]
 fn tri_quad_close_light_against_f64() {
-    let (makes0, fines0, fv0) = (super::tri_makes(), super::tri_fines(), super::tri_fines_v());
-    let mut seed = 0x0bad_cafe_1234_5679u64;
-    let mut f = |lo: f64, hi: f64| {
-        lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let (mut worst, mut quads, mut made) = (0f64, 0u32, 0);
-    for t in 0..60 {
-        let n = [1.0, 3.0, 20.0, 100.0, 255.0][t % 5];
-        let size = f(10.0, 60.0);
-        let (cx, cy) = (f(60.0, 160.0), f(60.0, 160.0));
-        let s = [0, 1, 2].map(|_| [cx + f(-0.5, 0.5) * size, cy + f(-0.5, 0.5) * size]);
-        let depth = f(-6.0, -4.0);
-        let p = s.map(|v| {
-            [
-                (v[0] - 110.0) / 100.0,
-                (v[1] - 110.0) / 100.0,
-                depth + (v[0] - cx) / 300.0,
-            ]
+    let (worst, made, quads, makes, fines, fv) =
+        tri_quad_sweep(0x0bad_cafe_1234_5679, |_, n, f| {
+            let size = f(10.0, 60.0);
+            let (cx, cy) = (f(60.0, 160.0), f(60.0, 160.0));
+            let s = [0, 1, 2].map(|_| [cx + f(-0.5, 0.5) * size, cy + f(-0.5, 0.5) * size]);
+            let depth = f(-6.0, -4.0);
+            let p = surface(s, depth, cx);
+            // Above the triangle's middle, towards the eye.
+            let lp = [
+                (cx - 110.0) / 100.0 + f(-0.2, 0.2),
+                (cy - 110.0) / 100.0 + f(-0.2, 0.2),
+                depth + f(0.25, 0.6),
+            ];
+            let c = point_case(n, lp);
+            let base = [f(-0.2, 0.2), f(-0.2, 0.2), 1.0];
+            let nv =
+                [0, 1, 2].map(|_| unit([base[0] + f(-0.2, 0.2), base[1] + f(-0.2, 0.2), base[2]]));
+            (c, s, nv, p)
         });
-        // Above the triangle's middle, towards the eye.
-        let lp = [
-            (cx - 110.0) / 100.0 + f(-0.2, 0.2),
-            (cy - 110.0) / 100.0 + f(-0.2, 0.2),
-            depth + f(0.25, 0.6),
-        ];
-        let c = point_case(n, lp);
-        let base = [f(-0.2, 0.2), f(-0.2, 0.2), 1.0];
-        let nv = [0, 1, 2].map(|_| unit([base[0] + f(-0.2, 0.2), base[1] + f(-0.2, 0.2), base[2]]));
-        if let Some((e, q)) = tri_error(&c, s, nv, p) {
-            made += 1;
-            quads += q;
-            worst = worst.max(e);
-        }
-    }
-    let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
-    let fv = super::tri_fines_v() - fv0;
     std::println!(
         "tri quads, close light, vs f64: {worst:.3} levels, {made} triangles, {quads} pixels from the quadratics; {fines} of {makes} set-ups fine, {fv} the viewer alone"
     );
