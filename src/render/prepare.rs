@@ -2433,31 +2433,23 @@ mod tests {
                 let (mut ca, mut cb) =
                     ([0u16; FACE_ROW as usize + 1], [0u16; FACE_ROW as usize + 1]);
                 let all = || core::iter::repeat(());
+                // One call per (cull, marked) pair (const parameters).
+                macro_rules! visible {
+                    ($cull:literal, $marked:literal) => {
+                        triangles_visible::<$cull, $marked, _>(
+                            &tris,
+                            &xy,
+                            (&mut fa, &mut ca),
+                            (sub, q),
+                            all(),
+                            |_, (), _| true,
+                        )
+                    };
+                }
                 let kept = match (cull, marked) {
-                    (true, true) => triangles_visible::<true, true, _>(
-                        &tris,
-                        &xy,
-                        (&mut fa, &mut ca),
-                        (sub, q),
-                        all(),
-                        |_, (), _| true,
-                    ),
-                    (true, false) => triangles_visible::<true, false, _>(
-                        &tris,
-                        &xy,
-                        (&mut fa, &mut ca),
-                        (sub, q),
-                        all(),
-                        |_, (), _| true,
-                    ),
-                    _ => triangles_visible::<false, false, _>(
-                        &tris,
-                        &xy,
-                        (&mut fa, &mut ca),
-                        (sub, q),
-                        all(),
-                        |_, (), _| true,
-                    ),
+                    (true, true) => visible!(true, true),
+                    (true, false) => visible!(true, false),
+                    _ => visible!(false, false),
                 };
                 assert!(kept.is_some());
                 let general = triangles_inside(
