@@ -275,6 +275,40 @@ const RESUME_KERNEL: bool = true;
 /// as an `#[inline(always)]` method taking the edges by value and the
 /// end as an argument it cost bunny-flat raster thumbv6m 2 055 671 ->
 /// 2 098 737 and thumbv7em 1 456 821 -> 1 475 421 (exact QEMU counts).
+/// The [`SmallRows`] of [`draw_small`] and [`resume_rows`] from row `$j`
+/// (band's first row `$y0`, rows `$width` pixels apart): `$row` the values
+/// at pixel (0, 0), stepped to row `$j` by `$sy` unless
+/// [`SmallRows::LAZY`]; the failed tests counted apart in `$fail_count`.
+/// ARMv7-M without values: the count in memory the optimiser cannot
+/// follow, so that no register holds it across the rows (bunny-flat
+/// raster thumbv7em 1 501 529 -> 1 473 507; the values' count, `drawn`,
+/// gained nothing that way). A macro: as an `#[inline(always)]`
+/// constructor it measured bunny-gouraud raster thumbv7em 1 615 109 ->
+/// 1 616 676 (bunny-flat 1 456 821 -> 1 454 673), the counts moving with
+/// the functions' inlining order.
+macro_rules! small_rows_at {
+    ($row:ident, $sy:ident, $j:ident, $y0:ident, $width:ident, $fail_count:ident) => {{
+        let fails = if NO_LONG_MUL || N > 0 {
+            &mut $fail_count
+        } else {
+            core::hint::black_box(&mut $fail_count)
+        };
+        let v_first = if SmallRows::<'_, N>::LAZY {
+            $row
+        } else {
+            $row.add_n(&$sy, $j)
+        };
+        SmallRows {
+            vz: v_first.z,
+            va: v_first.a,
+            base: ($j - $y0).wrapping_mul($width) as usize,
+            width: $width as usize,
+            drawn: 0,
+            fails,
+        }
+    }};
+}
+
 macro_rules! small_rows_to {
     ($rows:ident, $j:ident, $stop:expr, $end:expr, $l:ident, $r:ident, $levels:tt, ($px:ident, $z:ident, $sx:ident, $sy:ident, $color:expr)) => {
         let end = $end;
@@ -315,26 +349,9 @@ fn resume_rows<const N: usize, const V: usize, R: Copy, D: DepthFormat>(
     let [stop, y0, width] = band;
     let [row, sx, sy] = unpack_fixed::<N, V>(vals);
     let mut fail_count = 0u32;
-    let fails = if NO_LONG_MUL || N > 0 {
-        &mut fail_count
-    } else {
-        core::hint::black_box(&mut fail_count)
-    };
     let mut j = w.j;
     let mid = w.mid;
-    let v_first = if SmallRows::<'_, N>::LAZY {
-        row
-    } else {
-        row.add_n(&sy, j)
-    };
-    let mut rows = SmallRows {
-        vz: v_first.z,
-        va: v_first.a,
-        base: (j - y0).wrapping_mul(width) as usize,
-        width: width as usize,
-        drawn: 0,
-        fails,
-    };
+    let mut rows = small_rows_at!(row, sy, j, y0, width, fail_count);
     let (sx, sy) = (&sx, &sy);
     let off = |j: i32| (j - y0).wrapping_mul(width) as usize;
     let (mut l, mut r) = (w.left, w.right);
@@ -1110,6 +1127,19 @@ fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
 /// the rows still hold about 18 values against 12 free registers (25 a
 /// row, 13 a passing pixel, from 30 and 14 inline).
 ///
+/// Measured from 1 615 109 (thumbv6m 2 369 374, host 2 154 477) and not
+/// kept: the fresh triangles that end in their band with a bounding box
+/// under 16 pixels (1 099 of the bunny's 1 146, ~4.7 rows and ~10 pixels
+/// each) rasterised by edge functions instead of the walk, with the same
+/// pixels (tested on 30 000 random and extreme triangles): three edge
+/// values stepped over the box, 2 200 540 (thumbv6m 2 924 623; ~38 box
+/// steps a triangle at ~10 instructions); the edges by side in 16-bit
+/// lanes and each row's ends walked from the previous row's, 1 760 039;
+/// from the top vertex's column, 1 744 737 (thumbv6m 2 456 352, host
+/// 2 368 355); box bounds of 6 and 3 pixels, 1 669 797 and 1 638 758.
+/// Its edge set-up is cheaper (~80 a triangle against ~135), but finding
+/// a row's ends costs ~60 a row against the walk's ~20.
+///
 /// With `LEVELS`, for one grey level (`N = 1`; other `N` as
 /// without `LEVELS`; fixed, `2^16` a level:
 /// [`crate::raster::GouraudMono`]'s attribute) whose every pixel's rounded
@@ -1325,29 +1355,8 @@ pub(crate) fn draw_small<
         (short, long)
     };
     let anchor = [a.x >> s, a.y >> s];
-    // ARMv7-M without values: the failed tests (rare) counted in memory
-    // the optimiser cannot follow, so that no register holds the count
-    // across the rows (bunny-flat raster thumbv7em 1 501 529 -> 1 473 507;
-    // the values' count, `drawn`, gained nothing that way).
     let mut fail_count = 0u32;
-    let fails = if NO_LONG_MUL || N > 0 {
-        &mut fail_count
-    } else {
-        core::hint::black_box(&mut fail_count)
-    };
-    let v_first = if SmallRows::<'_, N>::LAZY {
-        t0
-    } else {
-        t0.add_n(&ty, j_top)
-    };
-    let mut rows = SmallRows {
-        vz: v_first.z,
-        va: v_first.a,
-        base: (j_top - y0).wrapping_mul(width) as usize,
-        width: width as usize,
-        drawn: 0,
-        fails,
-    };
+    let mut rows = small_rows_at!(t0, ty, j_top, y0, width, fail_count);
     let (sx0, sy0) = (&sx, &sy);
     // ARMv7-M: the x steps through memory, opaque to the optimiser (as
     // known stack values it reloaded them one by one at every pixel of

@@ -1632,6 +1632,26 @@ enum Src {
     Fresh,
 }
 
+/// Calls `$walk` with `$c` bound to the colour of shader `$shader` in
+/// pixel format `$F`: its constant colour encoded once, or its colour per
+/// pixel. One body for [`draw_fused`] and [`draw_resumed`], which stay
+/// two functions: one generic function for both kernels (a `const`
+/// switch) measured bunny-gouraud raster thumbv7em 1 615 109 ->
+/// 1 617 190 and bunny-flat 1 456 821 -> 1 461 504 (the inlining order
+/// follows the functions' names).
+macro_rules! by_color {
+    ($shader:expr, $F:ty, $N:ident, |$c:ident| $walk:expr) => {
+        if let Some(c) = $shader.constant() {
+            let raw = <$F>::encode(c);
+            let $c = move |_: &[i32; $N]| raw;
+            $walk
+        } else {
+            let $c = |a: &[i32; $N]| $shader.shade_raw::<$F>(a);
+            $walk
+        }
+    };
+}
+
 /// Walks a fixed triangle with the fused row kernel: the shader's
 /// constant colour encoded once, or its colour per pixel.
 #[inline(always)]
@@ -1642,12 +1662,8 @@ fn draw_fused<const N: usize, const V: usize, S: Shader<i32, N>, F: PixelFormat,
     mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
     shader: &S,
 ) -> u32 {
-    if let Some(c) = shader.constant() {
-        let raw = F::encode(c);
-        walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, move |_| raw)
-    } else {
-        walk.rows_fused::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
-    }
+    by_color!(shader, F, N, |color| walk
+        .rows_fused::<N, V, F::Raw, D>(vals, until, mem, color))
 }
 
 /// Walks a resumed fixed triangle (a pool slot's walk and values, in
@@ -1667,12 +1683,8 @@ fn draw_resumed<
     mem: &mut BandMem<'_, '_, F::Raw, D::Raw>,
     shader: &S,
 ) -> u32 {
-    if let Some(c) = shader.constant() {
-        let raw = F::encode(c);
-        walk.rows_resumed::<N, V, F::Raw, D>(vals, until, mem, move |_| raw)
-    } else {
-        walk.rows_resumed::<N, V, F::Raw, D>(vals, until, mem, |a| shader.shade_raw::<F>(a))
-    }
+    by_color!(shader, F, N, |color| walk
+        .rows_resumed::<N, V, F::Raw, D>(vals, until, mem, color))
 }
 
 /// A triangle of the fast path starting in the band (or set up afresh):
