@@ -50,6 +50,89 @@ pub(super) const SHORT_SPAN: u32 = 4;
 /// 62.87 with the packed specular table ([`pack_table`]).
 const TWO_PASS: bool = false;
 
+/// Other than on ARMv6-M, [`PhongKernel::run`] with the loop's
+/// invariants read from memory ([`PhongKernel::run_inv`]).
+#[cfg(not(armv6m))]
+const INV_LOOP: bool = true;
+
+/// The stepped values of [`PhongKernel::run_inv`]'s loop: `|n|² - 1/4`
+/// and its first difference, `Qm` and its first difference, `n·L`.
+#[cfg(not(armv6m))]
+#[derive(Clone, Copy)]
+struct Carry {
+    nn: i32,
+    nd1: i32,
+    q: i32,
+    qd1: i32,
+    nl: i32,
+}
+
+/// The invariants of [`PhongKernel::run_inv`]'s loop, one block of its
+/// frame: [`Colour`]'s packed constants, both tables, the second
+/// differences and `n·L`'s step.
+#[cfg(not(armv6m))]
+#[repr(C)]
+struct Inv<'a> {
+    ds: [i32; 3],
+    ambo: [i32; 3],
+    rn: &'a [u32; RN_N],
+    tab: &'a [u32; SPEC_SEGMENTS + 1],
+    nd2: i32,
+    qd2: i32,
+    dnl: i32,
+}
+
+#[cfg(not(armv6m))]
+impl Inv<'_> {
+    /// The channel sums of the pixel of `s` ([`PhongKernel::terms_rn`]
+    /// and [`Colour::of_terms`]: the same values).
+    #[inline(always)]
+    #[allow(
+        clippy::cast_sign_loss,
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap
+    )]
+    fn px<const SPEC: bool, const LIT: bool>(&self, s: &Carry) -> [i32; 3] {
+        let e = rn_entry(self.rn, s.nn);
+        let nl = s.nl;
+        let nlp = if LIT { nl } else { nl.max(0) };
+        let nl15 = (((nlp as u32) >> 13).wrapping_mul(e >> 16)) >> 16;
+        let sp = if SPEC && (LIT || nl > 0) {
+            let q7 = (s.q >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1);
+            let pos = i32::from(q7 as i16) * i32::from(e as i16);
+            let pos = pos.clamp(0, (1 << 27) - 1) as u32;
+            let j = (pos >> 20) as usize & (SPEC_SEGMENTS - 1);
+            let f = (pos >> 4) & 0xFFFF;
+            let t = self.tab[j];
+            (t & 0xFFFF).wrapping_sub(((t >> 16) * f) >> 16)
+        } else {
+            0
+        };
+        let t = ((nl15 & 0xFFFF) | sp << 16) ^ 0x8000_8000;
+        let lo = i32::from(t as i16);
+        let hi = (t as i32) >> 16;
+        let ch = |k: usize| {
+            let ds = self.ds[k];
+            self.ambo[k]
+                .wrapping_add(lo.wrapping_mul(i32::from(ds as i16)))
+                .wrapping_add(hi.wrapping_mul(ds >> 16))
+        };
+        [ch(0), ch(1), ch(2)]
+    }
+
+    /// One pixel's step ([`Whole::step`]).
+    #[inline(always)]
+    fn step<const SPEC: bool>(&self, s: &mut Carry) {
+        s.nn = s.nn.wrapping_add(s.nd1);
+        s.nd1 = s.nd1.wrapping_add(self.nd2);
+        if SPEC {
+            s.q = s.q.wrapping_add(s.qd1);
+            s.qd1 = s.qd1.wrapping_add(self.qd2);
+        }
+        s.nl = s.nl.wrapping_add(self.dnl);
+    }
+}
+
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 pub(super) const QM_FRAC: u32 = 20;
 /// `Qm` at or above this many segments (Q20) gives no specular term:
@@ -210,8 +293,8 @@ pub(super) struct Colour {
     /// The constants of [`Colour::of_terms`] (other than ARMv6-M): per
     /// channel `d | s << 16` and `amb + 2^15 (d + s)` (wrapping); first,
     /// at the copy's address (`run` loads them with no offset).
-    ds: [i32; 3],
-    ambo: [i32; 3],
+    pub(super) ds: [i32; 3],
+    pub(super) ambo: [i32; 3],
     pub(super) amb: [i32; 3],
     pub(super) d: [i32; 3],
     pub(super) s: [i32; 3],
@@ -545,6 +628,10 @@ impl<R: Real> PhongKernel<'_, R> {
         if cfg!(armv6m) {
             return pixels!(fused, i, k);
         }
+        #[cfg(not(armv6m))]
+        if INV_LOOP {
+            return self.run_inv(c, w, rs, i, k, out);
+        }
         if TWO_PASS {
             return self.run_two_pass(c, w, rs, i, k, out);
         }
@@ -554,6 +641,65 @@ impl<R: Real> PhongKernel<'_, R> {
             failed += pixels!(masked, j, kk);
             j += kk;
         }
+        failed
+    }
+
+    /// [`PhongKernel::run`] other than on ARMv6-M ([`INV_LOOP`]): the
+    /// loop's invariants (both tables' addresses, the second differences
+    /// and `n·L`'s step, the colour constants) in one block of the frame
+    /// read through an opaque address ([`Inv`]), so that the loop reloads
+    /// them where it uses them instead of holding them in registers; the
+    /// stepped values alone ([`Carry`]) live through the loop.
+    #[cfg(not(armv6m))]
+    #[inline(always)]
+    fn run_inv(
+        &self,
+        c: &Colour,
+        w: &mut Whole,
+        rs: &[u32; RN_N],
+        i: u32,
+        k: u32,
+        out: &mut impl Out,
+    ) -> u32 {
+        let inv = Inv {
+            ds: c.ds,
+            ambo: c.ambo,
+            rn: rs,
+            tab: &self.packed,
+            nd2: w.nd2,
+            qd2: w.qd2,
+            dnl: w.dnl,
+        };
+        let inv = core::hint::black_box(&inv);
+        let mut s = Carry {
+            nn: w.nn,
+            nd1: w.nd1,
+            q: w.q,
+            qd1: w.qd1,
+            nl: w.nl,
+        };
+        let (end, mut j, mut failed) = (i + k, i, 0);
+        macro_rules! go {
+            ($spec:literal, $lit:literal, $kk:expr) => {
+                out.masked(
+                    j,
+                    $kk,
+                    &mut s,
+                    |s| inv.px::<$spec, $lit>(s),
+                    |s| inv.step::<$spec>(s),
+                )
+            };
+        }
+        while j < end {
+            let kk = (end - j).min(CHUNK as u32);
+            failed += match (w.spec, w.lit) {
+                (true, true) => go!(true, true, kk),
+                (true, false) => go!(true, false, kk),
+                _ => go!(false, false, kk),
+            };
+            j += kk;
+        }
+        (w.nn, w.nd1, w.q, w.qd1, w.nl) = (s.nn, s.nd1, s.q, s.qd1, s.nl);
         failed
     }
 
