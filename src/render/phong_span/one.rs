@@ -73,13 +73,13 @@ struct Carry {
 #[cfg(not(armv6m))]
 #[repr(C)]
 struct Inv<'a> {
-    ds: [i32; 3],
-    ambo: [i32; 3],
-    rn: &'a [u32; RN_N],
-    tab: &'a [u32; SPEC_SEGMENTS + 1],
     nd2: i32,
     qd2: i32,
     dnl: i32,
+    /// Per channel `[ds, ambo]` of [`Colour`] (adjacent: one `LDRD`).
+    ch: [[i32; 2]; 3],
+    rn: &'a [u32; RN_N],
+    tab: &'a [u32; SPEC_SEGMENTS + 1],
 }
 
 #[cfg(not(armv6m))]
@@ -96,7 +96,11 @@ impl Inv<'_> {
         let e = rn_entry(self.rn, s.nn);
         let nl = s.nl;
         let nlp = if LIT { nl } else { nl.max(0) };
-        let nl15 = (((nlp as u32) >> 13).wrapping_mul(e >> 16)) >> 16;
+        // `floor(x · (e >> 16) / 2^16)` for `x = nlp >> 13` (below
+        // 2^18) as the signed 48-bit product's bits 16..48 (one `SMULWT`);
+        // below 2^16 (`n·L <= |n|`), so that it needs no mask below.
+        let nl15 =
+            ((i64::from(((nlp as u32) >> 13) as i32) * i64::from((e as i32) >> 16)) >> 16) as u32;
         let sp = if SPEC && (LIT || nl > 0) {
             let q7 = (s.q >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1);
             let pos = i32::from(q7 as i16) * i32::from(e as i16);
@@ -108,13 +112,12 @@ impl Inv<'_> {
         } else {
             0
         };
-        let t = ((nl15 & 0xFFFF) | sp << 16) ^ 0x8000_8000;
+        let t = (nl15 | sp << 16) ^ 0x8000_8000;
         let lo = i32::from(t as i16);
         let hi = (t as i32) >> 16;
         let ch = |k: usize| {
-            let ds = self.ds[k];
-            self.ambo[k]
-                .wrapping_add(lo.wrapping_mul(i32::from(ds as i16)))
+            let [ds, ambo] = self.ch[k];
+            ambo.wrapping_add(lo.wrapping_mul(i32::from(ds as i16)))
                 .wrapping_add(hi.wrapping_mul(ds >> 16))
         };
         [ch(0), ch(1), ch(2)]
@@ -662,13 +665,12 @@ impl<R: Real> PhongKernel<'_, R> {
         out: &mut impl Out,
     ) -> u32 {
         let inv = Inv {
-            ds: c.ds,
-            ambo: c.ambo,
-            rn: rs,
-            tab: &self.packed,
             nd2: w.nd2,
             qd2: w.qd2,
             dnl: w.dnl,
+            ch: [0, 1, 2].map(|k| [c.ds[k], c.ambo[k]]),
+            rn: rs,
+            tab: &self.packed,
         };
         let inv = core::hint::black_box(&inv);
         let mut s = Carry {
