@@ -51,7 +51,23 @@ pub(super) const SHORT_SPAN: u32 = 4;
 const TWO_PASS: bool = false;
 
 /// Other than on ARMv6-M, [`PhongKernel::run`] with the loop's
-/// invariants read from memory ([`PhongKernel::run_inv`]).
+/// invariants read from memory ([`PhongKernel::run_inv`]): the round's
+/// redesign of the loop whose live state fits the registers. Measured on
+/// the M4's span sweep (one light, every frame's CRC unchanged): 62.80
+/// -> 61.54 instructions a pixel (the pair loop 99 -> 96: the constants
+/// reloaded where used, no longer spilled and copied), then 60.61 with
+/// `N·L`'s product as one `SMULWT` (its low half no longer masked, so the
+/// compiler keeps the 48-bit product's form; in the loop before this
+/// one the same source gave 62.80, the mask narrowing it back to `MUL`),
+/// then 59.07 with each channel's two constants adjacent (one `LDRD`; the
+/// pair loop 89). The layout of [`Inv`] matters: the table addresses
+/// first 64.70, the specular table's address before [`RN`]'s 66.34.
+/// Tried and measured worse on the same sweep (before this loop): a full
+/// piece of [`CHUNK`] pixels that all passed as straight-line code (no
+/// counter, constant store offsets) 65.68, the state then stepped
+/// through memory; the colour constants kept in the kernel after its
+/// specular table (one base address for both) 65.36, the compiler then
+/// addressing them from the kernel's address with 12-bit offsets.
 #[cfg(not(armv6m))]
 const INV_LOOP: bool = true;
 
@@ -538,7 +554,10 @@ impl<R: Real> PhongKernel<'_, R> {
     /// by piece of [`CHUNK`] pixels ([`Out::masked`]: the piece's depth
     /// tests first, then one loop of terms, channels and stores, without
     /// a test when all passed, two pixels an iteration over a local copy
-    /// of the state), the state in registers through the colour loop.
+    /// of the state), the state in registers through the colour loop;
+    /// since this round the loop's invariants read from a block of the
+    /// frame ([`PhongKernel::run_inv`], [`INV_LOOP`]): 62.80 -> 59.07
+    /// instructions a pixel on the M4's span sweep.
     /// Measured on the firmware's span sweep (one light), 64.74
     /// instructions a pixel on the M4 (the pair loop 103 instructions,
     /// 51.5 a pixel, the depth mask 8.6, a piece's set-up 92 a piece of
@@ -650,9 +669,12 @@ impl<R: Real> PhongKernel<'_, R> {
     /// [`PhongKernel::run`] other than on ARMv6-M ([`INV_LOOP`]): the
     /// loop's invariants (both tables' addresses, the second differences
     /// and `n·L`'s step, the colour constants) in one block of the frame
-    /// read through an opaque address ([`Inv`]), so that the loop reloads
-    /// them where it uses them instead of holding them in registers; the
-    /// stepped values alone ([`Carry`]) live through the loop.
+    /// read through an opaque address ([`Inv`]: `black_box`, so that the
+    /// row's stores may alias it), so that the loop reloads them where it
+    /// uses them (in pairs, `LDRD`) instead of holding them in registers
+    /// and spilling the stepped values; the stepped values alone
+    /// ([`Carry`]) and the block's address live through the loop. The
+    /// same values as [`PhongKernel::run`]'s loop (`inv_loop_is_the_general_path`).
     #[cfg(not(armv6m))]
     #[inline(always)]
     fn run_inv(
@@ -1250,6 +1272,144 @@ mod tests {
         // 2^16 / |n| at |n|² = 1/4 and 1 (RS's ends of the range).
         assert_eq!(rsq_biased(&RS_PACKED, 0), 1 << 17);
         assert_eq!(rsq_biased(&RS_PACKED, 3 << 28), 1 << 16);
+    }
+
+    /// [`Inv::px`] (the loop of [`PhongKernel::run_inv`]) gives the
+    /// channel sums of [`PhongKernel::terms_rn`] and [`Colour::of_terms`]
+    /// (the general path), and [`Inv::step`] [`Whole::step`]'s values, for
+    /// each plan's `SPEC`/`LIT`: over every entry of [`RN`], random and
+    /// extreme `n·L` (up to `|n|`, the `n·L <= |n|` bound the unmasked
+    /// `N·L` relies on, and negative), `Qm` (negative, at the table's
+    /// end, at the saturation of its Q7 form and beyond) and random
+    /// colours of two shininesses.
+    #[cfg(not(armv6m))]
+    #[test]
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap,
+        clippy::cast_sign_loss
+    )]
+    fn inv_loop_is_the_general_path() {
+        use crate::geom::Vec3;
+        use crate::illum::{Light, Material, Shade, Specular, Viewer};
+        use crate::num::Q16;
+        let mut rng = crate::geom::testkit::xorshift(0x2545_F491_4F6C_DD1D);
+        let mut next = move || rng() as u32;
+        let q = Q16::from_f64;
+        let mut checked = 0u32;
+        for (shin, col) in [(20.0, [0.9, 0.7, 0.5]), (5000.0, [1.0, 1.0, 1.0])] {
+            let mat = Material {
+                color: Vec3::new(q(col[0]), q(col[1]), q(col[2])),
+                ka: q(0.3),
+                kd: q(0.9),
+                ks: q(0.9),
+                shininess: q(shin),
+            };
+            let lights = [Light::directional(
+                Vec3::new(q(0.3), q(0.4), q(0.866)),
+                q(1.0),
+            )];
+            let shade =
+                Shade::new(&mat, q(0.5), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            let c = Colour::of(&k, &k.lights[0]);
+            let inv = Inv {
+                nd2: next() as i32,
+                qd2: next() as i32,
+                dnl: next() as i32,
+                ch: [0, 1, 2].map(|j| [c.ds[j], c.ambo[j]]),
+                rn: &RN,
+                tab: &k.packed,
+            };
+            let qms = [
+                -1,
+                0,
+                1 << 20,
+                QM_OFF as i32,
+                (1 << 28) - 1,
+                1 << 28,
+                QM_MAX as i32,
+                i32::MAX,
+                i32::MIN,
+            ];
+            for j in 0..RN_N as u32 {
+                for r in 0..8u32 {
+                    let nb = ((j << 19) | (next() & 0x7_FFFF)) as i32;
+                    // |n| of the entry's segment end: n·L at most |n|.
+                    let nn = 0.25 + f64::from(nb) / f64::from(1u32 << 30);
+                    let top = (nn.sqrt() * f64::from(1u32 << 30)) as i32;
+                    let nl = match r {
+                        0 => top,
+                        1 => 0,
+                        2 => -1,
+                        3 => i32::MIN,
+                        _ => {
+                            (next() % (top as u32 + 1)) as i32
+                                - (next() % 4 == 0) as i32 * (next() >> 2) as i32
+                        }
+                    };
+                    let qm = if r < 4 {
+                        qms[(j as usize + r as usize) % qms.len()]
+                    } else {
+                        next() as i32 >> (next() % 8)
+                    };
+                    let s = Carry {
+                        nn: nb,
+                        nd1: next() as i32,
+                        q: qm,
+                        qd1: next() as i32,
+                        nl,
+                    };
+                    let e = rn_entry(&RN, nb);
+                    let want = |(a, b): (u32, u32)| c.of_terms((a & 0xFFFF) | b << 16);
+                    assert_eq!(
+                        inv.px::<true, false>(&s),
+                        want(k.terms_rn::<true, false>(e, nl, qm)),
+                        "{nb} {nl} {qm}"
+                    );
+                    assert_eq!(
+                        inv.px::<false, false>(&s),
+                        want(k.terms_rn::<false, false>(e, nl, qm)),
+                        "{nb} {nl} {qm}"
+                    );
+                    if nl > 0 {
+                        assert_eq!(
+                            inv.px::<true, true>(&s),
+                            want(k.terms_rn::<true, true>(e, nl, qm)),
+                            "{nb} {nl} {qm}"
+                        );
+                    }
+                    for spec in [false, true] {
+                        let mut w = Whole {
+                            nn: s.nn,
+                            nd1: s.nd1,
+                            nd2: inv.nd2,
+                            q: s.q,
+                            qd1: s.qd1,
+                            qd2: inv.qd2,
+                            nl: s.nl,
+                            dnl: inv.dnl,
+                            spec,
+                            lit: false,
+                        };
+                        let mut t = s;
+                        if spec {
+                            w.step::<true>();
+                            inv.step::<true>(&mut t);
+                        } else {
+                            w.step::<false>();
+                            inv.step::<false>(&mut t);
+                        }
+                        assert_eq!(
+                            (t.nn, t.nd1, t.q, t.qd1, t.nl),
+                            (w.nn, w.nd1, w.q, w.qd1, w.nl)
+                        );
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 2 * 8 * RN_N as u32);
     }
 
     /// `advance` by `k` steps is `k` single steps, wrapping (the set-up
