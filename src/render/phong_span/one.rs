@@ -60,8 +60,14 @@ const TWO_PASS: bool = false;
 /// compiler keeps the 48-bit product's form; in the loop before this
 /// one the same source gave 62.80, the mask narrowing it back to `MUL`),
 /// then 59.07 with each channel's two constants adjacent (one `LDRD`; the
-/// pair loop 89). The layout of [`Inv`] matters: the table addresses
-/// first 64.70, the specular table's address before [`RN`]'s 66.34.
+/// pair loop 89), then 57.97 with the second differences and `n·L`'s
+/// step in the order `nd2, dnl, qd2`. The layout of [`Inv`] moves the
+/// figure by several instructions a pixel (the compiler's register
+/// allocation, not the work): the steps in the orders `nd2, qd2, dnl`
+/// 59.07, `dnl, nd2, qd2` 58.45, `dnl, qd2, nd2` 59.07, `qd2, dnl, nd2`
+/// 59.24, `qd2, nd2, dnl` 65.12; the colour constants first 62.27; the
+/// table addresses first 64.70, the specular table's address before
+/// [`RN`]'s 66.34.
 /// Tried and measured worse on the same sweep (before this loop): a full
 /// piece of [`CHUNK`] pixels that all passed as straight-line code (no
 /// counter, constant store offsets) 65.68, the state then stepped
@@ -90,8 +96,8 @@ struct Carry {
 #[repr(C)]
 struct Inv<'a> {
     nd2: i32,
-    qd2: i32,
     dnl: i32,
+    qd2: i32,
     /// Per channel `[ds, ambo]` of [`Colour`] (adjacent: one `LDRD`).
     ch: [[i32; 2]; 3],
     rn: &'a [u32; RN_N],
