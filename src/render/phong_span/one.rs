@@ -70,7 +70,11 @@ const TWO_PASS: bool = false;
 /// before the steps 61.06), the specular table's address before
 /// [`RN`]'s 66.34 (after the colour constants 66.08). Tried with this
 /// loop and measured worse: pieces of 64 pixels (two masks, one colour
-/// loop) 66.39; the pair loop over `as_chunks_mut` 60.24.
+/// loop) 66.39; the pair loop over `as_chunks_mut` 60.24; each
+/// channel's constants in the order `[ambo, ds]` 58.53. The same block
+/// for ARMv6-M's one loop (ambient, diffuse and specular constants per
+/// channel, the `u16` specular table) measured 127.38 -> 142.66 there:
+/// not kept.
 /// Tried and measured worse on the same sweep (before this loop): a full
 /// piece of [`CHUNK`] pixels that all passed as straight-line code (no
 /// counter, constant store offsets) 65.68, the state then stepped
