@@ -50,6 +50,121 @@ pub(super) const SHORT_SPAN: u32 = 4;
 /// 62.87 with the packed specular table ([`pack_table`]).
 const TWO_PASS: bool = false;
 
+/// Other than on ARMv6-M, [`PhongKernel::run`] with the loop's
+/// invariants read from memory ([`PhongKernel::run_inv`]): the round's
+/// redesign of the loop whose live state fits the registers. Measured on
+/// the M4's span sweep (one light, every frame's CRC unchanged): 62.80
+/// -> 61.54 instructions a pixel (the pair loop 99 -> 96: the constants
+/// reloaded where used, no longer spilled and copied), then 60.61 with
+/// `N·L`'s product as one `SMULWT` (its low half no longer masked, so the
+/// compiler keeps the 48-bit product's form; in the loop before this
+/// one the same source gave 62.80, the mask narrowing it back to `MUL`),
+/// then 59.07 with each channel's two constants adjacent (one `LDRD`; the
+/// pair loop 89), then 57.97 with the second differences and `n·L`'s
+/// step in the order `nd2, dnl, qd2`. The layout of [`Inv`] moves the
+/// figure by several instructions a pixel (the compiler's register
+/// allocation, not the work): the steps in the orders `nd2, qd2, dnl`
+/// 59.07, `dnl, nd2, qd2` 58.45, `dnl, qd2, nd2` 59.07, `qd2, dnl, nd2`
+/// 59.24, `qd2, nd2, dnl` 65.12; the colour constants first 62.27; the
+/// table addresses first 64.70 (after the steps 66.21, first of all
+/// before the steps 61.06), the specular table's address before
+/// [`RN`]'s 66.34 (after the colour constants 66.08). Tried with this
+/// loop and measured worse: pieces of 64 pixels (two masks, one colour
+/// loop) 66.39; the pair loop over `as_chunks_mut` 60.24; each
+/// channel's constants in the order `[ambo, ds]` 58.53. The same block
+/// for ARMv6-M's one loop (ambient, diffuse and specular constants per
+/// channel, the `u16` specular table) measured 127.38 -> 142.66 there:
+/// not kept.
+/// Tried and measured worse on the same sweep (before this loop): a full
+/// piece of [`CHUNK`] pixels that all passed as straight-line code (no
+/// counter, constant store offsets) 65.68, the state then stepped
+/// through memory; the colour constants kept in the kernel after its
+/// specular table (one base address for both) 65.36, the compiler then
+/// addressing them from the kernel's address with 12-bit offsets.
+#[cfg(not(armv6m))]
+const INV_LOOP: bool = true;
+
+/// The stepped values of [`PhongKernel::run_inv`]'s loop: `|n|² - 1/4`
+/// and its first difference, `Qm` and its first difference, `n·L`.
+#[cfg(not(armv6m))]
+#[derive(Clone, Copy)]
+struct Carry {
+    nn: i32,
+    nd1: i32,
+    q: i32,
+    qd1: i32,
+    nl: i32,
+}
+
+/// The invariants of [`PhongKernel::run_inv`]'s loop, one block of its
+/// frame: [`Colour`]'s packed constants, both tables, the second
+/// differences and `n·L`'s step.
+#[cfg(not(armv6m))]
+#[repr(C)]
+struct Inv<'a> {
+    nd2: i32,
+    dnl: i32,
+    qd2: i32,
+    /// Per channel `[ds, ambo]` of [`Colour`] (adjacent: one `LDRD`).
+    ch: [[i32; 2]; 3],
+    rn: &'a [u32; RN_N],
+    tab: &'a [u32; SPEC_SEGMENTS + 1],
+}
+
+#[cfg(not(armv6m))]
+impl Inv<'_> {
+    /// The channel sums of the pixel of `s` ([`PhongKernel::terms_rn`]
+    /// and [`Colour::of_terms`]: the same values).
+    #[inline(always)]
+    #[allow(
+        clippy::cast_sign_loss,
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap
+    )]
+    fn px<const SPEC: bool, const LIT: bool>(&self, s: &Carry) -> [i32; 3] {
+        let e = rn_entry(self.rn, s.nn);
+        let nl = s.nl;
+        let nlp = if LIT { nl } else { nl.max(0) };
+        // `floor(x · (e >> 16) / 2^16)` for `x = nlp >> 13` (below
+        // 2^18) as the signed 48-bit product's bits 16..48 (one `SMULWT`);
+        // below 2^16 (`n·L <= |n|`), so that it needs no mask below.
+        let nl15 =
+            ((i64::from(((nlp as u32) >> 13) as i32) * i64::from((e as i32) >> 16)) >> 16) as u32;
+        let sp = if SPEC && (LIT || nl > 0) {
+            let q7 = (s.q >> (QM_FRAC - 7)).clamp(0, (1 << 15) - 1);
+            let pos = i32::from(q7 as i16) * i32::from(e as i16);
+            let pos = pos.clamp(0, (1 << 27) - 1) as u32;
+            let j = (pos >> 20) as usize & (SPEC_SEGMENTS - 1);
+            let f = (pos >> 4) & 0xFFFF;
+            let t = self.tab[j];
+            (t & 0xFFFF).wrapping_sub(((t >> 16) * f) >> 16)
+        } else {
+            0
+        };
+        let t = (nl15 | sp << 16) ^ 0x8000_8000;
+        let lo = i32::from(t as i16);
+        let hi = (t as i32) >> 16;
+        let ch = |k: usize| {
+            let [ds, ambo] = self.ch[k];
+            ambo.wrapping_add(lo.wrapping_mul(i32::from(ds as i16)))
+                .wrapping_add(hi.wrapping_mul(ds >> 16))
+        };
+        [ch(0), ch(1), ch(2)]
+    }
+
+    /// One pixel's step ([`Whole::step`]).
+    #[inline(always)]
+    fn step<const SPEC: bool>(&self, s: &mut Carry) {
+        s.nn = s.nn.wrapping_add(s.nd1);
+        s.nd1 = s.nd1.wrapping_add(self.nd2);
+        if SPEC {
+            s.q = s.q.wrapping_add(s.qd1);
+            s.qd1 = s.qd1.wrapping_add(self.qd2);
+        }
+        s.nl = s.nl.wrapping_add(self.dnl);
+    }
+}
+
 /// Fraction bits of `Qm` (table segments) in the 32-bit loop.
 pub(super) const QM_FRAC: u32 = 20;
 /// `Qm` at or above this many segments (Q20) gives no specular term:
@@ -210,8 +325,8 @@ pub(super) struct Colour {
     /// The constants of [`Colour::of_terms`] (other than ARMv6-M): per
     /// channel `d | s << 16` and `amb + 2^15 (d + s)` (wrapping); first,
     /// at the copy's address (`run` loads them with no offset).
-    ds: [i32; 3],
-    ambo: [i32; 3],
+    pub(super) ds: [i32; 3],
+    pub(super) ambo: [i32; 3],
     pub(super) amb: [i32; 3],
     pub(super) d: [i32; 3],
     pub(super) s: [i32; 3],
@@ -452,7 +567,10 @@ impl<R: Real> PhongKernel<'_, R> {
     /// by piece of [`CHUNK`] pixels ([`Out::masked`]: the piece's depth
     /// tests first, then one loop of terms, channels and stores, without
     /// a test when all passed, two pixels an iteration over a local copy
-    /// of the state), the state in registers through the colour loop.
+    /// of the state), the state in registers through the colour loop;
+    /// since this round the loop's invariants read from a block of the
+    /// frame ([`PhongKernel::run_inv`], [`INV_LOOP`]): 62.80 -> 59.07
+    /// instructions a pixel on the M4's span sweep.
     /// Measured on the firmware's span sweep (one light), 64.74
     /// instructions a pixel on the M4 (the pair loop 103 instructions,
     /// 51.5 a pixel, the depth mask 8.6, a piece's set-up 92 a piece of
@@ -545,6 +663,10 @@ impl<R: Real> PhongKernel<'_, R> {
         if cfg!(armv6m) {
             return pixels!(fused, i, k);
         }
+        #[cfg(not(armv6m))]
+        if INV_LOOP {
+            return self.run_inv(c, w, rs, i, k, out);
+        }
         if TWO_PASS {
             return self.run_two_pass(c, w, rs, i, k, out);
         }
@@ -554,6 +676,67 @@ impl<R: Real> PhongKernel<'_, R> {
             failed += pixels!(masked, j, kk);
             j += kk;
         }
+        failed
+    }
+
+    /// [`PhongKernel::run`] other than on ARMv6-M ([`INV_LOOP`]): the
+    /// loop's invariants (both tables' addresses, the second differences
+    /// and `n·L`'s step, the colour constants) in one block of the frame
+    /// read through an opaque address ([`Inv`]: `black_box`, so that the
+    /// row's stores may alias it), so that the loop reloads them where it
+    /// uses them (in pairs, `LDRD`) instead of holding them in registers
+    /// and spilling the stepped values; the stepped values alone
+    /// ([`Carry`]) and the block's address live through the loop. The
+    /// same values as [`PhongKernel::run`]'s loop (`inv_loop_is_the_general_path`).
+    #[cfg(not(armv6m))]
+    #[inline(always)]
+    fn run_inv(
+        &self,
+        c: &Colour,
+        w: &mut Whole,
+        rs: &[u32; RN_N],
+        i: u32,
+        k: u32,
+        out: &mut impl Out,
+    ) -> u32 {
+        let inv = Inv {
+            nd2: w.nd2,
+            qd2: w.qd2,
+            dnl: w.dnl,
+            ch: [0, 1, 2].map(|k| [c.ds[k], c.ambo[k]]),
+            rn: rs,
+            tab: &self.packed,
+        };
+        let inv = core::hint::black_box(&inv);
+        let mut s = Carry {
+            nn: w.nn,
+            nd1: w.nd1,
+            q: w.q,
+            qd1: w.qd1,
+            nl: w.nl,
+        };
+        let (end, mut j, mut failed) = (i + k, i, 0);
+        macro_rules! go {
+            ($spec:literal, $lit:literal, $kk:expr) => {
+                out.masked(
+                    j,
+                    $kk,
+                    &mut s,
+                    |s| inv.px::<$spec, $lit>(s),
+                    |s| inv.step::<$spec>(s),
+                )
+            };
+        }
+        while j < end {
+            let kk = (end - j).min(CHUNK as u32);
+            failed += match (w.spec, w.lit) {
+                (true, true) => go!(true, true, kk),
+                (true, false) => go!(true, false, kk),
+                _ => go!(false, false, kk),
+            };
+            j += kk;
+        }
+        (w.nn, w.nd1, w.q, w.qd1, w.nl) = (s.nn, s.nd1, s.q, s.qd1, s.nl);
         failed
     }
 
@@ -1102,6 +1285,144 @@ mod tests {
         // 2^16 / |n| at |n|² = 1/4 and 1 (RS's ends of the range).
         assert_eq!(rsq_biased(&RS_PACKED, 0), 1 << 17);
         assert_eq!(rsq_biased(&RS_PACKED, 3 << 28), 1 << 16);
+    }
+
+    /// [`Inv::px`] (the loop of [`PhongKernel::run_inv`]) gives the
+    /// channel sums of [`PhongKernel::terms_rn`] and [`Colour::of_terms`]
+    /// (the general path), and [`Inv::step`] [`Whole::step`]'s values, for
+    /// each plan's `SPEC`/`LIT`: over every entry of [`RN`], random and
+    /// extreme `n·L` (up to `|n|`, the `n·L <= |n|` bound the unmasked
+    /// `N·L` relies on, and negative), `Qm` (negative, at the table's
+    /// end, at the saturation of its Q7 form and beyond) and random
+    /// colours of two shininesses.
+    #[cfg(not(armv6m))]
+    #[test]
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap,
+        clippy::cast_sign_loss
+    )]
+    fn inv_loop_is_the_general_path() {
+        use crate::geom::Vec3;
+        use crate::illum::{Light, Material, Shade, Specular, Viewer};
+        use crate::num::Q16;
+        let mut rng = crate::geom::testkit::xorshift(0x2545_F491_4F6C_DD1D);
+        let mut next = move || rng() as u32;
+        let q = Q16::from_f64;
+        let mut checked = 0u32;
+        for (shin, col) in [(20.0, [0.9, 0.7, 0.5]), (5000.0, [1.0, 1.0, 1.0])] {
+            let mat = Material {
+                color: Vec3::new(q(col[0]), q(col[1]), q(col[2])),
+                ka: q(0.3),
+                kd: q(0.9),
+                ks: q(0.9),
+                shininess: q(shin),
+            };
+            let lights = [Light::directional(
+                Vec3::new(q(0.3), q(0.4), q(0.866)),
+                q(1.0),
+            )];
+            let shade =
+                Shade::new(&mat, q(0.5), &lights, Specular::Phong, Viewer::Infinite).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            let c = Colour::of(&k, &k.lights[0]);
+            let inv = Inv {
+                nd2: next() as i32,
+                qd2: next() as i32,
+                dnl: next() as i32,
+                ch: [0, 1, 2].map(|j| [c.ds[j], c.ambo[j]]),
+                rn: &RN,
+                tab: &k.packed,
+            };
+            let qms = [
+                -1,
+                0,
+                1 << 20,
+                QM_OFF as i32,
+                (1 << 28) - 1,
+                1 << 28,
+                QM_MAX as i32,
+                i32::MAX,
+                i32::MIN,
+            ];
+            for j in 0..RN_N as u32 {
+                for r in 0..8u32 {
+                    let nb = ((j << 19) | (next() & 0x7_FFFF)) as i32;
+                    // |n| of the entry's segment end: n·L at most |n|.
+                    let nn = 0.25 + f64::from(nb) / f64::from(1u32 << 30);
+                    let top = (nn.sqrt() * f64::from(1u32 << 30)) as i32;
+                    let nl = match r {
+                        0 => top,
+                        1 => 0,
+                        2 => -1,
+                        3 => i32::MIN,
+                        _ => {
+                            (next() % (top as u32 + 1)) as i32
+                                - (next() % 4 == 0) as i32 * (next() >> 2) as i32
+                        }
+                    };
+                    let qm = if r < 4 {
+                        qms[(j as usize + r as usize) % qms.len()]
+                    } else {
+                        next() as i32 >> (next() % 8)
+                    };
+                    let s = Carry {
+                        nn: nb,
+                        nd1: next() as i32,
+                        q: qm,
+                        qd1: next() as i32,
+                        nl,
+                    };
+                    let e = rn_entry(&RN, nb);
+                    let want = |(a, b): (u32, u32)| c.of_terms((a & 0xFFFF) | b << 16);
+                    assert_eq!(
+                        inv.px::<true, false>(&s),
+                        want(k.terms_rn::<true, false>(e, nl, qm)),
+                        "{nb} {nl} {qm}"
+                    );
+                    assert_eq!(
+                        inv.px::<false, false>(&s),
+                        want(k.terms_rn::<false, false>(e, nl, qm)),
+                        "{nb} {nl} {qm}"
+                    );
+                    if nl > 0 {
+                        assert_eq!(
+                            inv.px::<true, true>(&s),
+                            want(k.terms_rn::<true, true>(e, nl, qm)),
+                            "{nb} {nl} {qm}"
+                        );
+                    }
+                    for spec in [false, true] {
+                        let mut w = Whole {
+                            nn: s.nn,
+                            nd1: s.nd1,
+                            nd2: inv.nd2,
+                            q: s.q,
+                            qd1: s.qd1,
+                            qd2: inv.qd2,
+                            nl: s.nl,
+                            dnl: inv.dnl,
+                            spec,
+                            lit: false,
+                        };
+                        let mut t = s;
+                        if spec {
+                            w.step::<true>();
+                            inv.step::<true>(&mut t);
+                        } else {
+                            w.step::<false>();
+                            inv.step::<false>(&mut t);
+                        }
+                        assert_eq!(
+                            (t.nn, t.nd1, t.q, t.qd1, t.nl),
+                            (w.nn, w.nd1, w.q, w.qd1, w.nl)
+                        );
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 2 * 8 * RN_N as u32);
     }
 
     /// `advance` by `k` steps is `k` single steps, wrapping (the set-up
