@@ -136,6 +136,73 @@
 //! `|ṽ|²` in `(1/4, 4)`, steps of at most 1/16 of `|l|` and `|v|`, every
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
+//!
+//! # The floor (issue 15: 90 instructions a pixel on the M4)
+//! Counted on the firmware's span sweep phong-kpoint (M4, 151.78 a
+//! pixel; its chunks fine: `tri_chunk::<true, true>`), from the executed
+//! instructions of each pass (the disassembly's counts over the 3 200
+//! pixels of its long spans) against the fewest instructions each term
+//! needs at its stated error, registers allowing (`floor`):
+//!
+//! ```text
+//! term (per pixel)                          now    floor
+//! pass 1: 1/|l̃| (B step 2, seed 1, step 4),
+//!         n·L̂ (D step 2, SMMUL, LSL), stores 19.25  13
+//! pass 2: 1/|ṽ| (as 1/|l̃|), (n·L̂)(n·V̂) 3,
+//!         G = 1/(|l̃||ṽ|) 2, loads, stores   23.0   18
+//! pass 3: F̃·G (F step 2, SMMUL, LSL, ld/st)  8.1    6
+//! pass 4: A step 2, 1/|n| packed table 8,
+//!         w·A 3, clamp and K 3, 1/|n|² 3,
+//!         position 3, table 6 (two LDRH), N·L 3,
+//!         n·L > 0 test 2, pack 2, store 1    49.0   38
+//! colour (`paint`): 6 SMLA, 3 USAT, 3 ORR/LSL,
+//!         REV, STRH, load, EOR               22.0   15
+//! depth test (`mask_in_range`)                8.6    6
+//! chunk set-up (plan step 172, seeds ~90,
+//!         driver ~350 a chunk of 32)         21.8    5
+//! total                                     151.8  101
+//! ```
+//!
+//! Above their floor: the passes' spills (16.75 stack loads and stores a
+//! pixel: pass 1 3.5, pass 2 2, pass 3 0.75, pass 4 5.5, colour 5: the
+//! colour's six channel constants and the loops' states do not fit the
+//! twelve free registers), the loop control of four passes and the
+//! values handed between them (seven words a pixel stored and loaded
+//! again: `1/|l̃|`, `n·L̂`, `G`, `(n·L̂)(n·V̂)`, `F̃·G`, the terms), and
+//! the chunk's set-up (`Plan::step_chunk` steps six 64-bit triples, 5.4
+//! a pixel, where the loop reads the high words only). Even at every
+//! floor the present formulation costs ~101: the sum is above 90. What
+//! the error bounds allow cheaper:
+//! - `1/|ṽ|` (the eye far: `|dṽ|/|ṽ| = r` ~1/300 a pixel for a 60°
+//!   field of 320 pixels, 1/500 in the sweep) by forward differences of
+//!   a quadratic through its exact values at the chunk's pixels 0, 16
+//!   and 32: within `r³·1576·(1 + 4r)` of it relative (the Taylor
+//!   coefficients of `1/|v + t·d|` are below `r^k/|v|`, Legendre's
+//!   bound, and `|t(t - 16)(t - 32)| <= 1576` on `[0, 32]`), `2^-16.3`
+//!   at `r = 1/500`; `w` moves by as much (`ε·R·V`), the table position
+//!   by `m` times it. Per pixel 2 additions for the 5 of the step and the
+//!   seed and the state's moves: floor 96; the set-up three exact values
+//!   a chunk (~75, 2.3 a pixel).
+//! - `n·V̂` and `l̃·V̂` (`E/|ṽ|`, `F̃/|ṽ|`) as quadratics of their own
+//!   (the interpolation error then has the normal's step in it: `2|n|(r³
+//!   + ν r²)·1576`, `ν` the normal's relative step, ~0.003 in the sweep:
+//!   `2^-13.9`, too large for `m` = 256 within `2^-11` of the table):
+//!   `w·A = A + A·(ŷ_l·l̃·V̂) - 2 (n·L̂)(n·V̂)`, three products for five,
+//!   steps 4 for 6: floor 89, for small `m·r²ν` only.
+//! - The series step on `|l̃|²·|ṽ|²` for `G` (a product and a step for
+//!   the step of `1/|ṽ|` and a product): no gain while `N·L` needs
+//!   `1/|l̃|` alone; the diffuse and specular terms already share it.
+//! - `1/|n|` by the first-order step from the extrapolated seed (as
+//!   `1/|l̃|`, `|dn|/|n|` at most 1/64): 2 + 5 for 10, but `1/|n|²`
+//!   then takes its own product: floor −2.
+//!
+//! So the floor of the stated bounds is ~89 on the M4 with every term at
+//! its floor and no spill, which four passes of twelve registers do not
+//! give (each value handed between passes costs a store and a load).
+//! The M0 (483.14, 2.5 × 90 = 225): `wide::mulhi_split` alone is 218
+//! a pixel (its eleven high halves ~20 instructions each), the specular
+//! table 27, the channels 22, the encoding 20: its floor is that of the
+//! high halves; each one the formulation drops saves ~20 there.
 
 use super::one::{rsq_biased, Colour, RS_PACKED};
 use super::tri::TriQuad;
