@@ -238,6 +238,77 @@ pub(super) const PCHUNK: usize = CHUNK;
 /// loop runs (`m < 256`, see the module docs).
 pub(super) const KF_MAX: u32 = 1 << 20;
 
+/// A triangle whose view vector steps by at most `r` of its length a
+/// pixel with `m·3152·r³ <= 2^-10` ([`view_quad_min`]) takes `1/|ṽ|`
+/// as a quadratic a chunk ([`view_quad`]: forward differences, two
+/// additions a pixel) instead of the series step a pixel.
+pub(super) const VIEW_QUAD: bool = true;
+
+/// The smallest `M` with `M³ >= (3152·m·2^10)²` and `M >= 2^16`, for `m`
+/// in `0..=256`: steps of the view vector of at most `r` of its length
+/// with `r² <= 1/M` keep [`view_quad`]'s error `3152 r³` within
+/// `2^-10/m` (and `r <= 2^-8`).
+const VQ_MIN: [u32; 257] = {
+    let mut t = [0u32; 257];
+    let mut m = 0;
+    while m <= 256 {
+        let p = 3152 * 1024 * m as u64;
+        let p2 = p * p;
+        let (mut lo, mut hi) = (1u64 << 16, 1u64 << 21);
+        // The smallest x in [lo, hi] with x³ >= p² (hi³ = 2^63 > p²).
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if mid * mid * mid >= p2 {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        t[m] = lo as u32;
+        m += 1;
+    }
+    t
+};
+
+/// [`VQ_MIN`] of the shininess bound of the table scale `kf` (`K·2^8 =
+/// 4096 m` for `m >= 8`, `2^15` below: `m <= kf/2^12 + 1`).
+#[inline(always)]
+pub(super) fn view_quad_min(kf: u32) -> i64 {
+    let m = ((kf >> 12) + 1).min(256) as usize;
+    i64::from(VQ_MIN.get(m).copied().unwrap_or(u32::MAX))
+}
+
+/// `1/|ṽ|` over a chunk as a quadratic: its value, first and second
+/// differences (Q29) from the exact values (one series step from the
+/// table, within `2^-22`) at the chunk's pixels 0, 16 and 32, `C = |ṽ|²`
+/// stepped from its 32-bit forward difference `c` (`None`: a value out
+/// of the table). Within `3152 r³ + 2^-19.9` of `1/|ṽ|` (relative) over
+/// the chunk's 32 pixels, `r <= 2^-8` the view vector's step over its
+/// length: the Taylor coefficients of `1/|v + t·d|` are below
+/// `r^k/|v|` (Legendre's generating function), `|t (t - 16) (t - 32)|
+/// <= 1576` on `[0, 32]`, `(1 - 32 r)^-4 < 2`; the nodes' `2^-22` times
+/// 1.25, the roundings of the differences 264 units of `2^-29`.
+#[inline(always)]
+fn view_quad((c0, c1, c2): (i32, i32, i32)) -> Option<(i32, i32, i32)> {
+    let c16 = c0.wrapping_add(c1 << 4).wrapping_add(c2.wrapping_mul(120));
+    let c32 = c0.wrapping_add(c1 << 5).wrapping_add(c2.wrapping_mul(496));
+    let u0 = newton(seed(c0)?, c0);
+    let u16 = newton(seed(c16)?, c16);
+    let u32 = newton(seed(c32)?, c32);
+    // f(t) = u0 + t·a + t(t - 1)/2 · b through the three values.
+    let b = (u0
+        .wrapping_sub(u16.wrapping_mul(2))
+        .wrapping_add(u32)
+        .wrapping_add(128))
+        >> 8;
+    let a = (u16
+        .wrapping_sub(u0)
+        .wrapping_sub(b.wrapping_mul(120))
+        .wrapping_add(8))
+        >> 4;
+    Some((u0, a, b))
+}
+
 /// `round(x / 2^s)` for `s` in `1..64`, `x·2^-s` (exact) for `s` in
 /// `-31..=0`; `None` past `i32`.
 #[inline(always)]
@@ -371,9 +442,10 @@ struct Chunk {
     d: (i32, i32, i32),
     e: (i32, i32, i32),
     f: (i32, i32, i32),
-    /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29).
+    /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29; the
+    /// latter's third word 0), or `1/|ṽ|`'s quadratic ([`view_quad`]).
     yl: (i32, i32),
-    yv: (i32, i32),
+    yv: (i32, i32, i32),
     /// Steps of `l̃` and `ṽ` of at most `1/64` of their length over the
     /// chunk: the seeds from [`seeds_fine`], each pixel by
     /// [`newton_lin`] (the linear extrapolation within `2^-10.8`).
@@ -439,7 +511,7 @@ impl Plan {
             e: r(qe, 30),
             f: r(qf, 30),
             yl: seeds_of(b.0, b.1, fine)?,
-            yv: seeds_of(c.0, c.1, fine)?,
+            yv: tri(seeds_of(c.0, c.1, fine)?),
             fine,
         })
     }
@@ -457,7 +529,7 @@ impl Plan {
     /// `fv`: the seeds of `1/|ṽ|` fine ([`TriQuad`]'s fineness of the
     /// viewer, apart from the light's `fine`).
     #[inline(always)]
-    fn chunk_hi(&self, fine: bool, fv: bool) -> Option<Chunk> {
+    fn chunk_hi(&self, fine: bool, fv: bool, vq: bool) -> Option<Chunk> {
         let [a, b, c, d, e, f] = self.hi();
         Some(Chunk {
             a,
@@ -467,7 +539,11 @@ impl Plan {
             e,
             f,
             yl: seeds_of(b.0, b.1, fine)?,
-            yv: seeds_of(c.0, c.1, fv)?,
+            yv: if vq {
+                view_quad(c)?
+            } else {
+                tri(seeds_of(c.0, c.1, fv)?)
+            },
             fine: fine && fv,
         })
     }
@@ -495,16 +571,33 @@ impl Plan {
     /// each fine or not (`fine`, `fv`).
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
-    fn seeds_hi(&self, fine: bool, fv: bool) -> Option<Seeds> {
+    fn seeds_hi(&self, fine: bool, fv: bool, vq: bool) -> Option<Seeds> {
         let hi = |c: [i64; 3]| ((c[0] >> 32) as i32, (c[1] >> 32) as i32);
         let (b0, b1) = hi(self.q[1]);
-        let (c0, c1) = hi(self.q[2]);
-        Some((seeds_of(b0, b1, fine)?, seeds_of(c0, c1, fv)?))
+        let yl = seeds_of(b0, b1, fine)?;
+        let yv = if vq {
+            let c = self.q[2];
+            view_quad((
+                (c[0] >> 32) as i32,
+                (c[1] >> 32) as i32,
+                (c[2] >> 32) as i32,
+            ))?
+        } else {
+            let (c0, c1) = hi(self.q[2]);
+            tri(seeds_of(c0, c1, fv)?)
+        };
+        Some((yl, yv))
     }
 }
 
 /// Newton states of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`]).
-type Seeds = ((i32, i32), (i32, i32));
+type Seeds = ((i32, i32), (i32, i32, i32));
+
+/// A Newton state `(y(-2), y(-1))` as [`Chunk::yv`] (third word 0).
+#[inline(always)]
+fn tri((a, b): (i32, i32)) -> (i32, i32, i32) {
+    (a, b, 0)
+}
 
 /// `v` and its step `d` times `2^s`, `s` making the largest component
 /// of `v` lie in `[2^28, 2^29)`, each component of the scaled step below
@@ -765,7 +858,7 @@ impl<R: Real> PhongKernel<'_, R> {
             &own
         };
         let planned = tri.plan(x, y, len);
-        let (fine, fv) = (tri.fine(), tri.fine_v());
+        let (fine, fv, vq) = (tri.fine(), tri.fine_v(), tri.quad_v());
         let TriQuad {
             span: pl, px, buf, ..
         } = tri;
@@ -773,27 +866,30 @@ impl<R: Real> PhongKernel<'_, R> {
         // One chunk function for fine triangles, one for those whose
         // viewer only is fine ([`SPLIT_FINE`]), one for the others (each
         // with the two loops of its seeds and steps): a driver each, but
-        // on ARMv6-M one driver choosing a chunk (the same values).
-        let kind = if fine {
-            0
-        } else if fv && SPLIT_FINE {
-            1
-        } else {
-            2
+        // on ARMv6-M one driver choosing a chunk (the same values). Those
+        // whose `1/|ṽ|` is a quadratic ([`VIEW_QUAD`]) have their own,
+        // the light fine or not.
+        let kind = match (fine, vq) {
+            (true, true) => 3,
+            (false, true) => 4,
+            (true, false) => 0,
+            _ if fv && SPLIT_FINE => 1,
+            _ => 2,
         };
         if cfg!(armv6m) {
             return drive_in(
                 buf,
                 len,
-                |i, k, buf| match kind {
-                    0 => {
-                        self.tri_chunk::<true, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                |i, k, buf| {
+                    let k = k as usize;
+                    let p = &mut plan;
+                    match kind {
+                        0 => self.tri_chunk::<true, true, false>(l, c, span, p, px, i, k, buf),
+                        1 => self.tri_chunk::<false, true, false>(l, c, span, p, px, i, k, buf),
+                        3 => self.tri_chunk::<true, true, true>(l, c, span, p, px, i, k, buf),
+                        4 => self.tri_chunk::<false, true, true>(l, c, span, p, px, i, k, buf),
+                        _ => self.tri_chunk::<false, false, false>(l, c, span, p, px, i, k, buf),
                     }
-                    1 => {
-                        self.tri_chunk::<false, true>(l, c, span, &mut plan, px, i, k as usize, buf)
-                    }
-                    _ => self
-                        .tri_chunk::<false, false>(l, c, span, &mut plan, px, i, k as usize, buf),
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -804,7 +900,9 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<true, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    self.tri_chunk::<true, true, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -813,7 +911,31 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<false, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    self.tri_chunk::<false, true, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            3 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<true, true, true>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            4 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<false, true, true>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -822,7 +944,9 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<false, false>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    self.tri_chunk::<false, false, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -834,7 +958,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// every chunk from the plan, stepped on.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    fn tri_chunk<const FINE: bool, const FV: bool>(
+    fn tri_chunk<const FINE: bool, const FV: bool, const VQ: bool>(
         &self,
         l: &KLight,
         c: &Colour,
@@ -853,17 +977,17 @@ impl<R: Real> PhongKernel<'_, R> {
                     if i > 0 {
                         pl.step_chunk();
                     }
-                    pl.chunk_hi(FINE, FV)
+                    pl.chunk_hi(FINE, FV, VQ)
                 }
                 None => None,
             };
             return match st {
                 Some(st) if self.spec => {
-                    self.point_run_in::<true, FINE, FV>(px, &st, k, buf);
+                    self.point_run_in::<true, FINE, FV, VQ>(px, &st, k, buf);
                     true
                 }
                 Some(st) => {
-                    self.point_run_in::<false, FINE, FV>(px, &st, k, buf);
+                    self.point_run_in::<false, FINE, FV, VQ>(px, &st, k, buf);
                     true
                 }
                 None => {
@@ -882,17 +1006,17 @@ impl<R: Real> PhongKernel<'_, R> {
                     pl.step_chunk();
                 }
                 let pl: &Plan = pl;
-                pl.seeds_hi(FINE, FV).map(|s| (pl, s))
+                pl.seeds_hi(FINE, FV, VQ).map(|s| (pl, s))
             }
             None => None,
         };
         match st {
             Some((pl, s)) if self.spec => {
-                self.point_run_vals::<true, FINE, FV>(px, pl.hi(), s, k, buf);
+                self.point_run_vals::<true, FINE, FV, VQ>(px, pl.hi(), s, k, buf);
                 true
             }
             Some((pl, s)) => {
-                self.point_run_vals::<false, FINE, FV>(px, pl.hi(), s, k, buf);
+                self.point_run_vals::<false, FINE, FV, VQ>(px, pl.hi(), s, k, buf);
                 true
             }
             None => {
@@ -1023,7 +1147,7 @@ impl<R: Real> PhongKernel<'_, R> {
             e: x32(prod(nj, dn, vt, dvt)),
             f: x32(prod(lt, dlt, vt, dvt)),
             yl: seeds_of(b32.0, b32.1, fine)?,
-            yv: seeds_of(c32.0, c32.1, fine)?,
+            yv: tri(seeds_of(c32.0, c32.1, fine)?),
             fine,
         })
     }
@@ -1182,21 +1306,21 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
-        self.point_run_in::<SPEC, FINE, FINE>(&mut [Px::default(); GROUP], st, k, col);
+        self.point_run_in::<SPEC, FINE, FINE, false>(&mut [Px::default(); GROUP], st, k, col);
     }
 
     /// [`PhongKernel::point_run`] with the values between passes in `px`
     /// (kept by the caller: no zeroing a chunk).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_in<const SPEC: bool, const FINE: bool, const FV: bool>(
+    fn point_run_in<const SPEC: bool, const FINE: bool, const FV: bool, const VQ: bool>(
         &self,
         px: &mut [Px; GROUP],
         st: &Chunk,
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
-        self.point_run_vals::<SPEC, FINE, FV>(
+        self.point_run_vals::<SPEC, FINE, FV, VQ>(
             px,
             [st.a, st.b, st.c, st.d, st.e, st.f],
             (st.yl, st.yv),
@@ -1207,10 +1331,11 @@ impl<R: Real> PhongKernel<'_, R> {
 
     /// [`PhongKernel::point_run_in`] from the chunk's triples (`A`..`F`)
     /// and seeds given one by one (read where they lie: no [`Chunk`]
-    /// built).
+    /// built). `VQ`: `1/|ṽ|` the quadratic of [`view_quad`] (its value
+    /// and differences in `yv`), `F̃·G` in its pass.
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_vals<const SPEC: bool, const FINE: bool, const FV: bool>(
+    fn point_run_vals<const SPEC: bool, const FINE: bool, const FV: bool, const VQ: bool>(
         &self,
         px: &mut [Px; GROUP],
         [sa, sb, sc, sd, se, sf]: [(i32, i32, i32); 6],
@@ -1224,7 +1349,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut la, mut lb) = yl;
         let (mut xc, mut xc1, xc2) = sc;
         let (mut e, mut e1, e2) = se;
-        let (mut va, mut vb) = yv;
+        let (mut va, mut vb, vb2) = yv;
         let (mut f, mut f1, f2) = sf;
         let (mut a, mut a1, a2) = sa;
         let kc = KScale::of(self.kf);
@@ -1249,7 +1374,24 @@ impl<R: Real> PhongKernel<'_, R> {
                 d1 = d1.wrapping_add(d2);
             }
             // 1/|ṽ|, n·V̂ and L̂·V̂.
-            if SPEC {
+            if SPEC && VQ {
+                // 1/|ṽ| by forward differences (va, vb, vb2: its value
+                // and differences), F̃·G in the same pass.
+                for (o, &nl) in px.iter_mut().zip(cg.iter()) {
+                    let y = va;
+                    o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
+                    let g = mulhi(o.g, y) << 2;
+                    o.g = if FUSED_FG { g } else { mulhi(f, g) << 2 };
+                    va = va.wrapping_add(vb);
+                    vb = vb.wrapping_add(vb2);
+                    e = e.wrapping_add(e1);
+                    e1 = e1.wrapping_add(e2);
+                    if !FUSED_FG {
+                        f = f.wrapping_add(f1);
+                        f1 = f1.wrapping_add(f2);
+                    }
+                }
+            } else if SPEC {
                 for (o, &nl) in px.iter_mut().zip(cg.iter()) {
                     let s = vb.wrapping_mul(2).wrapping_sub(va);
                     let y = if FV { newton_lin(s, xc) } else { newton(s, xc) };
@@ -1434,14 +1576,69 @@ mod tests {
             }
             let fine = i % 2 == 0;
             let fv = fine || i % 3 == 0;
-            let want = pl.seeds_hi(fine, fv).map(|(yl, yv)| (pl.hi(), yl, yv));
+            let vq = i % 5 == 0;
+            let want = pl.seeds_hi(fine, fv, vq).map(|(yl, yv)| (pl.hi(), yl, yv));
             let got = pl
-                .chunk_hi(fine, fv)
+                .chunk_hi(fine, fv, vq)
                 .map(|c| ([c.a, c.b, c.c, c.d, c.e, c.f], c.yl, c.yv));
             assert_eq!(got, want, "{i}");
             some += usize::from(got.is_some());
         }
         assert!(some > 10_000, "{some}");
+    }
+
+    /// [`view_quad`] against `f64`: for view vectors stepping by `r` up to
+    /// `2^-8` of their length a pixel (any direction), `|ṽ|²` (Q29) in
+    /// `(1/6, 4)` over the chunk, its forward differences within `3152 r³
+    /// + 2^-19.9` of `1/|ṽ|` (relative) at each of the 32 pixels; and
+    /// [`VQ_MIN`] the smallest `M >= 2^16` with `M³ >= (3152·2^10·m)²`.
+    #[test]
+    fn view_quad_error() {
+        let mut rng = crate::geom::testkit::xorshift(0x5151_2727_8383_9e9e);
+        let mut u = move || (rng() >> 11) as f64 / (1u64 << 53) as f64;
+        let q29 = f64::from(1u32 << 29);
+        let (mut worst, mut n) = (0f64, 0);
+        for i in 0..100_000 {
+            let r = match i % 4 {
+                0 => 2f64.powi(-8),
+                _ => 2f64.powi(-8) * u().powf(0.5),
+            };
+            let len = (0.45 + 1.4 * u()).sqrt();
+            let dir = |u: &mut dyn FnMut() -> f64| {
+                let v = [2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0];
+                let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-9);
+                v.map(|c| c / l)
+            };
+            let v = dir(&mut u).map(|c| c * len);
+            let d = dir(&mut u).map(|c| c * len * r);
+            let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let c0 = (dot(v, v) * q29).round() as i32;
+            let c1 = ((2.0 * dot(v, d) + dot(d, d)) * q29).round() as i32;
+            let c2 = (2.0 * dot(d, d) * q29).round() as i32;
+            let Some((mut y, mut y1, y2)) = view_quad((c0, c1, c2)) else {
+                continue;
+            };
+            n += 1;
+            let bound = 3152.0 * r.powi(3) + 2f64.powf(-19.9);
+            // The exact quadratic of the rounded triple.
+            let (mut x, mut x1) = (f64::from(c0), f64::from(c1));
+            for t in 0..32 {
+                let exact = 1.0 / (x / q29).sqrt();
+                let err = (f64::from(y) / q29 / exact - 1.0).abs();
+                assert!(err <= bound, "r {r:e} t {t}: {err:e} > {bound:e}");
+                worst = worst.max(err / bound);
+                (y, y1) = (y.wrapping_add(y1), y1.wrapping_add(y2));
+                (x, x1) = (x + x1, x1 + f64::from(c2));
+            }
+        }
+        std::println!("view_quad: {n} chunks, worst {worst:.3} of the bound");
+        assert!(n > 90_000, "{n}");
+        for m in 0..=256u64 {
+            let p2 = (3152 * 1024 * m).pow(2);
+            let x = u64::from(VQ_MIN[m as usize]);
+            assert!(x >= 1 << 16 && x * x * x >= p2, "{m}");
+            assert!(x == 1 << 16 || (x - 1).pow(3) < p2, "{m}");
+        }
     }
 
     #[test]
