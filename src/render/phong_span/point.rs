@@ -244,6 +244,12 @@ pub(super) const KF_MAX: u32 = 1 << 20;
 /// additions a pixel) instead of the series step a pixel.
 pub(super) const VIEW_QUAD: bool = true;
 
+/// `F̃·G` in the pass of the quadratic `1/|ṽ|` ([`VIEW_QUAD`]) other than
+/// on ARMv6-M (whose loop takes it in the last pass, [`FUSED_FG`]), else
+/// in a pass of its own as the series step's. Measured (span sweep
+/// phong-kpoint, M4): its own pass 146.29 -> 152.66 a pixel.
+const VQ_FG: bool = true;
+
 /// The smallest `M` with `M³ >= (3152·m·2^10)²` and `M >= 2^16`, for `m`
 /// in `0..=256`: steps of the view vector of at most `r` of its length
 /// with `r² <= 1/M` keep [`view_quad`]'s error `3152 r³` within
@@ -279,22 +285,25 @@ pub(super) fn view_quad_min(kf: u32) -> i64 {
 }
 
 /// `1/|ṽ|` over a chunk as a quadratic: its value, first and second
-/// differences (Q29) from the exact values (one series step from the
-/// table, within `2^-22`) at the chunk's pixels 0, 16 and 32, `C = |ṽ|²`
-/// stepped from its 32-bit forward difference `c` (`None`: a value out
-/// of the table). Within `3152 r³ + 2^-19.9` of `1/|ṽ|` (relative) over
+/// differences (Q29) from the exact values (one first-order step from
+/// the table, [`newton_lin`]: `|e| < 2^-10.4`, within `2^-21.6`) at the
+/// chunk's pixels 0, 16 and 32, `C = |ṽ|²` stepped from its 32-bit
+/// forward difference `c` (`None`: a value out of the table). Within
+/// `3152 r³ + 2^-19` of `1/|ṽ|` (relative) over
 /// the chunk's 32 pixels, `r <= 2^-8` the view vector's step over its
 /// length: the Taylor coefficients of `1/|v + t·d|` are below
 /// `r^k/|v|` (Legendre's generating function), `|t (t - 16) (t - 32)|
-/// <= 1576` on `[0, 32]`, `(1 - 32 r)^-4 < 2`; the nodes' `2^-22` times
-/// 1.25, the roundings of the differences 264 units of `2^-29`.
+/// <= 1576` on `[0, 32]`, `(1 - 32 r)^-4 < 2`; the nodes' `2^-21.6`
+/// times 1.25, the roundings of the differences 264 units of `2^-29`
+/// (`1/|ṽ| > 1/2`). Measured with [`newton`]'s series step for the
+/// nodes (within `2^-22`): span sweep phong-kpoint M4 147.14, M0 430.86.
 #[inline(always)]
 fn view_quad((c0, c1, c2): (i32, i32, i32)) -> Option<(i32, i32, i32)> {
     let c16 = c0.wrapping_add(c1 << 4).wrapping_add(c2.wrapping_mul(120));
     let c32 = c0.wrapping_add(c1 << 5).wrapping_add(c2.wrapping_mul(496));
-    let u0 = newton(seed(c0)?, c0);
-    let u16 = newton(seed(c16)?, c16);
-    let u32 = newton(seed(c32)?, c32);
+    let u0 = newton_lin(seed(c0)?, c0);
+    let u16 = newton_lin(seed(c16)?, c16);
+    let u32 = newton_lin(seed(c32)?, c32);
     // f(t) = u0 + t·a + t(t - 1)/2 · b through the three values.
     let b = (u0
         .wrapping_sub(u16.wrapping_mul(2))
@@ -1376,17 +1385,18 @@ impl<R: Real> PhongKernel<'_, R> {
             // 1/|ṽ|, n·V̂ and L̂·V̂.
             if SPEC && VQ {
                 // 1/|ṽ| by forward differences (va, vb, vb2: its value
-                // and differences), F̃·G in the same pass.
+                // and differences), F̃·G in the same pass ([`VQ_FG`]).
+                let fg_here = VQ_FG && !FUSED_FG;
                 for (o, &nl) in px.iter_mut().zip(cg.iter()) {
                     let y = va;
                     o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
                     let g = mulhi(o.g, y) << 2;
-                    o.g = if FUSED_FG { g } else { mulhi(f, g) << 2 };
+                    o.g = if fg_here { mulhi(f, g) << 2 } else { g };
                     va = va.wrapping_add(vb);
                     vb = vb.wrapping_add(vb2);
                     e = e.wrapping_add(e1);
                     e1 = e1.wrapping_add(e2);
-                    if !FUSED_FG {
+                    if fg_here {
                         f = f.wrapping_add(f1);
                         f1 = f1.wrapping_add(f2);
                     }
@@ -1405,13 +1415,13 @@ impl<R: Real> PhongKernel<'_, R> {
                     e = e.wrapping_add(e1);
                     e1 = e1.wrapping_add(e2);
                 }
-                if !FUSED_FG {
-                    for o in px.iter_mut().take(cg.len()) {
-                        // F̃ (Q28) · G (Q28): Q24, as Q26 (in place of G).
-                        o.g = mulhi(f, o.g) << 2;
-                        f = f.wrapping_add(f1);
-                        f1 = f1.wrapping_add(f2);
-                    }
+            }
+            if SPEC && !FUSED_FG && !(VQ && VQ_FG) {
+                for o in px.iter_mut().take(cg.len()) {
+                    // F̃ (Q28) · G (Q28): Q24, as Q26 (in place of G).
+                    o.g = mulhi(f, o.g) << 2;
+                    f = f.wrapping_add(f1);
+                    f1 = f1.wrapping_add(f2);
                 }
             }
             // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the light
@@ -1590,7 +1600,7 @@ mod tests {
     /// [`view_quad`] against `f64`: for view vectors stepping by `r` up to
     /// `2^-8` of their length a pixel (any direction), `|ṽ|²` (Q29) in
     /// `(1/6, 4)` over the chunk, its forward differences within `3152 r³
-    /// + 2^-19.9` of `1/|ṽ|` (relative) at each of the 32 pixels; and
+    /// + 2^-19` of `1/|ṽ|` (relative) at each of the 32 pixels; and
     /// [`VQ_MIN`] the smallest `M >= 2^16` with `M³ >= (3152·2^10·m)²`.
     #[test]
     fn view_quad_error() {
@@ -1619,7 +1629,7 @@ mod tests {
                 continue;
             };
             n += 1;
-            let bound = 3152.0 * r.powi(3) + 2f64.powf(-19.9);
+            let bound = 3152.0 * r.powi(3) + 2f64.powi(-19);
             // The exact quadratic of the rounded triple.
             let (mut x, mut x1) = (f64::from(c0), f64::from(c1));
             for t in 0..32 {
