@@ -2501,6 +2501,13 @@ pub(crate) fn tri_quads_v() -> u32 {
     tri::QUADS_V.with(|c| c.get())
 }
 
+/// Set-ups of the point light's quadratics whose `1/|n|` is a quadratic a
+/// chunk too (`point::NORMAL_QUAD`) made on this thread so far.
+#[cfg(test)]
+pub(crate) fn tri_quads_n() -> u32 {
+    tri::QUADS_N.with(|c| c.get())
+}
+
 /// Set-ups of the point light's quadratics made on this thread so far.
 #[cfg(test)]
 pub(crate) fn tri_makes() -> u32 {

@@ -244,6 +244,20 @@ pub(super) const KF_MAX: u32 = 1 << 20;
 /// additions a pixel) instead of the series step a pixel.
 pub(super) const VIEW_QUAD: bool = true;
 
+/// A triangle whose `1/|ṽ|` is a quadratic ([`VIEW_QUAD`]) and whose
+/// normal steps by at most `2^-7.5` of its length a pixel would take
+/// `1/|n|` as a quadratic a chunk too ([`view_quad`] of `|n|²`: within
+/// `3152·2^-22.5 + 2^-19 < 2^-10.8`, relative) instead of the table
+/// [`RS`](super::RS) (`2^-11.4`) a pixel: `N·L` moves by as much
+/// (relative), the table position `K·w·A/|n|²` by twice that (relative:
+/// the specular factor by less than `2^-9.8 · max x·e^-x`). Other than on
+/// ARMv6-M. Measured worse and off: span sweep phong-kpoint M4 146.32 ->
+/// 151.25 a pixel (the last pass, which already spills, holding three
+/// more values; the table's nine instructions a pixel gone), with the
+/// bound `2^-8` (the sweep's normal steps just above it: no triangle
+/// took it) 146.29 -> 146.32.
+pub(super) const NORMAL_QUAD: bool = false;
+
 /// `F̃·G` in the pass of the quadratic `1/|ṽ|` ([`VIEW_QUAD`]) other than
 /// on ARMv6-M (whose loop takes it in the last pass, [`FUSED_FG`]), else
 /// in a pass of its own as the series step's. Measured (span sweep
@@ -575,6 +589,28 @@ impl Plan {
         })
     }
 
+    /// [`Plan::seeds_hi`] and, when `nq`, `2^13/|n|` (Q29: `2^16/|n|`
+    /// times `2^13`) as a quadratic ([`view_quad`] of `|n|²`, Q29); else
+    /// zeros.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn seeds_hi_n(
+        &self,
+        fine: bool,
+        fv: bool,
+        vq: bool,
+        nq: bool,
+    ) -> Option<(Seeds, (i32, i32, i32))> {
+        let yn = if nq {
+            let c = self.q[0];
+            let h = |x: i64| ((x >> 32) as i32) >> 1;
+            view_quad((h(c[0]), h(c[1]), h(c[2])))?
+        } else {
+            (0, 0, 0)
+        };
+        Some((self.seeds_hi(fine, fv, vq)?, yn))
+    }
+
     /// The Newton seeds of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`])
     /// of the chunk of [`Plan::hi`] (`None`: a seed out of the table),
     /// each fine or not (`fine`, `fv`).
@@ -868,6 +904,7 @@ impl<R: Real> PhongKernel<'_, R> {
         };
         let planned = tri.plan(x, y, len);
         let (fine, fv, vq) = (tri.fine(), tri.fine_v(), tri.quad_v());
+        let nq = NORMAL_QUAD && tri.quad_n() && !cfg!(armv6m);
         let TriQuad {
             span: pl, px, buf, ..
         } = tri;
@@ -879,6 +916,8 @@ impl<R: Real> PhongKernel<'_, R> {
         // whose `1/|ṽ|` is a quadratic ([`VIEW_QUAD`]) have their own,
         // the light fine or not.
         let kind = match (fine, vq) {
+            (true, true) if nq => 5,
+            (false, true) if nq => 6,
             (true, true) => 3,
             (false, true) => 4,
             (true, false) => 0,
@@ -893,11 +932,19 @@ impl<R: Real> PhongKernel<'_, R> {
                     let k = k as usize;
                     let p = &mut plan;
                     match kind {
-                        0 => self.tri_chunk::<true, true, false>(l, c, span, p, px, i, k, buf),
-                        1 => self.tri_chunk::<false, true, false>(l, c, span, p, px, i, k, buf),
-                        3 => self.tri_chunk::<true, true, true>(l, c, span, p, px, i, k, buf),
-                        4 => self.tri_chunk::<false, true, true>(l, c, span, p, px, i, k, buf),
-                        _ => self.tri_chunk::<false, false, false>(l, c, span, p, px, i, k, buf),
+                        0 => {
+                            self.tri_chunk::<true, true, false, false>(l, c, span, p, px, i, k, buf)
+                        }
+                        1 => self
+                            .tri_chunk::<false, true, false, false>(l, c, span, p, px, i, k, buf),
+                        3 => {
+                            self.tri_chunk::<true, true, true, false>(l, c, span, p, px, i, k, buf)
+                        }
+                        4 => {
+                            self.tri_chunk::<false, true, true, false>(l, c, span, p, px, i, k, buf)
+                        }
+                        _ => self
+                            .tri_chunk::<false, false, false, false>(l, c, span, p, px, i, k, buf),
                     }
                 },
                 move |t| c.of_terms(t),
@@ -909,7 +956,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<true, true, false>(
+                    self.tri_chunk::<true, true, false, false>(
                         l, c, span, &mut plan, px, i, k as usize, buf,
                     )
                 },
@@ -920,7 +967,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<false, true, false>(
+                    self.tri_chunk::<false, true, false, false>(
                         l, c, span, &mut plan, px, i, k as usize, buf,
                     )
                 },
@@ -931,7 +978,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<true, true, true>(
+                    self.tri_chunk::<true, true, true, false>(
                         l, c, span, &mut plan, px, i, k as usize, buf,
                     )
                 },
@@ -942,7 +989,29 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<false, true, true>(
+                    self.tri_chunk::<false, true, true, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            5 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<true, true, true, true>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            6 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<false, true, true, true>(
                         l, c, span, &mut plan, px, i, k as usize, buf,
                     )
                 },
@@ -953,7 +1022,7 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<false, false, false>(
+                    self.tri_chunk::<false, false, false, false>(
                         l, c, span, &mut plan, px, i, k as usize, buf,
                     )
                 },
@@ -967,7 +1036,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// every chunk from the plan, stepped on.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    fn tri_chunk<const FINE: bool, const FV: bool, const VQ: bool>(
+    fn tri_chunk<const FINE: bool, const FV: bool, const VQ: bool, const NQ: bool>(
         &self,
         l: &KLight,
         c: &Colour,
@@ -1015,17 +1084,17 @@ impl<R: Real> PhongKernel<'_, R> {
                     pl.step_chunk();
                 }
                 let pl: &Plan = pl;
-                pl.seeds_hi(FINE, FV, VQ).map(|s| (pl, s))
+                pl.seeds_hi_n(FINE, FV, VQ, NQ).map(|s| (pl, s))
             }
             None => None,
         };
         match st {
-            Some((pl, s)) if self.spec => {
-                self.point_run_vals::<true, FINE, FV, VQ>(px, pl.hi(), s, k, buf);
+            Some((pl, (s, n))) if self.spec => {
+                self.point_run_vals::<true, FINE, FV, VQ, NQ>(px, pl.hi(), s, n, k, buf);
                 true
             }
-            Some((pl, s)) => {
-                self.point_run_vals::<false, FINE, FV, VQ>(px, pl.hi(), s, k, buf);
+            Some((pl, (s, n))) => {
+                self.point_run_vals::<false, FINE, FV, VQ, NQ>(px, pl.hi(), s, n, k, buf);
                 true
             }
             None => {
@@ -1329,10 +1398,11 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
-        self.point_run_vals::<SPEC, FINE, FV, VQ>(
+        self.point_run_vals::<SPEC, FINE, FV, VQ, false>(
             px,
             [st.a, st.b, st.c, st.d, st.e, st.f],
             (st.yl, st.yv),
+            (0, 0, 0),
             k,
             col,
         );
@@ -1344,11 +1414,18 @@ impl<R: Real> PhongKernel<'_, R> {
     /// and differences in `yv`), `F̃·G` in its pass.
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_vals<const SPEC: bool, const FINE: bool, const FV: bool, const VQ: bool>(
+    fn point_run_vals<
+        const SPEC: bool,
+        const FINE: bool,
+        const FV: bool,
+        const VQ: bool,
+        const NQ: bool,
+    >(
         &self,
         px: &mut [Px; GROUP],
         [sa, sb, sc, sd, se, sf]: [(i32, i32, i32); 6],
         (yl, yv): Seeds,
+        yn: (i32, i32, i32),
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
@@ -1361,6 +1438,7 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut va, mut vb, vb2) = yv;
         let (mut f, mut f1, f2) = sf;
         let (mut a, mut a1, a2) = sa;
+        let (mut rn, mut rn1, rn2) = yn;
         let kc = KScale::of(self.kf);
         // `1/|n|` from the packed table, its address in a register
         // (`one::rsq_biased`: the same values as `terms`).
@@ -1448,7 +1526,15 @@ impl<R: Real> PhongKernel<'_, R> {
                 } else {
                     0
                 };
-                let r = rsq_biased(rs, a.wrapping_sub(1 << 28));
+                let r = if NQ {
+                    // 2^16/|n| from its quadratic (Q29 of 1/|n|).
+                    let r = (rn as u32) >> 13;
+                    rn = rn.wrapping_add(rn1);
+                    rn1 = rn1.wrapping_add(rn2);
+                    r
+                } else {
+                    rsq_biased(rs, a.wrapping_sub(1 << 28))
+                };
                 let (nl15, sp) = self.terms_r::<SPEC>(r, nl, q >> 8);
                 *o = (nl15 & 0xFFFF) | sp << 16;
                 a = a.wrapping_add(a1);

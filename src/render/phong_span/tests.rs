@@ -1065,7 +1065,7 @@ fn twin_of(c: &Case) -> Shade<f64> {
 #[test]
 fn tri_quad_random_against_f64() {
     let (makes0, fines0, fv0) = (super::tri_makes(), super::tri_fines(), super::tri_fines_v());
-    let qv0 = super::tri_quads_v();
+    let (qv0, qn0) = (super::tri_quads_v(), super::tri_quads_n());
     let mut seed = 0x1234_5678_9abc_def1u64;
     let mut f = |lo: f64, hi: f64| {
         lo + (hi - lo) * (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64
@@ -1102,13 +1102,15 @@ fn tri_quad_random_against_f64() {
     let (makes, fines) = (super::tri_makes() - makes0, super::tri_fines() - fines0);
     let fv = super::tri_fines_v() - fv0;
     let qv = super::tri_quads_v() - qv0;
+    let qn = super::tri_quads_n() - qn0;
     std::println!(
-        "tri quads: {fines} of {makes} set-ups fine, {fv} the viewer alone, {qv} with 1/|v| a quadratic"
+        "tri quads: {fines} of {makes} set-ups fine, {fv} the viewer alone, {qv} with 1/|v| a quadratic, {qn} 1/|n| too"
     );
     assert!(made >= 50 && quads >= 20_000, "{made} {quads}");
     assert!(fines >= 40, "{fines} of {makes}");
     // Shininess 1, 3 and 20 of the five (r = 1/500 a pixel).
     assert!(!point::VIEW_QUAD || qv >= 25, "{qv} of {makes}");
+    assert!(!point::NORMAL_QUAD || qn >= 5, "{qn} of {makes}");
     assert!(worst <= 1.0, "{worst}");
 }
 

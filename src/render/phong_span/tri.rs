@@ -71,7 +71,7 @@
 //! loop's error (module `point`), unchanged. Tested against `f64` on
 //! random and extreme triangles (`tri_quad_*` in this module's tests).
 
-use super::point::{view_quad_min, Plan, Px, GROUP, VIEW_QUAD};
+use super::point::{view_quad_min, Plan, Px, GROUP, NORMAL_QUAD, VIEW_QUAD};
 use super::CHUNK;
 use super::{raw, KLight, PhongKernel};
 use crate::num::wide::wmul;
@@ -160,7 +160,9 @@ pub struct TriQuad {
     /// Steps along x of `ṽ` of at most `1/64` of its length over the
     /// triangle (its `1/|ṽ|` takes the fine steps, `fine` or not): 1; so
     /// small that its `1/|ṽ|` is a quadratic a chunk ([`view_quad_min`],
-    /// module `point`): 2; else 0.
+    /// module `point`): 2; else 0. Plus 4 when the normal's steps along
+    /// x are at most `2^-8` of its length as well (its `1/|n|` a
+    /// quadratic a chunk, with the viewer's).
     fine_v: u8,
 }
 
@@ -179,6 +181,9 @@ std::thread_local! {
     /// Set-ups made with the viewer's `1/|ṽ|` a quadratic a chunk on this
     /// thread (tests count them).
     pub(crate) static QUADS_V: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
+    /// Set-ups made with `1/|n|` a quadratic a chunk too on this thread
+    /// (tests count them).
+    pub(crate) static QUADS_N: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
 }
 
 /// One triangle's quadratics kept from one band to the next (the band
@@ -470,14 +475,21 @@ impl TriQuad {
     /// Whether the triangle's view vector alone is fine (see the field).
     #[inline(always)]
     pub(super) fn fine_v(&self) -> bool {
-        self.fine_v != 0
+        self.fine_v & 3 != 0
     }
 
     /// Whether the triangle's `1/|ṽ|` is a quadratic a chunk (see the
     /// field `fine_v`).
     #[inline(always)]
     pub(super) fn quad_v(&self) -> bool {
-        self.fine_v == 2
+        self.fine_v & 2 != 0
+    }
+
+    /// Whether the triangle's `1/|n|` is a quadratic a chunk too (see the
+    /// field `fine_v`).
+    #[inline(always)]
+    pub(super) fn quad_n(&self) -> bool {
+        self.fine_v & 4 != 0
     }
 
     /// Whether the set-up was made.
@@ -693,13 +705,22 @@ impl TriQuad {
                 1
             };
         }
+        // The normal's steps along x at most 2^-7.5 of its length (|dn|² ·
+        // 2^15 <= |n|², in the units of `na`, the steps rounded up).
+        let dn = n[1].map(|c| (c.unsigned_abs() >> 3) as i32 + 1);
+        let dd = wmul(dn[0], dn[0]) + wmul(dn[1], dn[1]) + wmul(dn[2], dn[2]);
+        if NORMAL_QUAD && self.fine_v == 2 && (dd * 9).saturating_mul(1 << 15) <= alo {
+            self.fine_v |= 4;
+        }
         self.fine = fine;
         #[cfg(test)]
         FINES.with(|c| c.set(c.get() + u32::from(fine)));
         #[cfg(test)]
         FINES_V.with(|c| c.set(c.get() + u32::from(!fine && self.fine_v != 0)));
         #[cfg(test)]
-        QUADS_V.with(|c| c.set(c.get() + u32::from(self.fine_v == 2)));
+        QUADS_V.with(|c| c.set(c.get() + u32::from(self.fine_v & 2 != 0)));
+        #[cfg(test)]
+        QUADS_N.with(|c| c.set(c.get() + u32::from(self.fine_v & 4 != 0)));
         // In the loop's units times 2^32 (A, D, E, F: 2^-30 of the
         // products, B, C: 2^-29), the values biased by 2^31.
         self.at = [xa, ya];
