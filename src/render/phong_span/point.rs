@@ -1372,6 +1372,47 @@ impl<R: Real> PhongKernel<'_, R> {
         Some((fine, dnl, dsp))
     }
 
+    /// The span of `len` pixels by its plan's chunks run with `1/|ṽ|` by
+    /// the series step a pixel and as the quadratic of [`view_quad`]
+    /// ([`VIEW_QUAD`]): the largest differences of the two loops' packed
+    /// terms (`N·L` and the specular factor, Q15 each; the tests' check
+    /// that the quadratic keeps the other's values within its bound).
+    /// `None`: no plan, or a chunk without the quadratic.
+    #[cfg(test)]
+    pub(super) fn quad_against_series(&self, span: Planes, len: u32) -> Option<(i32, i32)> {
+        let l = self.lights.first()?;
+        let (mut plan, fine) = self.point_plan(l, span, len)?;
+        let (mut dnl, mut dsp) = (0, 0);
+        let mut i = 0;
+        while i < len {
+            let k = (len - i).min(PCHUNK as u32) as usize;
+            if i > 0 {
+                plan.step_chunk();
+            }
+            let a = plan.chunk(fine)?;
+            let b = Chunk {
+                yv: view_quad(a.c)?,
+                ..plan.chunk(fine)?
+            };
+            let (mut ca, mut cb) = ([0u32; CHUNK], [0u32; CHUNK]);
+            let px = &mut [Px::default(); GROUP];
+            if fine {
+                self.point_run_in::<true, true, true, false>(px, &a, k, &mut ca);
+                self.point_run_in::<true, true, true, true>(px, &b, k, &mut cb);
+            } else {
+                self.point_run_in::<true, false, false, false>(px, &a, k, &mut ca);
+                self.point_run_in::<true, false, false, true>(px, &b, k, &mut cb);
+            }
+            for (x, y) in ca[..k].iter().zip(&cb[..k]) {
+                let d = |s: u32| (((x >> s) & 0xFFFF) as i32 - ((y >> s) & 0xFFFF) as i32).abs();
+                dnl = dnl.max(d(0));
+                dsp = dsp.max(d(16));
+            }
+            i += PCHUNK as u32;
+        }
+        Some((dnl, dsp))
+    }
+
     /// The chunk's colours (`r | g << 8 | b << 16`) from its state, in
     /// groups of [`GROUP`] pixels (four passes each, few live values a
     /// pass; the values between passes in a small array zeroed once a

@@ -603,6 +603,73 @@ fn point_loop_runs() {
     assert!(worst <= 1.0, "{worst}");
 }
 
+/// The point loop's `1/|ṽ|` as a quadratic a chunk (`point::VIEW_QUAD`)
+/// against its series step a pixel on the same chunks: `N·L` the same,
+/// the specular factor within `4·2^15·m·(3152 r³ + 2^-19 + 2·2^-18.7)`
+/// units of Q15 (`r` the view vector's step over its length: the
+/// quadratic's error and both loops' own, `|n|² >= 1/4`) plus one step
+/// of the table's Q7 position (where the rounding flips, the quadratic's
+/// `2^-18.4` of `1/|ṽ|` suffices) and 2, over the spans of
+/// `point_fine_chunks` (`r` from 1/680 to 1/420) and shininesses 1 to
+/// 255.
+#[test]
+fn point_view_quad_against_series() {
+    let spans: [([f64; 3], [f64; 3], [f64; 3]); 4] = [
+        ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+        ([0.0, 2.0, 0.0], [-0.8, 0.1, -3.4], [0.005, 0.0, 0.001]),
+        ([-3.0, 1.0, -2.0], [0.5, 0.5, -2.8], [-0.004, 0.002, -0.002]),
+        ([10.0, 20.0, 5.0], [-2.0, 1.0, -9.0], [0.02, 0.01, 0.0]),
+    ];
+    let (mut wsp, mut runs) = (0f64, 0);
+    for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
+        for &(lp, p0, dp) in &spans {
+            let c = point_case(n, lp);
+            let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            for len in [40u32, 64, 100] {
+                let span = (
+                    q30(unit([-0.4, 0.1, 1.0])),
+                    q30([0.006, 0.0, -0.002]),
+                    q16(p0),
+                    q16(dp),
+                );
+                let Some((dnl, dsp)) = k.quad_against_series(span, len) else {
+                    panic!("no plan: n {n} light {lp:?} len {len}");
+                };
+                // The step over the shortest |p| along the span.
+                let len2 = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                let pmin = (0..len)
+                    .map(|t| len2([0, 1, 2].map(|a| p0[a] + f64::from(t) * dp[a])))
+                    .fold(f64::MAX, f64::min);
+                let r = len2(dp) / pmin;
+                // The position K·w·A/|n|² (|n|² >= 1/4) moved by the errors
+                // of w, and one Q7 step of the table where it flips.
+                let step7 = k
+                    .table
+                    .windows(2)
+                    .map(|w| (i32::from(w[0]) - i32::from(w[1])).abs())
+                    .max()
+                    .unwrap_or(0)
+                    / 128
+                    + 1;
+                let bound = 4.0
+                    * 32768.0
+                    * n
+                    * (3152.0 * r.powi(3) + 2f64.powi(-19) + 2.0 * 2f64.powf(-18.7))
+                    + f64::from(step7)
+                    + 2.0;
+                assert!(
+                    dnl == 0 && f64::from(dsp) <= bound,
+                    "n {n} {lp:?} len {len}: {dnl} {dsp} > {bound}"
+                );
+                wsp = wsp.max(f64::from(dsp) / bound);
+                runs += 1;
+            }
+        }
+    }
+    std::println!("view quadratic vs series: specular within {wsp:.3} of the bound, {runs} spans");
+}
+
 /// The point loop's fine chunks (module `point`: steps of `l̃` and `ṽ`
 /// at most 1/64 of their length, one first-order step a pixel): spans
 /// with the light and the eye far enough take them, within 1 level of
