@@ -121,6 +121,27 @@
 //! a driver per function as the M4, 4 251 961; the M0's per-pixel step
 //! gains ~9 instructions where its chunk's fine seed costs ~55).
 //!
+//! # The viewer's quadratic
+//! A triangle whose view vector steps by at most `r` of its length a
+//! pixel, with `m·3152·r³ <= 2^-10` (`m` bounded by the table scale:
+//! [`view_quad_min`]; `r <= 1/407` at `m = 20`, `1/689` at `m = 100`),
+//! takes `1/|ṽ|` as a quadratic a chunk ([`view_quad`]: through its
+//! values at the chunk's pixels 0, 16 and 32, within `3152 r³ + 2^-19`,
+//! relative) by forward differences, two additions a pixel for the
+//! extrapolation, the first-order step and its moves ([`TriQuad`]'s
+//! `fine_v` 2; chunk functions of their own, the light fine or not).
+//! `w` moves by as much (`ε·R·V`), the specular factor by at most
+//! `m·ε`: a quarter level. Tested against `f64` (`view_quad_error`:
+//! within 0.60 of the bound) and against the series step on the same
+//! chunks (`point_view_quad_against_series`). Measured (span sweep
+//! phong-kpoint, a pixel; its viewer `r` = 1/510): M4 151.78 -> 146.29,
+//! M0 483.14 -> 428.64. The dodecahedron Phong frame's triangles are
+//! outside the bound (`m` = 100, a 40° field over 160 pixels: `r` >=
+//! 1/229): its frame unchanged but for the code's layout. Measured and
+//! not kept: `F̃·G` in its own pass after the quadratic's (M4 146.29 ->
+//! 152.66, [`VQ_FG`]); `1/|n|` a quadratic a chunk too ([`NORMAL_QUAD`],
+//! off: M4 146.32 -> 151.25).
+//!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
 //! stepped in y), already in the loop's units times `2^32`, so that a
@@ -195,6 +216,11 @@
 //! - `1/|n|` by the first-order step from the extrapolated seed (as
 //!   `1/|l̃|`, `|dn|/|n|` at most 1/64): 2 + 5 for 10, but `1/|n|²`
 //!   then takes its own product: floor −2.
+//!
+//! Built: the first of these ([`VIEW_QUAD`], [`view_quad`], below), the
+//! viewer's pass then `F̃·G` too: passes 2 and 3 31.1 -> 23.5 a pixel
+//! (4.5 of it spills: the quadratic's three words, `E`'s and `F̃`'s
+//! beside the pointers), its set-up three first-order steps a chunk.
 //!
 //! So the floor of the stated bounds is ~89 on the M4 with every term at
 //! its floor and no spill, which four passes of twelve registers do not
