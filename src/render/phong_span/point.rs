@@ -134,8 +134,8 @@
 //! `m·ε`: a quarter level. Tested against `f64` (`view_quad_error`:
 //! within 0.60 of the bound) and against the series step on the same
 //! chunks (`point_view_quad_against_series`). Measured (span sweep
-//! phong-kpoint, a pixel; its viewer `r` = 1/510): M4 151.78 -> 146.29,
-//! M0 483.14 -> 428.64. The dodecahedron Phong frame's triangles are
+//! phong-kpoint, a pixel; its viewer `r` = 1/510): M4 151.78 -> 146.28,
+//! M0 483.14 -> 426.11 (`F̃·G` in the quadratic's pass on both). The dodecahedron Phong frame's triangles are
 //! outside the bound (`m` = 100, a 40° field over 160 pixels: `r` >=
 //! 1/229): its frame unchanged but for the code's layout. Measured and
 //! not kept: `F̃·G` in its own pass after the quadratic's (M4 146.29 ->
@@ -289,6 +289,11 @@ pub(super) const NORMAL_QUAD: bool = false;
 /// in a pass of its own as the series step's. Measured (span sweep
 /// phong-kpoint, M4): its own pass 146.29 -> 152.66 a pixel.
 const VQ_FG: bool = true;
+
+/// [`VQ_FG`] on ARMv6-M too (not in the last pass, [`FUSED_FG`]: the
+/// same values). Measured (span sweep phong-kpoint, M0): 428.64 ->
+/// 426.11 a pixel.
+const VQ_FG_M0: bool = true;
 
 /// The smallest `M` with `M³ >= (3152·m·2^10)²` and `M >= 2^16`, for `m`
 /// in `0..=256`: steps of the view vector of at most `r` of its length
@@ -1531,7 +1536,7 @@ impl<R: Real> PhongKernel<'_, R> {
             if SPEC && VQ {
                 // 1/|ṽ| by forward differences (va, vb, vb2: its value
                 // and differences), F̃·G in the same pass ([`VQ_FG`]).
-                let fg_here = VQ_FG && !FUSED_FG;
+                let fg_here = VQ_FG && (!FUSED_FG || VQ_FG_M0);
                 for (o, &nl) in px.iter_mut().zip(cg.iter()) {
                     let y = va;
                     o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
@@ -1574,7 +1579,7 @@ impl<R: Real> PhongKernel<'_, R> {
             for (x, o) in px.iter().zip(cg.iter_mut()) {
                 let nl = *o as i32;
                 let q = if SPEC {
-                    let fg = if FUSED_FG {
+                    let fg = if FUSED_FG && !(VQ && VQ_FG && VQ_FG_M0) {
                         // F̃ (Q28) · G (Q28): Q24, as Q26.
                         let fg = mulhi(f, x.g) << 2;
                         f = f.wrapping_add(f1);
