@@ -135,9 +135,11 @@
 //! within 0.60 of the bound) and against the series step on the same
 //! chunks (`point_view_quad_against_series`). Measured (span sweep
 //! phong-kpoint, a pixel; its viewer `r` = 1/510): M4 151.78 -> 146.28,
-//! M0 483.14 -> 426.11 (`F̃·G` in the quadratic's pass on both). The dodecahedron Phong frame's triangles are
-//! outside the bound (`m` = 100, a 40° field over 160 pixels: `r` >=
-//! 1/229): its frame unchanged but for the code's layout. Measured and
+//! M0 483.14 -> 426.11 (`F̃·G` in the quadratic's pass on both). The
+//! dodecahedron Phong frame's triangles are outside the bound (`m` =
+//! 100, a 40° field over 160 pixels: `r` >= 1/229): its frame
+//! unchanged but for the code's layout and the chunk functions' choice
+//! (M4 1 626 703 -> 1 630 659, M0 4 300 909 -> 4 310 181). Measured and
 //! not kept: `F̃·G` in its own pass after the quadratic's (M4 146.29 ->
 //! 152.66, [`VQ_FG`]); `1/|n|` a quadratic a chunk too ([`NORMAL_QUAD`],
 //! off: M4 146.32 -> 151.25).
