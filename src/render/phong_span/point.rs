@@ -283,7 +283,8 @@ pub(super) const VIEW_QUAD: bool = true;
 /// 151.25 a pixel (the last pass, which already spills, holding three
 /// more values; the table's nine instructions a pixel gone), with the
 /// bound `2^-8` (the sweep's normal steps just above it: no triangle
-/// took it) 146.29 -> 146.32.
+/// took it) 146.29 -> 146.32; stepped in a pass of its own into the
+/// [`Px`]s (the last pass loading it), 146.28 -> 152.00.
 pub(super) const NORMAL_QUAD: bool = false;
 
 /// `F̃·G` in the pass of the quadratic `1/|ṽ|` ([`VIEW_QUAD`]) other than
