@@ -388,6 +388,19 @@ fn range(u: &[[i32; 3]; 3]) -> (i64, i64) {
     (lo, hi)
 }
 
+/// Whether `dd9 · M <= lo` (`M` = [`view_quad_min`] of `kf`, in `[2^16,
+/// 2^20)`; `dd9 < 2^54`, `0 <= lo < 2^60`): at once false when `dd9 >=
+/// lo / 2^16` (most triangles: no 64-bit product on ARMv6-M), else by
+/// the product of `dd9` rounded up to `2^4` against `lo / 2^4`
+/// (below `2^62`; conservative: true only when `dd9 · M <= lo`).
+#[inline(always)]
+fn view_quad_ok(dd9: i64, lo: i64, kf: u32) -> bool {
+    if dd9 >= lo >> 16 {
+        return false;
+    }
+    ((dd9 + 15) >> 4) * view_quad_min(kf) <= lo >> 4
+}
+
 /// The shift `s` making `|u|² · 2^2s` (`q = |u|²`, `q > 0`) lie in
 /// `[0.9 · 2^58, 3.6 · 2^58)`.
 #[inline(always)]
@@ -699,7 +712,7 @@ impl TriQuad {
             // shininess bound kf / 2^12) when fine and so small.
             self.fine_v = if !f {
                 0
-            } else if VIEW_QUAD && (dd * 9).saturating_mul(view_quad_min(kf)) <= lo {
+            } else if VIEW_QUAD && view_quad_ok(dd * 9, lo, kf) {
                 2
             } else {
                 1
