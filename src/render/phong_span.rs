@@ -740,7 +740,7 @@ impl<'s, R: Real> PhongKernel<'s, R> {
             // triangle, so no test a span); the walked values' paths
             // otherwise.
             if let (Some((t, x, y)), Some(l)) = (tri, self.point_loop_light()) {
-                if len >= point::TRI_SHORT_SPAN && t.wants() && t.ready(l) {
+                if len >= point::TRI_SHORT_SPAN && t.wants() && t.ready(l, self.kf) {
                     let (n, dn) = if back {
                         (n.map(i32::wrapping_neg), dn.map(i32::wrapping_neg))
                     } else {
@@ -2496,6 +2496,20 @@ pub(crate) fn tri_fines() -> u32 {
 #[cfg(test)]
 pub(crate) fn tri_fines_v() -> u32 {
     tri::FINES_V.with(|c| c.get())
+}
+
+/// Set-ups of the point light's quadratics whose `1/|ṽ|` is a quadratic a
+/// chunk (`point::VIEW_QUAD`) made on this thread so far.
+#[cfg(test)]
+pub(crate) fn tri_quads_v() -> u32 {
+    tri::QUADS_V.with(|c| c.get())
+}
+
+/// Set-ups of the point light's quadratics whose `1/|n|` is a quadratic a
+/// chunk too (`point::NORMAL_QUAD`) made on this thread so far.
+#[cfg(test)]
+pub(crate) fn tri_quads_n() -> u32 {
+    tri::QUADS_N.with(|c| c.get())
 }
 
 /// Set-ups of the point light's quadratics made on this thread so far.

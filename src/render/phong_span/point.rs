@@ -121,6 +121,29 @@
 //! a driver per function as the M4, 4 251 961; the M0's per-pixel step
 //! gains ~9 instructions where its chunk's fine seed costs ~55).
 //!
+//! # The viewer's quadratic
+//! A triangle whose view vector steps by at most `r` of its length a
+//! pixel, with `m·3152·r³ <= 2^-10` (`m` bounded by the table scale:
+//! [`view_quad_min`]; `r <= 1/407` at `m = 20`, `1/689` at `m = 100`),
+//! takes `1/|ṽ|` as a quadratic a chunk ([`view_quad`]: through its
+//! values at the chunk's pixels 0, 16 and 32, within `3152 r³ + 2^-19`,
+//! relative) by forward differences, two additions a pixel for the
+//! extrapolation, the first-order step and its moves ([`TriQuad`]'s
+//! `fine_v` 2; chunk functions of their own, the light fine or not).
+//! `w` moves by as much (`ε·R·V`), the specular factor by at most
+//! `m·ε`: a quarter level. Tested against `f64` (`view_quad_error`:
+//! within 0.60 of the bound) and against the series step on the same
+//! chunks (`point_view_quad_against_series`). Measured (span sweep
+//! phong-kpoint, a pixel; its viewer `r` = 1/510): M4 151.78 -> 146.28,
+//! M0 483.14 -> 426.11 (`F̃·G` in the quadratic's pass on both). The
+//! dodecahedron Phong frame's triangles are outside the bound (`m` =
+//! 100, a 40° field over 160 pixels: `r` >= 1/229): its frame
+//! unchanged but for the code's layout and the chunk functions' choice
+//! (M4 1 626 703 -> 1 630 515, M0 4 300 909 -> 4 306 635). Measured and
+//! not kept: `F̃·G` in its own pass after the quadratic's (M4 146.29 ->
+//! 152.66, [`VQ_FG`]); `1/|n|` a quadratic a chunk too ([`NORMAL_QUAD`],
+//! off: M4 146.32 -> 151.25).
+//!
 //! In the renderers a span's plan comes from its triangle's quadratics
 //! instead ([`TriQuad`], module `tri`: set up once a triangle, the row
 //! stepped in y), already in the loop's units times `2^32`, so that a
@@ -136,6 +159,78 @@
 //! `|ṽ|²` in `(1/4, 4)`, steps of at most 1/16 of `|l|` and `|v|`, every
 //! value within `i32`) take the 64-bit per-pixel path
 //! (`PhongKernel::general_px`).
+//!
+//! # The floor (issue 15: 90 instructions a pixel on the M4)
+//! Counted on the firmware's span sweep phong-kpoint (M4, 151.78 a
+//! pixel; its chunks fine: `tri_chunk::<true, true>`), from the executed
+//! instructions of each pass (the disassembly's counts over the 3 200
+//! pixels of its long spans) against the fewest instructions each term
+//! needs at its stated error, registers allowing (`floor`):
+//!
+//! ```text
+//! term (per pixel)                          now    floor
+//! pass 1: 1/|l̃| (B step 2, seed 1, step 4),
+//!         n·L̂ (D step 2, SMMUL, LSL), stores 19.25  13
+//! pass 2: 1/|ṽ| (as 1/|l̃|), (n·L̂)(n·V̂) 3,
+//!         G = 1/(|l̃||ṽ|) 2, loads, stores   23.0   18
+//! pass 3: F̃·G (F step 2, SMMUL, LSL, ld/st)  8.1    6
+//! pass 4: A step 2, 1/|n| packed table 8,
+//!         w·A 3, clamp and K 3, 1/|n|² 3,
+//!         position 3, table 6 (two LDRH), N·L 3,
+//!         n·L > 0 test 2, pack 2, store 1    49.0   38
+//! colour (`paint`): 6 SMLA, 3 USAT, 3 ORR/LSL,
+//!         REV, STRH, load, EOR               22.0   15
+//! depth test (`mask_in_range`)                8.6    6
+//! chunk set-up (plan step 172, seeds ~90,
+//!         driver ~350 a chunk of 32)         21.8    5
+//! total                                     151.8  101
+//! ```
+//!
+//! Above their floor: the passes' spills (16.75 stack loads and stores a
+//! pixel: pass 1 3.5, pass 2 2, pass 3 0.75, pass 4 5.5, colour 5: the
+//! colour's six channel constants and the loops' states do not fit the
+//! twelve free registers), the loop control of four passes and the
+//! values handed between them (seven words a pixel stored and loaded
+//! again: `1/|l̃|`, `n·L̂`, `G`, `(n·L̂)(n·V̂)`, `F̃·G`, the terms), and
+//! the chunk's set-up (`Plan::step_chunk` steps six 64-bit triples, 5.4
+//! a pixel, where the loop reads the high words only). Even at every
+//! floor the present formulation costs ~101: the sum is above 90. What
+//! the error bounds allow cheaper:
+//! - `1/|ṽ|` (the eye far: `|dṽ|/|ṽ| = r` ~1/300 a pixel for a 60°
+//!   field of 320 pixels, 1/500 in the sweep) by forward differences of
+//!   a quadratic through its exact values at the chunk's pixels 0, 16
+//!   and 32: within `r³·1576·(1 + 4r)` of it relative (the Taylor
+//!   coefficients of `1/|v + t·d|` are below `r^k/|v|`, Legendre's
+//!   bound, and `|t(t - 16)(t - 32)| <= 1576` on `[0, 32]`), `2^-16.3`
+//!   at `r = 1/500`; `w` moves by as much (`ε·R·V`), the table position
+//!   by `m` times it. Per pixel 2 additions for the 5 of the step and the
+//!   seed and the state's moves: floor 96; the set-up three exact values
+//!   a chunk (~75, 2.3 a pixel).
+//! - `n·V̂` and `l̃·V̂` (`E/|ṽ|`, `F̃/|ṽ|`) as quadratics of their own
+//!   (the interpolation error then has the normal's step in it: `2|n|(r³
+//!   + ν r²)·1576`, `ν` the normal's relative step, ~0.003 in the sweep:
+//!   `2^-13.9`, too large for `m` = 256 within `2^-11` of the table):
+//!   `w·A = A + A·(ŷ_l·l̃·V̂) - 2 (n·L̂)(n·V̂)`, three products for five,
+//!   steps 4 for 6: floor 89, for small `m·r²ν` only.
+//! - The series step on `|l̃|²·|ṽ|²` for `G` (a product and a step for
+//!   the step of `1/|ṽ|` and a product): no gain while `N·L` needs
+//!   `1/|l̃|` alone; the diffuse and specular terms already share it.
+//! - `1/|n|` by the first-order step from the extrapolated seed (as
+//!   `1/|l̃|`, `|dn|/|n|` at most 1/64): 2 + 5 for 10, but `1/|n|²`
+//!   then takes its own product: floor −2.
+//!
+//! Built: the first of these ([`VIEW_QUAD`], [`view_quad`], below), the
+//! viewer's pass then `F̃·G` too: passes 2 and 3 31.1 -> 23.5 a pixel
+//! (4.5 of it spills: the quadratic's three words, `E`'s and `F̃`'s
+//! beside the pointers), its set-up three first-order steps a chunk.
+//!
+//! So the floor of the stated bounds is ~89 on the M4 with every term at
+//! its floor and no spill, which four passes of twelve registers do not
+//! give (each value handed between passes costs a store and a load).
+//! The M0 (483.14, 2.5 × 90 = 225): `wide::mulhi_split` alone is 218
+//! a pixel (its eleven high halves ~20 instructions each), the specular
+//! table 27, the channels 22, the encoding 20: its floor is that of the
+//! high halves; each one the formulation drops saves ~20 there.
 
 use super::one::{rsq_biased, Colour, RS_PACKED};
 use super::tri::TriQuad;
@@ -170,6 +265,106 @@ pub(super) const PCHUNK: usize = CHUNK;
 /// Largest specular table scale `K·2^8` ([`PhongKernel`]'s `kf`) the
 /// loop runs (`m < 256`, see the module docs).
 pub(super) const KF_MAX: u32 = 1 << 20;
+
+/// A triangle whose view vector steps by at most `r` of its length a
+/// pixel with `m·3152·r³ <= 2^-10` ([`view_quad_min`]) takes `1/|ṽ|`
+/// as a quadratic a chunk ([`view_quad`]: forward differences, two
+/// additions a pixel) instead of the series step a pixel.
+pub(super) const VIEW_QUAD: bool = true;
+
+/// A triangle whose `1/|ṽ|` is a quadratic ([`VIEW_QUAD`]) and whose
+/// normal steps by at most `2^-7.5` of its length a pixel would take
+/// `1/|n|` as a quadratic a chunk too ([`view_quad`] of `|n|²`: within
+/// `3152·2^-22.5 + 2^-19 < 2^-10.8`, relative) instead of the table
+/// [`RS`](super::RS) (`2^-11.4`) a pixel: `N·L` moves by as much
+/// (relative), the table position `K·w·A/|n|²` by twice that (relative:
+/// the specular factor by less than `2^-9.8 · max x·e^-x`). Other than on
+/// ARMv6-M. Measured worse and off: span sweep phong-kpoint M4 146.32 ->
+/// 151.25 a pixel (the last pass, which already spills, holding three
+/// more values; the table's nine instructions a pixel gone), with the
+/// bound `2^-8` (the sweep's normal steps just above it: no triangle
+/// took it) 146.29 -> 146.32; stepped in a pass of its own into the
+/// [`Px`]s (the last pass loading it), 146.28 -> 152.00.
+pub(super) const NORMAL_QUAD: bool = false;
+
+/// `F̃·G` in the pass of the quadratic `1/|ṽ|` ([`VIEW_QUAD`]) other than
+/// on ARMv6-M (whose loop takes it in the last pass, [`FUSED_FG`]), else
+/// in a pass of its own as the series step's. Measured (span sweep
+/// phong-kpoint, M4): its own pass 146.29 -> 152.66 a pixel.
+const VQ_FG: bool = true;
+
+/// [`VQ_FG`] on ARMv6-M too (not in the last pass, [`FUSED_FG`]: the
+/// same values). Measured (span sweep phong-kpoint, M0): 428.64 ->
+/// 426.11 a pixel.
+const VQ_FG_M0: bool = true;
+
+/// The smallest `M` with `M³ >= (3152·m·2^10)²` and `M >= 2^16`, for `m`
+/// in `0..=256`: steps of the view vector of at most `r` of its length
+/// with `r² <= 1/M` keep [`view_quad`]'s error `3152 r³` within
+/// `2^-10/m` (and `r <= 2^-8`).
+const VQ_MIN: [u32; 257] = {
+    let mut t = [0u32; 257];
+    let mut m = 0;
+    while m <= 256 {
+        let p = 3152 * 1024 * m as u64;
+        let p2 = p * p;
+        let (mut lo, mut hi) = (1u64 << 16, 1u64 << 21);
+        // The smallest x in [lo, hi] with x³ >= p² (hi³ = 2^63 > p²).
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if mid * mid * mid >= p2 {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        t[m] = lo as u32;
+        m += 1;
+    }
+    t
+};
+
+/// [`VQ_MIN`] of the shininess bound of the table scale `kf` (`K·2^8 =
+/// 4096 m` for `m >= 8`, `2^15` below: `m <= kf/2^12 + 1`).
+#[inline(always)]
+pub(super) fn view_quad_min(kf: u32) -> i64 {
+    let m = ((kf >> 12) + 1).min(256) as usize;
+    i64::from(VQ_MIN.get(m).copied().unwrap_or(u32::MAX))
+}
+
+/// `1/|ṽ|` over a chunk as a quadratic: its value, first and second
+/// differences (Q29) from the exact values (one first-order step from
+/// the table, [`newton_lin`]: `|e| < 2^-10.4`, within `2^-21.6`) at the
+/// chunk's pixels 0, 16 and 32, `C = |ṽ|²` stepped from its 32-bit
+/// forward difference `c` (`None`: a value out of the table). Within
+/// `3152 r³ + 2^-19` of `1/|ṽ|` (relative) over
+/// the chunk's 32 pixels, `r <= 2^-8` the view vector's step over its
+/// length: the Taylor coefficients of `1/|v + t·d|` are below
+/// `r^k/|v|` (Legendre's generating function), `|t (t - 16) (t - 32)|
+/// <= 1576` on `[0, 32]`, `(1 - 32 r)^-4 < 2`; the nodes' `2^-21.6`
+/// times 1.25, the roundings of the differences 264 units of `2^-29`
+/// (`1/|ṽ| > 1/2`). Measured with [`newton`]'s series step for the
+/// nodes (within `2^-22`): span sweep phong-kpoint M4 147.14, M0 430.86.
+#[inline(always)]
+fn view_quad((c0, c1, c2): (i32, i32, i32)) -> Option<(i32, i32, i32)> {
+    let c16 = c0.wrapping_add(c1 << 4).wrapping_add(c2.wrapping_mul(120));
+    let c32 = c0.wrapping_add(c1 << 5).wrapping_add(c2.wrapping_mul(496));
+    let u0 = newton_lin(seed(c0)?, c0);
+    let u16 = newton_lin(seed(c16)?, c16);
+    let u32 = newton_lin(seed(c32)?, c32);
+    // f(t) = u0 + t·a + t(t - 1)/2 · b through the three values.
+    let b = (u0
+        .wrapping_sub(u16.wrapping_mul(2))
+        .wrapping_add(u32)
+        .wrapping_add(128))
+        >> 8;
+    let a = (u16
+        .wrapping_sub(u0)
+        .wrapping_sub(b.wrapping_mul(120))
+        .wrapping_add(8))
+        >> 4;
+    Some((u0, a, b))
+}
 
 /// `round(x / 2^s)` for `s` in `1..64`, `x·2^-s` (exact) for `s` in
 /// `-31..=0`; `None` past `i32`.
@@ -304,9 +499,10 @@ struct Chunk {
     d: (i32, i32, i32),
     e: (i32, i32, i32),
     f: (i32, i32, i32),
-    /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29).
+    /// Newton states `(y(-2), y(-1))` of `1/|l̃|` and `1/|ṽ|` (Q29; the
+    /// latter's third word 0), or `1/|ṽ|`'s quadratic ([`view_quad`]).
     yl: (i32, i32),
-    yv: (i32, i32),
+    yv: (i32, i32, i32),
     /// Steps of `l̃` and `ṽ` of at most `1/64` of their length over the
     /// chunk: the seeds from [`seeds_fine`], each pixel by
     /// [`newton_lin`] (the linear extrapolation within `2^-10.8`).
@@ -372,7 +568,7 @@ impl Plan {
             e: r(qe, 30),
             f: r(qf, 30),
             yl: seeds_of(b.0, b.1, fine)?,
-            yv: seeds_of(c.0, c.1, fine)?,
+            yv: tri(seeds_of(c.0, c.1, fine)?),
             fine,
         })
     }
@@ -390,7 +586,7 @@ impl Plan {
     /// `fv`: the seeds of `1/|ṽ|` fine ([`TriQuad`]'s fineness of the
     /// viewer, apart from the light's `fine`).
     #[inline(always)]
-    fn chunk_hi(&self, fine: bool, fv: bool) -> Option<Chunk> {
+    fn chunk_hi(&self, fine: bool, fv: bool, vq: bool) -> Option<Chunk> {
         let [a, b, c, d, e, f] = self.hi();
         Some(Chunk {
             a,
@@ -400,7 +596,11 @@ impl Plan {
             e,
             f,
             yl: seeds_of(b.0, b.1, fine)?,
-            yv: seeds_of(c.0, c.1, fv)?,
+            yv: if vq {
+                view_quad(c)?
+            } else {
+                tri(seeds_of(c.0, c.1, fv)?)
+            },
             fine: fine && fv,
         })
     }
@@ -423,21 +623,60 @@ impl Plan {
         })
     }
 
+    /// [`Plan::seeds_hi`] and, when `nq`, `2^13/|n|` (Q29: `2^16/|n|`
+    /// times `2^13`) as a quadratic ([`view_quad`] of `|n|²`, Q29); else
+    /// zeros.
+    #[inline(always)]
+    #[allow(clippy::cast_possible_truncation)]
+    fn seeds_hi_n(
+        &self,
+        fine: bool,
+        fv: bool,
+        vq: bool,
+        nq: bool,
+    ) -> Option<(Seeds, (i32, i32, i32))> {
+        let yn = if nq {
+            let c = self.q[0];
+            let h = |x: i64| ((x >> 32) as i32) >> 1;
+            view_quad((h(c[0]), h(c[1]), h(c[2])))?
+        } else {
+            (0, 0, 0)
+        };
+        Some((self.seeds_hi(fine, fv, vq)?, yn))
+    }
+
     /// The Newton seeds of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`])
     /// of the chunk of [`Plan::hi`] (`None`: a seed out of the table),
     /// each fine or not (`fine`, `fv`).
     #[inline(always)]
     #[allow(clippy::cast_possible_truncation)]
-    fn seeds_hi(&self, fine: bool, fv: bool) -> Option<Seeds> {
+    fn seeds_hi(&self, fine: bool, fv: bool, vq: bool) -> Option<Seeds> {
         let hi = |c: [i64; 3]| ((c[0] >> 32) as i32, (c[1] >> 32) as i32);
         let (b0, b1) = hi(self.q[1]);
-        let (c0, c1) = hi(self.q[2]);
-        Some((seeds_of(b0, b1, fine)?, seeds_of(c0, c1, fv)?))
+        let yl = seeds_of(b0, b1, fine)?;
+        let yv = if vq {
+            let c = self.q[2];
+            view_quad((
+                (c[0] >> 32) as i32,
+                (c[1] >> 32) as i32,
+                (c[2] >> 32) as i32,
+            ))?
+        } else {
+            let (c0, c1) = hi(self.q[2]);
+            tri(seeds_of(c0, c1, fv)?)
+        };
+        Some((yl, yv))
     }
 }
 
 /// Newton states of `1/|l̃|` and `1/|ṽ|` ([`Chunk::yl`], [`Chunk::yv`]).
-type Seeds = ((i32, i32), (i32, i32));
+type Seeds = ((i32, i32), (i32, i32, i32));
+
+/// A Newton state `(y(-2), y(-1))` as [`Chunk::yv`] (third word 0).
+#[inline(always)]
+fn tri((a, b): (i32, i32)) -> (i32, i32, i32) {
+    (a, b, 0)
+}
 
 /// `v` and its step `d` times `2^s`, `s` making the largest component
 /// of `v` lie in `[2^28, 2^29)`, each component of the scaled step below
@@ -698,7 +937,8 @@ impl<R: Real> PhongKernel<'_, R> {
             &own
         };
         let planned = tri.plan(x, y, len);
-        let (fine, fv) = (tri.fine(), tri.fine_v());
+        let (fine, fv, vq) = (tri.fine(), tri.fine_v(), tri.quad_v());
+        let nq = NORMAL_QUAD && tri.quad_n() && !cfg!(armv6m);
         let TriQuad {
             span: pl, px, buf, ..
         } = tri;
@@ -706,27 +946,40 @@ impl<R: Real> PhongKernel<'_, R> {
         // One chunk function for fine triangles, one for those whose
         // viewer only is fine ([`SPLIT_FINE`]), one for the others (each
         // with the two loops of its seeds and steps): a driver each, but
-        // on ARMv6-M one driver choosing a chunk (the same values).
-        let kind = if fine {
-            0
-        } else if fv && SPLIT_FINE {
-            1
-        } else {
-            2
+        // on ARMv6-M one driver choosing a chunk (the same values). Those
+        // whose `1/|ṽ|` is a quadratic ([`VIEW_QUAD`]) have their own,
+        // the light fine or not.
+        let kind = match (fine, vq) {
+            (true, true) if nq => 5,
+            (false, true) if nq => 6,
+            (true, true) => 3,
+            (false, true) => 4,
+            (true, false) => 0,
+            _ if fv && SPLIT_FINE => 1,
+            _ => 2,
         };
         if cfg!(armv6m) {
             return drive_in(
                 buf,
                 len,
-                |i, k, buf| match kind {
-                    0 => {
-                        self.tri_chunk::<true, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                |i, k, buf| {
+                    let k = k as usize;
+                    let p = &mut plan;
+                    match kind {
+                        0 => {
+                            self.tri_chunk::<true, true, false, false>(l, c, span, p, px, i, k, buf)
+                        }
+                        1 => self
+                            .tri_chunk::<false, true, false, false>(l, c, span, p, px, i, k, buf),
+                        3 => {
+                            self.tri_chunk::<true, true, true, false>(l, c, span, p, px, i, k, buf)
+                        }
+                        4 => {
+                            self.tri_chunk::<false, true, true, false>(l, c, span, p, px, i, k, buf)
+                        }
+                        _ => self
+                            .tri_chunk::<false, false, false, false>(l, c, span, p, px, i, k, buf),
                     }
-                    1 => {
-                        self.tri_chunk::<false, true>(l, c, span, &mut plan, px, i, k as usize, buf)
-                    }
-                    _ => self
-                        .tri_chunk::<false, false>(l, c, span, &mut plan, px, i, k as usize, buf),
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -737,7 +990,9 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<true, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    self.tri_chunk::<true, true, false, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -746,7 +1001,53 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<false, true>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    self.tri_chunk::<false, true, false, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            3 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<true, true, true, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            4 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<false, true, true, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            5 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<true, true, true, true>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
+                },
+                move |t| c.of_terms(t),
+                &mut out,
+            ),
+            6 => drive_in(
+                buf,
+                len,
+                |i, k, buf| {
+                    self.tri_chunk::<false, true, true, true>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -755,7 +1056,9 @@ impl<R: Real> PhongKernel<'_, R> {
                 buf,
                 len,
                 |i, k, buf| {
-                    self.tri_chunk::<false, false>(l, c, span, &mut plan, px, i, k as usize, buf)
+                    self.tri_chunk::<false, false, false, false>(
+                        l, c, span, &mut plan, px, i, k as usize, buf,
+                    )
                 },
                 move |t| c.of_terms(t),
                 &mut out,
@@ -767,7 +1070,7 @@ impl<R: Real> PhongKernel<'_, R> {
     /// every chunk from the plan, stepped on.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    fn tri_chunk<const FINE: bool, const FV: bool>(
+    fn tri_chunk<const FINE: bool, const FV: bool, const VQ: bool, const NQ: bool>(
         &self,
         l: &KLight,
         c: &Colour,
@@ -786,17 +1089,17 @@ impl<R: Real> PhongKernel<'_, R> {
                     if i > 0 {
                         pl.step_chunk();
                     }
-                    pl.chunk_hi(FINE, FV)
+                    pl.chunk_hi(FINE, FV, VQ)
                 }
                 None => None,
             };
             return match st {
                 Some(st) if self.spec => {
-                    self.point_run_in::<true, FINE, FV>(px, &st, k, buf);
+                    self.point_run_in::<true, FINE, FV, VQ>(px, &st, k, buf);
                     true
                 }
                 Some(st) => {
-                    self.point_run_in::<false, FINE, FV>(px, &st, k, buf);
+                    self.point_run_in::<false, FINE, FV, VQ>(px, &st, k, buf);
                     true
                 }
                 None => {
@@ -815,17 +1118,17 @@ impl<R: Real> PhongKernel<'_, R> {
                     pl.step_chunk();
                 }
                 let pl: &Plan = pl;
-                pl.seeds_hi(FINE, FV).map(|s| (pl, s))
+                pl.seeds_hi_n(FINE, FV, VQ, NQ).map(|s| (pl, s))
             }
             None => None,
         };
         match st {
-            Some((pl, s)) if self.spec => {
-                self.point_run_vals::<true, FINE, FV>(px, pl.hi(), s, k, buf);
+            Some((pl, (s, n))) if self.spec => {
+                self.point_run_vals::<true, FINE, FV, VQ, NQ>(px, pl.hi(), s, n, k, buf);
                 true
             }
-            Some((pl, s)) => {
-                self.point_run_vals::<false, FINE, FV>(px, pl.hi(), s, k, buf);
+            Some((pl, (s, n))) => {
+                self.point_run_vals::<false, FINE, FV, VQ, NQ>(px, pl.hi(), s, n, k, buf);
                 true
             }
             None => {
@@ -956,7 +1259,7 @@ impl<R: Real> PhongKernel<'_, R> {
             e: x32(prod(nj, dn, vt, dvt)),
             f: x32(prod(lt, dlt, vt, dvt)),
             yl: seeds_of(b32.0, b32.1, fine)?,
-            yv: seeds_of(c32.0, c32.1, fine)?,
+            yv: tri(seeds_of(c32.0, c32.1, fine)?),
             fine,
         })
     }
@@ -1103,6 +1406,47 @@ impl<R: Real> PhongKernel<'_, R> {
         Some((fine, dnl, dsp))
     }
 
+    /// The span of `len` pixels by its plan's chunks run with `1/|ṽ|` by
+    /// the series step a pixel and as the quadratic of [`view_quad`]
+    /// ([`VIEW_QUAD`]): the largest differences of the two loops' packed
+    /// terms (`N·L` and the specular factor, Q15 each; the tests' check
+    /// that the quadratic keeps the other's values within its bound).
+    /// `None`: no plan, or a chunk without the quadratic.
+    #[cfg(test)]
+    pub(super) fn quad_against_series(&self, span: Planes, len: u32) -> Option<(i32, i32)> {
+        let l = self.lights.first()?;
+        let (mut plan, fine) = self.point_plan(l, span, len)?;
+        let (mut dnl, mut dsp) = (0, 0);
+        let mut i = 0;
+        while i < len {
+            let k = (len - i).min(PCHUNK as u32) as usize;
+            if i > 0 {
+                plan.step_chunk();
+            }
+            let a = plan.chunk(fine)?;
+            let b = Chunk {
+                yv: view_quad(a.c)?,
+                ..plan.chunk(fine)?
+            };
+            let (mut ca, mut cb) = ([0u32; CHUNK], [0u32; CHUNK]);
+            let px = &mut [Px::default(); GROUP];
+            if fine {
+                self.point_run_in::<true, true, true, false>(px, &a, k, &mut ca);
+                self.point_run_in::<true, true, true, true>(px, &b, k, &mut cb);
+            } else {
+                self.point_run_in::<true, false, false, false>(px, &a, k, &mut ca);
+                self.point_run_in::<true, false, false, true>(px, &b, k, &mut cb);
+            }
+            for (x, y) in ca[..k].iter().zip(&cb[..k]) {
+                let d = |s: u32| (((x >> s) & 0xFFFF) as i32 - ((y >> s) & 0xFFFF) as i32).abs();
+                dnl = dnl.max(d(0));
+                dsp = dsp.max(d(16));
+            }
+            i += PCHUNK as u32;
+        }
+        Some((dnl, dsp))
+    }
+
     /// The chunk's colours (`r | g << 8 | b << 16`) from its state, in
     /// groups of [`GROUP`] pixels (four passes each, few live values a
     /// pass; the values between passes in a small array zeroed once a
@@ -1115,24 +1459,25 @@ impl<R: Real> PhongKernel<'_, R> {
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
-        self.point_run_in::<SPEC, FINE, FINE>(&mut [Px::default(); GROUP], st, k, col);
+        self.point_run_in::<SPEC, FINE, FINE, false>(&mut [Px::default(); GROUP], st, k, col);
     }
 
     /// [`PhongKernel::point_run`] with the values between passes in `px`
     /// (kept by the caller: no zeroing a chunk).
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_in<const SPEC: bool, const FINE: bool, const FV: bool>(
+    fn point_run_in<const SPEC: bool, const FINE: bool, const FV: bool, const VQ: bool>(
         &self,
         px: &mut [Px; GROUP],
         st: &Chunk,
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
-        self.point_run_vals::<SPEC, FINE, FV>(
+        self.point_run_vals::<SPEC, FINE, FV, VQ, false>(
             px,
             [st.a, st.b, st.c, st.d, st.e, st.f],
             (st.yl, st.yv),
+            (0, 0, 0),
             k,
             col,
         );
@@ -1140,14 +1485,22 @@ impl<R: Real> PhongKernel<'_, R> {
 
     /// [`PhongKernel::point_run_in`] from the chunk's triples (`A`..`F`)
     /// and seeds given one by one (read where they lie: no [`Chunk`]
-    /// built).
+    /// built). `VQ`: `1/|ṽ|` the quadratic of [`view_quad`] (its value
+    /// and differences in `yv`), `F̃·G` in its pass.
     #[inline(always)]
     #[allow(clippy::cast_sign_loss, clippy::cast_possible_wrap)]
-    fn point_run_vals<const SPEC: bool, const FINE: bool, const FV: bool>(
+    fn point_run_vals<
+        const SPEC: bool,
+        const FINE: bool,
+        const FV: bool,
+        const VQ: bool,
+        const NQ: bool,
+    >(
         &self,
         px: &mut [Px; GROUP],
         [sa, sb, sc, sd, se, sf]: [(i32, i32, i32); 6],
         (yl, yv): Seeds,
+        yn: (i32, i32, i32),
         k: usize,
         col: &mut [u32; CHUNK],
     ) {
@@ -1157,9 +1510,10 @@ impl<R: Real> PhongKernel<'_, R> {
         let (mut la, mut lb) = yl;
         let (mut xc, mut xc1, xc2) = sc;
         let (mut e, mut e1, e2) = se;
-        let (mut va, mut vb) = yv;
+        let (mut va, mut vb, vb2) = yv;
         let (mut f, mut f1, f2) = sf;
         let (mut a, mut a1, a2) = sa;
+        let (mut rn, mut rn1, rn2) = yn;
         let kc = KScale::of(self.kf);
         // `1/|n|` from the packed table, its address in a register
         // (`one::rsq_biased`: the same values as `terms`).
@@ -1182,7 +1536,25 @@ impl<R: Real> PhongKernel<'_, R> {
                 d1 = d1.wrapping_add(d2);
             }
             // 1/|ṽ|, n·V̂ and L̂·V̂.
-            if SPEC {
+            if SPEC && VQ {
+                // 1/|ṽ| by forward differences (va, vb, vb2: its value
+                // and differences), F̃·G in the same pass ([`VQ_FG`]).
+                let fg_here = VQ_FG && (!FUSED_FG || VQ_FG_M0);
+                for (o, &nl) in px.iter_mut().zip(cg.iter()) {
+                    let y = va;
+                    o.nlnv = mulhi(nl as i32, mulhi(e, y) << 4);
+                    let g = mulhi(o.g, y) << 2;
+                    o.g = if fg_here { mulhi(f, g) << 2 } else { g };
+                    va = va.wrapping_add(vb);
+                    vb = vb.wrapping_add(vb2);
+                    e = e.wrapping_add(e1);
+                    e1 = e1.wrapping_add(e2);
+                    if fg_here {
+                        f = f.wrapping_add(f1);
+                        f1 = f1.wrapping_add(f2);
+                    }
+                }
+            } else if SPEC {
                 for (o, &nl) in px.iter_mut().zip(cg.iter()) {
                     let s = vb.wrapping_mul(2).wrapping_sub(va);
                     let y = if FV { newton_lin(s, xc) } else { newton(s, xc) };
@@ -1196,13 +1568,13 @@ impl<R: Real> PhongKernel<'_, R> {
                     e = e.wrapping_add(e1);
                     e1 = e1.wrapping_add(e2);
                 }
-                if !FUSED_FG {
-                    for o in px.iter_mut().take(cg.len()) {
-                        // F̃ (Q28) · G (Q28): Q24, as Q26 (in place of G).
-                        o.g = mulhi(f, o.g) << 2;
-                        f = f.wrapping_add(f1);
-                        f1 = f1.wrapping_add(f2);
-                    }
+            }
+            if SPEC && !FUSED_FG && !(VQ && VQ_FG) {
+                for o in px.iter_mut().take(cg.len()) {
+                    // F̃ (Q28) · G (Q28): Q24, as Q26 (in place of G).
+                    o.g = mulhi(f, o.g) << 2;
+                    f = f.wrapping_add(f1);
+                    f1 = f1.wrapping_add(f2);
                 }
             }
             // w·A = A (1 + L̂·V̂) - 2 (n·L̂)(n·V̂) (Q24) and the light
@@ -1210,7 +1582,7 @@ impl<R: Real> PhongKernel<'_, R> {
             for (x, o) in px.iter().zip(cg.iter_mut()) {
                 let nl = *o as i32;
                 let q = if SPEC {
-                    let fg = if FUSED_FG {
+                    let fg = if FUSED_FG && !(VQ && VQ_FG && VQ_FG_M0) {
                         // F̃ (Q28) · G (Q28): Q24, as Q26.
                         let fg = mulhi(f, x.g) << 2;
                         f = f.wrapping_add(f1);
@@ -1229,7 +1601,15 @@ impl<R: Real> PhongKernel<'_, R> {
                 } else {
                     0
                 };
-                let r = rsq_biased(rs, a.wrapping_sub(1 << 28));
+                let r = if NQ {
+                    // 2^16/|n| from its quadratic (Q29 of 1/|n|).
+                    let r = (rn as u32) >> 13;
+                    rn = rn.wrapping_add(rn1);
+                    rn1 = rn1.wrapping_add(rn2);
+                    r
+                } else {
+                    rsq_biased(rs, a.wrapping_sub(1 << 28))
+                };
                 let (nl15, sp) = self.terms_r::<SPEC>(r, nl, q >> 8);
                 *o = (nl15 & 0xFFFF) | sp << 16;
                 a = a.wrapping_add(a1);
@@ -1367,14 +1747,69 @@ mod tests {
             }
             let fine = i % 2 == 0;
             let fv = fine || i % 3 == 0;
-            let want = pl.seeds_hi(fine, fv).map(|(yl, yv)| (pl.hi(), yl, yv));
+            let vq = i % 5 == 0;
+            let want = pl.seeds_hi(fine, fv, vq).map(|(yl, yv)| (pl.hi(), yl, yv));
             let got = pl
-                .chunk_hi(fine, fv)
+                .chunk_hi(fine, fv, vq)
                 .map(|c| ([c.a, c.b, c.c, c.d, c.e, c.f], c.yl, c.yv));
             assert_eq!(got, want, "{i}");
             some += usize::from(got.is_some());
         }
         assert!(some > 10_000, "{some}");
+    }
+
+    /// [`view_quad`] against `f64`: for view vectors stepping by `r` up to
+    /// `2^-8` of their length a pixel (any direction), `|ṽ|²` (Q29) in
+    /// `(1/6, 4)` over the chunk, its forward differences within `3152 r³
+    /// + 2^-19` of `1/|ṽ|` (relative) at each of the 32 pixels; and
+    /// [`VQ_MIN`] the smallest `M >= 2^16` with `M³ >= (3152·2^10·m)²`.
+    #[test]
+    fn view_quad_error() {
+        let mut rng = crate::geom::testkit::xorshift(0x5151_2727_8383_9e9e);
+        let mut u = move || (rng() >> 11) as f64 / (1u64 << 53) as f64;
+        let q29 = f64::from(1u32 << 29);
+        let (mut worst, mut n) = (0f64, 0);
+        for i in 0..100_000 {
+            let r = match i % 4 {
+                0 => 2f64.powi(-8),
+                _ => 2f64.powi(-8) * u().powf(0.5),
+            };
+            let len = (0.45 + 1.4 * u()).sqrt();
+            let dir = |u: &mut dyn FnMut() -> f64| {
+                let v = [2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0];
+                let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-9);
+                v.map(|c| c / l)
+            };
+            let v = dir(&mut u).map(|c| c * len);
+            let d = dir(&mut u).map(|c| c * len * r);
+            let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let c0 = (dot(v, v) * q29).round() as i32;
+            let c1 = ((2.0 * dot(v, d) + dot(d, d)) * q29).round() as i32;
+            let c2 = (2.0 * dot(d, d) * q29).round() as i32;
+            let Some((mut y, mut y1, y2)) = view_quad((c0, c1, c2)) else {
+                continue;
+            };
+            n += 1;
+            let bound = 3152.0 * r.powi(3) + 2f64.powi(-19);
+            // The exact quadratic of the rounded triple.
+            let (mut x, mut x1) = (f64::from(c0), f64::from(c1));
+            for t in 0..32 {
+                let exact = 1.0 / (x / q29).sqrt();
+                let err = (f64::from(y) / q29 / exact - 1.0).abs();
+                assert!(err <= bound, "r {r:e} t {t}: {err:e} > {bound:e}");
+                worst = worst.max(err / bound);
+                (y, y1) = (y.wrapping_add(y1), y1.wrapping_add(y2));
+                (x, x1) = (x + x1, x1 + f64::from(c2));
+            }
+        }
+        std::println!("view_quad: {n} chunks, worst {worst:.3} of the bound");
+        assert!(n > 90_000, "{n}");
+        for m in 0..=256u64 {
+            let p2 = (3152 * 1024 * m).pow(2);
+            let x = u64::from(VQ_MIN[m as usize]);
+            assert!(x >= 1 << 16 && x * x * x >= p2, "{m}");
+            assert!(x == 1 << 16 || (x - 1).pow(3) < p2, "{m}");
+        }
     }
 
     #[test]

@@ -603,6 +603,73 @@ fn point_loop_runs() {
     assert!(worst <= 1.0, "{worst}");
 }
 
+/// The point loop's `1/|ṽ|` as a quadratic a chunk (`point::VIEW_QUAD`)
+/// against its series step a pixel on the same chunks: `N·L` the same,
+/// the specular factor within `4·2^15·m·(3152 r³ + 2^-19 + 2·2^-18.7)`
+/// units of Q15 (`r` the view vector's step over its length: the
+/// quadratic's error and both loops' own, `|n|² >= 1/4`) plus one step
+/// of the table's Q7 position (where the rounding flips, the quadratic's
+/// `2^-18.4` of `1/|ṽ|` suffices) and 2, over the spans of
+/// `point_fine_chunks` (`r` from 1/680 to 1/420) and shininesses 1 to
+/// 255.
+#[test]
+fn point_view_quad_against_series() {
+    let spans: [([f64; 3], [f64; 3], [f64; 3]); 4] = [
+        ([1.5, 1.0, -3.0], [-1.0, 0.0, -5.0], [0.01, 0.0, 0.0]),
+        ([0.0, 2.0, 0.0], [-0.8, 0.1, -3.4], [0.005, 0.0, 0.001]),
+        ([-3.0, 1.0, -2.0], [0.5, 0.5, -2.8], [-0.004, 0.002, -0.002]),
+        ([10.0, 20.0, 5.0], [-2.0, 1.0, -9.0], [0.02, 0.01, 0.0]),
+    ];
+    let (mut wsp, mut runs) = (0f64, 0);
+    for &n in &[1.0, 3.0, 20.0, 100.0, 255.0] {
+        for &(lp, p0, dp) in &spans {
+            let c = point_case(n, lp);
+            let shade = Shade::new(&c.mat, c.ambient, &c.lights, c.specular, c.viewer).unwrap();
+            let k = PhongKernel::new(&shade).unwrap();
+            for len in [40u32, 64, 100] {
+                let span = (
+                    q30(unit([-0.4, 0.1, 1.0])),
+                    q30([0.006, 0.0, -0.002]),
+                    q16(p0),
+                    q16(dp),
+                );
+                let Some((dnl, dsp)) = k.quad_against_series(span, len) else {
+                    panic!("no plan: n {n} light {lp:?} len {len}");
+                };
+                // The step over the shortest |p| along the span.
+                let len2 = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                let pmin = (0..len)
+                    .map(|t| len2([0, 1, 2].map(|a| p0[a] + f64::from(t) * dp[a])))
+                    .fold(f64::MAX, f64::min);
+                let r = len2(dp) / pmin;
+                // The position K·w·A/|n|² (|n|² >= 1/4) moved by the errors
+                // of w, and one Q7 step of the table where it flips.
+                let step7 = k
+                    .table
+                    .windows(2)
+                    .map(|w| (i32::from(w[0]) - i32::from(w[1])).abs())
+                    .max()
+                    .unwrap_or(0)
+                    / 128
+                    + 1;
+                let bound = 4.0
+                    * 32768.0
+                    * n
+                    * (3152.0 * r.powi(3) + 2f64.powi(-19) + 2.0 * 2f64.powf(-18.7))
+                    + f64::from(step7)
+                    + 2.0;
+                assert!(
+                    dnl == 0 && f64::from(dsp) <= bound,
+                    "n {n} {lp:?} len {len}: {dnl} {dsp} > {bound}"
+                );
+                wsp = wsp.max(f64::from(dsp) / bound);
+                runs += 1;
+            }
+        }
+    }
+    std::println!("view quadratic vs series: specular within {wsp:.3} of the bound, {runs} spans");
+}
+
 /// The point loop's fine chunks (module `point`: steps of `l̃` and `ṽ`
 /// at most 1/64 of their length, one first-order step a pixel): spans
 /// with the light and the eye far enough take them, within 1 level of
@@ -1110,6 +1177,7 @@ fn tri_quad_sweep(
 /// the extreme triangles have the others).
 #[test]
 fn tri_quad_random_against_f64() {
+    let (qv0, qn0) = (super::tri_quads_v(), super::tri_quads_n());
     let (worst, made, quads, makes, fines, fv) =
         tri_quad_sweep(0x1234_5678_9abc_def1, |_, n, f| {
             let lp = [f(-2.0, 2.0), f(-2.0, 2.0), f(-3.0, 0.0)];
@@ -1128,9 +1196,16 @@ fn tri_quad_random_against_f64() {
     std::println!(
         "tri quads vs f64: {worst:.3} levels, {made} triangles, {quads} pixels from the quadratics"
     );
-    std::println!("tri quads: {fines} of {makes} set-ups fine, {fv} the viewer alone");
+    let qv = super::tri_quads_v() - qv0;
+    let qn = super::tri_quads_n() - qn0;
+    std::println!(
+        "tri quads: {fines} of {makes} set-ups fine, {fv} the viewer alone, {qv} with 1/|v| a quadratic, {qn} 1/|n| too"
+    );
     assert!(made >= 50 && quads >= 20_000, "{made} {quads}");
     assert!(fines >= 40, "{fines} of {makes}");
+    // Shininess 1, 3 and 20 of the five (r = 1/500 a pixel).
+    assert!(!point::VIEW_QUAD || qv >= 25, "{qv} of {makes}");
+    assert!(!point::NORMAL_QUAD || qn >= 5, "{qn} of {makes}");
     assert!(worst <= 1.0, "{worst}");
 }
 

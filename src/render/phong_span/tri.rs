@@ -71,7 +71,7 @@
 //! loop's error (module `point`), unchanged. Tested against `f64` on
 //! random and extreme triangles (`tri_quad_*` in this module's tests).
 
-use super::point::{Plan, Px, GROUP};
+use super::point::{view_quad_min, Plan, Px, GROUP, NORMAL_QUAD, VIEW_QUAD};
 use super::CHUNK;
 use super::{raw, KLight, PhongKernel};
 use crate::num::wide::wmul;
@@ -158,8 +158,12 @@ pub struct TriQuad {
     /// (module `point`).
     fine: bool,
     /// Steps along x of `ṽ` of at most `1/64` of its length over the
-    /// triangle (its `1/|ṽ|` takes the fine steps, `fine` or not).
-    fine_v: bool,
+    /// triangle (its `1/|ṽ|` takes the fine steps, `fine` or not): 1; so
+    /// small that its `1/|ṽ|` is a quadratic a chunk ([`view_quad_min`],
+    /// module `point`): 2; else 0. Plus 4 when the normal's steps along
+    /// x are at most `2^-8` of its length as well (its `1/|n|` a
+    /// quadratic a chunk, with the viewer's).
+    fine_v: u8,
 }
 
 #[cfg(test)]
@@ -174,6 +178,12 @@ std::thread_local! {
     /// Set-ups made with the viewer alone fine on this thread (tests
     /// count them).
     pub(crate) static FINES_V: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
+    /// Set-ups made with the viewer's `1/|ṽ|` a quadratic a chunk on this
+    /// thread (tests count them).
+    pub(crate) static QUADS_V: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
+    /// Set-ups made with `1/|n|` a quadratic a chunk too on this thread
+    /// (tests count them).
+    pub(crate) static QUADS_N: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
 }
 
 /// One triangle's quadratics kept from one band to the next (the band
@@ -197,7 +207,7 @@ pub struct QuadSlot {
     at: [i32; 2],
     q: [[i64; 6]; 6],
     fine: bool,
-    fine_v: bool,
+    fine_v: u8,
 }
 
 impl QuadSlot {
@@ -210,7 +220,7 @@ impl QuadSlot {
         at: [0; 2],
         q: [[0; 6]; 6],
         fine: false,
-        fine_v: false,
+        fine_v: 0,
     };
 
     /// Bytes of one slot (the RAM per kept triangle).
@@ -378,6 +388,19 @@ fn range(u: &[[i32; 3]; 3]) -> (i64, i64) {
     (lo, hi)
 }
 
+/// Whether `dd9 · M <= lo` (`M` = [`view_quad_min`] of `kf`, in `[2^16,
+/// 2^20)`; `dd9 < 2^54`, `0 <= lo < 2^60`): at once false when `dd9 >=
+/// lo / 2^16` (most triangles: no 64-bit product on ARMv6-M), else by
+/// the product of `dd9` rounded up to `2^4` against `lo / 2^4`
+/// (below `2^62`; conservative: true only when `dd9 · M <= lo`).
+#[inline(always)]
+fn view_quad_ok(dd9: i64, lo: i64, kf: u32) -> bool {
+    if dd9 >= lo >> 16 {
+        return false;
+    }
+    ((dd9 + 15) >> 4) * view_quad_min(kf) <= lo >> 4
+}
+
 /// The shift `s` making `|u|² · 2^2s` (`q = |u|²`, `q > 0`) lie in
 /// `[0.9 · 2^58, 3.6 · 2^58)`.
 #[inline(always)]
@@ -453,7 +476,7 @@ impl TriQuad {
         key: 0,
         made: false,
         fine: false,
-        fine_v: false,
+        fine_v: 0,
     };
 
     /// Whether the triangle's chunks are fine (see the field).
@@ -465,7 +488,21 @@ impl TriQuad {
     /// Whether the triangle's view vector alone is fine (see the field).
     #[inline(always)]
     pub(super) fn fine_v(&self) -> bool {
-        self.fine_v
+        self.fine_v & 3 != 0
+    }
+
+    /// Whether the triangle's `1/|ṽ|` is a quadratic a chunk (see the
+    /// field `fine_v`).
+    #[inline(always)]
+    pub(super) fn quad_v(&self) -> bool {
+        self.fine_v & 2 != 0
+    }
+
+    /// Whether the triangle's `1/|n|` is a quadratic a chunk too (see the
+    /// field `fine_v`).
+    #[inline(always)]
+    pub(super) fn quad_n(&self) -> bool {
+        self.fine_v & 4 != 0
     }
 
     /// Whether the set-up was made.
@@ -503,10 +540,10 @@ impl TriQuad {
     /// Makes the pending set-up for light `l` (the kernel's point light);
     /// whether the quadratics are made.
     #[inline(always)]
-    pub(super) fn ready(&mut self, l: &KLight) -> bool {
+    pub(super) fn ready(&mut self, l: &KLight, kf: u32) -> bool {
         if self.pending {
             self.pending = false;
-            self.ok = self.make(l).is_some();
+            self.ok = self.make(l, kf).is_some();
             self.made = true;
             #[cfg(test)]
             MAKES.with(|c| c.set(c.get() + 1));
@@ -530,7 +567,7 @@ impl TriQuad {
         let mut t = Self::NONE;
         if let Some(l) = k.point_loop_light() {
             t.set(v, sub, back);
-            t.ready(l);
+            t.ready(l, k.kf);
         }
         t
     }
@@ -541,7 +578,7 @@ impl TriQuad {
         clippy::needless_range_loop
     )]
     #[inline(never)]
-    fn make(&mut self, l: &KLight) -> Option<()> {
+    fn make(&mut self, l: &KLight, kf: u32) -> Option<()> {
         // The vertices by reference (a copy was a `memcpy` a set-up).
         let (v, sub) = (&self.verts, self.sub);
         let ([x0, y0], _, _) = v[0];
@@ -671,13 +708,32 @@ impl TriQuad {
             }
             let f = (dd << 15) + (dd << 12) <= lo;
             fine &= f;
-            self.fine_v = f;
+            // The view vector's: quadratic (r² <= 1/M, M of the
+            // shininess bound kf / 2^12) when fine and so small.
+            self.fine_v = if !f {
+                0
+            } else if VIEW_QUAD && view_quad_ok(dd * 9, lo, kf) {
+                2
+            } else {
+                1
+            };
+        }
+        // The normal's steps along x at most 2^-7.5 of its length (|dn|² ·
+        // 2^15 <= |n|², in the units of `na`, the steps rounded up).
+        let dn = n[1].map(|c| (c.unsigned_abs() >> 3) as i32 + 1);
+        let dd = wmul(dn[0], dn[0]) + wmul(dn[1], dn[1]) + wmul(dn[2], dn[2]);
+        if NORMAL_QUAD && self.fine_v == 2 && (dd * 9).saturating_mul(1 << 15) <= alo {
+            self.fine_v |= 4;
         }
         self.fine = fine;
         #[cfg(test)]
         FINES.with(|c| c.set(c.get() + u32::from(fine)));
         #[cfg(test)]
-        FINES_V.with(|c| c.set(c.get() + u32::from(!fine && self.fine_v)));
+        FINES_V.with(|c| c.set(c.get() + u32::from(!fine && self.fine_v != 0)));
+        #[cfg(test)]
+        QUADS_V.with(|c| c.set(c.get() + u32::from(self.fine_v & 2 != 0)));
+        #[cfg(test)]
+        QUADS_N.with(|c| c.set(c.get() + u32::from(self.fine_v & 4 != 0)));
         // In the loop's units times 2^32 (A, D, E, F: 2^-30 of the
         // products, B, C: 2^-29), the values biased by 2^31.
         self.at = [xa, ya];
