@@ -985,84 +985,30 @@ impl<R: Real> PhongKernel<'_, R> {
                 &mut out,
             );
         }
+        // A driver per chunk function (their const parameters).
+        macro_rules! drive {
+            ($fine:literal, $fv:literal, $vq:literal, $nq:literal) => {
+                drive_in(
+                    buf,
+                    len,
+                    |i, k, buf| {
+                        self.tri_chunk::<$fine, $fv, $vq, $nq>(
+                            l, c, span, &mut plan, px, i, k as usize, buf,
+                        )
+                    },
+                    move |t| c.of_terms(t),
+                    &mut out,
+                )
+            };
+        }
         match kind {
-            0 => drive_in(
-                buf,
-                len,
-                |i, k, buf| {
-                    self.tri_chunk::<true, true, false, false>(
-                        l, c, span, &mut plan, px, i, k as usize, buf,
-                    )
-                },
-                move |t| c.of_terms(t),
-                &mut out,
-            ),
-            1 => drive_in(
-                buf,
-                len,
-                |i, k, buf| {
-                    self.tri_chunk::<false, true, false, false>(
-                        l, c, span, &mut plan, px, i, k as usize, buf,
-                    )
-                },
-                move |t| c.of_terms(t),
-                &mut out,
-            ),
-            3 => drive_in(
-                buf,
-                len,
-                |i, k, buf| {
-                    self.tri_chunk::<true, true, true, false>(
-                        l, c, span, &mut plan, px, i, k as usize, buf,
-                    )
-                },
-                move |t| c.of_terms(t),
-                &mut out,
-            ),
-            4 => drive_in(
-                buf,
-                len,
-                |i, k, buf| {
-                    self.tri_chunk::<false, true, true, false>(
-                        l, c, span, &mut plan, px, i, k as usize, buf,
-                    )
-                },
-                move |t| c.of_terms(t),
-                &mut out,
-            ),
-            5 => drive_in(
-                buf,
-                len,
-                |i, k, buf| {
-                    self.tri_chunk::<true, true, true, true>(
-                        l, c, span, &mut plan, px, i, k as usize, buf,
-                    )
-                },
-                move |t| c.of_terms(t),
-                &mut out,
-            ),
-            6 => drive_in(
-                buf,
-                len,
-                |i, k, buf| {
-                    self.tri_chunk::<false, true, true, true>(
-                        l, c, span, &mut plan, px, i, k as usize, buf,
-                    )
-                },
-                move |t| c.of_terms(t),
-                &mut out,
-            ),
-            _ => drive_in(
-                buf,
-                len,
-                |i, k, buf| {
-                    self.tri_chunk::<false, false, false, false>(
-                        l, c, span, &mut plan, px, i, k as usize, buf,
-                    )
-                },
-                move |t| c.of_terms(t),
-                &mut out,
-            ),
+            0 => drive!(true, true, false, false),
+            1 => drive!(false, true, false, false),
+            3 => drive!(true, true, true, false),
+            4 => drive!(false, true, true, false),
+            5 => drive!(true, true, true, true),
+            6 => drive!(false, true, true, true),
+            _ => drive!(false, false, false, false),
         }
     }
 
