@@ -1169,6 +1169,7 @@ pub(crate) fn draw_small<
     carry: &mut Walk,
     vals: &mut [[i32; 3]; V],
     packed: bool,
+    fit: bool,
     color: impl Fn(&[i32; N]) -> R,
 ) -> Option<(u32, bool)> {
     // Without a depth plane the general path, decided first.
@@ -1190,29 +1191,12 @@ pub(crate) fn draw_small<
     let (y0, width) = (mem.y0, mem.width);
     let (s, sc) = (sub.get(), sub.scale());
     let h = 1i32 << (s - 1);
-    let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
     // `y0 <= first_row(a.y) < until` (`first_row(y) = ⌈(y - h) / S⌉`),
-    // tested on the coordinates, `c.y` within the limits, and the columns
-    // in `0..=width·S`, as `⌈xmax / S⌉ <= width` (for `xmax >= 0` the
-    // unsigned sum does not wrap; a negative `xmax` fails `xmin >= 0`):
-    // every coordinate then lies within the module's limits, and nothing
-    // below wraps. The columns' test instead of `xmax <= width·S`
-    // saturated (a select between two values kept on the stack at every
-    // triangle): exact QEMU counts, bunny-gouraud raster thumbv7em
-    // 1 658 600 -> 1 651 052, thumbv6m 2 717 413 -> 2 694 098; bunny-flat
-    // thumbv7em 1 510 721 -> 1 506 174, thumbv6m 2 281 745 -> 2 257 964.
-    // The rows' test on the first row (`y0 <= j_top < until`, `j_top`
-    // wrapping) as well cost thumbv7em bunny-gouraud 1 715 025.
-    let cols = ((xmax as u32).wrapping_add(sc as u32 - 1) >> s) as i32;
-    if (a.y <= (y0 - 1) * sc + h)
-        || (a.y > (until - 1) * sc + h)
-        || (c.y > sub.coord_limit())
-        || (xmin < 0)
-        || (cols > width)
-    {
+    // tested on the coordinates (the band's tests, kept with `fit`: a
+    // triangle set up afresh below its first band fails them).
+    if (a.y <= (y0 - 1) * sc + h) || (a.y > (until - 1) * sc + h) {
         return None;
     }
-    let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
     let [dx1, dy1, dx2, dy2] = [b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y];
     // Every offset below 2^15 in magnitude, through the column extent and
     // the height (`0 <= dy1 <= dy2`, columns within `xmin..=xmax`): slightly
@@ -1220,8 +1204,12 @@ pub(crate) fn draw_small<
     // `lim` below. On ARMv6-M the offsets one by one before (their
     // magnitudes, a tighter `lim`): with the extent, exact QEMU counts,
     // bunny-gouraud raster thumbv6m 2 415 422 -> 2 397 232, bunny-flat
-    // 2 085 892 -> 2 063 406 (after [`offsets_near`]).
-    let mxy = (xmax - xmin) as u32 | dy2 as u32;
+    // 2 085 892 -> 2 063 406 (after [`offsets_near`]). Computed only where
+    // used (with `fit`, only by the planes' `lim`).
+    let mxy = || {
+        let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+        (xmax - xmin) as u32 | dy2 as u32
+    };
     // ARMv6-M: vertex 0's offsets from pixel (0, 0) bounded per band
     // ([`offsets_near`]) instead of per triangle (their magnitudes):
     // bunny-gouraud raster thumbv6m 2 434 737 -> 2 415 422, bunny-flat
@@ -1232,12 +1220,40 @@ pub(crate) fn draw_small<
     // both: bunny-gouraud 2 394 260 -> 2 391 960, bunny-flat 2 063 406 ->
     // 2 063 777.
     let far = u32::from(SHORT_PRODUCTS && !offsets_near(s, y0, until, width)) << 15;
-    if (mxy | far) >= 1 << 15 {
-        return None;
-    }
+    let (j_top, j_bot) = (first_row(a.y, sub), first_row(c.y, sub));
     let area2 = dx1 * dy2 - dx2 * dy1;
-    if area2 == 0 || j_top >= j_bot {
-        return Some((0, false));
+    if fit {
+        // The frame-constant tests below hold by prepare's contract
+        // ([`crate::raster::kernel_fit_holds`]): kept as assertions.
+        debug_assert!(c.y <= sub.coord_limit() && a.x.min(b.x).min(c.x) >= 0);
+        debug_assert!(((a.x.max(b.x).max(c.x) + sc - 1) >> s) <= width);
+        debug_assert!(mxy() < 1 << 14 && area2 != 0 && j_top < j_bot);
+        if far != 0 {
+            return None;
+        }
+    } else {
+        // `c.y` within the limits, and the columns in `0..=width·S`, as
+        // `⌈xmax / S⌉ <= width` (for `xmax >= 0` the unsigned sum does not
+        // wrap; a negative `xmax` fails `xmin >= 0`): every coordinate
+        // then lies within the module's limits, and nothing below wraps.
+        // The columns' test instead of `xmax <= width·S` saturated (a
+        // select between two values kept on the stack at every triangle):
+        // exact QEMU counts, bunny-gouraud raster thumbv7em 1 658 600 ->
+        // 1 651 052, thumbv6m 2 717 413 -> 2 694 098; bunny-flat thumbv7em
+        // 1 510 721 -> 1 506 174, thumbv6m 2 281 745 -> 2 257 964. The
+        // rows' test on the first row (`y0 <= j_top < until`, `j_top`
+        // wrapping) as well cost thumbv7em bunny-gouraud 1 715 025.
+        let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+        let cols = ((xmax as u32).wrapping_add(sc as u32 - 1) >> s) as i32;
+        if (c.y > sub.coord_limit()) || (xmin < 0) || (cols > width) {
+            return None;
+        }
+        if (mxy() | far) >= 1 << 15 {
+            return None;
+        }
+        if area2 == 0 || j_top >= j_bot {
+            return Some((0, false));
+        }
     }
     // The kernel needs every depth in range (the vertex part of `z16`,
     // below): tested first, the depth differences then do not wrap.
@@ -1264,9 +1280,9 @@ pub(crate) fn draw_small<
     // every triangle its leading zeros on ARMv6-M; exact QEMU counts,
     // bunny-gouraud raster thumbv6m 2 478 334 -> 2 473 748 as a closure
     // called on both paths, -> 2 455 763 computed once).
-    let lim = || (1u32 << 30) >> (32 - clz32(mxy));
+    let lim = || (1u32 << 30) >> (32 - clz32(mxy()));
     // Packed values by their 16-bit fields where the offsets allow it.
-    let fields = packed & (mxy < 1 << 14);
+    let fields = packed & (fit || mxy() < 1 << 14);
     // With `k <= 8` (doubled areas below 2^15 subpixels² at 4 subpixel
     // bits) both fields' shifts `sh - k` are known per triangle.
     let pk = PACKED_FIELDS & fields & (k <= 8);

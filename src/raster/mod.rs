@@ -73,7 +73,9 @@ use fast::unpack_fixed;
 pub(crate) use fast::{draw_small, grey_l, grey_z, pack_vals, setup_fast, BandMem};
 pub(crate) use span::span_pixels;
 pub use span::{Fill, Flat, Gouraud, GouraudMono, Persp, Shader};
-pub(crate) use triangle::{draw_sorted, first_row, in_limits, sort3};
+#[cfg(test)]
+pub(crate) use triangle::kernel_fit_holds;
+pub(crate) use triangle::{draw_sorted, first_row, in_limits, kernel_fit_screen, sort3};
 pub use triangle::{draw_triangle, Span, Spans};
 pub(crate) use walk::{setup, RowSpans, Vals, Walk};
 

@@ -1017,7 +1017,7 @@ fn check_small<const N: usize>(
     // Packed: the kernel takes the vertices' packed grey words.
     let words = packed.then(|| words_of(v));
     let kv_in = words.as_ref().unwrap_or(v);
-    let run_small = || {
+    let run_small = |fit: bool| {
         let (mut p, mut d) = (px.to_vec(), z.to_vec());
         let (mut pr, mut dr) = (&mut p[..], Some(&mut d[..]));
         let mut mem = BandMem::<u32, u16> {
@@ -1035,11 +1035,20 @@ fn check_small<const N: usize>(
             &mut carry,
             &mut kv,
             packed,
+            fit,
             color,
         );
         (n, p, d, carry, kv)
     };
-    let (n, p, d, carry, kv) = run_small();
+    let (n, p, d, carry, kv) = run_small(false);
+    // A triangle within the fit contract (on a screen of `w` columns and
+    // 256 rows): the kernel's fast head (`fit`) does exactly what the
+    // tests do.
+    let corners = v.map(|q| [q.x, q.y]);
+    if kernel_fit_holds(corners, SUB, w as u32, 256) {
+        let fast = run_small(true);
+        assert!(fast == (n, p.clone(), d.clone(), carry, kv), "fit: {v:?}");
+    }
     let Some((n, more)) = n else {
         assert_eq!((&p[..], &d[..]), (px, z), "declined but wrote: {v:?}");
         return None;
@@ -1363,6 +1372,7 @@ fn check_small_levels(
             &mut carry,
             &mut kv,
             packed,
+            false,
             |a| GouraudMono.shade_raw_in_range::<Gray8>(a),
         )
     };

@@ -84,6 +84,50 @@ pub(crate) fn in_limits(x: i32, y: i32, sub: SubpixelBits) -> bool {
     !(x < -lim || x > lim || y < -lim || y > lim)
 }
 
+/// Whether a `width × height` screen with `sub` subpixel bits allows the
+/// small-triangle kernel's fit contract ([`kernel_fit_holds`]): its box
+/// `0..=xl` × `0..=yl` (`xl = width·S - S/2`, `yl = height·S`) with both
+/// bounds below `2^14` and `yl` within the coordinate limit. A frame
+/// constant, decided at prepare.
+#[inline(always)]
+pub(crate) fn kernel_fit_screen(width: u32, height: u32, sub: SubpixelBits) -> bool {
+    let s = i64::from(sub.scale());
+    let (xl, yl) = (i64::from(width) * s - s / 2, i64::from(height) * s);
+    width > 0 && xl < 1 << 14 && yl < 1 << 14 && yl <= i64::from(sub.coord_limit())
+}
+
+/// The contract of a triangle marked fit for the small-triangle kernel
+/// (`PreparedObject::kernel_fit` of `render`; the kernel's `fit`): on a
+/// screen that allows it ([`kernel_fit_screen`]), corners `p` (`[x, y]`
+/// in subpixels from the screen's corner) within the box `0 <= x <=
+/// width·S - S/2`, `0 <= y <= height·S`, a non-zero area and at least one
+/// row centre within its vertical extent. It implies every frame-constant
+/// test of the kernel's head: the columns within `0..=width·S`, the
+/// extents below `2^14`, every `y` within the coordinate limit, and the
+/// empty test. Checked by the kernel in `debug_assert!`s and by the
+/// tests against every triangle prepare marks.
+#[cfg(test)]
+pub(crate) fn kernel_fit_holds(
+    p: [[i32; 2]; 3],
+    sub: SubpixelBits,
+    width: u32,
+    height: u32,
+) -> bool {
+    let s = i64::from(sub.scale());
+    let (xl, yl) = (i64::from(width) * s - s / 2, i64::from(height) * s);
+    let inside = p
+        .iter()
+        .all(|&[x, y]| (0..=xl).contains(&i64::from(x)) && (0..=yl).contains(&i64::from(y)));
+    let [a, b, c] = p.map(|[x, y]| [i64::from(x), i64::from(y)]);
+    let area = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    let ys = p.map(|q| q[1]);
+    let (top, bot) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
+    kernel_fit_screen(width, height, sub)
+        && inside
+        && area != 0
+        && first_row(top, sub) < first_row(bot, sub)
+}
+
 /// The three items sorted by `key`, top first, by the sorting network
 /// [`draw_triangle`] uses (the same order for equal keys): a caller that
 /// sorts vertex indices by it and passes the vertices to [`draw_sorted`]

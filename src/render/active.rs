@@ -1728,8 +1728,11 @@ where
     // Packed grey vertices hold their words ([`fetch_fixed`]): depths and
     // levels from their 16-bit fields.
     let packed = N == 1 && Layout::GouraudMono.packed_in::<P>();
+    // The object's triangles fit the kernel's fast head (prepare's
+    // [`PreparedObject::kernel_fit`]).
+    let fit = po.kernel_fit();
     if let Some(r) =
-        draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, packed, shader)
+        draw_small_shaded::<N, V, S, F, D>(&v, sub, until, mem, walk, vals, packed, fit, shader)
     {
         return Ok(Some(r));
     }
@@ -1960,19 +1963,30 @@ fn draw_small_shaded<
     walk: &mut Walk,
     vals: &mut [[i32; 3]; V],
     packed: bool,
+    fit: bool,
     shader: &S,
 ) -> Option<(u32, bool)> {
     if let Some(c) = shader.constant() {
         let raw = F::encode(c);
-        draw_small::<N, V, F::Raw, D, false>(v, sub, until, mem, walk, vals, packed, move |_| raw)
+        draw_small::<N, V, F::Raw, D, false>(
+            v,
+            sub,
+            until,
+            mem,
+            walk,
+            vals,
+            packed,
+            fit,
+            move |_| raw,
+        )
     } else if N == 1 && LEVELS_IN_RANGE {
         // One grey level (the fast path's `N = 1` shader is
         // [`GouraudMono`]): without the clamp where the triangle allows it.
-        draw_small::<N, V, F::Raw, D, true>(v, sub, until, mem, walk, vals, packed, |a| {
+        draw_small::<N, V, F::Raw, D, true>(v, sub, until, mem, walk, vals, packed, fit, |a| {
             shader.shade_raw_in_range::<F>(a)
         })
     } else {
-        draw_small::<N, V, F::Raw, D, false>(v, sub, until, mem, walk, vals, packed, |a| {
+        draw_small::<N, V, F::Raw, D, false>(v, sub, until, mem, walk, vals, packed, fit, |a| {
             shader.shade_raw::<F>(a)
         })
     }

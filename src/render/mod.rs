@@ -435,6 +435,10 @@ pub struct PreparedObject {
 /// Bits of [`PreparedObject::val_base`] in its packed word.
 const VAL_BITS: u32 = 18;
 
+/// The bit of [`PreparedObject::kernel_fit`] in its packed word (above the
+/// object's index).
+const FIT_BIT: u32 = 1 << 30;
+
 impl PreparedObject {
     /// An object of layout `layout` whose `stride` values per vertex start
     /// at `val_base` (below 2^18; `stride` below 16), object `object`
@@ -494,6 +498,25 @@ impl PreparedObject {
     #[inline(always)]
     pub fn object(&self) -> usize {
         ((self.packed >> (VAL_BITS + 7)) & 31) as usize
+    }
+
+    /// Every triangle it keeps is fit for the small-triangle kernel's
+    /// fast head ([`crate::raster::fast`]'s `draw_small` with `fit`): its
+    /// corners within the screen's box as `prepare` proved them (`0 <= x
+    /// <= width·S - S/2`, `0 <= y <= height·S`, both bounds below `2^14`
+    /// and `height·S` within the coordinate limit, stored from the
+    /// screen's corner), a non-zero area and at least one row. Bit 30 of
+    /// its packed word: no RAM of its own.
+    #[inline(always)]
+    pub(crate) fn kernel_fit(&self) -> bool {
+        self.packed & FIT_BIT != 0
+    }
+
+    /// Marks it [`Self::kernel_fit`] (prepare only, for an object whose
+    /// every kept triangle is).
+    #[inline(always)]
+    pub(crate) fn set_kernel_fit(&mut self) {
+        self.packed |= FIT_BIT;
     }
 
     /// Flat-triangle colours it holds (one per triangle number when flat,

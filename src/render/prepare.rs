@@ -480,6 +480,7 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         width,
         height,
         on_screen: false,
+        fit: false,
         rows: None,
         marked: false,
         face_rows: &mut frame.face_rows,
@@ -561,6 +562,10 @@ struct Preparer<'w, 'f, P: Profile> {
     /// object within the screen's box ([`on_screen`]), stored from the
     /// screen's corner.
     on_screen: bool,
+    /// Every triangle the current object keeps is fit for the
+    /// small-triangle kernel ([`PreparedObject::kernel_fit`]): set by the
+    /// triangle loop over the screen's box on a screen that allows it.
+    fit: bool,
     /// The rows of the current object when the triangle pass bounded them
     /// (else they are gathered from its triangles).
     rows: Option<[u16; 2]>,
@@ -1246,6 +1251,7 @@ impl<P: Profile> Preparer<'_, '_, P> {
         let made_base = self.nm;
         let color_base = self.nc;
         self.on_screen = false;
+        self.fit = false;
         self.rows = None;
         self.marked = false;
         let (place, reach, radius) = placement(&self.view.planes, &mesh, &ctx.mv);
@@ -1316,7 +1322,7 @@ impl<P: Profile> Preparer<'_, '_, P> {
         // vertex (2^18), triangle numbers, made triangles and colours
         // below `MAX_TRIANGLES` (the workspace's parts are cut to it), at
         // most `MAX_OBJECTS` (32) objects: every index fits.
-        Ok(PreparedObject::new(
+        let mut po = PreparedObject::new(
             layout,
             ctx.stride,
             ctx.val_base,
@@ -1326,7 +1332,11 @@ impl<P: Profile> Preparer<'_, '_, P> {
             made_base as u16,
             color_base as u16,
             if rows[0] < rows[1] { rows } else { [0; 2] },
-        ))
+        );
+        if self.fit {
+            po.set_kernel_fit();
+        }
+        Ok(po)
     }
 
     /// The eye-space position of mesh vertex `i`.
@@ -2164,6 +2174,14 @@ impl<P: Profile> Preparer<'_, '_, P> {
                 // pass over the triangles or a box in the vertex loop.
                 let rows = self.height.min(u32::from(u16::MAX)) as u16;
                 self.rows = Some([0, rows]);
+                // Every kept triangle has its corners in the screen's box
+                // (stored from its corner), an area and a row, and no
+                // triangle is made: fit for the small-triangle kernel
+                // where the screen allows it (a marked corner, negative,
+                // is dropped with its triangle when culled; not marked
+                // otherwise).
+                self.fit = (ctx.cull || !self.marked)
+                    && crate::raster::kernel_fit_screen(self.width, self.height, sub);
                 return Ok(());
             }
             let kept = triangles_inside(
