@@ -2326,6 +2326,112 @@ mod tests {
     use crate::render::{face_shift, FACE_ROW};
     use std::vec::Vec;
 
+    /// Every kept triangle of an object prepare marks fit for the
+    /// small-triangle kernel ([`PreparedObject::kernel_fit`]) meets the
+    /// kernel's contract ([`crate::raster::kernel_fit_holds`]: corners in
+    /// the screen's box, area, a row), on random views of the built-in
+    /// meshes (every layout, culled and two-sided) on screens from 1×1 to
+    /// the largest that allows it and beyond, close (clipped) and far.
+    #[test]
+    fn kernel_fit_objects_meet_the_contract() {
+        use crate::geom::{Affine, Vec3};
+        use crate::illum::{Light, Material, Specular, Viewer};
+        use crate::mesh::shapes;
+        use crate::num::{Fast, Precise, Profile};
+        use crate::scene::{Camera, Object, Scene, Shading};
+        fn run<P: Profile>(seed: u64) -> [usize; 2] {
+            let mut next = xorshift(seed);
+            let mut seen = [0usize; 2];
+            let shadings = [Shading::Flat, Shading::Gouraud, Shading::Phong];
+            let mut xy = std::vec![ScreenXy::ZERO; 4000];
+            let mut vals = std::vec![P::Lerp::ZERO; 4000 * 7];
+            let mut tris = std::vec![Tri::EMPTY; 8000];
+            let mut colors = std::vec![Rgb8::BLACK; 8000];
+            let mut faces = std::vec![0u8; 8000];
+            for i in 0..300 {
+                let r = |next: &mut dyn FnMut() -> u64, k: f32| (next() % 1000) as f32 / 1000.0 * k;
+                let mesh = shapes::ALL[i % shapes::ALL.len()];
+                let angles = [r(&mut next, 6.3), r(&mut next, 6.3), r(&mut next, 6.3)];
+                let obj = Object {
+                    mesh,
+                    transform: Affine::from_parts(
+                        P::Real::ONE,
+                        Vec3::from_f32(angles),
+                        Vec3::from_f32([r(&mut next, 1.0) - 0.5, r(&mut next, 1.0) - 0.5, 0.0]),
+                    ),
+                    material: Material {
+                        color: Vec3::from_f32([1.0, 1.0, 1.0]),
+                        ka: P::Real::from_f32(0.2),
+                        kd: P::Real::from_f32(0.7),
+                        ks: P::Real::from_f32(0.0),
+                        shininess: P::Real::from_f32(10.0),
+                    },
+                    shading: shadings[(i / 6) % shadings.len()],
+                    cull_backfaces: i % 3 != 0,
+                };
+                let objects = [obj];
+                let lights = [Light::directional(
+                    Vec3::from_f32([-1.0, 0.5, 1.0]),
+                    P::Real::ONE,
+                )];
+                let dist = [1.2, 2.5, 4.0, 8.0, 30.0][i % 5];
+                let scene = Scene {
+                    camera: Camera::look_at_f32(
+                        [0.0, 0.0, dist],
+                        [0.0; 3],
+                        [0.0, 1.0, 0.0],
+                        40.0,
+                        0.5,
+                        None,
+                    )
+                    .unwrap(),
+                    objects: &objects,
+                    lights: &lights,
+                    ambient: P::Real::from_f32(0.2),
+                    specular: Specular::Phong,
+                    viewer: Viewer::Local,
+                    background: Rgb8::BLACK,
+                };
+                let sizes = [
+                    (240, 240),
+                    (1, 1),
+                    (7, 3),
+                    (128, 64),
+                    (1016, 1000),
+                    (1100, 600),
+                ];
+                let (w, h) = sizes[(i / 2) % sizes.len()];
+                let ws = Workspace {
+                    xy: &mut xy,
+                    vals: &mut vals,
+                    tris: &mut tris,
+                    colors: &mut colors,
+                    faces: &mut faces,
+                };
+                let Ok(frame) = prepare::<P>(&scene, w, h, ws) else {
+                    continue;
+                };
+                for po in frame.objects() {
+                    seen[usize::from(po.kernel_fit())] += 1;
+                    if !po.kernel_fit() {
+                        continue;
+                    }
+                    for t in frame.object_tris(po) {
+                        let p = t.v.map(|v| frame.xy(usize::from(v)).unwrap());
+                        assert!(
+                            crate::raster::kernel_fit_holds(p, P::SUBPIXEL_BITS, w, h),
+                            "{p:?} on {w}x{h}, case {i}"
+                        );
+                    }
+                }
+            }
+            seen
+        }
+        let fast = run::<Fast>(0xf17_0b1e);
+        assert!(fast[0] > 20 && fast[1] > 20, "{fast:?}");
+        run::<Precise>(0xf17_0b1f);
+    }
+
     /// [`on_screen`] of the OR of `W | (lim - W)` is exactly "every
     /// position within `0..=xl`, `0..=yl`", on random screens and random
     /// positions within ±[`XY_LIMIT`], most near the box's edges.
