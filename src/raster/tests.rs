@@ -1044,8 +1044,8 @@ fn check_small<const N: usize>(
     // A triangle within the fit contract (on a screen of `w` columns and
     // 256 rows): the kernel's fast head (`fit`) does exactly what the
     // tests do.
-    let corners = v.map(|q| [q.x, q.y]);
-    if kernel_fit_holds(corners, SUB, w as u32, 256) {
+    let corners = kv_in.map(|q| [q.x, q.y, q.z]);
+    if kernel_fit_holds(corners, packed, SUB, w as u32, 256) {
         let fast = run_small(true);
         assert!(fast == (n, p.clone(), d.clone(), carry, kv), "fit: {v:?}");
     }

@@ -98,31 +98,39 @@ pub(crate) fn kernel_fit_screen(width: u32, height: u32, sub: SubpixelBits) -> b
 
 /// The contract of a triangle marked fit for the small-triangle kernel
 /// (`PreparedObject::kernel_fit` of `render`; the kernel's `fit`): on a
-/// screen that allows it ([`kernel_fit_screen`]), corners `p` (`[x, y]`
-/// in subpixels from the screen's corner) within the box `0 <= x <=
-/// width·S - S/2`, `0 <= y <= height·S`, a non-zero area and at least one
-/// row centre within its vertical extent. It implies every frame-constant
-/// test of the kernel's head: the columns within `0..=width·S`, the
-/// extents below `2^14`, every `y` within the coordinate limit, and the
-/// empty test. Checked by the kernel in `debug_assert!`s and by the
-/// tests against every triangle prepare marks.
+/// screen that allows it ([`kernel_fit_screen`]), corners `p` (`[x, y,
+/// z]`, `x` and `y` in subpixels from the screen's corner, `z` the depth
+/// as the kernel takes it: the packed grey word when `packed`) within
+/// the box `0 <= x <= width·S - S/2`, `0 <= y <= height·S`, every depth
+/// within the kernel's vertex test ([`crate::target::Depth16`]'s
+/// `vertices_in_range`, on [`super::grey_z`] of a packed word), a
+/// non-zero area and at least one row centre within its vertical extent.
+/// It implies every per-triangle test of the kernel's head but the
+/// band's: the columns within `0..=width·S`, the extents below `2^14`,
+/// every `y` within the coordinate limit, the empty test and the
+/// depths. Checked by the kernel in `debug_assert!`s and by the tests
+/// against every triangle prepare marks.
 #[cfg(test)]
 pub(crate) fn kernel_fit_holds(
-    p: [[i32; 2]; 3],
+    p: [[i32; 3]; 3],
+    packed: bool,
     sub: SubpixelBits,
     width: u32,
     height: u32,
 ) -> bool {
+    let z = p.map(|q| if packed { super::grey_z(q[2]) } else { q[2] });
+    let depths = crate::target::Depth16::vertices_in_range(z);
     let s = i64::from(sub.scale());
     let (xl, yl) = (i64::from(width) * s - s / 2, i64::from(height) * s);
     let inside = p
         .iter()
-        .all(|&[x, y]| (0..=xl).contains(&i64::from(x)) && (0..=yl).contains(&i64::from(y)));
-    let [a, b, c] = p.map(|[x, y]| [i64::from(x), i64::from(y)]);
+        .all(|&[x, y, _]| (0..=xl).contains(&i64::from(x)) && (0..=yl).contains(&i64::from(y)));
+    let [a, b, c] = p.map(|[x, y, _]| [i64::from(x), i64::from(y)]);
     let area = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
     let ys = p.map(|q| q[1]);
     let (top, bot) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
     kernel_fit_screen(width, height, sub)
+        && depths
         && inside
         && area != 0
         && first_row(top, sub) < first_row(bot, sub)

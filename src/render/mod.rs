@@ -505,8 +505,9 @@ impl PreparedObject {
     /// corners within the screen's box as `prepare` proved them (`0 <= x
     /// <= width·S - S/2`, `0 <= y <= height·S`, both bounds below `2^14`
     /// and `height·S` within the coordinate limit, stored from the
-    /// screen's corner), a non-zero area and at least one row. Bit 30 of
-    /// its packed word: no RAM of its own.
+    /// screen's corner), every depth within the kernel's vertex test, a
+    /// non-zero area and at least one row. Bit 30 of its packed word: no
+    /// RAM of its own.
     #[inline(always)]
     pub(crate) fn kernel_fit(&self) -> bool {
         self.packed & FIT_BIT != 0

@@ -102,7 +102,7 @@ use crate::num::wide::{det_sign, det_sign_small, mul16_small, SMALL};
 use crate::num::{Kernels, Only, Profile, Raw16, Real};
 use crate::raster::{first_row, Lerp, SubpixelBits, COORD_LIMIT_PX};
 use crate::scene::{Object, Scene, SceneError, Shading};
-use crate::target::{Rgb8, MAX_SCREEN};
+use crate::target::{Depth16, Rgb8, MAX_SCREEN};
 
 /// Largest magnitude of a stored screen coordinate ([`ScreenXy`]), in
 /// subpixels: `i16::MAX - 1` = 32 766, so that every stored coordinate
@@ -481,6 +481,7 @@ pub fn prepare_in<'w, 's: 'w, 'm: 'w, P: Profile>(
         height,
         on_screen: false,
         fit: false,
+        z_in: false,
         rows: None,
         marked: false,
         face_rows: &mut frame.face_rows,
@@ -566,6 +567,10 @@ struct Preparer<'w, 'f, P: Profile> {
     /// small-triangle kernel ([`PreparedObject::kernel_fit`]): set by the
     /// triangle loop over the screen's box on a screen that allows it.
     fit: bool,
+    /// The vertex kernel found every projected depth of the current
+    /// object within the small-triangle kernel's vertex test (part of
+    /// [`Self::fit`]).
+    z_in: bool,
     /// The rows of the current object when the triangle pass bounded them
     /// (else they are gathered from its triangles).
     rows: Option<[u16; 2]>,
@@ -914,8 +919,10 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
     (xy, origin, lim): (&mut [ScreenXy], Subpx, u32),
     vals: &mut [L],
     depth: impl Fn(&mut L, DepthQ30),
-) -> u32 {
+    zin: impl Fn(i32) -> bool,
+) -> (u32, bool) {
     let mut acc = 0u32;
+    let mut zout = false;
     let verts = positions.iter().zip(xy.iter_mut());
     for ((p, out), v) in verts.zip(vals.chunks_exact_mut(S)) {
         // A negative mark is a skipped vertex ([`mark_vertices`]): it
@@ -936,8 +943,27 @@ fn project_loop<const MARKED: bool, const CLAMP: bool, const S: usize, L>(
         if let Some(first) = v.first_mut() {
             depth(first, DepthQ30(d));
         }
+        zout |= !zin(d);
     }
-    acc
+    (acc, !zout)
+}
+
+/// Whether Q2.30 depth `d`, stored as the first value of a vertex
+/// (`packed`: as the depth field of a packed grey word, `grey_depth`),
+/// passes the small-triangle kernel's vertex depth test (the words' test
+/// on the packed word: its field `clamp(d >> 14, 0, 2^16 - 1)` in `2..65533`,
+/// exactly `d` in `[2·2^14, 65533·2^14)`; else
+/// [`Depth16::vertices_in_range`] of the stored value). Tested on every
+/// field's ends.
+#[inline(always)]
+#[allow(clippy::cast_sign_loss)]
+fn kernel_depth_in<P: Profile>(d: i32, packed: bool) -> bool {
+    if packed {
+        (d.wrapping_sub(2 << 14) as u32) < (65533 - 2) << 14
+    } else {
+        let z = P::depth_q30(d).fixed_raw().unwrap_or(-1);
+        Depth16::vertices_in_range([z; 3])
+    }
 }
 
 /// The screen word limit `yl·2^16 | xl` of a `width × height` screen
@@ -1252,6 +1278,7 @@ impl<P: Profile> Preparer<'_, '_, P> {
         let color_base = self.nc;
         self.on_screen = false;
         self.fit = false;
+        self.z_in = false;
         self.rows = None;
         self.marked = false;
         let (place, reach, radius) = placement(&self.view.planes, &mesh, &ctx.mv);
@@ -1658,11 +1685,14 @@ impl<P: Profile> Preparer<'_, '_, P> {
         let o = xy_origin::<P>(self.width, self.height);
         let lim = screen_word_limit(self.width, self.height, P::SUBPIXEL_BITS);
         let xy = (xy, o, lim.unwrap_or(0));
-        let acc = match (f.depth_in_range, marked) {
-            (true, false) => project_loop::<false, false, S, _>(f, pos, xy, vals, depth),
-            (false, false) => project_loop::<false, true, S, _>(f, pos, xy, vals, depth),
-            (true, true) => project_loop::<true, false, S, _>(f, pos, xy, vals, depth),
-            (false, true) => project_loop::<true, true, S, _>(f, pos, xy, vals, depth),
+        // Every projected depth within the small-triangle kernel's vertex
+        // test ([`kernel_depth_in`]).
+        let zin = |d: i32| kernel_depth_in::<P>(d, pack);
+        let (acc, zin) = match (f.depth_in_range, marked) {
+            (true, false) => project_loop::<false, false, S, _>(f, pos, xy, vals, depth, zin),
+            (false, false) => project_loop::<false, true, S, _>(f, pos, xy, vals, depth, zin),
+            (true, true) => project_loop::<true, false, S, _>(f, pos, xy, vals, depth, zin),
+            (false, true) => project_loop::<true, true, S, _>(f, pos, xy, vals, depth, zin),
         };
         if let (false, Some(l)) = (marked, levels) {
             for (v, nrm) in vals.chunks_exact_mut(S).zip(ctx.normals) {
@@ -1681,6 +1711,7 @@ impl<P: Profile> Preparer<'_, '_, P> {
         // The triangle loop over the screen's box reads positions stored
         // from the screen's corner.
         self.on_screen = lim.is_some() && on_screen(acc) && o == Subpx([0, 0]);
+        self.z_in = zin;
         self.marked = marked;
         self.nv = end;
         self.nval = ctx.val_base + n * S;
@@ -2181,6 +2212,7 @@ impl<P: Profile> Preparer<'_, '_, P> {
                 // is dropped with its triangle when culled; not marked
                 // otherwise).
                 self.fit = (ctx.cull || !self.marked)
+                    && self.z_in
                     && crate::raster::kernel_fit_screen(self.width, self.height, sub);
                 return Ok(());
             }
@@ -2416,10 +2448,18 @@ mod tests {
                     if !po.kernel_fit() {
                         continue;
                     }
+                    // The depth as the kernel takes it: the first value
+                    // (packed grey: the word).
+                    let packed =
+                        po.layout() == Layout::GouraudMono && Layout::GouraudMono.packed_in::<P>();
                     for t in frame.object_tris(po) {
-                        let p = t.v.map(|v| frame.xy(usize::from(v)).unwrap());
+                        let p = t.v.map(|v| {
+                            let [x, y] = frame.xy(usize::from(v)).unwrap();
+                            let k = po.val_base() + usize::from(v - po.verts.start) * po.stride();
+                            [x, y, frame.ws.vals[k].fixed_raw().unwrap()]
+                        });
                         assert!(
-                            crate::raster::kernel_fit_holds(p, P::SUBPIXEL_BITS, w, h),
+                            crate::raster::kernel_fit_holds(p, packed, P::SUBPIXEL_BITS, w, h),
                             "{p:?} on {w}x{h}, case {i}"
                         );
                     }
@@ -2430,6 +2470,43 @@ mod tests {
         let fast = run::<Fast>(0xf17_0b1e);
         assert!(fast[0] > 20 && fast[1] > 20, "{fast:?}");
         run::<Precise>(0xf17_0b1f);
+    }
+
+    /// [`kernel_depth_in`] is exactly the kernel's vertex depth test on
+    /// the stored value: packed, on the word `grey_depth(d)` (any level
+    /// half) for every `d` near each field's ends and the range's ends;
+    /// unpacked, on the profile's depth.
+    #[test]
+    fn kernel_depth_test_is_exact() {
+        use crate::num::{Fast, Precise, Profile};
+        use crate::raster::grey_z;
+        fn check<P: Profile>() {
+            let mut ds = std::vec![i32::MIN, i32::MAX, -1, 0, 1 << 30, (1 << 30) + 1];
+            for f in (0..=0x1_0001)
+                .step_by(1)
+                .filter(|f| f % 97 == 0 || *f < 8 || *f > 65525)
+            {
+                for e in [-2, -1, 0, 1, 2, (1 << 13), (1 << 14) - 1] {
+                    ds.push((f << 14) + e);
+                }
+            }
+            for d in ds {
+                let word = crate::render::grey_depth(d) | 0x1234;
+                assert_eq!(
+                    kernel_depth_in::<P>(d, true),
+                    Depth16::vertices_in_range([grey_z(word); 3]),
+                    "packed {d}"
+                );
+                let z = P::depth_q30(d).fixed_raw().unwrap_or(-1);
+                assert_eq!(
+                    kernel_depth_in::<P>(d, false),
+                    Depth16::vertices_in_range([z; 3]),
+                    "{d}"
+                );
+            }
+        }
+        check::<Fast>();
+        check::<Precise>();
     }
 
     /// [`on_screen`] of the OR of `W | (lim - W)` is exactly "every
