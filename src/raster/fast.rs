@@ -1272,8 +1272,8 @@ pub(crate) fn draw_small<
     // it (the kernel's test, kept as an assertion): exact QEMU counts,
     // raster bunny-gouraud thumbv7em 1 578 408 -> 1 567 929, thumbv6m
     // 2 359 238 -> 2 346 118, bunny-flat 1 422 709 -> 1 398 776, 2 032 058
-    // -> 2 005 847 (geometry +5 560 and +10 530 on the Cortex-M4, +16 985
-    // and +17 166 on the Cortex-M0). Written as `(fit || zv) & ...`
+    // -> 2 005 847 (geometry +1 461 and +8 192 on the Cortex-M4, +9 055
+    // and +8 957 on the Cortex-M0). Written as `(fit || zv) & ...`
     // rather than skipped in a branch of its own it cost raster 1 586 706
     // -> 1 595 475.
     debug_assert!(!fit || words_in_range([a.z, b.z, c.z]) || !packed);
