@@ -1232,9 +1232,12 @@ pub(crate) fn draw_small<
     // 1 456 821 -> 1 422 709, thumbv6m 2 055 671 -> 2 032 058. The empty
     // test is kept for triangles with values (`N > 0`): dropped there too,
     // bunny-gouraud 1 586 706 and 2 363 200; kept for flat ones too,
-    // bunny-flat 1 426 339 and 2 056 440. Measured and not kept: the
-    // kernel instantiated once per value of `fit` (a constant in each),
-    // 1 758 548.
+    // bunny-flat 1 426 339 and 2 056 440; dropped for every `N` after the
+    // depths' test below, 1 567 929 -> 1 569 490 (thumbv6m 2 346 118 ->
+    // 2 339 930). Measured and not kept: the kernel instantiated once per
+    // value of `fit` (a constant in each), 1 758 548; the band's two tests
+    // as one unsigned range, 1 567 929 -> 1 578 323 (thumbv6m 2 334 441,
+    // bunny-flat 1 404 326 and 2 017 386).
     if fit {
         debug_assert!(c.y <= sub.coord_limit() && a.x.min(b.x).min(c.x) >= 0);
         debug_assert!(((a.x.max(b.x).max(c.x) + sc - 1) >> s) <= width);

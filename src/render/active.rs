@@ -1775,7 +1775,10 @@ where
 /// kept: the corners sorted as their stored words (one load a corner,
 /// two registers through the sort, `y` the high half, unpacked after the
 /// sort), bunny-gouraud raster thumbv7em 1 578 408 -> 1 628 560,
-/// bunny-flat 1 422 709 -> 1 449 818 (thumbv6m 2 032 058 -> 2 104 930).
+/// bunny-flat 1 422 709 -> 1 449 818 (thumbv6m 2 032 058 -> 2 104 930);
+/// later (from 1 567 929, bunny-flat 1 398 776, 2 005 847) the `y`s alone
+/// through the sort and the `x`s read after it, 1 616 537 (bunny-flat
+/// 1 428 976, 2 045 544).
 #[inline(always)]
 pub(super) fn fetch_fixed<P: Profile, const N: usize>(
     frame: &Frame<'_, P>,
