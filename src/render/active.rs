@@ -268,13 +268,8 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     frame: &'a Frame<'w, P>,
     scene: &'a Scene<'a, 'a, P::Real>,
     lights: heapless::Vec<Light<P::Real>, MAX_LIGHTS>,
-    /// The run of the order scratch: the kept triangles by band (each
-    /// band's list made in it, [`Cur::start_band`]).
-    run: &'a mut [u16],
-    /// The rest of the order scratch: the queue of the triangles put off
-    /// while the pool is full.
-    queue: &'a mut [u16],
-    pool: &'a mut Active<P::Lerp, CAP, V>,
+    /// The band's list, the queue and the pool.
+    ls: Cur<'a, P::Lerp, CAP, V>,
     /// The pool's [`QuadSlot`]s.
     quads: &'a mut [QuadSlot],
     rows: u32,
@@ -290,8 +285,6 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     /// the triangles started in an earlier run of bands, when the frame
     /// has more than [`EPOCH`] bands).
     run_off: usize,
-    /// The band list's and the pool's positions.
-    st: Streams,
     stats: RenderStats,
     /// The Phong kernel's specular table, built once a frame per
     /// shininess rather than once a band.
@@ -375,31 +368,34 @@ impl<'w, P: Profile> Frame<'w, P> {
             frame: self,
             scene,
             lights,
-            run,
-            queue,
-            pool,
             quads,
             rows,
             y: 0,
             ends,
             epoch: 0,
             run_off: 0,
-            st: Streams {
-                cursor: 0,
-                band_end: 0,
-                lost: false,
-                numbers: numbers as u32,
-                cap,
-                free_len: cap,
-                ring_head: 0,
-                ring_cur: 0,
-                ring_len: 0,
-                def_head: 0,
-                def_cur: 0,
-                def_len: 0,
-                heads: [NONE; 2],
-                spec: NONE,
-                peak: 0,
+            ls: Cur {
+                run,
+                queue,
+                pool,
+                s: Streams {
+                    cursor: 0,
+                    band_end: 0,
+                    lost: false,
+                    numbers: numbers as u32,
+                    cap,
+                    free_len: cap,
+                    ring_head: 0,
+                    ring_cur: 0,
+                    ring_len: 0,
+                    def_head: 0,
+                    def_cur: 0,
+                    def_len: 0,
+                    heads: [NONE; 2],
+                    spec: NONE,
+                    lim: NONE,
+                    peak: 0,
+                },
             },
             stats: RenderStats::default(),
             spec_cache: None,
@@ -831,23 +827,12 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         self.stats
     }
 
-    /// The band's list and the pool, to draw from.
-    #[inline(always)]
-    fn cur(&mut self) -> Cur<'_, P::Lerp, CAP, V> {
-        Cur {
-            run: &mut *self.run,
-            queue: &mut *self.queue,
-            pool: &mut *self.pool,
-            s: &mut self.st,
-        }
-    }
-
     /// The most triangles kept for a later band at once so far (in the
     /// pool, or queued when it was full; a band resumes and admits them in
     /// triangle order, so this can exceed the count at a band border): a
     /// pool of this many slots sets every triangle up once.
     pub fn active_peak(&self) -> usize {
-        self.st.peak
+        self.ls.s.peak
     }
 
     /// Renders the next band into `band` (moved to the band's rows and
@@ -894,40 +879,40 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             // the triangles continuing from the bands above are merged
             // into a band's list (at most those started above: the run's
             // entries not ordered again).
-            let n = self.run.len();
+            let n = self.ls.run.len();
             let (ends, ..) = sort_by_band(
                 self.frame,
-                self.run,
+                self.ls.run,
                 self.rows,
                 self.frame.height,
                 band_index,
                 Some((0, n)),
             );
             let c = usize::from(ends[EPOCH as usize - 1]).min(n);
-            self.run.copy_within(..c, n - c);
+            self.ls.run.copy_within(..c, n - c);
             self.ends = ends;
             self.epoch = band_index;
             self.run_off = n - c;
-            self.st.cursor = n - c;
+            self.ls.s.cursor = n - c;
         }
         // Bands past the last hold no start (keys are clamped to it).
-        self.st.band_end = (self.run_off
+        self.ls.s.band_end = (self.run_off
             + self
                 .ends
                 .get((band_index - self.epoch) as usize)
-                .map_or(self.run.len(), |&e| usize::from(e)))
-        .min(self.run.len())
-        .max(self.st.cursor);
+                .map_or(self.ls.run.len(), |&e| usize::from(e)))
+        .min(self.ls.run.len())
+        .max(self.ls.s.cursor);
         // The band's list: the continuing triangles merged in.
-        let under = self.cur().start_band();
+        let under = self.ls.start_band();
         // No triangle to resume or start: the band draws nothing.
-        let untouched = self.cur().first() == NONE;
+        let untouched = self.ls.first() == NONE;
         let frame = self.frame;
         let mut drawn = Ok(());
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
         for (po, obj) in frame.objects.iter().zip(self.scene.objects.iter()) {
-            if po.tris.is_empty() || self.cur().first() >= po.tris.end as u32 {
+            if po.tris.is_empty() || self.ls.first() >= po.tris.end as u32 {
                 continue;
             }
             let r = match po.layout() {
@@ -957,7 +942,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 break;
             }
         }
-        self.cur().end_band(under);
+        self.ls.end_band(under);
         drawn?;
         if untouched {
             // Nothing drawn: the buffer still holds the clear, which the
@@ -965,7 +950,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             band.untouched();
         }
         self.y = y1;
-        if self.st.lost {
+        if self.ls.s.lost {
             return Err(RenderError::Capacity {
                 part: Part::Order,
                 object: 0,
@@ -1075,22 +1060,16 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let (y1, width) = (t.y1 as i32, t.width as i32);
         let frame = self.frame;
         let mesh = frame.mesh_tris(po);
-        let mut cur = Cur {
-            run: &mut *self.run,
-            queue: &mut *self.queue,
-            pool: &mut *self.pool,
-            s: &mut self.st,
-        };
+        let cur = &mut self.ls;
         let stats = &mut self.stats;
-        let mut lim = cur.s.spec.min(end);
+        cur.s.lim = cur.s.spec.min(end);
         let r = loop {
-            let (ti, src) = match cur.next(lim) {
-                Ok(ti) => (ti, Src::Fresh),
-                Err(e) => {
-                    let Some(t) = cur.special(e, end) else {
+            let (ti, src) = match cur.next() {
+                Some(ti) => (ti, Src::Fresh),
+                None => {
+                    let Some(t) = cur.special(end) else {
                         break Ok(());
                     };
-                    lim = cur.s.spec.min(end);
                     t
                 }
             };
@@ -1166,7 +1145,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         // Cortex-M4: the dodecahedron's flat frame 1.7 K instructions less,
         // the bunny's 7 K; the Gouraud bunny 26 K more with the copy).
         let copy;
-        let po = if N == 0 {
+        let po = if N == 0 && COPY_FLAT {
             copy = po.clone();
             &copy
         } else {
@@ -1184,12 +1163,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         // Setups and pixels counted here, added to the stats at the end.
         let (mut setups, mut pixels) = (0u32, 0u32);
-        let mut cur = Cur {
-            run: &mut *self.run,
-            queue: &mut *self.queue,
-            pool: &mut *self.pool,
-            s: &mut self.st,
-        };
+        let cur = &mut self.ls;
         // Flat (`N = 0`), and grey Gouraud (`N = 1`) off ARMv6-M: below
         // `lim` (the ring's and the queue's heads, the object's end) the
         // next triangle is the order's next one when it starts in the
@@ -1204,15 +1178,14 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         // 1 635 699 and 2 499 231. (The condition written as a constant
         // table lookup rather than on `N` itself left thumbv6m
         // bunny-gouraud 5.5 K above the same code: 2 497 116.)
-        let mut lim = cur.s.spec.min(end);
+        cur.s.lim = cur.s.spec.min(end);
         let done = loop {
-            let (ti, src) = match cur.next(lim) {
-                Ok(ti) => (ti, Src::Fresh),
-                Err(e) => {
-                    let Some(t) = cur.special(e, end) else {
+            let (ti, src) = match cur.next() {
+                Some(ti) => (ti, Src::Fresh),
+                None => {
+                    let Some(t) = cur.special(end) else {
                         break Ok(());
                     };
-                    lim = cur.s.spec.min(end);
                     t
                 }
             };
@@ -1385,6 +1358,8 @@ struct Streams {
     /// without looking at the ring or the queue ([`Cur::next`]).
     heads: [u32; 2],
     spec: u32,
+    /// The least of `spec` and the end of the object being drawn.
+    lim: u32,
     /// Most triangles kept at once so far (in the pool, or queued when it
     /// was full).
     peak: usize,
@@ -1408,11 +1383,12 @@ const MERGE: bool = false;
 /// The band's triangles and the pool: the run of the order (the band's
 /// list in it), the queue, the pool's slots and lists, and where each
 /// stands.
+#[derive(Debug)]
 struct Cur<'s, L, const CAP: usize, const V: usize> {
     run: &'s mut [u16],
     queue: &'s mut [u16],
     pool: &'s mut Active<L, CAP, V>,
-    s: &'s mut Streams,
+    s: Streams,
 }
 
 impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
@@ -1543,14 +1519,14 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     /// (`Ok`), one load and a test; else the entry (`Err`, [`NONE`] past
     /// the run's last; the sentinel at the band's end).
     #[inline(always)]
-    fn next(&mut self, lim: u32) -> Result<u32, u32> {
+    fn next(&mut self) -> Option<u32> {
         let k = self.s.cursor;
-        let e = self.run.get(k).map_or(NONE, |&e| u32::from(e));
-        if e < lim {
+        let e = u32::from(*self.run.get(k)?);
+        if e < self.s.lim {
             self.s.cursor = k + 1;
-            Ok(e)
+            Some(e)
         } else {
-            Err(e)
+            None
         }
     }
 
@@ -1559,10 +1535,12 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     /// resumed from its slot (the ring's) or set up afresh (the queue's);
     /// with [`MERGE`], entry `e` when it is a resumed triangle's below
     /// `end`; else `None`.
-    #[inline(always)]
-    fn special(&mut self, e: u32, end: u32) -> Option<(u32, Src)> {
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
+    fn special(&mut self, end: u32) -> Option<(u32, Src)> {
+        let k = self.s.cursor;
+        let e = self.run.get(k).map_or(NONE, |&e| u32::from(e));
         if MERGE {
-            let k = self.s.cursor;
             if k >= self.s.band_end || e < self.s.numbers {
                 return None;
             }
@@ -1585,6 +1563,7 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
             Src::Fresh
         };
         self.s.spec = self.s.heads[0].min(self.s.heads[1]);
+        self.s.lim = self.s.spec.min(end);
         Some((sp, src))
     }
 
@@ -1793,6 +1772,9 @@ const SKIP_FETCH: bool = !cfg!(armv6m);
 /// thumbv6m bunny-gouraud 2 369 374 -> 2 363 070, bunny-flat 2 055 671 ->
 /// 2 082 781). [`Bands::keep_fixed`] out of line: 1 615 109 -> 1 637 080.
 const IN_PLACE: bool = false;
+
+/// Flat objects read from a copy of the object ([`Bands::run_fast`]).
+const COPY_FLAT: bool = cfg!(armv6m);
 
 /// Where a band's next triangle comes from.
 #[derive(Clone, Copy, Debug)]
