@@ -24,6 +24,20 @@
 //!   band's first row, exactly (the edge walkers' exact start at any row),
 //!   so the bytes are the same, only slower.
 //!
+//! The band's list is the run of the order starting in the band, ended
+//! by a sentinel entry while the band is drawn; the triangles continuing
+//! from the band above (the first and third streams: the pool's ring and
+//! the queue, each in triangle order) are few, and the least of their
+//! heads is a limit below which each triangle of the list is taken with
+//! one load and a test (`Cur::next`); the ring and the queue are looked
+//! at only when the list reaches that limit. (Merging them into the list
+//! once per band instead, `MERGE`, measured worse: it moves the list's
+//! entries below each continuing triangle.) When a frame has more bands
+//! than one ordering covers, each later run of bands is moved to the end
+//! of the run's entries, so that the entries before a band's list hold at
+//! least as many as the triangles continuing into it (the room `MERGE`
+//! merges into).
+//!
 //! No band scans the triangles of other bands, and with a pool large
 //! enough every triangle is set up exactly once per frame. A triangle
 //! walked in pieces gives the very columns and values of one walked at
@@ -1123,7 +1137,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// kernel of `raster::fast` (the same bytes, see there). A triangle
     /// starting in the band is set up in a scratch walk and values (by
     /// [`fresh_fast`]), walked from there and kept in a free slot when it
-    /// continues below the band ([`Bands::keep_fixed`]); a resumed one is
+    /// continues below the band ([`Cur::keep_fixed`]); a resumed one is
     /// walked in its slot.
     #[inline(never)]
     fn run_fast<const N: usize, S, F, D>(
@@ -1141,9 +1155,9 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let end = po.tris.end as u32;
         let frame = self.frame;
         let mesh = frame.mesh_tris(po);
-        // Flat shaders read the object from a copy of it (measured on the
-        // Cortex-M4: the dodecahedron's flat frame 1.7 K instructions less,
-        // the bunny's 7 K; the Gouraud bunny 26 K more with the copy).
+        // Flat shaders read the object from a copy of it on ARMv6-M
+        // ([`COPY_FLAT`]; the Gouraud bunny measured 26 K more with the
+        // copy).
         let copy;
         let po = if N == 0 && COPY_FLAT {
             copy = po.clone();
@@ -1164,20 +1178,28 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         // Setups and pixels counted here, added to the stats at the end.
         let (mut setups, mut pixels) = (0u32, 0u32);
         let cur = &mut self.ls;
-        // Flat (`N = 0`), and grey Gouraud (`N = 1`) off ARMv6-M: below
-        // `lim` (the ring's and the queue's heads, the object's end) the
-        // next triangle is the order's next one when it starts in the
-        // band, taken without the three-way merge
-        // ([`Bands::take_fresh`]; the merge's 34 instructions a triangle
-        // 21 on the Cortex-M4). Exact QEMU counts, raster: bunny-flat
-        // thumbv7em 1 465 797 -> 1 457 317, thumbv6m 2 173 530 ->
-        // 2 138 468 (dodeca-flat 86 466 -> 86 744, 122 735 -> 122 397);
-        // bunny-gouraud thumbv7em 1 634 450 -> 1 631 975. On ARMv6-M grey
-        // Gouraud measured 2 491 561 -> 2 512 036 (the kernel's registers)
-        // and is not taken there; the merge out of line instead cost
-        // 1 635 699 and 2 499 231. (The condition written as a constant
-        // table lookup rather than on `N` itself left thumbv6m
-        // bunny-gouraud 5.5 K above the same code: 2 497 116.)
+        // The band's list taken below `lim` (the next continuing
+        // triangle, the object's end): one load and a test a triangle
+        // ([`Cur::next`]), the ring and the queue looked at only when the
+        // list reaches a continuing triangle ([`Cur::special`]). It
+        // replaces a three-way merge of the ring's, the queue's and the
+        // order's heads before every triangle (34 instructions a triangle
+        // on the Cortex-M4), and its first shortcut (the order's head below
+        // the other two, flat and grey Gouraud off ARMv6-M: 21). Exact
+        // QEMU counts, raster, with [`COPY_FLAT`]: thumbv7em bunny-gouraud
+        // 1 615 109 -> 1 609 209, bunny-flat 1 456 821 -> 1 453 227,
+        // dodeca-gouraud 239 432 -> 236 132; thumbv6m bunny-gouraud
+        // 2 369 374 -> 2 373 133, bunny-flat 2 055 671 -> 2 052 246,
+        // dodeca-flat 122 033 -> 124 046 (the band code's own lines on
+        // the Cortex-M4: about 11 K instructions less on the Gouraud bunny;
+        // the rest is the inlined kernel's registers). Measured and not
+        // kept: the limit in a local (thumbv7em bunny-gouraud 1 618 568,
+        // bunny-flat 1 470 301); the band's end tested before each load
+        // for flat objects (bunny-flat 1 478 187); the continuing
+        // triangles' take out of line off ARMv6-M (bunny-gouraud
+        // 1 640 139); the order's list state copied into locals for the
+        // run (1 689 897); the setups counted from the list's entries
+        // taken (1 650 195).
         cur.s.lim = cur.s.spec.min(end);
         let done = loop {
             let (ti, src) = match cur.next() {
@@ -1234,7 +1256,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 }
                 Src::Fresh => {
                     // The continuation written straight into the free slot
-                    // a kept triangle would take ([`Bands::take_slot`]),
+                    // a kept triangle would take ([`Cur::take_slot`]),
                     // else into the scratch and queued.
                     let free = cur.free_slot::<N>();
                     let target = free.and_then(|si| cur.pool.slots.get_mut(si as usize));
@@ -1535,6 +1557,11 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     /// resumed from its slot (the ring's) or set up afresh (the queue's);
     /// with [`MERGE`], entry `e` when it is a resumed triangle's below
     /// `end`; else `None`.
+    ///
+    /// Out of line on ARMv6-M: exact QEMU counts, raster thumbv6m
+    /// bunny-flat 2 076 244 -> 2 052 246, bunny-gouraud 2 353 642 ->
+    /// 2 373 133 (out of line on ARMv7-M too: bunny-gouraud thumbv7em
+    /// 1 609 209 -> 1 640 139).
     #[cfg_attr(armv6m, inline(never))]
     #[cfg_attr(not(armv6m), inline(always))]
     fn special(&mut self, end: u32) -> Option<(u32, Src)> {
@@ -1757,9 +1784,9 @@ fn wrap(x: usize, m: usize) -> usize {
 const SKIP_FETCH: bool = !cfg!(armv6m);
 
 /// A fast triangle that continues below its band writes its walk and
-/// values straight into the slot it takes ([`Bands::free_slot`], taken
+/// values straight into the slot it takes ([`Cur::free_slot`], taken
 /// before the set-up), not into a scratch copied into the slot afterwards
-/// ([`Bands::keep_fixed`]). Off: exact QEMU counts, bunny-gouraud raster
+/// ([`Cur::keep_fixed`]). Off: exact QEMU counts, bunny-gouraud raster
 /// thumbv7em 1 624 644 -> 1 674 453, thumbv6m 2 379 156 -> 2 424 753
 /// (the slot's address, a run-time value, live across the whole inlined
 /// kernel instead of the scratch's fixed stack place). Taken after the
@@ -1770,10 +1797,16 @@ const SKIP_FETCH: bool = !cfg!(armv6m);
 /// kept triangle) with the slot returned to the kernel's tail,
 /// 1 652 332 against 1 615 109 (bunny-flat 1 456 821 -> 1 490 265;
 /// thumbv6m bunny-gouraud 2 369 374 -> 2 363 070, bunny-flat 2 055 671 ->
-/// 2 082 781). [`Bands::keep_fixed`] out of line: 1 615 109 -> 1 637 080.
+/// 2 082 781). [`Cur::keep_fixed`] out of line: 1 615 109 -> 1 637 080.
 const IN_PLACE: bool = false;
 
-/// Flat objects read from a copy of the object ([`Bands::run_fast`]).
+/// Flat objects read from a copy of the object ([`Bands::run_fast`]), on
+/// ARMv6-M only. Exact QEMU counts with the band list ([`Cur::next`]),
+/// bunny-flat raster: thumbv7em 1 477 404 with the copy, 1 453 227 in
+/// place (bunny-gouraud unchanged); thumbv6m 2 052 246 with it,
+/// 2 086 012 in place. (Before the band list, the copy measured the
+/// dodecahedron's flat frame 1.7 K and the bunny's 7 K instructions less
+/// on the Cortex-M4.)
 const COPY_FLAT: bool = cfg!(armv6m);
 
 /// Where a band's next triangle comes from.
