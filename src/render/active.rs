@@ -1776,12 +1776,12 @@ fn wrap(x: usize, m: usize) -> usize {
 /// Resumed triangles of values walked without their triangle read
 /// ([`Bands::run_fast`]; `per_tri` does nothing for them): exact QEMU
 /// counts, bunny-gouraud raster thumbv7em 1 657 797 -> 1 622 563 (with
-/// the resume kernel), bunny-flat unchanged. Not on ARMv6-M, where the
-/// first form of it (the fetch moved into both arms) cost bunny-gouraud
-/// raster thumbv6m 2 369 374 -> 2 383 904 (and bunny-flat thumbv7em
-/// 1 456 821 -> 1 469 333; the present form leaves every flat count as
-/// it was).
-const SKIP_FETCH: bool = !cfg!(armv6m);
+/// the resume kernel), bunny-flat unchanged. On ARMv6-M too since the
+/// band list ([`Cur::next`]): bunny-gouraud raster thumbv6m 2 373 133 ->
+/// 2 359 307, every other count the same (before it, the first form of
+/// it, the fetch moved into both arms, cost there 2 369 374 -> 2 383 904,
+/// and bunny-flat thumbv7em 1 456 821 -> 1 469 333).
+const SKIP_FETCH: bool = true;
 
 /// A fast triangle that continues below its band writes its walk and
 /// values straight into the slot it takes ([`Cur::free_slot`], taken
