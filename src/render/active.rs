@@ -1804,7 +1804,9 @@ const IN_PLACE: bool = false;
 /// ARMv6-M only. Exact QEMU counts with the band list ([`Cur::next`]),
 /// bunny-flat raster: thumbv7em 1 477 404 with the copy, 1 453 227 in
 /// place (bunny-gouraud unchanged); thumbv6m 2 052 246 with it,
-/// 2 086 012 in place. (Before the band list, the copy measured the
+/// 2 086 012 in place. Grey Gouraud objects from a copy too: bunny-gouraud
+/// thumbv7em 1 609 209 -> 1 642 612, thumbv6m 2 359 307 -> 2 371 511.
+/// (Before the band list, the copy measured the
 /// dodecahedron's flat frame 1.7 K and the bunny's 7 K instructions less
 /// on the Cortex-M4.)
 const COPY_FLAT: bool = cfg!(armv6m);
