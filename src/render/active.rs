@@ -371,11 +371,12 @@ impl<'w, P: Profile> Frame<'w, P> {
         if order.len() < n {
             return Err(short);
         }
-        // The queue: the entries outside the run.
+        // The queue: the entries outside the run. (Split checked: a
+        // split's panic branch survived the optimisation there.)
         let (run, queue) = if run_at == 0 {
-            order.split_at_mut(n)
+            order.split_at_mut_checked(n).ok_or(short)?
         } else {
-            let (q, r) = order.split_at_mut(run_at);
+            let (q, r) = order.split_at_mut_checked(run_at).ok_or(short)?;
             (r, q)
         };
         Ok(Bands {
