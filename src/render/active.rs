@@ -1396,11 +1396,16 @@ const SENTINEL: u16 = u16::MAX;
 /// queue's, set up afresh) merged into the band's list once when it
 /// starts ([`Cur::start_band`]), a resumed one as `numbers + slot`, rather
 /// than taken from the ring and the queue as the list reaches them
-/// ([`Cur::special`]). Measured on: exact QEMU counts, bunny-gouraud raster
-/// thumbv7em 1 615 109 -> 1 652 958, thumbv6m 2 369 374 -> 2 406 027
-/// (the merge moves the list's entries below each continuing triangle:
-/// 1 371 moves and 352 continuing triangles on the bunny, ~40 K
-/// instructions on the Cortex-M4).
+/// ([`Cur::special`]): each triangle's pick the same load and test, a
+/// resumed one's without the ring. Measured on (exact QEMU counts, raster,
+/// off -> on): bunny-gouraud thumbv7em 1 609 213 -> 1 638 302, thumbv6m
+/// 2 359 309 -> 2 400 855; bunny-flat 1 453 231 -> 1 478 523, 2 052 248
+/// -> 2 093 794. The merge moves the list's entries below each continuing
+/// triangle: 1 371 moves for 352 continuing triangles on the bunny, ~40 K
+/// instructions on the Cortex-M4 (its first form, the ring and the queue
+/// without wrapping, as measured then: 1 615 109 -> 1 652 958 and
+/// 2 369 374 -> 2 406 027 against the three-way merge before the band
+/// list). Tested: the band tests pass with it on.
 const MERGE: bool = false;
 
 /// The band's triangles and the pool: the run of the order (the band's
