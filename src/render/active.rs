@@ -1666,10 +1666,9 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     /// The most triangles kept at once, updated.
     #[inline(always)]
     fn note_peak(&mut self) {
-        self.s.peak = self
-            .s
-            .peak
-            .max(self.s.cap - self.s.free_len + self.s.def_len);
+        // (`CAP` itself without `MERGE`: a constant.)
+        let cap = if MERGE { self.s.cap } else { CAP };
+        self.s.peak = self.s.peak.max(cap - self.s.free_len + self.s.def_len);
     }
 
     /// Keeps a triangle that continues below the band: in a free slot, or
