@@ -24,6 +24,20 @@
 //!   band's first row, exactly (the edge walkers' exact start at any row),
 //!   so the bytes are the same, only slower.
 //!
+//! The band's list is the run of the order starting in the band, ended
+//! by a sentinel entry while the band is drawn; the triangles continuing
+//! from the band above (the first and third streams: the pool's ring and
+//! the queue, each in triangle order) are few, and the least of their
+//! heads is a limit below which each triangle of the list is taken with
+//! one load and a test (`Cur::next`); the ring and the queue are looked
+//! at only when the list reaches that limit. (Merging them into the list
+//! once per band instead, `MERGE`, measured worse: it moves the list's
+//! entries below each continuing triangle.) When a frame has more bands
+//! than one ordering covers, each later run of bands is moved to the end
+//! of the run's entries, so that the entries before a band's list hold at
+//! least as many as the triangles continuing into it (the room `MERGE`
+//! merges into).
+//!
 //! No band scans the triangles of other bands, and with a pool large
 //! enough every triangle is set up exactly once per frame. A triangle
 //! walked in pieces gives the very columns and values of one walked at
@@ -268,53 +282,23 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     frame: &'a Frame<'w, P>,
     scene: &'a Scene<'a, 'a, P::Real>,
     lights: heapless::Vec<Light<P::Real>, MAX_LIGHTS>,
-    order: &'a mut [u16],
-    pool: &'a mut Active<P::Lerp, CAP, V>,
+    /// The band's list, the queue and the pool.
+    ls: Cur<'a, P::Lerp, CAP, V>,
     /// The pool's [`QuadSlot`]s.
     quads: &'a mut [QuadSlot],
     rows: u32,
     /// First row of the next band.
     y: u32,
-    /// Prepared triangles.
-    n: usize,
-    /// Next entry of the order (from `run_at` on).
-    cursor: usize,
-    /// End of the entries of the order starting in the current band (or
-    /// above).
-    band_end: usize,
     /// End of each band's entries of the order (band `epoch + b`'s in
     /// `ends[b]`), so that a band's run needs no triangle's rows again.
     ends: [u16; 1 << RADIX_BITS],
     /// The first band of those ordered (every [`EPOCH`] bands the
     /// triangles starting in the next ones are ordered).
     epoch: u32,
-    /// A triangle put off while the pool was full found the queue full
-    /// too (the rest of the order): the band is reported as an error.
-    lost: bool,
-    /// Where the run of the order (the kept triangles by band) starts.
-    run_at: usize,
-    /// Where the queue starts in the order, and its entries.
-    q_at: usize,
-    q_len: usize,
-    /// Pool ring: first entry, entries of the band above still to resume,
-    /// entries in all.
-    ring_head: usize,
-    ring_cur: usize,
-    ring_len: usize,
-    free_len: usize,
-    /// Queue of triangles that found the pool full (a ring in `order[n..]`,
-    /// the order's entries past the kept triangles): first entry, entries
-    /// of the band above, entries in all.
-    def_head: usize,
-    def_cur: usize,
-    def_len: usize,
-    /// The first triangle of each stream this band (the ring's, the
-    /// queue's, the order's; [`NONE`] when exhausted), kept as the streams
-    /// advance so that a take reads three words.
-    heads: [u32; 3],
-    /// Most triangles kept at once so far (in the pool, or queued when it
-    /// was full).
-    peak: usize,
+    /// Where the bands' entries start in the run (past the room kept for
+    /// the triangles started in an earlier run of bands, when the frame
+    /// has more than [`EPOCH`] bands).
+    run_off: usize,
     stats: RenderStats,
     /// The Phong kernel's specular table, built once a frame per
     /// shininess rather than once a band.
@@ -371,47 +355,63 @@ impl<'w, P: Profile> Frame<'w, P> {
         let lights = eye_lights(scene)?;
         let Pool { act: pool, quads } = &mut *state.pool;
         QuadSlot::clear(quads);
-        for (i, f) in pool.free.iter_mut().enumerate() {
-            *f = (CAP - 1 - i) as u16;
+        // A resumed triangle's entry in a band's list is `numbers + slot`
+        // (a `u16`): the slots past `2^16 - numbers` stay unused.
+        let numbers = self.triangle_numbers();
+        let cap = if MERGE {
+            CAP.min((1 << 16) - numbers)
+        } else {
+            CAP
+        };
+        for (i, f) in pool.free.iter_mut().take(cap).enumerate() {
+            *f = (cap - 1 - i) as u16;
         }
         // (The kept triangles counted while ordering.)
         let (ends, run_at, n) = sort_by_band(self, order, rows, self.height, 0, None);
         if order.len() < n {
             return Err(short);
         }
-        // The queue: the entries outside the run.
-        let (q_at, q_len) = if run_at == 0 {
-            (n, order.len() - n)
+        // The queue: the entries outside the run. (Split checked: a
+        // split's panic branch survived the optimisation there.)
+        let (run, queue) = if run_at == 0 {
+            order.split_at_mut_checked(n).ok_or(short)?
         } else {
-            (0, run_at)
+            let (q, r) = order.split_at_mut_checked(run_at).ok_or(short)?;
+            (r, q)
         };
         Ok(Bands {
             frame: self,
             scene,
             lights,
-            order,
-            pool,
             quads,
             rows,
             y: 0,
-            n,
-            cursor: run_at,
-            band_end: 0,
             ends,
             epoch: 0,
-            lost: false,
-            run_at,
-            q_at,
-            q_len,
-            ring_head: 0,
-            ring_cur: 0,
-            ring_len: 0,
-            free_len: CAP,
-            def_head: 0,
-            def_cur: 0,
-            def_len: 0,
-            heads: [NONE; 3],
-            peak: 0,
+            run_off: 0,
+            ls: Cur {
+                run,
+                queue,
+                pool,
+                s: Streams {
+                    cursor: 0,
+                    band_end: 0,
+                    lost: false,
+                    numbers: numbers as u32,
+                    cap,
+                    free_len: cap,
+                    ring_head: 0,
+                    ring_cur: 0,
+                    ring_len: 0,
+                    def_head: 0,
+                    def_cur: 0,
+                    def_len: 0,
+                    heads: [NONE; 2],
+                    spec: NONE,
+                    lim: NONE,
+                    peak: 0,
+                },
+            },
             stats: RenderStats::default(),
             spec_cache: None,
         })
@@ -847,7 +847,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// triangle order, so this can exceed the count at a band border): a
     /// pool of this many slots sets every triangle up once.
     pub fn active_peak(&self) -> usize {
-        self.peak
+        self.ls.s.peak
     }
 
     /// Renders the next band into `band` (moved to the band's rows and
@@ -885,77 +885,87 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             y1,
             width: w,
         };
-        self.ring_cur = self.ring_len;
-        self.def_cur = self.def_len;
         let band_index = y0 / self.rows.max(1);
         // The triangles starting in this band: the next run of the order
         // (each triangle's band found once per frame, here).
         if band_index >= self.epoch + EPOCH {
-            // The next run of bands: its triangles ordered (into the
-            // entries before the queue's).
+            // The next run of bands: its triangles ordered, and moved to
+            // the run's end: the entries before them are the room where
+            // the triangles continuing from the bands above are merged
+            // into a band's list (at most those started above: the run's
+            // entries not ordered again).
+            let n = self.ls.run.len();
             let (ends, ..) = sort_by_band(
                 self.frame,
-                self.order,
+                self.ls.run,
                 self.rows,
                 self.frame.height,
                 band_index,
-                Some((self.run_at, self.n)),
+                Some((0, n)),
             );
+            let c = usize::from(ends[EPOCH as usize - 1]).min(n);
+            self.ls.run.copy_within(..c, n - c);
             self.ends = ends;
             self.epoch = band_index;
-            self.cursor = self.run_at;
+            self.run_off = n - c;
+            self.ls.s.cursor = n - c;
         }
         // Bands past the last hold no start (keys are clamped to it).
-        self.band_end = (self.run_at
+        self.ls.s.band_end = (self.run_off
             + self
                 .ends
                 .get((band_index - self.epoch) as usize)
-                .map_or(self.n, |&e| usize::from(e)))
-        .max(self.cursor);
-        self.heads = [self.ring_head_tri(), self.queue_head(), self.bucket_head()];
+                .map_or(self.ls.run.len(), |&e| usize::from(e)))
+        .min(self.ls.run.len())
+        .max(self.ls.s.cursor);
+        // The band's list: the continuing triangles merged in.
+        let under = self.ls.start_band();
         // No triangle to resume or start: the band draws nothing.
-        let untouched = self.peek(band_index) == NONE;
+        let untouched = self.ls.first() == NONE;
         let frame = self.frame;
+        let mut drawn = Ok(());
         // The fixed affine profiles take the fused kernels (`raster::fast`).
         let fixed = !P::PERSPECTIVE && P::Lerp::ZERO.fixed_raw().is_some();
         for (po, obj) in frame.objects.iter().zip(self.scene.objects.iter()) {
-            if po.tris.is_empty() || self.peek(band_index) >= po.tris.end as u32 {
+            if po.tris.is_empty() || self.ls.first() >= po.tris.end as u32 {
                 continue;
             }
-            match po.layout() {
+            let r = match po.layout() {
                 Layout::Flat if fixed => {
-                    self.run_fast::<0, _, _, _>(po, &mut t, Flat(Rgb8::BLACK), |s, t| {
-                        s.0 = t.color
-                    })?
+                    self.run_fast::<0, _, _, _>(po, &mut t, Flat(Rgb8::BLACK), |s, t| s.0 = t.color)
                 }
                 Layout::Flat => {
-                    self.run::<0, _, _, _>(po, &mut t, Flat(Rgb8::BLACK), |s, t| s.0 = t.color)?
+                    self.run::<0, _, _, _>(po, &mut t, Flat(Rgb8::BLACK), |s, t| s.0 = t.color)
                 }
                 Layout::GouraudMono if P::PERSPECTIVE => {
-                    self.run::<2, _, _, _>(po, &mut t, Persp(GouraudMono), |_, _| {})?
+                    self.run::<2, _, _, _>(po, &mut t, Persp(GouraudMono), |_, _| {})
                 }
                 Layout::GouraudMono if fixed => {
-                    self.run_fast::<1, _, _, _>(po, &mut t, GouraudMono, |_, _| {})?
+                    self.run_fast::<1, _, _, _>(po, &mut t, GouraudMono, |_, _| {})
                 }
-                Layout::GouraudMono => {
-                    self.run::<1, _, _, _>(po, &mut t, GouraudMono, |_, _| {})?
-                }
+                Layout::GouraudMono => self.run::<1, _, _, _>(po, &mut t, GouraudMono, |_, _| {}),
                 Layout::GouraudRgb if P::PERSPECTIVE => {
-                    self.run::<4, _, _, _>(po, &mut t, Persp(Gouraud), |_, _| {})?
+                    self.run::<4, _, _, _>(po, &mut t, Persp(Gouraud), |_, _| {})
                 }
-                Layout::GouraudRgb => self.run::<3, _, _, _>(po, &mut t, Gouraud, |_, _| {})?,
+                Layout::GouraudRgb => self.run::<3, _, _, _>(po, &mut t, Gouraud, |_, _| {}),
                 // Out of line: its shade and kernel take a stack frame
                 // only while a Phong object is drawn.
-                Layout::PhongNormal | Layout::PhongPosition => self.phong(po, obj, &mut t)?,
+                Layout::PhongNormal | Layout::PhongPosition => self.phong(po, obj, &mut t),
+            };
+            if r.is_err() {
+                drawn = r;
+                break;
             }
         }
+        self.ls.end_band(under);
+        drawn?;
         if untouched {
             // Nothing drawn: the buffer still holds the clear, which the
             // next band then skips ([`BandBuf::start`]).
             band.untouched();
         }
         self.y = y1;
-        if self.lost {
+        if self.ls.s.lost {
             return Err(RenderError::Capacity {
                 part: Part::Order,
                 object: 0,
@@ -1045,51 +1055,6 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         Ok(())
     }
 
-    /// The smallest triangle index the three streams offer this band.
-    #[inline(always)]
-    fn peek(&self, _band: u32) -> u32 {
-        let [a, b, c] = self.heads;
-        a.min(b).min(c)
-    }
-
-    /// The triangle at the head of the pool's ring when it is to be
-    /// resumed this band.
-    #[inline(always)]
-    fn ring_head_tri(&self) -> u32 {
-        if self.ring_cur > 0 {
-            self.pool
-                .ring
-                .get(self.ring_head)
-                .and_then(|&s| self.pool.slots.get(s as usize))
-                .map_or(NONE, |s| s.tri as u32)
-        } else {
-            NONE
-        }
-    }
-
-    /// The triangle at the head of the queue when it is to be set up
-    /// this band.
-    #[inline(always)]
-    fn queue_head(&self) -> u32 {
-        if self.def_cur > 0 {
-            self.order
-                .get(self.q_at + self.def_head)
-                .map_or(NONE, |&t| t as u32)
-        } else {
-            NONE
-        }
-    }
-
-    /// The next triangle of the order when it starts in this band.
-    #[inline(always)]
-    fn bucket_head(&self) -> u32 {
-        if self.cursor < self.band_end {
-            self.order.get(self.cursor).map_or(NONE, |&i| i as u32)
-        } else {
-            NONE
-        }
-    }
-
     /// Draws this band's part of object `po`: the merge, in triangle order,
     /// of its active triangles, those that found the pool full and those
     /// starting in the band.
@@ -1107,15 +1072,24 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         D: DepthFormat,
     {
         let end = po.tris.end as u32;
-        let band = t.y0 / self.rows.max(1);
         let (y1, width) = (t.y1 as i32, t.width as i32);
-        let mesh = self.frame.mesh_tris(po);
-        loop {
-            let Some((ti, src)) = self.take(band, end, cfg!(armv6m)) else {
-                return Ok(());
+        let frame = self.frame;
+        let mesh = frame.mesh_tris(po);
+        let cur = &mut self.ls;
+        let stats = &mut self.stats;
+        cur.s.lim = cur.s.spec.min(end);
+        let r = loop {
+            let (ti, src) = match cur.next() {
+                Some(ti) => (ti, Src::Fresh),
+                None => {
+                    let Some(t) = cur.special(end) else {
+                        break Ok(());
+                    };
+                    t
+                }
             };
-            let Some(tri) = self.frame.tri_of(po, mesh, ti as usize) else {
-                return Ok(());
+            let Some(tri) = frame.tri_of(po, mesh, ti as usize) else {
+                break Ok(());
             };
             per_tri(&mut shader, &tri);
             let mut k = Kernel::<F, D, S> {
@@ -1129,28 +1103,34 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             match src {
                 Src::Slot(si) => {
                     // Resume an active triangle.
-                    let Some(slot) = self.pool.slots.get_mut(si) else {
-                        return Ok(());
+                    let Some(slot) = cur.pool.slots.get_mut(si) else {
+                        break Ok(());
                     };
                     let (row, sx, sy) = unpack::<_, N, V>(&slot.vals);
                     slot.walk.rows(&row, &sx, &sy, y1, width, &mut k);
                     let done = slot.walk.done();
-                    self.put_back(si, done);
+                    cur.put_back(si, done);
                 }
                 Src::Fresh => {
-                    let fresh = self.fresh::<N>(po, &tri, t.y0 as i32, width)?;
+                    let y0 = t.y0 as i32;
+                    let fresh =
+                        match Self::fresh::<N>(frame, &mut stats.triangles, po, &tri, y0, width) {
+                            Ok(f) => f,
+                            Err(e) => break Err(e),
+                        };
                     let Some((mut walk, row, sx, sy)) = fresh else {
-                        self.stats.pixels += k.drawn;
+                        stats.pixels += k.drawn;
                         continue;
                     };
                     walk.rows(&row, &sx, &sy, y1, width, &mut k);
                     if !walk.done() {
-                        self.keep::<N>(ti as u16, walk, &row, &sx, &sy);
+                        cur.keep::<N>(ti as u16, walk, &row, &sx, &sy);
                     }
                 }
             }
-            self.stats.pixels += k.drawn;
-        }
+            stats.pixels += k.drawn;
+        };
+        r
     }
 
     /// [`Bands::run`] for the fixed affine profiles (`i32` values, no
@@ -1158,7 +1138,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     /// kernel of `raster::fast` (the same bytes, see there). A triangle
     /// starting in the band is set up in a scratch walk and values (by
     /// [`fresh_fast`]), walked from there and kept in a free slot when it
-    /// continues below the band ([`Bands::keep_fixed`]); a resumed one is
+    /// continues below the band ([`Cur::keep_fixed`]); a resumed one is
     /// walked in its slot.
     #[inline(never)]
     fn run_fast<const N: usize, S, F, D>(
@@ -1174,14 +1154,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         D: DepthFormat,
     {
         let end = po.tris.end as u32;
-        let band = t.y0 / self.rows.max(1);
         let frame = self.frame;
         let mesh = frame.mesh_tris(po);
-        // Flat shaders read the object from a copy of it (measured on the
-        // Cortex-M4: the dodecahedron's flat frame 1.7 K instructions less,
-        // the bunny's 7 K; the Gouraud bunny 26 K more with the copy).
+        // Flat shaders read the object from a copy of it on ARMv6-M
+        // ([`COPY_FLAT`]; the Gouraud bunny measured 26 K more with the
+        // copy).
         let copy;
-        let po = if N == 0 {
+        let po = if N == 0 && COPY_FLAT {
             copy = po.clone();
             &copy
         } else {
@@ -1199,39 +1178,39 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         };
         // Setups and pixels counted here, added to the stats at the end.
         let (mut setups, mut pixels) = (0u32, 0u32);
-        // Flat (`N = 0`), and grey Gouraud (`N = 1`) off ARMv6-M: below
-        // `lim` (the ring's and the queue's heads, the object's end) the
-        // next triangle is the order's next one when it starts in the
-        // band, taken without the three-way merge
-        // ([`Bands::take_fresh`]; the merge's 34 instructions a triangle
-        // 21 on the Cortex-M4). Exact QEMU counts, raster: bunny-flat
-        // thumbv7em 1 465 797 -> 1 457 317, thumbv6m 2 173 530 ->
-        // 2 138 468 (dodeca-flat 86 466 -> 86 744, 122 735 -> 122 397);
-        // bunny-gouraud thumbv7em 1 634 450 -> 1 631 975. On ARMv6-M grey
-        // Gouraud measured 2 491 561 -> 2 512 036 (the kernel's registers)
-        // and is not taken there; the merge out of line instead cost
-        // 1 635 699 and 2 499 231. (The condition written as a constant
-        // table lookup rather than on `N` itself left thumbv6m
-        // bunny-gouraud 5.5 K above the same code: 2 497 116.)
-        let mut lim = self.heads[0].min(self.heads[1]).min(end);
+        let cur = &mut self.ls;
+        // The band's list taken below `lim` (the next continuing
+        // triangle, the object's end): one load and a test a triangle
+        // ([`Cur::next`]), the ring and the queue looked at only when the
+        // list reaches a continuing triangle ([`Cur::special`]). It
+        // replaces a three-way merge of the ring's, the queue's and the
+        // order's heads before every triangle (34 instructions a triangle
+        // on the Cortex-M4), and its first shortcut (the order's head below
+        // the other two, flat and grey Gouraud off ARMv6-M: 21). Exact
+        // QEMU counts, raster, with [`COPY_FLAT`]: thumbv7em bunny-gouraud
+        // 1 615 109 -> 1 609 209, bunny-flat 1 456 821 -> 1 453 227,
+        // dodeca-gouraud 239 432 -> 236 132; thumbv6m bunny-gouraud
+        // 2 369 374 -> 2 373 133, bunny-flat 2 055 671 -> 2 052 246,
+        // dodeca-flat 122 033 -> 124 046 (the band code's own lines on
+        // the Cortex-M4: about 11 K instructions less on the Gouraud bunny;
+        // the rest is the inlined kernel's registers). Measured and not
+        // kept: the limit in a local (thumbv7em bunny-gouraud 1 618 568,
+        // bunny-flat 1 470 301); the band's end tested before each load
+        // for flat objects (bunny-flat 1 478 187); the continuing
+        // triangles' take out of line off ARMv6-M (bunny-gouraud
+        // 1 640 139); the order's list state copied into locals for the
+        // run (1 689 897); the setups counted from the list's entries
+        // taken (1 650 195).
+        cur.s.lim = cur.s.spec.min(end);
         let done = loop {
-            let (ti, src) = if N == 0 || (N == 1 && !cfg!(armv6m)) {
-                match self.take_fresh(lim) {
-                    Some(ti) => (ti, Src::Fresh),
-                    None => {
-                        self.heads[2] = self.bucket_head();
-                        let Some(t) = self.take(band, end, false) else {
-                            break Ok(());
-                        };
-                        lim = self.heads[0].min(self.heads[1]).min(end);
-                        t
-                    }
+            let (ti, src) = match cur.next() {
+                Some(ti) => (ti, Src::Fresh),
+                None => {
+                    let Some(t) = cur.special(end) else {
+                        break Ok(());
+                    };
+                    t
                 }
-            } else {
-                let Some(t) = self.take(band, end, true) else {
-                    break Ok(());
-                };
-                t
             };
             // The mesh looked up once per object (measured on the bunny,
             // Cortex-M4: per triangle cost the flat frame 20 K instructions;
@@ -1264,7 +1243,7 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
             };
             let drawn = match src {
                 Src::Slot(si) => {
-                    let Some(slot) = self.pool.slots.get_mut(si) else {
+                    let Some(slot) = cur.pool.slots.get_mut(si) else {
                         break Ok(());
                     };
                     let walk = &mut slot.walk;
@@ -1273,15 +1252,15 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                     };
                     let drawn = draw_resumed::<N, V, S, F, D>(walk, vals, y1, &mut mem, &shader);
                     let done = walk.done();
-                    self.put_back(si, done);
+                    cur.put_back(si, done);
                     drawn
                 }
                 Src::Fresh => {
                     // The continuation written straight into the free slot
-                    // a kept triangle would take ([`Bands::take_slot`]),
+                    // a kept triangle would take ([`Cur::take_slot`]),
                     // else into the scratch and queued.
-                    let free = self.free_slot::<N>();
-                    let target = free.and_then(|si| self.pool.slots.get_mut(si as usize));
+                    let free = cur.free_slot::<N>();
+                    let target = free.and_then(|si| cur.pool.slots.get_mut(si as usize));
                     let (walk, vals) = match target {
                         Some(slot) if IN_PLACE => match P::Lerp::fixed_slots(&mut slot.vals) {
                             Some(v) => (&mut slot.walk, v),
@@ -1298,8 +1277,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                             // Kept in a slot when it continues below the band.
                             if more {
                                 match free {
-                                    Some(si) if IN_PLACE => self.take_slot::<N>(ti as u16, si),
-                                    _ => self.keep_fixed::<N>(ti as u16, &scratch.0, &scratch.1),
+                                    Some(si) if IN_PLACE => cur.take_slot::<N>(ti as u16, si),
+                                    _ => cur.keep_fixed::<N>(ti as u16, &scratch.0, &scratch.1),
                                 }
                             }
                             drawn
@@ -1315,122 +1294,14 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         done
     }
 
-    /// Takes the band's next triangle below index `end`, in triangle
-    /// order, from the three streams: the pool's ring (resumed), the queue
-    /// of those that found the pool full, and the order (those starting in
-    /// the band); `None` when none is left. With `bucket_first` the order's
-    /// stream is tested first (the most taken where no [`Bands::take_fresh`]
-    /// comes before: ARMv6-M's grey Gouraud and general paths); without it
-    /// the ring first (after `take_fresh` missed, the order's head is seldom
-    /// the least). Exact QEMU counts, raster thumbv6m: bunny-gouraud
-    /// 2 426 630 -> 2 416 972, cubes-and-sphere 9 043 490 -> 9 038 282,
-    /// dodeca-gouraud 440 317 -> 441 449 (more resumed than set up there),
-    /// the flat scenes unchanged; thumbv7em bunny-gouraud 1 631 831 ->
-    /// 1 631 488, every other scene the same or less. The order's stream
-    /// first everywhere cost bunny-flat thumbv6m 2 079 435 -> 2 099 004 and
-    /// cubes-and-sphere thumbv7em 3 873 651 -> 3 876 569; the present
-    /// three-way test kept under `bucket_first` (the queue tested again
-    /// rather than taken last) left bunny-gouraud at 2 424 326.
-    #[inline(always)]
-    fn take(&mut self, _band: u32, end: u32, bucket_first: bool) -> Option<(u32, Src)> {
-        let [ta, tb, tc] = self.heads;
-        let ti = ta.min(tb).min(tc);
-        if ti >= end {
-            return None;
-        }
-        if bucket_first {
-            // The streams hold distinct triangles: below `end`, equal heads
-            // are the same stream's.
-            if ti == tc {
-                self.next_in_bucket();
-                Some((ti, Src::Fresh))
-            } else if ti == ta {
-                Some((ti, Src::Slot(self.next_in_ring())))
-            } else {
-                self.next_in_queue();
-                Some((ti, Src::Fresh))
-            }
-        } else if ti == ta {
-            Some((ti, Src::Slot(self.next_in_ring())))
-        } else {
-            if ti == tb {
-                self.next_in_queue();
-            } else {
-                self.next_in_bucket();
-            }
-            Some((ti, Src::Fresh))
-        }
-    }
-
-    /// Takes the ring's head: its slot, the ring's next head made.
-    #[inline(always)]
-    fn next_in_ring(&mut self) -> usize {
-        let si = self.pool.ring.get(self.ring_head).copied().unwrap_or(0) as usize;
-        self.ring_head = wrap(self.ring_head + 1, CAP);
-        self.ring_cur -= 1;
-        self.ring_len -= 1;
-        self.heads[0] = self.ring_head_tri();
-        si
-    }
-
-    /// Takes the queue's head, its next head made.
-    #[inline(always)]
-    fn next_in_queue(&mut self) {
-        self.def_head = wrap(self.def_head + 1, self.q_len);
-        self.def_cur -= 1;
-        self.def_len -= 1;
-        self.heads[1] = self.queue_head();
-    }
-
-    /// Takes the order's head in the band, its next head made.
-    #[inline(always)]
-    fn next_in_bucket(&mut self) {
-        self.cursor += 1;
-        self.heads[2] = self.bucket_head();
-    }
-
-    /// The order's next triangle when it starts in the band and lies below
-    /// `lim` (then the smallest of the three streams' heads): taken, its
-    /// stream's head (`heads[2]`) left behind (made again before the
-    /// next [`Bands::take`]).
-    #[inline(always)]
-    fn take_fresh(&mut self, lim: u32) -> Option<u32> {
-        if self.cursor < self.band_end {
-            let t = u32::from(*self.order.get(self.cursor)?);
-            if t < lim {
-                self.cursor += 1;
-                return Some(t);
-            }
-        }
-        None
-    }
-
-    /// Returns slot `si`, its walk walked in place in this band: to the
-    /// free stack when the triangle is `done`, else to the ring's tail for
-    /// the next band.
-    #[inline(always)]
-    fn put_back(&mut self, si: usize, done: bool) {
-        if done {
-            if let Some(f) = self.pool.free.get_mut(self.free_len) {
-                *f = si as u16;
-                self.free_len += 1;
-            }
-        } else {
-            let tail = wrap(self.ring_head + self.ring_len, CAP);
-            if let Some(r) = self.pool.ring.get_mut(tail) {
-                *r = si as u16;
-                self.ring_len += 1;
-            }
-        }
-    }
-
     /// Sets up triangle `tri` of object `po` from row `max(first row,
     /// j0)`; `None` when it draws nothing from there (or a vertex is
     /// missing).
     #[inline(always)]
     #[allow(clippy::type_complexity)]
     fn fresh<const N: usize>(
-        &mut self,
+        frame: &Frame<'_, P>,
+        triangles: &mut u32,
         po: &PreparedObject,
         tri: &PreparedTri,
         j0: i32,
@@ -1438,7 +1309,6 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     ) -> Result<Option<(Walk, Vals<P::Lerp, N>, Vals<P::Lerp, N>, Vals<P::Lerp, N>)>, RenderError>
     {
         let sub = P::SUBPIXEL_BITS;
-        let frame = self.frame;
         let xy = |i: u16| frame.xy(usize::from(i));
         let (Some(p0), Some(p1), Some(p2)) = (xy(tri.v[0]), xy(tri.v[1]), xy(tri.v[2])) else {
             return Ok(None);
@@ -1453,13 +1323,13 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         let [(i0, q0), (i1, q1), (i2, q2)] =
             sort3([(tri.v[0], p0), (tri.v[1], p1), (tri.v[2], p2)], |v| v.1[1]);
         let (Some(a), Some(b), Some(c)) = (
-            self.frame.vertex::<N>(po, i0, q0),
-            self.frame.vertex::<N>(po, i1, q1),
-            self.frame.vertex::<N>(po, i2, q2),
+            frame.vertex::<N>(po, i0, q0),
+            frame.vertex::<N>(po, i1, q1),
+            frame.vertex::<N>(po, i2, q2),
         ) else {
             return Ok(None);
         };
-        self.stats.triangles += 1;
+        *triangles += 1;
         if outside != 0 {
             let i = [p0, p1, p2]
                 .iter()
@@ -1469,6 +1339,337 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         }
         Ok(setup::<P::Lerp, N>(&a, &b, &c, sub, j0, width))
     }
+}
+
+/// The band's list and the pool's lists: where each stands (kept in
+/// [`Bands`], reached through a [`Cur`] while an object's part of a band
+/// is drawn).
+#[derive(Clone, Copy, Debug)]
+struct Streams {
+    /// Next entry of the band's list in the run.
+    cursor: usize,
+    /// End of the band's list (the entries of the order starting in the
+    /// band; the entry there, when the run holds one, is replaced by
+    /// [`SENTINEL`] while the band is drawn).
+    band_end: usize,
+    /// A triangle put off while the pool was full found the queue full
+    /// too (the rest of the order): the band is reported as an error.
+    lost: bool,
+    /// With [`MERGE`]: a resumed triangle's entry in the band's list is
+    /// `numbers + slot` (the triangle numbers lie below `numbers`).
+    numbers: u32,
+    /// Slots in use at most (`CAP`, or with [`MERGE`] fewer when `numbers
+    /// + CAP` would not fit a `u16` entry).
+    cap: usize,
+    /// Entries of the free stack.
+    free_len: usize,
+    /// Pool ring (the slots continuing below the band, in triangle
+    /// order): first entry, entries of the band above still to resume,
+    /// entries in all.
+    ring_head: usize,
+    ring_cur: usize,
+    ring_len: usize,
+    /// Queue of triangles that found the pool full (a ring in the order's
+    /// entries past the run): first entry, entries of the band above,
+    /// entries in all.
+    def_head: usize,
+    def_cur: usize,
+    def_len: usize,
+    /// The first triangle of the ring and of the queue this band
+    /// ([`NONE`] when exhausted), and the least of them: the next
+    /// continuing triangle, before which the band's list is taken
+    /// without looking at the ring or the queue ([`Cur::next`]).
+    heads: [u32; 2],
+    spec: u32,
+    /// The least of `spec` and the end of the object being drawn.
+    lim: u32,
+    /// Most triangles kept at once so far (in the pool, or queued when it
+    /// was full).
+    peak: usize,
+}
+
+/// The list entry that ends a band's list (above every triangle number
+/// and object end).
+const SENTINEL: u16 = u16::MAX;
+
+/// The continuing triangles of a band (the ring's, resumed, and the
+/// queue's, set up afresh) merged into the band's list once when it
+/// starts ([`Cur::start_band`]), a resumed one as `numbers + slot`, rather
+/// than taken from the ring and the queue as the list reaches them
+/// ([`Cur::special`]): each triangle's pick the same load and test, a
+/// resumed one's without the ring. Measured on (exact QEMU counts, raster,
+/// off -> on): bunny-gouraud thumbv7em 1 609 213 -> 1 638 302, thumbv6m
+/// 2 359 309 -> 2 400 855; bunny-flat 1 453 231 -> 1 478 523, 2 052 248
+/// -> 2 093 794. The merge moves the list's entries below each continuing
+/// triangle: 1 371 moves for 352 continuing triangles on the bunny, ~40 K
+/// instructions on the Cortex-M4 (its first form, the ring and the queue
+/// without wrapping, as measured then: 1 615 109 -> 1 652 958 and
+/// 2 369 374 -> 2 406 027 against the three-way merge before the band
+/// list). Tested: the band tests pass with it on.
+const MERGE: bool = false;
+
+/// The band's triangles and the pool: the run of the order (the band's
+/// list in it), the queue, the pool's slots and lists, and where each
+/// stands.
+#[derive(Debug)]
+struct Cur<'s, L, const CAP: usize, const V: usize> {
+    run: &'s mut [u16],
+    queue: &'s mut [u16],
+    pool: &'s mut Active<L, CAP, V>,
+    s: Streams,
+}
+
+impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
+    /// Starts the band: the ring's and the queue's entries (the triangles
+    /// continuing from the band above) made this band's ([`MERGE`]: merged
+    /// into the band's list), the sentinel placed at `band_end` (its entry
+    /// returned, to be put back by [`Cur::end_band`]).
+    #[inline(never)]
+    fn start_band(&mut self) -> Option<u16> {
+        self.s.ring_cur = self.s.ring_len;
+        self.s.def_cur = self.s.def_len;
+        self.s.heads = [self.ring_head_tri(), self.queue_head()];
+        if MERGE {
+            self.merge();
+        }
+        self.s.spec = self.s.heads[0].min(self.s.heads[1]);
+        let end = self.s.band_end;
+        self.run
+            .get_mut(end)
+            .map(|e| core::mem::replace(e, SENTINEL))
+    }
+
+    /// [`MERGE`]: the band's continuing triangles merged in triangle order
+    /// with those starting in it (`run[cursor..band_end]`), into
+    /// `run[cursor - r - q..band_end]` (the entries before `cursor` are
+    /// those of triangles already started: at least as many as the `r +
+    /// q` continuing ones).
+    #[inline(always)]
+    fn merge(&mut self) {
+        let (r, q) = (self.s.ring_cur, self.s.def_cur);
+        let end = self.s.band_end;
+        let mut f = self.s.cursor;
+        let Some(mut w) = f.checked_sub(r + q) else {
+            // No room (not with the order the bands make): the band
+            // reported.
+            self.s.lost = true;
+            return;
+        };
+        // Each continuing triangle in turn, the band's entries below it
+        // moved down first; then the rest of the band's entries stay
+        // where they are (`w == f`).
+        loop {
+            let [rt, qt] = self.s.heads;
+            let (st, e) = if rt < qt {
+                let si = self.next_in_ring();
+                (rt, self.s.numbers + si as u32)
+            } else if qt != NONE {
+                self.next_in_queue();
+                (qt, qt)
+            } else {
+                break;
+            };
+            while f < end {
+                let t = self.run.get(f).copied().unwrap_or(SENTINEL);
+                if u32::from(t) > st {
+                    break;
+                }
+                if let Some(d) = self.run.get_mut(w) {
+                    *d = t;
+                }
+                w += 1;
+                f += 1;
+            }
+            if let Some(d) = self.run.get_mut(w) {
+                // Entries below `2^16` ([`Streams::cap`]).
+                *d = e as u16;
+            }
+            w += 1;
+        }
+        self.s.cursor -= r + q;
+    }
+
+    /// Ends the band: the entry under the sentinel put back.
+    #[inline(always)]
+    fn end_band(&mut self, under: Option<u16>) {
+        let end = self.s.band_end;
+        if let (Some(e), Some(u)) = (self.run.get_mut(end), under) {
+            *e = u;
+        }
+    }
+
+    /// The triangle at the head of the pool's ring when it is to be
+    /// resumed this band.
+    #[inline(always)]
+    fn ring_head_tri(&self) -> u32 {
+        if self.s.ring_cur > 0 {
+            self.pool
+                .ring
+                .get(self.s.ring_head)
+                .and_then(|&s| self.pool.slots.get(s as usize))
+                .map_or(NONE, |s| s.tri as u32)
+        } else {
+            NONE
+        }
+    }
+
+    /// The triangle at the head of the queue when it is to be set up
+    /// this band.
+    #[inline(always)]
+    fn queue_head(&self) -> u32 {
+        if self.s.def_cur > 0 {
+            self.queue.get(self.s.def_head).map_or(NONE, |&t| t as u32)
+        } else {
+            NONE
+        }
+    }
+
+    /// The first triangle of the band ([`NONE`] when it has none).
+    #[inline(always)]
+    fn first(&self) -> u32 {
+        let k = self.s.cursor;
+        let e = if k < self.s.band_end {
+            self.run.get(k).map_or(NONE, |&e| u32::from(e))
+        } else {
+            NONE
+        };
+        let e = if MERGE && e >= self.s.numbers && e != NONE {
+            let si = e.wrapping_sub(self.s.numbers) as usize;
+            self.pool.slots.get(si).map_or(NONE, |s| u32::from(s.tri))
+        } else {
+            e
+        };
+        e.min(self.s.spec)
+    }
+
+    /// The band list's next entry when it lies below `lim` (the next
+    /// continuing triangle, [`Streams::spec`], and the object's end): taken
+    /// (`Ok`), one load and a test; else the entry (`Err`, [`NONE`] past
+    /// the run's last; the sentinel at the band's end).
+    #[inline(always)]
+    fn next(&mut self) -> Option<u32> {
+        let k = self.s.cursor;
+        let e = u32::from(*self.run.get(k)?);
+        if e < self.s.lim {
+            self.s.cursor = k + 1;
+            Some(e)
+        } else {
+            None
+        }
+    }
+
+    /// After [`Cur::next`] gave entry `e`: the next continuing triangle
+    /// when it lies below both `e` and `end` (the object's end), taken:
+    /// resumed from its slot (the ring's) or set up afresh (the queue's);
+    /// with [`MERGE`], entry `e` when it is a resumed triangle's below
+    /// `end`; else `None`.
+    ///
+    /// Out of line on ARMv6-M: exact QEMU counts, raster thumbv6m
+    /// bunny-flat 2 076 244 -> 2 052 246, bunny-gouraud 2 353 642 ->
+    /// 2 373 133 (out of line on ARMv7-M too: bunny-gouraud thumbv7em
+    /// 1 609 209 -> 1 640 139).
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
+    fn special(&mut self, end: u32) -> Option<(u32, Src)> {
+        let k = self.s.cursor;
+        let e = self.run.get(k).map_or(NONE, |&e| u32::from(e));
+        if MERGE {
+            if k >= self.s.band_end || e < self.s.numbers {
+                return None;
+            }
+            let si = e.wrapping_sub(self.s.numbers) as usize;
+            let ti = u32::from(self.pool.slots.get(si)?.tri);
+            if ti >= end {
+                return None;
+            }
+            self.s.cursor = k + 1;
+            return Some((ti, Src::Slot(si)));
+        }
+        let sp = self.s.spec;
+        if sp >= end || sp >= e {
+            return None;
+        }
+        let src = if sp == self.s.heads[0] {
+            Src::Slot(self.next_in_ring())
+        } else {
+            self.next_in_queue();
+            Src::Fresh
+        };
+        self.s.spec = self.s.heads[0].min(self.s.heads[1]);
+        self.s.lim = self.s.spec.min(end);
+        Some((sp, src))
+    }
+
+    /// Takes the ring's head: its slot, the ring's next head made.
+    #[inline(always)]
+    fn next_in_ring(&mut self) -> usize {
+        let si = self.pool.ring.get(self.s.ring_head).copied().unwrap_or(0) as usize;
+        self.s.ring_head = wrap(self.s.ring_head + 1, CAP);
+        self.s.ring_cur -= 1;
+        self.s.ring_len -= 1;
+        self.s.heads[0] = self.ring_head_tri();
+        si
+    }
+
+    /// Takes the queue's head, its next head made.
+    #[inline(always)]
+    fn next_in_queue(&mut self) {
+        self.s.def_head = wrap(self.s.def_head + 1, self.queue.len());
+        self.s.def_cur -= 1;
+        self.s.def_len -= 1;
+        self.s.heads[1] = self.queue_head();
+    }
+
+    /// Returns slot `si` to the free stack.
+    #[inline(always)]
+    fn free(&mut self, si: usize) {
+        if let Some(f) = self.pool.free.get_mut(self.s.free_len) {
+            *f = si as u16;
+            self.s.free_len += 1;
+        }
+    }
+
+    /// Appends slot `si` to the ring's tail (continuing below the band).
+    #[inline(always)]
+    fn ring_push(&mut self, si: u16) {
+        let tail = wrap(self.s.ring_head + self.s.ring_len, CAP);
+        if let Some(r) = self.pool.ring.get_mut(tail) {
+            *r = si;
+            self.s.ring_len += 1;
+        }
+    }
+
+    /// Returns slot `si`, its walk walked in place in this band: to the
+    /// free stack when the triangle is `done`, else to the ring for the
+    /// next band.
+    #[inline(always)]
+    fn put_back(&mut self, si: usize, done: bool) {
+        if done {
+            self.free(si);
+        } else {
+            self.ring_push(si as u16);
+        }
+    }
+
+    /// Takes a free slot for a triangle continuing below the band with
+    /// `N` values (`None`: none free, or `N >= V`).
+    #[inline(always)]
+    fn take_free<const N: usize>(&mut self) -> Option<u16> {
+        if N < V && self.s.free_len > 0 {
+            self.s.free_len -= 1;
+            self.pool.free.get(self.s.free_len).copied()
+        } else {
+            None
+        }
+    }
+
+    /// The most triangles kept at once, updated.
+    #[inline(always)]
+    fn note_peak(&mut self) {
+        // (`CAP` itself without `MERGE`: a constant.)
+        let cap = if MERGE { self.s.cap } else { CAP };
+        self.s.peak = self.s.peak.max(cap - self.s.free_len + self.s.def_len);
+    }
 
     /// Keeps a triangle that continues below the band: in a free slot, or
     /// in the queue of those set up afresh in the next band.
@@ -1477,89 +1678,71 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         &mut self,
         ti: u16,
         walk: Walk,
-        row: &Vals<P::Lerp, N>,
-        sx: &Vals<P::Lerp, N>,
-        sy: &Vals<P::Lerp, N>,
+        row: &Vals<L, N>,
+        sx: &Vals<L, N>,
+        sy: &Vals<L, N>,
     ) {
-        if N < V && self.free_len > 0 {
-            self.free_len -= 1;
-            let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
-            if let Some(slot) = self.pool.slots.get_mut(si as usize) {
+        let slot = self
+            .take_free::<N>()
+            .and_then(|si| Some((si, self.pool.slots.get_mut(usize::from(si))?)));
+        match slot {
+            Some((si, slot)) => {
                 slot.tri = ti;
                 slot.walk = walk;
                 pack_vals::<_, N, V>(&mut slot.vals, row, sx, sy);
-                let tail = wrap(self.ring_head + self.ring_len, CAP);
-                if let Some(r) = self.pool.ring.get_mut(tail) {
-                    *r = si;
-                    self.ring_len += 1;
-                }
+                self.ring_push(si);
             }
-        } else {
-            self.defer(ti);
+            None => self.defer(ti),
         }
-        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+        self.note_peak();
     }
 
-    /// [`Bands::keep`] for the fast path: the walk and the values copied
+    /// [`Cur::keep`] for the fast path: the walk and the values copied
     /// into a free slot, or the triangle queued.
     #[inline(always)]
     fn keep_fixed<const N: usize>(&mut self, ti: u16, walk: &Walk, vals: &[[i32; 3]; V]) {
-        let kept = N < V && self.free_len > 0;
-        let slot = match kept {
-            true => {
-                self.free_len -= 1;
-                let si = self.pool.free.get(self.free_len).copied().unwrap_or(0);
-                self.pool.slots.get_mut(si as usize).map(|slot| (si, slot))
-            }
-            false => None,
-        };
+        let slot = self
+            .take_free::<N>()
+            .and_then(|si| Some((si, self.pool.slots.get_mut(usize::from(si))?)));
         match slot {
             Some((si, slot)) => {
                 slot.tri = ti;
                 walk.copy_to(&mut slot.walk);
-                if let Some(v) = P::Lerp::fixed_slots(&mut slot.vals) {
+                if let Some(v) = L::fixed_slots(&mut slot.vals) {
                     // The depth and the N values in use, not the whole slot.
                     for (d, s) in v.iter_mut().zip(vals).take(N + 1) {
                         *d = *s;
                     }
                 }
-                let tail = wrap(self.ring_head + self.ring_len, CAP);
-                if let Some(r) = self.pool.ring.get_mut(tail) {
-                    *r = si;
-                    self.ring_len += 1;
-                }
+                self.ring_push(si);
             }
             None => self.defer(ti),
         }
-        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+        self.note_peak();
     }
 
     /// The slot a fast triangle continuing below the band takes: the free
     /// stack's top (`None` when the pool is full or the values do not fit,
-    /// `N >= V`). Not taken yet ([`Bands::take_slot`]).
+    /// `N >= V`). Not taken yet ([`Cur::take_slot`]).
     #[inline(always)]
     fn free_slot<const N: usize>(&self) -> Option<u16> {
-        if N < V && self.free_len > 0 {
-            self.pool.free.get(self.free_len - 1).copied()
+        if N < V && self.s.free_len > 0 {
+            self.pool.free.get(self.s.free_len - 1).copied()
         } else {
             None
         }
     }
 
-    /// Takes slot `si` ([`Bands::free_slot`], its walk and values written
+    /// Takes slot `si` ([`Cur::free_slot`], its walk and values written
     /// in place) for triangle `ti`: off the free stack, onto the ring.
     #[inline(always)]
     fn take_slot<const N: usize>(&mut self, ti: u16, si: u16) {
-        self.free_len -= 1;
+        self.s.free_len -= 1;
         if let Some(slot) = self.pool.slots.get_mut(si as usize) {
             slot.tri = ti;
         }
-        let tail = wrap(self.ring_head + self.ring_len, CAP);
-        if let Some(r) = self.pool.ring.get_mut(tail) {
-            *r = si;
-            self.ring_len += 1;
-        }
-        self.peak = self.peak.max(CAP - self.free_len + self.def_len);
+        self.ring_push(si);
+        self.note_peak();
     }
 
     /// Queues a triangle that continues below the band but has no slot:
@@ -1567,14 +1750,14 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
     #[inline(always)]
     fn defer(&mut self, ti: u16) {
         // The queue: a ring in the order's entries outside the run.
-        let len = self.q_len;
-        let tail = wrap(self.def_head + self.def_len, len);
-        match self.order.get_mut(self.q_at + tail) {
-            Some(q) if self.def_len < len => {
+        let len = self.queue.len();
+        let tail = wrap(self.s.def_head + self.s.def_len, len);
+        match self.queue.get_mut(tail) {
+            Some(q) if self.s.def_len < len => {
                 *q = ti;
-                self.def_len += 1;
+                self.s.def_len += 1;
             }
-            _ => self.lost = true,
+            _ => self.s.lost = true,
         }
     }
 }
@@ -1598,17 +1781,17 @@ fn wrap(x: usize, m: usize) -> usize {
 /// Resumed triangles of values walked without their triangle read
 /// ([`Bands::run_fast`]; `per_tri` does nothing for them): exact QEMU
 /// counts, bunny-gouraud raster thumbv7em 1 657 797 -> 1 622 563 (with
-/// the resume kernel), bunny-flat unchanged. Not on ARMv6-M, where the
-/// first form of it (the fetch moved into both arms) cost bunny-gouraud
-/// raster thumbv6m 2 369 374 -> 2 383 904 (and bunny-flat thumbv7em
-/// 1 456 821 -> 1 469 333; the present form leaves every flat count as
-/// it was).
-const SKIP_FETCH: bool = !cfg!(armv6m);
+/// the resume kernel), bunny-flat unchanged. On ARMv6-M too since the
+/// band list ([`Cur::next`]): bunny-gouraud raster thumbv6m 2 373 133 ->
+/// 2 359 307, every other count the same (before it, the first form of
+/// it, the fetch moved into both arms, cost there 2 369 374 -> 2 383 904,
+/// and bunny-flat thumbv7em 1 456 821 -> 1 469 333).
+const SKIP_FETCH: bool = true;
 
 /// A fast triangle that continues below its band writes its walk and
-/// values straight into the slot it takes ([`Bands::free_slot`], taken
+/// values straight into the slot it takes ([`Cur::free_slot`], taken
 /// before the set-up), not into a scratch copied into the slot afterwards
-/// ([`Bands::keep_fixed`]). Off: exact QEMU counts, bunny-gouraud raster
+/// ([`Cur::keep_fixed`]). Off: exact QEMU counts, bunny-gouraud raster
 /// thumbv7em 1 624 644 -> 1 674 453, thumbv6m 2 379 156 -> 2 424 753
 /// (the slot's address, a run-time value, live across the whole inlined
 /// kernel instead of the scratch's fixed stack place). Taken after the
@@ -1619,8 +1802,19 @@ const SKIP_FETCH: bool = !cfg!(armv6m);
 /// kept triangle) with the slot returned to the kernel's tail,
 /// 1 652 332 against 1 615 109 (bunny-flat 1 456 821 -> 1 490 265;
 /// thumbv6m bunny-gouraud 2 369 374 -> 2 363 070, bunny-flat 2 055 671 ->
-/// 2 082 781). [`Bands::keep_fixed`] out of line: 1 615 109 -> 1 637 080.
+/// 2 082 781). [`Cur::keep_fixed`] out of line: 1 615 109 -> 1 637 080.
 const IN_PLACE: bool = false;
+
+/// Flat objects read from a copy of the object ([`Bands::run_fast`]), on
+/// ARMv6-M only. Exact QEMU counts with the band list ([`Cur::next`]),
+/// bunny-flat raster: thumbv7em 1 477 404 with the copy, 1 453 227 in
+/// place (bunny-gouraud unchanged); thumbv6m 2 052 246 with it,
+/// 2 086 012 in place. Grey Gouraud objects from a copy too: bunny-gouraud
+/// thumbv7em 1 609 209 -> 1 642 612, thumbv6m 2 359 307 -> 2 371 511.
+/// (Before the band list, the copy measured the
+/// dodecahedron's flat frame 1.7 K and the bunny's 7 K instructions less
+/// on the Cortex-M4.)
+const COPY_FLAT: bool = cfg!(armv6m);
 
 /// Where a band's next triangle comes from.
 #[derive(Clone, Copy, Debug)]
