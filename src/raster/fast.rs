@@ -1140,6 +1140,22 @@ fn levels_in_range(l: [i32; 3], gx: i32, gy: i32, s: u32) -> bool {
 /// Its edge set-up is cheaper (~80 a triangle against ~135), but finding
 /// a row's ends costs ~60 a row against the walk's ~20.
 ///
+/// Measured from 1 615 109 (bunny-gouraud raster thumbv7em; thumbv6m
+/// untouched) and not kept: the rows by pixel index (an edge steps its
+/// index in the band by `q + width`, no row offset), the edges'
+/// invariants and the values' steps in one block read through an opaque
+/// address and reloaded every row, the span's values `c + syw·k + sx·p`:
+/// rows 17 instructions instead of 28, spans 28 instead of 29, pixels 16
+/// instead of 16.5, but about 75 more a triangle (the block's ~15 words
+/// stored from spill slots, the start values per half): 1 646 504 at
+/// best (first 1 813 109; the block built after the edges 1 688 395;
+/// both halves in one loop 1 827 227; the slices outside the block
+/// 1 658 849; the resume kernel through it 1 650 121). Even at that
+/// form's floor (rows 12, spans 18, pixels 13: ~335 K for the fresh rows
+/// against ~560 K) the block's cost a triangle repays less than it takes.
+/// Its dead branch alone, kept off by a `const`, moved bunny-gouraud
+/// +2 081 and bunny-flat +4 683: it is not in the tree.
+///
 /// With `LEVELS`, for one grey level (`N = 1`; other `N` as
 /// without `LEVELS`; fixed, `2^16` a level:
 /// [`crate::raster::GouraudMono`]'s attribute) whose every pixel's rounded
