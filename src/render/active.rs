@@ -30,13 +30,18 @@
 //! the queue, each in triangle order) are few, and the least of their
 //! heads is a limit below which each triangle of the list is taken with
 //! one load and a test (`Cur::next`); the ring and the queue are looked
-//! at only when the list reaches that limit. (Merging them into the list
-//! once per band instead, `MERGE`, measured worse: it moves the list's
-//! entries below each continuing triangle.) When a frame has more bands
+//! at only when the list reaches that limit. When a frame has more bands
 //! than one ordering covers, each later run of bands is moved to the end
-//! of the run's entries, so that the entries before a band's list hold at
-//! least as many as the triangles continuing into it (the room `MERGE`
-//! merges into).
+//! of the run's entries.
+//!
+//! Measured and not kept: the continuing triangles merged into the band's
+//! list once when the band starts (a resumed one's entry `numbers +
+//! slot`), so that every pick is the same load and test. Exact QEMU
+//! counts, raster, without -> with: bunny-gouraud thumbv7em 1 609 213 ->
+//! 1 638 302, thumbv6m 2 359 309 -> 2 400 855; bunny-flat 1 453 231 ->
+//! 1 478 523, 2 052 248 -> 2 093 794. The merge moves the list's entries
+//! below each continuing triangle: 1 371 moves for the bunny's 352
+//! continuing triangles, ~40 K instructions on the Cortex-M4.
 //!
 //! No band scans the triangles of other bands, and with a pool large
 //! enough every triangle is set up exactly once per frame. A triangle
@@ -295,10 +300,6 @@ pub struct Bands<'a, 'w, P: Profile, const CAP: usize, const V: usize> {
     /// The first band of those ordered (every [`EPOCH`] bands the
     /// triangles starting in the next ones are ordered).
     epoch: u32,
-    /// Where the bands' entries start in the run (past the room kept for
-    /// the triangles started in an earlier run of bands, when the frame
-    /// has more than [`EPOCH`] bands).
-    run_off: usize,
     stats: RenderStats,
     /// The Phong kernel's specular table, built once a frame per
     /// shininess rather than once a band.
@@ -355,16 +356,8 @@ impl<'w, P: Profile> Frame<'w, P> {
         let lights = eye_lights(scene)?;
         let Pool { act: pool, quads } = &mut *state.pool;
         QuadSlot::clear(quads);
-        // A resumed triangle's entry in a band's list is `numbers + slot`
-        // (a `u16`): the slots past `2^16 - numbers` stay unused.
-        let numbers = self.triangle_numbers();
-        let cap = if MERGE {
-            CAP.min((1 << 16) - numbers)
-        } else {
-            CAP
-        };
-        for (i, f) in pool.free.iter_mut().take(cap).enumerate() {
-            *f = (cap - 1 - i) as u16;
+        for (i, f) in pool.free.iter_mut().take(CAP).enumerate() {
+            *f = (CAP - 1 - i) as u16;
         }
         // (The kept triangles counted while ordering.)
         let (ends, run_at, n) = sort_by_band(self, order, rows, self.height, 0, None);
@@ -388,7 +381,6 @@ impl<'w, P: Profile> Frame<'w, P> {
             y: 0,
             ends,
             epoch: 0,
-            run_off: 0,
             ls: Cur {
                 run,
                 queue,
@@ -397,9 +389,7 @@ impl<'w, P: Profile> Frame<'w, P> {
                     cursor: 0,
                     band_end: 0,
                     lost: false,
-                    numbers: numbers as u32,
-                    cap,
-                    free_len: cap,
+                    free_len: CAP,
                     ring_head: 0,
                     ring_cur: 0,
                     ring_len: 0,
@@ -889,11 +879,8 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
         // The triangles starting in this band: the next run of the order
         // (each triangle's band found once per frame, here).
         if band_index >= self.epoch + EPOCH {
-            // The next run of bands: its triangles ordered, and moved to
-            // the run's end: the entries before them are the room where
-            // the triangles continuing from the bands above are merged
-            // into a band's list (at most those started above: the run's
-            // entries not ordered again).
+            // The next run of bands: its triangles ordered (into the
+            // run's entries).
             let n = self.ls.run.len();
             let (ends, ..) = sort_by_band(
                 self.frame,
@@ -903,22 +890,18 @@ impl<'w, P: Profile, const CAP: usize, const V: usize> Bands<'_, 'w, P, CAP, V> 
                 band_index,
                 Some((0, n)),
             );
-            let c = usize::from(ends[EPOCH as usize - 1]).min(n);
-            self.ls.run.copy_within(..c, n - c);
             self.ends = ends;
             self.epoch = band_index;
-            self.run_off = n - c;
-            self.ls.s.cursor = n - c;
+            self.ls.s.cursor = 0;
         }
         // Bands past the last hold no start (keys are clamped to it).
-        self.ls.s.band_end = (self.run_off
-            + self
-                .ends
-                .get((band_index - self.epoch) as usize)
-                .map_or(self.ls.run.len(), |&e| usize::from(e)))
-        .min(self.ls.run.len())
-        .max(self.ls.s.cursor);
-        // The band's list: the continuing triangles merged in.
+        self.ls.s.band_end = self
+            .ends
+            .get((band_index - self.epoch) as usize)
+            .map_or(self.ls.run.len(), |&e| usize::from(e))
+            .min(self.ls.run.len())
+            .max(self.ls.s.cursor);
+        // The band's list, and the heads of the continuing triangles.
         let under = self.ls.start_band();
         // No triangle to resume or start: the band draws nothing.
         let untouched = self.ls.first() == NONE;
@@ -1355,12 +1338,6 @@ struct Streams {
     /// A triangle put off while the pool was full found the queue full
     /// too (the rest of the order): the band is reported as an error.
     lost: bool,
-    /// With [`MERGE`]: a resumed triangle's entry in the band's list is
-    /// `numbers + slot` (the triangle numbers lie below `numbers`).
-    numbers: u32,
-    /// Slots in use at most (`CAP`, or with [`MERGE`] fewer when `numbers
-    /// + CAP` would not fit a `u16` entry).
-    cap: usize,
     /// Entries of the free stack.
     free_len: usize,
     /// Pool ring (the slots continuing below the band, in triangle
@@ -1392,22 +1369,6 @@ struct Streams {
 /// and object end).
 const SENTINEL: u16 = u16::MAX;
 
-/// The continuing triangles of a band (the ring's, resumed, and the
-/// queue's, set up afresh) merged into the band's list once when it
-/// starts ([`Cur::start_band`]), a resumed one as `numbers + slot`, rather
-/// than taken from the ring and the queue as the list reaches them
-/// ([`Cur::special`]): each triangle's pick the same load and test, a
-/// resumed one's without the ring. Measured on (exact QEMU counts, raster,
-/// off -> on): bunny-gouraud thumbv7em 1 609 213 -> 1 638 302, thumbv6m
-/// 2 359 309 -> 2 400 855; bunny-flat 1 453 231 -> 1 478 523, 2 052 248
-/// -> 2 093 794. The merge moves the list's entries below each continuing
-/// triangle: 1 371 moves for 352 continuing triangles on the bunny, ~40 K
-/// instructions on the Cortex-M4 (its first form, the ring and the queue
-/// without wrapping, as measured then: 1 615 109 -> 1 652 958 and
-/// 2 369 374 -> 2 406 027 against the three-way merge before the band
-/// list). Tested: the band tests pass with it on.
-const MERGE: bool = false;
-
 /// The band's triangles and the pool: the run of the order (the band's
 /// list in it), the queue, the pool's slots and lists, and where each
 /// stands.
@@ -1421,72 +1382,18 @@ struct Cur<'s, L, const CAP: usize, const V: usize> {
 
 impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     /// Starts the band: the ring's and the queue's entries (the triangles
-    /// continuing from the band above) made this band's ([`MERGE`]: merged
-    /// into the band's list), the sentinel placed at `band_end` (its entry
+    /// continuing from the band above) made this band's, the sentinel placed at `band_end` (its entry
     /// returned, to be put back by [`Cur::end_band`]).
     #[inline(never)]
     fn start_band(&mut self) -> Option<u16> {
         self.s.ring_cur = self.s.ring_len;
         self.s.def_cur = self.s.def_len;
         self.s.heads = [self.ring_head_tri(), self.queue_head()];
-        if MERGE {
-            self.merge();
-        }
         self.s.spec = self.s.heads[0].min(self.s.heads[1]);
         let end = self.s.band_end;
         self.run
             .get_mut(end)
             .map(|e| core::mem::replace(e, SENTINEL))
-    }
-
-    /// [`MERGE`]: the band's continuing triangles merged in triangle order
-    /// with those starting in it (`run[cursor..band_end]`), into
-    /// `run[cursor - r - q..band_end]` (the entries before `cursor` are
-    /// those of triangles already started: at least as many as the `r +
-    /// q` continuing ones).
-    #[inline(always)]
-    fn merge(&mut self) {
-        let (r, q) = (self.s.ring_cur, self.s.def_cur);
-        let end = self.s.band_end;
-        let mut f = self.s.cursor;
-        let Some(mut w) = f.checked_sub(r + q) else {
-            // No room (not with the order the bands make): the band
-            // reported.
-            self.s.lost = true;
-            return;
-        };
-        // Each continuing triangle in turn, the band's entries below it
-        // moved down first; then the rest of the band's entries stay
-        // where they are (`w == f`).
-        loop {
-            let [rt, qt] = self.s.heads;
-            let (st, e) = if rt < qt {
-                let si = self.next_in_ring();
-                (rt, self.s.numbers + si as u32)
-            } else if qt != NONE {
-                self.next_in_queue();
-                (qt, qt)
-            } else {
-                break;
-            };
-            while f < end {
-                let t = self.run.get(f).copied().unwrap_or(SENTINEL);
-                if u32::from(t) > st {
-                    break;
-                }
-                if let Some(d) = self.run.get_mut(w) {
-                    *d = t;
-                }
-                w += 1;
-                f += 1;
-            }
-            if let Some(d) = self.run.get_mut(w) {
-                // Entries below `2^16` ([`Streams::cap`]).
-                *d = e as u16;
-            }
-            w += 1;
-        }
-        self.s.cursor -= r + q;
     }
 
     /// Ends the band: the entry under the sentinel put back.
@@ -1533,12 +1440,6 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
         } else {
             NONE
         };
-        let e = if MERGE && e >= self.s.numbers && e != NONE {
-            let si = e.wrapping_sub(self.s.numbers) as usize;
-            self.pool.slots.get(si).map_or(NONE, |s| u32::from(s.tri))
-        } else {
-            e
-        };
         e.min(self.s.spec)
     }
 
@@ -1561,8 +1462,7 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     /// After [`Cur::next`] gave entry `e`: the next continuing triangle
     /// when it lies below both `e` and `end` (the object's end), taken:
     /// resumed from its slot (the ring's) or set up afresh (the queue's);
-    /// with [`MERGE`], entry `e` when it is a resumed triangle's below
-    /// `end`; else `None`.
+    /// else `None`.
     ///
     /// Out of line on ARMv6-M: exact QEMU counts, raster thumbv6m
     /// bunny-flat 2 076 244 -> 2 052 246, bunny-gouraud 2 353 642 ->
@@ -1573,18 +1473,6 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     fn special(&mut self, end: u32) -> Option<(u32, Src)> {
         let k = self.s.cursor;
         let e = self.run.get(k).map_or(NONE, |&e| u32::from(e));
-        if MERGE {
-            if k >= self.s.band_end || e < self.s.numbers {
-                return None;
-            }
-            let si = e.wrapping_sub(self.s.numbers) as usize;
-            let ti = u32::from(self.pool.slots.get(si)?.tri);
-            if ti >= end {
-                return None;
-            }
-            self.s.cursor = k + 1;
-            return Some((ti, Src::Slot(si)));
-        }
         let sp = self.s.spec;
         if sp >= end || sp >= e {
             return None;
@@ -1666,9 +1554,7 @@ impl<L: Lerp, const CAP: usize, const V: usize> Cur<'_, L, CAP, V> {
     /// The most triangles kept at once, updated.
     #[inline(always)]
     fn note_peak(&mut self) {
-        // (`CAP` itself without `MERGE`: a constant.)
-        let cap = if MERGE { self.s.cap } else { CAP };
-        self.s.peak = self.s.peak.max(cap - self.s.free_len + self.s.def_len);
+        self.s.peak = self.s.peak.max(CAP - self.s.free_len + self.s.def_len);
     }
 
     /// Keeps a triangle that continues below the band: in a free slot, or
